@@ -1,0 +1,362 @@
+//! PLY (Stanford polygon format): ASCII, binary little endian and binary big
+//! endian.
+//!
+//! Reading goes through `ply-rs-bw`. The `vertex` element must have scalar
+//! `x`, `y`, `z` properties of any numeric type (usually `float` or
+//! `double`); the optional `face` element must have a `vertex_indices` (or
+//! `vertex_index`) list of integers. Other properties and elements are
+//! ignored. In ASCII PLY, `ply-rs-bw` accepts numbers of the form
+//! `[-+]digits[.digits][e[-+]digits]` only, so `nan`, `inf`, `1.` or `.5`
+//! are parse errors naming the line.
+//!
+//! Writing (own code, so the output is exactly known): `double` coordinates
+//! (ASCII in shortest round-trip form, or binary little endian), faces as
+//! `list uchar int vertex_indices` (`list uint int` if a face has more than
+//! 255 vertices). Both are bit-exact.
+
+use std::fmt::Write;
+use std::io::Cursor;
+
+use dymsum::PolygonMesh;
+use ply_rs_bw::parser::{ParseError, Parser, Reader};
+use ply_rs_bw::ply::{Encoding, Header, PropertyAccess, PropertyAccessResult, PropertyType};
+
+use super::{push_coords, FormatError, Location};
+
+/// One PLY element of any kind: only the properties we use are kept.
+#[derive(Default)]
+struct Elem {
+    xyz: [Option<f64>; 3],
+    indices: Option<Vec<i64>>,
+}
+
+impl Elem {
+    fn scalar(&mut self, name: &str, v: f64) -> PropertyAccessResult {
+        let slot = match name {
+            "x" => 0,
+            "y" => 1,
+            "z" => 2,
+            _ => return PropertyAccessResult::Ignored,
+        };
+        self.xyz[slot] = Some(v);
+        PropertyAccessResult::Set
+    }
+
+    fn list<T: Into<i64>>(&mut self, name: &str, v: Vec<T>) -> PropertyAccessResult {
+        if is_index_list(name) {
+            self.indices = Some(v.into_iter().map(Into::into).collect());
+            PropertyAccessResult::Set
+        } else {
+            PropertyAccessResult::Ignored
+        }
+    }
+}
+
+fn is_index_list(name: &str) -> bool {
+    name == "vertex_indices" || name == "vertex_index"
+}
+
+impl PropertyAccess for Elem {
+    fn new() -> Self {
+        Self::default()
+    }
+    fn set_char(&mut self, name: &str, v: i8) -> PropertyAccessResult {
+        self.scalar(name, v.into())
+    }
+    fn set_uchar(&mut self, name: &str, v: u8) -> PropertyAccessResult {
+        self.scalar(name, v.into())
+    }
+    fn set_short(&mut self, name: &str, v: i16) -> PropertyAccessResult {
+        self.scalar(name, v.into())
+    }
+    fn set_ushort(&mut self, name: &str, v: u16) -> PropertyAccessResult {
+        self.scalar(name, v.into())
+    }
+    fn set_int(&mut self, name: &str, v: i32) -> PropertyAccessResult {
+        self.scalar(name, v.into())
+    }
+    fn set_uint(&mut self, name: &str, v: u32) -> PropertyAccessResult {
+        self.scalar(name, v.into())
+    }
+    fn set_float(&mut self, name: &str, v: f32) -> PropertyAccessResult {
+        self.scalar(name, v.into())
+    }
+    fn set_double(&mut self, name: &str, v: f64) -> PropertyAccessResult {
+        self.scalar(name, v)
+    }
+    fn set_list_char(&mut self, name: &str, v: Vec<i8>) -> PropertyAccessResult {
+        self.list(name, v)
+    }
+    fn set_list_uchar(&mut self, name: &str, v: Vec<u8>) -> PropertyAccessResult {
+        self.list(name, v)
+    }
+    fn set_list_short(&mut self, name: &str, v: Vec<i16>) -> PropertyAccessResult {
+        self.list(name, v)
+    }
+    fn set_list_ushort(&mut self, name: &str, v: Vec<u16>) -> PropertyAccessResult {
+        self.list(name, v)
+    }
+    fn set_list_int(&mut self, name: &str, v: Vec<i32>) -> PropertyAccessResult {
+        self.list(name, v)
+    }
+    fn set_list_uint(&mut self, name: &str, v: Vec<u32>) -> PropertyAccessResult {
+        self.list(name, v)
+    }
+    fn set_list_float(&mut self, name: &str, _v: Vec<f32>) -> PropertyAccessResult {
+        if is_index_list(name) {
+            PropertyAccessResult::UnsupportedType
+        } else {
+            PropertyAccessResult::Ignored
+        }
+    }
+    fn set_list_double(&mut self, name: &str, _v: Vec<f64>) -> PropertyAccessResult {
+        if is_index_list(name) {
+            PropertyAccessResult::UnsupportedType
+        } else {
+            PropertyAccessResult::Ignored
+        }
+    }
+}
+
+/// Maps positions in the payload to [`Location`]s.
+struct Locator<'h> {
+    header: &'h Header,
+    /// 1-based line number of the first payload line (ASCII).
+    first_data_line: usize,
+}
+
+impl Locator<'_> {
+    fn ascii(&self) -> bool {
+        self.header.encoding == Encoding::Ascii
+    }
+
+    /// Location of element `index` of element kind `kind`.
+    fn element(&self, kind: &str, index: usize) -> Location {
+        if self.ascii() {
+            let before: usize = self
+                .header
+                .elements
+                .iter()
+                .take_while(|(k, _)| k.as_str() != kind)
+                .map(|(_, e)| e.count)
+                .fold(0usize, usize::saturating_add);
+            Location::Line(
+                self.first_data_line
+                    .saturating_add(before)
+                    .saturating_add(index),
+            )
+        } else {
+            Location::Element {
+                kind: kind.to_string(),
+                index,
+            }
+        }
+    }
+
+    /// Location of a payload error reported by ply-rs-bw at its "line".
+    fn payload_error(&self, line: Option<usize>) -> Location {
+        let Some(line) = line else {
+            return Location::Whole;
+        };
+        if self.ascii() {
+            return Location::Line(line);
+        }
+        // In binary payloads ply-rs-bw counts one "line" per element.
+        let Some(mut g) = line.checked_sub(self.first_data_line) else {
+            return Location::Whole;
+        };
+        for (kind, e) in &self.header.elements {
+            if g < e.count {
+                return Location::Element {
+                    kind: kind.clone(),
+                    index: g,
+                };
+            }
+            g -= e.count;
+        }
+        Location::Whole
+    }
+}
+
+fn message(e: &ParseError) -> String {
+    // ply-rs-bw's Display prefixes "Line n: ", which our Location replaces.
+    let s = e.to_string();
+    match (e.line(), s.split_once(": ")) {
+        (Some(_), Some((prefix, rest))) if prefix.starts_with("Line ") => rest.to_string(),
+        _ => s,
+    }
+}
+
+pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
+    if bytes.is_empty() {
+        return Err(FormatError::Empty {
+            source_name: name.to_string(),
+        });
+    }
+    let parser = Parser::<Elem>::new();
+    let mut reader = Reader::new(Cursor::new(bytes));
+    let header = parser.read_header(&mut reader).map_err(|e| {
+        let at = e.line().map_or(Location::Whole, Location::Line);
+        FormatError::parse(name, at, format!("PLY header: {}", message(&e)))
+    })?;
+    let loc = Locator {
+        header: &header,
+        first_data_line: reader.line(),
+    };
+    let header_end = Location::Line(reader.line().saturating_sub(1));
+
+    // Check the header describes a polygon mesh before reading the payload.
+    let Some(vdef) = header.elements.get("vertex") else {
+        return Err(FormatError::unsupported(
+            name,
+            header_end,
+            "PLY without a \"vertex\" element",
+        ));
+    };
+    for axis in ["x", "y", "z"] {
+        match vdef.properties.get(axis).map(|p| &p.data_type) {
+            Some(PropertyType::Scalar(_)) => {}
+            Some(PropertyType::List(..)) => {
+                return Err(FormatError::unsupported(
+                    name,
+                    header_end,
+                    format!("vertex property {axis} is a list"),
+                ))
+            }
+            None => {
+                return Err(FormatError::unsupported(
+                    name,
+                    header_end,
+                    format!("PLY vertex element without an \"{axis}\" property"),
+                ))
+            }
+        }
+    }
+    if vdef.count == 0 {
+        return Err(FormatError::Empty {
+            source_name: name.to_string(),
+        });
+    }
+    if let Some(fdef) = header.elements.get("face") {
+        let has_list = fdef
+            .properties
+            .iter()
+            .any(|(k, p)| is_index_list(k) && matches!(p.data_type, PropertyType::List(..)));
+        if fdef.count > 0 && !has_list {
+            return Err(FormatError::unsupported(
+                name,
+                header_end,
+                "PLY face element without a \"vertex_indices\" list",
+            ));
+        }
+    }
+
+    let mut payload = parser
+        .read_payload(&mut reader, &header)
+        .map_err(|e| FormatError::parse(name, loc.payload_error(e.line()), message(&e)))?;
+
+    let velems = payload.swap_remove("vertex").unwrap_or_default();
+    let mut vertices = Vec::with_capacity(velems.len());
+    for (i, e) in velems.iter().enumerate() {
+        let (Some(x), Some(y), Some(z)) = (e.xyz[0], e.xyz[1], e.xyz[2]) else {
+            return Err(FormatError::parse(
+                name,
+                loc.element("vertex", i),
+                "vertex lacks a coordinate",
+            ));
+        };
+        if let Some(bad) = [x, y, z].into_iter().find(|c| !c.is_finite()) {
+            return Err(FormatError::NonFinite {
+                source_name: name.to_string(),
+                at: loc.element("vertex", i),
+                value: bad.to_string(),
+            });
+        }
+        vertices.push([x, y, z]);
+    }
+    drop(velems);
+    let nv = vertices.len();
+
+    let felems = payload.swap_remove("face").unwrap_or_default();
+    let mut faces = Vec::with_capacity(felems.len());
+    for (j, e) in felems.into_iter().enumerate() {
+        let raw = e.indices.unwrap_or_default();
+        if raw.len() < 3 {
+            return Err(FormatError::DegenerateFace {
+                source_name: name.to_string(),
+                at: loc.element("face", j),
+                len: raw.len(),
+            });
+        }
+        let mut face = Vec::with_capacity(raw.len());
+        for r in raw {
+            if r < 0 || r as u64 >= nv as u64 {
+                return Err(FormatError::BadIndex {
+                    source_name: name.to_string(),
+                    at: loc.element("face", j),
+                    index: r,
+                    vertex_count: nv,
+                });
+            }
+            face.push(r as usize);
+        }
+        faces.push(face);
+    }
+    Ok(PolygonMesh { vertices, faces })
+}
+
+/// Header for writing; `format` is `ascii` or `binary_little_endian`.
+fn header(mesh: &PolygonMesh, format: &str) -> (String, bool) {
+    let wide_count = mesh.faces.iter().any(|f| f.len() > 255);
+    let count_type = if wide_count { "uint" } else { "uchar" };
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "ply\nformat {format} 1.0\ncomment written by dymsum\n\
+         element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
+         element face {}\nproperty list {count_type} int vertex_indices\nend_header\n",
+        mesh.vertices.len(),
+        mesh.faces.len()
+    );
+    (h, wide_count)
+}
+
+pub(crate) fn write_ascii(mesh: &PolygonMesh) -> Vec<u8> {
+    let (mut out, _) = header(mesh, "ascii");
+    out.reserve(40 * mesh.vertices.len() + 16 * mesh.faces.len());
+    for v in &mesh.vertices {
+        push_coords(&mut out, v);
+        out.push('\n');
+    }
+    for f in &mesh.faces {
+        let _ = write!(out, "{}", f.len());
+        for i in f {
+            let _ = write!(out, " {i}");
+        }
+        out.push('\n');
+    }
+    out.into_bytes()
+}
+
+pub(crate) fn write_binary_le(mesh: &PolygonMesh) -> Vec<u8> {
+    let (h, wide_count) = header(mesh, "binary_little_endian");
+    let mut out = h.into_bytes();
+    out.reserve(24 * mesh.vertices.len() + 16 * mesh.faces.len());
+    for v in &mesh.vertices {
+        for c in v {
+            out.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    for f in &mesh.faces {
+        if wide_count {
+            out.extend_from_slice(&(f.len() as u32).to_le_bytes());
+        } else {
+            out.push(f.len() as u8);
+        }
+        for &i in f {
+            // `write_mesh_bytes` rejects more than i32::MAX vertices.
+            out.extend_from_slice(&(i as i32).to_le_bytes());
+        }
+    }
+    out
+}

@@ -1,0 +1,11 @@
+//! File formats and the built-in model library for dymsum.
+//!
+//! * [`formats`]: read and write OFF, OBJ, PLY (ASCII and binary) and STL
+//!   (ASCII and binary read, binary write), chosen by file extension.
+//! * [`models`]: the paper's 13 models, tessellated cubes and parametric
+//!   primitives, by name.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod formats;
+pub mod models;

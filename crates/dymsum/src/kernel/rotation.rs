@@ -1,0 +1,203 @@
+//! Rotations (unit quaternions) and rigid poses.
+//!
+//! A [`Rotation`] keeps its unit quaternion and the matrix derived from it.
+//! Matrix entries within `2^-50` of `0` or `±1` are snapped to those values,
+//! so rotations by exact multiples of 90° about coordinate axes map
+//! axis-aligned directions to axis-aligned directions *exactly*, and faces
+//! that should become parallel do become exactly parallel (a tie the exact
+//! predicates then resolve consistently). The snap moves an entry by at most
+//! `2^-50 ≈ 8.9e-16`, below the rounding of the matrix itself.
+
+use glam::{DMat3, DQuat, DVec3};
+
+const SNAP: f64 = 1.0 / (1u64 << 50) as f64;
+
+#[inline]
+fn snap(x: f64) -> f64 {
+    if x.abs() < SNAP {
+        0.0
+    } else if (x - 1.0).abs() < SNAP {
+        1.0
+    } else if (x + 1.0).abs() < SNAP {
+        -1.0
+    } else {
+        x
+    }
+}
+
+/// A rotation of 3-space, as a unit quaternion plus its (snapped) matrix.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rotation {
+    quat: DQuat,
+    matrix: DMat3,
+}
+
+impl Default for Rotation {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
+impl Rotation {
+    /// The identity.
+    pub const IDENTITY: Rotation = Rotation {
+        quat: DQuat::IDENTITY,
+        matrix: DMat3::IDENTITY,
+    };
+
+    /// From quaternion components `w, x, y, z`; renormalised. Returns `None`
+    /// for a zero or non-finite quaternion.
+    pub fn from_wxyz(w: f64, x: f64, y: f64, z: f64) -> Option<Rotation> {
+        let q = DQuat::from_xyzw(x, y, z, w);
+        let len = q.length();
+        if !len.is_finite() || len == 0.0 {
+            return None;
+        }
+        Some(Self::from_unit_quat(q / len))
+    }
+
+    /// From a quaternion assumed (close to) unit length; renormalised.
+    pub fn from_quat(q: DQuat) -> Rotation {
+        Self::from_unit_quat(q.normalize())
+    }
+
+    fn from_unit_quat(q: DQuat) -> Rotation {
+        // Canonical sign (w >= 0) so equal rotations have equal quaternions.
+        let q = if q.w < 0.0 { -q } else { q };
+        let m = DMat3::from_quat(q);
+        let cols =
+            [m.x_axis, m.y_axis, m.z_axis].map(|c| DVec3::new(snap(c.x), snap(c.y), snap(c.z)));
+        Rotation {
+            quat: q,
+            matrix: DMat3::from_cols(cols[0], cols[1], cols[2]),
+        }
+    }
+
+    /// Rotation by `angle` radians about `axis` (any non-zero length).
+    /// Returns `None` for a zero or non-finite axis or angle.
+    pub fn from_axis_angle(axis: DVec3, angle: f64) -> Option<Rotation> {
+        let len = axis.length();
+        if !len.is_finite() || len == 0.0 || !angle.is_finite() {
+            return None;
+        }
+        Some(Self::from_unit_quat(DQuat::from_axis_angle(
+            axis / len,
+            angle,
+        )))
+    }
+
+    /// From a rotation matrix (orthonormal, determinant +1, within 1e-6).
+    /// Returns `None` otherwise.
+    pub fn from_matrix(m: DMat3) -> Option<Rotation> {
+        let should_be_identity = m.transpose() * m;
+        if !m.is_finite()
+            || !should_be_identity.abs_diff_eq(DMat3::IDENTITY, 1e-6)
+            || (m.determinant() - 1.0).abs() > 1e-6
+        {
+            return None;
+        }
+        Some(Self::from_unit_quat(DQuat::from_mat3(&m)))
+    }
+
+    /// The unit quaternion (with `w >= 0`).
+    pub fn quat(&self) -> DQuat {
+        self.quat
+    }
+
+    /// Components `[w, x, y, z]`.
+    pub fn wxyz(&self) -> [f64; 4] {
+        [self.quat.w, self.quat.x, self.quat.y, self.quat.z]
+    }
+
+    /// The rotation matrix (snapped, see the module docs).
+    pub fn matrix(&self) -> DMat3 {
+        self.matrix
+    }
+
+    /// Rotates a vector.
+    #[inline]
+    pub fn apply(&self, v: DVec3) -> DVec3 {
+        self.matrix * v
+    }
+
+    /// `self` followed by `other` (i.e. `other ∘ self`).
+    pub fn then(&self, other: &Rotation) -> Rotation {
+        Self::from_quat(other.quat * self.quat)
+    }
+
+    /// The inverse rotation.
+    pub fn inverse(&self) -> Rotation {
+        Self::from_unit_quat(self.quat.conjugate())
+    }
+
+    /// Rotation angle in radians, in `[0, π]`.
+    pub fn angle(&self) -> f64 {
+        // Robust for small angles: 2 atan2(|xyz|, |w|).
+        2.0 * self.quat.xyz().length().atan2(self.quat.w.abs())
+    }
+
+    /// The angle of the rotation taking `self` to `other` (`other · self⁻¹`).
+    pub fn angle_to(&self, other: &Rotation) -> f64 {
+        let rel = other.quat * self.quat.conjugate();
+        2.0 * rel.xyz().length().atan2(rel.w.abs())
+    }
+}
+
+/// A rigid pose: `p ↦ R p + t`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Pose {
+    /// The rotation, applied first.
+    pub rotation: Rotation,
+    /// The translation, applied after the rotation.
+    pub translation: DVec3,
+}
+
+impl Pose {
+    /// The identity pose.
+    pub const IDENTITY: Pose = Pose {
+        rotation: Rotation::IDENTITY,
+        translation: DVec3::ZERO,
+    };
+
+    /// A pose from a rotation and a translation.
+    pub fn new(rotation: Rotation, translation: DVec3) -> Pose {
+        Pose {
+            rotation,
+            translation,
+        }
+    }
+
+    /// Applies the pose to a point.
+    #[inline]
+    pub fn apply(&self, p: DVec3) -> DVec3 {
+        self.rotation.apply(p) + self.translation
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn quarter_turn_is_exact() {
+        let r = Rotation::from_axis_angle(DVec3::Z, FRAC_PI_2).unwrap();
+        assert_eq!(r.apply(DVec3::X), DVec3::Y);
+        assert_eq!(r.apply(DVec3::Y), -DVec3::X);
+        assert_eq!(r.apply(DVec3::Z), DVec3::Z);
+    }
+
+    #[test]
+    fn tiny_rotation_is_not_snapped_away() {
+        let r = Rotation::from_axis_angle(DVec3::Z, 1e-12).unwrap();
+        assert!(r.apply(DVec3::X).y > 0.0);
+        assert!((r.angle() - 1e-12).abs() < 1e-20);
+    }
+
+    #[test]
+    fn rejects_bad_input() {
+        assert!(Rotation::from_wxyz(0.0, 0.0, 0.0, 0.0).is_none());
+        assert!(Rotation::from_wxyz(f64::NAN, 0.0, 0.0, 1.0).is_none());
+        assert!(Rotation::from_axis_angle(DVec3::ZERO, 1.0).is_none());
+    }
+}

@@ -1,0 +1,42 @@
+//! # dymsum
+//!
+//! Exact Minkowski sums of convex polytopes, static and dynamic (the DYMSUM
+//! algorithm: keeping `P ⊕ Q` up to date while `P` rotates).
+//!
+//! The crate does no file or terminal I/O. Its parts, in the order data flows:
+//!
+//! * [`kernel`]: exact predicates (`orient3d`, `det3` with symbolic
+//!   perturbation) and rotations.
+//! * [`hull`]: an exact incremental 3-D convex hull, generic over the point set.
+//! * [`polytope`]: convex polytopes with O(1) adjacency and their Gaussian maps.
+//! * [`sum`]: static Minkowski sums by three independent methods
+//!   ([`sum::Method::Brute`], [`sum::Method::Walk`], [`sum::Method::Hull`]),
+//!   all returning the same labelled facet set, and the merged polygon mesh.
+//! * [`dynamic`]: DYMSUM, the sum kept up to date while the bodies rotate.
+//! * [`mesh`]: a plain polygon mesh, the exchange type with file formats.
+//!
+//! ```
+//! use dymsum::{Polytope, sum::{minkowski_sum, Method}};
+//! let cube: Vec<[f64; 3]> = (0..8)
+//!     .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+//!     .collect();
+//! let p = Polytope::from_points(&cube).unwrap();
+//! let sum = minkowski_sum(&p, &p, Method::Walk).unwrap();
+//! let mesh = sum.to_mesh();
+//! assert_eq!(mesh.faces.len(), 6); // a cube plus a cube is a cube
+//! ```
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod dynamic;
+pub mod hull;
+pub mod kernel;
+pub mod mesh;
+pub mod polytope;
+pub mod sum;
+
+pub use dynamic::{DynamicSum, UpdateReport};
+pub use glam::DVec3;
+pub use kernel::rotation::{Pose, Rotation};
+pub use mesh::PolygonMesh;
+pub use polytope::{Polytope, PolytopeError};

@@ -1,0 +1,407 @@
+//! Convex polytopes with O(1) adjacency and their Gaussian maps.
+//!
+//! A [`Polytope`] is built from a point cloud ([`Polytope::from_points`], an
+//! exact convex hull) or from a polygon mesh ([`Polytope::from_mesh`],
+//! validated, see [`build`]). Faces are maximal convex polygons: coplanar
+//! neighbours are merged and vertices in the middle of a straight edge are
+//! dropped, so a fan-triangulated or tessellated cube has 6 faces.
+//!
+//! # Adjacency
+//! Half-edges are stored per face in counter-clockwise order (seen from
+//! outside); half-edge `face_start[f] + k` runs from the `k`-th to the
+//! `k+1`-th vertex of face `f`. Every query the sum algorithms need is O(1):
+//! a face's vertices and edges, an edge's two vertices and two faces, a
+//! vertex's ring of faces, edges and neighbours.
+//!
+//! # Gaussian map
+//! Face `f` maps to its outward normal `normal(f)` (a point of the sphere,
+//! stored unnormalised: a cross product of vertex differences scaled by a
+//! power of two, so that exactly parallel axis-aligned or integer faces get
+//! exactly parallel normals). Edge `e` maps to the great arc from the normal of its left face
+//! to the normal of its right face. Vertex `v` maps to the convex spherical
+//! polygon (its *cell*) spanned by the normals of its faces, listed
+//! counter-clockwise by [`Polytope::ring`]. Construction checks exactly that
+//! every cell is strictly convex ([`PolytopeError::DegenerateGaussMap`]).
+
+pub mod build;
+mod error;
+mod sanity;
+
+pub use build::{ConvexityReport, MeshPolicy};
+pub use error::PolytopeError;
+
+use glam::DVec3;
+
+/// One undirected edge: its endpoints and the faces on its left and right.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Edge {
+    /// Endpoints `[a, b]`; the half-edge `a → b` belongs to `faces[0]`.
+    pub vertices: [u32; 2],
+    /// `[left, right]`: the face containing half-edge `a → b`, then its twin's.
+    pub faces: [u32; 2],
+}
+
+/// One entry of a vertex ring (one corner of its Gaussian cell).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RingEntry {
+    /// A face incident to the vertex (a corner of the cell).
+    pub face: u32,
+    /// The edge between this face and the next face of the ring (the arc from
+    /// this corner to the next one).
+    pub edge: u32,
+    /// The vertex at the other end of `edge` (the cell across that arc).
+    pub neighbor: u32,
+}
+
+/// A convex polytope with O(1) adjacency and its Gaussian map.
+#[derive(Clone, Debug)]
+pub struct Polytope {
+    vertices: Vec<DVec3>,
+    face_start: Vec<u32>,
+    face_verts: Vec<u32>,
+    he_edge: Vec<u32>,
+    edges: Vec<Edge>,
+    normals: Vec<DVec3>,
+    unit_normals: Vec<DVec3>,
+    ring_start: Vec<u32>,
+    ring: Vec<RingEntry>,
+}
+
+impl Polytope {
+    /// Number of vertices.
+    #[inline]
+    pub fn vertex_count(&self) -> usize {
+        self.vertices.len()
+    }
+    /// Number of (maximal) faces.
+    #[inline]
+    pub fn face_count(&self) -> usize {
+        self.face_start.len() - 1
+    }
+    /// Number of edges.
+    #[inline]
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
+    }
+    /// Vertex coordinates.
+    #[inline]
+    pub fn vertices(&self) -> &[DVec3] {
+        &self.vertices
+    }
+    /// Vertex `v`.
+    #[inline]
+    pub fn vertex(&self, v: usize) -> DVec3 {
+        self.vertices[v]
+    }
+    /// The vertices of face `f`, counter-clockwise seen from outside.
+    #[inline]
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_verts[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+    }
+    /// The edges of face `f`: the `k`-th runs from `face(f)[k]` to `face(f)[k+1]`.
+    #[inline]
+    pub fn face_edges(&self, f: usize) -> &[u32] {
+        &self.he_edge[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+    }
+    /// All edges.
+    #[inline]
+    pub fn edges(&self) -> &[Edge] {
+        &self.edges
+    }
+    /// Edge `e`.
+    #[inline]
+    pub fn edge(&self, e: usize) -> Edge {
+        self.edges[e]
+    }
+    /// The exact-input outward normal of face `f` (not unit length; see the
+    /// module docs). This is the face's point on the Gaussian sphere.
+    #[inline]
+    pub fn normal(&self, f: usize) -> DVec3 {
+        self.normals[f]
+    }
+    /// All exact-input normals.
+    #[inline]
+    pub fn normals(&self) -> &[DVec3] {
+        &self.normals
+    }
+    /// The unit outward normal of face `f` (a float construction).
+    #[inline]
+    pub fn unit_normal(&self, f: usize) -> DVec3 {
+        self.unit_normals[f]
+    }
+    /// The ring of vertex `v`: its faces counter-clockwise seen from outside,
+    /// i.e. the corners and arcs of its Gaussian cell.
+    #[inline]
+    pub fn ring(&self, v: usize) -> &[RingEntry] {
+        &self.ring[self.ring_start[v] as usize..self.ring_start[v + 1] as usize]
+    }
+    /// Offset of vertex `v`'s ring in the flat array of all rings (so
+    /// per-ring-entry data can be stored in one `Vec`).
+    #[inline]
+    pub fn ring_offset(&self, v: usize) -> usize {
+        self.ring_start[v] as usize
+    }
+    /// Total number of ring entries (twice the number of edges).
+    #[inline]
+    pub fn ring_len_total(&self) -> usize {
+        self.ring.len()
+    }
+    /// Degree of vertex `v`.
+    #[inline]
+    pub fn degree(&self, v: usize) -> usize {
+        (self.ring_start[v + 1] - self.ring_start[v]) as usize
+    }
+    /// Faces as vertex-index polygons.
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        (0..self.face_count()).map(move |f| self.face(f))
+    }
+    /// The polytope as a polygon mesh (maximal faces).
+    pub fn to_mesh(&self) -> crate::PolygonMesh {
+        crate::PolygonMesh {
+            vertices: self.vertices.iter().map(|v| v.to_array()).collect(),
+            faces: self
+                .faces()
+                .map(|f| f.iter().map(|&v| v as usize).collect())
+                .collect(),
+        }
+    }
+    /// Number of triangles of a fan triangulation of the faces.
+    pub fn triangle_count(&self) -> usize {
+        self.faces().map(|f| f.len() - 2).sum()
+    }
+    /// The vertex maximising `dir · v` (a float support query, O(V)).
+    pub fn support_vertex(&self, dir: DVec3) -> usize {
+        let mut best = 0;
+        let mut best_val = f64::NEG_INFINITY;
+        for (i, v) in self.vertices.iter().enumerate() {
+            let d = dir.dot(*v);
+            if d > best_val {
+                best_val = d;
+                best = i;
+            }
+        }
+        best
+    }
+    /// Volume, by the divergence theorem (a float construction).
+    pub fn volume(&self) -> f64 {
+        let c = self.centroid_of_vertices();
+        let mut vol = 0.0;
+        for f in self.faces() {
+            let a = self.vertices[f[0] as usize] - c;
+            for w in f[1..].windows(2) {
+                let b = self.vertices[w[0] as usize] - c;
+                let d = self.vertices[w[1] as usize] - c;
+                vol += a.dot(b.cross(d));
+            }
+        }
+        vol / 6.0
+    }
+    /// Mean of the vertices.
+    pub fn centroid_of_vertices(&self) -> DVec3 {
+        self.vertices.iter().copied().sum::<DVec3>() / self.vertices.len() as f64
+    }
+    /// Length of the bounding-box diagonal.
+    pub fn diameter(&self) -> f64 {
+        let (lo, hi) = bounds(&self.vertices);
+        (hi - lo).length()
+    }
+
+    /// Builds the half-edge structure from maximal ccw faces over `vertices`
+    /// (already validated as a closed, oriented 2-manifold by the caller).
+    pub(crate) fn from_faces(
+        vertices: Vec<DVec3>,
+        faces: &[Vec<u32>],
+    ) -> Result<Polytope, PolytopeError> {
+        use std::collections::HashMap;
+        let mut face_start = Vec::with_capacity(faces.len() + 1);
+        let mut face_verts = Vec::new();
+        face_start.push(0u32);
+        for f in faces {
+            face_verts.extend_from_slice(f);
+            face_start.push(face_verts.len() as u32);
+        }
+        let nhe = face_verts.len();
+        let mut he_face = vec![0u32; nhe];
+        for (f, w) in face_start.windows(2).enumerate() {
+            for h in w[0]..w[1] {
+                he_face[h as usize] = f as u32;
+            }
+        }
+        let he_next = |h: usize| -> usize {
+            let f = he_face[h] as usize;
+            if h + 1 == face_start[f + 1] as usize {
+                face_start[f] as usize
+            } else {
+                h + 1
+            }
+        };
+        let he_prev = |h: usize| -> usize {
+            let f = he_face[h] as usize;
+            if h == face_start[f] as usize {
+                face_start[f + 1] as usize - 1
+            } else {
+                h - 1
+            }
+        };
+        let origin = |h: usize| face_verts[h];
+        let mut by_dir: HashMap<(u32, u32), usize> = HashMap::with_capacity(nhe);
+        for h in 0..nhe {
+            let key = (origin(h), origin(he_next(h)));
+            if by_dir.insert(key, h).is_some() {
+                return Err(PolytopeError::NonManifoldEdge {
+                    a: key.0 as usize,
+                    b: key.1 as usize,
+                });
+            }
+        }
+        let mut he_twin = vec![u32::MAX; nhe];
+        let mut he_edge = vec![u32::MAX; nhe];
+        let mut edges = Vec::with_capacity(nhe / 2);
+        for h in 0..nhe {
+            let (a, b) = (origin(h), origin(he_next(h)));
+            let Some(&t) = by_dir.get(&(b, a)) else {
+                return Err(PolytopeError::OpenEdge {
+                    a: a as usize,
+                    b: b as usize,
+                });
+            };
+            he_twin[h] = t as u32;
+            if he_edge[h] == u32::MAX {
+                let e = edges.len() as u32;
+                he_edge[h] = e;
+                he_edge[t] = e;
+                edges.push(Edge {
+                    vertices: [a, b],
+                    faces: [he_face[h], he_face[t]],
+                });
+            }
+        }
+        // Vertex rings: from an outgoing half-edge h, the next face ccw is
+        // the face of twin(prev(h)).
+        let nv = vertices.len();
+        let mut out_he = vec![usize::MAX; nv];
+        for h in 0..nhe {
+            out_he[origin(h) as usize] = h;
+        }
+        let mut ring_start = Vec::with_capacity(nv + 1);
+        let mut ring = Vec::with_capacity(nhe);
+        ring_start.push(0u32);
+        for (v, &h0) in out_he.iter().enumerate() {
+            if h0 == usize::MAX {
+                return Err(PolytopeError::UnusedVertex { vertex: v });
+            }
+            let mut h = h0;
+            loop {
+                let p = he_prev(h);
+                ring.push(RingEntry {
+                    face: he_face[h],
+                    edge: he_edge[p],
+                    neighbor: origin(p),
+                });
+                h = he_twin[p] as usize;
+                if h == h0 {
+                    break;
+                }
+                if ring.len() - ring_start[v] as usize > nhe {
+                    return Err(PolytopeError::NonManifoldVertex { vertex: v });
+                }
+            }
+            ring_start.push(ring.len() as u32);
+        }
+        // A vertex whose ring does not cover all its outgoing half-edges is a
+        // pinch point (non-manifold vertex).
+        let mut outdeg = vec![0u32; nv];
+        for h in 0..nhe {
+            outdeg[origin(h) as usize] += 1;
+        }
+        for v in 0..nv {
+            if outdeg[v] != ring_start[v + 1] - ring_start[v] {
+                return Err(PolytopeError::NonManifoldVertex { vertex: v });
+            }
+        }
+        let normals: Vec<DVec3> = faces
+            .iter()
+            .map(|f| exact_input_normal(&vertices, f))
+            .collect();
+        let unit_normals = normals.iter().map(|n| n.normalize()).collect();
+        let poly = Polytope {
+            vertices,
+            face_start,
+            face_verts,
+            he_edge,
+            edges,
+            normals,
+            unit_normals,
+            ring_start,
+            ring,
+        };
+        poly.check_gauss_map()?;
+        Ok(poly)
+    }
+
+    /// Checks exactly that every Gaussian cell is a strictly convex spherical
+    /// polygon: every corner strictly left of every arc of its cell.
+    fn check_gauss_map(&self) -> Result<(), PolytopeError> {
+        use crate::kernel::predicates::det3;
+        for v in 0..self.vertex_count() {
+            let r = self.ring(v);
+            if r.len() < 3 {
+                return Err(PolytopeError::DegenerateGaussMap { vertex: v });
+            }
+            for i in 0..r.len() {
+                let a = self.normals[r[i].face as usize];
+                let b = self.normals[r[(i + 1) % r.len()].face as usize];
+                for (j, e) in r.iter().enumerate() {
+                    if j == i || j == (i + 1) % r.len() {
+                        continue;
+                    }
+                    if !det3(a, b, self.normals[e.face as usize]).is_positive() {
+                        return Err(PolytopeError::DegenerateGaussMap { vertex: v });
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The normal of a planar polygon as the cross product of the two edges of
+/// its largest fan triangle from the first vertex, scaled by a power of two
+/// (exactly) so its largest component lies in `[0.5, 1)`.
+///
+/// A cross product of coordinate differences keeps exact zeros: a face in a
+/// plane `x = c` gets a normal with exactly zero `y` and `z`, whatever its
+/// other coordinates, so parallel faces of P and Q are recognised exactly
+/// (a Newell sum of rounded terms would not telescope to zero).
+fn exact_input_normal(vertices: &[DVec3], face: &[u32]) -> DVec3 {
+    let a = vertices[face[0] as usize];
+    let mut n = DVec3::ZERO;
+    let mut best = -1.0;
+    for w in face[1..].windows(2) {
+        let c = (vertices[w[0] as usize] - a).cross(vertices[w[1] as usize] - a);
+        let l = c.length_squared();
+        if l > best {
+            best = l;
+            n = c;
+        }
+    }
+    let m = n.abs().max_element();
+    if m > 0.0 && m.is_finite() {
+        let e = m.log2().floor() as i32 + 1;
+        let s = 2f64.powi(-e);
+        if s.is_finite() && s > 0.0 {
+            return n * s;
+        }
+    }
+    n
+}
+
+pub(crate) fn bounds(pts: &[DVec3]) -> (DVec3, DVec3) {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for p in pts {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    (lo, hi)
+}

@@ -1,0 +1,115 @@
+//! `hull`: the convex hull of all m·n pairwise vertex sums — the way other
+//! libraries compute convex Minkowski sums — kept as a baseline.
+//!
+//! Steps:
+//! 1. the exact hull ([`crate::hull::convex_hull`]) of the sums
+//!    `p_i + q_j`, with an exact orientation predicate on the *real* sums
+//!    (rounded float sums would break parallelogram faces);
+//! 2. each hull face `F` has the vertex sets `S_P`, `S_Q` of its corners;
+//!    its facets are found by a local brute force over the features inside
+//!    them (faces of P with ≥ 3 vertices in `S_P` against vertices in `S_Q`,
+//!    and so on) with the same SoS predicates as the other methods, so a
+//!    degenerate face such as `f ⊕ g` for parallel faces is split exactly as
+//!    `brute` and `walk` split it.
+//!
+//! Complexity: O(mn log mn) for the hull. Degeneracies: exact planarity of
+//! sums; when P is rotated its rounded vertices are no longer exactly
+//! coplanar, and the hull then sees a slightly different shape than the
+//! normals do. Such a mismatch is detected (every face of P and Q must get
+//! exactly one vertex) and reported as [`SumError::HullMismatch`].
+
+use super::{Operands, Overlay, SumError};
+use crate::hull::{convex_hull, PairwiseSums};
+use crate::polytope::Polytope;
+use crate::sum::overlay::arcs_cross;
+use std::collections::BTreeSet;
+
+/// Faces of `poly` with at least 3 vertices in `set`, and edges with both
+/// endpoints in it.
+fn features_within(poly: &Polytope, set: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let inside = |v: u32| set.binary_search(&v).is_ok();
+    let mut faces = BTreeSet::new();
+    let mut edges = BTreeSet::new();
+    for &v in set {
+        for r in poly.ring(v as usize) {
+            let f = poly.face(r.face as usize);
+            if f.iter().filter(|&&w| inside(w)).count() >= 3 {
+                faces.insert(r.face);
+            }
+            if inside(r.neighbor) {
+                edges.insert(r.edge);
+            }
+        }
+    }
+    (faces.into_iter().collect(), edges.into_iter().collect())
+}
+
+pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
+    let pp: Vec<_> = (0..ops.p.vertex_count() as u32)
+        .map(|u| ops.p_vertex(u))
+        .collect();
+    let qq: Vec<_> = (0..ops.q.vertex_count() as u32)
+        .map(|w| ops.q_vertex(w))
+        .collect();
+    let sums = PairwiseSums { p: &pp, q: &qq };
+    let hull = convex_hull(&sums).map_err(|e| SumError::HullMismatch(e.to_string()))?;
+    let (vp, vq) = (ops.view_p(), ops.view_q());
+    let mut fv = vec![u32::MAX; ops.p.face_count()];
+    let mut vf = vec![u32::MAX; ops.q.face_count()];
+    let mut ee = BTreeSet::new();
+    let assign = |slot: &mut u32, v: u32, what: &str| -> Result<(), SumError> {
+        if *slot != u32::MAX && *slot != v {
+            return Err(SumError::HullMismatch(format!("{what} gets two vertices")));
+        }
+        *slot = v;
+        Ok(())
+    };
+    for face in &hull.faces {
+        let mut sp: Vec<u32> = face.iter().map(|&k| sums.split(k).0 as u32).collect();
+        let mut sq: Vec<u32> = face.iter().map(|&k| sums.split(k).1 as u32).collect();
+        sp.sort_unstable();
+        sp.dedup();
+        sq.sort_unstable();
+        sq.dedup();
+        let (pf, pe) = features_within(ops.p, &sp);
+        let (qf, qe) = features_within(ops.q, &sq);
+        for &f in &pf {
+            for &w in &sq {
+                if vq.in_cell(w, vp.n(f), vp.idx(f)) {
+                    assign(&mut fv[f as usize], w, "a face of P")?;
+                }
+            }
+        }
+        for &g in &qf {
+            for &u in &sp {
+                if vp.in_cell(u, vq.n(g), vq.idx(g)) {
+                    assign(&mut vf[g as usize], u, "a face of Q")?;
+                }
+            }
+        }
+        for &e in &pe {
+            let (a, ia, b, ib) = vp.edge_arc(e);
+            for &e2 in &qe {
+                let (c, ic, d, id) = vq.edge_arc(e2);
+                if arcs_cross(a, ia, b, ib, c, ic, d, id) {
+                    ee.insert((e, e2));
+                }
+            }
+        }
+    }
+    if let Some(f) = fv.iter().position(|&v| v == u32::MAX) {
+        return Err(SumError::HullMismatch(format!(
+            "face {f} of P has no vertex of Q"
+        )));
+    }
+    if let Some(g) = vf.iter().position(|&v| v == u32::MAX) {
+        return Err(SumError::HullMismatch(format!(
+            "face {g} of Q has no vertex of P"
+        )));
+    }
+    Ok(Overlay {
+        fv,
+        vf,
+        ee: ee.into_iter().collect(),
+    })
+}

@@ -1,0 +1,316 @@
+//! Static Minkowski sums of convex polytopes: three independent methods, one
+//! answer.
+//!
+//! The facets of `P ⊕ Q` come from the overlay of the Gaussian maps of `P`
+//! and `Q` (paper §3): an *fv*-facet for each face `f` of `P` with the vertex
+//! of `Q` whose cell contains `f`'s normal, a *vf*-facet symmetrically, and an
+//! *ee*-facet for each pair of edges whose Gaussian arcs cross.
+//!
+//! | method | how | cost |
+//! |---|---|---|
+//! | [`Method::Brute`] | test every face–vertex and edge–edge pair (paper Alg. 3.1) | O(mn) |
+//! | [`Method::Walk`] | hill-climb fv-pairs from solved neighbours, walk each arc of `P` through `Q`'s map | O(m + n + k) |
+//! | [`Method::Hull`] | exact hull of all m·n vertex sums, then label its faces | O(mn log mn) |
+//!
+//! All three use the same exact predicates with the same symbolic
+//! perturbation ([`overlay`]), so they return identical facet sets, which
+//! [`MinkowskiSum::facets`] lists in canonical order. [`MinkowskiSum::to_mesh`]
+//! merges coplanar facets into the true faces (see [`merge`]).
+//!
+//! ```
+//! use dymsum::{Polytope, Pose, Rotation, DVec3};
+//! use dymsum::sum::{minkowski_sum, minkowski_sum_posed, Method};
+//! let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]).unwrap();
+//! let cube = Polytope::from_points(&[
+//!     [0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [1., 1., 0.],
+//!     [0., 0., 1.], [1., 0., 1.], [0., 1., 1.], [1., 1., 1.],
+//! ]).unwrap();
+//! let walk = minkowski_sum(&tet, &cube, Method::Walk).unwrap();
+//! let brute = minkowski_sum(&tet, &cube, Method::Brute).unwrap();
+//! assert_eq!(walk.facets(), brute.facets());
+//! // P may be posed: rotated about the origin, then translated.
+//! let turn = Pose::new(Rotation::from_axis_angle(DVec3::Z, 0.3).unwrap(), DVec3::X);
+//! let moved = minkowski_sum_posed(&tet, turn, &cube, Pose::IDENTITY, Method::Walk).unwrap();
+//! assert!(moved.to_mesh().faces.len() > 6);
+//! ```
+
+mod brute;
+mod hull_method;
+pub mod merge;
+pub mod overlay;
+mod walk;
+
+use crate::polytope::Polytope;
+use crate::Pose;
+use glam::DVec3;
+pub use overlay::GaussView;
+
+/// Which static algorithm computes the sum.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Test every face–vertex and edge–edge pair (the paper's baseline).
+    Brute,
+    /// Output-sensitive walks in the Gaussian maps (fastest; reused by the
+    /// dynamic update).
+    Walk,
+    /// The exact convex hull of all pairwise vertex sums, labelled.
+    Hull,
+}
+
+impl Method {
+    /// All methods.
+    pub const ALL: [Method; 3] = [Method::Brute, Method::Walk, Method::Hull];
+    /// Lower-case name (`brute`, `walk`, `hull`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Brute => "brute",
+            Method::Walk => "walk",
+            Method::Hull => "hull",
+        }
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "brute" => Ok(Method::Brute),
+            "walk" => Ok(Method::Walk),
+            "hull" => Ok(Method::Hull),
+            _ => Err(format!(
+                "unknown method `{s}` (expected walk, brute or hull)"
+            )),
+        }
+    }
+}
+
+/// One facet of `P ⊕ Q` with its generating features.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Facet {
+    /// Face `p_face` of P translated by vertex `q_vertex` of Q.
+    Fv {
+        /// Face of P.
+        p_face: u32,
+        /// Vertex of Q.
+        q_vertex: u32,
+    },
+    /// Vertex `p_vertex` of P plus face `q_face` of Q.
+    Vf {
+        /// Vertex of P.
+        p_vertex: u32,
+        /// Face of Q.
+        q_face: u32,
+    },
+    /// Edge `p_edge` of P plus edge `q_edge` of Q (a parallelogram).
+    Ee {
+        /// Edge of P.
+        p_edge: u32,
+        /// Edge of Q.
+        q_edge: u32,
+    },
+}
+
+/// Why a sum could not be computed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SumError {
+    /// An internal invariant failed (a bug: please report the input).
+    #[error("internal inconsistency: {0}")]
+    Inconsistent(String),
+    /// The hull of rounded pairwise sums disagrees with the exact overlay
+    /// (only [`Method::Hull`]; happens when rotation rounding makes faces of
+    /// P non-planar). Use [`Method::Walk`].
+    #[error("the hull of pairwise sums is inconsistent with the exact overlay: {0}")]
+    HullMismatch(String),
+}
+
+/// The overlay state: for every face of P its vertex of Q, for every face of
+/// Q its vertex of P, and the crossing edge pairs (sorted).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Overlay {
+    /// `fv[f]`: the vertex of Q whose cell contains face `f` of P.
+    pub fv: Vec<u32>,
+    /// `vf[g]`: the vertex of P whose cell contains face `g` of Q.
+    pub vf: Vec<u32>,
+    /// Crossing `(edge of P, edge of Q)` pairs, sorted.
+    pub ee: Vec<(u32, u32)>,
+}
+
+impl Overlay {
+    /// All facets in canonical order (fv by face, vf by face, ee sorted).
+    pub fn facets(&self) -> Vec<Facet> {
+        let mut out = Vec::with_capacity(self.fv.len() + self.vf.len() + self.ee.len());
+        out.extend(self.fv.iter().enumerate().map(|(f, &v)| Facet::Fv {
+            p_face: f as u32,
+            q_vertex: v,
+        }));
+        out.extend(self.vf.iter().enumerate().map(|(g, &u)| Facet::Vf {
+            p_vertex: u,
+            q_face: g as u32,
+        }));
+        out.extend(
+            self.ee
+                .iter()
+                .map(|&(p_edge, q_edge)| Facet::Ee { p_edge, q_edge }),
+        );
+        out
+    }
+    /// Number of facets.
+    pub fn len(&self) -> usize {
+        self.fv.len() + self.vf.len() + self.ee.len()
+    }
+    /// `true` if there are no facets.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// The two posed operands of a sum: polytopes, poses and the normals in the
+/// *combinatorial frame* (Q's body frame).
+///
+/// The overlay depends only on the relative rotation `R = R_q⁻¹ R_p`: P's
+/// normals are `R n`, Q's are its own reference normals. Translations and a
+/// common rotation of both bodies therefore never change the facet set.
+#[derive(Clone, Debug)]
+pub struct Operands<'a> {
+    /// P.
+    pub p: &'a Polytope,
+    /// Q.
+    pub q: &'a Polytope,
+    /// P's pose.
+    pub pose_p: Pose,
+    /// Q's pose.
+    pub pose_q: Pose,
+    /// The relative rotation `R_q⁻¹ R_p`.
+    pub relative: crate::Rotation,
+    /// P's normals rotated by the relative rotation.
+    pub np: Vec<DVec3>,
+    /// Q's reference normals.
+    pub nq: Vec<DVec3>,
+}
+
+/// The relative rotation `R_q⁻¹ R_p` (exactly `R_p` when Q is not rotated).
+pub fn relative_rotation(pose_p: &Pose, pose_q: &Pose) -> crate::Rotation {
+    if pose_q.rotation == crate::Rotation::IDENTITY {
+        pose_p.rotation
+    } else {
+        pose_p.rotation.then(&pose_q.rotation.inverse())
+    }
+}
+
+impl<'a> Operands<'a> {
+    /// Rotates P's normals into Q's frame.
+    pub fn new(p: &'a Polytope, pose_p: Pose, q: &'a Polytope, pose_q: Pose) -> Self {
+        let relative = relative_rotation(&pose_p, &pose_q);
+        Operands {
+            p,
+            q,
+            np: p.normals().iter().map(|&n| relative.apply(n)).collect(),
+            nq: q.normals().to_vec(),
+            pose_p,
+            pose_q,
+            relative,
+        }
+    }
+    /// P's Gaussian map (global indices `0..m`).
+    #[inline]
+    pub fn view_p(&self) -> GaussView<'_> {
+        GaussView {
+            poly: self.p,
+            normals: &self.np,
+            base: 0,
+        }
+    }
+    /// Q's Gaussian map (global indices `m..m+n`).
+    #[inline]
+    pub fn view_q(&self) -> GaussView<'_> {
+        GaussView {
+            poly: self.q,
+            normals: &self.nq,
+            base: self.p.face_count() as u32,
+        }
+    }
+    /// Position of vertex `u` of P under its pose.
+    #[inline]
+    pub fn p_vertex(&self, u: u32) -> DVec3 {
+        self.pose_p.apply(self.p.vertex(u as usize))
+    }
+    /// Position of vertex `w` of Q under its pose.
+    #[inline]
+    pub fn q_vertex(&self, w: u32) -> DVec3 {
+        self.pose_q.apply(self.q.vertex(w as usize))
+    }
+}
+
+/// A Minkowski sum: the operands and their overlay.
+#[derive(Clone, Debug)]
+pub struct MinkowskiSum<'a> {
+    operands: Operands<'a>,
+    overlay: Overlay,
+}
+
+impl<'a> MinkowskiSum<'a> {
+    /// Wraps an overlay computed for these operands.
+    pub fn from_overlay(operands: Operands<'a>, overlay: Overlay) -> Self {
+        MinkowskiSum { operands, overlay }
+    }
+    /// The operands.
+    pub fn operands(&self) -> &Operands<'a> {
+        &self.operands
+    }
+    /// The overlay (fv, vf and ee pairs).
+    pub fn overlay(&self) -> &Overlay {
+        &self.overlay
+    }
+    /// All facets, labelled, in canonical order.
+    pub fn facets(&self) -> Vec<Facet> {
+        self.overlay.facets()
+    }
+    /// Facet counts `(fv, vf, ee)`.
+    pub fn counts(&self) -> (usize, usize, usize) {
+        (
+            self.overlay.fv.len(),
+            self.overlay.vf.len(),
+            self.overlay.ee.len(),
+        )
+    }
+    /// The merged polygon mesh: coplanar facets merged into maximal faces,
+    /// collinear vertices dropped, counter-clockwise outward.
+    pub fn to_mesh(&self) -> crate::PolygonMesh {
+        merge::merged_mesh(&self.operands, &self.overlay)
+    }
+    /// Checks the facet complex: every facet edge shared by exactly two facets
+    /// in opposite directions (closed, 2-manifold, consistently oriented),
+    /// Euler `V − E + F = 2`, and the merged mesh closed and convex.
+    pub fn sanity_check(&self) -> Result<(), String> {
+        merge::check_facet_complex(&self.operands, &self.overlay)?;
+        merge::check_mesh(&self.to_mesh())
+    }
+}
+
+/// `P ⊕ Q` at the polytopes' own coordinates.
+pub fn minkowski_sum<'a>(
+    p: &'a Polytope,
+    q: &'a Polytope,
+    method: Method,
+) -> Result<MinkowskiSum<'a>, SumError> {
+    minkowski_sum_posed(p, Pose::IDENTITY, q, Pose::IDENTITY, method)
+}
+
+/// `(R_p P + t_p) ⊕ (R_q Q + t_q)`.
+pub fn minkowski_sum_posed<'a>(
+    p: &'a Polytope,
+    pose_p: Pose,
+    q: &'a Polytope,
+    pose_q: Pose,
+    method: Method,
+) -> Result<MinkowskiSum<'a>, SumError> {
+    let ops = Operands::new(p, pose_p, q, pose_q);
+    let overlay = match method {
+        Method::Brute => brute::overlay(&ops)?,
+        Method::Walk => walk::overlay(&ops)?,
+        Method::Hull => hull_method::overlay(&ops)?,
+    };
+    Ok(MinkowskiSum::from_overlay(ops, overlay))
+}
+
+pub use walk::{overlay as walk_overlay, walk_ee_of_p_edge};
