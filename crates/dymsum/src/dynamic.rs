@@ -282,6 +282,7 @@ impl<'a> DynamicSum<'a> {
             return Ok(report);
         }
         self.ops.relative = new;
+        self.ops.rot_p = (new != Rotation::IDENTITY).then(|| new.matrix());
         for (n, r) in self.ops.np.iter_mut().zip(self.ops.p.normals()) {
             *n = new.apply(*r);
         }
@@ -301,9 +302,9 @@ impl<'a> DynamicSum<'a> {
             if m1 <= EXACT_BELOW {
                 let vq = self.ops.view_q();
                 let v = self.fv[f];
-                let (x, ix) = (self.ops.np[f], f as u32);
-                if !vq.in_cell(v, x, ix) {
-                    let (v2, _) = vq.locate(x, ix, v);
+                let x = self.ops.view_p().normal(f as u32);
+                if !vq.in_cell(v, &x) {
+                    let (v2, _) = vq.locate(&x, v);
                     report.removed.push(Facet::Fv {
                         p_face: f as u32,
                         q_vertex: v,
@@ -323,16 +324,15 @@ impl<'a> DynamicSum<'a> {
             self.margin_p[f] = m1;
         }
         // ... and on Q's faces.
-        let base = self.ops.p.face_count() as u32;
         for g in 0..self.vf.len() {
             let mut m1 = self.margin_of_q_face(inv, g);
             let mut changed = false;
             if m1 <= EXACT_BELOW {
                 let vp = self.ops.view_p();
                 let u = self.vf[g];
-                let (x, ix) = (self.ops.nq[g], base + g as u32);
-                if !vp.in_cell(u, x, ix) {
-                    let (u2, _) = vp.locate(x, ix, u);
+                let x = self.ops.view_q().normal(g as u32);
+                if !vp.in_cell(u, &x) {
+                    let (u2, _) = vp.locate(&x, u);
                     report.removed.push(Facet::Vf {
                         p_vertex: u,
                         q_face: g as u32,
@@ -395,16 +395,12 @@ impl<'a> DynamicSum<'a> {
     ) -> Result<(), SumError> {
         fresh.clear();
         let [f0, f1] = self.ops.p.edge(e as usize).faces;
-        let (a, ia, b, ib) = self.ops.view_p().edge_arc(e);
-        self.ops.view_q().walk_arc(
-            a,
-            ia,
-            b,
-            ib,
-            self.fv[f0 as usize],
-            self.fv[f1 as usize],
-            |e2| fresh.push(e2),
-        )?;
+        let (a, b) = self.ops.view_p().edge_arc(e);
+        self.ops
+            .view_q()
+            .walk_arc(&a, &b, self.fv[f0 as usize], self.fv[f1 as usize], |e2| {
+                fresh.push(e2)
+            })?;
         let old = std::mem::take(&mut self.ee_p[e as usize]);
         for &e2 in &old {
             if !fresh.contains(&e2) {
@@ -440,16 +436,12 @@ impl<'a> DynamicSum<'a> {
     ) -> Result<(), SumError> {
         fresh.clear();
         let [g0, g1] = self.ops.q.edge(e2 as usize).faces;
-        let (c, ic, d, id) = self.ops.view_q().edge_arc(e2);
-        self.ops.view_p().walk_arc(
-            c,
-            ic,
-            d,
-            id,
-            self.vf[g0 as usize],
-            self.vf[g1 as usize],
-            |e| fresh.push(e),
-        )?;
+        let (c, d) = self.ops.view_q().edge_arc(e2);
+        self.ops
+            .view_p()
+            .walk_arc(&c, &d, self.vf[g0 as usize], self.vf[g1 as usize], |e| {
+                fresh.push(e)
+            })?;
         let old = std::mem::take(&mut self.ee_q[e2 as usize]);
         for &e in &old {
             if !fresh.contains(&e) {

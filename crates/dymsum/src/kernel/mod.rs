@@ -8,8 +8,10 @@
 //! * [`predicates::sos_det3`]: the same with Simulation of Simplicity, the one
 //!   consistent tie-breaking rule for exact degeneracies between two Gaussian
 //!   maps. Never returns zero for three distinct indices.
+//! * [`exact`]: exact dyadic arithmetic behind the filters.
 //! * [`rotation`]: unit quaternions, rotation matrices and rigid poses.
 
+pub mod exact;
 pub mod predicates;
 pub mod rotation;
 

@@ -4,6 +4,17 @@
 //! inputs, computed with Shewchuk's adaptive-precision arithmetic (the
 //! `robust` crate). Floats are used only to build inputs; never to decide.
 //!
+//! # Directions with exact values
+//!
+//! Gaussian-map predicates take [`ExactVector`]s: a float approximation with a
+//! certified error bound, and the exact value on demand. A face normal is the
+//! cross product of two exact vertex differences (times a float rotation
+//! matrix taken as exact), so it is *not* a float; the filter decides from
+//! the approximation when the error bound allows and otherwise evaluates
+//! exactly with [`super::exact::Dyadic`] arithmetic. So "a normal lies exactly
+//! on an arc" or "two faces are exactly parallel" is decided on the true
+//! geometry, never on rounded normals.
+//!
 //! # Symbolic perturbation
 //!
 //! [`sos_det3`] implements Simulation of Simplicity (Edelsbrunner and Mücke,
@@ -14,9 +25,12 @@
 //! ordered by increasing exponent. The expansion has 34 terms: the determinant
 //! itself, nine cofactors (exact 2×2 determinants), eighteen single entries and
 //! six constants `±1`, so the result is never zero when the three indices
-//! differ. Every cross-map decision of the Minkowski sum algorithms uses it, so
-//! all algorithms see one and the same generic configuration.
+//! differ. The sign of every term is invariant under positive scaling of a
+//! vector, so scaled normals perturb consistently. Every cross-map decision of
+//! the Minkowski sum algorithms uses it, so all algorithms see one and the
+//! same generic configuration.
 
+use super::exact::ExactVec;
 use glam::DVec3;
 use robust::{Coord, Coord3D};
 use std::sync::OnceLock;
@@ -83,27 +97,102 @@ pub fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     Sign::of(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)))
 }
 
-/// Exact sign of `det[a, b, c]` (rows `a`, `b`, `c`) = `(a × b) · c`.
-/// `Positive` when `a, b, c` turn counter-clockwise seen from outside the
-/// unit sphere (for directions within a common open hemisphere).
+/// A direction known exactly, with a float approximation for fast filters.
+pub trait ExactVector {
+    /// Float approximation.
+    fn approx(&self) -> DVec3;
+    /// Upper bound on the Euclidean distance between `approx()` and the
+    /// exact value.
+    fn error(&self) -> f64;
+    /// Global index for symbolic perturbation.
+    fn index(&self) -> u32;
+    /// The exact value.
+    fn exact(&self) -> ExactVec;
+}
+
+/// A float vector taken as exact (error 0), with an SoS index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plain(pub DVec3, pub u32);
+
+impl ExactVector for Plain {
+    #[inline]
+    fn approx(&self) -> DVec3 {
+        self.0
+    }
+    #[inline]
+    fn error(&self) -> f64 {
+        0.0
+    }
+    #[inline]
+    fn index(&self) -> u32 {
+        self.1
+    }
+    fn exact(&self) -> ExactVec {
+        super::exact::exact(self.0)
+    }
+}
+
+const U: f64 = f64::EPSILON / 2.0;
+
+/// Float determinant and a bound on its distance from the exact one.
 #[inline]
-pub fn det3(a: DVec3, b: DVec3, c: DVec3) -> Sign {
-    // Fast filter: the float determinant with a forward error bound.
-    let bc = b.cross(c);
-    let det = a.dot(bc);
-    let perm = a.x.abs() * (b.y * c.z).abs().max((b.z * c.y).abs()) * 2.0
-        + a.y.abs() * (b.z * c.x).abs().max((b.x * c.z).abs()) * 2.0
-        + a.z.abs() * (b.x * c.y).abs().max((b.y * c.x).abs()) * 2.0;
-    let bound = 8.0 * f64::EPSILON * perm;
+fn det3_filter<V: ExactVector>(a: &V, b: &V, c: &V) -> (f64, f64) {
+    let (x, y, z) = (a.approx(), b.approx(), c.approx());
+    let det = x.dot(y.cross(z));
+    let (mx, my, mz) = (
+        x.abs().max_element(),
+        y.abs().max_element(),
+        z.abs().max_element(),
+    );
+    let (ex, ey, ez) = (a.error(), b.error(), c.error());
+    // |x|₂ ≤ √3 |x|∞; perturbation ≤ e_x|y||z| + |x'|e_y|z| + |x'||y'|e_z.
+    let s3 = 1.7320508075688774;
+    let (nx, ny, nz) = (s3 * mx + ex, s3 * my + ey, s3 * mz + ez);
+    let input = ex * ny * nz + nx * ey * nz + nx * ny * ez;
+    let rounding = 8.0 * U * 6.0 * mx * my * mz;
+    (det, 1.01 * (input + rounding))
+}
+
+/// Exact sign of `det[a, b, c] = (a × b) · c` (no perturbation: `Zero` on
+/// exact degeneracy). `Positive` when `a, b, c` turn counter-clockwise seen
+/// from outside the unit sphere (directions within an open hemisphere).
+#[inline]
+pub fn det3<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
+    let (det, bound) = det3_filter(a, b, c);
     if det > bound {
-        return Sign::Positive;
+        Sign::Positive
+    } else if -det > bound {
+        Sign::Negative
+    } else {
+        det3_exact(a, b, c)
     }
-    if -det > bound {
-        return Sign::Negative;
+}
+
+#[cold]
+fn det3_exact<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
+    super::exact::det3(&a.exact(), &b.exact(), &c.exact()).sign()
+}
+
+/// `true` when `a` and `b` point in exactly the same direction (positive
+/// multiples of each other), decided exactly.
+pub fn same_direction<V: ExactVector>(a: &V, b: &V) -> bool {
+    let (x, y) = (a.approx(), b.approx());
+    let cr = x.cross(y);
+    let (mx, my) = (
+        x.abs().max_element() * 1.7320508075688774,
+        y.abs().max_element() * 1.7320508075688774,
+    );
+    let bound =
+        1.01 * (a.error() * (my + b.error()) + (mx + a.error()) * b.error() + 4.0 * U * mx * my);
+    if cr.abs().max_element() > bound || x.dot(y) < -bound {
+        return false;
     }
-    // det[a, b, c] = det[a - 0, b - 0, c - 0]; the differences with the origin
-    // are exact, so Shewchuk's orient3d with d = 0 is exact.
-    orient(DVec3::ZERO, a, b, c)
+    let (ea, eb) = (a.exact(), b.exact());
+    let c = super::exact::cross(&ea, &eb);
+    if c.iter().any(|d| d.sign() != Sign::Zero) {
+        return false;
+    }
+    super::exact::dot(&ea, &eb).sign() == Sign::Positive
 }
 
 /// Exact sign of the 2×2 determinant `p.0 * q.1 − p.1 * q.0`.
@@ -114,24 +203,6 @@ pub fn det2(p0: f64, p1: f64, q0: f64, q1: f64) -> Sign {
         Coord { x: q0, y: q1 },
         Coord { x: 0.0, y: 0.0 },
     ))
-}
-
-/// `true` when `a` and `b` point in exactly the same direction
-/// (positive multiples of each other), decided exactly.
-pub fn same_direction(a: DVec3, b: DVec3) -> bool {
-    if det2(a.y, a.z, b.y, b.z) != Sign::Zero
-        || det2(a.z, a.x, b.z, b.x) != Sign::Zero
-        || det2(a.x, a.y, b.x, b.y) != Sign::Zero
-    {
-        return false;
-    }
-    // Parallel: compare the sign of one non-zero coordinate.
-    for k in 0..3 {
-        if a[k] != 0.0 {
-            return (a[k] > 0.0) == (b[k] > 0.0) && b[k] != 0.0;
-        }
-    }
-    false
 }
 
 /// One term of the SoS expansion of a 3×3 determinant.
@@ -211,15 +282,16 @@ fn sos_terms() -> &'static [SosTerm] {
     })
 }
 
-fn cofactor_sign(m: &[[f64; 3]; 3], row: usize, col: usize) -> Sign {
+fn cofactor_sign(m: &[ExactVec; 3], row: usize, col: usize) -> Sign {
     let rows: Vec<usize> = (0..3).filter(|&r| r != row).collect();
     let cols: Vec<usize> = (0..3).filter(|&c| c != col).collect();
-    let s = det2(
-        m[rows[0]][cols[0]],
-        m[rows[0]][cols[1]],
-        m[rows[1]][cols[0]],
-        m[rows[1]][cols[1]],
-    );
+    let s = super::exact::det2(
+        &m[rows[0]][cols[0]],
+        &m[rows[0]][cols[1]],
+        &m[rows[1]][cols[0]],
+        &m[rows[1]][cols[1]],
+    )
+    .sign();
     if (row + col) % 2 == 1 {
         s.flip()
     } else {
@@ -227,25 +299,34 @@ fn cofactor_sign(m: &[[f64; 3]; 3], row: usize, col: usize) -> Sign {
     }
 }
 
-/// Sign of `det[a, b, c]` under Simulation of Simplicity, where `ia`, `ib`,
-/// `ic` are the vectors' global indices (all distinct). Never `Zero` for
-/// distinct indices; equals [`det3`] whenever that is non-zero.
-pub fn sos_det3(a: DVec3, ia: u32, b: DVec3, ib: u32, c: DVec3, ic: u32) -> Sign {
-    let s = det3(a, b, c);
-    if s != Sign::Zero {
-        return s;
+/// Sign of `det[a, b, c]` under Simulation of Simplicity, with the vectors'
+/// global indices (all distinct). Never `Zero` for distinct indices; equals
+/// [`det3`] whenever that is non-zero.
+#[inline]
+pub fn sos_det3<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
+    let (det, bound) = det3_filter(a, b, c);
+    if det > bound {
+        Sign::Positive
+    } else if -det > bound {
+        Sign::Negative
+    } else {
+        sos_slow(a, b, c)
     }
-    sos_tiebreak(a, ia, b, ib, c, ic)
 }
 
 #[cold]
-fn sos_tiebreak(a: DVec3, ia: u32, b: DVec3, ib: u32, c: DVec3, ic: u32) -> Sign {
+fn sos_slow<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
+    let s = det3_exact(a, b, c);
+    if s != Sign::Zero {
+        return s;
+    }
+    let (ia, ib, ic) = (a.index(), b.index(), c.index());
     debug_assert!(
         ia != ib && ib != ic && ia != ic,
         "SoS needs distinct indices"
     );
     // Sort rows by index; an odd permutation flips the sign.
-    let mut rows = [(ia, a), (ib, b), (ic, c)];
+    let mut rows = [(ia, a.exact()), (ib, b.exact()), (ic, c.exact())];
     let mut flips = 0;
     for i in 0..3 {
         for j in 0..2 - i {
@@ -255,17 +336,14 @@ fn sos_tiebreak(a: DVec3, ia: u32, b: DVec3, ib: u32, c: DVec3, ic: u32) -> Sign
             }
         }
     }
-    let m = [
-        rows[0].1.to_array(),
-        rows[1].1.to_array(),
-        rows[2].1.to_array(),
-    ];
+    let [r0, r1, r2] = rows;
+    let m = [r0.1, r1.1, r2.1];
     let mut result = Sign::Zero;
     for t in sos_terms() {
         let s = match *t {
             SosTerm::Cofactor { row, col } => cofactor_sign(&m, row as usize, col as usize),
             SosTerm::Entry { row, col, sign } => {
-                let v = Sign::of(m[row as usize][col as usize]);
+                let v = m[row as usize][col as usize].sign();
                 if sign < 0 {
                     v.flip()
                 } else {
@@ -296,6 +374,10 @@ fn sos_tiebreak(a: DVec3, ia: u32, b: DVec3, ib: u32, c: DVec3, ic: u32) -> Sign
 mod tests {
     use super::*;
 
+    fn p(x: f64, y: f64, z: f64, i: u32) -> Plain {
+        Plain(DVec3::new(x, y, z), i)
+    }
+
     #[test]
     fn orient_convention() {
         let o = DVec3::ZERO;
@@ -308,47 +390,49 @@ mod tests {
 
     #[test]
     fn det3_matches_cross_dot() {
-        assert_eq!(det3(DVec3::X, DVec3::Y, DVec3::Z), Sign::Positive);
-        assert_eq!(det3(DVec3::Y, DVec3::X, DVec3::Z), Sign::Negative);
-        assert_eq!(det3(DVec3::X, DVec3::Y, DVec3::X), Sign::Zero);
-        // A case where naive float evaluation is wrong.
-        let a = DVec3::new(1.0, 1e-17, 0.0);
-        let b = DVec3::new(1.0, 0.0, 1e-17);
-        let c = DVec3::new(1.0, 0.0, 0.0);
-        assert_eq!(det3(a, b, c), Sign::Positive); // exactly 1e-34
+        let (x, y, z) = (p(1., 0., 0., 0), p(0., 1., 0., 1), p(0., 0., 1., 2));
+        assert_eq!(det3(&x, &y, &z), Sign::Positive);
+        assert_eq!(det3(&y, &x, &z), Sign::Negative);
+        assert_eq!(det3(&x, &y, &x), Sign::Zero);
+        // A case where naive float evaluation is wrong: exactly 1e-34 > 0.
+        let a = p(1.0, 1e-17, 0.0, 0);
+        let b = p(1.0, 0.0, 1e-17, 1);
+        let c = p(1.0, 0.0, 0.0, 2);
+        assert_eq!(det3(&a, &b, &c), Sign::Positive);
     }
 
     #[test]
     fn sos_is_antisymmetric_and_nonzero() {
-        let a = DVec3::X;
-        let b = DVec3::new(1.0, 1.0, 0.0);
-        let c = DVec3::Y;
+        let a = p(1., 0., 0., 0);
+        let b = p(1., 1., 0., 1);
+        let c = p(0., 1., 0., 2);
         // coplanar: det = 0
-        let s = sos_det3(a, 0, b, 1, c, 2);
+        let s = sos_det3(&a, &b, &c);
         assert_ne!(s, Sign::Zero);
-        assert_eq!(sos_det3(b, 1, a, 0, c, 2), s.flip());
-        assert_eq!(sos_det3(a, 0, c, 2, b, 1), s.flip());
-        assert_eq!(sos_det3(c, 2, a, 0, b, 1), s);
+        assert_eq!(sos_det3(&b, &a, &c), s.flip());
+        assert_eq!(sos_det3(&a, &c, &b), s.flip());
+        assert_eq!(sos_det3(&c, &a, &b), s);
         // identical vectors with distinct indices
-        let s2 = sos_det3(a, 5, a, 3, a, 9);
+        let (a5, a3, a9) = (p(1., 0., 0., 5), p(1., 0., 0., 3), p(1., 0., 0., 9));
+        let s2 = sos_det3(&a5, &a3, &a9);
         assert_ne!(s2, Sign::Zero);
-        assert_eq!(sos_det3(a, 3, a, 5, a, 9), s2.flip());
+        assert_eq!(sos_det3(&a3, &a5, &a9), s2.flip());
         assert_eq!(sos_terms().len(), 9 + 18 + 6);
+        // invariant under positive scaling of a vector
+        let b2 = p(2., 2., 0., 1);
+        assert_eq!(sos_det3(&a, &b2, &c), s);
     }
 
     #[test]
     fn same_direction_exact() {
-        assert!(same_direction(
-            DVec3::new(1.0, 2.0, 3.0),
-            DVec3::new(2.0, 4.0, 6.0)
+        assert!(same_direction(&p(1.0, 2.0, 3.0, 0), &p(2.0, 4.0, 6.0, 1)));
+        assert!(!same_direction(
+            &p(1.0, 2.0, 3.0, 0),
+            &p(-2.0, -4.0, -6.0, 1)
         ));
         assert!(!same_direction(
-            DVec3::new(1.0, 2.0, 3.0),
-            DVec3::new(-2.0, -4.0, -6.0)
-        ));
-        assert!(!same_direction(
-            DVec3::new(1.0, 2.0, 3.0),
-            DVec3::new(2.0, 4.0, 6.000000000000001)
+            &p(1.0, 2.0, 3.0, 0),
+            &p(2.0, 4.0, 6.000000000000001, 1)
         ));
     }
 }

@@ -30,7 +30,9 @@ mod sanity;
 pub use build::{ConvexityReport, MeshPolicy};
 pub use error::PolytopeError;
 
-use glam::DVec3;
+use crate::kernel::exact::{self, ExactVec};
+use crate::kernel::predicates::ExactVector;
+use glam::{DMat3, DVec3};
 
 /// One undirected edge: its endpoints and the faces on its left and right.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -62,6 +64,8 @@ pub struct Polytope {
     he_edge: Vec<u32>,
     edges: Vec<Edge>,
     normals: Vec<DVec3>,
+    normal_triple: Vec<[u32; 3]>,
+    normal_err: Vec<f64>,
     unit_normals: Vec<DVec3>,
     ring_start: Vec<u32>,
     ring: Vec<RingEntry>,
@@ -319,10 +323,15 @@ impl Polytope {
                 return Err(PolytopeError::NonManifoldVertex { vertex: v });
             }
         }
-        let normals: Vec<DVec3> = faces
-            .iter()
-            .map(|f| exact_input_normal(&vertices, f))
-            .collect();
+        let mut normals = Vec::with_capacity(faces.len());
+        let mut normal_triple = Vec::with_capacity(faces.len());
+        let mut normal_err = Vec::with_capacity(faces.len());
+        for f in faces {
+            let (n, triple, err) = face_normal(&vertices, f);
+            normals.push(n);
+            normal_triple.push(triple);
+            normal_err.push(err);
+        }
         let unit_normals = normals.iter().map(|n| n.normalize()).collect();
         let poly = Polytope {
             vertices,
@@ -331,6 +340,8 @@ impl Polytope {
             he_edge,
             edges,
             normals,
+            normal_triple,
+            normal_err,
             unit_normals,
             ring_start,
             ring,
@@ -349,13 +360,13 @@ impl Polytope {
                 return Err(PolytopeError::DegenerateGaussMap { vertex: v });
             }
             for i in 0..r.len() {
-                let a = self.normals[r[i].face as usize];
-                let b = self.normals[r[(i + 1) % r.len()].face as usize];
+                let a = self.face_normal(r[i].face);
+                let b = self.face_normal(r[(i + 1) % r.len()].face);
                 for (j, e) in r.iter().enumerate() {
                     if j == i || j == (i + 1) % r.len() {
                         continue;
                     }
-                    if !det3(a, b, self.normals[e.face as usize]).is_positive() {
+                    if !det3(&a, &b, &self.face_normal(e.face)).is_positive() {
                         return Err(PolytopeError::DegenerateGaussMap { vertex: v });
                     }
                 }
@@ -363,37 +374,117 @@ impl Polytope {
         }
         Ok(())
     }
+
+    /// The exact normal of face `f` (unrotated), as a predicate argument
+    /// with SoS index `f`.
+    #[inline]
+    pub fn face_normal(&self, f: u32) -> FaceNormal<'_> {
+        FaceNormal {
+            poly: self,
+            face: f,
+            approx: self.normals[f as usize],
+            err: self.normal_err[f as usize],
+            idx: f,
+            rotation: None,
+        }
+    }
+
+    /// Bound on the distance between [`Polytope::normal`] and the exact
+    /// normal (scaled alike).
+    #[inline]
+    pub fn normal_error(&self, f: usize) -> f64 {
+        self.normal_err[f]
+    }
+
+    /// The exact (unscaled) normal of face `f`: `(B − A) × (C − A)` for the
+    /// face's defining vertex triple.
+    pub fn exact_normal(&self, f: usize) -> ExactVec {
+        let [a, b, c] = self.normal_triple[f].map(|v| self.vertices[v as usize]);
+        exact::cross(&exact::sub(b, a), &exact::sub(c, a))
+    }
+}
+
+/// A face normal as an exact predicate argument: the polytope's float
+/// normal (optionally rotated by a float matrix taken as exact), its error
+/// bound, and its exact value on demand.
+#[derive(Clone, Copy, Debug)]
+pub struct FaceNormal<'a> {
+    /// The polytope.
+    pub poly: &'a Polytope,
+    /// The face.
+    pub face: u32,
+    /// Float approximation (rotated if `rotation` is set).
+    pub approx: DVec3,
+    /// Error bound of `approx`.
+    pub err: f64,
+    /// Global SoS index.
+    pub idx: u32,
+    /// The rotation applied, if any.
+    pub rotation: Option<&'a DMat3>,
+}
+
+impl ExactVector for FaceNormal<'_> {
+    #[inline]
+    fn approx(&self) -> DVec3 {
+        self.approx
+    }
+    #[inline]
+    fn error(&self) -> f64 {
+        self.err
+    }
+    #[inline]
+    fn index(&self) -> u32 {
+        self.idx
+    }
+    fn exact(&self) -> ExactVec {
+        let n = self.poly.exact_normal(self.face as usize);
+        match self.rotation {
+            Some(m) => exact::mat_vec(m, &n),
+            None => n,
+        }
+    }
+}
+
+/// Error bound of a float normal rotated by a (nearly orthogonal) float
+/// matrix, relative to the exact product of that matrix and the exact normal.
+#[inline]
+pub fn rotated_error(err: f64, approx: DVec3) -> f64 {
+    1.01 * err + 8.0 * f64::EPSILON * approx.abs().max_element() * 1.7320508075688774
 }
 
 /// The normal of a planar polygon as the cross product of the two edges of
 /// its largest fan triangle from the first vertex, scaled by a power of two
-/// (exactly) so its largest component lies in `[0.5, 1)`.
+/// (exactly) so its largest component lies in `[0.5, 1)`. Returns the float
+/// normal, the defining vertex triple (whose exact cross product is the
+/// exact normal) and a bound on the float normal's error.
 ///
-/// A cross product of coordinate differences keeps exact zeros: a face in a
-/// plane `x = c` gets a normal with exactly zero `y` and `z`, whatever its
-/// other coordinates, so parallel faces of P and Q are recognised exactly
-/// (a Newell sum of rounded terms would not telescope to zero).
-fn exact_input_normal(vertices: &[DVec3], face: &[u32]) -> DVec3 {
+/// Because the exact normal is a cross product of exact vertex differences,
+/// exact coincidences of the geometry (parallel faces, a normal on an arc)
+/// are exact coincidences of the normals.
+fn face_normal(vertices: &[DVec3], face: &[u32]) -> (DVec3, [u32; 3], f64) {
     let a = vertices[face[0] as usize];
-    let mut n = DVec3::ZERO;
-    let mut best = -1.0;
+    let mut best = (DVec3::ZERO, [face[0], face[1], face[2]], -1.0, 0.0);
     for w in face[1..].windows(2) {
-        let c = (vertices[w[0] as usize] - a).cross(vertices[w[1] as usize] - a);
+        let (d1, d2) = (vertices[w[0] as usize] - a, vertices[w[1] as usize] - a);
+        let c = d1.cross(d2);
         let l = c.length_squared();
-        if l > best {
-            best = l;
-            n = c;
+        if l > best.2 {
+            best = (c, [face[0], w[0], w[1]], l, d1.length() * d2.length());
         }
     }
+    let (n, triple, _, lens) = best;
+    // |fl(d1 × d2) − (B−A) × (C−A)| ≤ ~7u |d1||d2|; use 16u.
+    let mut err = 16.0 * f64::EPSILON / 2.0 * lens * 1.01;
     let m = n.abs().max_element();
     if m > 0.0 && m.is_finite() {
         let e = m.log2().floor() as i32 + 1;
         let s = 2f64.powi(-e);
         if s.is_finite() && s > 0.0 {
-            return n * s;
+            err *= s;
+            return (n * s, triple, err);
         }
     }
-    n
+    (n, triple, err)
 }
 
 pub(crate) fn bounds(pts: &[DVec3]) -> (DVec3, DVec3) {

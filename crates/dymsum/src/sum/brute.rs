@@ -9,37 +9,39 @@
 //! normal; finding zero or two is reported as an internal inconsistency.
 
 use super::{Operands, Overlay, SumError};
+use crate::polytope::FaceNormal;
 use crate::sum::overlay::{arcs_cross, GaussView};
 
-fn containing_vertex(cells: &GaussView<'_>, x: glam::DVec3, ix: u32) -> Result<u32, SumError> {
+fn containing_vertex(cells: &GaussView<'_>, x: &FaceNormal<'_>) -> Result<u32, SumError> {
     let mut found = None;
     for v in 0..cells.poly.vertex_count() as u32 {
-        if cells.in_cell(v, x, ix) {
+        if cells.in_cell(v, x) {
             if found.is_some() {
                 return Err(SumError::Inconsistent(format!(
-                    "normal {ix} lies in two cells"
+                    "normal {} lies in two cells",
+                    x.idx
                 )));
             }
             found = Some(v);
         }
     }
-    found.ok_or_else(|| SumError::Inconsistent(format!("normal {ix} lies in no cell")))
+    found.ok_or_else(|| SumError::Inconsistent(format!("normal {} lies in no cell", x.idx)))
 }
 
 pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
     let (vp, vq) = (ops.view_p(), ops.view_q());
     let fv = (0..ops.p.face_count() as u32)
-        .map(|f| containing_vertex(&vq, vp.n(f), vp.idx(f)))
+        .map(|f| containing_vertex(&vq, &vp.normal(f)))
         .collect::<Result<Vec<_>, _>>()?;
     let vf = (0..ops.q.face_count() as u32)
-        .map(|g| containing_vertex(&vp, vq.n(g), vq.idx(g)))
+        .map(|g| containing_vertex(&vp, &vq.normal(g)))
         .collect::<Result<Vec<_>, _>>()?;
     let mut ee = Vec::new();
     for e in 0..ops.p.edge_count() as u32 {
-        let (a, ia, b, ib) = vp.edge_arc(e);
+        let (a, b) = vp.edge_arc(e);
         for e2 in 0..ops.q.edge_count() as u32 {
-            let (c, ic, d, id) = vq.edge_arc(e2);
-            if arcs_cross(a, ia, b, ib, c, ic, d, id) {
+            let (c, d) = vq.edge_arc(e2);
+            if arcs_cross(&a, &b, &c, &d) {
                 ee.push((e, e2));
             }
         }

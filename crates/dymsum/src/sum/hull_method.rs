@@ -75,23 +75,23 @@ pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
         let (qf, qe) = features_within(ops.q, &sq);
         for &f in &pf {
             for &w in &sq {
-                if vq.in_cell(w, vp.n(f), vp.idx(f)) {
+                if vq.in_cell(w, &vp.normal(f)) {
                     assign(&mut fv[f as usize], w, "a face of P")?;
                 }
             }
         }
         for &g in &qf {
             for &u in &sp {
-                if vp.in_cell(u, vq.n(g), vq.idx(g)) {
+                if vp.in_cell(u, &vq.normal(g)) {
                     assign(&mut vf[g as usize], u, "a face of Q")?;
                 }
             }
         }
         for &e in &pe {
-            let (a, ia, b, ib) = vp.edge_arc(e);
+            let (a, b) = vp.edge_arc(e);
             for &e2 in &qe {
-                let (c, ic, d, id) = vq.edge_arc(e2);
-                if arcs_cross(a, ia, b, ib, c, ic, d, id) {
+                let (c, d) = vq.edge_arc(e2);
+                if arcs_cross(&a, &b, &c, &d) {
                     ee.insert((e, e2));
                 }
             }

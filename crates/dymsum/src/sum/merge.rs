@@ -26,6 +26,9 @@ use crate::PolygonMesh;
 use glam::DVec3;
 use std::collections::HashMap;
 
+/// A vertex of the sum as `(vertex of P, vertex of Q)`.
+type SumVertex = (u32, u32);
+
 struct UnionFind(Vec<u32>);
 
 impl UnionFind {
@@ -62,11 +65,11 @@ pub(crate) fn facet_corners(ops: &Operands<'_>, overlay: &Overlay) -> Vec<Vec<(u
     for &(e, e2) in &overlay.ee {
         let [u1, u2] = ops.p.edge(e as usize).vertices;
         let [w1, w2] = ops.q.edge(e2 as usize).vertices;
-        let (a, ia, b, ib) = vp.edge_arc(e);
-        let (c, ic, ..) = vq.edge_arc(e2);
+        let (a, b) = vp.edge_arc(e);
+        let (c, _) = vq.edge_arc(e2);
         // Edge directions are a×b and c×d; the cycle below turns about their
         // cross product, which is the outward normal iff det[a,b,c] < 0.
-        let ccw = sos_det3(a, ia, b, ib, c, ic).is_negative();
+        let ccw = sos_det3(&a, &b, &c).is_negative();
         let mut cyc = vec![(u1, w1), (u2, w1), (u2, w2), (u1, w2)];
         if !ccw {
             cyc.reverse();
@@ -83,10 +86,10 @@ fn ee_normal(ops: &Operands<'_>, e: u32, e2: u32) -> DVec3 {
     let d1 = ops.p_vertex(u2) - ops.p_vertex(u1);
     let d2 = ops.q_vertex(w2) - ops.q_vertex(w1);
     let (vp, vq) = (ops.view_p(), ops.view_q());
-    let (a, ia, b, ib) = vp.edge_arc(e);
-    let (c, ic, ..) = vq.edge_arc(e2);
+    let (a, b) = vp.edge_arc(e);
+    let (c, _) = vq.edge_arc(e2);
     let n = d1.cross(d2).normalize_or_zero();
-    if sos_det3(a, ia, b, ib, c, ic).is_negative() {
+    if sos_det3(&a, &b, &c).is_negative() {
         n
     } else {
         -n
@@ -100,9 +103,10 @@ pub fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> PolygonMesh {
     let total = overlay.len();
     let mut uf = UnionFind::new(total);
     let mut degenerate = vec![false; total];
+    let (vp, vq) = (ops.view_p(), ops.view_q());
     for (f, &w) in overlay.fv.iter().enumerate() {
         for r in ops.q.ring(w as usize) {
-            if same_direction(ops.np[f], ops.nq[r.face as usize]) {
+            if same_direction(&vp.normal(f as u32), &vq.normal(r.face)) {
                 uf.union(f as u32, (m + r.face as usize) as u32);
             }
         }
@@ -111,17 +115,20 @@ pub fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> PolygonMesh {
         let id = (m + n + k) as u32;
         let [f0, f1] = ops.p.edge(e as usize).faces;
         let [g0, g1] = ops.q.edge(e2 as usize).faces;
-        let (a, b) = (ops.np[f0 as usize], ops.np[f1 as usize]);
-        let (c, d) = (ops.nq[g0 as usize], ops.nq[g1 as usize]);
-        let (abc, abd) = (det3(a, b, c) == Sign::Zero, det3(a, b, d) == Sign::Zero);
+        let (a, b) = (vp.normal(f0), vp.normal(f1));
+        let (c, d) = (vq.normal(g0), vq.normal(g1));
+        let (abc, abd) = (
+            det3(&a, &b, &c) == Sign::Zero,
+            det3(&a, &b, &d) == Sign::Zero,
+        );
         if abc && abd {
             degenerate[id as usize] = true;
             continue;
         }
-        if det3(c, d, a) == Sign::Zero {
+        if det3(&c, &d, &a) == Sign::Zero {
             uf.union(id, f0);
         }
-        if det3(c, d, b) == Sign::Zero {
+        if det3(&c, &d, &b) == Sign::Zero {
             uf.union(id, f1);
         }
         if abc {
@@ -218,7 +225,7 @@ fn sort_ccw(vertices: &[DVec3], normal: DVec3, vs: &mut [u32]) {
 /// characteristic 2.
 pub fn check_facet_complex(ops: &Operands<'_>, overlay: &Overlay) -> Result<(), String> {
     let corners = facet_corners(ops, overlay);
-    let mut directed: HashMap<((u32, u32), (u32, u32)), u32> = HashMap::new();
+    let mut directed: HashMap<(SumVertex, SumVertex), u32> = HashMap::new();
     let mut verts = std::collections::HashSet::new();
     for (i, cyc) in corners.iter().enumerate() {
         for k in 0..cyc.len() {

@@ -186,6 +186,8 @@ pub struct Operands<'a> {
     pub np: Vec<DVec3>,
     /// Q's reference normals.
     pub nq: Vec<DVec3>,
+    /// The relative rotation's matrix, `None` for the identity.
+    pub rot_p: Option<glam::DMat3>,
 }
 
 /// The relative rotation `R_q⁻¹ R_p` (exactly `R_p` when Q is not rotated).
@@ -206,6 +208,7 @@ impl<'a> Operands<'a> {
             q,
             np: p.normals().iter().map(|&n| relative.apply(n)).collect(),
             nq: q.normals().to_vec(),
+            rot_p: (relative != crate::Rotation::IDENTITY).then(|| relative.matrix()),
             pose_p,
             pose_q,
             relative,
@@ -218,6 +221,7 @@ impl<'a> Operands<'a> {
             poly: self.p,
             normals: &self.np,
             base: 0,
+            rotation: self.rot_p.as_ref(),
         }
     }
     /// Q's Gaussian map (global indices `m..m+n`).
@@ -227,6 +231,7 @@ impl<'a> Operands<'a> {
             poly: self.q,
             normals: &self.nq,
             base: self.p.face_count() as u32,
+            rotation: None,
         }
     }
     /// Position of vertex `u` of P under its pose.

@@ -27,7 +27,7 @@ fn locate_all(faces: &GaussView<'_>, cells: &GaussView<'_>) -> Vec<u32> {
     let mut out = vec![u32::MAX; nf];
     let mut queue = VecDeque::with_capacity(nf);
     let first_seed = cells.poly.support_vertex(faces.n(0)) as u32;
-    out[0] = cells.locate(faces.n(0), faces.idx(0), first_seed).0;
+    out[0] = cells.locate(&faces.normal(0), first_seed).0;
     queue.push_back(0u32);
     while let Some(f) = queue.pop_front() {
         let seed = out[f as usize];
@@ -35,7 +35,7 @@ fn locate_all(faces: &GaussView<'_>, cells: &GaussView<'_>) -> Vec<u32> {
             let [f0, f1] = faces.poly.edge(e as usize).faces;
             let g = if f0 == f { f1 } else { f0 };
             if out[g as usize] == u32::MAX {
-                out[g as usize] = cells.locate(faces.n(g), faces.idx(g), seed).0;
+                out[g as usize] = cells.locate(&faces.normal(g), seed).0;
                 queue.push_back(g);
             }
         }
@@ -53,8 +53,8 @@ pub fn walk_ee_of_p_edge(
 ) -> Result<usize, SumError> {
     let (vp, vq) = (ops.view_p(), ops.view_q());
     let [f0, f1] = ops.p.edge(e as usize).faces;
-    let (a, ia, b, ib) = vp.edge_arc(e);
-    vq.walk_arc(a, ia, b, ib, fv[f0 as usize], fv[f1 as usize], |e2| {
+    let (a, b) = vp.edge_arc(e);
+    vq.walk_arc(&a, &b, fv[f0 as usize], fv[f1 as usize], |e2| {
         out.push((e, e2))
     })
 }

@@ -112,3 +112,389 @@ pub fn box_points(x: f64, y: f64, z: f64) -> Vec<[f64; 3]> {
         })
         .collect()
 }
+
+/// Oracles for the dynamic sum, shared by `dynamic_sums.rs` and
+/// `dymsum-io/tests/dynamic_models.rs` (which includes this file by path).
+pub mod oracle {
+    use super::{random_rotation, rng};
+    use dymsum::hull::{convex_hull, PairwiseSums};
+    use dymsum::sum::{minkowski_sum_posed, Facet, Method};
+    use dymsum::{DVec3, DynamicSum, PolygonMesh, Polytope, Pose, Rotation, UpdateReport};
+    use rand::Rng;
+    use rand_chacha::ChaCha8Rng;
+    use std::collections::HashSet;
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+    /// A rotation with its exact quaternion printed (for reproductions).
+    pub fn show_rot(r: &Rotation) -> String {
+        let [w, x, y, z] = r.wxyz();
+        format!("wxyz=[{w:e}, {x:e}, {y:e}, {z:e}]")
+    }
+
+    /// A pose with its exact numbers printed.
+    pub fn show_pose(p: &Pose) -> String {
+        format!("{} t={:?}", show_rot(&p.rotation), p.translation.to_array())
+    }
+
+    /// The static `walk` facets at the dynamic sum's current poses.
+    pub fn walk_facets(d: &DynamicSum) -> Vec<Facet> {
+        minkowski_sum_posed(d.p(), d.pose_p(), d.q(), d.pose_q(), Method::Walk)
+            .expect("static walk failed")
+            .facets()
+    }
+
+    /// Checks the update report against the facet sets before and after:
+    /// removed ⊆ before, added ∩ before = ∅, before − removed + added = after
+    /// (as sets, no duplicates), and the error counts match the removed kinds.
+    pub fn check_report(
+        before: &[Facet],
+        after: &[Facet],
+        rep: &UpdateReport,
+        ctx: &str,
+    ) -> Result<(), String> {
+        let b: HashSet<Facet> = before.iter().copied().collect();
+        let a: HashSet<Facet> = after.iter().copied().collect();
+        if a.len() != after.len() {
+            return Err(format!("{ctx}: the facet list has duplicates"));
+        }
+        let removed: HashSet<Facet> = rep.removed.iter().copied().collect();
+        let added: HashSet<Facet> = rep.added.iter().copied().collect();
+        if removed.len() != rep.removed.len() {
+            return Err(format!(
+                "{ctx}: duplicates in report.removed: {:?}",
+                rep.removed
+            ));
+        }
+        if added.len() != rep.added.len() {
+            return Err(format!(
+                "{ctx}: duplicates in report.added: {:?}",
+                rep.added
+            ));
+        }
+        if let Some(f) = removed.iter().find(|f| !b.contains(f)) {
+            return Err(format!("{ctx}: removed {f:?} was not a facet before"));
+        }
+        if let Some(f) = added.iter().find(|f| b.contains(f)) {
+            return Err(format!("{ctx}: added {f:?} was already a facet"));
+        }
+        let mut expect: HashSet<Facet> = b.difference(&removed).copied().collect();
+        expect.extend(added.iter().copied());
+        if expect != a {
+            let missing: Vec<_> = a.difference(&expect).collect();
+            let extra: Vec<_> = expect.difference(&a).collect();
+            return Err(format!(
+                "{ctx}: before - removed + added != after; missing from the diff {missing:?}, \
+                 spurious {extra:?}"
+            ));
+        }
+        let ee = rep
+            .removed
+            .iter()
+            .filter(|f| matches!(f, Facet::Ee { .. }))
+            .count();
+        let fv = rep.removed.len() - ee;
+        if rep.fv_errors != fv || rep.ee_errors != ee {
+            return Err(format!(
+                "{ctx}: report counts fv_errors={} ee_errors={}, removed has {fv} fv/vf and {ee} ee",
+                rep.fv_errors, rep.ee_errors
+            ));
+        }
+        Ok(())
+    }
+
+    fn support(points: &[DVec3], d: DVec3) -> f64 {
+        points
+            .iter()
+            .map(|p| p.dot(d))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// The merged mesh against the exact hull of pairwise sums of the posed
+    /// vertices (volume within 1e-9 relative) and the support function in 32
+    /// random directions (within 1e-9 times the scale).
+    pub fn check_mesh_against_hull(d: &DynamicSum, ctx: &str) -> Result<(), String> {
+        let pp: Vec<DVec3> = d
+            .p()
+            .vertices()
+            .iter()
+            .map(|&v| d.pose_p().apply(v))
+            .collect();
+        let qq: Vec<DVec3> = d
+            .q()
+            .vertices()
+            .iter()
+            .map(|&v| d.pose_q().apply(v))
+            .collect();
+        let mesh = d.to_mesh();
+        let sums = PairwiseSums::new(&pp, &qq);
+        let hull = convex_hull(&sums).map_err(|e| format!("{ctx}: hull of sums: {e}"))?;
+        let hull_mesh = PolygonMesh {
+            vertices: (0..pp.len() * qq.len())
+                .map(|k| {
+                    let (i, j) = sums.split(k);
+                    (pp[i] + qq[j]).to_array()
+                })
+                .collect(),
+            faces: hull.faces.clone(),
+        };
+        let (vm, vh) = (mesh.signed_volume(), hull_mesh.signed_volume());
+        if (vm - vh).abs() > 1e-9 * vh.abs().max(1e-300) {
+            return Err(format!("{ctx}: merged volume {vm} vs hull of sums {vh}"));
+        }
+        let mv: Vec<DVec3> = mesh.vertices.iter().map(|v| DVec3::from(*v)).collect();
+        let scale = pp.iter().map(|v| v.length()).fold(0.0, f64::max)
+            + qq.iter().map(|v| v.length()).fold(0.0, f64::max)
+            + 1.0;
+        let mut r = rng(7);
+        for _ in 0..32 {
+            let dir = random_rotation(&mut r).apply(DVec3::X);
+            let h = support(&pp, dir) + support(&qq, dir);
+            let s = support(&mv, dir);
+            if (s - h).abs() > 1e-9 * scale {
+                return Err(format!(
+                    "{ctx}: support in {dir:?}: mesh {s} vs P+Q {h} (scale {scale})"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// A dynamic sum under test: every update is checked against `walk`
+    /// and the report; every `deep_every` updates the sanity check and the
+    /// hull-of-sums oracle run too.
+    pub struct Checked<'a> {
+        /// The sum under test.
+        pub d: DynamicSum<'a>,
+        /// Facets after the last update.
+        pub prev: Vec<Facet>,
+        /// Updates so far.
+        pub steps: usize,
+        /// Run the deep oracles every this many steps (0: never).
+        pub deep_every: usize,
+        /// Printed in failures.
+        pub label: String,
+        /// Updates that were recomputed from scratch.
+        pub recomputed: usize,
+    }
+
+    impl<'a> Checked<'a> {
+        /// Wraps a dynamic sum, checking its initial state.
+        pub fn new(d: DynamicSum<'a>, deep_every: usize, label: impl Into<String>) -> Self {
+            let label = label.into();
+            let prev = d.facets();
+            assert_eq!(
+                prev,
+                walk_facets(&d),
+                "{label}: initial state differs from walk"
+            );
+            Checked {
+                d,
+                prev,
+                steps: 0,
+                deep_every,
+                label,
+                recomputed: 0,
+            }
+        }
+
+        /// Starts at the given poses with the default configuration.
+        pub fn start(
+            p: &'a Polytope,
+            pose_p: Pose,
+            q: &'a Polytope,
+            pose_q: Pose,
+            deep_every: usize,
+            label: impl Into<String>,
+        ) -> Self {
+            Self::new(
+                DynamicSum::new(p, pose_p, q, pose_q).expect("DynamicSum::new"),
+                deep_every,
+                label,
+            )
+        }
+
+        /// Moves both bodies and checks everything; `Err` describes the
+        /// first failure with a reproduction.
+        pub fn try_set_pose(&mut self, pose_p: Pose, pose_q: Pose) -> Result<UpdateReport, String> {
+            let (old_p, old_q) = (self.d.pose_p(), self.d.pose_q());
+            let before_state = self.d.clone();
+            self.steps += 1;
+            let ctx = format!(
+                "{} step {}: from P {} Q {} to P {} Q {}",
+                self.label,
+                self.steps,
+                show_pose(&old_p),
+                show_pose(&old_q),
+                show_pose(&pose_p),
+                show_pose(&pose_q)
+            );
+            let rep = self
+                .d
+                .set_pose(pose_p, pose_q)
+                .map_err(|e| format!("{ctx}: set_pose failed: {e}"))?;
+            if rep.recomputed {
+                self.recomputed += 1;
+            }
+            let now = self.d.facets();
+            let walk = walk_facets(&self.d);
+            if now != walk {
+                let now_s: HashSet<Facet> = now.iter().copied().collect();
+                let walk_s: HashSet<Facet> = walk.iter().copied().collect();
+                let extra: Vec<_> = now_s.difference(&walk_s).collect();
+                let missing: Vec<_> = walk_s.difference(&now_s).collect();
+                // Does the single step reproduce from a fresh start?
+                let mut fresh =
+                    DynamicSum::with_config(self.d.p(), old_p, self.d.q(), old_q, self.d.config())
+                        .expect("new");
+                let fresh_ok = fresh
+                    .set_pose(pose_p, pose_q)
+                    .map(|_| fresh.facets() == walk);
+                let state_ok = before_state.facets() == self.prev;
+                return Err(format!(
+                    "{ctx}: dynamic facets differ from walk (step angle {:e}, recomputed {}, \
+                     fv_errors {}, ee_errors {}, rewalked {}); dynamic has extra {extra:?}, \
+                     misses {missing:?}; a fresh DynamicSum at the old pose doing the same step \
+                     matches walk: {fresh_ok:?}; state before step was consistent: {state_ok}",
+                    rep.step_angle, rep.recomputed, rep.fv_errors, rep.ee_errors, rep.rewalked_arcs
+                ));
+            }
+            check_report(&self.prev, &now, &rep, &ctx)?;
+            if rep.step_angle.is_nan() || rep.step_angle < 0.0 || rep.step_angle > PI + 1e-12 {
+                return Err(format!("{ctx}: bad step angle {}", rep.step_angle));
+            }
+            let q = pose_p.rotation.quat();
+            if (q.length() - 1.0).abs() > 1e-12 {
+                return Err(format!("{ctx}: P's quaternion has length {}", q.length()));
+            }
+            if self.deep_every > 0 && self.steps % self.deep_every == 0 {
+                self.deep_check()?;
+            }
+            self.prev = now;
+            Ok(rep)
+        }
+
+        /// [`Checked::try_set_pose`], panicking on failure.
+        pub fn set_pose(&mut self, pose_p: Pose, pose_q: Pose) -> UpdateReport {
+            self.try_set_pose(pose_p, pose_q)
+                .unwrap_or_else(|e| panic!("{e}"))
+        }
+
+        /// Moves P only.
+        pub fn set_pose_p(&mut self, pose_p: Pose) -> UpdateReport {
+            let q = self.d.pose_q();
+            self.set_pose(pose_p, q)
+        }
+
+        /// Turns P further by `r` (as [`DynamicSum::rotate_p_by`], but
+        /// checked; the pose is composed exactly as the library does).
+        pub fn rotate_p_by(&mut self, r: Rotation) -> UpdateReport {
+            let mut pose = self.d.pose_p();
+            pose.rotation = pose.rotation.then(&r);
+            self.set_pose_p(pose)
+        }
+
+        /// Sanity check and the hull-of-sums oracle now.
+        pub fn deep_check(&self) -> Result<(), String> {
+            let ctx = format!(
+                "{} after step {} at P {} Q {}",
+                self.label,
+                self.steps,
+                show_pose(&self.d.pose_p()),
+                show_pose(&self.d.pose_q())
+            );
+            self.d
+                .sanity_check()
+                .map_err(|e| format!("{ctx}: sanity_check: {e}"))?;
+            check_mesh_against_hull(&self.d, &ctx)
+        }
+    }
+
+    /// Steps per full turn in the paper's protocol.
+    pub const STEPS_PER_TURN: [f64; 6] = [10.0, 100.0, 500.0, 1000.0, 10_000.0, 100_000.0];
+
+    /// A uniformly random unit vector.
+    pub fn random_axis(r: &mut ChaCha8Rng) -> DVec3 {
+        random_rotation(r).apply(DVec3::new(0.0, 0.0, 1.0))
+    }
+
+    /// One move of the paper's motion, mixed with large jumps.
+    #[derive(Clone, Copy, Debug)]
+    pub enum Move {
+        /// Turn further by this rotation (`rotate_p_by`).
+        By(Rotation),
+        /// Go to this absolute orientation.
+        To(Rotation),
+    }
+
+    /// The paper's protocol (§5): a random axis held for 1..=50 steps of
+    /// 2π/X, X drawn from [`STEPS_PER_TURN`] (or fixed), with jumps of
+    /// probability `jump_prob`: random absolute rotations, turns by exactly
+    /// π about a random axis, exact quarter turns about coordinate axes
+    /// (relative) and exact k·90° orientations about coordinate axes
+    /// (absolute: faces exactly parallel for grid polytopes).
+    pub struct PaperMotion {
+        r: ChaCha8Rng,
+        axis: DVec3,
+        left: usize,
+        angle: f64,
+        /// Fixed steps per turn (`None`: drawn per axis).
+        pub steps_per_turn: Option<f64>,
+        /// Probability of a jump instead of a step.
+        pub jump_prob: f64,
+    }
+
+    impl PaperMotion {
+        /// A motion from a seed.
+        pub fn new(seed: u64, steps_per_turn: Option<f64>, jump_prob: f64) -> Self {
+            PaperMotion {
+                r: rng(seed ^ 0x5eed_0f_d1ce),
+                axis: DVec3::Z,
+                left: 0,
+                angle: 0.0,
+                steps_per_turn,
+                jump_prob,
+            }
+        }
+
+        /// The next move.
+        pub fn next_move(&mut self) -> Move {
+            let r = &mut self.r;
+            if self.jump_prob > 0.0 && r.random_bool(self.jump_prob) {
+                let coord = [DVec3::X, DVec3::Y, DVec3::Z][r.random_range(0..3)];
+                return match r.random_range(0..4) {
+                    0 => Move::To(random_rotation(r)),
+                    1 => Move::By(Rotation::from_axis_angle(random_axis(r), PI).unwrap()),
+                    2 => Move::By(
+                        Rotation::from_axis_angle(coord, FRAC_PI_2 * r.random_range(1..4) as f64)
+                            .unwrap(),
+                    ),
+                    _ => Move::To(
+                        Rotation::from_axis_angle(coord, FRAC_PI_2 * r.random_range(0..4) as f64)
+                            .unwrap(),
+                    ),
+                };
+            }
+            if self.left == 0 {
+                self.axis = random_axis(r);
+                self.left = r.random_range(1..=50);
+                let x = self
+                    .steps_per_turn
+                    .unwrap_or_else(|| STEPS_PER_TURN[r.random_range(0..STEPS_PER_TURN.len())]);
+                self.angle = TAU / x;
+            }
+            self.left -= 1;
+            Move::By(Rotation::from_axis_angle(self.axis, self.angle).unwrap())
+        }
+
+        /// Applies the next move to P of a checked sum.
+        pub fn apply(&mut self, c: &mut Checked) -> UpdateReport {
+            match self.next_move() {
+                Move::By(r) => c.rotate_p_by(r),
+                Move::To(r) => {
+                    let t = c.d.pose_p().translation;
+                    c.set_pose_p(Pose::new(r, t))
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,694 @@
+//! Oracle tests for the dynamic sum (`dymsum::DynamicSum`, paper §4).
+//!
+//! After every update the dynamic facet set must equal the static `walk`
+//! facet set at the same poses, exactly; the update report must be the exact
+//! diff between the facet sets before and after, with `fv_errors` and
+//! `ee_errors` counting the removed facets of each kind; and every so often
+//! the internal sanity check must pass and the merged mesh must equal the
+//! exact hull of the pairwise sums of the posed vertices (volume, support
+//! function). The oracles live in `common::oracle` (shared with
+//! `dymsum-io/tests/dynamic_models.rs`).
+//!
+//! Most runs are made twice: with the default configuration (large steps and
+//! steps with many arcs at risk are recomputed from scratch) and with an
+//! *always incremental* configuration (`max_step_angle = ∞`,
+//! `fallback_fraction = ∞`), which exercises the module's certification
+//! argument on steps of every size instead of the fallback.
+
+mod common;
+
+use common::oracle::*;
+use common::*;
+use dymsum::dynamic::DynamicConfig;
+use dymsum::sum::{minkowski_sum_posed, Method};
+use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
+use proptest::prelude::*;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
+use std::time::Instant;
+
+/// Never falls back to a from-scratch `walk`.
+const INCREMENTAL: DynamicConfig = DynamicConfig {
+    max_step_angle: f64::INFINITY,
+    fallback_fraction: f64::INFINITY,
+};
+
+fn config(incremental: bool) -> DynamicConfig {
+    if incremental {
+        INCREMENTAL
+    } else {
+        DynamicConfig::default()
+    }
+}
+
+fn leak(p: Polytope) -> &'static Polytope {
+    Box::leak(Box::new(p))
+}
+
+fn poly(points: &[[f64; 3]]) -> &'static Polytope {
+    leak(Polytope::from_points(points).unwrap())
+}
+
+fn rot(axis: DVec3, angle: f64) -> Rotation {
+    Rotation::from_axis_angle(axis, angle).unwrap()
+}
+
+fn pose(r: Rotation) -> Pose {
+    Pose::new(r, DVec3::ZERO)
+}
+
+fn checked(
+    p: &'static Polytope,
+    pose_p: Pose,
+    q: &'static Polytope,
+    pose_q: Pose,
+    cfg: DynamicConfig,
+    deep_every: usize,
+    label: impl Into<String>,
+) -> Checked<'static> {
+    Checked::new(
+        DynamicSum::with_config(p, pose_p, q, pose_q, cfg).expect("DynamicSum"),
+        deep_every,
+        label,
+    )
+}
+
+fn kind() -> impl Strategy<Value = Kind> {
+    prop_oneof![
+        Just(Kind::Ball),
+        Just(Kind::Grid),
+        Just(Kind::Coplanar),
+        Just(Kind::Sphere)
+    ]
+}
+
+/// The paper's protocol on random polytopes: `steps` moves, checked after
+/// every one; the deep oracles every 25 steps and at the end.
+fn run_paper_protocol(
+    kp: Kind,
+    kq: Kind,
+    np: usize,
+    nq: usize,
+    seed: u64,
+    incremental: bool,
+    steps: usize,
+    jump_prob: f64,
+) -> Result<(), String> {
+    let mut r = rng(seed);
+    let p = leak(random_polytope(kp, np, &mut r));
+    let q = leak(random_polytope(kq, nq, &mut r));
+    let start = Pose::new(random_rotation(&mut r), DVec3::new(0.25, -1.0, 2.0));
+    let label = format!(
+        "paper protocol kp={kp:?} kq={kq:?} np={np} nq={nq} seed={seed} incremental={incremental}"
+    );
+    let mut c = checked(p, start, q, Pose::IDENTITY, config(incremental), 25, label);
+    let mut motion = PaperMotion::new(seed, None, jump_prob);
+    for _ in 0..steps {
+        match motion.next_move() {
+            Move::By(rr) => {
+                let mut pp = c.d.pose_p();
+                pp.rotation = pp.rotation.then(&rr);
+                c.try_set_pose(pp, Pose::IDENTITY)?;
+            }
+            Move::To(rr) => {
+                c.try_set_pose(Pose::new(rr, start.translation), Pose::IDENTITY)?;
+            }
+        }
+    }
+    c.deep_check()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+
+    /// The paper's protocol with occasional large jumps, default config.
+    #[test]
+    fn paper_protocol_random_polytopes(kp in kind(), kq in kind(), np in 4usize..40, nq in 4usize..40, seed in any::<u64>()) {
+        run_paper_protocol(kp, kq, np, nq, seed, false, 150, 0.04).map_err(TestCaseError::fail)?;
+    }
+
+    /// The same with the fallback switched off (every step incremental).
+    #[test]
+    fn paper_protocol_random_polytopes_always_incremental(kp in kind(), kq in kind(), np in 4usize..40, nq in 4usize..40, seed in any::<u64>()) {
+        run_paper_protocol(kp, kq, np, nq, seed, true, 150, 0.04).map_err(TestCaseError::fail)?;
+    }
+
+    /// Both bodies move: Q turns too (about its own held axis, at its own
+    /// rate), and both translate; checked after every step.
+    #[test]
+    fn both_bodies_move(kp in kind(), kq in kind(), np in 4usize..30, nq in 4usize..30, seed in any::<u64>(), incremental in any::<bool>()) {
+        let mut r = rng(seed);
+        let p = leak(random_polytope(kp, np, &mut r));
+        let q = leak(random_polytope(kq, nq, &mut r));
+        let label = format!("both move kp={kp:?} kq={kq:?} np={np} nq={nq} seed={seed} incremental={incremental}");
+        let mut c = checked(p, Pose::IDENTITY, q, Pose::new(random_rotation(&mut r), DVec3::ZERO), config(incremental), 20, label);
+        let mut mp = PaperMotion::new(seed, None, 0.03);
+        let mut mq = PaperMotion::new(seed.wrapping_add(1), None, 0.03);
+        for i in 0..100 {
+            let mut pp = c.d.pose_p();
+            let mut pq = c.d.pose_q();
+            for (m, pose) in [(&mut mp, &mut pp), (&mut mq, &mut pq)] {
+                match m.next_move() {
+                    Move::By(rr) => pose.rotation = pose.rotation.then(&rr),
+                    Move::To(rr) => pose.rotation = rr,
+                }
+            }
+            pp.translation = DVec3::new(i as f64 * 0.1, -3.0, 1.0);
+            pq.translation = DVec3::new(0.0, i as f64 * -0.05, 7.0);
+            c.try_set_pose(pp, pq).map_err(TestCaseError::fail)?;
+        }
+        c.deep_check().map_err(TestCaseError::fail)?;
+    }
+
+    /// Rotation magnitudes from 1e-12 rad to π about random axes, several
+    /// steps of each, from a random start.
+    #[test]
+    fn rotation_magnitudes(kp in kind(), kq in kind(), np in 4usize..30, nq in 4usize..30, seed in any::<u64>(), incremental in any::<bool>()) {
+        let mut r = rng(seed);
+        let p = leak(random_polytope(kp, np, &mut r));
+        let q = leak(random_polytope(kq, nq, &mut r));
+        let label = format!("magnitudes kp={kp:?} kq={kq:?} np={np} nq={nq} seed={seed} incremental={incremental}");
+        let start = if seed % 3 == 0 { Pose::IDENTITY } else { pose(random_rotation(&mut r)) };
+        let mut c = checked(p, start, q, Pose::IDENTITY, config(incremental), 0, label);
+        for angle in magnitudes() {
+            let axis = random_axis(&mut r);
+            for _ in 0..3 {
+                let mut pp = c.d.pose_p();
+                pp.rotation = pp.rotation.then(&rot(axis, angle));
+                c.try_set_pose(pp, Pose::IDENTITY).map_err(TestCaseError::fail)?;
+            }
+        }
+        c.deep_check().map_err(TestCaseError::fail)?;
+    }
+
+    /// Grid polytopes (many exactly parallel faces and edges) jumping to
+    /// exact k·90° orientations about coordinate axes, and small steps from
+    /// there.
+    #[test]
+    fn grid_polytopes_at_exact_quarter_turns(np in 4usize..30, nq in 4usize..30, seed in any::<u64>(), incremental in any::<bool>()) {
+        let mut r = rng(seed);
+        let p = leak(random_polytope(Kind::Grid, np, &mut r));
+        let q = leak(random_polytope(Kind::Grid, nq, &mut r));
+        let label = format!("grid quarter turns np={np} nq={nq} seed={seed} incremental={incremental}");
+        let mut c = checked(p, Pose::IDENTITY, q, Pose::IDENTITY, config(incremental), 10, label);
+        for _ in 0..12 {
+            let axis = [DVec3::X, DVec3::Y, DVec3::Z][r.random_range(0..3)];
+            let k = r.random_range(0..4) as f64;
+            c.try_set_pose(pose(rot(axis, k * FRAC_PI_2)), Pose::IDENTITY).map_err(TestCaseError::fail)?;
+            let tiny = rot(random_axis(&mut r), [1e-12, 1e-9, 1e-6, 1e-3][r.random_range(0..4)]);
+            let mut pp = c.d.pose_p();
+            pp.rotation = pp.rotation.then(&tiny);
+            c.try_set_pose(pp, Pose::IDENTITY).map_err(TestCaseError::fail)?;
+            // ... and exactly back onto the tie.
+            c.try_set_pose(pose(rot(axis, k * FRAC_PI_2)), Pose::IDENTITY).map_err(TestCaseError::fail)?;
+        }
+    }
+}
+
+use rand::Rng;
+
+/// 1e-12, 1e-11, ..., 1e-1, then 0.3, π/4 ± 1e-9, 1, 2, 3, π.
+fn magnitudes() -> Vec<f64> {
+    let mut v: Vec<f64> = (1..=12).rev().map(|k| 10f64.powi(-k)).collect();
+    v.extend([0.3, FRAC_PI_4 - 1e-9, FRAC_PI_4 + 1e-9, 1.0, 2.0, 3.0, PI]);
+    v
+}
+
+#[test]
+fn identity_steps_report_nothing() {
+    let mut r = rng(21);
+    for kind in [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere] {
+        let p = leak(random_polytope(kind, 20, &mut r));
+        let q = leak(random_polytope(Kind::Ball, 20, &mut r));
+        let mut c = Checked::start(
+            p,
+            pose(random_rotation(&mut r)),
+            q,
+            Pose::IDENTITY,
+            0,
+            "identity",
+        );
+        for _ in 0..5 {
+            let rep = c.rotate_p_by(Rotation::IDENTITY);
+            assert!(rep.removed.is_empty() && rep.added.is_empty(), "{rep:?}");
+            assert_eq!((rep.fv_errors, rep.ee_errors), (0, 0));
+            assert!(!rep.recomputed);
+            assert_eq!(rep.step_angle, 0.0);
+            let (pp, pq) = (c.d.pose_p(), c.d.pose_q());
+            let rep = c.set_pose(pp, pq);
+            assert!(rep.removed.is_empty() && rep.added.is_empty(), "{rep:?}");
+            // The library's own rotate_p_by with the identity.
+            let rep = c.d.rotate_p_by(Rotation::IDENTITY).unwrap();
+            assert!(rep.removed.is_empty() && rep.added.is_empty(), "{rep:?}");
+        }
+    }
+}
+
+#[test]
+fn pure_translation_changes_no_facet() {
+    let mut r = rng(22);
+    let p = leak(random_polytope(Kind::Ball, 25, &mut r));
+    let q = leak(random_polytope(Kind::Sphere, 25, &mut r));
+    let rp = random_rotation(&mut r);
+    let rq = random_rotation(&mut r);
+    let mut c = Checked::start(p, pose(rp), q, pose(rq), 3, "translation");
+    let facets = c.d.facets();
+    for i in 0..10 {
+        let tp = DVec3::new(i as f64, -2.5 * i as f64, 1e3);
+        let tq = DVec3::new(0.5, 1e-3 * i as f64, -7.0);
+        let rep = c.set_pose(Pose::new(rp, tp), Pose::new(rq, tq));
+        assert!(rep.removed.is_empty() && rep.added.is_empty(), "{rep:?}");
+        assert_eq!((rep.fv_errors, rep.ee_errors), (0, 0));
+        assert_eq!(c.d.facets(), facets);
+    }
+    // The merged mesh moved with the translation.
+    let m = c.d.to_mesh();
+    let shifted = minkowski_sum_posed(
+        p,
+        Pose::new(rp, DVec3::ZERO),
+        q,
+        Pose::new(rq, DVec3::ZERO),
+        Method::Walk,
+    )
+    .unwrap()
+    .to_mesh();
+    assert_eq!(m.faces.len(), shifted.faces.len());
+    let t = c.d.pose_p().translation + c.d.pose_q().translation;
+    assert!((m.signed_volume() - shifted.signed_volume()).abs() < 1e-9 * shifted.signed_volume());
+    let c0: DVec3 = m.vertices.iter().map(|v| DVec3::from(*v)).sum::<DVec3>();
+    let c1: DVec3 = shifted
+        .vertices
+        .iter()
+        .map(|v| DVec3::from(*v))
+        .sum::<DVec3>();
+    let n = m.vertices.len() as f64;
+    assert!((c0 / n - c1 / n - t).length() < 1e-9 * t.length());
+}
+
+#[test]
+fn common_rotation_of_both_bodies() {
+    // Turning both bodies by the same rotation leaves the relative rotation
+    // (up to rounding): the facets must still equal walk at every pose.
+    let mut r = rng(23);
+    let p = leak(random_polytope(Kind::Ball, 25, &mut r));
+    let q = leak(random_polytope(Kind::Grid, 25, &mut r));
+    let mut c = Checked::start(p, Pose::IDENTITY, q, Pose::IDENTITY, 10, "common rotation");
+    let axis = random_axis(&mut r);
+    for k in 1..=40 {
+        let rr = rot(axis, k as f64 * TAU / 100.0);
+        c.set_pose(pose(rr), pose(rr));
+    }
+}
+
+#[test]
+fn cube_plus_cube_quarter_turns_about_z() {
+    let cube = poly(&cube_points(0.0, 1.0));
+    for incremental in [false, true] {
+        let mut c = checked(
+            cube,
+            Pose::IDENTITY,
+            cube,
+            Pose::IDENTITY,
+            config(incremental),
+            1,
+            format!("cube quarter turns incremental={incremental}"),
+        );
+        c.deep_check().unwrap();
+        let quarter = rot(DVec3::Z, TAU / 4.0);
+        for k in 1..=8 {
+            c.rotate_p_by(quarter);
+            // Landing exactly on a multiple of 90°: the sum is a 2x2x2 cube.
+            let m = c.d.to_mesh();
+            assert_eq!(
+                (m.vertices.len(), m.faces.len()),
+                (8, 6),
+                "after {k} quarter turns"
+            );
+            assert!((m.signed_volume() - 8.0).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn cube_plus_cube_eighth_turns_about_z() {
+    let cube = poly(&cube_points(-0.5, 0.5));
+    for incremental in [false, true] {
+        let mut c = checked(
+            cube,
+            Pose::IDENTITY,
+            cube,
+            Pose::IDENTITY,
+            config(incremental),
+            1,
+            format!("cube eighth turns incremental={incremental}"),
+        );
+        let eighth = rot(DVec3::Z, TAU / 8.0);
+        for k in 1..=16 {
+            c.rotate_p_by(eighth);
+            let faces = c.d.to_mesh().faces.len();
+            // Even k: aligned (a cube); odd k: an octagonal prism.
+            assert_eq!(
+                faces,
+                if k % 2 == 0 { 6 } else { 10 },
+                "after {k} eighth turns"
+            );
+        }
+    }
+}
+
+#[test]
+fn cube_plus_cube_small_turns_about_z_through_90_degrees() {
+    // 2π/X steps about z for X in {100, 500, 1000} land exactly on 90° only
+    // through rounding of the composed quaternion; the absolute k·90° poses
+    // are set exactly in between.
+    let cube = poly(&cube_points(0.0, 1.0));
+    for x in [100.0, 500.0, 1000.0] {
+        for incremental in [false, true] {
+            let mut c = checked(
+                cube,
+                Pose::IDENTITY,
+                cube,
+                Pose::IDENTITY,
+                config(incremental),
+                50,
+                format!("cube small z steps X={x} incremental={incremental}"),
+            );
+            let step = rot(DVec3::Z, TAU / x);
+            let per_quarter = (x / 4.0) as usize;
+            for quarter in 1..=4 {
+                for _ in 0..per_quarter {
+                    c.rotate_p_by(step);
+                }
+                c.set_pose_p(pose(rot(DVec3::Z, quarter as f64 * FRAC_PI_2)));
+                let m = c.d.to_mesh();
+                assert_eq!(m.faces.len(), 6, "X={x}, quarter {quarter}");
+            }
+        }
+    }
+}
+
+#[test]
+fn cube_plus_cube_tiny_turns_from_identity() {
+    let cube = poly(&cube_points(0.0, 1.0));
+    let mut r = rng(24);
+    for incremental in [false, true] {
+        for angle in [1e-12, 1e-9, 1e-6, 1e-3] {
+            for axis in [
+                DVec3::X,
+                DVec3::Z,
+                DVec3::new(1.0, 1.0, 0.0),
+                random_axis(&mut r),
+            ] {
+                let mut c = checked(
+                    cube,
+                    Pose::IDENTITY,
+                    cube,
+                    Pose::IDENTITY,
+                    config(incremental),
+                    1,
+                    format!("cube tiny {angle} about {axis:?} incremental={incremental}"),
+                );
+                c.rotate_p_by(rot(axis, angle));
+                c.rotate_p_by(rot(axis, -angle));
+                c.rotate_p_by(rot(axis, -angle));
+                c.set_pose_p(Pose::IDENTITY);
+                c.deep_check().unwrap();
+            }
+        }
+    }
+}
+
+#[test]
+fn box_plus_box_turns_landing_on_90_degrees() {
+    let a = poly(&box_points(3.0, 1.0, 0.5));
+    let b = poly(&box_points(0.5, 2.0, 1.0));
+    for incremental in [false, true] {
+        for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
+            let mut c = checked(
+                a,
+                Pose::IDENTITY,
+                b,
+                Pose::IDENTITY,
+                config(incremental),
+                4,
+                format!("box+box about {axis:?} incremental={incremental}"),
+            );
+            for _ in 0..4 {
+                c.rotate_p_by(rot(axis, TAU / 4.0));
+                assert_eq!(c.d.to_mesh().faces.len(), 6);
+            }
+            for _ in 0..16 {
+                c.rotate_p_by(rot(axis, TAU / 16.0));
+            }
+            // Q turning too, both landing on quarter turns.
+            for k in 0..8 {
+                let rp = rot(axis, k as f64 * FRAC_PI_2);
+                let rq = rot(DVec3::new(1.0, 1.0, 1.0), k as f64 * 2.0 * PI / 3.0);
+                c.set_pose(pose(rp), pose(rq));
+            }
+        }
+    }
+}
+
+#[test]
+fn tetrahedron_plus_its_reflection_turning() {
+    let t = [
+        [1.0, 1.0, 1.0],
+        [1.0, -1.0, -1.0],
+        [-1.0, 1.0, -1.0],
+        [-1.0, -1.0, 1.0],
+    ];
+    let neg: Vec<[f64; 3]> = t.iter().map(|p| [-p[0], -p[1], -p[2]]).collect();
+    let (a, b) = (poly(&t), poly(&neg));
+    for incremental in [false, true] {
+        let mut c = checked(
+            a,
+            Pose::IDENTITY,
+            b,
+            Pose::IDENTITY,
+            config(incremental),
+            5,
+            format!("tet+reflection incremental={incremental}"),
+        );
+        assert_eq!(c.d.to_mesh().faces.len(), 14); // cuboctahedron
+        for axis in [
+            DVec3::Z,
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(1.0, -1.0, 0.0),
+        ] {
+            for x in [4.0, 8.0, 12.0, 100.0] {
+                let steps = x as usize;
+                for _ in 0..steps {
+                    c.rotate_p_by(rot(axis, TAU / x));
+                }
+            }
+            c.set_pose_p(Pose::IDENTITY);
+            assert_eq!(c.d.to_mesh().faces.len(), 14);
+        }
+        // The reflection is the tetrahedron turned by π about z: ties again.
+        c.set_pose_p(pose(rot(DVec3::Z, FRAC_PI_2)));
+        c.set_pose_p(pose(rot(DVec3::X, PI)));
+        c.deep_check().unwrap();
+    }
+}
+
+#[test]
+fn exactly_pi_turns() {
+    let mut r = rng(25);
+    for kind in [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere] {
+        let p = leak(random_polytope(kind, 16, &mut r));
+        let q = leak(random_polytope(kind, 16, &mut r));
+        for incremental in [false, true] {
+            let mut c = checked(
+                p,
+                Pose::IDENTITY,
+                q,
+                Pose::IDENTITY,
+                config(incremental),
+                2,
+                format!("pi turns {kind:?} incremental={incremental}"),
+            );
+            for axis in [DVec3::X, DVec3::Y, DVec3::Z, random_axis(&mut r)] {
+                let rep = c.rotate_p_by(rot(axis, PI));
+                assert!((rep.step_angle - PI).abs() < 1e-9, "{}", rep.step_angle);
+                c.rotate_p_by(rot(axis, PI));
+            }
+        }
+    }
+}
+
+#[test]
+fn steps_around_the_max_step_angle() {
+    // The default switches to a from-scratch walk above π/4: just below and
+    // just above, in both directions.
+    let mut r = rng(26);
+    let p = leak(random_polytope(Kind::Ball, 30, &mut r));
+    let q = leak(random_polytope(Kind::Sphere, 30, &mut r));
+    let mut c = Checked::start(p, Pose::IDENTITY, q, Pose::IDENTITY, 4, "around π/4");
+    for _ in 0..10 {
+        let axis = random_axis(&mut r);
+        let below = c.rotate_p_by(rot(axis, FRAC_PI_4 - 1e-6));
+        let above = c.rotate_p_by(rot(axis, FRAC_PI_4 + 1e-6));
+        assert!(
+            above.recomputed,
+            "a step above max_step_angle is recomputed"
+        );
+        let _ = below;
+        c.rotate_p_by(rot(axis, -(FRAC_PI_4 + 1e-6)));
+    }
+    assert!(c.recomputed >= 10);
+}
+
+#[test]
+fn forced_recompute_and_forced_incremental_agree() {
+    // fallback_fraction = 0 recomputes (nearly) every step: the diffs must
+    // still be exact.
+    let mut r = rng(27);
+    let p = leak(random_polytope(Kind::Coplanar, 25, &mut r));
+    let q = leak(random_polytope(Kind::Grid, 25, &mut r));
+    let always_scratch = DynamicConfig {
+        max_step_angle: 0.0,
+        fallback_fraction: 0.0,
+    };
+    let mut a = checked(
+        p,
+        Pose::IDENTITY,
+        q,
+        Pose::IDENTITY,
+        always_scratch,
+        20,
+        "scratch",
+    );
+    let mut b = checked(
+        p,
+        Pose::IDENTITY,
+        q,
+        Pose::IDENTITY,
+        INCREMENTAL,
+        20,
+        "incremental",
+    );
+    let mut motion = PaperMotion::new(27, None, 0.05);
+    for _ in 0..200 {
+        let mv = motion.next_move();
+        for c in [&mut a, &mut b] {
+            match mv {
+                Move::By(rr) => {
+                    c.rotate_p_by(rr);
+                }
+                Move::To(rr) => {
+                    c.set_pose_p(pose(rr));
+                }
+            }
+        }
+        assert_eq!(a.d.facets(), b.d.facets());
+    }
+    assert!(a.recomputed > 150, "{}", a.recomputed);
+    assert_eq!(b.recomputed, 0);
+}
+
+#[test]
+fn back_and_forth_over_the_same_step() {
+    let mut r = rng(28);
+    for kind in [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere] {
+        let p = leak(random_polytope(kind, 20, &mut r));
+        let q = leak(random_polytope(Kind::Sphere, 20, &mut r));
+        for incremental in [false, true] {
+            let mut c = checked(
+                p,
+                pose(random_rotation(&mut r)),
+                q,
+                Pose::IDENTITY,
+                config(incremental),
+                0,
+                format!("back and forth {kind:?} incremental={incremental}"),
+            );
+            for angle in [1e-9, 1e-4, 0.05, 0.5, 2.0] {
+                let axis = random_axis(&mut r);
+                let start = c.d.pose_p();
+                let there = Pose::new(start.rotation.then(&rot(axis, angle)), DVec3::ZERO);
+                for _ in 0..5 {
+                    c.set_pose_p(there);
+                    let rep = c.set_pose_p(start);
+                    // Coming back exactly undoes the last step's diff.
+                    let _ = rep;
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn rotation_constructors_agree() {
+    // A pose from a matrix and from axis-angle: same facets as walk.
+    let mut r = rng(29);
+    let p = leak(random_polytope(Kind::Grid, 20, &mut r));
+    let q = leak(random_polytope(Kind::Grid, 20, &mut r));
+    let mut c = Checked::start(p, Pose::IDENTITY, q, Pose::IDENTITY, 1, "constructors");
+    let m = glam::DMat3::from_cols(DVec3::Y, DVec3::Z, DVec3::X); // 120° about (1,1,1)
+    let from_matrix = Rotation::from_matrix(m).unwrap();
+    c.set_pose_p(pose(from_matrix));
+    assert_eq!(from_matrix.apply(DVec3::X), DVec3::Y);
+    c.set_pose_p(pose(rot(DVec3::ONE, 2.0 * PI / 3.0)));
+    c.set_pose_p(pose(Rotation::from_wxyz(0.5, 0.5, 0.5, 0.5).unwrap()));
+}
+
+/// Composing many `rotate_p_by` steps keeps a unit quaternion (the library
+/// renormalises), and the facets stay equal to walk.
+#[test]
+fn orientation_stays_a_unit_quaternion() {
+    let t = poly(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]);
+    let cube = poly(&cube_points(-1.0, 1.0));
+    let mut d = DynamicSum::new(t, Pose::IDENTITY, cube, Pose::IDENTITY).unwrap();
+    let mut r = rng(30);
+    let mut worst = 0.0f64;
+    for i in 0..200_000 {
+        let step = rot(DVec3::new(1.0, 2.0 + (i / 1000) as f64, 3.0), TAU / 1000.0);
+        d.rotate_p_by(step).unwrap();
+        let len = d.pose_p().rotation.quat().length();
+        worst = worst.max((len - 1.0).abs());
+        if i % 20_000 == 0 {
+            assert_eq!(d.facets(), walk_facets(&d), "step {i}");
+            let _ = r.random_range(0..2);
+        }
+    }
+    assert!(worst <= 1e-12, "quaternion length drifted by {worst}");
+    assert_eq!(d.facets(), walk_facets(&d));
+}
+
+/// 1,000,000 steps of 2π/100,000 about a slowly changing axis on a
+/// tetrahedron and a cube, and on two random 8-point polytopes: the final
+/// facets are those of a from-scratch walk at the final pose.
+#[test]
+fn no_drift_over_a_million_steps() {
+    let mut r = rng(31);
+    let tet = poly(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]);
+    let cube = poly(&cube_points(-1.0, 1.0));
+    let a = leak(random_polytope(Kind::Ball, 8, &mut r));
+    let b = leak(random_polytope(Kind::Ball, 8, &mut r));
+    for (label, p, q) in [("tet+cube", tet, cube), ("random8+random8", a, b)] {
+        let t0 = Instant::now();
+        let mut d = DynamicSum::new(p, Pose::IDENTITY, q, Pose::IDENTITY).unwrap();
+        let (mut fv, mut ee) = (0usize, 0usize);
+        for i in 0..1_000_000u64 {
+            let phase = i as f64 * 1e-5;
+            let axis = DVec3::new(phase.cos(), phase.sin(), 0.5 + 0.3 * (0.7 * phase).sin());
+            let rep = d.rotate_p_by(rot(axis, TAU / 100_000.0)).unwrap();
+            fv += rep.fv_errors;
+            ee += rep.ee_errors;
+            if i % 100_000 == 99_999 {
+                assert_eq!(d.facets(), walk_facets(&d), "{label} step {i}");
+            }
+        }
+        let len = d.pose_p().rotation.quat().length();
+        assert!((len - 1.0).abs() <= 1e-12, "{label}: |q| = {len}");
+        assert_eq!(d.facets(), walk_facets(&d), "{label}: final facets differ");
+        d.sanity_check().unwrap();
+        check_mesh_against_hull(&d, label).unwrap();
+        // The combinatorics did change along the way.
+        assert!(fv > 0 && ee > 0, "{label}: fv {fv} ee {ee}");
+        eprintln!(
+            "no_drift {label}: 1e6 steps in {:.2?} ({fv} fv-errors, {ee} ee-errors)",
+            t0.elapsed()
+        );
+    }
+}
