@@ -44,18 +44,28 @@ pub fn pair_label(p: &str, q: &str) -> String {
     format!("{p}+{q}")
 }
 
-/// A built-in model (`cube`, `gs4`, `ellipse`, `ti`, `vrod`, ...) as a
-/// polytope under the default mesh policy (a mesh convex within tolerance is
-/// replaced by the exact hull of its vertices).
+/// A built-in model (`cube`, `gs4`, `ellipse`, `ti`, `vrod`, ...) or a mesh
+/// file, as a polytope, through [`dymsum_io::load_polytope`] under the
+/// default mesh policy (a mesh convex within tolerance is replaced by the
+/// exact hull of its vertices).
 ///
 /// # Panics
-/// If the name is unknown or the mesh is refused: a bench cannot go on.
-pub fn load(name: &str) -> Polytope {
-    let mesh = dymsum_io::models::model(name)
-        .unwrap_or_else(|e| panic!("model {name:?} is not available: {e}"));
-    let (poly, _report) = Polytope::from_mesh(&mesh, MeshPolicy::default())
-        .unwrap_or_else(|e| panic!("model {name:?} is not a convex polytope: {e}"));
-    poly
+/// If the operand cannot be loaded: a bench cannot go on.
+pub fn load(spec: &str) -> Polytope {
+    dymsum_io::load_polytope(spec, MeshPolicy::default())
+        .unwrap_or_else(|e| panic!("cannot load {spec:?}: {e}"))
+        .polytope
+}
+
+/// Criterion's sample size for a bench whose single call took `one_call`:
+/// 20 normally, criterion's minimum of 10 for calls slower than 100 ms (so
+/// a multi-second `brute` stays within the run's time budget).
+pub fn sample_size_for(one_call: std::time::Duration) -> usize {
+    if one_call > std::time::Duration::from_millis(100) {
+        10
+    } else {
+        20
+    }
 }
 
 /// A direction drawn uniformly on the unit sphere.

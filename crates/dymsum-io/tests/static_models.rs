@@ -56,7 +56,8 @@ fn every_pair_of_reference_models_in_random_orientations() {
                 Err(SumError::HullMismatch(_)) => {}
                 Err(e) => panic!("{np} + {nq}: {e}"),
             }
-            walk.sanity_check().unwrap_or_else(|e| panic!("{np} + {nq}: {e}"));
+            walk.sanity_check()
+                .unwrap_or_else(|e| panic!("{np} + {nq}: {e}"));
             // Volume against the exact hull of the pairwise sums.
             let pp: Vec<DVec3> = p.vertices().iter().map(|&v| pose.apply(v)).collect();
             let qq = q.vertices().to_vec();
@@ -72,7 +73,10 @@ fn every_pair_of_reference_models_in_random_orientations() {
                 faces: hull.faces,
             };
             let (vm, vh) = (walk.to_mesh().signed_volume(), hm.signed_volume());
-            assert!((vm - vh).abs() <= 1e-9 * vh, "{np} + {nq}: volume {vm} vs {vh}");
+            assert!(
+                (vm - vh).abs() <= 1e-9 * vh,
+                "{np} + {nq}: volume {vm} vs {vh}"
+            );
         }
     }
 }

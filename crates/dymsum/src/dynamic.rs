@@ -39,8 +39,9 @@
 //! has no event. Every other normal is *at risk*, and all arcs incident to
 //! at-risk normals are re-walked from scratch; any pair whose status flipped
 //! had an event at one of its four endpoints, so it is re-walked. Margins are
-//! lower bounds computed in floats with a slack of `1e-10`, far above their
-//! rounding error; exact ties have margin 0 and are always at risk.
+//! computed in floats from accurate arc normals, and every comparison
+//! subtracts the face's bound on its float normal's direction error plus a
+//! slack of `1e-10`; exact ties have margin 0 and are always at risk.
 //! Steps above [`DynamicConfig::max_step_angle`], or steps where more than
 //! [`DynamicConfig::fallback_fraction`] of all arcs would be re-walked, are
 //! recomputed from scratch by `walk` instead (cheaper, and trivially correct).
@@ -123,6 +124,8 @@ pub struct DynamicSum<'a> {
     ee_q: Vec<Vec<u32>>,
     arc_p: Vec<DVec3>,
     arc_q: Vec<DVec3>,
+    dir_err_p: Vec<f64>,
+    dir_err_q: Vec<f64>,
     margin_p: Vec<f64>,
     margin_q: Vec<f64>,
     stamp_p: Vec<u32>,
@@ -132,18 +135,28 @@ pub struct DynamicSum<'a> {
 }
 
 /// Unit normals of the great circles of every ring arc, in the reference
-/// frame, laid out like the rings.
+/// frame, laid out like the rings and oriented so that the cell is on the
+/// positive side. Taken from the polytope's accurate arc normals (not from
+/// a float cross product of unit normals, which is meaningless for the
+/// very short arcs between nearly coplanar faces).
 fn arc_normals(poly: &Polytope) -> Vec<DVec3> {
     let mut out = Vec::with_capacity(poly.ring_len_total());
     for v in 0..poly.vertex_count() {
-        let ring = poly.ring(v);
-        for i in 0..ring.len() {
-            let a = poly.unit_normal(ring[i].face as usize);
-            let b = poly.unit_normal(ring[(i + 1) % ring.len()].face as usize);
-            out.push(a.cross(b).normalize_or_zero());
+        for r in poly.ring(v) {
+            let m = poly.arc_normals()[r.edge as usize].normalize_or_zero();
+            let forward = poly.edge(r.edge as usize).faces[0] == r.face;
+            out.push(if forward { m } else { -m });
         }
     }
     out
+}
+
+/// Per face, a bound on the angle between the float unit normal (also
+/// after a rotation) and the exact normal's direction.
+fn direction_errors(poly: &Polytope) -> Vec<f64> {
+    (0..poly.face_count())
+        .map(|f| 1.01 * poly.normal_error(f) / poly.normal(f).length() + 1e-14)
+        .collect()
 }
 
 /// `min m · x` over the arcs of the cell of `v` (a lower bound of the sine of
@@ -157,7 +170,8 @@ fn margin(poly: &Polytope, arcs: &[DVec3], v: u32, x: DVec3) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// Below this float margin the exact predicate decides.
+/// Below this float margin (plus the face's direction error) the exact
+/// predicate decides.
 const EXACT_BELOW: f64 = 1e-12;
 /// Slack added to the drift bound to cover float error in margins.
 const SLACK: f64 = 1e-10;
@@ -190,6 +204,8 @@ impl<'a> DynamicSum<'a> {
             ee_q: vec![Vec::new(); q.edge_count()],
             arc_p: arc_normals(p),
             arc_q: arc_normals(q),
+            dir_err_p: direction_errors(p),
+            dir_err_q: direction_errors(q),
             margin_p: vec![0.0; p.face_count()],
             margin_q: vec![0.0; q.face_count()],
             stamp_p: vec![0; p.edge_count()],
@@ -283,6 +299,12 @@ impl<'a> DynamicSum<'a> {
         }
         self.ops.relative = new;
         self.ops.rot_p = (new != Rotation::IDENTITY).then(|| new.matrix());
+        crate::sum::rotate_arcs(
+            self.ops.p,
+            self.ops.rot_p.as_ref(),
+            &mut self.ops.arc_p,
+            &mut self.ops.arc_p_err,
+        );
         for (n, r) in self.ops.np.iter_mut().zip(self.ops.p.normals()) {
             *n = new.apply(*r);
         }
@@ -299,7 +321,8 @@ impl<'a> DynamicSum<'a> {
         for f in 0..self.fv.len() {
             let mut m1 = self.margin_of_p_face(rot, f);
             let mut changed = false;
-            if m1 <= EXACT_BELOW {
+            let delta = self.dir_err_p[f];
+            if m1 <= EXACT_BELOW + delta {
                 let vq = self.ops.view_q();
                 let v = self.fv[f];
                 let x = self.ops.view_p().normal(f as u32);
@@ -318,7 +341,7 @@ impl<'a> DynamicSum<'a> {
                     changed = true;
                 }
             }
-            if changed || self.margin_p[f].min(m1) <= drift {
+            if changed || self.margin_p[f].min(m1) <= drift + delta {
                 at_risk_p.push(f);
             }
             self.margin_p[f] = m1;
@@ -327,7 +350,8 @@ impl<'a> DynamicSum<'a> {
         for g in 0..self.vf.len() {
             let mut m1 = self.margin_of_q_face(inv, g);
             let mut changed = false;
-            if m1 <= EXACT_BELOW {
+            let delta = self.dir_err_q[g];
+            if m1 <= EXACT_BELOW + delta {
                 let vp = self.ops.view_p();
                 let u = self.vf[g];
                 let x = self.ops.view_q().normal(g as u32);
@@ -346,7 +370,7 @@ impl<'a> DynamicSum<'a> {
                     changed = true;
                 }
             }
-            if changed || self.margin_q[g].min(m1) <= drift {
+            if changed || self.margin_q[g].min(m1) <= drift + delta {
                 at_risk_q.push(g);
             }
             self.margin_q[g] = m1;
@@ -395,12 +419,15 @@ impl<'a> DynamicSum<'a> {
     ) -> Result<(), SumError> {
         fresh.clear();
         let [f0, f1] = self.ops.p.edge(e as usize).faces;
-        let (a, b) = self.ops.view_p().edge_arc(e);
-        self.ops
-            .view_q()
-            .walk_arc(&a, &b, self.fv[f0 as usize], self.fv[f1 as usize], |e2| {
-                fresh.push(e2)
-            })?;
+        let (fv0, fv1) = (self.fv[f0 as usize], self.fv[f1 as usize]);
+        self.ops.view_q().walk_arc_hinted(
+            &self.ops.view_p(),
+            e,
+            fv0,
+            fv1,
+            &self.ee_p[e as usize],
+            |e2| fresh.push(e2),
+        )?;
         let old = std::mem::take(&mut self.ee_p[e as usize]);
         for &e2 in &old {
             if !fresh.contains(&e2) {
@@ -436,12 +463,15 @@ impl<'a> DynamicSum<'a> {
     ) -> Result<(), SumError> {
         fresh.clear();
         let [g0, g1] = self.ops.q.edge(e2 as usize).faces;
-        let (c, d) = self.ops.view_q().edge_arc(e2);
-        self.ops
-            .view_p()
-            .walk_arc(&c, &d, self.vf[g0 as usize], self.vf[g1 as usize], |e| {
-                fresh.push(e)
-            })?;
+        let (vf0, vf1) = (self.vf[g0 as usize], self.vf[g1 as usize]);
+        self.ops.view_p().walk_arc_hinted(
+            &self.ops.view_q(),
+            e2,
+            vf0,
+            vf1,
+            &self.ee_q[e2 as usize],
+            |e| fresh.push(e),
+        )?;
         let old = std::mem::take(&mut self.ee_q[e2 as usize]);
         for &e in &old {
             if !fresh.contains(&e) {

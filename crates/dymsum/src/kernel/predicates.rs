@@ -30,6 +30,7 @@
 //! the Minkowski sum algorithms uses it, so all algorithms see one and the
 //! same generic configuration.
 
+use super::dd::{self, DDVec, DD};
 use super::exact::ExactVec;
 use glam::DVec3;
 use robust::{Coord, Coord3D};
@@ -108,6 +109,9 @@ pub trait ExactVector {
     fn index(&self) -> u32;
     /// The exact value.
     fn exact(&self) -> ExactVec;
+    /// A double-double approximation of the exact value and a bound on its
+    /// Euclidean error (of order `u²` times its size).
+    fn refined(&self) -> (DDVec, f64);
 }
 
 /// A float vector taken as exact (error 0), with an SoS index.
@@ -129,6 +133,12 @@ impl ExactVector for Plain {
     }
     fn exact(&self) -> ExactVec {
         super::exact::exact(self.0)
+    }
+    fn refined(&self) -> (DDVec, f64) {
+        (
+            [DD::from(self.0.x), DD::from(self.0.y), DD::from(self.0.z)],
+            0.0,
+        )
     }
 }
 
@@ -168,8 +178,33 @@ pub fn det3<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
     }
 }
 
+/// Second stage: the determinant of the double-double normals, with a
+/// certified bound. `None` when even that cannot decide.
+fn det3_refined<V: ExactVector>(a: &V, b: &V, c: &V) -> Option<Sign> {
+    let ((x, ex), (y, ey), (z, ez)) = (a.refined(), b.refined(), c.refined());
+    let det = dd::dot(&dd::cross(&x, &y), &z);
+    let m = |v: &DDVec| {
+        v.iter().map(|d| d.abs_hi()).fold(0.0, f64::max) * 1.7320508075688774 * (1.0 + 1e-15)
+    };
+    let (nx, ny, nz) = (m(&x) + ex, m(&y) + ey, m(&z) + ez);
+    let input = ex * ny * nz + nx * ey * nz + nx * ny * ez;
+    let rounding = 64.0 * U * U * nx * ny * nz;
+    let bound = 1.01 * (input + rounding) + f64::MIN_POSITIVE;
+    let v = det.hi + det.lo;
+    if v > bound {
+        Some(Sign::Positive)
+    } else if -v > bound {
+        Some(Sign::Negative)
+    } else {
+        None
+    }
+}
+
 #[cold]
 fn det3_exact<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
+    if let Some(s) = det3_refined(a, b, c) {
+        return s;
+    }
     super::exact::det3(&a.exact(), &b.exact(), &c.exact()).sign()
 }
 

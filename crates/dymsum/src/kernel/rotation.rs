@@ -1,16 +1,21 @@
 //! Rotations (unit quaternions) and rigid poses.
 //!
 //! A [`Rotation`] keeps its unit quaternion and the matrix derived from it.
-//! Matrix entries within `2^-50` of `0` or `±1` are snapped to those values,
-//! so rotations by exact multiples of 90° about coordinate axes map
-//! axis-aligned directions to axis-aligned directions *exactly*, and faces
-//! that should become parallel do become exactly parallel (a tie the exact
-//! predicates then resolve consistently). The snap moves an entry by at most
-//! `2^-50 ≈ 8.9e-16`, below the rounding of the matrix itself.
+//! Quaternion components within `1e-14` of zero are snapped to zero (then
+//! the quaternion is renormalised), and matrix entries within `2^-47` of `0`
+//! or `±1` are snapped to those values. So rotations by exact multiples of
+//! 90° about coordinate axes — also when composed from many quarter turns,
+//! whose rounding errors accumulate — map axis-aligned directions to
+//! axis-aligned directions *exactly*, and faces that should become parallel
+//! do become exactly parallel (a tie the exact predicates then resolve
+//! consistently). The snaps move the rotation by less than `2e-14` rad, the
+//! rounding level of composed quaternions; rotations smaller than that are
+//! the identity.
 
 use glam::{DMat3, DQuat, DVec3};
 
-const SNAP: f64 = 1.0 / (1u64 << 50) as f64;
+const SNAP: f64 = 1.0 / (1u64 << 47) as f64;
+const QUAT_SNAP: f64 = 1e-14;
 
 #[inline]
 fn snap(x: f64) -> f64 {
@@ -58,10 +63,19 @@ impl Rotation {
 
     /// From a quaternion assumed (close to) unit length; renormalised.
     pub fn from_quat(q: DQuat) -> Rotation {
-        Self::from_unit_quat(q.normalize())
+        Self::from_unit_quat(q)
     }
 
     fn from_unit_quat(q: DQuat) -> Rotation {
+        let snap_q = |c: f64| if c.abs() < QUAT_SNAP { 0.0 } else { c };
+        let q = DQuat::from_xyzw(snap_q(q.x), snap_q(q.y), snap_q(q.z), snap_q(q.w));
+        // Renormalise, but leave an already unit quaternion bit-identical.
+        let n2 = q.length_squared();
+        let q = if (n2 - 1.0).abs() <= 4.0 * f64::EPSILON {
+            q
+        } else {
+            q / n2.sqrt()
+        };
         // Canonical sign (w >= 0) so equal rotations have equal quaternions.
         let q = if q.w < 0.0 { -q } else { q };
         let m = DMat3::from_quat(q);
@@ -122,6 +136,12 @@ impl Rotation {
 
     /// `self` followed by `other` (i.e. `other ∘ self`).
     pub fn then(&self, other: &Rotation) -> Rotation {
+        if *other == Rotation::IDENTITY {
+            return *self;
+        }
+        if *self == Rotation::IDENTITY {
+            return *other;
+        }
         Self::from_quat(other.quat * self.quat)
     }
 
@@ -138,6 +158,9 @@ impl Rotation {
 
     /// The angle of the rotation taking `self` to `other` (`other · self⁻¹`).
     pub fn angle_to(&self, other: &Rotation) -> f64 {
+        if self == other {
+            return 0.0;
+        }
         let rel = other.quat * self.quat.conjugate();
         2.0 * rel.xyz().length().atan2(rel.w.abs())
     }
@@ -192,6 +215,21 @@ mod tests {
         let r = Rotation::from_axis_angle(DVec3::Z, 1e-12).unwrap();
         assert!(r.apply(DVec3::X).y > 0.0);
         assert!((r.angle() - 1e-12).abs() < 1e-20);
+    }
+
+    #[test]
+    fn composed_quarter_turns_stay_exact() {
+        let q = Rotation::from_axis_angle(DVec3::Z, FRAC_PI_2).unwrap();
+        let mut r = Rotation::IDENTITY;
+        for k in 1..=400 {
+            r = r.then(&q);
+            let x = r.apply(DVec3::X);
+            let expect = [DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y][k % 4];
+            assert_eq!(x, expect, "after {k} quarter turns");
+        }
+        let s = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.7).unwrap();
+        assert_eq!(s.then(&Rotation::IDENTITY), s);
+        assert_eq!(Rotation::IDENTITY.then(&s), s);
     }
 
     #[test]

@@ -30,6 +30,7 @@ mod sanity;
 pub use build::{ConvexityReport, MeshPolicy};
 pub use error::PolytopeError;
 
+use crate::kernel::dd::{self, DDVec, DD};
 use crate::kernel::exact::{self, ExactVec};
 use crate::kernel::predicates::ExactVector;
 use glam::{DMat3, DVec3};
@@ -66,6 +67,9 @@ pub struct Polytope {
     normals: Vec<DVec3>,
     normal_triple: Vec<[u32; 3]>,
     normal_err: Vec<f64>,
+    normal_scale: Vec<f64>,
+    arc_normals: Vec<DVec3>,
+    arc_err: Vec<f64>,
     unit_normals: Vec<DVec3>,
     ring_start: Vec<u32>,
     ring: Vec<RingEntry>,
@@ -326,14 +330,16 @@ impl Polytope {
         let mut normals = Vec::with_capacity(faces.len());
         let mut normal_triple = Vec::with_capacity(faces.len());
         let mut normal_err = Vec::with_capacity(faces.len());
+        let mut normal_scale = Vec::with_capacity(faces.len());
         for f in faces {
-            let (n, triple, err) = face_normal(&vertices, f);
+            let (n, triple, err, scale) = face_normal(&vertices, f);
             normals.push(n);
             normal_triple.push(triple);
             normal_err.push(err);
+            normal_scale.push(scale);
         }
         let unit_normals = normals.iter().map(|n| n.normalize()).collect();
-        let poly = Polytope {
+        let mut poly = Polytope {
             vertices,
             face_start,
             face_verts,
@@ -342,10 +348,18 @@ impl Polytope {
             normals,
             normal_triple,
             normal_err,
+            normal_scale,
+            arc_normals: Vec::new(),
+            arc_err: Vec::new(),
             unit_normals,
             ring_start,
             ring,
         };
+        let (arcs, errs) = (0..poly.edge_count())
+            .map(|e| poly.accurate_arc_normal(e))
+            .unzip();
+        poly.arc_normals = arcs;
+        poly.arc_err = errs;
         poly.check_gauss_map()?;
         Ok(poly)
     }
@@ -396,6 +410,54 @@ impl Polytope {
         self.normal_err[f]
     }
 
+    /// The exact normal of face `f`, scaled like [`Polytope::normal`], in
+    /// double-double, with a bound on its error.
+    pub fn refined_normal(&self, f: usize) -> (DDVec, f64) {
+        let [a, b, c] = self.normal_triple[f].map(|v| self.vertices[v as usize]);
+        let d1 = [DD::diff(b.x, a.x), DD::diff(b.y, a.y), DD::diff(b.z, a.z)];
+        let d2 = [DD::diff(c.x, a.x), DD::diff(c.y, a.y), DD::diff(c.z, a.z)];
+        let s = self.normal_scale[f];
+        let n = dd::cross(&d1, &d2).map(|x| x.scale(s));
+        // Each component: two DD products and a DD difference, relative
+        // error ≤ ~12u² of |d1||d2|.
+        let err = 32.0 * U * U * (b - a).length() * (c - a).length() * s * 1.01;
+        (n, err)
+    }
+
+    /// The normal of the great circle of edge `e`'s Gaussian arc,
+    /// `n(left) × n(right)` of the exact (scaled) normals, rounded once from
+    /// double-double, and a bound on its error. `det[n(left), n(right), x]`
+    /// is then one dot product, even for very short arcs.
+    fn accurate_arc_normal(&self, e: usize) -> (DVec3, f64) {
+        let [f0, f1] = self.edges[e].faces;
+        let ((a, ea), (b, eb)) = (
+            self.refined_normal(f0 as usize),
+            self.refined_normal(f1 as usize),
+        );
+        let c = dd::cross(&a, &b);
+        let m = DVec3::new(c[0].hi + c[0].lo, c[1].hi + c[1].lo, c[2].hi + c[2].lo);
+        let mag = |v: &DDVec| {
+            v.iter().map(|d| d.abs_hi()).fold(0.0, f64::max) * 1.7320508075688774 * 1.01
+        };
+        let (na, nb) = (mag(&a) + ea, mag(&b) + eb);
+        let err = ea * nb
+            + na * eb
+            + 32.0 * U * U * na * nb
+            + U * 1.7320508075688774 * m.abs().max_element() * 1.01;
+        (m, 1.01 * err + f64::MIN_POSITIVE)
+    }
+
+    /// Great-circle normals of all edge arcs (`n(left) × n(right)`, accurate to a few ulps).
+    #[inline]
+    pub fn arc_normals(&self) -> &[DVec3] {
+        &self.arc_normals
+    }
+    /// Error bounds of [`Polytope::arc_normals`].
+    #[inline]
+    pub fn arc_errors(&self) -> &[f64] {
+        &self.arc_err
+    }
+
     /// The exact (unscaled) normal of face `f`: `(B − A) × (C − A)` for the
     /// face's defining vertex triple.
     pub fn exact_normal(&self, f: usize) -> ExactVec {
@@ -443,7 +505,29 @@ impl ExactVector for FaceNormal<'_> {
             None => n,
         }
     }
+    fn refined(&self) -> (DDVec, f64) {
+        let (n, err) = self.poly.refined_normal(self.face as usize);
+        match self.rotation {
+            None => (n, err),
+            Some(m) => {
+                let row = |r: usize| {
+                    let row = m.row(r);
+                    DD::from(row.x)
+                        .mul(n[0])
+                        .add(DD::from(row.y).mul(n[1]))
+                        .add(DD::from(row.z).mul(n[2]))
+                };
+                let mag = n.iter().map(|d| d.abs_hi()).fold(0.0, f64::max) * 1.7320508075688774;
+                (
+                    [row(0), row(1), row(2)],
+                    1.01 * err + 32.0 * U * U * mag * 1.7320508075688774,
+                )
+            }
+        }
+    }
 }
+
+const U: f64 = f64::EPSILON / 2.0;
 
 /// Error bound of a float normal rotated by a (nearly orthogonal) float
 /// matrix, relative to the exact product of that matrix and the exact normal.
@@ -461,7 +545,7 @@ pub fn rotated_error(err: f64, approx: DVec3) -> f64 {
 /// Because the exact normal is a cross product of exact vertex differences,
 /// exact coincidences of the geometry (parallel faces, a normal on an arc)
 /// are exact coincidences of the normals.
-fn face_normal(vertices: &[DVec3], face: &[u32]) -> (DVec3, [u32; 3], f64) {
+fn face_normal(vertices: &[DVec3], face: &[u32]) -> (DVec3, [u32; 3], f64, f64) {
     let a = vertices[face[0] as usize];
     let mut best = (DVec3::ZERO, [face[0], face[1], face[2]], -1.0, 0.0);
     for w in face[1..].windows(2) {
@@ -481,10 +565,10 @@ fn face_normal(vertices: &[DVec3], face: &[u32]) -> (DVec3, [u32; 3], f64) {
         let s = 2f64.powi(-e);
         if s.is_finite() && s > 0.0 {
             err *= s;
-            return (n * s, triple, err);
+            return (n * s, triple, err, s);
         }
     }
-    (n, triple, err)
+    (n, triple, err, 1.0)
 }
 
 pub(crate) fn bounds(pts: &[DVec3]) -> (DVec3, DVec3) {

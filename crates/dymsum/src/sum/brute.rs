@@ -10,7 +10,7 @@
 
 use super::{Operands, Overlay, SumError};
 use crate::polytope::FaceNormal;
-use crate::sum::overlay::{arcs_cross, GaussView};
+use crate::sum::overlay::{edges_cross, GaussView};
 
 fn containing_vertex(cells: &GaussView<'_>, x: &FaceNormal<'_>) -> Result<u32, SumError> {
     let mut found = None;
@@ -38,10 +38,8 @@ pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
         .collect::<Result<Vec<_>, _>>()?;
     let mut ee = Vec::new();
     for e in 0..ops.p.edge_count() as u32 {
-        let (a, b) = vp.edge_arc(e);
         for e2 in 0..ops.q.edge_count() as u32 {
-            let (c, d) = vq.edge_arc(e2);
-            if arcs_cross(&a, &b, &c, &d) {
+            if edges_cross(&vp, e, &vq, e2) {
                 ee.push((e, e2));
             }
         }

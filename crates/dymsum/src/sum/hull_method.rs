@@ -21,7 +21,7 @@
 use super::{Operands, Overlay, SumError};
 use crate::hull::{convex_hull, PairwiseSums};
 use crate::polytope::Polytope;
-use crate::sum::overlay::arcs_cross;
+use crate::sum::overlay::edges_cross;
 use std::collections::BTreeSet;
 
 /// Faces of `poly` with at least 3 vertices in `set`, and edges with both
@@ -88,10 +88,8 @@ pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
             }
         }
         for &e in &pe {
-            let (a, b) = vp.edge_arc(e);
             for &e2 in &qe {
-                let (c, d) = vq.edge_arc(e2);
-                if arcs_cross(&a, &b, &c, &d) {
+                if edges_cross(&vp, e, &vq, e2) {
                     ee.insert((e, e2));
                 }
             }

@@ -257,10 +257,17 @@ pub fn check_facet_complex(ops: &Operands<'_>, overlay: &Overlay) -> Result<(), 
 
 /// Checks a merged mesh: closed, 2-manifold, oriented, Euler 2, every face
 /// planar and every edge convex within a tolerance of `1e-9` of the size.
+/// The mesh is a float construction, so a face's plane is only as well
+/// determined as the face is wide: for sliver faces (nearly degenerate
+/// polygons, e.g. between nearly coplanar input faces) the tolerance grows
+/// with the face's conditioning `L² / (2·area)` times the coordinates'
+/// rounding. The exact combinatorial check is [`check_facet_complex`].
 pub fn check_mesh(mesh: &PolygonMesh) -> Result<(), String> {
     let pts: Vec<DVec3> = mesh.vertices.iter().map(|p| DVec3::from(*p)).collect();
     let (lo, hi) = crate::polytope::bounds(&pts);
-    let tol = 1e-9 * (hi - lo).length().max(f64::MIN_POSITIVE);
+    let size = (hi - lo).length().max(f64::MIN_POSITIVE);
+    let coord = lo.abs().max(hi.abs()).max_element();
+    let tol = 1e-9 * size;
     let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
     for (fi, f) in mesh.faces.iter().enumerate() {
         if f.len() < 3 {
@@ -275,23 +282,29 @@ pub fn check_mesh(mesh: &PolygonMesh) -> Result<(), String> {
             }
         }
     }
+    // (unit normal, offset, tolerance) per face.
     let plane = |f: &Vec<usize>| {
-        let mut nrm = DVec3::ZERO;
         let c = f.iter().map(|&i| pts[i]).sum::<DVec3>() / f.len() as f64;
+        let mut nrm = DVec3::ZERO;
+        let mut extent: f64 = 0.0;
         for k in 0..f.len() {
             nrm += (pts[f[k]] - c).cross(pts[f[(k + 1) % f.len()]] - c);
+            extent = extent.max((pts[f[k]] - c).length() * 2.0);
         }
+        let area = 0.5 * nrm.length();
         let nrm = nrm.normalize_or_zero();
-        (nrm, nrm.dot(c))
+        let conditioning = extent * extent / (2.0 * area).max(f64::MIN_POSITIVE);
+        let face_tol = tol + 32.0 * f64::EPSILON * coord.max(size) * conditioning;
+        (nrm, nrm.dot(c), face_tol)
     };
     let planes: Vec<_> = mesh.faces.iter().map(plane).collect();
     for (fi, f) in mesh.faces.iter().enumerate() {
-        let (nrm, d) = planes[fi];
+        let (nrm, d, t) = planes[fi];
         if nrm == DVec3::ZERO {
             return Err(format!("face {fi} has zero area"));
         }
         for &v in f {
-            if (nrm.dot(pts[v]) - d).abs() > tol {
+            if (nrm.dot(pts[v]) - d).abs() > t {
                 return Err(format!("face {fi} is not planar"));
             }
         }
@@ -300,9 +313,9 @@ pub fn check_mesh(mesh: &PolygonMesh) -> Result<(), String> {
         let Some(&gi) = directed.get(&(b, a)) else {
             return Err(format!("mesh edge {:?} has no opposite face", (a, b)));
         };
-        let (nrm, d) = planes[fi];
+        let (nrm, d, t) = planes[fi];
         for &v in &mesh.faces[gi] {
-            if nrm.dot(pts[v]) - d > tol {
+            if nrm.dot(pts[v]) - d > t {
                 return Err(format!(
                     "edge {:?} between faces {fi} and {gi} is not convex",
                     (a, b)

@@ -188,6 +188,46 @@ pub struct Operands<'a> {
     pub nq: Vec<DVec3>,
     /// The relative rotation's matrix, `None` for the identity.
     pub rot_p: Option<glam::DMat3>,
+    /// P's arc normals rotated by the relative rotation.
+    pub arc_p: Vec<DVec3>,
+    /// Error bounds of `arc_p`.
+    pub arc_p_err: Vec<f64>,
+}
+
+/// P's arc normals and their error bounds under a rotation: exact normals
+/// map by `R`, so cross products map by its cofactor matrix
+/// `det(R) R⁻ᵀ` (equal to `R` only for an exactly orthogonal `R`).
+pub fn rotate_arcs(
+    p: &Polytope,
+    rot: Option<&glam::DMat3>,
+    arcs: &mut Vec<DVec3>,
+    errs: &mut Vec<f64>,
+) {
+    arcs.clear();
+    errs.clear();
+    match rot {
+        None => {
+            arcs.extend_from_slice(p.arc_normals());
+            errs.extend_from_slice(p.arc_errors());
+        }
+        Some(m) => {
+            let c = cofactor(m);
+            let u = f64::EPSILON / 2.0;
+            for (a, e) in p.arc_normals().iter().zip(p.arc_errors()) {
+                let r = c * *a;
+                arcs.push(r);
+                errs.push(1.05 * e + 64.0 * u * a.abs().max_element() * 1.7320508075688774);
+            }
+        }
+    }
+}
+
+/// The cofactor matrix `cof(M)` with `cof(M) (a × b) = (M a) × (M b)`.
+fn cofactor(m: &glam::DMat3) -> glam::DMat3 {
+    let (c0, c1, c2) = (m.x_axis, m.y_axis, m.z_axis);
+    // (M a) × (M b) = cof(M)(a × b) where cof(M) = det(M) M^{-T}; its
+    // columns are c1 × c2, c2 × c0, c0 × c1.
+    glam::DMat3::from_cols(c1.cross(c2), c2.cross(c0), c0.cross(c1))
 }
 
 /// The relative rotation `R_q⁻¹ R_p` (exactly `R_p` when Q is not rotated).
@@ -203,16 +243,20 @@ impl<'a> Operands<'a> {
     /// Rotates P's normals into Q's frame.
     pub fn new(p: &'a Polytope, pose_p: Pose, q: &'a Polytope, pose_q: Pose) -> Self {
         let relative = relative_rotation(&pose_p, &pose_q);
-        Operands {
+        let mut ops = Operands {
             p,
             q,
             np: p.normals().iter().map(|&n| relative.apply(n)).collect(),
             nq: q.normals().to_vec(),
             rot_p: (relative != crate::Rotation::IDENTITY).then(|| relative.matrix()),
+            arc_p: Vec::new(),
+            arc_p_err: Vec::new(),
             pose_p,
             pose_q,
             relative,
-        }
+        };
+        rotate_arcs(p, ops.rot_p.as_ref(), &mut ops.arc_p, &mut ops.arc_p_err);
+        ops
     }
     /// P's Gaussian map (global indices `0..m`).
     #[inline]
@@ -220,6 +264,8 @@ impl<'a> Operands<'a> {
         GaussView {
             poly: self.p,
             normals: &self.np,
+            arcs: &self.arc_p,
+            arc_errs: &self.arc_p_err,
             base: 0,
             rotation: self.rot_p.as_ref(),
         }
@@ -230,6 +276,8 @@ impl<'a> Operands<'a> {
         GaussView {
             poly: self.q,
             normals: &self.nq,
+            arcs: self.q.arc_normals(),
+            arc_errs: self.q.arc_errors(),
             base: self.p.face_count() as u32,
             rotation: None,
         }

@@ -9,25 +9,39 @@
 //! exact ties — parallel faces, a normal on an arc, overlapping arcs — are
 //! broken by one consistent symbolic perturbation and every method sees the
 //! same generic overlay.
+//!
+//! Speed: `det[a, b, x]` for an arc `a → b` is `m · x` with the arc's
+//! great-circle normal `m = a × b` precomputed accurately per edge
+//! ([`crate::Polytope::arc_normals`]), so the common case is one dot product
+//! and a certified error bound; only near-ties evaluate the exact normals.
 
 use crate::kernel::predicates::sos_det3;
+use crate::kernel::Sign;
 use crate::polytope::{rotated_error, FaceNormal, Polytope, RingEntry};
 use glam::{DMat3, DVec3};
 
-/// A polytope's Gaussian map at a given orientation: the polytope plus its
-/// rotated face normals and the base of its global SoS indices.
+/// A polytope's Gaussian map at a given orientation: the polytope, its
+/// rotated face normals and arc normals, and the base of its global SoS
+/// indices.
 #[derive(Clone, Copy)]
 pub struct GaussView<'a> {
     /// The polytope.
     pub poly: &'a Polytope,
     /// Rotated exact-input normals, one per face.
     pub normals: &'a [DVec3],
+    /// Rotated great-circle normals of the edge arcs, one per edge.
+    pub arcs: &'a [DVec3],
+    /// Error bounds of `arcs`.
+    pub arc_errs: &'a [f64],
     /// Global SoS index of face 0.
     pub base: u32,
     /// The rotation taking the polytope's reference normals to `normals`
     /// (`None`: identity), taken as exact.
     pub rotation: Option<&'a DMat3>,
 }
+
+const U: f64 = f64::EPSILON / 2.0;
+const SQRT3: f64 = 1.7320508075688774;
 
 impl<'a> GaussView<'a> {
     /// Normal of face `f` as an exact predicate argument.
@@ -48,17 +62,44 @@ impl<'a> GaussView<'a> {
             rotation: self.rotation,
         }
     }
+
     /// Float approximation of the normal of face `f`.
     #[inline]
     pub fn n(&self, f: u32) -> DVec3 {
         self.normals[f as usize]
     }
-    /// The arc of ring entry `i` of vertex `v`: from its face to the next.
+
+    /// The side of `x` relative to the arc of edge `e` (from its left face's
+    /// normal to its right face's): the SoS sign of `det[n_left, n_right, x]`.
     #[inline]
-    fn ring_arc(&self, ring: &[RingEntry], i: usize) -> (FaceNormal<'a>, FaceNormal<'a>) {
-        let f0 = ring[i].face;
-        let f1 = ring[if i + 1 == ring.len() { 0 } else { i + 1 }].face;
-        (self.normal(f0), self.normal(f1))
+    pub fn arc_side(&self, e: u32, x: &FaceNormal<'_>) -> Sign {
+        let m = self.arcs[e as usize];
+        let em = self.arc_errs[e as usize];
+        let v = m.dot(x.approx);
+        let mm = m.abs().max_element() * SQRT3;
+        let xm = x.approx.abs().max_element() * SQRT3;
+        let bound = 1.01 * (em * (xm + x.err) + mm * x.err + 6.0 * U * mm * xm);
+        if v > bound {
+            Sign::Positive
+        } else if -v > bound {
+            Sign::Negative
+        } else {
+            let (a, b) = self.edge_arc(e);
+            sos_det3(&a, &b, x)
+        }
+    }
+
+    /// The side of `x` relative to ring arc `i` of a vertex (from the ring's
+    /// `i`-th face to the next): positive means inside the cell.
+    #[inline]
+    fn ring_side(&self, ring: &[RingEntry], i: usize, x: &FaceNormal<'_>) -> Sign {
+        let e = ring[i].edge;
+        let s = self.arc_side(e, x);
+        if self.poly.edge(e as usize).faces[0] == ring[i].face {
+            s
+        } else {
+            s.flip()
+        }
     }
 
     /// `true` when the direction `x` lies in the cell of vertex `v`
@@ -66,10 +107,7 @@ impl<'a> GaussView<'a> {
     #[inline]
     pub fn in_cell(&self, v: u32, x: &FaceNormal<'_>) -> bool {
         let ring = self.poly.ring(v as usize);
-        (0..ring.len()).all(|i| {
-            let (a, b) = self.ring_arc(ring, i);
-            sos_det3(&a, &b, x).is_positive()
-        })
+        (0..ring.len()).all(|i| self.ring_side(ring, i, x).is_positive())
     }
 
     /// The vertex whose cell contains `x`, by hill climbing from `start`
@@ -80,15 +118,13 @@ impl<'a> GaussView<'a> {
     pub fn locate(&self, x: &FaceNormal<'_>, start: u32) -> (u32, usize) {
         let mut v = start;
         let limit = self.poly.vertex_count() + 1;
-        let xv = x.approx;
         for steps in 0..limit {
             let ring = self.poly.ring(v as usize);
             let mut best: Option<(f64, u32)> = None;
             for i in 0..ring.len() {
-                let (a, b) = self.ring_arc(ring, i);
-                if !sos_det3(&a, &b, x).is_positive() {
-                    let c = a.approx.cross(b.approx);
-                    let depth = -c.dot(xv) / c.length();
+                if !self.ring_side(ring, i, x).is_positive() {
+                    let m = self.arcs[ring[i].edge as usize];
+                    let depth = (m.dot(x.approx) / m.length()).abs();
                     if best.is_none_or(|(d, _)| depth > d) {
                         best = Some((depth, ring[i].neighbor));
                     }
@@ -111,34 +147,62 @@ impl<'a> GaussView<'a> {
         (v, n as usize)
     }
 
-    /// Walks the arc `a → b` of the other map through this map from the cell
-    /// of `from` (which contains `a`) to the cell of `to` (which contains
-    /// `b`), calling `cross(edge)` for every arc of this map it crosses, in
-    /// order (paper §4.3). Returns the number of cells visited. The walk
-    /// crosses each convex cell once, so it needs at most `E` steps;
-    /// exceeding that is reported as an error.
+    /// Walks the arc of edge `e` of the `other` map through this map, from
+    /// the cell of `from` (which contains the arc's start) to the cell of
+    /// `to` (which contains its end), calling `cross(edge)` for every arc of
+    /// this map it crosses, in order (paper §4.3). Returns the number of
+    /// cells visited. The walk crosses each convex cell once, so it needs at
+    /// most `E` steps; exceeding that is reported as an error.
     pub fn walk_arc(
         &self,
-        a: &FaceNormal<'_>,
-        b: &FaceNormal<'_>,
+        other: &GaussView<'_>,
+        e: u32,
         from: u32,
         to: u32,
+        cross: impl FnMut(u32),
+    ) -> Result<usize, super::SumError> {
+        self.walk_arc_hinted(other, e, from, to, &[], cross)
+    }
+
+    /// [`GaussView::walk_arc`] with the arcs crossed before a small motion
+    /// as a hint: in each cell the next hinted arc is tested first. An arc of
+    /// the cell that the walked arc crosses, other than the one it entered
+    /// by, is the unique exit of the convex cell, so the hint only changes
+    /// the order of the tests, never the result.
+    pub fn walk_arc_hinted(
+        &self,
+        other: &GaussView<'_>,
+        e: u32,
+        from: u32,
+        to: u32,
+        hint: &[u32],
         mut cross: impl FnMut(u32),
     ) -> Result<usize, super::SumError> {
         let mut u = from;
         let mut came = u32::MAX;
         let mut steps = 0;
+        let mut k = 0;
         while u != to {
             let ring = self.poly.ring(u as usize);
             let mut next = None;
-            for i in 0..ring.len() {
-                if ring[i].edge == came {
-                    continue;
+            if let Some(&h) = hint.get(k) {
+                if h != came {
+                    if let Some(entry) = ring.iter().find(|r| r.edge == h) {
+                        if edges_cross(other, e, self, h) {
+                            next = Some(*entry);
+                        }
+                    }
                 }
-                let (c, d) = self.ring_arc(ring, i);
-                if arcs_cross(a, b, &c, &d) {
-                    next = Some(ring[i]);
-                    break;
+            }
+            if next.is_none() {
+                for entry in ring {
+                    if entry.edge == came {
+                        continue;
+                    }
+                    if edges_cross(other, e, self, entry.edge) {
+                        next = Some(*entry);
+                        break;
+                    }
                 }
             }
             let Some(entry) = next else {
@@ -147,6 +211,10 @@ impl<'a> GaussView<'a> {
                 )));
             };
             cross(entry.edge);
+            k = match hint.iter().position(|&h| h == entry.edge) {
+                Some(i) => i + 1,
+                None => k,
+            };
             came = entry.edge;
             u = entry.neighbor;
             steps += 1;
@@ -167,26 +235,24 @@ impl<'a> GaussView<'a> {
     }
 }
 
-/// `true` when the great arcs `a → b` and `c → d` (each shorter than π)
-/// cross, under symbolic perturbation (so never a touching case): each arc
-/// separates the other's endpoints, and `det[a, b, c] = −det[c, d, a]` picks
-/// the crossing of the two great circles that lies on both arcs.
+/// `true` when the Gaussian arcs of edge `e` of map `x` and edge `e2` of map
+/// `y` cross, under symbolic perturbation (so never a touching case): each
+/// arc separates the other's endpoints, and `det[a, b, c] = −det[c, d, a]`
+/// picks the crossing of the two great circles that lies on both arcs
+/// (arcs `a → b` and `c → d`, each shorter than π).
 #[inline]
-pub fn arcs_cross(
-    a: &FaceNormal<'_>,
-    b: &FaceNormal<'_>,
-    c: &FaceNormal<'_>,
-    d: &FaceNormal<'_>,
-) -> bool {
-    let s1 = sos_det3(a, b, c);
-    let s2 = sos_det3(a, b, d);
+pub fn edges_cross(x: &GaussView<'_>, e: u32, y: &GaussView<'_>, e2: u32) -> bool {
+    let (c, d) = y.edge_arc(e2);
+    let s1 = x.arc_side(e, &c);
+    let s2 = x.arc_side(e, &d);
     if s1 == s2 {
         return false;
     }
-    let s3 = sos_det3(c, d, a);
+    let (a, b) = x.edge_arc(e);
+    let s3 = y.arc_side(e2, &a);
     if s3 == s1 {
         return false;
     }
-    let s4 = sos_det3(c, d, b);
+    let s4 = y.arc_side(e2, &b);
     s3 != s4
 }

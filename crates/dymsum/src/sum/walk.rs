@@ -53,8 +53,7 @@ pub fn walk_ee_of_p_edge(
 ) -> Result<usize, SumError> {
     let (vp, vq) = (ops.view_p(), ops.view_q());
     let [f0, f1] = ops.p.edge(e as usize).faces;
-    let (a, b) = vp.edge_arc(e);
-    vq.walk_arc(&a, &b, fv[f0 as usize], fv[f1 as usize], |e2| {
+    vq.walk_arc(&vp, e, fv[f0 as usize], fv[f1 as usize], |e2| {
         out.push((e, e2))
     })
 }

@@ -498,3 +498,33 @@ pub mod oracle {
         }
     }
 }
+
+/// Integer grid points (as [`Kind::Grid`]) each moved by a random offset of
+/// size up to `eps`: nearly coplanar faces, tiny Gaussian arcs, nearly
+/// parallel faces between two such polytopes.
+pub fn jittered_grid_polytope(n: usize, eps: f64, r: &mut ChaCha8Rng) -> Polytope {
+    loop {
+        let pts: Vec<DVec3> = points(Kind::Grid, n, r)
+            .into_iter()
+            .map(|p| {
+                p + DVec3::new(
+                    r.random_range(-eps..=eps),
+                    r.random_range(-eps..=eps),
+                    r.random_range(-eps..=eps),
+                )
+            })
+            .collect();
+        if let Ok(p) = Polytope::from_dvec3s(&pts) {
+            return p;
+        }
+    }
+}
+
+/// Proptest case count: `default`, or the `DYMSUM_PROPTEST_CASES`
+/// environment variable for long stress runs.
+pub fn proptest_cases(default: u32) -> u32 {
+    std::env::var("DYMSUM_PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}

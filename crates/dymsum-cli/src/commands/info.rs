@@ -1,0 +1,147 @@
+//! `dymsum info FILE|NAME [--json]`: counts, volume and what validation
+//! changed (the convexity report).
+
+use std::io::Write;
+
+use dymsum_io::Loaded;
+use serde::Serialize;
+
+use super::load;
+use crate::cli::InfoArgs;
+
+/// The machine-readable form of `dymsum info`.
+#[derive(Debug, Serialize)]
+pub struct Info {
+    /// The operand as given.
+    pub spec: String,
+    /// `"file foo.off"` or `"built-in ellipse"`.
+    pub source: String,
+    /// `"mesh"` or `"points"` (a point cloud, whose hull was taken).
+    pub input_kind: &'static str,
+    /// Vertices of the input.
+    pub input_vertices: usize,
+    /// Faces (polygons) of the input.
+    pub input_faces: usize,
+    /// Triangles of the input's fan triangulation.
+    pub input_triangles: usize,
+    /// Vertices of the polytope.
+    pub vertices: usize,
+    /// Edges of the polytope.
+    pub edges: usize,
+    /// Maximal faces of the polytope.
+    pub faces: usize,
+    /// Volume.
+    pub volume: f64,
+    /// Bounding-box diagonal.
+    pub diameter: f64,
+    /// The convexity report (`null` for a point cloud).
+    pub convexity: Option<Convexity>,
+}
+
+/// What validation of a mesh found and changed.
+#[derive(Debug, Serialize)]
+pub struct Convexity {
+    /// Every face exactly in a hull face plane, every vertex exactly on the boundary.
+    pub exactly_convex: bool,
+    /// Convex only within tolerance: the polytope is the exact hull of the vertices.
+    pub replaced_by_hull: bool,
+    /// Largest distance of a mesh vertex or face from the hull boundary.
+    pub max_deviation: f64,
+    /// The absolute tolerance in force.
+    pub tolerance: f64,
+    /// Mesh vertices that are not corners of the polytope.
+    pub dropped_vertices: usize,
+    /// The mesh was oriented inwards (the polytope is outward).
+    pub inward_oriented: bool,
+}
+
+impl Info {
+    /// Gathers the information about a loaded operand.
+    pub fn new(spec: &str, l: &Loaded) -> Info {
+        let p = &l.polytope;
+        Info {
+            spec: spec.to_string(),
+            source: l.source.clone(),
+            input_kind: if l.is_point_cloud() { "points" } else { "mesh" },
+            input_vertices: l.input.vertices.len(),
+            input_faces: l.input.faces.len(),
+            input_triangles: l.input.triangle_count(),
+            vertices: p.vertex_count(),
+            edges: p.edge_count(),
+            faces: p.face_count(),
+            volume: p.volume(),
+            diameter: p.diameter(),
+            convexity: l.report.as_ref().map(|r| Convexity {
+                exactly_convex: r.exactly_convex,
+                replaced_by_hull: r.replaced_by_hull,
+                max_deviation: r.max_deviation,
+                tolerance: r.tolerance,
+                dropped_vertices: r.dropped_vertices,
+                inward_oriented: r.inward_oriented,
+            }),
+        }
+    }
+}
+
+/// Runs `dymsum info`.
+pub fn run(a: &InfoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    let loaded = load(&a.spec, "input", a.strict)?;
+    let info = Info::new(&a.spec, &loaded);
+    if a.json {
+        serde_json::to_writer_pretty(&mut *out, &info)?;
+        writeln!(out)?;
+        return Ok(());
+    }
+    let row = |out: &mut dyn Write, k: &str, v: String| writeln!(out, "{k:<18}{v}");
+    row(out, "source:", info.source.clone())?;
+    row(out, "vertices:", info.vertices.to_string())?;
+    row(out, "edges:", info.edges.to_string())?;
+    row(out, "faces:", info.faces.to_string())?;
+    row(
+        out,
+        "input:",
+        if info.input_kind == "points" {
+            format!(
+                "{} points (a point cloud: the polytope is its exact hull)",
+                info.input_vertices
+            )
+        } else {
+            format!(
+                "{} vertices, {} faces, {} triangles",
+                info.input_vertices, info.input_faces, info.input_triangles
+            )
+        },
+    )?;
+    row(out, "volume:", format!("{}", info.volume))?;
+    row(
+        out,
+        "diameter:",
+        format!("{} (bounding-box diagonal)", info.diameter),
+    )?;
+    if let Some(c) = &info.convexity {
+        let verdict = if c.exactly_convex {
+            "exactly convex (kept as is; coplanar faces merged)".to_string()
+        } else if c.replaced_by_hull {
+            "convex within tolerance: replaced by hull (the exact hull of its vertices)".to_string()
+        } else {
+            "convex".to_string()
+        };
+        row(out, "convexity:", verdict)?;
+        row(
+            out,
+            "max deviation:",
+            format!("{:.3e} (tolerance {:.3e})", c.max_deviation, c.tolerance),
+        )?;
+        row(out, "dropped vertices:", c.dropped_vertices.to_string())?;
+        row(
+            out,
+            "orientation:",
+            if c.inward_oriented {
+                "inward in the input (flipped to outward)".to_string()
+            } else {
+                "outward".to_string()
+            },
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,42 @@
+//! `dymsum sum P Q -o OUT`: one static Minkowski sum, written as a mesh.
+
+use std::io::Write;
+use std::time::Instant;
+
+use anyhow::Context;
+use dymsum::sum::{minkowski_sum_posed, Method};
+use dymsum::{DVec3, Pose, Rotation};
+
+use super::{load, short_name};
+use crate::cli::SumArgs;
+use crate::stats::{human_us, micros};
+
+/// Runs `dymsum sum`.
+pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    let p = load(&a.p, "P", a.strict)?;
+    let q = load(&a.q, "Q", a.strict)?;
+    let pose_p = Pose::new(
+        a.rotate_p.unwrap_or(Rotation::IDENTITY),
+        a.translate_p.unwrap_or(DVec3::ZERO),
+    );
+    let method: Method = a.method.into();
+    let start = Instant::now();
+    let sum = minkowski_sum_posed(&p.polytope, pose_p, &q.polytope, Pose::IDENTITY, method)
+        .with_context(|| format!("{} ⊕ {} ({})", a.p, a.q, method.name()))?;
+    let elapsed = micros(start.elapsed());
+    let mesh = sum.to_mesh();
+    dymsum_io::formats::write_mesh(&a.output, &mesh)
+        .with_context(|| format!("writing the sum to {}", a.output.display()))?;
+    let (fv, vf, ee) = sum.counts();
+    writeln!(
+        out,
+        "{} ⊕ {} ({}): {fv} fv + {vf} vf + {ee} ee = {} facets, {} faces after merging, {}",
+        short_name(&a.p),
+        short_name(&a.q),
+        method.name(),
+        fv + vf + ee,
+        mesh.faces.len(),
+        human_us(elapsed),
+    )?;
+    Ok(())
+}

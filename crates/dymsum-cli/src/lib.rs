@@ -1,0 +1,49 @@
+//! The `dymsum` command-line tool, as a library so its parts can be tested
+//! and reused (the binary in `main.rs` only calls [`main`]).
+//!
+//! * [`cli`]: the clap definitions and value parsers (usage errors exit 2).
+//! * [`commands`]: one module per subcommand (`sum`, `info`, `models`,
+//!   `animate`, `demo`); bad inputs exit 1 with a message naming the operand.
+//! * [`motion`]: the paper's random motion of P.
+//! * [`stats`]: timing summaries.
+#![forbid(unsafe_code)]
+
+pub mod cli;
+pub mod commands;
+pub mod motion;
+pub mod stats;
+
+use std::io::{self, Write};
+use std::process::ExitCode;
+
+use clap::Parser;
+
+/// Parses the process arguments, runs the subcommand and returns the exit
+/// code: 0 on success, 1 for bad input (the message goes to stderr), 2 for
+/// usage errors (clap prints them and exits).
+pub fn main() -> ExitCode {
+    let cli = cli::Cli::parse();
+    let stdout = io::stdout();
+    let mut out = stdout.lock();
+    match commands::run(cli.command, &mut out).and_then(|()| Ok(out.flush()?)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
+        Err(e) => {
+            let _ = writeln!(io::stderr(), "error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// `true` when the error is a closed stdout (`dymsum models | head`).
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<io::Error>()
+            .is_some_and(|e| e.kind() == io::ErrorKind::BrokenPipe)
+    })
+}
+
+/// The README's Rust code blocks, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

@@ -1,0 +1,49 @@
+//! Small timing helpers: mean, median and human-readable durations.
+//!
+//! ```
+//! use dymsum_cli::stats::{mean, median, human_us};
+//! assert_eq!(mean(&[1.0, 2.0, 6.0]), 3.0);
+//! assert_eq!(median(&[5.0, 1.0, 2.0, 9.0]), 3.5);
+//! assert_eq!(human_us(1234.0), "1.23 ms");
+//! assert_eq!(human_us(12.345), "12.3 µs");
+//! ```
+
+/// Arithmetic mean (0 for an empty slice).
+pub fn mean(xs: &[f64]) -> f64 {
+    if xs.is_empty() {
+        0.0
+    } else {
+        xs.iter().sum::<f64>() / xs.len() as f64
+    }
+}
+
+/// Median (mean of the two middle values for an even count; 0 if empty).
+pub fn median(xs: &[f64]) -> f64 {
+    if xs.is_empty() {
+        return 0.0;
+    }
+    let mut v = xs.to_vec();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        (v[n / 2 - 1] + v[n / 2]) / 2.0
+    }
+}
+
+/// A duration given in microseconds, as `"12.3 µs"`, `"1.23 ms"` or `"1.23 s"`.
+pub fn human_us(us: f64) -> String {
+    if us < 1000.0 {
+        format!("{us:.1} µs")
+    } else if us < 1_000_000.0 {
+        format!("{:.2} ms", us / 1000.0)
+    } else {
+        format!("{:.2} s", us / 1_000_000.0)
+    }
+}
+
+/// Microseconds elapsed in a [`std::time::Duration`], as a float.
+pub fn micros(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1e6
+}
