@@ -58,36 +58,6 @@ impl DD {
         let (hi, lo) = two_sum(a, -b);
         DD { hi, lo }
     }
-    /// Sum (relative error ≤ 2u², Shewchuk/Bailey's accurate addition).
-    #[inline]
-    pub fn add(self, o: DD) -> DD {
-        let (s, e) = two_sum(self.hi, o.hi);
-        let (t, f) = two_sum(self.lo, o.lo);
-        let (s, e) = quick_two_sum(s, e + t);
-        let (hi, lo) = quick_two_sum(s, e + f);
-        DD { hi, lo }
-    }
-    /// Negation.
-    #[inline]
-    pub fn neg(self) -> DD {
-        DD {
-            hi: -self.hi,
-            lo: -self.lo,
-        }
-    }
-    /// Difference.
-    #[inline]
-    pub fn sub(self, o: DD) -> DD {
-        self.add(o.neg())
-    }
-    /// Product (relative error ≤ 4u²).
-    #[inline]
-    pub fn mul(self, o: DD) -> DD {
-        let (p, e) = two_prod(self.hi, o.hi);
-        let e = e + (self.hi * o.lo + self.lo * o.hi);
-        let (hi, lo) = quick_two_sum(p, e);
-        DD { hi, lo }
-    }
     /// Product with a float scaled by a power of two (exact scaling).
     #[inline]
     pub fn scale(self, s: f64) -> DD {
@@ -103,6 +73,50 @@ impl DD {
     }
 }
 
+impl std::ops::Add for DD {
+    type Output = DD;
+    /// Sum (relative error ≤ 2u², Shewchuk/Bailey's accurate addition).
+    #[inline]
+    fn add(self, o: DD) -> DD {
+        let (s, e) = two_sum(self.hi, o.hi);
+        let (t, f) = two_sum(self.lo, o.lo);
+        let (s, e) = quick_two_sum(s, e + t);
+        let (hi, lo) = quick_two_sum(s, e + f);
+        DD { hi, lo }
+    }
+}
+
+impl std::ops::Neg for DD {
+    type Output = DD;
+    #[inline]
+    fn neg(self) -> DD {
+        DD {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+}
+
+impl std::ops::Sub for DD {
+    type Output = DD;
+    #[inline]
+    fn sub(self, o: DD) -> DD {
+        self + (-o)
+    }
+}
+
+impl std::ops::Mul for DD {
+    type Output = DD;
+    /// Product (relative error ≤ 4u²).
+    #[inline]
+    fn mul(self, o: DD) -> DD {
+        let (p, e) = two_prod(self.hi, o.hi);
+        let e = e + (self.hi * o.lo + self.lo * o.hi);
+        let (hi, lo) = quick_two_sum(p, e);
+        DD { hi, lo }
+    }
+}
+
 /// A vector of double-doubles.
 pub type DDVec = [DD; 3];
 
@@ -110,16 +124,16 @@ pub type DDVec = [DD; 3];
 #[inline]
 pub fn cross(a: &DDVec, b: &DDVec) -> DDVec {
     [
-        a[1].mul(b[2]).sub(a[2].mul(b[1])),
-        a[2].mul(b[0]).sub(a[0].mul(b[2])),
-        a[0].mul(b[1]).sub(a[1].mul(b[0])),
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
     ]
 }
 
 /// Dot product in double-double.
 #[inline]
 pub fn dot(a: &DDVec, b: &DDVec) -> DD {
-    a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]))
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[cfg(test)]
@@ -140,7 +154,7 @@ mod tests {
     #[test]
     fn cancellation_survives() {
         let x = DD::diff(1.0, 1e-20);
-        let y = x.sub(DD::from(1.0));
+        let y = x - DD::from(1.0);
         assert_eq!(y.hi, -1e-20);
     }
 }

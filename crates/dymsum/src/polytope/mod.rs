@@ -512,10 +512,7 @@ impl ExactVector for FaceNormal<'_> {
             Some(m) => {
                 let row = |r: usize| {
                     let row = m.row(r);
-                    DD::from(row.x)
-                        .mul(n[0])
-                        .add(DD::from(row.y).mul(n[1]))
-                        .add(DD::from(row.z).mul(n[2]))
+                    DD::from(row.x) * n[0] + DD::from(row.y) * n[1] + DD::from(row.z) * n[2]
                 };
                 let mag = n.iter().map(|d| d.abs_hi()).fold(0.0, f64::max) * 1.7320508075688774;
                 (

@@ -366,7 +366,7 @@ pub mod oracle {
             if (q.length() - 1.0).abs() > 1e-12 {
                 return Err(format!("{ctx}: P's quaternion has length {}", q.length()));
             }
-            if self.deep_every > 0 && self.steps % self.deep_every == 0 {
+            if self.steps.checked_rem(self.deep_every) == Some(0) {
                 self.deep_check()?;
             }
             self.prev = now;
@@ -447,7 +447,7 @@ pub mod oracle {
         /// A motion from a seed.
         pub fn new(seed: u64, steps_per_turn: Option<f64>, jump_prob: f64) -> Self {
             PaperMotion {
-                r: rng(seed ^ 0x5eed_0f_d1ce),
+                r: rng(seed ^ 0x005e_ed0f_d1ce),
                 axis: DVec3::Z,
                 left: 0,
                 angle: 0.0,
