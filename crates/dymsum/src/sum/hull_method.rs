@@ -7,16 +7,19 @@
 //!    (rounded float sums would break parallelogram faces);
 //! 2. each hull face `F` has the vertex sets `S_P`, `S_Q` of its corners;
 //!    its facets are found by a local brute force over the features inside
-//!    them (faces of P with ≥ 3 vertices in `S_P` against vertices in `S_Q`,
-//!    and so on) with the same SoS predicates as the other methods, so a
+//!    or next to them (faces and edges of P at a vertex of `S_P` against
+//!    vertices and edges of Q at `S_Q`) with the same SoS predicates as the
+//!    other methods, so a
 //!    degenerate face such as `f ⊕ g` for parallel faces is split exactly as
 //!    `brute` and `walk` split it.
 //!
 //! Complexity: O(mn log mn) for the hull. Degeneracies: exact planarity of
 //! sums; when P is rotated its rounded vertices are no longer exactly
-//! coplanar, and the hull then sees a slightly different shape than the
-//! normals do. Such a mismatch is detected (every face of P and Q must get
-//! exactly one vertex) and reported as [`SumError::HullMismatch`].
+//! coplanar, and the hull sees a slightly different shape than the exact
+//! normals; the generous candidate sets absorb that. Any remaining mismatch
+//! is detected (every face of P and Q must get exactly one vertex and the
+//! facets must form a closed 2-manifold) and reported as
+//! [`SumError::HullMismatch`], never returned as a wrong answer.
 
 use super::{Operands, Overlay, SumError};
 use crate::hull::{convex_hull, PairwiseSums};
@@ -24,21 +27,17 @@ use crate::polytope::Polytope;
 use crate::sum::overlay::edges_cross;
 use std::collections::BTreeSet;
 
-/// Faces of `poly` with at least 3 vertices in `set`, and edges with both
-/// endpoints in it.
-fn features_within(poly: &Polytope, set: &[u32]) -> (Vec<u32>, Vec<u32>) {
-    let inside = |v: u32| set.binary_search(&v).is_ok();
+/// Faces and edges of `poly` incident to a vertex of `set`: the candidate
+/// features of a hull face. Rounded rotated vertices can split a face of P
+/// over several hull faces, so candidates are generous; the exact
+/// predicates decide, and extra candidates cannot change their answers.
+fn features_near(poly: &Polytope, set: &[u32]) -> (Vec<u32>, Vec<u32>) {
     let mut faces = BTreeSet::new();
     let mut edges = BTreeSet::new();
     for &v in set {
         for r in poly.ring(v as usize) {
-            let f = poly.face(r.face as usize);
-            if f.iter().filter(|&&w| inside(w)).count() >= 3 {
-                faces.insert(r.face);
-            }
-            if inside(r.neighbor) {
-                edges.insert(r.edge);
-            }
+            faces.insert(r.face);
+            edges.insert(r.edge);
         }
     }
     (faces.into_iter().collect(), edges.into_iter().collect())
@@ -71,9 +70,12 @@ pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
         sp.dedup();
         sq.sort_unstable();
         sq.dedup();
-        let (pf, pe) = features_within(ops.p, &sp);
-        let (qf, qe) = features_within(ops.q, &sq);
+        let (pf, pe) = features_near(ops.p, &sp);
+        let (qf, qe) = features_near(ops.q, &sq);
         for &f in &pf {
+            if fv[f as usize] != u32::MAX {
+                continue;
+            }
             for &w in &sq {
                 if vq.in_cell(w, &vp.normal(f)) {
                     assign(&mut fv[f as usize], w, "a face of P")?;
@@ -81,6 +83,9 @@ pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
             }
         }
         for &g in &qf {
+            if vf[g as usize] != u32::MAX {
+                continue;
+            }
             for &u in &sp {
                 if vp.in_cell(u, &vq.normal(g)) {
                     assign(&mut vf[g as usize], u, "a face of Q")?;
@@ -105,9 +110,12 @@ pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
             "face {g} of Q has no vertex of P"
         )));
     }
-    Ok(Overlay {
+    let overlay = Overlay {
         fv,
         vf,
         ee: ee.into_iter().collect(),
-    })
+    };
+    // A crossing the hull did not expose would leave a hole: check.
+    super::merge::check_facet_complex(ops, &overlay).map_err(SumError::HullMismatch)?;
+    Ok(overlay)
 }
