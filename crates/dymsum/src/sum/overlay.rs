@@ -4,7 +4,7 @@
 //! Paper §3–§4. A face normal `x` of one map lies in the cell of vertex `v`
 //! of the other map iff it is strictly left of every arc of that cell
 //! ([`GaussView::in_cell`]); two arcs cross iff each separates the other's
-//! endpoints and they meet in the right hemisphere ([`arcs_cross`]). Both use
+//! endpoints and they meet in the right hemisphere ([`edges_cross`]). Both use
 //! [`sos_det3`] with global indices (faces of P first, then faces of Q), so
 //! exact ties — parallel faces, a normal on an arc, overlapping arcs — are
 //! broken by one consistent symbolic perturbation and every method sees the
