@@ -9,15 +9,20 @@
 //! [`crate::sum::Method::Walk`] sum at the new poses, for every step size.
 //!
 //! # Steps of one update (Algorithm 4.1)
-//! 1. Rotate P's reference normals by the new relative rotation
-//!    `R = R_q⁻¹ R_p` (always from the reference data: no drift).
-//! 2. FindErrors (§4.1): check every fv-pair of both maps. A float margin
-//!    (the sine of the distance from the normal to the nearest great circle of
-//!    its cell's arcs) decides clear cases; the rest use the exact predicate.
+//! 1. Rotate P's reference normals and arc normals by the new relative
+//!    rotation `R = R_q⁻¹ R_p` (always from the reference data: no drift).
+//! 2. FindErrors (§4.1): check the fv-pairs of both maps. A float margin
+//!    (the sine of the distance from the normal to the nearest great circle
+//!    of its cell's arcs, computed from accurate arc normals) decides clear
+//!    cases; the rest use the exact predicate. A normal whose last margin,
+//!    less the rotation accumulated since, still exceeds this step's reach
+//!    is not checked at all (lazy margins).
 //! 3. Correct fv-errors (§4.2) by hill climbing from the old vertex.
-//! 4. Correct ee-errors (§4.3): re-walk the Gaussian arcs incident to the
-//!    *at-risk* normals (below) through the other map, between the corrected
-//!    fv-pairs, and diff the crossings against the stored ones.
+//! 4. Correct ee-errors (§4.3): a normal that certainly crossed exactly one
+//!    arc `x` of the other map flips exactly the pairs (arc at that normal,
+//!    `x`): those are toggled. The arcs at every other *at-risk* normal are
+//!    re-walked through the other map between the corrected fv-pairs, and
+//!    their crossings diffed against the stored ones.
 //!
 //! # Why every step is correct, not only small ones
 //! The paper's locality argument (Theorem 4.1) holds for an infinitesimal
@@ -28,27 +33,43 @@
 //! SO(3): a rotation about a fixed axis by the step angle `θ`. Every
 //! combinatorial event on that path is a normal `x` crossing an arc of the
 //! other map, and flips exactly the crossing status of the pairs formed by
-//! that arc and the arcs incident to `x`. Relative to the other map, `x`
-//! moves along a small-circle arc whose points lie within chordal distance
-//! `δ = θ²/4` of the great arc joining its end positions. If `x` is in the
-//! same convex cell `C` at both ends, the great arc between the two positions
-//! lies in `C`, and for each boundary great circle with unit normal `m` the
-//! function `m · x` along that great arc is a positive sinusoid lobe, hence at
-//! least the smaller end value. So if the smaller of the start and end margins
-//! (`min m · x` over the arcs of `C`) exceeds `δ`, `x` never leaves `C` and
-//! has no event. Every other normal is *at risk*, and all arcs incident to
-//! at-risk normals are re-walked from scratch; any pair whose status flipped
-//! had an event at one of its four endpoints, so it is re-walked. Margins are
-//! computed in floats from accurate arc normals, and every comparison
-//! subtracts the face's bound on its float normal's direction error plus a
-//! slack of `1e-10`; exact ties have margin 0 and are always at risk.
-//! Steps above [`DynamicConfig::max_step_angle`], or steps where more than
+//! that arc and the arcs incident to `x`; a pair's final status is its
+//! initial one flipped once per event involving it. Relative to the other
+//! map, `x` moves along a small-circle arc of length at most `θ`.
+//!
+//! * *No event.* For an interior point of a convex cell, the distance to the
+//!   boundary is the smallest distance to the great circles of its arcs, so
+//!   if the margin (a sine, hence at most the chordal distance) exceeds `θ`
+//!   the normal cannot reach the boundary. Margins decay by at most the
+//!   rotation since they were computed, which makes the lazy skip sound.
+//!   For a normal that ends in its old cell the bound is sharper: its path
+//!   lies within chordal distance `δ = θ²/4` of the great arc joining its end
+//!   positions, which lies in the convex cell, and along that great arc each
+//!   `m · x` is a positive sinusoid lobe, at least its smaller end value; so
+//!   if both end margins exceed `δ`, the path never leaves the cell.
+//! * *Exactly one event.* If the old and new cells `v`, `w` are adjacent
+//!   across arc `x`, the old position is farther than `θ` from every other
+//!   great circle of `v` and the new one from every other great circle of
+//!   `w`, then the path lies in `v ∪ w` (the intersection of those
+//!   half-spaces), whose common boundary is `x`, and meets `x`'s great circle
+//!   an odd number of times but at most twice (a small circle meets a great
+//!   circle in at most two points): exactly once. Its flips are known.
+//! * *Anything else* is at risk: all arcs at that normal are re-walked from
+//!   scratch, which recomputes every pair an event at that normal can flip.
+//!
+//! A pair not on a re-walked arc therefore had events only at normals with a
+//! known event set, and toggling by parity gives its final status. Margins
+//! are computed in floats from accurate arc normals, and every comparison
+//! adds the face's bound on its float normal's direction error plus a slack
+//! of `1e-10`; exact ties have margin 0 and are always at risk. Steps above
+//! [`DynamicConfig::max_step_angle`], or steps where more than
 //! [`DynamicConfig::fallback_fraction`] of all arcs would be re-walked, are
 //! recomputed from scratch by `walk` instead (cheaper, and trivially correct).
 //!
 //! # Complexity
-//! O(m + n) for FindErrors (one dot product per cell arc checked), plus the
-//! cost of the walks along at-risk arcs, which for small steps is
+//! O(m + n) to scan the normals near their cells' boundaries (the others are
+//! skipped by their margins), O(deg) per certified crossing, plus the walks
+//! along the arcs at uncertain normals; for small steps the work is
 //! proportional to the number of changes.
 //!
 //! ```
@@ -69,7 +90,7 @@
 
 use crate::polytope::Polytope;
 use crate::sum::{
-    relative_rotation, walk_overlay, Facet, MinkowskiSum, Operands, Overlay, SumError,
+    relative_rotation, walk_overlay, Facet, GaussView, MinkowskiSum, Operands, Overlay, SumError,
 };
 use crate::{Pose, Rotation};
 use glam::{DMat3, DVec3};
@@ -107,6 +128,12 @@ pub struct UpdateReport {
     pub added: Vec<Facet>,
     /// Gaussian arcs re-walked to repair ee-pairs.
     pub rewalked_arcs: usize,
+    /// Face normals whose cell was checked (the others were certified to
+    /// stay in their cells by their margins).
+    pub checked_normals: usize,
+    /// Face normals that changed cell across exactly one arc, repaired by
+    /// toggling instead of re-walking.
+    pub certified_crossings: usize,
     /// The relative rotation angle of the step (radians).
     pub step_angle: f64,
     /// The step was recomputed from scratch (large step or too many arcs at
@@ -128,6 +155,9 @@ pub struct DynamicSum<'a> {
     dir_err_q: Vec<f64>,
     margin_p: Vec<f64>,
     margin_q: Vec<f64>,
+    margin_at_p: Vec<f64>,
+    margin_at_q: Vec<f64>,
+    theta_acc: f64,
     stamp_p: Vec<u32>,
     stamp_q: Vec<u32>,
     step: u32,
@@ -208,6 +238,9 @@ impl<'a> DynamicSum<'a> {
             dir_err_q: direction_errors(q),
             margin_p: vec![0.0; p.face_count()],
             margin_q: vec![0.0; q.face_count()],
+            margin_at_p: vec![0.0; p.face_count()],
+            margin_at_q: vec![0.0; q.face_count()],
+            theta_acc: 0.0,
             stamp_p: vec![0; p.edge_count()],
             stamp_q: vec![0; q.edge_count()],
             step: 0,
@@ -231,9 +264,11 @@ impl<'a> DynamicSum<'a> {
         let inv = rot.transpose();
         for f in 0..self.fv.len() {
             self.margin_p[f] = self.margin_of_p_face(rot, f);
+            self.margin_at_p[f] = self.theta_acc;
         }
         for g in 0..self.vf.len() {
             self.margin_q[g] = self.margin_of_q_face(inv, g);
+            self.margin_at_q[g] = self.theta_acc;
         }
     }
 
@@ -313,73 +348,69 @@ impl<'a> DynamicSum<'a> {
         }
         self.step = self.step.wrapping_add(1).max(1);
         let drift = theta * theta / 4.0 + SLACK;
-        let mut at_risk_p = Vec::new();
-        let mut at_risk_q = Vec::new();
-        let rot = new.matrix();
-        let inv = rot.transpose();
-        // FindErrors and fv-corrections on P's faces.
-        for f in 0..self.fv.len() {
-            let mut m1 = self.margin_of_p_face(rot, f);
-            let mut changed = false;
-            let delta = self.dir_err_p[f];
-            if m1 <= EXACT_BELOW + delta {
-                let vq = self.ops.view_q();
-                let v = self.fv[f];
-                let x = self.ops.view_p().normal(f as u32);
-                if !vq.in_cell(v, &x) {
-                    let (v2, _) = vq.locate(&x, v);
-                    report.removed.push(Facet::Fv {
-                        p_face: f as u32,
-                        q_vertex: v,
-                    });
-                    report.added.push(Facet::Fv {
-                        p_face: f as u32,
-                        q_vertex: v2,
-                    });
-                    self.fv[f] = v2;
-                    m1 = self.margin_of_p_face(rot, f);
-                    changed = true;
-                }
-            }
-            if changed || self.margin_p[f].min(m1) <= drift + delta {
-                at_risk_p.push(f);
-            }
-            self.margin_p[f] = m1;
+        let (rot, rot_old) = (new.matrix(), old.matrix());
+        let before = self.theta_acc;
+        self.theta_acc += theta;
+        let step = StepBounds {
+            theta,
+            drift,
+            before,
+            after: self.theta_acc,
+        };
+        let scan_p = scan_side(
+            &self.ops.view_p(),
+            &self.ops.view_q(),
+            &self.arc_q,
+            (rot, rot_old),
+            SideState {
+                assign: &mut self.fv,
+                margin: &mut self.margin_p,
+                margin_at: &mut self.margin_at_p,
+                dir_err: &self.dir_err_p,
+            },
+            &step,
+        );
+        let scan_q = scan_side(
+            &self.ops.view_q(),
+            &self.ops.view_p(),
+            &self.arc_p,
+            (rot.transpose(), rot_old.transpose()),
+            SideState {
+                assign: &mut self.vf,
+                margin: &mut self.margin_q,
+                margin_at: &mut self.margin_at_q,
+                dir_err: &self.dir_err_q,
+            },
+            &step,
+        );
+        for c in &scan_p.changed {
+            report.removed.push(Facet::Fv {
+                p_face: c.face,
+                q_vertex: c.old,
+            });
+            report.added.push(Facet::Fv {
+                p_face: c.face,
+                q_vertex: c.new,
+            });
         }
-        // ... and on Q's faces.
-        for g in 0..self.vf.len() {
-            let mut m1 = self.margin_of_q_face(inv, g);
-            let mut changed = false;
-            let delta = self.dir_err_q[g];
-            if m1 <= EXACT_BELOW + delta {
-                let vp = self.ops.view_p();
-                let u = self.vf[g];
-                let x = self.ops.view_q().normal(g as u32);
-                if !vp.in_cell(u, &x) {
-                    let (u2, _) = vp.locate(&x, u);
-                    report.removed.push(Facet::Vf {
-                        p_vertex: u,
-                        q_face: g as u32,
-                    });
-                    report.added.push(Facet::Vf {
-                        p_vertex: u2,
-                        q_face: g as u32,
-                    });
-                    self.vf[g] = u2;
-                    m1 = self.margin_of_q_face(inv, g);
-                    changed = true;
-                }
-            }
-            if changed || self.margin_q[g].min(m1) <= drift + delta {
-                at_risk_q.push(g);
-            }
-            self.margin_q[g] = m1;
+        for c in &scan_q.changed {
+            report.removed.push(Facet::Vf {
+                p_vertex: c.old,
+                q_face: c.face,
+            });
+            report.added.push(Facet::Vf {
+                p_vertex: c.new,
+                q_face: c.face,
+            });
         }
         report.fv_errors = report.removed.len();
-        // The arcs incident to at-risk normals are the edges of their faces.
+        report.checked_normals = scan_p.checked + scan_q.checked;
+        report.certified_crossings = scan_p.certified.len() + scan_q.certified.len();
+        // Arcs incident to uncertain normals (the edges of their faces) are
+        // re-walked; certified single crossings are toggled.
         let mut arcs_p = Vec::new();
-        for &f in &at_risk_p {
-            for &e in self.ops.p.face_edges(f) {
+        for &f in &scan_p.uncertain {
+            for &e in self.ops.p.face_edges(f as usize) {
                 if self.stamp_p[e as usize] != self.step {
                     self.stamp_p[e as usize] = self.step;
                     arcs_p.push(e);
@@ -387,8 +418,8 @@ impl<'a> DynamicSum<'a> {
             }
         }
         let mut arcs_q = Vec::new();
-        for &g in &at_risk_q {
-            for &e in self.ops.q.face_edges(g) {
+        for &g in &scan_q.uncertain {
+            for &e in self.ops.q.face_edges(g as usize) {
                 if self.stamp_q[e as usize] != self.step {
                     self.stamp_q[e as usize] = self.step;
                     arcs_q.push(e);
@@ -401,6 +432,7 @@ impl<'a> DynamicSum<'a> {
             return self.recompute(report);
         }
         report.rewalked_arcs = arcs_p.len() + arcs_q.len();
+        self.apply_certified_crossings(&scan_p.certified, &scan_q.certified, &mut report);
         let mut fresh = Vec::new();
         for &e in &arcs_p {
             self.rewalk_p_edge(e, &mut fresh, &mut report)?;
@@ -409,6 +441,62 @@ impl<'a> DynamicSum<'a> {
             self.rewalk_q_edge(e, &mut fresh, &mut report)?;
         }
         Ok(report)
+    }
+
+    /// Toggles the ee-pairs flipped by certified single crossings: a face
+    /// normal of P that crossed exactly the arc `x` of Q flips the pairs
+    /// (edge of that face, `x`), and symmetrically for Q. Toggles combine by
+    /// parity; pairs on a re-walked arc are left to the re-walk.
+    fn apply_certified_crossings(
+        &mut self,
+        certified_p: &[(u32, u32)],
+        certified_q: &[(u32, u32)],
+        report: &mut UpdateReport,
+    ) {
+        let mut pending: Vec<(u32, u32)> = Vec::new();
+        for &(f, x) in certified_p {
+            pending.extend(self.ops.p.face_edges(f as usize).iter().map(|&e| (e, x)));
+        }
+        for &(g, y) in certified_q {
+            pending.extend(self.ops.q.face_edges(g as usize).iter().map(|&x| (y, x)));
+        }
+        pending.sort_unstable();
+        let mut i = 0;
+        while i < pending.len() {
+            let mut j = i;
+            while j < pending.len() && pending[j] == pending[i] {
+                j += 1;
+            }
+            let (e, x) = pending[i];
+            let odd = (j - i) % 2 == 1;
+            i = j;
+            if !odd
+                || self.stamp_p[e as usize] == self.step
+                || self.stamp_q[x as usize] == self.step
+            {
+                continue;
+            }
+            let list = &mut self.ee_p[e as usize];
+            if let Some(k) = list.iter().position(|&y| y == x) {
+                list.swap_remove(k);
+                let back = &mut self.ee_q[x as usize];
+                if let Some(k) = back.iter().position(|&y| y == e) {
+                    back.swap_remove(k);
+                }
+                report.removed.push(Facet::Ee {
+                    p_edge: e,
+                    q_edge: x,
+                });
+                report.ee_errors += 1;
+            } else {
+                list.push(x);
+                self.ee_q[x as usize].push(e);
+                report.added.push(Facet::Ee {
+                    p_edge: e,
+                    q_edge: x,
+                });
+            }
+        }
     }
 
     fn rewalk_p_edge(
@@ -580,6 +668,131 @@ impl<'a> DynamicSum<'a> {
         }
         self.sum().sanity_check()
     }
+}
+
+/// The bounds of one step, shared by both sides' scans.
+struct StepBounds {
+    /// The step angle.
+    theta: f64,
+    /// `θ²/4` plus slack: how far a moving normal's path strays from the
+    /// great arc between its end positions.
+    drift: f64,
+    /// Accumulated rotation before and after this step (for lazy margins).
+    before: f64,
+    after: f64,
+}
+
+/// One side's mutable state: for each moving face, its cell and margin.
+struct SideState<'s> {
+    assign: &'s mut [u32],
+    margin: &'s mut [f64],
+    margin_at: &'s mut [f64],
+    dir_err: &'s [f64],
+}
+
+/// A face whose cell changed.
+struct Change {
+    face: u32,
+    old: u32,
+    new: u32,
+}
+
+/// What a side's FindErrors pass found.
+#[derive(Default)]
+struct SideScan {
+    changed: Vec<Change>,
+    checked: usize,
+    /// Faces whose normal may have had events that are not certified: all
+    /// arcs at them are re-walked.
+    uncertain: Vec<u32>,
+    /// `(face, arc)`: the normal crossed exactly that arc of the other map.
+    certified: Vec<(u32, u32)>,
+}
+
+/// FindErrors and fv-corrections for the face normals of `faces` in the
+/// cells of `cells` (paper §4.1–4.2), with the certification of the module
+/// docs. `to_cells` maps a unit normal of `faces` into the reference frame
+/// of `cells` at the new and at the old orientation.
+fn scan_side(
+    faces: &GaussView<'_>,
+    cells: &GaussView<'_>,
+    cell_arcs: &[DVec3],
+    to_cells: (DMat3, DMat3),
+    state: SideState<'_>,
+    step: &StepBounds,
+) -> SideScan {
+    let mut out = SideScan::default();
+    let cpoly = cells.poly;
+    for f in 0..state.assign.len() {
+        let delta = state.dir_err[f];
+        // Lazy margins: a normal whose margin, less the rotation since it was
+        // computed, still exceeds this step's needs cannot have had an event.
+        let lower = state.margin[f] - (step.before - state.margin_at[f]);
+        if lower - step.theta > step.drift + delta {
+            continue;
+        }
+        out.checked += 1;
+        let unit = faces.poly.unit_normal(f);
+        let x_new = to_cells.0 * unit;
+        let v = state.assign[f];
+        let mut m1 = margin(cpoly, cell_arcs, v, x_new);
+        if m1 <= EXACT_BELOW + delta {
+            let x = faces.normal(f as u32);
+            if !cells.in_cell(v, &x) {
+                let (v2, _) = cells.locate(&x, v);
+                state.assign[f] = v2;
+                m1 = margin(cpoly, cell_arcs, v2, x_new);
+                out.changed.push(Change {
+                    face: f as u32,
+                    old: v,
+                    new: v2,
+                });
+                let x_old = to_cells.1 * unit;
+                match single_crossing(
+                    cpoly,
+                    cell_arcs,
+                    (v, x_old),
+                    (v2, x_new),
+                    step.theta + delta,
+                ) {
+                    Some(arc) => out.certified.push((f as u32, arc)),
+                    None => out.uncertain.push(f as u32),
+                }
+            } else if lower.min(m1) <= step.drift + delta {
+                out.uncertain.push(f as u32);
+            }
+        } else if lower.min(m1) <= step.drift + delta {
+            out.uncertain.push(f as u32);
+        }
+        state.margin[f] = m1;
+        state.margin_at[f] = step.after;
+    }
+    out
+}
+
+/// The arc a moving normal certainly crossed, and only it: the old cell `v`
+/// and new cell `w` are adjacent across arc `x`, the old position is farther
+/// than `reach` from every other arc of `v` and the new one from every other
+/// arc of `w`. Then the path (no longer than `reach`) stays in `v ∪ w`,
+/// whose common boundary is `x`, and meets `x`'s great circle at most twice
+/// (a small circle meets a great circle in at most two points) and an odd
+/// number of times: exactly once.
+fn single_crossing(
+    poly: &Polytope,
+    arcs: &[DVec3],
+    (v, x_old): (u32, DVec3),
+    (w, x_new): (u32, DVec3),
+    reach: f64,
+) -> Option<u32> {
+    let x = poly.ring(v as usize).iter().find(|r| r.neighbor == w)?.edge;
+    let clear = |cell: u32, pos: DVec3| {
+        let off = poly.ring_offset(cell as usize);
+        poly.ring(cell as usize)
+            .iter()
+            .enumerate()
+            .all(|(i, r)| r.edge == x || arcs[off + i].dot(pos) > reach)
+    };
+    (clear(v, x_old) && clear(w, x_new)).then_some(x)
 }
 
 fn sorted_difference(a: &[Facet], b: &[Facet]) -> Vec<Facet> {
