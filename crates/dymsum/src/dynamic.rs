@@ -160,6 +160,7 @@ pub struct DynamicSum<'a> {
     theta_acc: f64,
     stamp_p: Vec<u32>,
     stamp_q: Vec<u32>,
+    scratch_toggled: Vec<(u32, u32)>,
     step: u32,
     config: DynamicConfig,
 }
@@ -243,6 +244,7 @@ impl<'a> DynamicSum<'a> {
             theta_acc: 0.0,
             stamp_p: vec![0; p.edge_count()],
             stamp_q: vec![0; q.edge_count()],
+            scratch_toggled: Vec::new(),
             step: 0,
             ops,
             config,
@@ -453,21 +455,24 @@ impl<'a> DynamicSum<'a> {
         certified_q: &[(u32, u32)],
         report: &mut UpdateReport,
     ) {
-        let mut pending: Vec<(u32, u32)> = Vec::new();
+        let mut pending = std::mem::take(&mut self.scratch_toggled);
+        pending.clear();
         for &(f, x) in certified_p {
             pending.extend(self.ops.p.face_edges(f as usize).iter().map(|&e| (e, x)));
         }
         for &(g, y) in certified_q {
             pending.extend(self.ops.q.face_edges(g as usize).iter().map(|&x| (y, x)));
         }
+        // Toggles combine by parity (both ends of an edge may cross the same
+        // arc in one step); pairs on re-walked arcs are left to the re-walk.
         pending.sort_unstable();
         let mut i = 0;
         while i < pending.len() {
-            let mut j = i;
-            while j < pending.len() && pending[j] == pending[i] {
+            let (e, x) = pending[i];
+            let mut j = i + 1;
+            while j < pending.len() && pending[j] == (e, x) {
                 j += 1;
             }
-            let (e, x) = pending[i];
             let odd = (j - i) % 2 == 1;
             i = j;
             if !odd
@@ -476,26 +481,35 @@ impl<'a> DynamicSum<'a> {
             {
                 continue;
             }
-            let list = &mut self.ee_p[e as usize];
-            if let Some(k) = list.iter().position(|&y| y == x) {
-                list.swap_remove(k);
-                let back = &mut self.ee_q[x as usize];
-                if let Some(k) = back.iter().position(|&y| y == e) {
-                    back.swap_remove(k);
-                }
-                report.removed.push(Facet::Ee {
-                    p_edge: e,
-                    q_edge: x,
-                });
+            let facet = Facet::Ee {
+                p_edge: e,
+                q_edge: x,
+            };
+            if self.toggle_pair(e, x) {
+                report.removed.push(facet);
                 report.ee_errors += 1;
             } else {
-                list.push(x);
-                self.ee_q[x as usize].push(e);
-                report.added.push(Facet::Ee {
-                    p_edge: e,
-                    q_edge: x,
-                });
+                report.added.push(facet);
             }
+        }
+        self.scratch_toggled = pending;
+    }
+
+    /// Flips the membership of the pair `(e, x)`; returns whether it was
+    /// present before.
+    fn toggle_pair(&mut self, e: u32, x: u32) -> bool {
+        let list = &mut self.ee_p[e as usize];
+        if let Some(k) = list.iter().position(|&y| y == x) {
+            list.swap_remove(k);
+            let back = &mut self.ee_q[x as usize];
+            if let Some(k) = back.iter().position(|&y| y == e) {
+                back.swap_remove(k);
+            }
+            true
+        } else {
+            list.push(x);
+            self.ee_q[x as usize].push(e);
+            false
         }
     }
 

@@ -194,30 +194,34 @@ pub struct Operands<'a> {
     pub arc_p_err: Vec<f64>,
 }
 
-/// P's arc normals and their error bounds under a rotation: exact normals
-/// map by `R`, so cross products map by its cofactor matrix
-/// `det(R) R⁻ᵀ` (equal to `R` only for an exactly orthogonal `R`).
+/// P's arc normals under a rotation, and their error bounds. Exact normals
+/// map by `R`, so cross products map by its cofactor matrix `det(R) R⁻ᵀ`
+/// (equal to `R` only for an exactly orthogonal `R`). The bounds do not
+/// depend on the rotation (they cover the rounding of any nearly orthogonal
+/// matrix and of the identity), so they are computed once, when `errs` is
+/// empty; only the arcs are recomputed per rotation.
 pub fn rotate_arcs(
     p: &Polytope,
     rot: Option<&glam::DMat3>,
     arcs: &mut Vec<DVec3>,
     errs: &mut Vec<f64>,
 ) {
+    if errs.len() != p.edge_count() {
+        let u = f64::EPSILON / 2.0;
+        errs.clear();
+        errs.extend(
+            p.arc_normals()
+                .iter()
+                .zip(p.arc_errors())
+                .map(|(a, e)| 1.05 * e + 64.0 * u * a.abs().max_element() * 1.7320508075688774),
+        );
+    }
     arcs.clear();
-    errs.clear();
     match rot {
-        None => {
-            arcs.extend_from_slice(p.arc_normals());
-            errs.extend_from_slice(p.arc_errors());
-        }
+        None => arcs.extend_from_slice(p.arc_normals()),
         Some(m) => {
             let c = cofactor(m);
-            let u = f64::EPSILON / 2.0;
-            for (a, e) in p.arc_normals().iter().zip(p.arc_errors()) {
-                let r = c * *a;
-                arcs.push(r);
-                errs.push(1.05 * e + 64.0 * u * a.abs().max_element() * 1.7320508075688774);
-            }
+            arcs.extend(p.arc_normals().iter().map(|a| c * *a));
         }
     }
 }
