@@ -364,6 +364,7 @@ impl<'a> DynamicSum<'a> {
             &self.ops.view_q(),
             &self.arc_q,
             (rot, rot_old),
+            Some(&self.ops.np),
             SideState {
                 assign: &mut self.fv,
                 margin: &mut self.margin_p,
@@ -377,6 +378,7 @@ impl<'a> DynamicSum<'a> {
             &self.ops.view_p(),
             &self.arc_p,
             (rot.transpose(), rot_old.transpose()),
+            None,
             SideState {
                 assign: &mut self.vf,
                 margin: &mut self.margin_q,
@@ -732,6 +734,7 @@ fn scan_side(
     cells: &GaussView<'_>,
     cell_arcs: &[DVec3],
     to_cells: (DMat3, DMat3),
+    rotated: Option<&[DVec3]>,
     state: SideState<'_>,
     step: &StepBounds,
 ) -> SideScan {
@@ -747,13 +750,20 @@ fn scan_side(
         }
         out.checked += 1;
         let unit = faces.poly.unit_normal(f);
-        let x_new = to_cells.0 * unit;
+        // The moving normals are already rotated into the cells' frame (P's
+        // in `set_pose`); a fixed map's normals are rotated here.
+        let x_new = match rotated {
+            Some(n) => n[f] * faces.poly.inverse_normal_length(f),
+            None => to_cells.0 * unit,
+        };
         let v = state.assign[f];
         let mut m1 = margin(cpoly, cell_arcs, v, x_new);
         if m1 <= EXACT_BELOW + delta {
             let x = faces.normal(f as u32);
-            if !cells.in_cell(v, &x) {
-                let (v2, _) = cells.locate(&x, v);
+            // A margin clearly below zero is certainly outside.
+            if m1 < -(EXACT_BELOW + delta) || !cells.in_cell(v, &x) {
+                let v2 = locate_certified(cpoly, cell_arcs, x_new, EXACT_BELOW + delta, v)
+                    .unwrap_or_else(|| cells.locate(&x, v).0);
                 state.assign[f] = v2;
                 m1 = margin(cpoly, cell_arcs, v2, x_new);
                 out.changed.push(Change {
@@ -782,6 +792,39 @@ fn scan_side(
         state.margin_at[f] = step.after;
     }
     out
+}
+
+/// Hill climbing in floats on the unit ring arcs (oriented inwards): cross
+/// the most violated arc until every arc is clearly satisfied. Returns
+/// `None` as soon as a decision is within `thr` of zero (the exact
+/// [`GaussView::locate`] takes over) or after `V` steps.
+fn locate_certified(
+    poly: &Polytope,
+    arcs: &[DVec3],
+    x: DVec3,
+    thr: f64,
+    start: u32,
+) -> Option<u32> {
+    let mut v = start;
+    for _ in 0..poly.vertex_count() {
+        let off = poly.ring_offset(v as usize);
+        let ring = poly.ring(v as usize);
+        let mut worst = (thr, u32::MAX);
+        for (i, r) in ring.iter().enumerate() {
+            let s = arcs[off + i].dot(x);
+            if s.abs() <= thr {
+                return None;
+            }
+            if s < -worst.0 {
+                worst = (-s, r.neighbor);
+            }
+        }
+        if worst.1 == u32::MAX {
+            return Some(v);
+        }
+        v = worst.1;
+    }
+    None
 }
 
 /// The arc a moving normal certainly crossed, and only it: the old cell `v`

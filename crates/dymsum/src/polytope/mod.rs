@@ -71,6 +71,7 @@ pub struct Polytope {
     arc_normals: Vec<DVec3>,
     arc_err: Vec<f64>,
     unit_normals: Vec<DVec3>,
+    inv_normal_len: Vec<f64>,
     ring_start: Vec<u32>,
     ring: Vec<RingEntry>,
 }
@@ -131,6 +132,12 @@ impl Polytope {
     #[inline]
     pub fn normals(&self) -> &[DVec3] {
         &self.normals
+    }
+    /// `1 / |normal(f)|`, so a rotated exact-input normal becomes a unit
+    /// normal with one multiplication.
+    #[inline]
+    pub fn inverse_normal_length(&self, f: usize) -> f64 {
+        self.inv_normal_len[f]
     }
     /// The unit outward normal of face `f` (a float construction).
     #[inline]
@@ -339,6 +346,7 @@ impl Polytope {
             normal_scale.push(scale);
         }
         let unit_normals = normals.iter().map(|n| n.normalize()).collect();
+        let inv_normal_len = normals.iter().map(|n| 1.0 / n.length()).collect();
         let mut poly = Polytope {
             vertices,
             face_start,
@@ -352,6 +360,7 @@ impl Polytope {
             arc_normals: Vec::new(),
             arc_err: Vec::new(),
             unit_normals,
+            inv_normal_len,
             ring_start,
             ring,
         };
