@@ -439,10 +439,10 @@ impl<'a> DynamicSum<'a> {
         self.apply_certified_crossings(&scan_p.certified, &scan_q.certified, &mut report);
         let mut fresh = Vec::new();
         for &e in &arcs_p {
-            self.rewalk_p_edge(e, &mut fresh, &mut report)?;
+            self.rewalk(Side::P, e, &mut fresh, &mut report)?;
         }
         for &e in &arcs_q {
-            self.rewalk_q_edge(e, &mut fresh, &mut report)?;
+            self.rewalk(Side::Q, e, &mut fresh, &mut report)?;
         }
         Ok(report)
     }
@@ -515,91 +515,57 @@ impl<'a> DynamicSum<'a> {
         }
     }
 
-    fn rewalk_p_edge(
+    /// Re-walks the arc of edge `e` of P through Q's map (`side = P`) or of
+    /// edge `e` of Q through P's map (`side = Q`), and diffs its crossings
+    /// against the stored ones, keeping both indices in step.
+    fn rewalk(
         &mut self,
+        side: Side,
         e: u32,
         fresh: &mut Vec<u32>,
         report: &mut UpdateReport,
     ) -> Result<(), SumError> {
         fresh.clear();
-        let [f0, f1] = self.ops.p.edge(e as usize).faces;
-        let (fv0, fv1) = (self.fv[f0 as usize], self.fv[f1 as usize]);
-        self.ops.view_q().walk_arc_hinted(
-            &self.ops.view_p(),
-            e,
-            fv0,
-            fv1,
-            &self.ee_p[e as usize],
-            |e2| fresh.push(e2),
-        )?;
-        let old = std::mem::take(&mut self.ee_p[e as usize]);
-        for &e2 in &old {
-            if !fresh.contains(&e2) {
-                let list = &mut self.ee_q[e2 as usize];
-                if let Some(i) = list.iter().position(|&x| x == e) {
+        let (vp, vq) = (self.ops.view_p(), self.ops.view_q());
+        let (walked, through, assign, lists) = match side {
+            Side::P => (&vp, &vq, &self.fv, &self.ee_p),
+            Side::Q => (&vq, &vp, &self.vf, &self.ee_q),
+        };
+        let [f0, f1] = walked.poly.edge(e as usize).faces;
+        let (from, to) = (assign[f0 as usize], assign[f1 as usize]);
+        through.walk_arc_hinted(walked, e, from, to, &lists[e as usize], |x| fresh.push(x))?;
+        let (own, other) = match side {
+            Side::P => (&mut self.ee_p, &mut self.ee_q),
+            Side::Q => (&mut self.ee_q, &mut self.ee_p),
+        };
+        let old = std::mem::take(&mut own[e as usize]);
+        let facet = |x: u32| match side {
+            Side::P => Facet::Ee {
+                p_edge: e,
+                q_edge: x,
+            },
+            Side::Q => Facet::Ee {
+                p_edge: x,
+                q_edge: e,
+            },
+        };
+        for &x in &old {
+            if !fresh.contains(&x) {
+                let list = &mut other[x as usize];
+                if let Some(i) = list.iter().position(|&y| y == e) {
                     list.swap_remove(i);
                 }
-                report.removed.push(Facet::Ee {
-                    p_edge: e,
-                    q_edge: e2,
-                });
+                report.removed.push(facet(x));
                 report.ee_errors += 1;
             }
         }
-        for &e2 in fresh.iter() {
-            if !old.contains(&e2) {
-                self.ee_q[e2 as usize].push(e);
-                report.added.push(Facet::Ee {
-                    p_edge: e,
-                    q_edge: e2,
-                });
+        for &x in fresh.iter() {
+            if !old.contains(&x) {
+                other[x as usize].push(e);
+                report.added.push(facet(x));
             }
         }
-        self.ee_p[e as usize] = fresh.clone();
-        Ok(())
-    }
-
-    fn rewalk_q_edge(
-        &mut self,
-        e2: u32,
-        fresh: &mut Vec<u32>,
-        report: &mut UpdateReport,
-    ) -> Result<(), SumError> {
-        fresh.clear();
-        let [g0, g1] = self.ops.q.edge(e2 as usize).faces;
-        let (vf0, vf1) = (self.vf[g0 as usize], self.vf[g1 as usize]);
-        self.ops.view_p().walk_arc_hinted(
-            &self.ops.view_q(),
-            e2,
-            vf0,
-            vf1,
-            &self.ee_q[e2 as usize],
-            |e| fresh.push(e),
-        )?;
-        let old = std::mem::take(&mut self.ee_q[e2 as usize]);
-        for &e in &old {
-            if !fresh.contains(&e) {
-                let list = &mut self.ee_p[e as usize];
-                if let Some(i) = list.iter().position(|&x| x == e2) {
-                    list.swap_remove(i);
-                }
-                report.removed.push(Facet::Ee {
-                    p_edge: e,
-                    q_edge: e2,
-                });
-                report.ee_errors += 1;
-            }
-        }
-        for &e in fresh.iter() {
-            if !old.contains(&e) {
-                self.ee_p[e as usize].push(e2);
-                report.added.push(Facet::Ee {
-                    p_edge: e,
-                    q_edge: e2,
-                });
-            }
-        }
-        self.ee_q[e2 as usize] = fresh.clone();
+        own[e as usize] = fresh.clone();
         Ok(())
     }
 
@@ -684,6 +650,13 @@ impl<'a> DynamicSum<'a> {
         }
         self.sum().sanity_check()
     }
+}
+
+/// Which polytope's arc is re-walked.
+#[derive(Clone, Copy)]
+enum Side {
+    P,
+    Q,
 }
 
 /// The bounds of one step, shared by both sides' scans.

@@ -25,6 +25,7 @@
 //! for all finite inputs.
 
 use super::HullPoints;
+use crate::kernel::exact::decompose;
 use crate::kernel::predicates::{det2, orient};
 use crate::kernel::Sign;
 use glam::DVec3;
@@ -129,24 +130,6 @@ struct Diff {
     /// `true` when `v` is the exact difference (all three roundings exact)
     /// and all components are in the safe range.
     exact: bool,
-}
-
-/// Decomposes a finite `f64` into `(m, e)` with value `m · 2^e`.
-#[inline]
-fn decompose(x: f64) -> (i64, i32) {
-    let bits = x.to_bits();
-    let exp = ((bits >> 52) & 0x7ff) as i32;
-    let frac = (bits & ((1u64 << 52) - 1)) as i64;
-    let (m, e) = if exp == 0 {
-        (frac, -1074)
-    } else {
-        (frac | (1i64 << 52), exp - 1075)
-    };
-    if bits >> 63 == 1 {
-        (-m, e)
-    } else {
-        (m, e)
-    }
 }
 
 /// Exact values `vals[k][0] − vals[k][1] + vals[k][2] − vals[k][3]` for the

@@ -9,6 +9,25 @@ use glam::{DMat3, DVec3};
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
 
+/// Decomposes a finite `f64` into `(m, e)` with value exactly `m · 2^e`
+/// (`|m| < 2^53`).
+#[inline]
+pub fn decompose(x: f64) -> (i64, i32) {
+    let bits = x.to_bits();
+    let exp = ((bits >> 52) & 0x7ff) as i32;
+    let frac = (bits & ((1u64 << 52) - 1)) as i64;
+    let (m, e) = if exp == 0 {
+        (frac, -1074)
+    } else {
+        (frac | (1i64 << 52), exp - 1075)
+    };
+    if bits >> 63 == 1 {
+        (-m, e)
+    } else {
+        (m, e)
+    }
+}
+
 /// An exact dyadic rational `m · 2^e`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Dyadic {
@@ -31,17 +50,9 @@ impl Dyadic {
         if x == 0.0 || !x.is_finite() {
             return Dyadic::zero();
         }
-        let bits = x.to_bits();
-        let sign = if bits >> 63 == 1 { -1i64 } else { 1 };
-        let exp = ((bits >> 52) & 0x7ff) as i32;
-        let frac = (bits & ((1u64 << 52) - 1)) as i64;
-        let (m, e) = if exp == 0 {
-            (frac, -1074)
-        } else {
-            (frac | (1i64 << 52), exp - 1075)
-        };
+        let (m, e) = decompose(x);
         Dyadic {
-            m: BigInt::from(sign * m),
+            m: BigInt::from(m),
             e,
         }
     }

@@ -60,6 +60,7 @@ impl MeshPolicy {
 
 /// What [`Polytope::from_mesh`] found and changed.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ConvexityReport {
     /// Vertices in the input mesh.
     pub input_vertices: usize,
