@@ -38,6 +38,14 @@ pub enum Command {
     Animate(AnimateArgs),
     /// The main job on built-in models: DYMSUM vs static sums on ellipse ⊕ gs4.
     Demo(DemoArgs),
+    /// Reproduce the paper's experiments: Table 1, Fig. 4 (rotation), Fig. 5 (size).
+    Bench(crate::commands::bench::BenchArgs),
+    /// Draw P ⊕ Q (SVG or PNG), optionally highlighting the facets a further turn changes.
+    Render(crate::commands::render::RenderArgs),
+    /// Configuration-space obstacle slices of a translating robot, one per orientation.
+    Cobst(crate::commands::cobst::CobstArgs),
+    /// Collision, penetration depth and distance of a robot at given poses.
+    Query(crate::commands::query::QueryArgs),
 }
 
 /// A static method, as a command-line value.

@@ -33,6 +33,7 @@ pub mod hull;
 pub mod kernel;
 pub mod mesh;
 pub mod polytope;
+pub mod query;
 pub mod sum;
 
 pub use dynamic::{DynamicSum, UpdateReport};

@@ -3,6 +3,7 @@
 
 use std::io::Write;
 
+use dymsum::polytope::ConvexityReport;
 use dymsum_io::Loaded;
 use serde::Serialize;
 
@@ -35,24 +36,7 @@ pub struct Info {
     /// Bounding-box diagonal.
     pub diameter: f64,
     /// The convexity report (`null` for a point cloud).
-    pub convexity: Option<Convexity>,
-}
-
-/// What validation of a mesh found and changed.
-#[derive(Debug, Serialize)]
-pub struct Convexity {
-    /// Every face exactly in a hull face plane, every vertex exactly on the boundary.
-    pub exactly_convex: bool,
-    /// Convex only within tolerance: the polytope is the exact hull of the vertices.
-    pub replaced_by_hull: bool,
-    /// Largest distance of a mesh vertex or face from the hull boundary.
-    pub max_deviation: f64,
-    /// The absolute tolerance in force.
-    pub tolerance: f64,
-    /// Mesh vertices that are not corners of the polytope.
-    pub dropped_vertices: usize,
-    /// The mesh was oriented inwards (the polytope is outward).
-    pub inward_oriented: bool,
+    pub convexity: Option<ConvexityReport>,
 }
 
 impl Info {
@@ -71,14 +55,7 @@ impl Info {
             faces: p.face_count(),
             volume: p.volume(),
             diameter: p.diameter(),
-            convexity: l.report.as_ref().map(|r| Convexity {
-                exactly_convex: r.exactly_convex,
-                replaced_by_hull: r.replaced_by_hull,
-                max_deviation: r.max_deviation,
-                tolerance: r.tolerance,
-                dropped_vertices: r.dropped_vertices,
-                inward_oriented: r.inward_oriented,
-            }),
+            convexity: l.report.clone(),
         }
     }
 }

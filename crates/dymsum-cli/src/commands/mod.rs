@@ -3,9 +3,13 @@
 //! (exit 1), with messages naming the operand and the cause.
 
 pub mod animate;
+pub mod bench;
+pub mod cobst;
 pub mod demo;
 pub mod info;
 pub mod models;
+pub mod query;
+pub mod render;
 pub mod sum;
 
 use std::io::Write;
@@ -24,6 +28,10 @@ pub fn run(command: Command, out: &mut dyn Write) -> anyhow::Result<()> {
         Command::Models => models::run(out),
         Command::Animate(a) => animate::run(&a, out),
         Command::Demo(a) => demo::run(&a, out),
+        Command::Bench(a) => bench::run(&a, out),
+        Command::Render(a) => render::run(&a, out),
+        Command::Cobst(a) => cobst::run(&a, out),
+        Command::Query(a) => query::run(&a, out),
     }
 }
 

@@ -1,0 +1,255 @@
+//! One measurement: P turns under the paper's motion; every step is a timed
+//! DYMSUM update, and the static methods are timed afterwards on the same
+//! poses (all of them, or an evenly spaced deterministic subsample).
+//!
+//! The static methods are timed after the dynamic run, pose by pose, so the
+//! DYMSUM timings are not disturbed by the (much larger) working sets of
+//! `brute` and `hull`. At every pose where `brute` or `hull` is timed the
+//! dynamic facet set is saved (untimed) and compared with theirs, and after
+//! the last step the dynamic facets are compared with a fresh `walk` sum.
+//! The whole measurement is repeated [`Plan::repeats`] times with the same
+//! motion, and each method's figure is the median of the repeats' means.
+
+use std::time::Instant;
+
+use anyhow::Context;
+use dymsum::sum::{minkowski_sum_posed, Facet, Method};
+use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
+
+use crate::motion::PaperMotion;
+use crate::stats::{mean, median, micros};
+
+/// What to measure.
+#[derive(Clone, Copy, Debug)]
+pub struct Plan {
+    /// Steps per full turn (the paper's X).
+    pub steps_per_rev: f64,
+    /// Seed of the motion.
+    pub seed: u64,
+    /// DYMSUM updates per run (all timed).
+    pub steps: usize,
+    /// Poses at which `walk` is timed (capped at `steps`).
+    pub walk_poses: usize,
+    /// Poses at which `brute` is timed (capped at `steps`).
+    pub brute_poses: usize,
+    /// Poses at which `hull` is timed (capped at `steps`).
+    pub hull_poses: usize,
+    /// How many times the whole measurement is repeated (same motion, fresh
+    /// DYMSUM state); each method's figure is the median of the repeats'
+    /// means, which keeps one run disturbed by other load on a shared
+    /// machine from moving the result.
+    pub repeats: usize,
+}
+
+/// The timings of one pair: for each method, the mean time (microseconds
+/// per update or per static sum) of every repeat.
+#[derive(Clone, Debug, Default)]
+pub struct Timings {
+    /// DYMSUM updates per repeat.
+    pub steps: usize,
+    /// Mean DYMSUM update time of each repeat.
+    pub dymsum: Vec<f64>,
+    /// Mean `walk` time of each repeat.
+    pub walk: Vec<f64>,
+    /// Mean `brute` time of each repeat.
+    pub brute: Vec<f64>,
+    /// Mean `hull` time of each repeat (over its successful calls).
+    pub hull: Vec<f64>,
+    /// Poses per repeat at which `walk`, `brute`, `hull` are timed.
+    pub static_poses: [usize; 3],
+    /// `hull` calls that returned an error (not timed), over all repeats.
+    pub hull_errors: usize,
+    /// `hull` calls made, over all repeats.
+    pub hull_calls: usize,
+    /// Updates of the first repeat that fell back to a from-scratch sum.
+    pub recomputed: usize,
+    /// Facet-set comparisons made (sampled poses and the final pose).
+    pub checks: usize,
+    /// Comparisons where a method disagreed with DYMSUM (must be 0).
+    pub mismatches: usize,
+}
+
+impl Timings {
+    /// DYMSUM: median over the repeats of the mean update time.
+    pub fn dymsum_us(&self) -> f64 {
+        median_or_nan(&self.dymsum)
+    }
+    /// `walk`: median of the repeats' means (NaN if not timed).
+    pub fn walk_us(&self) -> f64 {
+        median_or_nan(&self.walk)
+    }
+    /// `brute`: median of the repeats' means (NaN if not timed).
+    pub fn brute_us(&self) -> f64 {
+        median_or_nan(&self.brute)
+    }
+    /// `hull`: median of the repeats' means (NaN if not timed or every
+    /// call failed).
+    pub fn hull_us(&self) -> f64 {
+        median_or_nan(&self.hull)
+    }
+}
+
+fn median_or_nan(xs: &[f64]) -> f64 {
+    if xs.is_empty() {
+        f64::NAN
+    } else {
+        median(xs)
+    }
+}
+
+/// `k` evenly spaced step indices out of `n` (the middle of each of `k`
+/// equal blocks; all of them when `k >= n`).
+///
+/// ```
+/// use dymsum_cli::commands::bench::measure::sample_indices;
+/// assert_eq!(sample_indices(10, 2), vec![2, 7]);
+/// assert_eq!(sample_indices(3, 5), vec![0, 1, 2]);
+/// assert!(sample_indices(5, 0).is_empty());
+/// ```
+pub fn sample_indices(n: usize, k: usize) -> Vec<usize> {
+    if k >= n {
+        return (0..n).collect();
+    }
+    (0..k).map(|j| ((2 * j + 1) * n) / (2 * k)).collect()
+}
+
+/// Times one static sum; returns microseconds and the facets (or the error).
+fn time_static(
+    p: &Polytope,
+    rot: Rotation,
+    q: &Polytope,
+    method: Method,
+) -> (f64, Result<Vec<Facet>, String>) {
+    let pose = Pose::new(rot, DVec3::ZERO);
+    let start = Instant::now();
+    let sum = minkowski_sum_posed(p, pose, q, Pose::IDENTITY, method);
+    let us = micros(start.elapsed());
+    (us, sum.map(|s| s.facets()).map_err(|e| e.to_string()))
+}
+
+/// Runs the plan on P (moving) and Q (fixed at the identity).
+pub fn measure(p: &Polytope, q: &Polytope, plan: &Plan) -> anyhow::Result<Timings> {
+    let n = plan.steps.max(1);
+    let walk_at = sample_indices(n, plan.walk_poses);
+    let brute_at = sample_indices(n, plan.brute_poses);
+    let hull_at = sample_indices(n, plan.hull_poses);
+    let mut check_at = vec![false; n];
+    for &i in brute_at.iter().chain(&hull_at) {
+        check_at[i] = true;
+    }
+    let mut t = Timings {
+        steps: n,
+        static_poses: [walk_at.len(), brute_at.len(), hull_at.len()],
+        ..Timings::default()
+    };
+    // Warm-up (untimed): one static sum at the start pose.
+    let _ = time_static(p, Rotation::IDENTITY, q, Method::Walk);
+
+    let mut poses = Vec::with_capacity(n);
+    let mut saved: Vec<Option<Vec<Facet>>> = vec![None; n];
+    for repeat in 0..plan.repeats.max(1) {
+        let first = repeat == 0;
+        let mut dynamic =
+            DynamicSum::new(p, Pose::IDENTITY, q, Pose::IDENTITY).context("initial DYMSUM sum")?;
+        let mut motion = PaperMotion::new(plan.steps_per_rev, plan.seed);
+        let mut rot = Rotation::IDENTITY;
+        let mut times = Vec::with_capacity(n);
+        for (i, save) in check_at.iter().enumerate() {
+            rot = rot.then(&motion.next_step());
+            let start = Instant::now();
+            let report = dynamic
+                .set_pose_p(Pose::new(rot, DVec3::ZERO))
+                .with_context(|| format!("DYMSUM update at step {}", i + 1))?;
+            times.push(micros(start.elapsed()));
+            if first {
+                t.recomputed += usize::from(report.recomputed);
+                poses.push(rot);
+                if *save {
+                    saved[i] = Some(dynamic.facets());
+                }
+            }
+        }
+        t.dymsum.push(mean(&times));
+        if first {
+            // The final pose: the dynamic facets against a fresh walk sum.
+            let fresh = minkowski_sum_posed(p, dynamic.pose_p(), q, Pose::IDENTITY, Method::Walk)
+                .context("final static walk sum")?;
+            t.checks += 1;
+            t.mismatches += usize::from(fresh.facets() != dynamic.facets());
+        }
+    }
+
+    for repeat in 0..plan.repeats.max(1) {
+        let first = repeat == 0;
+        for (method, at) in [
+            (Method::Walk, &walk_at),
+            (Method::Brute, &brute_at),
+            (Method::Hull, &hull_at),
+        ] {
+            let mut times = Vec::with_capacity(at.len());
+            for &i in at {
+                let (us, facets) = time_static(p, poses[i], q, method);
+                if method == Method::Hull {
+                    t.hull_calls += 1;
+                }
+                match facets {
+                    Ok(f) => {
+                        times.push(us);
+                        if let (true, Some(d)) = (first, &saved[i]) {
+                            t.checks += 1;
+                            t.mismatches += usize::from(*d != f);
+                        }
+                    }
+                    Err(_) if method == Method::Hull => t.hull_errors += 1,
+                    Err(e) => {
+                        anyhow::bail!("static {} sum at step {}: {e}", method.name(), i + 1)
+                    }
+                }
+            }
+            if !times.is_empty() {
+                let m = mean(&times);
+                match method {
+                    Method::Walk => t.walk.push(m),
+                    Method::Brute => t.brute.push(m),
+                    Method::Hull => t.hull.push(m),
+                }
+            }
+        }
+    }
+    Ok(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_small_run_agrees_everywhere() {
+        let p = dymsum_io::load_polytope("gs1", Default::default())
+            .unwrap()
+            .polytope;
+        let q = dymsum_io::load_polytope("cube", Default::default())
+            .unwrap()
+            .polytope;
+        let plan = Plan {
+            steps_per_rev: 500.0,
+            seed: 1,
+            steps: 40,
+            walk_poses: 40,
+            brute_poses: 3,
+            hull_poses: 2,
+            repeats: 3,
+        };
+        let t = measure(&p, &q, &plan).unwrap();
+        assert_eq!(t.steps, 40);
+        assert_eq!(t.dymsum.len(), 3);
+        assert_eq!(t.walk.len(), 3);
+        assert_eq!(t.brute.len(), 3);
+        assert_eq!(t.static_poses, [40, 3, 2]);
+        assert_eq!(t.hull_calls, 6);
+        assert_eq!(t.mismatches, 0);
+        // The final pose, 3 brute poses and 2 hull poses (if hull succeeded).
+        assert!(t.checks >= 4);
+        assert!(t.dymsum_us() > 0.0 && t.brute_us() > 0.0);
+    }
+}

@@ -1,0 +1,286 @@
+//! `dymsum bench size`: the paper's Experiment 3 (§5.3, Fig. 5).
+//!
+//! Mean time per step against input size, for two identical operands P = Q
+//! of two families: the paper's tessellated 10×10×10 cube `tcube:K`
+//! (12 K² triangles, K = 1..10 gives the paper's 12 to 1200) and geodesic
+//! spheres `sphere:N` (20 N² triangles, no coplanar facets). P turns at 500
+//! steps per turn; DYMSUM and `walk` are timed at every step, `brute` at
+//! `--static-poses` evenly spaced poses. Prints the fitted growth exponent
+//! (least-squares slope of log time against log input triangles) of every
+//! method and family; writes `size.csv`, `size_vs_brute.svg/.png` (Fig.
+//! 5a: DYMSUM and brute) and `size_dymsum.svg/.png` (Fig. 5b: DYMSUM alone).
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use clap::Args;
+
+use super::measure::{measure, Plan};
+use super::plot::{write_chart, Chart, Marker, Series, COLORS};
+use super::{loglog_slope, num, out_file, progress};
+use crate::commands::load;
+use crate::stats::human_us;
+
+/// Steps per full turn (the paper's x = 500).
+pub const STEPS_PER_REV: f64 = 500.0;
+
+/// The CSV header.
+pub const CSV_HEADER: [&str; 11] = [
+    "family",
+    "model",
+    "input_triangles",
+    "faces",
+    "steps",
+    "dymsum_us",
+    "walk_us",
+    "brute_us",
+    "recomputed_steps",
+    "checks",
+    "mismatches",
+];
+
+/// `dymsum bench size`.
+#[derive(Debug, Args)]
+pub struct SizeArgs {
+    /// Tessellations K of the cube `tcube:K` (12 K² triangles), comma-separated.
+    #[arg(long, value_name = "LIST", value_delimiter = ',', default_value = "1,2,3,4,5,6,7,8,9,10",
+          value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub tcube: Vec<u32>,
+    /// Frequencies N of the geodesic sphere `sphere:N` (20 N² triangles), comma-separated.
+    #[arg(long, value_name = "LIST", value_delimiter = ',', default_value = "1,2,3,4,5,6,7,8",
+          value_parser = clap::value_parser!(u32).range(1..=300))]
+    pub sphere: Vec<u32>,
+    /// DYMSUM steps per model.
+    #[arg(long, value_name = "N", default_value_t = 2000,
+          value_parser = super::parse_count)]
+    pub steps: usize,
+    /// Poses per model, evenly spaced over the run, at which `brute` is timed.
+    #[arg(long, value_name = "K", default_value_t = 30,
+          value_parser = super::parse_count)]
+    pub static_poses: usize,
+    /// Repeats of the whole measurement (same motion); each figure is the median of the repeats' means.
+    #[arg(long, value_name = "R", default_value_t = 3, value_parser = super::parse_count)]
+    pub repeats: usize,
+    /// Seed of the motion.
+    #[arg(long, value_name = "S", default_value_t = 1)]
+    pub seed: u64,
+    /// Output directory for size.csv and the plots.
+    #[arg(long, value_name = "DIR", default_value = ".")]
+    pub out: PathBuf,
+}
+
+/// One point of the figure.
+struct Point {
+    family: &'static str,
+    model: String,
+    triangles: usize,
+    faces: usize,
+    steps: usize,
+    dymsum: f64,
+    walk: f64,
+    brute: f64,
+    recomputed: usize,
+    checks: usize,
+    mismatches: usize,
+}
+
+/// The two families.
+const FAMILIES: [(&str, &str); 2] = [
+    ("tcube", "tessellated cube tcube:K"),
+    ("sphere", "geodesic sphere sphere:N"),
+];
+
+/// Runs `dymsum bench size`.
+pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    let started = Instant::now();
+    let mut models: Vec<(&'static str, String)> = Vec::new();
+    models.extend(a.tcube.iter().map(|k| ("tcube", format!("tcube:{k}"))));
+    models.extend(a.sphere.iter().map(|n| ("sphere", format!("sphere:{n}"))));
+    let plan = Plan {
+        steps_per_rev: STEPS_PER_REV,
+        seed: a.seed,
+        steps: a.steps,
+        walk_poses: a.steps,
+        brute_poses: a.static_poses,
+        hull_poses: 0,
+        repeats: a.repeats,
+    };
+    writeln!(
+        out,
+        "dymsum bench size: two identical operands P = Q of growing size; P turns {} steps at {STEPS_PER_REV} \
+         steps per turn (seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;\n\
+         all repeated {} times with the same motion, each figure the median of the repeats' means.",
+        a.steps,
+        a.seed,
+        a.static_poses.min(a.steps),
+        a.repeats,
+    )?;
+    out.flush()?;
+
+    let pb = progress(models.len() as u64);
+    let mut points = Vec::new();
+    for (family, name) in &models {
+        pb.set_message(format!("{name} + {name}"));
+        let m = load(name, "P", false)?;
+        let t = measure(&m.polytope, &m.polytope, &plan)?;
+        points.push(Point {
+            family,
+            model: name.clone(),
+            triangles: m.input.triangle_count(),
+            faces: m.polytope.face_count(),
+            steps: t.steps,
+            dymsum: t.dymsum_us(),
+            walk: t.walk_us(),
+            brute: t.brute_us(),
+            recomputed: t.recomputed,
+            checks: t.checks,
+            mismatches: t.mismatches,
+        });
+        pb.inc(1);
+    }
+    pb.finish_and_clear();
+
+    let csv_path = out_file(&a.out, "size.csv")?;
+    let mut w = csv::Writer::from_path(&csv_path)
+        .map_err(|e| anyhow::anyhow!("writing {}: {e}", csv_path.display()))?;
+    w.write_record(CSV_HEADER)?;
+    for p in &points {
+        w.write_record([
+            p.family.to_string(),
+            p.model.clone(),
+            p.triangles.to_string(),
+            p.faces.to_string(),
+            p.steps.to_string(),
+            num(p.dymsum, 3),
+            num(p.walk, 3),
+            num(p.brute, 3),
+            p.recomputed.to_string(),
+            p.checks.to_string(),
+            p.mismatches.to_string(),
+        ])?;
+    }
+    w.flush()?;
+
+    type Get = fn(&Point) -> f64;
+    let methods: [(&str, Marker, bool, Get); 3] = [
+        ("DYMSUM", Marker::Circle, false, |p| p.dymsum),
+        ("walk", Marker::Triangle, true, |p| p.walk),
+        ("brute", Marker::Cross, true, |p| p.brute),
+    ];
+    let family_points = |fam: &str, f: Get| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .filter(|p| p.family == fam)
+            .map(|p| (p.triangles as f64, f(p)))
+            .collect()
+    };
+    let series_for = |wanted: &[&str]| -> Vec<Series> {
+        let mut v = Vec::new();
+        for (fi, (fam, _)) in FAMILIES.iter().enumerate() {
+            for &(method, marker, dashed, f) in &methods {
+                if !wanted.contains(&method) {
+                    continue;
+                }
+                let pts = family_points(fam, f);
+                if pts.is_empty() {
+                    continue;
+                }
+                v.push(Series {
+                    label: format!("{fam} {method}"),
+                    color: COLORS[fi],
+                    marker,
+                    dashed,
+                    points: pts,
+                });
+            }
+        }
+        v
+    };
+    let x_label = "input triangles per operand (P = Q)".to_string();
+    let chart_a = Chart {
+        title: "Fig. 5 (a): DYMSUM and brute force vs input size".into(),
+        x_label: x_label.clone(),
+        y_label: "mean time per step (µs)".into(),
+        x_log: true,
+        y_log: true,
+        series: series_for(&["DYMSUM", "brute"]),
+    };
+    let chart_b = Chart {
+        title: "Fig. 5 (b): DYMSUM alone vs input size".into(),
+        x_label,
+        y_label: "mean DYMSUM update time (µs)".into(),
+        x_log: false,
+        y_log: false,
+        series: series_for(&["DYMSUM"]),
+    };
+    let files = [
+        ("size_vs_brute.svg", "size_vs_brute.png", &chart_a),
+        ("size_dymsum.svg", "size_dymsum.png", &chart_b),
+    ];
+    let mut written = vec![csv_path.display().to_string()];
+    for (svg, png, chart) in files {
+        let (svg, png) = (out_file(&a.out, svg)?, out_file(&a.out, png)?);
+        write_chart(chart, &svg, &png)?;
+        written.push(svg.display().to_string());
+        written.push(png.display().to_string());
+    }
+
+    // Report.
+    writeln!(out)?;
+    writeln!(
+        out,
+        "{:<11} {:>9} {:>6} {:>12} {:>12} {:>12} {:>9} {:>11}",
+        "model", "triangles", "faces", "DYMSUM", "walk", "brute", "÷brute", "recomputed"
+    )?;
+    for p in &points {
+        writeln!(
+            out,
+            "{:<11} {:>9} {:>6} {:>12} {:>12} {:>12} {:>8.1}x {:>11}",
+            p.model,
+            p.triangles,
+            p.faces,
+            human_us(p.dymsum),
+            human_us(p.walk),
+            human_us(p.brute),
+            p.brute / p.dymsum,
+            format!("{}/{}", p.recomputed, p.steps),
+        )?;
+    }
+    writeln!(out)?;
+    writeln!(
+        out,
+        "fitted growth exponent (time ~ triangles^k, least squares on log-log):"
+    )?;
+    for (fam, desc) in FAMILIES {
+        if !points.iter().any(|p| p.family == fam) {
+            continue;
+        }
+        let ks: Vec<String> = methods
+            .iter()
+            .map(|&(method, _, _, f)| {
+                format!(
+                    "{method} k = {}",
+                    num(loglog_slope(&family_points(fam, f)), 2)
+                )
+            })
+            .collect();
+        writeln!(out, "  {desc}: {}", ks.join(", "))?;
+    }
+    let checks: usize = points.iter().map(|p| p.checks).sum();
+    let mismatches: usize = points.iter().map(|p| p.mismatches).sum();
+    writeln!(
+        out,
+        "verified: {checks} facet-set comparisons (DYMSUM vs a fresh walk after every run, vs brute at its poses): {mismatches} mismatches"
+    )?;
+    writeln!(
+        out,
+        "wrote {} ({:.0} s)",
+        written.join(", "),
+        started.elapsed().as_secs_f64()
+    )?;
+    if mismatches > 0 {
+        anyhow::bail!("internal error: {mismatches} facet-set comparisons disagreed with DYMSUM (please report)");
+    }
+    Ok(())
+}

@@ -1,0 +1,223 @@
+//! `dymsum cobst ROBOT OBSTACLE (--axis X,Y,Z --slices N | --orientations FILE) --out DIR`:
+//! configuration-space obstacle slices of a robot translating among an
+//! obstacle, one per robot orientation `R`: `O ⊕ (−R·A)`.
+//!
+//! Slices are computed by DYMSUM from slice to slice, the orientation list
+//! split into contiguous chunks over the cores (identical to the sequential
+//! result). Writes `DIR/slice_NNNNN.off` and `DIR/index.json`, an array of
+//! `{"slice": k, "orientation": [w,x,y,z], "faces": n, "file": "slice_NNNNN.off"}`.
+//!
+//! With a union of convex pieces as robot or obstacle (`a.off+b.off`, or an
+//! OBJ file with several objects), a slice is the union of the piece-pair
+//! sums: they are written as `slice_NNNNN_rI_oJ.off` and the index entry
+//! lists them under `"files"` (with `"faces"` their total).
+
+use std::io::{BufRead, IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{anyhow, bail, Context};
+use clap::Args;
+use dymsum::query::{orientations_about_axis, CObstacle};
+use dymsum::{DVec3, Rotation};
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+
+use super::query::load_body;
+use super::short_name;
+use crate::stats::{human_us, micros};
+
+/// Arguments of `dymsum cobst`.
+#[derive(Debug, Args)]
+pub struct CobstArgs {
+    /// The robot: a mesh file or built-in model name (or convex pieces
+    /// joined with `+`, or an OBJ file with several objects). Its reference
+    /// point is its origin.
+    #[arg(value_name = "ROBOT")]
+    pub robot: String,
+    /// The obstacle: as ROBOT.
+    #[arg(value_name = "OBSTACLE")]
+    pub obstacle: String,
+    /// Rotation axis for evenly spaced orientations (with --slices).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_axis, allow_hyphen_values = true,
+          requires = "slices", required_unless_present = "orientations")]
+    pub axis: Option<DVec3>,
+    /// Number of slices: angles 2πk/N, k = 0..N (with --axis).
+    #[arg(long, value_name = "N", requires = "axis",
+          value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub slices: Option<u32>,
+    /// A file of orientations, one quaternion `w,x,y,z` (or whitespace
+    /// separated) per line; `#` starts a comment.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["axis", "slices"])]
+    pub orientations: Option<PathBuf>,
+    /// Output directory (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Refuse meshes that are convex only within tolerance.
+    #[arg(long)]
+    pub strict: bool,
+}
+
+/// Parses a non-zero axis `X,Y,Z`.
+fn parse_axis(s: &str) -> Result<DVec3, String> {
+    let v = crate::cli::parse_vector(s)?;
+    if v.length() == 0.0 || !v.length().is_finite() {
+        return Err("the axis must be a non-zero vector".into());
+    }
+    Ok(v)
+}
+
+/// Reads an orientation file: one quaternion per line (`w,x,y,z` or
+/// whitespace separated), blank lines and `#` comments ignored. Errors name
+/// the file and line.
+pub fn read_orientations(path: &Path) -> anyhow::Result<Vec<Rotation>> {
+    let file = std::fs::File::open(path)
+        .with_context(|| format!("orientation file {}", path.display()))?;
+    let mut out = Vec::new();
+    for (i, line) in std::io::BufReader::new(file).lines().enumerate() {
+        let line = line.with_context(|| format!("orientation file {}", path.display()))?;
+        let text = line.split('#').next().unwrap_or("").trim();
+        if text.is_empty() {
+            continue;
+        }
+        let at = || format!("{} line {}", path.display(), i + 1);
+        let parts: Vec<&str> = text
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|p| !p.is_empty())
+            .collect();
+        if parts.len() != 4 {
+            bail!(
+                "{}: expected a quaternion w,x,y,z (4 numbers), got {} in `{text}`",
+                at(),
+                parts.len()
+            );
+        }
+        let mut q = [0.0; 4];
+        for (slot, p) in q.iter_mut().zip(&parts) {
+            *slot = match p.parse::<f64>() {
+                Ok(x) if x.is_finite() => x,
+                _ => bail!("{}: `{p}` is not a finite number", at()),
+            };
+        }
+        let r = Rotation::from_wxyz(q[0], q[1], q[2], q[3])
+            .ok_or_else(|| anyhow!("{}: the quaternion is zero", at()))?;
+        out.push(r);
+    }
+    if out.is_empty() {
+        bail!("orientation file {}: no orientations", path.display());
+    }
+    Ok(out)
+}
+
+/// One entry of `index.json`.
+#[derive(Serialize)]
+struct IndexEntry {
+    slice: usize,
+    orientation: [f64; 4],
+    faces: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    file: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    files: Option<Vec<String>>,
+}
+
+fn progress(len: u64) -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(len);
+    if let Ok(style) = ProgressStyle::with_template(
+        "slices [{elapsed_precise}] {wide_bar} {pos}/{len} (eta {eta})",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// Runs `dymsum cobst`.
+pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    let robot = load_body(&a.robot, "ROBOT", a.strict)?;
+    let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
+    let orientations = match (&a.orientations, a.axis, a.slices) {
+        (Some(file), _, _) => read_orientations(file)?,
+        (None, Some(axis), Some(n)) => orientations_about_axis(axis, n as usize)
+            .ok_or_else(|| anyhow!("--axis must be a non-zero vector"))?,
+        _ => bail!("give --axis X,Y,Z with --slices N, or --orientations FILE"),
+    };
+    std::fs::create_dir_all(&a.out)
+        .with_context(|| format!("creating the output directory {}", a.out.display()))?;
+    let union = robot.len() > 1 || obstacle.len() > 1;
+    let bar = progress((orientations.len() * robot.len() * obstacle.len()) as u64);
+    let start = Instant::now();
+    let n = orientations.len();
+    // faces[k] and files[k] per slice, accumulated over piece pairs.
+    let mut faces = vec![0usize; n];
+    let mut files: Vec<Vec<String>> = vec![Vec::new(); n];
+    for (i, r) in robot.iter().enumerate() {
+        for (j, o) in obstacle.iter().enumerate() {
+            let cob = CObstacle::new(r, o).context("reflecting the robot")?;
+            let written = cob
+                .map_par(&orientations, |k, _, sum| {
+                    let mesh = sum.to_mesh();
+                    let name = if union {
+                        format!("slice_{k:05}_r{i}_o{j}.off")
+                    } else {
+                        format!("slice_{k:05}.off")
+                    };
+                    let res = dymsum_io::formats::write_mesh(&a.out.join(&name), &mesh)
+                        .map(|()| (mesh.faces.len(), name.clone()))
+                        .map_err(|e| format!("writing {}: {e}", a.out.join(&name).display()));
+                    bar.inc(1);
+                    res
+                })
+                .with_context(|| {
+                    format!(
+                        "slices of {} against {}",
+                        short_name(&a.robot),
+                        short_name(&a.obstacle)
+                    )
+                })?;
+            for (k, w) in written.into_iter().enumerate() {
+                let (f, name) = w.map_err(|e| anyhow!(e))?;
+                faces[k] += f;
+                files[k].push(name);
+            }
+        }
+    }
+    bar.finish_and_clear();
+    let elapsed = micros(start.elapsed());
+    let index: Vec<IndexEntry> = orientations
+        .iter()
+        .enumerate()
+        .map(|(k, r)| IndexEntry {
+            slice: k,
+            orientation: r.wxyz(),
+            faces: faces[k],
+            file: (!union).then(|| files[k][0].clone()),
+            files: union.then(|| files[k].clone()),
+        })
+        .collect();
+    let index_path = a.out.join("index.json");
+    std::fs::write(&index_path, serde_json::to_string_pretty(&index)? + "\n")
+        .with_context(|| format!("writing {}", index_path.display()))?;
+    let (lo, hi) = (
+        faces.iter().min().copied().unwrap_or(0),
+        faces.iter().max().copied().unwrap_or(0),
+    );
+    writeln!(
+        out,
+        "C-obstacle of {} among {}: {n} slices ({} piece pair{}), {lo}–{hi} faces per slice, \
+         written to {} in {}",
+        short_name(&a.robot),
+        short_name(&a.obstacle),
+        robot.len() * obstacle.len(),
+        if robot.len() * obstacle.len() == 1 {
+            ""
+        } else {
+            "s"
+        },
+        a.out.display(),
+        human_us(elapsed),
+    )?;
+    Ok(())
+}

@@ -1,0 +1,263 @@
+//! `dymsum query ROBOT OBSTACLE --pose X,Y,Z,W,QX,QY,QZ [--pose ...] [--json]`:
+//! for each robot pose, whether the robot collides with the obstacle, with
+//! the exact penetration depth or the distance.
+//!
+//! The robot's coordinates `p` become `R p + t` (the flag lists `t` first,
+//! then the quaternion `R`); the obstacle stays put. Consecutive poses are
+//! answered by one contact tracker (DYMSUM updates between poses), with the
+//! same answers as from-scratch queries.
+//!
+//! A body may be a union of convex pieces: several operands joined with `+`
+//! (`a.off+b.off`), or an OBJ file with several objects or groups. For
+//! unions, collision and distance are exact (any pair collides; the minimum
+//! pairwise distance); the penetration depth of a non-convex union is not
+//! supported, and is reported as `null` (with a `null` direction) when a
+//! union collides.
+
+use std::io::Write;
+use std::path::Path;
+
+use anyhow::{anyhow, Context};
+use clap::Args;
+use dymsum::query::{ConvexPair, ConvexUnion, Proximity, UnionProximity};
+use dymsum::{DVec3, Polytope, Pose, Rotation};
+use serde::Serialize;
+
+use super::{load, policy, short_name};
+
+/// Arguments of `dymsum query`.
+#[derive(Debug, Args)]
+pub struct QueryArgs {
+    /// The robot: a mesh file or built-in model name; several convex pieces
+    /// joined with `+`, or an OBJ file with several objects, form a union.
+    #[arg(value_name = "ROBOT")]
+    pub robot: String,
+    /// The obstacle (fixed at the origin): as ROBOT.
+    #[arg(value_name = "OBSTACLE")]
+    pub obstacle: String,
+    /// A robot pose: translation X,Y,Z then unit quaternion W,QX,QY,QZ
+    /// (renormalised); p becomes R p + t. Repeat for several poses.
+    #[arg(long = "pose", value_name = "X,Y,Z,W,QX,QY,QZ", required = true,
+          value_parser = parse_pose, allow_hyphen_values = true)]
+    pub poses: Vec<PoseArg>,
+    /// One JSON object per pose and line:
+    /// `{"pose":[..7],"collides":b,"depth":d,"distance":s,"direction":[x,y,z]}`.
+    #[arg(long)]
+    pub json: bool,
+    /// Refuse meshes that are convex only within tolerance.
+    #[arg(long)]
+    pub strict: bool,
+}
+
+/// A parsed `--pose`: the 7 numbers as given, and the pose.
+#[derive(Clone, Copy, Debug)]
+pub struct PoseArg {
+    /// `X,Y,Z,W,QX,QY,QZ` as given.
+    pub values: [f64; 7],
+    /// The rigid pose.
+    pub pose: Pose,
+}
+
+/// Parses `X,Y,Z,W,QX,QY,QZ` (finite numbers, non-zero quaternion).
+pub fn parse_pose(s: &str) -> Result<PoseArg, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    if parts.len() != 7 {
+        return Err(format!(
+            "expected 7 comma-separated numbers (X,Y,Z,W,QX,QY,QZ), got {}",
+            parts.len()
+        ));
+    }
+    let mut v = [0.0; 7];
+    for (slot, p) in v.iter_mut().zip(&parts) {
+        *slot = match p.parse::<f64>() {
+            Ok(x) if x.is_finite() => x,
+            Ok(_) => return Err(format!("`{p}` is not a finite number")),
+            Err(_) => return Err(format!("`{p}` is not a number")),
+        };
+    }
+    let rotation = Rotation::from_wxyz(v[3], v[4], v[5], v[6])
+        .ok_or_else(|| "the quaternion W,QX,QY,QZ is zero".to_string())?;
+    Ok(PoseArg {
+        values: v,
+        pose: Pose::new(rotation, DVec3::new(v[0], v[1], v[2])),
+    })
+}
+
+/// Loads a body: one convex polytope, or several pieces (`a+b+c`, or an OBJ
+/// file with several objects). Errors name the operand and the piece.
+pub fn load_body(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Vec<Polytope>> {
+    let path = Path::new(spec);
+    if path.is_file() {
+        let is_obj = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+        if is_obj {
+            let objects = dymsum_io::formats::read_obj_objects(path)
+                .map_err(|e| anyhow!("{operand} (file {}): {e}", short_name(spec)))?;
+            if objects.len() > 1 {
+                return objects
+                    .into_iter()
+                    .map(|(name, mesh)| {
+                        let poly = if mesh.faces.is_empty() {
+                            let pts: Vec<DVec3> =
+                                mesh.vertices.iter().map(|&p| DVec3::from(p)).collect();
+                            Polytope::from_dvec3s(&pts)
+                        } else {
+                            Polytope::from_mesh(&mesh, policy(strict)).map(|(p, _)| p)
+                        };
+                        poly.map_err(|e| {
+                            anyhow!(
+                                "{operand} (file {}, object `{name}`): {e}",
+                                short_name(spec)
+                            )
+                        })
+                    })
+                    .collect();
+            }
+        }
+        return Ok(vec![load(spec, operand, strict)?.polytope]);
+    }
+    if spec.contains('+') {
+        return spec
+            .split('+')
+            .enumerate()
+            .map(|(i, part)| {
+                load(part.trim(), &format!("{operand} piece {}", i + 1), strict).map(|l| l.polytope)
+            })
+            .collect();
+    }
+    Ok(vec![load(spec, operand, strict)?.polytope])
+}
+
+/// One line of `--json` output, in this key order.
+#[derive(Serialize)]
+struct JsonLine {
+    pose: [f64; 7],
+    collides: bool,
+    depth: Option<f64>,
+    distance: f64,
+    direction: Option<[f64; 3]>,
+}
+
+/// One pose's answer.
+struct Answer {
+    collides: bool,
+    /// `None`: depth of a colliding non-convex union (not supported).
+    depth: Option<f64>,
+    distance: f64,
+    direction: Option<DVec3>,
+}
+
+fn from_proximity(p: &Proximity) -> Answer {
+    Answer {
+        collides: p.intersects(),
+        depth: Some(p.depth()),
+        distance: p.distance(),
+        direction: Some(p.a_direction()),
+    }
+}
+
+/// Runs `dymsum query`.
+pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    let robot = load_body(&a.robot, "ROBOT", a.strict)?;
+    let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
+    let answers: Vec<Answer> = if robot.len() == 1 && obstacle.len() == 1 {
+        let pair = ConvexPair::new(&robot[0], &obstacle[0]).context("preparing the query")?;
+        let mut tracker = pair
+            .tracker(a.poses[0].pose, Pose::IDENTITY)
+            .context("the first pose")?;
+        let mut answers = Vec::with_capacity(a.poses.len());
+        for (k, p) in a.poses.iter().enumerate() {
+            let prox = if k == 0 {
+                *tracker.last()
+            } else {
+                tracker
+                    .update(p.pose, Pose::IDENTITY)
+                    .with_context(|| format!("pose {}", k + 1))?
+            };
+            answers.push(from_proximity(&prox));
+        }
+        answers
+    } else {
+        let (ru, ou) = (
+            ConvexUnion::new(robot).ok_or_else(|| anyhow!("ROBOT has no pieces"))?,
+            ConvexUnion::new(obstacle).ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?,
+        );
+        let single = ru.pieces().len() == 1 && ou.pieces().len() == 1;
+        a.poses
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let q = ru
+                    .query(p.pose, &ou, Pose::IDENTITY)
+                    .with_context(|| format!("pose {}", k + 1))?;
+                Ok(match q {
+                    UnionProximity::Colliding(hits) if single => {
+                        let c = hits[0].1;
+                        Answer {
+                            collides: true,
+                            depth: Some(c.depth),
+                            distance: 0.0,
+                            direction: Some(-c.normal),
+                        }
+                    }
+                    UnionProximity::Colliding(_) => Answer {
+                        collides: true,
+                        depth: None,
+                        distance: 0.0,
+                        direction: None,
+                    },
+                    UnionProximity::Separated(_, s) => Answer {
+                        collides: false,
+                        depth: Some(0.0),
+                        distance: s.distance,
+                        direction: Some(s.direction),
+                    },
+                })
+            })
+            .collect::<anyhow::Result<_>>()?
+    };
+    for (p, ans) in a.poses.iter().zip(&answers) {
+        if a.json {
+            let line = JsonLine {
+                pose: p.values,
+                collides: ans.collides,
+                depth: ans.depth,
+                distance: ans.distance,
+                direction: ans.direction.map(|d| d.to_array()),
+            };
+            writeln!(out, "{}", serde_json::to_string(&line)?)?;
+        } else {
+            let v = p.values;
+            let pose = format!(
+                "t = ({}, {}, {}), q = ({}, {}, {}, {})",
+                v[0], v[1], v[2], v[3], v[4], v[5], v[6]
+            );
+            let dir = |d: Option<DVec3>| match d {
+                Some(d) => format!("({:.6}, {:.6}, {:.6})", d.x, d.y, d.z),
+                None => "n/a".to_string(),
+            };
+            if ans.collides {
+                match ans.depth {
+                    Some(depth) => writeln!(
+                        out,
+                        "{pose}: collides, depth {depth:.9}, separate by moving the robot along {}",
+                        dir(ans.direction)
+                    )?,
+                    None => writeln!(
+                        out,
+                        "{pose}: collides (depth of a non-convex union is not supported)"
+                    )?,
+                }
+            } else {
+                writeln!(
+                    out,
+                    "{pose}: apart, distance {:.9}, obstacle towards {}",
+                    ans.distance,
+                    dir(ans.direction)
+                )?;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,284 @@
+//! End-to-end tests of `dymsum query` and `dymsum cobst`: output formats,
+//! agreement with the library, exit codes (0 ok, 1 bad input, 2 usage).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use dymsum::polytope::MeshPolicy;
+use dymsum::query::{orientations_about_axis, ConvexPair};
+use dymsum::{DVec3, Polytope, Pose, Rotation};
+
+const BIN: &str = env!("CARGO_BIN_EXE_dymsum");
+
+fn temp_dir(name: &str) -> PathBuf {
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "dymsum-query-test-{}-{}-{name}",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(BIN)
+        .args(args)
+        .output()
+        .expect("the dymsum binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn model(name: &str) -> Polytope {
+    dymsum_io::load_polytope(name, MeshPolicy::default())
+        .unwrap()
+        .polytope
+}
+
+#[test]
+fn query_json_lines_match_the_library() {
+    let poses = [
+        "0,0,0,1,0,0,0",
+        "1.2,0.3,-0.1,0.9,0.1,0.3,0.2",
+        "2.5,0,0,1,0,0,0",
+        "-0.3,2.2,0.4,0.5,0.5,0.5,0.5",
+    ];
+    let mut args = vec!["query", "gs2", "box:1,2,0.5", "--json"];
+    for p in &poses {
+        args.push("--pose");
+        args.push(p);
+    }
+    let o = run(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), poses.len());
+    let (robot, obstacle) = (model("gs2"), model("box:1,2,0.5"));
+    let pair = ConvexPair::new(&robot, &obstacle).unwrap();
+    for (line, p) in lines.iter().zip(&poses) {
+        assert!(
+            line.starts_with("{\"pose\":[") && line.contains("],\"collides\":"),
+            "key order: {line}"
+        );
+        let v: serde_json::Value = serde_json::from_str(line).unwrap();
+        let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+        assert_eq!(keys.len(), 5, "{line}");
+        let n: Vec<f64> = p.split(',').map(|x| x.parse().unwrap()).collect();
+        let pose = Pose::new(
+            Rotation::from_wxyz(n[3], n[4], n[5], n[6]).unwrap(),
+            DVec3::new(n[0], n[1], n[2]),
+        );
+        let want = pair.query(pose, Pose::IDENTITY).unwrap();
+        assert_eq!(
+            v["collides"].as_bool().unwrap(),
+            want.intersects(),
+            "{line}"
+        );
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-15 * y.abs().max(1.0);
+        assert!(close(v["depth"].as_f64().unwrap(), want.depth()), "{line}");
+        assert!(
+            close(v["distance"].as_f64().unwrap(), want.distance()),
+            "{line}"
+        );
+        let d: Vec<f64> = v["direction"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        assert!(
+            (DVec3::new(d[0], d[1], d[2]) - want.a_direction()).length() <= 1e-15,
+            "{line}"
+        );
+        let pose_back: Vec<f64> = v["pose"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        for (x, y) in pose_back.iter().zip(&n) {
+            assert!(close(*x, *y), "{line}");
+        }
+    }
+    // Both outcomes appear.
+    assert!(text.contains("\"collides\":true") && text.contains("\"collides\":false"));
+}
+
+#[test]
+fn query_human_output_and_errors() {
+    let o = run(&[
+        "query",
+        "box",
+        "box",
+        "--pose",
+        "0.5,0,0,1,0,0,0",
+        "--pose",
+        "3,0,0,1,0,0,0",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("collides, depth 0.500000000"), "{text}");
+    assert!(text.contains("apart, distance 2.000000000"), "{text}");
+    // Usage errors: exit 2.
+    for bad in ["1,2,3", "0,0,0,0,0,0,0", "0,0,0,1,0,0,nan"] {
+        let o = run(&["query", "box", "box", "--pose", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {}", stderr(&o));
+    }
+    assert_eq!(run(&["query", "box", "box"]).status.code(), Some(2));
+    // Bad input: exit 1, naming the operand.
+    let o = run(&["query", "no_such.off", "box", "--pose", "0,0,0,1,0,0,0"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("ROBOT"), "{}", stderr(&o));
+}
+
+#[test]
+fn query_unions_of_pieces() {
+    // Robot: two unit boxes (one at the origin, one translated is not
+    // expressible by name, so use two different boxes centred alike).
+    let o = run(&[
+        "query",
+        "box:4,0.2,0.2+box:0.2,0.2,4",
+        "box:0.5",
+        "--pose",
+        "0,1,0,1,0,0,0",
+        "--pose",
+        "0,0,0,1,0,0,0",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines[0]["collides"], false);
+    assert!(
+        (lines[0]["distance"].as_f64().unwrap() - 0.65).abs() < 1e-12,
+        "{text}"
+    );
+    assert_eq!(lines[1]["collides"], true);
+    assert!(
+        lines[1]["depth"].is_null(),
+        "depth of a union is not supported: {text}"
+    );
+}
+
+#[test]
+fn cobst_axis_writes_slices_and_index() {
+    let dir = temp_dir("axis");
+    let out = dir.join("slices");
+    let o = run(&[
+        "cobst",
+        "gs1",
+        "box:2,1,1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "12",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("index.json")).unwrap()).unwrap();
+    let entries = index.as_array().unwrap();
+    assert_eq!(entries.len(), 12);
+    let turns = orientations_about_axis(DVec3::Z, 12).unwrap();
+    let (robot, obstacle) = (model("gs1"), model("box:2,1,1"));
+    let slices = dymsum::query::cobstacle_slices(&robot, &obstacle, &turns).unwrap();
+    for (k, e) in entries.iter().enumerate() {
+        assert_eq!(e["slice"].as_u64().unwrap() as usize, k);
+        let file = format!("slice_{k:05}.off");
+        assert_eq!(e["file"].as_str().unwrap(), file);
+        let q: Vec<f64> = e["orientation"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        // serde_json parses floats to within an ulp (no float_roundtrip).
+        for (x, y) in q.iter().zip(turns[k].wxyz()) {
+            assert!((x - y).abs() <= 1e-15, "{q:?}");
+        }
+        let mesh = dymsum_io::formats::read_mesh(&out.join(&file)).unwrap();
+        assert_eq!(e["faces"].as_u64().unwrap() as usize, mesh.faces.len());
+        assert_eq!(mesh.faces.len(), slices[k].faces.len());
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn cobst_orientation_file_and_its_errors() {
+    let dir = temp_dir("file");
+    let good = dir.join("o.txt");
+    std::fs::write(
+        &good,
+        "# orientations\n1,0,0,0\n\n0.7071 0 0 0.7071  # quarter turn\n",
+    )
+    .unwrap();
+    let out = dir.join("s");
+    let o = run(&[
+        "cobst",
+        "box",
+        "gs1",
+        "--orientations",
+        good.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(Path::new(&out.join("slice_00001.off")).is_file());
+    assert!(!Path::new(&out.join("slice_00002.off")).exists());
+    let bad = dir.join("bad.txt");
+    std::fs::write(&bad, "1,0,0,0\n1,0,0\n").unwrap();
+    let o = run(&[
+        "cobst",
+        "box",
+        "gs1",
+        "--orientations",
+        bad.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("line 2"), "{}", stderr(&o));
+    // Neither source, or both: usage errors.
+    let o = run(&["cobst", "box", "gs1", "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(&[
+        "cobst",
+        "box",
+        "gs1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "3",
+        "--orientations",
+        good.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = run(&[
+        "cobst",
+        "box",
+        "gs1",
+        "--axis",
+        "0,0,0",
+        "--slices",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,182 @@
+//! Configuration-space obstacles of a translating and rotating robot, one
+//! slice per robot orientation.
+//!
+//! With the robot's reference point at its origin, the robot at orientation
+//! `R` and translation `t` occupies `R·A + t`, which meets the obstacle `O`
+//! exactly when `t ∈ O ⊕ (−R·A)`. That sum is the C-obstacle slice at `R`.
+//! `−R·A = R·(−A)`, so one reflected robot `−A` is built once and rotated;
+//! consecutive slices are computed by a [`DynamicSum`] moved from slice to
+//! slice (DYMSUM updates). The result of every slice is identical to the
+//! static sum at that orientation, so the batch form
+//! ([`CObstacle::slices_par`]) — contiguous chunks of the orientation list,
+//! one dynamic sum per chunk, chunks on rayon's threads — returns exactly
+//! the sequential result, in order.
+//!
+//! ```
+//! use dymsum::{Polytope, DVec3};
+//! use dymsum::query::{cobstacle_slices, orientations_about_axis};
+//! let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]).unwrap();
+//! let box_: Vec<[f64; 3]> = (0..8)
+//!     .map(|i| [2.0 * (i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+//!     .collect();
+//! let obstacle = Polytope::from_points(&box_).unwrap();
+//! let turns = orientations_about_axis(DVec3::Z, 8).unwrap();
+//! let slices = cobstacle_slices(&tet, &obstacle, &turns).unwrap();
+//! assert_eq!(slices.len(), 8);
+//! ```
+
+use super::{QueryError, Reflected};
+use crate::polytope::Polytope;
+use crate::sum::{minkowski_sum_posed, Method};
+use crate::{DVec3, DynamicSum, PolygonMesh, Pose, Rotation};
+use rayon::prelude::*;
+
+/// `n` rotations about `axis`, by the angles `2πk/n` for `k = 0..n`.
+/// `None` for a zero or non-finite axis or `n = 0`.
+pub fn orientations_about_axis(axis: DVec3, n: usize) -> Option<Vec<Rotation>> {
+    if n == 0 {
+        return None;
+    }
+    (0..n)
+        .map(|k| {
+            let angle = std::f64::consts::TAU * k as f64 / n as f64;
+            Rotation::from_axis_angle(axis, angle)
+        })
+        .collect()
+}
+
+/// A robot (reflected once) and an obstacle, ready to be sliced.
+#[derive(Clone, Debug)]
+pub struct CObstacle<'a> {
+    neg_robot: Reflected,
+    obstacle: &'a Polytope,
+}
+
+impl<'a> CObstacle<'a> {
+    /// Prepares `robot` (reflects it: one convex hull) against `obstacle`.
+    pub fn new(robot: &Polytope, obstacle: &'a Polytope) -> Result<Self, QueryError> {
+        Ok(CObstacle {
+            neg_robot: Reflected::new(robot)?,
+            obstacle,
+        })
+    }
+
+    /// The reflected robot `−A`.
+    pub fn reflected_robot(&self) -> &Polytope {
+        &self.neg_robot.polytope
+    }
+
+    /// The slice at one orientation, computed from scratch.
+    pub fn slice(&self, orientation: Rotation) -> Result<PolygonMesh, QueryError> {
+        let sum = minkowski_sum_posed(
+            &self.neg_robot.polytope,
+            Pose::new(orientation, DVec3::ZERO),
+            self.obstacle,
+            Pose::IDENTITY,
+            Method::Walk,
+        )?;
+        Ok(sum.to_mesh())
+    }
+
+    /// The slices in order, one dynamic sum moved from slice to slice; the
+    /// iterator yields `Err` (and then stops) if an update fails.
+    pub fn slices<'s>(
+        &'s self,
+        orientations: &'s [Rotation],
+    ) -> impl Iterator<Item = Result<PolygonMesh, QueryError>> + 's {
+        let mut sum: Option<DynamicSum<'s>> = None;
+        let mut failed = false;
+        orientations.iter().map_while(move |&r| {
+            if failed {
+                return None;
+            }
+            let res = self.advance(&mut sum, r).map(|s| s.to_mesh());
+            failed = res.is_err();
+            Some(res)
+        })
+    }
+
+    fn advance<'s, 'b>(
+        &'s self,
+        sum: &'b mut Option<DynamicSum<'s>>,
+        r: Rotation,
+    ) -> Result<&'b DynamicSum<'s>, QueryError> {
+        let pose = Pose::new(r, DVec3::ZERO);
+        match sum {
+            Some(s) => {
+                s.set_pose(pose, Pose::IDENTITY)?;
+            }
+            None => {
+                *sum = Some(DynamicSum::new(
+                    &self.neg_robot.polytope,
+                    pose,
+                    self.obstacle,
+                    Pose::IDENTITY,
+                )?);
+            }
+        }
+        Ok(sum.as_ref().expect("set above"))
+    }
+
+    /// Maps every slice through `f(index, orientation, sum)` in parallel:
+    /// the orientations are split into contiguous chunks (about four per
+    /// thread), each chunk walked by its own dynamic sum on a rayon thread.
+    /// Results are in input order and do not depend on the chunking.
+    pub fn map_par<T, F>(&self, orientations: &[Rotation], f: F) -> Result<Vec<T>, QueryError>
+    where
+        T: Send,
+        F: Fn(usize, Rotation, &DynamicSum<'_>) -> T + Sync,
+    {
+        if orientations.is_empty() {
+            return Ok(Vec::new());
+        }
+        let chunks = (rayon::current_num_threads() * 4).max(1);
+        let size = orientations.len().div_ceil(chunks).max(1);
+        let parts: Vec<Result<Vec<T>, QueryError>> = orientations
+            .par_chunks(size)
+            .enumerate()
+            .map(|(c, chunk)| {
+                let mut sum = None;
+                chunk
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &r)| {
+                        let s = self.advance(&mut sum, r)?;
+                        Ok(f(c * size + i, r, s))
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut out = Vec::with_capacity(orientations.len());
+        for p in parts {
+            out.extend(p?);
+        }
+        Ok(out)
+    }
+
+    /// All slices, computed in parallel (see [`CObstacle::map_par`]).
+    pub fn slices_par(&self, orientations: &[Rotation]) -> Result<Vec<PolygonMesh>, QueryError> {
+        self.map_par(orientations, |_, _, s| s.to_mesh())
+    }
+}
+
+/// The C-obstacle slices `O ⊕ (−R·A)` of `robot` among `obstacle`, one per
+/// orientation, computed sequentially by one dynamic sum.
+pub fn cobstacle_slices(
+    robot: &Polytope,
+    obstacle: &Polytope,
+    orientations: &[Rotation],
+) -> Result<Vec<PolygonMesh>, QueryError> {
+    CObstacle::new(robot, obstacle)?
+        .slices(orientations)
+        .collect()
+}
+
+/// [`cobstacle_slices`] spread over rayon's threads (same result).
+pub fn cobstacle_slices_par(
+    robot: &Polytope,
+    obstacle: &Polytope,
+    orientations: &[Rotation],
+) -> Result<Vec<PolygonMesh>, QueryError> {
+    CObstacle::new(robot, obstacle)?.slices_par(orientations)
+}
