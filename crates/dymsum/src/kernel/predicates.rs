@@ -68,6 +68,18 @@ impl Sign {
             Sign::Positive => Sign::Negative,
         }
     }
+    /// The sign of `value` if `|value| > bound` (a certified error bound),
+    /// else `None`: the filters' one decision rule.
+    #[inline]
+    pub fn certified(value: f64, bound: f64) -> Option<Sign> {
+        if value > bound {
+            Some(Sign::Positive)
+        } else if -value > bound {
+            Some(Sign::Negative)
+        } else {
+            None
+        }
+    }
     /// `true` for `Positive`.
     #[inline]
     pub fn is_positive(self) -> bool {
@@ -169,13 +181,7 @@ fn det3_filter<V: ExactVector>(a: &V, b: &V, c: &V) -> (f64, f64) {
 #[inline]
 pub fn det3<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
     let (det, bound) = det3_filter(a, b, c);
-    if det > bound {
-        Sign::Positive
-    } else if -det > bound {
-        Sign::Negative
-    } else {
-        det3_exact(a, b, c)
-    }
+    Sign::certified(det, bound).unwrap_or_else(|| det3_exact(a, b, c))
 }
 
 /// Second stage: the determinant of the double-double normals, with a
@@ -190,14 +196,7 @@ fn det3_refined<V: ExactVector>(a: &V, b: &V, c: &V) -> Option<Sign> {
     let input = ex * ny * nz + nx * ey * nz + nx * ny * ez;
     let rounding = 64.0 * U * U * nx * ny * nz;
     let bound = 1.01 * (input + rounding) + f64::MIN_POSITIVE;
-    let v = det.hi + det.lo;
-    if v > bound {
-        Some(Sign::Positive)
-    } else if -v > bound {
-        Some(Sign::Negative)
-    } else {
-        None
-    }
+    Sign::certified(det.hi + det.lo, bound)
 }
 
 #[cold]
@@ -340,13 +339,7 @@ fn cofactor_sign(m: &[ExactVec; 3], row: usize, col: usize) -> Sign {
 #[inline]
 pub fn sos_det3<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
     let (det, bound) = det3_filter(a, b, c);
-    if det > bound {
-        Sign::Positive
-    } else if -det > bound {
-        Sign::Negative
-    } else {
-        sos_slow(a, b, c)
-    }
+    Sign::certified(det, bound).unwrap_or_else(|| sos_slow(a, b, c))
 }
 
 #[cold]

@@ -79,14 +79,10 @@ impl<'a> GaussView<'a> {
         let mm = m.abs().max_element() * SQRT3;
         let xm = x.approx.abs().max_element() * SQRT3;
         let bound = 1.01 * (em * (xm + x.err) + mm * x.err + 6.0 * U * mm * xm);
-        if v > bound {
-            Sign::Positive
-        } else if -v > bound {
-            Sign::Negative
-        } else {
+        Sign::certified(v, bound).unwrap_or_else(|| {
             let (a, b) = self.edge_arc(e);
             sos_det3(&a, &b, x)
-        }
+        })
     }
 
     /// The side of `x` relative to ring arc `i` of a vertex (from the ring's
