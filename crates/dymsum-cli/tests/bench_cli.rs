@@ -2,28 +2,11 @@
 //! each experiment writes, their columns and numbers, and the exit codes.
 //! Tiny step counts keep every test to a few seconds.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-const BIN: &str = env!("CARGO_BIN_EXE_dymsum");
-
-/// A fresh empty directory under the system temp dir.
-fn temp_dir(name: &str) -> PathBuf {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "dymsum-bench-test-{}-{}-{name}",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("run dymsum")
-}
+use common::{run, temp_dir};
 
 fn ok(args: &[&str]) -> String {
     let o = run(args);
@@ -34,6 +17,18 @@ fn ok(args: &[&str]) -> String {
         String::from_utf8_lossy(&o.stderr)
     );
     String::from_utf8(o.stdout).unwrap()
+}
+
+/// Runs `dymsum bench EXPERIMENT ARGS --out DIR` with DIR a fresh
+/// directory named after the experiment, asserts success and returns DIR
+/// and stdout.
+fn bench(experiment: &str, args: &[&str]) -> (PathBuf, String) {
+    let dir = temp_dir(experiment);
+    let mut all = vec!["bench", experiment];
+    all.extend_from_slice(args);
+    all.extend(["--out", dir.to_str().unwrap()]);
+    let stdout = ok(&all);
+    (dir, stdout)
 }
 
 /// Reads a CSV file: header and rows.
@@ -75,19 +70,10 @@ fn assert_svg(path: &Path) {
 
 #[test]
 fn table1_writes_91_rows_with_the_exact_columns() {
-    let dir = temp_dir("table1");
-    let stdout = ok(&[
-        "bench",
+    let (dir, stdout) = bench(
         "table1",
-        "--steps",
-        "2",
-        "--static-poses",
-        "1",
-        "--hull-poses",
-        "1",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
+        &["--steps", "2", "--static-poses", "1", "--hull-poses", "1"],
+    );
     let (header, rows) = read_csv(&dir.join("table1.csv"));
     assert_eq!(
         header.join(","),
@@ -142,21 +128,19 @@ fn table1_writes_91_rows_with_the_exact_columns() {
 
 #[test]
 fn rotation_writes_csv_and_plots() {
-    let dir = temp_dir("rotation");
-    let stdout = ok(&[
-        "bench",
+    let (dir, stdout) = bench(
         "rotation",
-        "--steps-per-rev",
-        "10,500,100000",
-        "--pairs",
-        "cube+cube,gs1+hp",
-        "--steps",
-        "20",
-        "--static-poses",
-        "2",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
+        &[
+            "--steps-per-rev",
+            "10,500,100000",
+            "--pairs",
+            "cube+cube,gs1+hp",
+            "--steps",
+            "20",
+            "--static-poses",
+            "2",
+        ],
+    );
     let (header, rows) = read_csv(&dir.join("rotation.csv"));
     assert_eq!(
         header[..7].join(","),
@@ -179,21 +163,19 @@ fn rotation_writes_csv_and_plots() {
 
 #[test]
 fn size_writes_csv_plots_and_exponents() {
-    let dir = temp_dir("size");
-    let stdout = ok(&[
-        "bench",
+    let (dir, stdout) = bench(
         "size",
-        "--tcube",
-        "1,2,3",
-        "--sphere",
-        "1,2,3",
-        "--steps",
-        "20",
-        "--static-poses",
-        "2",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
+        &[
+            "--tcube",
+            "1,2,3",
+            "--sphere",
+            "1,2,3",
+            "--steps",
+            "20",
+            "--static-poses",
+            "2",
+        ],
+    );
     let (header, rows) = read_csv(&dir.join("size.csv"));
     assert_eq!(header[..4].join(","), "family,model,input_triangles,faces");
     assert_eq!(rows.len(), 6);

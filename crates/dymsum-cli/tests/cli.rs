@@ -1,76 +1,18 @@
 //! End-to-end tests of the `dymsum` binary: every subcommand and flag, the
 //! exit codes (0 ok, 1 bad input, 2 usage) and the error messages.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
+mod common;
 
+use common::{fixture, ok, run, run_in, stderr, stdout, temp_dir};
 use dymsum::polytope::MeshPolicy;
 use dymsum::Polytope;
 use dymsum_io::formats::read_mesh;
-
-const BIN: &str = env!("CARGO_BIN_EXE_dymsum");
 
 /// The paper's 13 models.
 const PAPER_MODELS: [&str; 13] = [
     "cone", "cube", "cylinder", "dd", "ellipse", "gs1", "gs2", "gs3", "gs4", "hp", "t", "ti",
     "vrod",
 ];
-
-/// A fresh empty directory under the system temp dir.
-fn temp_dir(name: &str) -> PathBuf {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "dymsum-cli-test-{}-{}-{name}",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn fixture(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures")
-        .join(name)
-        .to_str()
-        .unwrap()
-        .to_string()
-}
-
-fn run_in(cwd: Option<&Path>, args: &[&str]) -> Output {
-    let mut cmd = Command::new(BIN);
-    cmd.args(args);
-    if let Some(dir) = cwd {
-        cmd.current_dir(dir);
-    }
-    cmd.output().expect("the dymsum binary runs")
-}
-
-fn run(args: &[&str]) -> Output {
-    run_in(None, args)
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Asserts success and returns stdout.
-fn ok(args: &[&str]) -> String {
-    let o = run(args);
-    assert!(
-        o.status.success(),
-        "dymsum {args:?} failed: {}\n{}",
-        stderr(&o),
-        stdout(&o)
-    );
-    stdout(&o)
-}
 
 /// Asserts exit code 1 (bad input) with every `needles` in stderr, no panic.
 fn bad_input(args: &[&str], needles: &[&str]) -> String {
@@ -566,49 +508,18 @@ fn bad_flags_are_usage_errors() {
     usage_error(&["sum", "gs1"]);
     usage_error(&["frobnicate"]);
     usage_error(&["info"]);
-    usage_error(&[
-        "animate",
-        "gs1",
-        "dd",
-        "--steps-per-rev",
-        "0",
-        "--steps",
-        "3",
-    ]);
-    usage_error(&[
-        "animate",
-        "gs1",
-        "dd",
-        "--steps-per-rev",
-        "nan",
-        "--steps",
-        "3",
-    ]);
-    usage_error(&[
-        "animate",
-        "gs1",
-        "dd",
-        "--steps-per-rev",
-        "10",
-        "--steps",
-        "-3",
-    ]);
-    usage_error(&["animate", "gs1", "dd", "--steps-per-rev", "10"]);
-    usage_error(&[
-        "animate",
-        "gs1",
-        "dd",
-        "--steps-per-rev",
-        "10",
-        "--steps",
-        "3",
-        "--every",
-        "2",
-    ]);
-    usage_error(&[
-        "animate",
-        "gs1",
-        "dd",
+    // `dymsum animate gs1 dd ARGS`.
+    let animate = |args: &[&str]| {
+        let mut all = vec!["animate", "gs1", "dd"];
+        all.extend_from_slice(args);
+        usage_error(&all)
+    };
+    animate(&["--steps-per-rev", "0", "--steps", "3"]);
+    animate(&["--steps-per-rev", "nan", "--steps", "3"]);
+    animate(&["--steps-per-rev", "10", "--steps", "-3"]);
+    animate(&["--steps-per-rev", "10"]);
+    animate(&["--steps-per-rev", "10", "--steps", "3", "--every", "2"]);
+    animate(&[
         "--steps-per-rev",
         "10",
         "--steps",

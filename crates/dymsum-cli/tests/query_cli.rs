@@ -1,47 +1,21 @@
 //! End-to-end tests of `dymsum query` and `dymsum cobst`: output formats,
 //! agreement with the library, exit codes (0 ok, 1 bad input, 2 usage).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
+mod common;
 
-use dymsum::polytope::MeshPolicy;
+use std::path::Path;
+
+use common::{model, ok, run, stderr, temp_dir};
 use dymsum::query::{orientations_about_axis, ConvexPair};
-use dymsum::{DVec3, Polytope, Pose, Rotation};
+use dymsum::{DVec3, Pose, Rotation};
 
-const BIN: &str = env!("CARGO_BIN_EXE_dymsum");
-
-fn temp_dir(name: &str) -> PathBuf {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "dymsum-query-test-{}-{}-{name}",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .output()
-        .expect("the dymsum binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn model(name: &str) -> Polytope {
-    dymsum_io::load_polytope(name, MeshPolicy::default())
+/// A JSON array of numbers.
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
         .unwrap()
-        .polytope
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
 }
 
 #[test]
@@ -57,9 +31,7 @@ fn query_json_lines_match_the_library() {
         args.push("--pose");
         args.push(p);
     }
-    let o = run(&args);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let text = stdout(&o);
+    let text = ok(&args);
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines.len(), poses.len());
     let (robot, obstacle) = (model("gs2"), model("box:1,2,0.5"));
@@ -89,22 +61,12 @@ fn query_json_lines_match_the_library() {
             close(v["distance"].as_f64().unwrap(), want.distance()),
             "{line}"
         );
-        let d: Vec<f64> = v["direction"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
+        let d: Vec<f64> = numbers(&v["direction"]);
         assert!(
             (DVec3::new(d[0], d[1], d[2]) - want.a_direction()).length() <= 1e-15,
             "{line}"
         );
-        let pose_back: Vec<f64> = v["pose"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
+        let pose_back: Vec<f64> = numbers(&v["pose"]);
         for (x, y) in pose_back.iter().zip(&n) {
             assert!(close(*x, *y), "{line}");
         }
@@ -115,7 +77,7 @@ fn query_json_lines_match_the_library() {
 
 #[test]
 fn query_human_output_and_errors() {
-    let o = run(&[
+    let text = ok(&[
         "query",
         "box",
         "box",
@@ -124,8 +86,6 @@ fn query_human_output_and_errors() {
         "--pose",
         "3,0,0,1,0,0,0",
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let text = stdout(&o);
     assert!(text.contains("collides, depth 0.500000000"), "{text}");
     assert!(text.contains("apart, distance 2.000000000"), "{text}");
     // Usage errors: exit 2.
@@ -144,7 +104,7 @@ fn query_human_output_and_errors() {
 fn query_unions_of_pieces() {
     // Robot: two unit boxes (one at the origin, one translated is not
     // expressible by name, so use two different boxes centred alike).
-    let o = run(&[
+    let text = ok(&[
         "query",
         "box:4,0.2,0.2+box:0.2,0.2,4",
         "box:0.5",
@@ -154,8 +114,6 @@ fn query_unions_of_pieces() {
         "0,0,0,1,0,0,0",
         "--json",
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let text = stdout(&o);
     let lines: Vec<serde_json::Value> = text
         .lines()
         .map(|l| serde_json::from_str(l).unwrap())
@@ -176,7 +134,7 @@ fn query_unions_of_pieces() {
 fn cobst_axis_writes_slices_and_index() {
     let dir = temp_dir("axis");
     let out = dir.join("slices");
-    let o = run(&[
+    ok(&[
         "cobst",
         "gs1",
         "box:2,1,1",
@@ -187,7 +145,6 @@ fn cobst_axis_writes_slices_and_index() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
     let index: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("index.json")).unwrap()).unwrap();
     let entries = index.as_array().unwrap();
@@ -199,12 +156,7 @@ fn cobst_axis_writes_slices_and_index() {
         assert_eq!(e["slice"].as_u64().unwrap() as usize, k);
         let file = format!("slice_{k:05}.off");
         assert_eq!(e["file"].as_str().unwrap(), file);
-        let q: Vec<f64> = e["orientation"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
+        let q: Vec<f64> = numbers(&e["orientation"]);
         // serde_json parses floats to within an ulp (no float_roundtrip).
         for (x, y) in q.iter().zip(turns[k].wxyz()) {
             assert!((x - y).abs() <= 1e-15, "{q:?}");
@@ -226,59 +178,29 @@ fn cobst_orientation_file_and_its_errors() {
     )
     .unwrap();
     let out = dir.join("s");
-    let o = run(&[
-        "cobst",
-        "box",
-        "gs1",
-        "--orientations",
-        good.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    // `dymsum cobst box gs1 ARGS --out OUT`.
+    let cobst = |args: &[&str]| {
+        let mut all = vec!["cobst", "box", "gs1"];
+        all.extend_from_slice(args);
+        all.extend(["--out", out.to_str().unwrap()]);
+        run(&all)
+    };
+    let good = good.to_str().unwrap();
+    let o = cobst(&["--orientations", good]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(Path::new(&out.join("slice_00001.off")).is_file());
     assert!(!Path::new(&out.join("slice_00002.off")).exists());
     let bad = dir.join("bad.txt");
     std::fs::write(&bad, "1,0,0,0\n1,0,0\n").unwrap();
-    let o = run(&[
-        "cobst",
-        "box",
-        "gs1",
-        "--orientations",
-        bad.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = cobst(&["--orientations", bad.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("line 2"), "{}", stderr(&o));
     // Neither source, or both: usage errors.
-    let o = run(&["cobst", "box", "gs1", "--out", out.to_str().unwrap()]);
+    let o = cobst(&[]);
     assert_eq!(o.status.code(), Some(2));
-    let o = run(&[
-        "cobst",
-        "box",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "3",
-        "--orientations",
-        good.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = cobst(&["--axis", "0,0,1", "--slices", "3", "--orientations", good]);
     assert_eq!(o.status.code(), Some(2));
-    let o = run(&[
-        "cobst",
-        "box",
-        "gs1",
-        "--axis",
-        "0,0,0",
-        "--slices",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = cobst(&["--axis", "0,0,0", "--slices", "3"]);
     assert_eq!(o.status.code(), Some(2));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -6,15 +6,13 @@
 //! unit normal `n` has `n · v > 1e-9`, `v = (cos el cos az, cos el sin az,
 //! sin el)` the unit vector towards the viewer.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
+mod common;
 
-use dymsum::polytope::MeshPolicy;
+use std::path::Path;
+
+use common::{fixture, model, run, temp_dir};
 use dymsum::sum::Facet;
 use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
-
-const BIN: &str = env!("CARGO_BIN_EXE_dymsum");
 
 /// A π/40 turn about the y axis (the paper's Fig. 1), as `W,X,Y,Z`.
 fn pi_over_40_about_y() -> String {
@@ -22,38 +20,12 @@ fn pi_over_40_about_y() -> String {
     format!("{},0,{},0", h.cos(), h.sin())
 }
 
-/// A fresh empty directory under the system temp dir.
-fn temp_dir(name: &str) -> PathBuf {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "dymsum-render-test-{}-{}-{name}",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn fixture(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures")
-        .join(name)
-        .to_str()
-        .unwrap()
-        .to_string()
-}
-
-fn dymsum(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("run dymsum")
-}
-
 /// Runs `dymsum render ARGS -o OUT` and asserts success.
 fn render(args: &[&str], out: &Path) -> String {
     let mut all: Vec<&str> = vec!["render"];
     all.extend_from_slice(args);
     all.extend_from_slice(&["-o", out.to_str().unwrap()]);
-    let o = dymsum(&all);
+    let o = run(&all);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "dymsum {all:?} failed: {err}");
     assert!(!err.contains("panicked"), "{err}");
@@ -61,7 +33,7 @@ fn render(args: &[&str], out: &Path) -> String {
 }
 
 fn assert_exit(args: &[&str], code: i32) {
-    let o = dymsum(args);
+    let o = run(args);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(code), "dymsum {args:?}: {err}");
     assert!(!err.contains("panicked"), "{err}");
@@ -70,12 +42,6 @@ fn assert_exit(args: &[&str], code: i32) {
 
 fn count(svg: &str, needle: &str) -> usize {
     svg.matches(needle).count()
-}
-
-fn load(spec: &str) -> Polytope {
-    dymsum_io::load_polytope(spec, MeshPolicy::default())
-        .unwrap()
-        .polytope
 }
 
 fn rotation(wxyz: &str) -> Rotation {
@@ -118,7 +84,7 @@ fn facet_normal(p: &Polytope, pp: &Pose, q: &Polytope, pq: &Pose, facet: Facet) 
 /// `(added, highlighted)`: the facets the turn adds and those of them that
 /// face the viewer.
 fn expected(p: &str, q: &str, rotate_p: &str, after: &str, view: (f64, f64)) -> (usize, usize) {
-    let (p, q) = (load(p), load(q));
+    let (p, q) = (model(p), model(q));
     let pose = Pose::new(rotation(rotate_p), DVec3::ZERO);
     let mut s = DynamicSum::new(&p, pose, &q, Pose::IDENTITY).unwrap();
     let report = s.rotate_p_by(rotation(after)).unwrap();

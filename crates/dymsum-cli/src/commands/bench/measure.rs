@@ -10,12 +10,14 @@
 //! The whole measurement is repeated [`Plan::repeats`] times with the same
 //! motion, and each method's figure is the median of the repeats' means.
 
+use std::io::Write;
 use std::time::Instant;
 
 use anyhow::Context;
 use dymsum::sum::{minkowski_sum_posed, Facet, Method};
 use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
 
+use super::num;
 use crate::motion::PaperMotion;
 use crate::stats::{mean, median, micros};
 
@@ -87,6 +89,78 @@ impl Timings {
     pub fn hull_us(&self) -> f64 {
         median_or_nan(&self.hull)
     }
+    /// The figures one point of the rotation and size experiments reports.
+    pub fn figures(&self) -> Figures {
+        Figures {
+            steps: self.steps,
+            dymsum: self.dymsum_us(),
+            walk: self.walk_us(),
+            brute: self.brute_us(),
+            recomputed: self.recomputed,
+            checks: self.checks,
+            mismatches: self.mismatches,
+        }
+    }
+}
+
+/// The figures of one measurement that the rotation and size experiments
+/// report (DYMSUM, `walk` and `brute`; no `hull`).
+#[derive(Clone, Copy, Debug)]
+pub struct Figures {
+    /// DYMSUM updates per repeat.
+    pub steps: usize,
+    /// DYMSUM: median of the repeats' mean update times (µs).
+    pub dymsum: f64,
+    /// `walk`: median of the repeats' means (µs).
+    pub walk: f64,
+    /// `brute`: median of the repeats' means (µs).
+    pub brute: f64,
+    /// Updates of the first repeat that fell back to a from-scratch sum.
+    pub recomputed: usize,
+    /// Facet-set comparisons made.
+    pub checks: usize,
+    /// Comparisons where a method disagreed with DYMSUM.
+    pub mismatches: usize,
+}
+
+impl Figures {
+    /// The CSV fields `steps, dymsum_us, walk_us, brute_us,
+    /// recomputed_steps, checks, mismatches`.
+    pub fn csv_fields(&self) -> [String; 7] {
+        [
+            self.steps.to_string(),
+            num(self.dymsum, 3),
+            num(self.walk, 3),
+            num(self.brute, 3),
+            self.recomputed.to_string(),
+            self.checks.to_string(),
+            self.mismatches.to_string(),
+        ]
+    }
+}
+
+/// Writes the `verified:` line over all the measurements; returns the
+/// total number of mismatches.
+pub fn write_verified<'a>(
+    out: &mut dyn Write,
+    figures: impl IntoIterator<Item = &'a Figures>,
+) -> std::io::Result<usize> {
+    let (checks, mismatches) = figures
+        .into_iter()
+        .fold((0, 0), |(c, m), f| (c + f.checks, m + f.mismatches));
+    writeln!(
+        out,
+        "verified: {checks} facet-set comparisons (DYMSUM vs a fresh walk after every run, vs brute at its poses): {mismatches} mismatches"
+    )?;
+    Ok(mismatches)
+}
+
+/// Fails when any facet-set comparison disagreed with DYMSUM.
+pub fn ensure_no_mismatches(mismatches: usize) -> anyhow::Result<()> {
+    if mismatches > 0 {
+        anyhow::bail!("internal error: {mismatches} facet-set comparisons disagreed with DYMSUM (please report)");
+    }
+    Ok(())
 }
 
 fn median_or_nan(xs: &[f64]) -> f64 {

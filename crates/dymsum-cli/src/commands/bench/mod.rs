@@ -73,6 +73,29 @@ pub(crate) fn out_file(dir: &Path, name: &str) -> anyhow::Result<PathBuf> {
     Ok(dir.join(name))
 }
 
+/// Writes `header` and `records` as the CSV file `name` in `dir` (created
+/// if missing); returns the file's path.
+pub(crate) fn write_csv<R>(
+    dir: &Path,
+    name: &str,
+    header: &[&str],
+    records: impl IntoIterator<Item = R>,
+) -> anyhow::Result<PathBuf>
+where
+    R: IntoIterator,
+    R::Item: AsRef<[u8]>,
+{
+    let path = out_file(dir, name)?;
+    let mut w = csv::Writer::from_path(&path)
+        .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
+    w.write_record(header)?;
+    for r in records {
+        w.write_record(r)?;
+    }
+    w.flush()?;
+    Ok(path)
+}
+
 /// A number for CSV: fixed decimals, `NaN` when not measured.
 pub(crate) fn num(x: f64, decimals: usize) -> String {
     if x.is_finite() {

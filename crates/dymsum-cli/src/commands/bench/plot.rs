@@ -15,6 +15,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+use super::measure::Figures;
+
 /// The font family name the charts use (registered from bytes).
 const FONT: &str = "sans-serif";
 
@@ -83,6 +85,39 @@ pub const COLORS: [RGBColor; 6] = [
     RGBColor(255, 127, 14),
     RGBColor(23, 190, 207),
 ];
+
+/// Reads one method's time out of a measurement's figures.
+pub type MethodTime = fn(&Figures) -> f64;
+
+/// How the rotation and size experiments draw each timed method: name,
+/// marker, dashed line, and its time.
+pub const METHODS: [(&str, Marker, bool, MethodTime); 3] = [
+    ("DYMSUM", Marker::Circle, false, |f| f.dymsum),
+    ("walk", Marker::Triangle, true, |f| f.walk),
+    ("brute", Marker::Cross, true, |f| f.brute),
+];
+
+/// One series per method of [`METHODS`] named in `wanted`, in that order,
+/// labelled `"{prefix} {method}"` and drawn in `color`; `points` gives a
+/// method's points.
+pub fn method_series(
+    prefix: &str,
+    color: RGBColor,
+    wanted: &[&str],
+    points: impl Fn(MethodTime) -> Vec<(f64, f64)>,
+) -> Vec<Series> {
+    METHODS
+        .iter()
+        .filter(|(method, ..)| wanted.contains(method))
+        .map(|&(method, marker, dashed, time)| Series {
+            label: format!("{prefix} {method}"),
+            color,
+            marker,
+            dashed,
+            points: points(time),
+        })
+        .collect()
+}
 
 /// Chart size in pixels.
 pub const SIZE: (u32, u32) = (1000, 600);

@@ -12,9 +12,9 @@ use std::time::Instant;
 
 use clap::Args;
 
-use super::measure::{measure, Plan};
-use super::plot::{write_chart, Chart, Marker, Series, COLORS};
-use super::{num, out_file, progress};
+use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
+use super::plot::{method_series, write_chart, Chart, COLORS};
+use super::{out_file, progress, write_csv};
 use crate::cli::parse_positive;
 use crate::commands::load;
 use crate::stats::human_us;
@@ -82,13 +82,7 @@ pub fn parse_pair(s: &str) -> Result<(String, String), String> {
 struct Point {
     pair: usize,
     x: f64,
-    steps: usize,
-    dymsum: f64,
-    walk: f64,
-    brute: f64,
-    recomputed: usize,
-    checks: usize,
-    mismatches: usize,
+    f: Figures,
 }
 
 /// Runs `dymsum bench rotation`.
@@ -131,68 +125,40 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             points.push(Point {
                 pair: i,
                 x,
-                steps: t.steps,
-                dymsum: t.dymsum_us(),
-                walk: t.walk_us(),
-                brute: t.brute_us(),
-                recomputed: t.recomputed,
-                checks: t.checks,
-                mismatches: t.mismatches,
+                f: t.figures(),
             });
             pb.inc(1);
         }
     }
     pb.finish_and_clear();
 
-    let csv_path = out_file(&a.out, "rotation.csv")?;
-    let mut w = csv::Writer::from_path(&csv_path)
-        .map_err(|e| anyhow::anyhow!("writing {}: {e}", csv_path.display()))?;
-    w.write_record(CSV_HEADER)?;
-    for pt in &points {
-        let (pn, qn) = &a.pairs[pt.pair];
-        w.write_record([
-            pn.clone(),
-            qn.clone(),
-            format!("{}", pt.x),
-            pt.steps.to_string(),
-            num(pt.dymsum, 3),
-            num(pt.walk, 3),
-            num(pt.brute, 3),
-            pt.recomputed.to_string(),
-            pt.checks.to_string(),
-            pt.mismatches.to_string(),
-        ])?;
-    }
-    w.flush()?;
+    let csv_path = write_csv(
+        &a.out,
+        "rotation.csv",
+        &CSV_HEADER,
+        points.iter().map(|pt| {
+            let (pn, qn) = &a.pairs[pt.pair];
+            let mut record = vec![pn.clone(), qn.clone(), format!("{}", pt.x)];
+            record.extend(pt.f.csv_fields());
+            record
+        }),
+    )?;
 
     let mut series = Vec::new();
     for (i, (pn, qn)) in a.pairs.iter().enumerate() {
         let color = COLORS[i % COLORS.len()];
-        let pts = |f: &dyn Fn(&Point) -> f64| -> Vec<(f64, f64)> {
-            points
-                .iter()
-                .filter(|p| p.pair == i)
-                .map(|p| (p.x, f(p)))
-                .collect()
-        };
-        for (method, marker, dashed, f) in [
-            (
-                "DYMSUM",
-                Marker::Circle,
-                false,
-                &(|p: &Point| p.dymsum) as &dyn Fn(&Point) -> f64,
-            ),
-            ("walk", Marker::Triangle, true, &|p: &Point| p.walk),
-            ("brute", Marker::Cross, true, &|p: &Point| p.brute),
-        ] {
-            series.push(Series {
-                label: format!("{pn}+{qn} {method}"),
-                color,
-                marker,
-                dashed,
-                points: pts(f),
-            });
-        }
+        series.extend(method_series(
+            &format!("{pn}+{qn}"),
+            color,
+            &["DYMSUM", "walk", "brute"],
+            |time| {
+                points
+                    .iter()
+                    .filter(|p| p.pair == i)
+                    .map(|p| (p.x, time(&p.f)))
+                    .collect()
+            },
+        ));
     }
     let chart = Chart {
         title: "Fig. 4: mean time per step vs rotational resolution".into(),
@@ -220,20 +186,15 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             "{:<18} {:>8} {:>12} {:>12} {:>12} {:>8.1}x {:>8.1}x {:>11}",
             format!("{pn}+{qn}"),
             pt.x,
-            human_us(pt.dymsum),
-            human_us(pt.walk),
-            human_us(pt.brute),
-            pt.walk / pt.dymsum,
-            pt.brute / pt.dymsum,
-            format!("{}/{}", pt.recomputed, pt.steps),
+            human_us(pt.f.dymsum),
+            human_us(pt.f.walk),
+            human_us(pt.f.brute),
+            pt.f.walk / pt.f.dymsum,
+            pt.f.brute / pt.f.dymsum,
+            format!("{}/{}", pt.f.recomputed, pt.f.steps),
         )?;
     }
-    let checks: usize = points.iter().map(|p| p.checks).sum();
-    let mismatches: usize = points.iter().map(|p| p.mismatches).sum();
-    writeln!(
-        out,
-        "verified: {checks} facet-set comparisons (DYMSUM vs a fresh walk after every run, vs brute at its poses): {mismatches} mismatches"
-    )?;
+    let mismatches = write_verified(out, points.iter().map(|p| &p.f))?;
     writeln!(
         out,
         "wrote {}, {} and {} ({:.0} s)",
@@ -242,8 +203,5 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         png.display(),
         started.elapsed().as_secs_f64()
     )?;
-    if mismatches > 0 {
-        anyhow::bail!("internal error: {mismatches} facet-set comparisons disagreed with DYMSUM (please report)");
-    }
-    Ok(())
+    ensure_no_mismatches(mismatches)
 }

@@ -16,9 +16,9 @@ use std::time::Instant;
 
 use clap::Args;
 
-use super::measure::{measure, Plan};
-use super::plot::{write_chart, Chart, Marker, Series, COLORS};
-use super::{loglog_slope, num, out_file, progress};
+use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
+use super::plot::{method_series, write_chart, Chart, MethodTime, Series, COLORS, METHODS};
+use super::{loglog_slope, num, out_file, progress, write_csv};
 use crate::commands::load;
 use crate::stats::human_us;
 
@@ -76,13 +76,7 @@ struct Point {
     model: String,
     triangles: usize,
     faces: usize,
-    steps: usize,
-    dymsum: f64,
-    walk: f64,
-    brute: f64,
-    recomputed: usize,
-    checks: usize,
-    mismatches: usize,
+    f: Figures,
 }
 
 /// The two families.
@@ -129,71 +123,40 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             model: name.clone(),
             triangles: m.input.triangle_count(),
             faces: m.polytope.face_count(),
-            steps: t.steps,
-            dymsum: t.dymsum_us(),
-            walk: t.walk_us(),
-            brute: t.brute_us(),
-            recomputed: t.recomputed,
-            checks: t.checks,
-            mismatches: t.mismatches,
+            f: t.figures(),
         });
         pb.inc(1);
     }
     pb.finish_and_clear();
 
-    let csv_path = out_file(&a.out, "size.csv")?;
-    let mut w = csv::Writer::from_path(&csv_path)
-        .map_err(|e| anyhow::anyhow!("writing {}: {e}", csv_path.display()))?;
-    w.write_record(CSV_HEADER)?;
-    for p in &points {
-        w.write_record([
-            p.family.to_string(),
-            p.model.clone(),
-            p.triangles.to_string(),
-            p.faces.to_string(),
-            p.steps.to_string(),
-            num(p.dymsum, 3),
-            num(p.walk, 3),
-            num(p.brute, 3),
-            p.recomputed.to_string(),
-            p.checks.to_string(),
-            p.mismatches.to_string(),
-        ])?;
-    }
-    w.flush()?;
+    let csv_path = write_csv(
+        &a.out,
+        "size.csv",
+        &CSV_HEADER,
+        points.iter().map(|p| {
+            let mut record = vec![
+                p.family.to_string(),
+                p.model.clone(),
+                p.triangles.to_string(),
+                p.faces.to_string(),
+            ];
+            record.extend(p.f.csv_fields());
+            record
+        }),
+    )?;
 
-    type Get = fn(&Point) -> f64;
-    let methods: [(&str, Marker, bool, Get); 3] = [
-        ("DYMSUM", Marker::Circle, false, |p| p.dymsum),
-        ("walk", Marker::Triangle, true, |p| p.walk),
-        ("brute", Marker::Cross, true, |p| p.brute),
-    ];
-    let family_points = |fam: &str, f: Get| -> Vec<(f64, f64)> {
+    let family_points = |fam: &str, time: MethodTime| -> Vec<(f64, f64)> {
         points
             .iter()
             .filter(|p| p.family == fam)
-            .map(|p| (p.triangles as f64, f(p)))
+            .map(|p| (p.triangles as f64, time(&p.f)))
             .collect()
     };
     let series_for = |wanted: &[&str]| -> Vec<Series> {
         let mut v = Vec::new();
         for (fi, (fam, _)) in FAMILIES.iter().enumerate() {
-            for &(method, marker, dashed, f) in &methods {
-                if !wanted.contains(&method) {
-                    continue;
-                }
-                let pts = family_points(fam, f);
-                if pts.is_empty() {
-                    continue;
-                }
-                v.push(Series {
-                    label: format!("{fam} {method}"),
-                    color: COLORS[fi],
-                    marker,
-                    dashed,
-                    points: pts,
-                });
-            }
+            let all = method_series(fam, COLORS[fi], wanted, |time| family_points(fam, time));
+            v.extend(all.into_iter().filter(|s| !s.points.is_empty()));
         }
         v
     };
@@ -240,11 +203,11 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             p.model,
             p.triangles,
             p.faces,
-            human_us(p.dymsum),
-            human_us(p.walk),
-            human_us(p.brute),
-            p.brute / p.dymsum,
-            format!("{}/{}", p.recomputed, p.steps),
+            human_us(p.f.dymsum),
+            human_us(p.f.walk),
+            human_us(p.f.brute),
+            p.f.brute / p.f.dymsum,
+            format!("{}/{}", p.f.recomputed, p.f.steps),
         )?;
     }
     writeln!(out)?;
@@ -256,31 +219,23 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         if !points.iter().any(|p| p.family == fam) {
             continue;
         }
-        let ks: Vec<String> = methods
+        let ks: Vec<String> = METHODS
             .iter()
-            .map(|&(method, _, _, f)| {
+            .map(|&(method, _, _, time)| {
                 format!(
                     "{method} k = {}",
-                    num(loglog_slope(&family_points(fam, f)), 2)
+                    num(loglog_slope(&family_points(fam, time)), 2)
                 )
             })
             .collect();
         writeln!(out, "  {desc}: {}", ks.join(", "))?;
     }
-    let checks: usize = points.iter().map(|p| p.checks).sum();
-    let mismatches: usize = points.iter().map(|p| p.mismatches).sum();
-    writeln!(
-        out,
-        "verified: {checks} facet-set comparisons (DYMSUM vs a fresh walk after every run, vs brute at its poses): {mismatches} mismatches"
-    )?;
+    let mismatches = write_verified(out, points.iter().map(|p| &p.f))?;
     writeln!(
         out,
         "wrote {} ({:.0} s)",
         written.join(", "),
         started.elapsed().as_secs_f64()
     )?;
-    if mismatches > 0 {
-        anyhow::bail!("internal error: {mismatches} facet-set comparisons disagreed with DYMSUM (please report)");
-    }
-    Ok(())
+    ensure_no_mismatches(mismatches)
 }

@@ -19,7 +19,7 @@ use dymsum_io::Loaded;
 
 use super::measure::{measure, Plan, Timings};
 use super::paper::{pairs, paper_name, paper_speedup, MODELS};
-use super::{command_line, num, out_file, progress, sig3};
+use super::{command_line, num, out_file, progress, sig3, write_csv};
 use crate::commands::load;
 use crate::stats::human_us;
 
@@ -186,14 +186,12 @@ pub fn run(a: &Table1Args, out: &mut dyn Write) -> anyhow::Result<()> {
     let elapsed = started.elapsed().as_secs_f64();
 
     // Files.
-    let csv_path = out_file(&a.out, "table1.csv")?;
-    let mut w = csv::Writer::from_path(&csv_path)
-        .map_err(|e| anyhow::anyhow!("writing {}: {e}", csv_path.display()))?;
-    w.write_record(CSV_HEADER)?;
-    for r in &rows {
-        w.write_record(r.csv_record())?;
-    }
-    w.flush()?;
+    let csv_path = write_csv(
+        &a.out,
+        "table1.csv",
+        &CSV_HEADER,
+        rows.iter().map(Row::csv_record),
+    )?;
     let md_path = out_file(&a.out, "table1.md")?;
     std::fs::write(&md_path, markdown(a, &plan, &rows, elapsed))
         .map_err(|e| anyhow::anyhow!("writing {}: {e}", md_path.display()))?;

@@ -1,0 +1,82 @@
+//! Helpers shared by the CLI integration tests: running the `dymsum`
+//! binary, fresh temp directories, fixtures and reading the output.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use dymsum::polytope::MeshPolicy;
+use dymsum::Polytope;
+
+/// The binary under test.
+pub const BIN: &str = env!("CARGO_BIN_EXE_dymsum");
+
+/// A fresh empty directory under the system temp dir, named after the test
+/// suite, the process, a counter and `name`.
+pub fn temp_dir(name: &str) -> PathBuf {
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "dymsum-{}-test-{}-{}-{name}",
+        env!("CARGO_CRATE_NAME"),
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The path of `tests/fixtures/NAME`.
+pub fn fixture(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+/// Runs `dymsum ARGS`, in `cwd` if given.
+pub fn run_in(cwd: Option<&Path>, args: &[&str]) -> Output {
+    let mut cmd = Command::new(BIN);
+    cmd.args(args);
+    if let Some(dir) = cwd {
+        cmd.current_dir(dir);
+    }
+    cmd.output().expect("the dymsum binary runs")
+}
+
+/// Runs `dymsum ARGS`.
+pub fn run(args: &[&str]) -> Output {
+    run_in(None, args)
+}
+
+/// The output's stdout as text.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// The output's stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Runs `dymsum ARGS`, asserts success and returns stdout.
+pub fn ok(args: &[&str]) -> String {
+    let o = run(args);
+    assert!(
+        o.status.success(),
+        "dymsum {args:?} failed: {}\n{}",
+        stderr(&o),
+        stdout(&o)
+    );
+    stdout(&o)
+}
+
+/// A built-in model or a mesh file, as a polytope.
+pub fn model(spec: &str) -> Polytope {
+    dymsum_io::load_polytope(spec, MeshPolicy::default())
+        .unwrap()
+        .polytope
+}
