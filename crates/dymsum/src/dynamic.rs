@@ -64,7 +64,10 @@
 //! of `1e-10`; exact ties have margin 0 and are always at risk. Steps above
 //! [`DynamicConfig::max_step_angle`], or steps where more than
 //! [`DynamicConfig::fallback_fraction`] of all arcs would be re-walked, are
-//! recomputed from scratch by `walk` instead (cheaper, and trivially correct).
+//! recomputed from scratch by `walk` instead (cheaper, and trivially correct);
+//! after such a fallback a few steps at least 90% as large go straight to the
+//! recomputation (an exponential backoff), and the update's report is the
+//! diff of the two overlays.
 //!
 //! # Complexity
 //! O(m + n) to scan the normals near their cells' boundaries (the others are
@@ -161,6 +164,8 @@ pub struct DynamicSum<'a> {
     stamp_p: Vec<u32>,
     stamp_q: Vec<u32>,
     scratch_toggled: Vec<(u32, u32)>,
+    /// After fallbacks, how many steps of similar size skip the scan.
+    backoff: Backoff,
     step: u32,
     config: DynamicConfig,
 }
@@ -245,6 +250,7 @@ impl<'a> DynamicSum<'a> {
             stamp_p: vec![0; p.edge_count()],
             stamp_q: vec![0; q.edge_count()],
             scratch_toggled: Vec::new(),
+            backoff: Backoff::default(),
             step: 0,
             ops,
             config,
@@ -345,7 +351,13 @@ impl<'a> DynamicSum<'a> {
         for (n, r) in self.ops.np.iter_mut().zip(self.ops.p.normals()) {
             *n = new.apply(*r);
         }
+        // Too large a step, or within the backoff after a step as large fell
+        // back because too many arcs were at risk: recompute without scanning.
         if theta > self.config.max_step_angle {
+            return self.recompute(report);
+        }
+        if self.backoff.skip > 0 && theta >= 0.9 * self.backoff.theta {
+            self.backoff.skip -= 1;
             return self.recompute(report);
         }
         self.step = self.step.wrapping_add(1).max(1);
@@ -433,8 +445,10 @@ impl<'a> DynamicSum<'a> {
         let total_arcs = self.ee_p.len() + self.ee_q.len();
         if (arcs_p.len() + arcs_q.len()) as f64 > self.config.fallback_fraction * total_arcs as f64
         {
+            self.backoff.fell_back(theta);
             return self.recompute(report);
         }
+        self.backoff = Backoff::default();
         report.rewalked_arcs = arcs_p.len() + arcs_q.len();
         self.apply_certified_crossings(&scan_p.certified, &scan_q.certified, &mut report);
         let mut fresh = Vec::new();
@@ -582,9 +596,9 @@ impl<'a> DynamicSum<'a> {
             }
         }
         let fresh = walk_overlay(&self.ops)?;
-        let (old_f, new_f) = (before.facets(), fresh.facets());
-        report.removed = sorted_difference(&old_f, &new_f);
-        report.added = sorted_difference(&new_f, &old_f);
+        let (removed, added) = overlay_diff(&before, &fresh);
+        report.removed = removed;
+        report.added = added;
         report.fv_errors = report
             .removed
             .iter()
@@ -649,6 +663,28 @@ impl<'a> DynamicSum<'a> {
             return Err("the ee indices by P edge and by Q edge disagree".into());
         }
         self.sum().sanity_check()
+    }
+}
+
+/// Exponential backoff of the incremental attempt after fallbacks: a step
+/// that falls back because too many arcs are at risk makes the next `skip`
+/// steps at least 90% as large recompute without scanning first; each
+/// further fallback doubles the count (up to 64), an incremental step resets
+/// it. A one-off fallback (say, a degenerate start) costs a few steps; a
+/// motion too fast for incremental updates wastes a scan on at most one step
+/// in 64. Either way the result is exact: only the work differs.
+#[derive(Clone, Copy, Debug, Default)]
+struct Backoff {
+    theta: f64,
+    skip: u32,
+    next: u32,
+}
+
+impl Backoff {
+    fn fell_back(&mut self, theta: f64) {
+        self.theta = theta;
+        self.next = (self.next * 2).clamp(4, 64);
+        self.skip = self.next;
     }
 }
 
@@ -825,7 +861,58 @@ fn single_crossing(
     (clear(v, x_old) && clear(w, x_new)).then_some(x)
 }
 
-fn sorted_difference(a: &[Facet], b: &[Facet]) -> Vec<Facet> {
-    let set: std::collections::HashSet<&Facet> = b.iter().collect();
-    a.iter().filter(|f| !set.contains(f)).copied().collect()
+/// The facets of `before` missing from `after`, and those of `after`
+/// missing from `before`: fv- and vf-pairs compared by face, ee-pairs by
+/// merging the two sorted lists. O(m + n + k), no hashing.
+fn overlay_diff(before: &Overlay, after: &Overlay) -> (Vec<Facet>, Vec<Facet>) {
+    let (mut removed, mut added) = (Vec::new(), Vec::new());
+    for (f, (&u, &v)) in before.fv.iter().zip(&after.fv).enumerate() {
+        if u != v {
+            removed.push(Facet::Fv {
+                p_face: f as u32,
+                q_vertex: u,
+            });
+            added.push(Facet::Fv {
+                p_face: f as u32,
+                q_vertex: v,
+            });
+        }
+    }
+    for (g, (&u, &v)) in before.vf.iter().zip(&after.vf).enumerate() {
+        if u != v {
+            removed.push(Facet::Vf {
+                p_vertex: u,
+                q_face: g as u32,
+            });
+            added.push(Facet::Vf {
+                p_vertex: v,
+                q_face: g as u32,
+            });
+        }
+    }
+    let ee = |(p_edge, q_edge): (u32, u32)| Facet::Ee { p_edge, q_edge };
+    let (x, y) = (&before.ee, &after.ee);
+    let (mut i, mut j) = (0, 0);
+    while i < x.len() || j < y.len() {
+        match (x.get(i), y.get(j)) {
+            (Some(a), Some(b)) if a == b => {
+                i += 1;
+                j += 1;
+            }
+            (Some(&a), Some(&b)) if a < b => {
+                removed.push(ee(a));
+                i += 1;
+            }
+            (Some(&a), None) => {
+                removed.push(ee(a));
+                i += 1;
+            }
+            (_, Some(&b)) => {
+                added.push(ee(b));
+                j += 1;
+            }
+            (None, None) => unreachable!("the loop condition excludes it"),
+        }
+    }
+    (removed, added)
 }
