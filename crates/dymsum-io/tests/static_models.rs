@@ -5,7 +5,7 @@
 use dymsum::hull::{convex_hull, PairwiseSums};
 use dymsum::polytope::MeshPolicy;
 use dymsum::sum::{minkowski_sum_posed, Method, SumError};
-use dymsum::{DVec3, PolygonMesh, Polytope, Pose, Rotation};
+use dymsum::{DVec3, Polytope, Pose, Rotation};
 use dymsum_io::models::model;
 
 const FOGEL: [&str; 11] = [
@@ -63,15 +63,7 @@ fn every_pair_of_reference_models_in_random_orientations() {
             let qq = q.vertices().to_vec();
             let sums = PairwiseSums { p: &pp, q: &qq };
             let hull = convex_hull(&sums).unwrap();
-            let hm = PolygonMesh {
-                vertices: (0..pp.len() * qq.len())
-                    .map(|k| {
-                        let (a, b) = sums.split(k);
-                        (pp[a] + qq[b]).to_array()
-                    })
-                    .collect(),
-                faces: hull.faces,
-            };
+            let hm = hull.to_mesh(&sums);
             let (vm, vh) = (walk.to_mesh().signed_volume(), hm.signed_volume());
             assert!(
                 (vm - vh).abs() <= 1e-9 * vh,

@@ -7,7 +7,7 @@ mod common;
 use common::*;
 use dymsum::hull::{convex_hull, PairwiseSums};
 use dymsum::sum::{minkowski_sum_posed, Method, MinkowskiSum};
-use dymsum::{DVec3, PolygonMesh, Polytope, Pose, Rotation};
+use dymsum::{DVec3, Polytope, Pose, Rotation};
 use proptest::prelude::*;
 
 fn posed_vertices(p: &Polytope, pose: Pose) -> Vec<DVec3> {
@@ -48,15 +48,7 @@ where
     // Oracle: exact hull of all pairwise sums.
     let sums = PairwiseSums { p: &pp, q: &qq };
     let hull = convex_hull(&sums).expect("hull of sums");
-    let hull_mesh = PolygonMesh {
-        vertices: (0..pp.len() * qq.len())
-            .map(|k| {
-                let (i, j) = sums.split(k);
-                (pp[i] + qq[j]).to_array()
-            })
-            .collect(),
-        faces: hull.faces.clone(),
-    };
+    let hull_mesh = hull.to_mesh(&sums);
     let (vm, vh) = (mesh.signed_volume(), hull_mesh.signed_volume());
     assert!(
         (vm - vh).abs() <= 1e-9 * vh.abs().max(1e-300),

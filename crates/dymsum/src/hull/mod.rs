@@ -110,6 +110,37 @@ pub struct ConvexHull {
     pub faces: Vec<Vec<usize>>,
 }
 
+impl ConvexHull {
+    /// The hull as a polygon mesh over its corners only (re-indexed), with
+    /// the points' float coordinates.
+    ///
+    /// ```
+    /// use dymsum::hull::{convex_hull, FloatPoints};
+    /// use dymsum::DVec3;
+    /// let pts: Vec<DVec3> = (0..9).map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64 * 0.5 + (i / 8) as f64 * 0.25)).collect();
+    /// let mesh = convex_hull(&FloatPoints(&pts)).unwrap().to_mesh(&FloatPoints(&pts));
+    /// assert_eq!((mesh.vertices.len(), mesh.faces.len()), (8, 6)); // the inner point is dropped
+    /// ```
+    pub fn to_mesh<P: HullPoints + ?Sized>(&self, points: &P) -> crate::PolygonMesh {
+        let mut index = std::collections::HashMap::with_capacity(self.vertices.len());
+        let vertices = self
+            .vertices
+            .iter()
+            .enumerate()
+            .map(|(k, &i)| {
+                index.insert(i, k);
+                points.coords(i).to_array()
+            })
+            .collect();
+        let faces = self
+            .faces
+            .iter()
+            .map(|f| f.iter().map(|i| index[i]).collect())
+            .collect();
+        crate::PolygonMesh { vertices, faces }
+    }
+}
+
 /// Why a hull could not be built: the input spans less than three dimensions.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum HullError {

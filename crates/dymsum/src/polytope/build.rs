@@ -396,10 +396,7 @@ fn compare_with_hull(
         }
     }
     // Same volume: a mesh folding over itself would cover the hull twice.
-    let hull_mesh = PolygonMesh {
-        vertices: pts.iter().map(|p| p.to_array()).collect(),
-        faces: hull.faces.clone(),
-    };
+    let hull_mesh = hull.to_mesh(&FloatPoints(pts));
     let (hv, mv) = (hull_mesh.signed_volume(), mesh.signed_volume().abs());
     let dv = (hv - mv).abs();
     let vol_tol = tolerance * hull_area(&hull_mesh) + 1e-12 * hv;

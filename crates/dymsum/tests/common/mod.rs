@@ -119,7 +119,7 @@ pub mod oracle {
     use super::{random_rotation, rng};
     use dymsum::hull::{convex_hull, PairwiseSums};
     use dymsum::sum::{minkowski_sum_posed, Facet, Method};
-    use dymsum::{DVec3, DynamicSum, PolygonMesh, Polytope, Pose, Rotation, UpdateReport};
+    use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation, UpdateReport};
     use rand::Rng;
     use rand_chacha::ChaCha8Rng;
     use std::collections::HashSet;
@@ -228,15 +228,7 @@ pub mod oracle {
         let mesh = d.to_mesh();
         let sums = PairwiseSums::new(&pp, &qq);
         let hull = convex_hull(&sums).map_err(|e| format!("{ctx}: hull of sums: {e}"))?;
-        let hull_mesh = PolygonMesh {
-            vertices: (0..pp.len() * qq.len())
-                .map(|k| {
-                    let (i, j) = sums.split(k);
-                    (pp[i] + qq[j]).to_array()
-                })
-                .collect(),
-            faces: hull.faces.clone(),
-        };
+        let hull_mesh = hull.to_mesh(&sums);
         let (vm, vh) = (mesh.signed_volume(), hull_mesh.signed_volume());
         if (vm - vh).abs() > 1e-9 * vh.abs().max(1e-300) {
             return Err(format!("{ctx}: merged volume {vm} vs hull of sums {vh}"));
