@@ -17,20 +17,18 @@
 //!    Knuth's error-free `TwoSum`) and lies in a safe exponent range, the
 //!    differences are exact floats and Shewchuk's adaptive predicate on them
 //!    is exact;
-//! 3. otherwise an exact evaluation with big integers: every finite `f64` is
-//!    `m · 2^e` with an integer `m`, so after scaling all values of a row to
-//!    their smallest exponent the determinant is an integer polynomial.
+//! 3. otherwise an exact evaluation in allocation-free dyadic arithmetic
+//!    ([`crate::kernel::exact::Dyadic`]): every finite `f64` is `m · 2^e`
+//!    with an integer `m`, so the determinant is exact.
 //!
 //! All coordinates must be finite (callers check); the predicates are exact
 //! for all finite inputs.
 
 use super::HullPoints;
-use crate::kernel::exact::decompose;
+use crate::kernel::exact::{self, Dyadic, ExactVec};
 use crate::kernel::predicates::{det2, orient};
 use crate::kernel::Sign;
 use glam::DVec3;
-use num_bigint::BigInt;
-use num_traits::Zero;
 
 /// Plain float points; the hull predicates are exact on the coordinates.
 ///
@@ -133,35 +131,12 @@ struct Diff {
 }
 
 /// Exact values `vals[k][0] − vals[k][1] + vals[k][2] − vals[k][3]` for the
-/// three components `k`, all scaled by one common power of two `2^-e0`
-/// (positive, so signs of homogeneous polynomials are preserved).
-fn exact_row(vals: [[f64; 4]; 3]) -> [BigInt; 3] {
-    let dec = vals.map(|c| c.map(decompose));
-    let e0 = dec
-        .iter()
-        .flatten()
-        .filter(|(m, _)| *m != 0)
-        .map(|&(_, e)| e)
-        .min()
-        .unwrap_or(0);
-    dec.map(|c| {
-        let big = |(m, e): (i64, i32)| -> BigInt {
-            if m == 0 {
-                BigInt::zero()
-            } else {
-                BigInt::from(m) << ((e - e0) as usize)
-            }
-        };
-        big(c[0]) - big(c[1]) + big(c[2]) - big(c[3])
+/// three components `k`.
+fn exact_row(vals: [[f64; 4]; 3]) -> ExactVec {
+    vals.map(|c| {
+        let d = |x: f64| Dyadic::from_f64(x);
+        d(c[0]).sub(&d(c[1])).add(&d(c[2]).sub(&d(c[3])))
     })
-}
-
-fn big_sign(x: &BigInt) -> Sign {
-    match x.sign() {
-        num_bigint::Sign::Minus => Sign::Negative,
-        num_bigint::Sign::NoSign => Sign::Zero,
-        num_bigint::Sign::Plus => Sign::Positive,
-    }
 }
 
 impl<'a> PairwiseSums<'a> {
@@ -250,9 +225,7 @@ impl<'a> PairwiseSums<'a> {
         let u = exact_row(self.terms(a, b));
         let v = exact_row(self.terms(a, c));
         let w = exact_row(self.terms(a, d));
-        let det = &u[0] * (&v[1] * &w[2] - &v[2] * &w[1]) - &u[1] * (&v[0] * &w[2] - &v[2] * &w[0])
-            + &u[2] * (&v[0] * &w[1] - &v[1] * &w[0]);
-        big_sign(&det)
+        exact::det3(&u, &v, &w).sign()
     }
 }
 
@@ -320,9 +293,7 @@ impl HullPoints for PairwiseSums<'_> {
         }
         let u = exact_row(self.terms(a, b));
         let v = exact_row(self.terms(a, c));
-        (&u[1] * &v[2] - &u[2] * &v[1]).is_zero()
-            && (&u[2] * &v[0] - &u[0] * &v[2]).is_zero()
-            && (&u[0] * &v[1] - &u[1] * &v[0]).is_zero()
+        exact::cross(&u, &v).iter().all(|x| x.is_zero())
     }
 }
 
@@ -345,6 +316,7 @@ mod tests {
 
     #[test]
     fn decompose_is_exact() {
+        use crate::kernel::exact::decompose;
         for x in [0.0, -0.0, 1.0, -0.1, 1e300, 5e-324, -2.5e-310, 1e6 + 0.1] {
             let (m, e) = decompose(x);
             assert_eq!(m as f64 * 2f64.powi(e), x);
@@ -381,7 +353,7 @@ mod tests {
     }
 
     #[test]
-    fn filter_agrees_with_big_integers() {
+    fn filter_agrees_with_exact_dyadics() {
         use rand::{Rng, SeedableRng};
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
         // Awkward magnitudes; the last points form exact parallelograms.
@@ -406,11 +378,7 @@ mod tests {
             let u = exact_row(s.terms(a, b));
             let v = exact_row(s.terms(a, c));
             let w = exact_row(s.terms(a, d));
-            big_sign(
-                &(&u[0] * (&v[1] * &w[2] - &v[2] * &w[1])
-                    - &u[1] * (&v[0] * &w[2] - &v[2] * &w[0])
-                    + &u[2] * (&v[0] * &w[1] - &v[1] * &w[0])),
-            )
+            exact::det3(&u, &v, &w).sign()
         };
         let mut zeros = 0;
         for a in (0..n).step_by(3) {

@@ -1,13 +1,57 @@
-//! Exact dyadic arithmetic: every finite `f64` is `m · 2^e` with integer `m`,
-//! so sums, differences and products of floats are exact as [`Dyadic`]s.
+//! Exact dyadic arithmetic without heap allocation: every finite `f64` is
+//! `m · 2^e` with an integer `m`, so sums, differences and products of
+//! floats are exact as [`Dyadic`]s.
 //!
-//! Used only on the slow path of the filtered predicates, when the float
-//! evaluation cannot certify a sign (near or exact degeneracies).
+//! A [`Dyadic`] is a sign, a binary exponent and a magnitude of at most
+//! [`CAPACITY_BITS`] bits held in a fixed array on the stack (no `Vec`, no
+//! big-integer crate), normalised so that its lowest bit is set: its length
+//! is the *span* of the value (top bit minus lowest set bit), not its
+//! magnitude, so the scale of the input costs nothing. Used only on the slow
+//! path of the filtered predicates, when the float evaluation cannot certify
+//! a sign (near or exact degeneracies).
+//!
+//! # Capacity
+//!
+//! The span of a sum or product of dyadics is at most the sum of the spans
+//! of the factors (plus a carry bit per addition), so the span of a
+//! polynomial value is bounded by its degree times the span of its inputs.
+//! The predicates evaluate at most degree 9 in the vertex coordinates of one
+//! polytope (the determinant of three rotated exact normals: each normal is
+//! degree 2 in coordinates, times a rotation entry) and degree 3 in
+//! pairwise sums of two polytopes' coordinates (the hull method). The
+//! constructors refuse polytopes whose coordinates span more than
+//! [`MAX_COORD_SPAN`] bits (see [`check_coordinate_range`]); that keeps every
+//! value far below [`CAPACITY_BITS`] (the worst case is worked out at
+//! [`CAPACITY_BITS`]). Exceeding the capacity is an internal invariant
+//! violation and panics rather than answering wrongly.
+//!
+//! Complexity: addition `O(n)` and multiplication `O(n²)` in the number of
+//! 64-bit limbs actually used (one or two for typical coordinates).
 
 use super::Sign;
 use glam::{DMat3, DVec3};
-use num_bigint::BigInt;
-use num_traits::{Signed, Zero};
+
+/// Limbs of a [`Dyadic`] magnitude.
+const LIMBS: usize = 112;
+
+/// The largest magnitude span, in bits, a [`Dyadic`] can hold (7168).
+///
+/// Worst cases with coordinates of one polytope spanning at most
+/// [`MAX_COORD_SPAN`] = 960 bits (plus the 53-bit mantissa: 1013 bits per
+/// coordinate, counted from the top bit of the largest to the lowest set bit
+/// of the smallest): an exact normal (cross product of differences) spans at
+/// most 2·1014 + 2 = 2030 bits; a rotated normal (matrix entries are 0, ±1
+/// or at least `2^-47` in magnitude, so span ≤ 100) at most 2030 + 100 + 3 =
+/// 2133; the determinant of three of them at most 3·2133 + 3 = 6402 < 7168.
+/// For the hull method each row value spans at most the exponent range of
+/// two polytopes' coordinates, ≤ 2098 + 53 + 2 bits, and the determinant
+/// three times that plus 3 bits: 6462 < 7168.
+pub const CAPACITY_BITS: usize = LIMBS * 64;
+
+/// The largest supported binary-exponent spread between the largest
+/// coordinate magnitude of a polytope and its smallest non-zero one
+/// (`2^960 ≈ 1e289`). See [`check_coordinate_range`].
+pub const MAX_COORD_SPAN: i32 = 960;
 
 /// Decomposes a finite `f64` into `(m, e)` with value exactly `m · 2^e`
 /// (`|m| < 2^53`).
@@ -28,81 +72,312 @@ pub fn decompose(x: f64) -> (i64, i32) {
     }
 }
 
-/// An exact dyadic rational `m · 2^e`.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// The binary exponent of the lowest set bit of a non-zero finite float.
+#[inline]
+pub fn low_exponent(x: f64) -> i32 {
+    let (m, e) = decompose(x);
+    e + m.unsigned_abs().trailing_zeros() as i32
+}
+
+/// The binary exponent `k` with `2^k ≤ |x| < 2^(k+1)` of a non-zero finite
+/// float.
+#[inline]
+pub fn top_exponent(x: f64) -> i32 {
+    let (m, e) = decompose(x);
+    e + 63 - m.unsigned_abs().leading_zeros() as i32
+}
+
+/// An exact dyadic rational `±m · 2^e`, on the stack.
+#[derive(Clone, Copy)]
 pub struct Dyadic {
-    m: BigInt,
+    m: [u64; LIMBS],
+    len: u32,
+    neg: bool,
     e: i32,
+}
+
+impl std::fmt::Debug for Dyadic {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Dyadic")
+            .field("neg", &self.neg)
+            .field("limbs", &&self.m[..self.len as usize])
+            .field("e", &self.e)
+            .finish()
+    }
+}
+
+impl PartialEq for Dyadic {
+    fn eq(&self, other: &Dyadic) -> bool {
+        self.len == other.len
+            && (self.len == 0
+                || (self.neg == other.neg
+                    && self.e == other.e
+                    && self.m[..self.len as usize] == other.m[..other.len as usize]))
+    }
+}
+impl Eq for Dyadic {}
+
+/// Shifts `src` left by `bits` into `dst` (zeroed beyond the result);
+/// returns the length.
+fn shl_into(src: &[u64], bits: usize, dst: &mut [u64; LIMBS]) -> usize {
+    if src.is_empty() {
+        return 0;
+    }
+    let (w, b) = (bits / 64, bits % 64);
+    assert!(
+        w + src.len() <= LIMBS,
+        "exact arithmetic capacity exceeded (inputs outside the supported range)"
+    );
+    let mut len = w + src.len();
+    if b == 0 {
+        dst[w..len].copy_from_slice(src);
+    } else {
+        let mut carry = 0u64;
+        for (i, &x) in src.iter().enumerate() {
+            dst[w + i] = (x << b) | carry;
+            carry = x >> (64 - b);
+        }
+        if carry != 0 {
+            assert!(
+                len < LIMBS,
+                "exact arithmetic capacity exceeded (inputs outside the supported range)"
+            );
+            dst[len] = carry;
+            len += 1;
+        }
+    }
+    len
+}
+
+fn cmp_mag(a: &[u64], b: &[u64]) -> std::cmp::Ordering {
+    if a.len() != b.len() {
+        return a.len().cmp(&b.len());
+    }
+    for i in (0..a.len()).rev() {
+        if a[i] != b[i] {
+            return a[i].cmp(&b[i]);
+        }
+    }
+    std::cmp::Ordering::Equal
 }
 
 impl Dyadic {
     /// Zero.
+    #[inline]
     pub fn zero() -> Dyadic {
         Dyadic {
-            m: BigInt::zero(),
+            m: [0; LIMBS],
+            len: 0,
+            neg: false,
             e: 0,
         }
     }
 
     /// The exact value of a finite float (non-finite values map to zero;
     /// callers validate finiteness first).
+    #[inline]
     pub fn from_f64(x: f64) -> Dyadic {
+        let mut d = Dyadic::zero();
         if x == 0.0 || !x.is_finite() {
-            return Dyadic::zero();
+            return d;
         }
         let (m, e) = decompose(x);
-        Dyadic {
-            m: BigInt::from(m),
-            e,
-        }
+        let a = m.unsigned_abs();
+        let tz = a.trailing_zeros();
+        d.m[0] = a >> tz;
+        d.len = 1;
+        d.neg = m < 0;
+        d.e = e + tz as i32;
+        d
+    }
+
+    /// `true` for zero.
+    #[inline]
+    pub fn is_zero(&self) -> bool {
+        self.len == 0
     }
 
     /// The sign.
+    #[inline]
     pub fn sign(&self) -> Sign {
-        if self.m.is_zero() {
+        if self.len == 0 {
             Sign::Zero
-        } else if self.m.is_positive() {
-            Sign::Positive
-        } else {
+        } else if self.neg {
             Sign::Negative
+        } else {
+            Sign::Positive
         }
+    }
+
+    #[inline]
+    fn mag(&self) -> &[u64] {
+        &self.m[..self.len as usize]
+    }
+
+    /// Strips trailing zero bits into the exponent (lowest bit set).
+    fn normalise(&mut self) {
+        let len = self.len as usize;
+        if len == 0 {
+            self.neg = false;
+            self.e = 0;
+            return;
+        }
+        let k = self.m[..len].iter().position(|&x| x != 0).unwrap_or(0);
+        let t = self.m[k].trailing_zeros() as usize;
+        if k == 0 && t == 0 {
+            return;
+        }
+        let n = len - k;
+        if t == 0 {
+            self.m.copy_within(k..len, 0);
+        } else {
+            for i in 0..n {
+                let hi = if k + i + 1 < len {
+                    self.m[k + i + 1] << (64 - t)
+                } else {
+                    0
+                };
+                self.m[i] = (self.m[k + i] >> t) | hi;
+            }
+        }
+        for x in &mut self.m[n..len] {
+            *x = 0;
+        }
+        let mut l = n;
+        while l > 0 && self.m[l - 1] == 0 {
+            l -= 1;
+        }
+        self.len = l as u32;
+        self.e += (64 * k + t) as i32;
     }
 
     /// `self + other`, exactly.
     pub fn add(&self, other: &Dyadic) -> Dyadic {
-        if self.m.is_zero() {
-            return other.clone();
+        if self.len == 0 {
+            return *other;
         }
-        if other.m.is_zero() {
-            return self.clone();
+        if other.len == 0 {
+            return *self;
         }
-        let e = self.e.min(other.e);
-        let a = &self.m << (self.e - e) as usize;
-        let b = &other.m << (other.e - e) as usize;
-        Dyadic { m: a + b, e }
+        // `hi` has the larger exponent; shift it down to `lo`'s exponent.
+        let (hi, lo) = if self.e >= other.e {
+            (self, other)
+        } else {
+            (other, self)
+        };
+        let shift = (hi.e - lo.e) as usize;
+        assert!(
+            shift < CAPACITY_BITS,
+            "exact arithmetic capacity exceeded (inputs outside the supported range)"
+        );
+        let mut a = [0u64; LIMBS];
+        let alen = shl_into(hi.mag(), shift, &mut a);
+        let (a, b) = (&a[..alen], lo.mag());
+        let mut r = Dyadic::zero();
+        r.e = lo.e;
+        if hi.neg == lo.neg {
+            r.neg = hi.neg;
+            let n = a.len().max(b.len());
+            let mut carry = 0u64;
+            for i in 0..n {
+                let x = *a.get(i).unwrap_or(&0) as u128 + *b.get(i).unwrap_or(&0) as u128;
+                let s = x + carry as u128;
+                r.m[i] = s as u64;
+                carry = (s >> 64) as u64;
+            }
+            let mut len = n;
+            if carry != 0 {
+                assert!(
+                    n < LIMBS,
+                    "exact arithmetic capacity exceeded (inputs outside the supported range)"
+                );
+                r.m[n] = carry;
+                len += 1;
+            }
+            r.len = len as u32;
+        } else {
+            let (big, small, neg) = match cmp_mag(a, b) {
+                std::cmp::Ordering::Equal => return Dyadic::zero(),
+                std::cmp::Ordering::Greater => (a, b, hi.neg),
+                std::cmp::Ordering::Less => (b, a, lo.neg),
+            };
+            r.neg = neg;
+            let mut borrow = 0u64;
+            for i in 0..big.len() {
+                let (d1, b1) = big[i].overflowing_sub(*small.get(i).unwrap_or(&0));
+                let (d2, b2) = d1.overflowing_sub(borrow);
+                r.m[i] = d2;
+                borrow = (b1 || b2) as u64;
+            }
+            let mut len = big.len();
+            while len > 0 && r.m[len - 1] == 0 {
+                len -= 1;
+            }
+            r.len = len as u32;
+        }
+        r.normalise();
+        r
     }
 
     /// `self − other`, exactly.
+    #[inline]
     pub fn sub(&self, other: &Dyadic) -> Dyadic {
         self.add(&other.neg())
     }
 
     /// `−self`.
+    #[inline]
     pub fn neg(&self) -> Dyadic {
-        Dyadic {
-            m: -&self.m,
-            e: self.e,
+        let mut r = *self;
+        if r.len != 0 {
+            r.neg = !r.neg;
         }
+        r
     }
 
     /// `self · other`, exactly.
     pub fn mul(&self, other: &Dyadic) -> Dyadic {
-        if self.m.is_zero() || other.m.is_zero() {
+        if self.len == 0 || other.len == 0 {
             return Dyadic::zero();
         }
-        Dyadic {
-            m: &self.m * &other.m,
-            e: self.e + other.e,
+        let (a, b) = (self.mag(), other.mag());
+        assert!(
+            a.len() + b.len() <= LIMBS,
+            "exact arithmetic capacity exceeded (inputs outside the supported range)"
+        );
+        let mut r = Dyadic::zero();
+        for (i, &x) in a.iter().enumerate() {
+            let mut carry = 0u128;
+            for (j, &y) in b.iter().enumerate() {
+                let t = x as u128 * y as u128 + r.m[i + j] as u128 + carry;
+                r.m[i + j] = t as u64;
+                carry = t >> 64;
+            }
+            r.m[i + b.len()] = carry as u64;
+        }
+        let mut len = a.len() + b.len();
+        while len > 0 && r.m[len - 1] == 0 {
+            len -= 1;
+        }
+        r.len = len as u32;
+        r.neg = self.neg != other.neg;
+        // The product of two odd magnitudes is odd: already normalised.
+        r.e = self.e + other.e;
+        r
+    }
+
+    /// The value as the nearest-ish float (for tests and diagnostics; not
+    /// correctly rounded, may overflow to infinity).
+    pub fn to_f64_approx(&self) -> f64 {
+        let mut v = 0.0;
+        for &x in self.mag().iter().rev() {
+            v = v * 18446744073709551616.0 + x as f64;
+        }
+        let v = v * 2f64.powi(self.e.clamp(-1100, 1100));
+        if self.neg {
+            -v
+        } else {
+            v
         }
     }
 }
@@ -111,6 +386,7 @@ impl Dyadic {
 pub type ExactVec = [Dyadic; 3];
 
 /// The exact vector of a float vector.
+#[inline]
 pub fn exact(v: DVec3) -> ExactVec {
     [
         Dyadic::from_f64(v.x),
@@ -128,9 +404,9 @@ pub fn sub(a: DVec3, b: DVec3) -> ExactVec {
 /// `a × b`, exactly.
 pub fn cross(a: &ExactVec, b: &ExactVec) -> ExactVec {
     [
-        a[1].mul(&b[2]).sub(&a[2].mul(&b[1])),
-        a[2].mul(&b[0]).sub(&a[0].mul(&b[2])),
-        a[0].mul(&b[1]).sub(&a[1].mul(&b[0])),
+        det2(&a[1], &a[2], &b[1], &b[2]),
+        det2(&a[2], &a[0], &b[2], &b[0]),
+        det2(&a[0], &a[1], &b[0], &b[1]),
     ]
 }
 
@@ -143,7 +419,13 @@ pub fn dot(a: &ExactVec, b: &ExactVec) -> Dyadic {
 pub fn mat_vec(m: &DMat3, v: &ExactVec) -> ExactVec {
     let row = |r: usize| {
         let row = m.row(r);
-        dot(&exact(row), v)
+        let mut s = Dyadic::zero();
+        for k in 0..3 {
+            if row[k] != 0.0 && !v[k].is_zero() {
+                s = s.add(&Dyadic::from_f64(row[k]).mul(&v[k]));
+            }
+        }
+        s
     };
     [row(0), row(1), row(2)]
 }
@@ -154,8 +436,129 @@ pub fn det3(a: &ExactVec, b: &ExactVec, c: &ExactVec) -> Dyadic {
 }
 
 /// `p0 q1 − p1 q0`, exactly.
+#[inline]
 pub fn det2(p0: &Dyadic, p1: &Dyadic, q0: &Dyadic, q1: &Dyadic) -> Dyadic {
-    p0.mul(q1).sub(&p1.mul(q0))
+    let (x, y) = (p0.mul(q1), p1.mul(q0));
+    if y.is_zero() {
+        x
+    } else if x.is_zero() {
+        y.neg()
+    } else {
+        x.sub(&y)
+    }
+}
+
+/// Whether a finite coordinate set is within what the exact predicates
+/// decide: every non-zero magnitude within `2^MAX_COORD_SPAN` of the
+/// largest one. Returns the largest and smallest non-zero binary exponents
+/// `(top, low)` on failure; `Ok(())` also for sets of zeros.
+pub fn coordinate_span_ok(coords: impl Iterator<Item = f64>) -> Result<(), (i32, i32)> {
+    let mut top = i32::MIN;
+    let mut low = i32::MAX;
+    for x in coords {
+        if x != 0.0 && x.is_finite() {
+            top = top.max(top_exponent(x));
+            low = low.min(low_exponent(x));
+        }
+    }
+    if top == i32::MIN || top - low <= MAX_COORD_SPAN {
+        Ok(())
+    } else {
+        Err((top, low))
+    }
+}
+
+/// Error-free float evaluation for the cheap exact stage: each function
+/// returns the exact value when it is a float computed without any rounding,
+/// overflow or underflow, else `None` (then the caller evaluates with
+/// [`Dyadic`]s). Exact ties of axis-aligned or otherwise simple geometry
+/// (parallel box faces) are settled here without multi-limb arithmetic.
+pub mod float {
+    use glam::DVec3;
+
+    /// Products whose magnitude is at least this have an exactly
+    /// representable rounding error (`2^-969 = 2^(-1022 + 53)`).
+    const MIN_EXACT_PRODUCT: f64 = 2.004168360008973e-292;
+
+    /// `a · b` if the float product is exact.
+    #[inline]
+    pub fn mul(a: f64, b: f64) -> Option<f64> {
+        let p = a * b;
+        if p == 0.0 {
+            return (a == 0.0 || b == 0.0).then_some(0.0);
+        }
+        if !p.is_finite() || p.abs() < MIN_EXACT_PRODUCT {
+            return None;
+        }
+        (a.mul_add(b, -p) == 0.0).then_some(p)
+    }
+
+    /// `a + b` if the float sum is exact (Knuth's TwoSum).
+    #[inline]
+    pub fn add(a: f64, b: f64) -> Option<f64> {
+        let s = a + b;
+        if !s.is_finite() {
+            return None;
+        }
+        let bb = s - a;
+        ((a - (s - bb)) + (b - bb) == 0.0).then_some(s)
+    }
+
+    /// `p0 q1 − p1 q0` if evaluated exactly.
+    #[inline]
+    pub fn det2(p0: f64, p1: f64, q0: f64, q1: f64) -> Option<f64> {
+        add(mul(p0, q1)?, -mul(p1, q0)?)
+    }
+
+    /// `a × b` if evaluated exactly.
+    #[inline]
+    pub fn cross(a: DVec3, b: DVec3) -> Option<DVec3> {
+        Some(DVec3::new(
+            det2(a.y, a.z, b.y, b.z)?,
+            det2(a.z, a.x, b.z, b.x)?,
+            det2(a.x, a.y, b.x, b.y)?,
+        ))
+    }
+
+    /// `a · b` if evaluated exactly.
+    #[inline]
+    pub fn dot(a: DVec3, b: DVec3) -> Option<f64> {
+        add(add(mul(a.x, b.x)?, mul(a.y, b.y)?)?, mul(a.z, b.z)?)
+    }
+
+    /// `a − b` if evaluated exactly.
+    #[inline]
+    pub fn sub(a: DVec3, b: DVec3) -> Option<DVec3> {
+        Some(DVec3::new(
+            add(a.x, -b.x)?,
+            add(a.y, -b.y)?,
+            add(a.z, -b.z)?,
+        ))
+    }
+
+    /// `det[a, b, c]` if evaluated exactly.
+    #[inline]
+    pub fn det3(a: DVec3, b: DVec3, c: DVec3) -> Option<f64> {
+        dot(cross(a, b)?, c)
+    }
+
+    /// `M v` (rows of `M` dotted with `v`) if evaluated exactly.
+    #[inline]
+    pub fn mat_vec(m: &glam::DMat3, v: DVec3) -> Option<DVec3> {
+        Some(DVec3::new(
+            dot(m.row(0), v)?,
+            dot(m.row(1), v)?,
+            dot(m.row(2), v)?,
+        ))
+    }
+
+    /// `v · 2^k` for a power of two `s = 2^k` if exact (no overflow or
+    /// underflow).
+    #[inline]
+    pub fn scale(v: DVec3, s: f64) -> Option<DVec3> {
+        let w = v * s;
+        (w.is_finite() && w / s == v).then_some(w)
+    }
 }
 
 #[cfg(test)]
@@ -164,13 +567,12 @@ mod tests {
 
     #[test]
     fn floats_are_exact() {
-        for x in [0.1, -3.5, 1e-300, 5e-324, 1e300, f64::MAX, -0.0] {
+        for x in [0.1, -3.5, 1e-300, 5e-324, 1e300, f64::MAX, -0.0, 3.0] {
             let d = Dyadic::from_f64(x);
-            // m · 2^e reproduces x: compare via f64 when representable.
-            let back = d.m.to_string().parse::<f64>().unwrap() * 2f64.powi(d.e);
             if x.abs() > 1e-290 && x.abs() < 1e290 {
-                assert_eq!(back, x);
+                assert_eq!(d.to_f64_approx(), x);
             }
+            assert_eq!(d.sign(), Sign::of(x));
         }
     }
 
@@ -181,8 +583,33 @@ mod tests {
             .add(&Dyadic::from_f64(0.2))
             .sub(&Dyadic::from_f64(0.3));
         assert_eq!(s.sign(), Sign::Positive);
+        assert_eq!(s.to_f64_approx(), 2f64.powi(-55));
         let z = Dyadic::from_f64(1e300).sub(&Dyadic::from_f64(1e300));
         assert_eq!(z.sign(), Sign::Zero);
+        // Far-apart exponents: (2^600 + 2^-600) − 2^600 = 2^-600.
+        let big = Dyadic::from_f64(2f64.powi(600));
+        let small = Dyadic::from_f64(2f64.powi(-600));
+        let d = big.add(&small).sub(&big);
+        assert_eq!(d, small);
+        assert_eq!(big.add(&small).sub(&small), big);
+    }
+
+    #[test]
+    fn products_and_carries() {
+        // (2^53 − 1)^2 = 2^106 − 2^54 + 1, checked through a difference.
+        let m = Dyadic::from_f64(9007199254740991.0);
+        let sq = m.mul(&m);
+        let expect = Dyadic::from_f64(2f64.powi(106))
+            .sub(&Dyadic::from_f64(2f64.powi(54)))
+            .add(&Dyadic::from_f64(1.0));
+        assert_eq!(sq, expect);
+        // A long carry chain: (2^64·k − 1) + 1.
+        let a = Dyadic::from_f64(2f64.powi(200)).sub(&Dyadic::from_f64(1.0));
+        assert_eq!(a.add(&Dyadic::from_f64(1.0)), Dyadic::from_f64(2f64.powi(200)));
+        assert_eq!(
+            a.neg().add(&Dyadic::from_f64(2f64.powi(200))),
+            Dyadic::from_f64(1.0)
+        );
     }
 
     #[test]
@@ -193,5 +620,40 @@ mod tests {
         assert_eq!(det3(&a, &b, &c).sign(), Sign::Positive);
         assert_eq!(det3(&b, &a, &c).sign(), Sign::Negative);
         assert_eq!(det3(&a, &b, &a).sign(), Sign::Zero);
+    }
+
+    #[test]
+    fn matches_i128_on_small_integers() {
+        // Random small-integer determinants against i128 arithmetic.
+        let mut s = 12345u64;
+        let mut next = || {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((s >> 33) % 2001) as i64 - 1000
+        };
+        for _ in 0..2000 {
+            let v: Vec<i64> = (0..9).map(|_| next()).collect();
+            let f = |i: usize| DVec3::new(v[i] as f64, v[i + 1] as f64, v[i + 2] as f64);
+            let d = det3(&exact(f(0)), &exact(f(3)), &exact(f(6)));
+            let m = |i: usize| v[i] as i128;
+            let want = m(0) * (m(4) * m(8) - m(5) * m(7)) - m(1) * (m(3) * m(8) - m(5) * m(6))
+                + m(2) * (m(3) * m(7) - m(4) * m(6));
+            assert_eq!(d.to_f64_approx(), want as f64);
+        }
+    }
+
+    #[test]
+    fn extreme_exponents() {
+        // det of a cube scaled by 2^-1000 / 2^1000 stays exact.
+        for k in [-1000, -300, 0, 300, 1000] {
+            let s = 2f64.powi(k);
+            let d = det3(
+                &exact(DVec3::X * s),
+                &exact(DVec3::Y * s),
+                &exact(DVec3::Z * s),
+            );
+            assert_eq!(d.sign(), Sign::Positive);
+        }
+        assert!(coordinate_span_ok([1e300, 1e-300].into_iter()).is_err());
+        assert!(coordinate_span_ok([1e8, 1e-3, 1e-17, 0.0].into_iter()).is_ok());
     }
 }

@@ -31,7 +31,7 @@
 //! same generic configuration.
 
 use super::dd::{self, DDVec, DD};
-use super::exact::ExactVec;
+use super::exact::{float, ExactVec};
 use glam::DVec3;
 use robust::{Coord, Coord3D};
 use std::sync::OnceLock;
@@ -124,6 +124,11 @@ pub trait ExactVector {
     /// A double-double approximation of the exact value and a bound on its
     /// Euclidean error (of order `u²` times its size).
     fn refined(&self) -> (DDVec, f64);
+    /// The exact value when it is a float vector obtainable without
+    /// rounding (then the cheap exact stage decides), else `None`.
+    fn exact_float(&self) -> Option<DVec3> {
+        None
+    }
 }
 
 /// A float vector taken as exact (error 0), with an SoS index.
@@ -151,6 +156,10 @@ impl ExactVector for Plain {
             [DD::from(self.0.x), DD::from(self.0.y), DD::from(self.0.z)],
             0.0,
         )
+    }
+    #[inline]
+    fn exact_float(&self) -> Option<DVec3> {
+        Some(self.0)
     }
 }
 
@@ -199,8 +208,21 @@ fn det3_refined<V: ExactVector>(a: &V, b: &V, c: &V) -> Option<Sign> {
     Sign::certified(det.hi + det.lo, bound)
 }
 
+/// The exact float values of three vectors, when all have one.
+#[inline]
+fn exact_floats<V: ExactVector>(a: &V, b: &V, c: &V) -> Option<[DVec3; 3]> {
+    Some([a.exact_float()?, b.exact_float()?, c.exact_float()?])
+}
+
 #[cold]
 fn det3_exact<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
+    // Cheap exact stage: exact float vectors whose determinant evaluates
+    // without rounding (exact ties of simple geometry end here).
+    if let Some([x, y, z]) = exact_floats(a, b, c) {
+        if let Some(d) = float::det3(x, y, z) {
+            return Sign::of(d);
+        }
+    }
     if let Some(s) = det3_refined(a, b, c) {
         return s;
     }
@@ -220,6 +242,11 @@ pub fn same_direction<V: ExactVector>(a: &V, b: &V) -> bool {
         1.01 * (a.error() * (my + b.error()) + (mx + a.error()) * b.error() + 4.0 * U * mx * my);
     if cr.abs().max_element() > bound || x.dot(y) < -bound {
         return false;
+    }
+    if let (Some(x), Some(y)) = (a.exact_float(), b.exact_float()) {
+        if let (Some(c), Some(d)) = (float::cross(x, y), float::dot(x, y)) {
+            return c == DVec3::ZERO && d > 0.0;
+        }
     }
     let (ea, eb) = (a.exact(), b.exact());
     let c = super::exact::cross(&ea, &eb);
@@ -262,14 +289,19 @@ fn perm_sign(p: [usize; 3]) -> i8 {
     s
 }
 
-/// The 33 perturbation terms in decreasing order of significance.
-fn sos_terms() -> &'static [SosTerm] {
-    static TERMS: OnceLock<Vec<SosTerm>> = OnceLock::new();
+/// Number of SoS terms: 9 cofactors, 18 entries, 6 constants.
+const SOS_TERMS: usize = 9 + 18 + 6;
+
+/// The 33 perturbation terms in decreasing order of significance (computed
+/// once, without allocation).
+fn sos_terms() -> &'static [SosTerm; SOS_TERMS] {
+    static TERMS: OnceLock<[SosTerm; SOS_TERMS]> = OnceLock::new();
     TERMS.get_or_init(|| {
         // Bit of the perturbation exponent of entry (row, col): row-major with
         // z (col 2) the most significant within a row.
         let bit = |r: usize, c: usize| 3 * r + (2 - c);
-        let mut terms: Vec<(u32, SosTerm)> = Vec::new();
+        let mut terms = [(0u32, SosTerm::Constant(1)); SOS_TERMS];
+        let mut n = 0;
         let perms: [[usize; 3]; 6] = [
             [0, 1, 2],
             [0, 2, 1],
@@ -281,44 +313,68 @@ fn sos_terms() -> &'static [SosTerm] {
         // Single perturbations: coefficient is the cofactor.
         for r in 0..3 {
             for c in 0..3 {
-                terms.push((
+                terms[n] = (
                     1 << bit(r, c),
                     SosTerm::Cofactor {
                         row: r as u8,
                         col: c as u8,
                     },
-                ));
+                );
+                n += 1;
             }
         }
         // Pairs: rows r1 < r2 perturbed at columns of a permutation sigma; the
         // coefficient is sgn(sigma) * A[r3][sigma(r3)].
         for p in perms {
             for skip in 0..3 {
-                let rows: Vec<usize> = (0..3).filter(|&r| r != skip).collect();
-                let exp = rows.iter().map(|&r| 1u32 << bit(r, p[r])).sum();
-                terms.push((
+                let exp = (0..3)
+                    .filter(|&r| r != skip)
+                    .map(|r| 1u32 << bit(r, p[r]))
+                    .sum();
+                terms[n] = (
                     exp,
                     SosTerm::Entry {
                         row: skip as u8,
                         col: p[skip] as u8,
                         sign: perm_sign(p),
                     },
-                ));
+                );
+                n += 1;
             }
             let exp = (0..3).map(|r| 1u32 << bit(r, p[r])).sum();
-            terms.push((exp, SosTerm::Constant(perm_sign(p))));
+            terms[n] = (exp, SosTerm::Constant(perm_sign(p)));
+            n += 1;
         }
-        terms.sort_by_key(|t| t.0);
-        // Distinct exponents by construction (distinct bit sets); pairs with
-        // the same positions from different permutations collapse: keep one.
-        terms.dedup_by_key(|t| t.0);
-        terms.into_iter().map(|t| t.1).collect()
+        debug_assert_eq!(n, SOS_TERMS);
+        // Distinct exponents by construction (distinct bit sets).
+        terms.sort_unstable_by_key(|t| t.0);
+        debug_assert!(terms.windows(2).all(|w| w[0].0 < w[1].0));
+        terms.map(|t| t.1)
     })
 }
 
+/// The rows and columns other than `i`.
+#[inline]
+fn others(i: usize) -> [usize; 2] {
+    match i {
+        0 => [1, 2],
+        1 => [0, 2],
+        _ => [0, 1],
+    }
+}
+
+/// Sign of the cofactor `(row, col)` of a float matrix, when the 2×2 minor
+/// evaluates exactly.
+fn cofactor_sign_float(m: &[DVec3; 3], row: usize, col: usize) -> Option<Sign> {
+    let [r0, r1] = others(row);
+    let [c0, c1] = others(col);
+    let s = Sign::of(float::det2(m[r0][c0], m[r0][c1], m[r1][c0], m[r1][c1])?);
+    Some(if (row + col) % 2 == 1 { s.flip() } else { s })
+}
+
 fn cofactor_sign(m: &[ExactVec; 3], row: usize, col: usize) -> Sign {
-    let rows: Vec<usize> = (0..3).filter(|&r| r != row).collect();
-    let cols: Vec<usize> = (0..3).filter(|&c| c != col).collect();
+    let rows = others(row);
+    let cols = others(col);
     let s = super::exact::det2(
         &m[rows[0]][cols[0]],
         &m[rows[0]][cols[1]],
@@ -354,24 +410,47 @@ fn sos_slow<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
         "SoS needs distinct indices"
     );
     // Sort rows by index; an odd permutation flips the sign.
-    let mut rows = [(ia, a.exact()), (ib, b.exact()), (ic, c.exact())];
+    let floats = exact_floats(a, b, c);
+    let mut order = [(ia, 0usize), (ib, 1), (ic, 2)];
     let mut flips = 0;
     for i in 0..3 {
         for j in 0..2 - i {
-            if rows[j].0 > rows[j + 1].0 {
-                rows.swap(j, j + 1);
+            if order[j].0 > order[j + 1].0 {
+                order.swap(j, j + 1);
                 flips += 1;
             }
         }
     }
-    let [r0, r1, r2] = rows;
-    let m = [r0.1, r1.1, r2.1];
+    let fm = floats.map(|f| order.map(|(_, k)| f[k]));
+    // The exact matrix, computed only if the float stage cannot decide.
+    let mut exact: Option<[ExactVec; 3]> = None;
+    let mut exact_matrix = || -> [ExactVec; 3] {
+        *exact.get_or_insert_with(|| {
+            order.map(|(_, k)| match k {
+                0 => a.exact(),
+                1 => b.exact(),
+                _ => c.exact(),
+            })
+        })
+    };
+    let entry_sign = |m: &Option<[DVec3; 3]>, ex: &mut dyn FnMut() -> [ExactVec; 3], r: usize, k: usize| {
+        match m {
+            Some(f) => Sign::of(f[r][k]),
+            None => ex()[r][k].sign(),
+        }
+    };
     let mut result = Sign::Zero;
     for t in sos_terms() {
         let s = match *t {
-            SosTerm::Cofactor { row, col } => cofactor_sign(&m, row as usize, col as usize),
+            SosTerm::Cofactor { row, col } => {
+                let (row, col) = (row as usize, col as usize);
+                match fm.as_ref().and_then(|f| cofactor_sign_float(f, row, col)) {
+                    Some(s) => s,
+                    None => cofactor_sign(&exact_matrix(), row, col),
+                }
+            }
             SosTerm::Entry { row, col, sign } => {
-                let v = m[row as usize][col as usize].sign();
+                let v = entry_sign(&fm, &mut exact_matrix, row as usize, col as usize);
                 if sign < 0 {
                     v.flip()
                 } else {

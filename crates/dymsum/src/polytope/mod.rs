@@ -514,6 +514,17 @@ impl ExactVector for FaceNormal<'_> {
             None => n,
         }
     }
+    #[inline]
+    fn exact_float(&self) -> Option<DVec3> {
+        if self.poly.normal_err[self.face as usize] != 0.0 {
+            return None;
+        }
+        let n = self.poly.normals[self.face as usize];
+        match self.rotation {
+            None => Some(n),
+            Some(m) => exact::float::mat_vec(m, n),
+        }
+    }
     fn refined(&self) -> (DDVec, f64) {
         let (n, err) = self.poly.refined_normal(self.face as usize);
         match self.rotation {
@@ -563,6 +574,13 @@ fn face_normal(vertices: &[DVec3], face: &[u32]) -> (DVec3, [u32; 3], f64, f64) 
         }
     }
     let (n, triple, _, lens) = best;
+    // Whether the float normal is the exact cross product (then its error
+    // is 0 and exact ties are decided by the cheap float stage).
+    let [ta, tb, tc] = triple.map(|v| vertices[v as usize]);
+    let exact_n = exact::float::sub(tb, ta)
+        .zip(exact::float::sub(tc, ta))
+        .and_then(|(d1, d2)| exact::float::cross(d1, d2))
+        .filter(|&c| c == n);
     // |fl(d1 × d2) − (B−A) × (C−A)| ≤ ~7u |d1||d2|; use 16u.
     let mut err = 16.0 * f64::EPSILON / 2.0 * lens * 1.01;
     let m = n.abs().max_element();
@@ -571,8 +589,14 @@ fn face_normal(vertices: &[DVec3], face: &[u32]) -> (DVec3, [u32; 3], f64, f64) 
         let s = 2f64.powi(-e);
         if s.is_finite() && s > 0.0 {
             err *= s;
+            if exact_n.and_then(|c| exact::float::scale(c, s)).is_some() {
+                err = 0.0;
+            }
             return (n * s, triple, err, s);
         }
+    }
+    if exact_n.is_some() {
+        err = 0.0;
     }
     (n, triple, err, 1.0)
 }
