@@ -129,6 +129,16 @@ pub trait ExactVector {
     fn exact_float(&self) -> Option<DVec3> {
         None
     }
+    /// The components whose exact value is a float obtainable without
+    /// rounding (a subset of what [`ExactVector::exact_float`] gives: a
+    /// rotated normal may have an exactly zero component although the
+    /// others are not floats).
+    fn exact_components(&self) -> [Option<f64>; 3] {
+        match self.exact_float() {
+            Some(v) => [Some(v.x), Some(v.y), Some(v.z)],
+            None => [None; 3],
+        }
+    }
 }
 
 /// A float vector taken as exact (error 0), with an SoS index.
@@ -208,20 +218,122 @@ fn det3_refined<V: ExactVector>(a: &V, b: &V, c: &V) -> Option<Sign> {
     Sign::certified(det.hi + det.lo, bound)
 }
 
-/// The exact float values of three vectors, when all have one.
-#[inline]
-fn exact_floats<V: ExactVector>(a: &V, b: &V, c: &V) -> Option<[DVec3; 3]> {
-    Some([a.exact_float()?, b.exact_float()?, c.exact_float()?])
+/// What the cheap exact stage knows about three vectors: approximations,
+/// error bounds, and the components known exactly as floats.
+struct Known {
+    approx: [DVec3; 3],
+    err: [f64; 3],
+    exact: [[Option<f64>; 3]; 3],
+}
+
+impl Known {
+    fn of<V: ExactVector>(v: [&V; 3]) -> Known {
+        Known {
+            approx: v.map(|x| x.approx()),
+            err: v.map(|x| x.error()),
+            exact: v.map(|x| x.exact_components()),
+        }
+    }
+
+    /// The exact sign of entry `(r, k)`, when known cheaply.
+    #[inline]
+    fn entry_sign(&self, r: usize, k: usize) -> Option<Sign> {
+        match self.exact[r][k] {
+            Some(x) => Some(Sign::of(x)),
+            None => Sign::certified(self.approx[r][k], self.err[r]),
+        }
+    }
+
+    #[inline]
+    fn is_zero(&self, r: usize, k: usize) -> bool {
+        self.exact[r][k] == Some(0.0)
+    }
+
+    /// Row `r` as an exact float vector, if all its components are known.
+    #[inline]
+    fn row(&self, r: usize) -> Option<DVec3> {
+        let [x, y, z] = self.exact[r];
+        Some(DVec3::new(x?, y?, z?))
+    }
+
+    /// The exact sign of the 2×2 minor `A[r0][c0] A[r1][c1] − A[r0][c1] A[r1][c0]`
+    /// when it can be decided cheaply.
+    fn minor_sign(&self, r0: usize, r1: usize, c0: usize, c1: usize) -> Option<Sign> {
+        let x_zero = self.is_zero(r0, c0) || self.is_zero(r1, c1);
+        let y_zero = self.is_zero(r0, c1) || self.is_zero(r1, c0);
+        let prod = |p: Option<Sign>, q: Option<Sign>| -> Option<Sign> {
+            Some(match (p?, q?) {
+                (Sign::Zero, _) | (_, Sign::Zero) => Sign::Zero,
+                (a, b) if a == b => Sign::Positive,
+                _ => Sign::Negative,
+            })
+        };
+        match (x_zero, y_zero) {
+            (true, true) => return Some(Sign::Zero),
+            (true, false) => {
+                return prod(self.entry_sign(r0, c1), self.entry_sign(r1, c0)).map(Sign::flip)
+            }
+            (false, true) => return prod(self.entry_sign(r0, c0), self.entry_sign(r1, c1)),
+            _ => {}
+        }
+        if let (Some(p0), Some(q1), Some(p1), Some(q0)) = (
+            self.exact[r0][c0],
+            self.exact[r1][c1],
+            self.exact[r0][c1],
+            self.exact[r1][c0],
+        ) {
+            if let Some(d) = float::det2(p0, p1, q0, q1) {
+                return Some(Sign::of(d));
+            }
+        }
+        // Float filter on the approximations.
+        let (a, b) = (self.approx[r0], self.approx[r1]);
+        let (ea, eb) = (self.err[r0], self.err[r1]);
+        let d = a[c0] * b[c1] - a[c1] * b[c0];
+        let (ma, mb) = (a[c0].abs().max(a[c1].abs()), b[c0].abs().max(b[c1].abs()));
+        let bound = 1.01 * (2.0 * (ea * (mb + eb) + ma * eb) + 8.0 * U * ma * mb)
+            + f64::MIN_POSITIVE;
+        if d.is_finite() && bound.is_finite() {
+            return Sign::certified(d, bound);
+        }
+        None
+    }
+
+    /// `Some(Zero)` when the determinant is exactly zero for a structural
+    /// reason seen cheaply (a column of exact zeros, two exactly parallel
+    /// float rows), or its sign when all entries are floats and it
+    /// evaluates exactly.
+    fn det_sign(&self) -> Option<Sign> {
+        if (0..3).any(|k| (0..3).all(|r| self.is_zero(r, k))) {
+            return Some(Sign::Zero);
+        }
+        let rows = [self.row(0), self.row(1), self.row(2)];
+        if let [Some(x), Some(y), Some(z)] = rows {
+            if let Some(d) = float::det3(x, y, z) {
+                return Some(Sign::of(d));
+            }
+        }
+        for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+            if let (Some(x), Some(y)) = (rows[i], rows[j]) {
+                if float::cross(x, y) == Some(DVec3::ZERO) {
+                    return Some(Sign::Zero);
+                }
+            }
+        }
+        None
+    }
 }
 
 #[cold]
 fn det3_exact<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
-    // Cheap exact stage: exact float vectors whose determinant evaluates
-    // without rounding (exact ties of simple geometry end here).
-    if let Some([x, y, z]) = exact_floats(a, b, c) {
-        if let Some(d) = float::det3(x, y, z) {
-            return Sign::of(d);
-        }
+    det3_exact_known(a, b, c, &Known::of([a, b, c]))
+}
+
+fn det3_exact_known<V: ExactVector>(a: &V, b: &V, c: &V, k: &Known) -> Sign {
+    // Cheap exact stage: exact ties of simple geometry (parallel faces, all
+    // normals in one coordinate plane) end here without multi-limb work.
+    if let Some(s) = k.det_sign() {
+        return s;
     }
     if let Some(s) = det3_refined(a, b, c) {
         return s;
@@ -363,32 +475,6 @@ fn others(i: usize) -> [usize; 2] {
     }
 }
 
-/// Sign of the cofactor `(row, col)` of a float matrix, when the 2×2 minor
-/// evaluates exactly.
-fn cofactor_sign_float(m: &[DVec3; 3], row: usize, col: usize) -> Option<Sign> {
-    let [r0, r1] = others(row);
-    let [c0, c1] = others(col);
-    let s = Sign::of(float::det2(m[r0][c0], m[r0][c1], m[r1][c0], m[r1][c1])?);
-    Some(if (row + col) % 2 == 1 { s.flip() } else { s })
-}
-
-fn cofactor_sign(m: &[ExactVec; 3], row: usize, col: usize) -> Sign {
-    let rows = others(row);
-    let cols = others(col);
-    let s = super::exact::det2(
-        &m[rows[0]][cols[0]],
-        &m[rows[0]][cols[1]],
-        &m[rows[1]][cols[0]],
-        &m[rows[1]][cols[1]],
-    )
-    .sign();
-    if (row + col) % 2 == 1 {
-        s.flip()
-    } else {
-        s
-    }
-}
-
 /// Sign of `det[a, b, c]` under Simulation of Simplicity, with the vectors'
 /// global indices (all distinct). Never `Zero` for distinct indices; equals
 /// [`det3`] whenever that is non-zero.
@@ -400,17 +486,12 @@ pub fn sos_det3<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
 
 #[cold]
 fn sos_slow<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
-    let s = det3_exact(a, b, c);
-    if s != Sign::Zero {
-        return s;
-    }
     let (ia, ib, ic) = (a.index(), b.index(), c.index());
     debug_assert!(
         ia != ib && ib != ic && ia != ic,
         "SoS needs distinct indices"
     );
     // Sort rows by index; an odd permutation flips the sign.
-    let floats = exact_floats(a, b, c);
     let mut order = [(ia, 0usize), (ib, 1), (ic, 2)];
     let mut flips = 0;
     for i in 0..3 {
@@ -421,36 +502,45 @@ fn sos_slow<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
             }
         }
     }
-    let fm = floats.map(|f| order.map(|(_, k)| f[k]));
-    // The exact matrix, computed only if the float stage cannot decide.
+    let vs = [a, b, c];
+    let [v0, v1, v2] = order.map(|(_, k)| vs[k]);
+    let known = Known::of([v0, v1, v2]);
+    let s = det3_exact_known(v0, v1, v2, &known);
+    if s != Sign::Zero {
+        return if flips % 2 == 1 { s.flip() } else { s };
+    }
+    // The exact matrix, computed only if the cheap stage cannot decide.
     let mut exact: Option<[ExactVec; 3]> = None;
-    let mut exact_matrix = || -> [ExactVec; 3] {
-        *exact.get_or_insert_with(|| {
-            order.map(|(_, k)| match k {
-                0 => a.exact(),
-                1 => b.exact(),
-                _ => c.exact(),
-            })
-        })
-    };
-    let entry_sign = |m: &Option<[DVec3; 3]>, ex: &mut dyn FnMut() -> [ExactVec; 3], r: usize, k: usize| {
-        match m {
-            Some(f) => Sign::of(f[r][k]),
-            None => ex()[r][k].sign(),
-        }
-    };
     let mut result = Sign::Zero;
     for t in sos_terms() {
         let s = match *t {
             SosTerm::Cofactor { row, col } => {
                 let (row, col) = (row as usize, col as usize);
-                match fm.as_ref().and_then(|f| cofactor_sign_float(f, row, col)) {
+                let [r0, r1] = others(row);
+                let [c0, c1] = others(col);
+                let s = match known.minor_sign(r0, r1, c0, c1) {
                     Some(s) => s,
-                    None => cofactor_sign(&exact_matrix(), row, col),
+                    None => {
+                        let m = exact.get_or_insert_with(|| [v0.exact(), v1.exact(), v2.exact()]);
+                        super::exact::det2(&m[r0][c0], &m[r0][c1], &m[r1][c0], &m[r1][c1])
+                            .sign()
+                    }
+                };
+                if (row + col) % 2 == 1 {
+                    s.flip()
+                } else {
+                    s
                 }
             }
             SosTerm::Entry { row, col, sign } => {
-                let v = entry_sign(&fm, &mut exact_matrix, row as usize, col as usize);
+                let (row, col) = (row as usize, col as usize);
+                let v = match known.entry_sign(row, col) {
+                    Some(s) => s,
+                    None => {
+                        let m = exact.get_or_insert_with(|| [v0.exact(), v1.exact(), v2.exact()]);
+                        m[row][col].sign()
+                    }
+                };
                 if sign < 0 {
                     v.flip()
                 } else {

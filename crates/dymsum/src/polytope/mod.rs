@@ -525,6 +525,17 @@ impl ExactVector for FaceNormal<'_> {
             Some(m) => exact::float::mat_vec(m, n),
         }
     }
+    #[inline]
+    fn exact_components(&self) -> [Option<f64>; 3] {
+        if self.poly.normal_err[self.face as usize] != 0.0 {
+            return [None; 3];
+        }
+        let n = self.poly.normals[self.face as usize];
+        match self.rotation {
+            None => [Some(n.x), Some(n.y), Some(n.z)],
+            Some(m) => [0, 1, 2].map(|r| exact::float::dot(m.row(r), n)),
+        }
+    }
     fn refined(&self) -> (DDVec, f64) {
         let (n, err) = self.poly.refined_normal(self.face as usize);
         match self.rotation {
