@@ -303,8 +303,8 @@ impl Dyadic {
             };
             r.neg = neg;
             let mut borrow = 0u64;
-            for i in 0..big.len() {
-                let (d1, b1) = big[i].overflowing_sub(*small.get(i).unwrap_or(&0));
+            for (i, &x) in big.iter().enumerate() {
+                let (d1, b1) = x.overflowing_sub(*small.get(i).unwrap_or(&0));
                 let (d2, b2) = d1.overflowing_sub(borrow);
                 r.m[i] = d2;
                 borrow = (b1 || b2) as u64;
@@ -605,7 +605,10 @@ mod tests {
         assert_eq!(sq, expect);
         // A long carry chain: (2^64·k − 1) + 1.
         let a = Dyadic::from_f64(2f64.powi(200)).sub(&Dyadic::from_f64(1.0));
-        assert_eq!(a.add(&Dyadic::from_f64(1.0)), Dyadic::from_f64(2f64.powi(200)));
+        assert_eq!(
+            a.add(&Dyadic::from_f64(1.0)),
+            Dyadic::from_f64(2f64.powi(200))
+        );
         assert_eq!(
             a.neg().add(&Dyadic::from_f64(2f64.powi(200))),
             Dyadic::from_f64(1.0)
@@ -627,7 +630,9 @@ mod tests {
         // Random small-integer determinants against i128 arithmetic.
         let mut s = 12345u64;
         let mut next = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((s >> 33) % 2001) as i64 - 1000
         };
         for _ in 0..2000 {

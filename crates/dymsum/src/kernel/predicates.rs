@@ -291,8 +291,8 @@ impl Known {
         let (ea, eb) = (self.err[r0], self.err[r1]);
         let d = a[c0] * b[c1] - a[c1] * b[c0];
         let (ma, mb) = (a[c0].abs().max(a[c1].abs()), b[c0].abs().max(b[c1].abs()));
-        let bound = 1.01 * (2.0 * (ea * (mb + eb) + ma * eb) + 8.0 * U * ma * mb)
-            + f64::MIN_POSITIVE;
+        let bound =
+            1.01 * (2.0 * (ea * (mb + eb) + ma * eb) + 8.0 * U * ma * mb) + f64::MIN_POSITIVE;
         if d.is_finite() && bound.is_finite() {
             return Sign::certified(d, bound);
         }
@@ -522,8 +522,7 @@ fn sos_slow<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
                     Some(s) => s,
                     None => {
                         let m = exact.get_or_insert_with(|| [v0.exact(), v1.exact(), v2.exact()]);
-                        super::exact::det2(&m[r0][c0], &m[r0][c1], &m[r1][c0], &m[r1][c1])
-                            .sign()
+                        super::exact::det2(&m[r0][c0], &m[r0][c1], &m[r1][c0], &m[r1][c1]).sign()
                     }
                 };
                 if (row + col) % 2 == 1 {
