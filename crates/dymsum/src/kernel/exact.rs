@@ -18,12 +18,12 @@
 //! The predicates evaluate at most degree 9 in the vertex coordinates of one
 //! polytope (the determinant of three rotated exact normals: each normal is
 //! degree 2 in coordinates, times a rotation entry) and degree 3 in
-//! pairwise sums of two polytopes' coordinates (the hull method). The
-//! constructors refuse polytopes whose coordinates span more than
-//! [`MAX_COORD_SPAN`] bits (see [`check_coordinate_range`]); that keeps every
-//! value far below [`CAPACITY_BITS`] (the worst case is worked out at
-//! [`CAPACITY_BITS`]). Exceeding the capacity is an internal invariant
-//! violation and panics rather than answering wrongly.
+//! pairwise sums of two polytopes' coordinates (the hull method). For
+//! polytopes whose coordinates span at most [`MAX_COORD_SPAN`] bits
+//! ([`coordinate_span_ok`], meant to be called by the constructors) every
+//! value stays below [`CAPACITY_BITS`] (the worst case is worked out at
+//! [`CAPACITY_BITS`]). Exceeding the capacity panics with a message rather
+//! than answering wrongly.
 //!
 //! Complexity: addition `O(n)` and multiplication `O(n²)` in the number of
 //! 64-bit limbs actually used (one or two for typical coordinates).
@@ -50,7 +50,7 @@ pub const CAPACITY_BITS: usize = LIMBS * 64;
 
 /// The largest supported binary-exponent spread between the largest
 /// coordinate magnitude of a polytope and its smallest non-zero one
-/// (`2^960 ≈ 1e289`). See [`check_coordinate_range`].
+/// (`2^960 ≈ 1e289`). See [`coordinate_span_ok`].
 pub const MAX_COORD_SPAN: i32 = 960;
 
 /// Decomposes a finite `f64` into `(m, e)` with value exactly `m · 2^e`
