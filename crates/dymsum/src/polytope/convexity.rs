@@ -27,7 +27,9 @@
 //!    that corner); otherwise the candidates are the faces around the hull
 //!    vertex extreme in the face's normal direction, found by hill climbing
 //!    on the hull's vertex adjacency from a nearby corner (a breadth-first
-//!    hint over the mesh edges). Candidates are confirmed exactly with
+//!    hint over the mesh edges). Candidates are confirmed exactly: a hull
+//!    corner listed by the candidate face lies in its plane by construction
+//!    (the hull decided that exactly), any other vertex is tested with
 //!    `orient3d`; only when no candidate of a cornerless face is confirmed
 //!    and the mesh is still exactly convex so far are all hull faces tried
 //!    (those near in floats, confirmed exactly).
@@ -261,6 +263,17 @@ pub(crate) fn compare_with_hull(
             p,
         ) == Sign::Zero
     };
+    // Mesh vertex `i` lies exactly in the plane of hull face `h`: a corner
+    // listed by a small face does by construction (the hull decided it
+    // exactly); otherwise ask `orient3d`.
+    let in_face = |h: usize, i: usize| -> bool {
+        let face = poly.face(h);
+        if corner[i] != usize::MAX && face.len() <= 16 {
+            face.contains(&(corner[i] as u32)) || on_plane(h, all[i])
+        } else {
+            on_plane(h, all[i])
+        }
+    };
     let full_face_scan = |f: &[usize]| -> (f64, usize) {
         let mut best = (f64::INFINITY, 0);
         for h in 0..nf {
@@ -302,7 +315,7 @@ pub(crate) fn compare_with_hull(
         if exact {
             let hit = cands
                 .iter()
-                .find(|&&(_, h)| f.iter().all(|&i| on_plane(h, all[i])));
+                .find(|&&(_, h)| f.iter().all(|&i| in_face(h, i)));
             let hit = match hit {
                 Some(&c) => Some(c),
                 None if !has_corner => {
@@ -312,7 +325,7 @@ pub(crate) fn compare_with_hull(
                     (0..nf)
                         .map(|h| (planes.face_dev(h, f.iter().map(|&i| local[i])), h))
                         .filter(|&(d, _)| d <= near)
-                        .find(|&(_, h)| f.iter().all(|&i| on_plane(h, all[i])))
+                        .find(|&(_, h)| f.iter().all(|&i| in_face(h, i)))
                 }
                 None => None,
             };
