@@ -38,8 +38,8 @@ fn box_mesh(at: [f64; 3], size: f64, triangulated: bool) -> PolygonMesh {
 
 fn assert_exact_box(mesh: &PolygonMesh, label: &str) {
     for policy in [MeshPolicy::default(), MeshPolicy::strict()] {
-        let (p, r) = Polytope::from_mesh(mesh, policy)
-            .unwrap_or_else(|e| panic!("{label}: refused: {e}"));
+        let (p, r) =
+            Polytope::from_mesh(mesh, policy).unwrap_or_else(|e| panic!("{label}: refused: {e}"));
         assert_eq!((p.vertex_count(), p.face_count()), (8, 6), "{label}");
         assert!(r.exactly_convex && !r.replaced_by_hull, "{label}: {r:?}");
         assert!(!r.inward_oriented, "{label}");
@@ -61,11 +61,8 @@ fn boxes_far_from_the_origin_load_exactly() {
 fn dented_box(at: [f64; 3], size: f64, depth: f64) -> PolygonMesh {
     let mut m = box_mesh(at, size, false);
     let c = m.vertices.len();
-    m.vertices.push([
-        at[0] + 0.5 * size,
-        at[1] + 0.5 * size,
-        at[2] + size - depth,
-    ]);
+    m.vertices
+        .push([at[0] + 0.5 * size, at[1] + 0.5 * size, at[2] + size - depth]);
     // The top face is QUADS[1] = [4, 5, 7, 6].
     m.faces.remove(1);
     for (a, b) in [(4, 5), (5, 7), (7, 6), (6, 4)] {
