@@ -17,16 +17,22 @@
 //!      replaced by its hull: the [`ConvexityReport`] says so, and
 //!      [`MeshPolicy::strict`] refuses such a mesh instead.
 //!
-//! Complexity: the hull is O(n log n) expected; the tolerance check is
-//! O(F_mesh · F_hull).
+//! Tolerances and deviations are measured relative to the shape's own size
+//! (its bounding-box diagonal), in coordinates relative to the bounding-box
+//! centre and scaled by a power of two (see `convexity`), so position and
+//! scale do not matter.
+//!
+//! Complexity: O(n log n) in all: the topology check sorts the directed
+//! edges per vertex (no hashing), the hull is O(n log n) expected, and the
+//! mesh is matched to the hull locally through the hull's vertex–face
+//! incidence and hill climbing (the old check compared every face with
+//! every hull plane, O(F_mesh · F_hull)).
 
-use super::{bounds, Polytope, PolytopeError};
+use super::convexity::{compare_with_hull, Frame};
+use super::{Polytope, PolytopeError};
 use crate::hull::{convex_hull, ConvexHull, FloatPoints};
-use crate::kernel::predicates::orient;
-use crate::kernel::Sign;
 use crate::PolygonMesh;
 use glam::DVec3;
-use std::collections::HashMap;
 
 /// How strictly [`Polytope::from_mesh`] treats meshes convex only up to rounding.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -152,7 +158,7 @@ impl Polytope {
         let all: Vec<DVec3> = mesh.vertices.iter().map(|p| DVec3::from(*p)).collect();
         check_finite(&all)?;
         check_faces(mesh)?;
-        check_topology(mesh)?;
+        let adjacency = check_topology(mesh)?;
         // Only referenced vertices take part.
         let mut used = vec![false; all.len()];
         for f in &mesh.faces {
@@ -167,17 +173,25 @@ impl Polytope {
         }
         let hull = convex_hull(&FloatPoints(&pts))?;
         let poly = Self::from_hull(&pts, &hull)?;
-        let diameter = {
-            let (lo, hi) = bounds(&pts);
-            (hi - lo).length()
-        };
-        let tolerance = policy.relative_tolerance * diameter;
-        let mut local = vec![usize::MAX; all.len()];
-        for (k, &i) in ids.iter().enumerate() {
-            local[i] = k;
+        // The hull's corners, as polytope vertices, by mesh vertex.
+        let mut corner = vec![usize::MAX; all.len()];
+        for (c, &k) in hull.vertices.iter().enumerate() {
+            corner[ids[k]] = c;
         }
-        let check = compare_with_hull(mesh, &all, &pts, &local, &hull, tolerance)?;
-        let inward = mesh.signed_volume() < 0.0;
+        let frame = Frame::new(&pts);
+        let tolerance = frame.length(policy.relative_tolerance * frame.diagonal);
+        let check = compare_with_hull(
+            mesh,
+            &all,
+            &used,
+            &corner,
+            &adjacency.start,
+            &adjacency.target,
+            &poly,
+            &frame,
+            policy.relative_tolerance,
+        )?;
+        let inward = check.inward;
         let exactly = check.exact && !inward;
         if policy.strict && !exactly {
             let (what, distance) = if inward {
@@ -232,193 +246,105 @@ fn check_faces(mesh: &PolygonMesh) -> Result<(), PolytopeError> {
     Ok(())
 }
 
-/// Closed, manifold, consistently oriented, genus 0.
-fn check_topology(mesh: &PolygonMesh) -> Result<(), PolytopeError> {
-    let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
+/// The mesh's directed edges grouped by their first vertex (CSR), sorted by
+/// target: `target[start[v]..start[v + 1]]` are the vertices after `v` in
+/// its faces, `prev[...]` the vertex before `v` in the same face.
+struct Adjacency {
+    start: Vec<usize>,
+    target: Vec<usize>,
+    prev: Vec<usize>,
+}
+
+impl Adjacency {
+    /// Position of the directed edge `a → b`, if present.
+    fn find(&self, a: usize, b: usize) -> Option<usize> {
+        let s = self.start[a];
+        self.target[s..self.start[a + 1]]
+            .binary_search(&b)
+            .ok()
+            .map(|k| s + k)
+    }
+}
+
+/// Closed, manifold, consistently oriented, genus 0. O(n log n): flat
+/// arrays sorted per vertex, no hashing.
+fn check_topology(mesh: &PolygonMesh) -> Result<Adjacency, PolytopeError> {
+    let n = mesh.vertices.len();
+    let mut start = vec![0usize; n + 1];
     for f in &mesh.faces {
-        for k in 0..f.len() {
-            let key = (f[k], f[(k + 1) % f.len()]);
-            if directed.insert(key, k).is_some() {
-                return Err(PolytopeError::NonManifoldEdge { a: key.0, b: key.1 });
-            }
+        for &i in f {
+            start[i + 1] += 1;
         }
     }
-    for &(a, b) in directed.keys() {
-        if !directed.contains_key(&(b, a)) {
-            return Err(PolytopeError::OpenEdge { a, b });
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let total = start[n];
+    let mut fill = start.clone();
+    let mut pairs = vec![(0usize, 0usize); total];
+    for f in &mesh.faces {
+        let k = f.len();
+        for i in 0..k {
+            pairs[fill[f[i]]] = (f[(i + 1) % k], f[(i + k - 1) % k]);
+            fill[f[i]] += 1;
+        }
+    }
+    for v in 0..n {
+        pairs[start[v]..start[v + 1]].sort_unstable();
+    }
+    let (target, prev): (Vec<usize>, Vec<usize>) = pairs.into_iter().unzip();
+    let adj = Adjacency {
+        start,
+        target,
+        prev,
+    };
+    for v in 0..n {
+        let t = &adj.target[adj.start[v]..adj.start[v + 1]];
+        if let Some(w) = t.windows(2).find(|w| w[0] == w[1]) {
+            return Err(PolytopeError::NonManifoldEdge { a: v, b: w[0] });
+        }
+    }
+    for v in 0..n {
+        for &b in &adj.target[adj.start[v]..adj.start[v + 1]] {
+            if adj.find(b, v).is_none() {
+                return Err(PolytopeError::OpenEdge { a: v, b });
+            }
         }
     }
     // One fan per vertex: following "next outgoing edge around the vertex"
     // from any outgoing edge must visit all of them.
-    let mut out: HashMap<usize, Vec<usize>> = HashMap::new();
-    let mut prev_of: HashMap<(usize, usize), usize> = HashMap::new();
-    for f in &mesh.faces {
-        let k = f.len();
-        for i in 0..k {
-            out.entry(f[i]).or_default().push(f[(i + 1) % k]);
-            // In this face, the edge into f[i] comes from f[i-1].
-            prev_of.insert((f[i], f[(i + 1) % k]), f[(i + k - 1) % k]);
+    let mut used_vertices = 0i64;
+    for v in 0..n {
+        let deg = adj.start[v + 1] - adj.start[v];
+        if deg == 0 {
+            continue;
         }
-    }
-    for (&v, targets) in &out {
-        let start = targets[0];
-        let mut cur = start;
+        used_vertices += 1;
+        let first = adj.start[v];
+        let mut cur = first;
         let mut seen = 0;
         loop {
-            // Outgoing v→cur in face F; the edge into v in F is p→v; the next
+            // Outgoing v→t in face F; the edge into v in F is p→v; the next
             // outgoing edge around v is v→p (in the neighbouring face).
-            let p = prev_of[&(v, cur)];
-            cur = p;
+            let p = adj.prev[cur];
+            cur = adj
+                .find(v, p)
+                .ok_or(PolytopeError::OpenEdge { a: p, b: v })?;
             seen += 1;
-            if cur == start || seen > targets.len() {
+            if cur == first || seen > deg {
                 break;
             }
         }
-        if seen != targets.len() {
+        if seen != deg {
             return Err(PolytopeError::NonManifoldVertex { vertex: v });
         }
     }
-    let v = out.len() as i64;
-    let e = (directed.len() / 2) as i64;
+    let e = (total / 2) as i64;
     let f = mesh.faces.len() as i64;
-    if v - e + f != 2 {
-        return Err(PolytopeError::NotSphere { euler: v - e + f });
-    }
-    Ok(())
-}
-
-struct HullComparison {
-    exact: bool,
-    first_inexact: Option<(String, f64)>,
-    max_deviation: f64,
-}
-
-/// Checks that the mesh surface lies on the hull boundary (within
-/// `tolerance`), and whether it does so exactly.
-fn compare_with_hull(
-    mesh: &PolygonMesh,
-    all: &[DVec3],
-    pts: &[DVec3],
-    local: &[usize],
-    hull: &ConvexHull,
-    tolerance: f64,
-) -> Result<HullComparison, PolytopeError> {
-    // Float planes of the hull faces.
-    let planes: Vec<(DVec3, f64)> = hull
-        .faces
-        .iter()
-        .map(|f| {
-            let a = pts[f[0]];
-            let mut n = DVec3::ZERO;
-            for k in 0..f.len() {
-                let p = pts[f[k]] - a;
-                let q = pts[f[(k + 1) % f.len()]] - a;
-                n += p.cross(q);
-            }
-            let n = n.normalize();
-            (n, n.dot(a))
-        })
-        .collect();
-    let mut out = HullComparison {
-        exact: true,
-        first_inexact: None,
-        max_deviation: 0.0,
-    };
-    let note = |out: &mut HullComparison, what: String, d: f64| {
-        if out.exact {
-            out.first_inexact = Some((what, d));
-        }
-        out.exact = false;
-    };
-    // Vertices: distance inside the hull boundary.
-    for (i, p) in all.iter().enumerate() {
-        if local[i] == usize::MAX {
-            continue;
-        }
-        let mut best = f64::INFINITY;
-        let mut best_face = 0;
-        for (h, (n, d)) in planes.iter().enumerate() {
-            let dist = d - n.dot(*p);
-            if dist < best {
-                best = dist;
-                best_face = h;
-            }
-        }
-        let best = best.max(0.0);
-        out.max_deviation = out.max_deviation.max(best);
-        if best > tolerance {
-            return Err(PolytopeError::NonConvex {
-                what: format!("vertex {i}"),
-                distance: best,
-                tolerance,
-            });
-        }
-        let f = &hull.faces[best_face];
-        let on = orient(pts[f[0]], pts[f[1]], pts[f[2]], *p) == Sign::Zero;
-        if !on && out.exact {
-            note(
-                &mut out,
-                format!("vertex {i} is not on the hull boundary"),
-                best,
-            );
-        }
-    }
-    // Faces: each must lie in one hull face plane.
-    for (fi, f) in mesh.faces.iter().enumerate() {
-        let mut best = f64::INFINITY;
-        let mut best_face = 0;
-        for (h, (n, d)) in planes.iter().enumerate() {
-            let dev = f
-                .iter()
-                .map(|&i| (n.dot(all[i]) - d).abs())
-                .fold(0.0, f64::max);
-            if dev < best {
-                best = dev;
-                best_face = h;
-            }
-        }
-        out.max_deviation = out.max_deviation.max(best);
-        if best > tolerance {
-            return Err(PolytopeError::NonConvex {
-                what: format!("face {fi}"),
-                distance: best,
-                tolerance,
-            });
-        }
-        if out.exact {
-            let h = &hull.faces[best_face];
-            let planar = f
-                .iter()
-                .all(|&i| orient(pts[h[0]], pts[h[1]], pts[h[2]], all[i]) == Sign::Zero);
-            if !planar {
-                note(&mut out, format!("face {fi} is not exactly planar"), best);
-            }
-        }
-    }
-    // Same volume: a mesh folding over itself would cover the hull twice.
-    let hull_mesh = hull.to_mesh(&FloatPoints(pts));
-    let (hv, mv) = (hull_mesh.signed_volume(), mesh.signed_volume().abs());
-    let dv = (hv - mv).abs();
-    let vol_tol = tolerance * hull_area(&hull_mesh) + 1e-12 * hv;
-    if dv > vol_tol {
-        return Err(PolytopeError::NonConvex {
-            what: "volume (the mesh does not bound its convex hull)".into(),
-            distance: dv,
-            tolerance: vol_tol,
+    if used_vertices - e + f != 2 {
+        return Err(PolytopeError::NotSphere {
+            euler: used_vertices - e + f,
         });
     }
-    Ok(out)
-}
-
-fn hull_area(m: &PolygonMesh) -> f64 {
-    let mut a = 0.0;
-    for f in &m.faces {
-        let p0 = DVec3::from(m.vertices[f[0]]);
-        let mut n = DVec3::ZERO;
-        for w in f[1..].windows(2) {
-            n += (DVec3::from(m.vertices[w[0]]) - p0).cross(DVec3::from(m.vertices[w[1]]) - p0);
-        }
-        a += 0.5 * n.length();
-    }
-    a
+    Ok(adj)
 }

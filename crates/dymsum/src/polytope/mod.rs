@@ -24,6 +24,7 @@
 //! every cell is strictly convex ([`PolytopeError::DegenerateGaussMap`]).
 
 pub mod build;
+mod convexity;
 mod error;
 mod sanity;
 
