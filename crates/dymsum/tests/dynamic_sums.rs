@@ -316,7 +316,8 @@ fn pure_translation_changes_no_facet() {
         Method::Walk,
     )
     .unwrap()
-    .try_to_mesh().unwrap();
+    .try_to_mesh()
+    .unwrap();
     assert_eq!(m.faces.len(), shifted.faces.len());
     let t = c.d.pose_p().translation + c.d.pose_q().translation;
     assert!((m.signed_volume() - shifted.signed_volume()).abs() < 1e-9 * shifted.signed_volume());

@@ -60,7 +60,10 @@ pub fn validated(
 ) -> anyhow::Result<dymsum::PolygonMesh> {
     let m = mesh.map_err(|e| anyhow::Error::new(e).context(format!("the mesh of {what}")))?;
     if m.precision.is_coarse() {
-        eprintln!("warning: {what}: coordinates lose precision: {}", m.precision);
+        eprintln!(
+            "warning: {what}: coordinates lose precision: {}",
+            m.precision
+        );
     }
     Ok(m.mesh)
 }

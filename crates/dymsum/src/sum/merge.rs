@@ -104,9 +104,7 @@ fn exact_posed(pose: &crate::Pose, v: DVec3) -> Option<DVec3> {
     }
     let t = pose.translation;
     let out = r + t;
-    (0..3)
-        .all(|k| exact_sum(r[k], t[k], out[k]))
-        .then_some(out)
+    (0..3).all(|k| exact_sum(r[k], t[k], out[k])).then_some(out)
 }
 
 /// Knuth's TwoSum: whether `s = fl(a + b)` is exact.
@@ -227,7 +225,9 @@ pub(crate) fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<Merge
                 exact_posed(&ops.pose_p, ops.p.vertex(u as usize)),
                 exact_posed(&ops.pose_q, ops.q.vertex(w as usize)),
             ) {
-                (Some(a), Some(b)) => a == pu && b == qw && (0..3).all(|k| exact_sum(a[k], b[k], s[k])),
+                (Some(a), Some(b)) => {
+                    a == pu && b == qw && (0..3).all(|k| exact_sum(a[k], b[k], s[k]))
+                }
                 _ => false,
             };
             vertices.push(s);
@@ -457,17 +457,16 @@ pub fn validated_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<SumMesh, 
     }
     let pts: Vec<DVec3> = merged.mesh.vertices.iter().map(|&v| v.into()).collect();
     let points = ExactPoints::new(&pts);
-    let hull =
-        crate::hull::convex_hull(&points).map_err(|e| MeshError::PrecisionLost {
-            ulp: precision.ulp,
-            size: precision.size,
-            collapse: match e {
-                crate::hull::HullError::AllCoincident { .. } => "coincide".into(),
-                crate::hull::HullError::AllCollinear { .. } => "are collinear".into(),
-                crate::hull::HullError::AllCoplanar { .. } => "are coplanar (flat)".into(),
-                other => other.to_string(),
-            },
-        })?;
+    let hull = crate::hull::convex_hull(&points).map_err(|e| MeshError::PrecisionLost {
+        ulp: precision.ulp,
+        size: precision.size,
+        collapse: match e {
+            crate::hull::HullError::AllCoincident { .. } => "coincide".into(),
+            crate::hull::HullError::AllCollinear { .. } => "are collinear".into(),
+            crate::hull::HullError::AllCoplanar { .. } => "are coplanar (flat)".into(),
+            other => other.to_string(),
+        },
+    })?;
     let mesh = hull.to_mesh(&points);
     check_convex_mesh(&mesh)?;
     Ok(SumMesh {

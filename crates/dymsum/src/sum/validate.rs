@@ -413,7 +413,13 @@ mod tests {
 
     #[test]
     fn cubes_at_all_scales_pass() {
-        for (s, t) in [(1.0, 0.0), (1e-300, 0.0), (1e300, -1e300), (1e-8, 1e6), (1.0, 1e15)] {
+        for (s, t) in [
+            (1.0, 0.0),
+            (1e-300, 0.0),
+            (1e300, -1e300),
+            (1e-8, 1e6),
+            (1.0, 1e15),
+        ] {
             assert_eq!(check_convex_mesh(&cube(s, t)), Ok(()), "{s} {t}");
         }
     }
