@@ -385,7 +385,7 @@ impl Precision {
     }
     /// `true` when [`Self::relative`] exceeds [`Self::WARN_RELATIVE`].
     pub fn is_coarse(&self) -> bool {
-        !(self.relative() <= Self::WARN_RELATIVE)
+        self.relative().is_nan() || self.relative() > Self::WARN_RELATIVE
     }
 }
 
