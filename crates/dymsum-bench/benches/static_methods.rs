@@ -2,7 +2,7 @@
 //! cube+cube, gs4+gs4, ellipse+ellipse and ti+vrod, with P at one fixed,
 //! seeded random orientation (`random_rotation(STATIC_SEED)`) and Q at its
 //! input pose. One iteration is one `minkowski_sum_posed` call (the facet
-//! set, no mesh merging); `walk+merge` adds `.to_mesh()`.
+//! set, no mesh merging); `walk+merge` adds `.try_to_mesh().unwrap()`.
 //!
 //! Before each bench one untimed call checks that the method succeeds and
 //! finds the same facet counts as `walk`; a method that fails is reported
@@ -63,7 +63,7 @@ fn static_methods(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("walk+merge", &pair), |b| {
             b.iter(|| {
                 let sum = minkowski_sum_posed(&p, pose_p, &q, pose_q, Method::Walk).unwrap();
-                black_box(sum.to_mesh())
+                black_box(sum.try_to_mesh().unwrap())
             })
         });
     }

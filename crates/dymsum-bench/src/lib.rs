@@ -254,7 +254,7 @@ pub fn markdown_report(results: &Results) -> String {
     s.push_str("### `static_methods` (issue 2 §7): one static sum at a fixed random pose\n\n");
     s.push_str(
         "Median time per call in µs. `walk`, `brute`, `hull` = one `minkowski_sum_posed` \
-         call (facet set only); `walk+merge` = the same `walk` call plus `.to_mesh()`.\n\n",
+         call (facet set only); `walk+merge` = the same `walk` call plus `.try_to_mesh()`.\n\n",
     );
     s.push_str(
         "| P+Q | walk | walk+merge | brute | hull | walk vs brute (brute÷walk) \

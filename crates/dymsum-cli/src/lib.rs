@@ -20,7 +20,8 @@ use clap::Parser;
 
 /// Parses the process arguments, runs the subcommand and returns the exit
 /// code: 0 on success, 1 for bad input (the message goes to stderr), 2 for
-/// usage errors (clap prints them and exits).
+/// usage errors (clap prints them and exits), 3 for internal errors (an
+/// output mesh failed its exact validation: a bug, never written).
 pub fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     let stdout = io::stdout();
@@ -28,11 +29,25 @@ pub fn main() -> ExitCode {
     match commands::run(cli.command, &mut out).and_then(|()| Ok(out.flush()?)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
+        Err(e) if is_internal(&e) => {
+            let _ = writeln!(io::stderr(), "internal error: {e:#}");
+            ExitCode::from(3)
+        }
         Err(e) => {
             let _ = writeln!(io::stderr(), "error: {e:#}");
             ExitCode::from(1)
         }
     }
+}
+
+/// `true` when the error is a bug in dymsum (an invalid output mesh), exit 3.
+fn is_internal(e: &anyhow::Error) -> bool {
+    use dymsum::query::QueryError;
+    use dymsum::sum::MeshError;
+    e.chain().any(|c| {
+        c.downcast_ref::<MeshError>().is_some_and(MeshError::is_internal)
+            || matches!(c.downcast_ref::<QueryError>(), Some(QueryError::Mesh(m)) if m.is_internal())
+    })
 }
 
 /// `true` when the error is a closed stdout (`dymsum models | head`).

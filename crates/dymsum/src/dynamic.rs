@@ -642,9 +642,15 @@ impl<'a> DynamicSum<'a> {
         MinkowskiSum::from_overlay(self.ops.clone(), self.overlay())
     }
 
-    /// The merged mesh of the current sum.
-    pub fn to_mesh(&self) -> crate::PolygonMesh {
-        self.sum().to_mesh()
+    /// The merged, validated mesh of the current sum (see
+    /// [`MinkowskiSum::try_to_mesh`]).
+    pub fn try_to_mesh(&self) -> Result<crate::PolygonMesh, crate::sum::MeshError> {
+        self.sum().try_to_mesh()
+    }
+    /// [`Self::try_to_mesh`] with the coordinates' rounding relative to the
+    /// sum's size (see [`MinkowskiSum::mesh_with_precision`]).
+    pub fn mesh_with_precision(&self) -> Result<crate::sum::SumMesh, crate::sum::MeshError> {
+        self.sum().mesh_with_precision()
     }
 
     /// Checks the internal state: the two ee indices agree, and the current

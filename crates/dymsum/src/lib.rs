@@ -22,7 +22,7 @@
 //!     .collect();
 //! let p = Polytope::from_points(&cube).unwrap();
 //! let sum = minkowski_sum(&p, &p, Method::Walk).unwrap();
-//! let mesh = sum.to_mesh();
+//! let mesh = sum.try_to_mesh().unwrap();
 //! assert_eq!(mesh.faces.len(), 6); // a cube plus a cube is a cube
 //! ```
 #![forbid(unsafe_code)]

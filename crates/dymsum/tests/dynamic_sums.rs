@@ -307,7 +307,7 @@ fn pure_translation_changes_no_facet() {
         assert_eq!(c.d.facets(), facets);
     }
     // The merged mesh moved with the translation.
-    let m = c.d.to_mesh();
+    let m = c.d.try_to_mesh().unwrap();
     let shifted = minkowski_sum_posed(
         p,
         Pose::new(rp, DVec3::ZERO),
@@ -316,7 +316,8 @@ fn pure_translation_changes_no_facet() {
         Method::Walk,
     )
     .unwrap()
-    .to_mesh();
+    .try_to_mesh()
+    .unwrap();
     assert_eq!(m.faces.len(), shifted.faces.len());
     let t = c.d.pose_p().translation + c.d.pose_q().translation;
     assert!((m.signed_volume() - shifted.signed_volume()).abs() < 1e-9 * shifted.signed_volume());
@@ -365,7 +366,7 @@ fn cube_plus_cube_quarter_turns_about_z() {
             // Landing exactly on a multiple of 90°: the sum is a 2x2x2 cube
             // (composed quarter turns stay exact, see
             // `regression_composed_quarter_turns_stay_exact`).
-            let m = c.d.to_mesh();
+            let m = c.d.try_to_mesh().unwrap();
             assert_eq!(
                 (m.vertices.len(), m.faces.len()),
                 (8, 6),
@@ -376,7 +377,7 @@ fn cube_plus_cube_quarter_turns_about_z() {
         // Absolute k·90° poses are exact.
         for k in 0..8 {
             c.set_pose_p(pose(rot(DVec3::Z, k as f64 * FRAC_PI_2)));
-            assert_eq!(c.d.to_mesh().faces.len(), 6, "at {k}·90°");
+            assert_eq!(c.d.try_to_mesh().unwrap().faces.len(), 6, "at {k}·90°");
         }
     }
 }
@@ -397,7 +398,7 @@ fn cube_plus_cube_eighth_turns_about_z() {
         let eighth = rot(DVec3::Z, TAU / 8.0);
         for k in 1..=16 {
             c.rotate_p_by(eighth);
-            let faces = c.d.to_mesh().faces.len();
+            let faces = c.d.try_to_mesh().unwrap().faces.len();
             // Even k: aligned (a cube); odd k: an octagonal prism.
             assert_eq!(
                 faces,
@@ -432,7 +433,7 @@ fn cube_plus_cube_small_turns_about_z_through_90_degrees() {
                     c.rotate_p_by(step);
                 }
                 c.set_pose_p(pose(rot(DVec3::Z, quarter as f64 * FRAC_PI_2)));
-                let m = c.d.to_mesh();
+                let m = c.d.try_to_mesh().unwrap();
                 assert_eq!(m.faces.len(), 6, "X={x}, quarter {quarter}");
             }
         }
@@ -487,7 +488,7 @@ fn box_plus_box_turns_landing_on_90_degrees() {
             );
             for _ in 0..4 {
                 c.rotate_p_by(rot(axis, TAU / 4.0));
-                assert_eq!(c.d.to_mesh().faces.len(), 6);
+                assert_eq!(c.d.try_to_mesh().unwrap().faces.len(), 6);
             }
             for _ in 0..16 {
                 c.rotate_p_by(rot(axis, TAU / 16.0));
@@ -522,7 +523,7 @@ fn tetrahedron_plus_its_reflection_turning() {
             5,
             format!("tet+reflection incremental={incremental}"),
         );
-        assert_eq!(c.d.to_mesh().faces.len(), 14); // cuboctahedron
+        assert_eq!(c.d.try_to_mesh().unwrap().faces.len(), 14); // cuboctahedron
         for axis in [
             DVec3::Z,
             DVec3::new(1.0, 1.0, 1.0),
@@ -535,7 +536,7 @@ fn tetrahedron_plus_its_reflection_turning() {
                 }
             }
             c.set_pose_p(Pose::IDENTITY);
-            assert_eq!(c.d.to_mesh().faces.len(), 14);
+            assert_eq!(c.d.try_to_mesh().unwrap().faces.len(), 14);
         }
         // The reflection is the tetrahedron turned by π about z: ties again.
         c.set_pose_p(pose(rot(DVec3::Z, FRAC_PI_2)));
@@ -766,7 +767,7 @@ fn regression_composed_quarter_turns_stay_exact() {
     let mut bad = Vec::new();
     for k in 1..=16 {
         c.rotate_p_by(quarter);
-        let m = c.d.to_mesh();
+        let m = c.d.try_to_mesh().unwrap();
         if m.faces.len() != 6 {
             bad.push((k, m.faces.len(), c.d.pose_p().rotation.wxyz()));
         }

@@ -42,7 +42,7 @@ where
         Err(e) => assert!(!exact_geometry, "hull method failed on exact input: {e}"),
     }
     walk.sanity_check().expect("sanity");
-    let mesh = walk.to_mesh();
+    let mesh = walk.try_to_mesh().unwrap();
     let pp = posed_vertices(p, pose_p);
     let qq = posed_vertices(q, pose_q);
     // Oracle: exact hull of all pairwise sums.
@@ -93,7 +93,7 @@ fn rot(axis: DVec3, angle: f64) -> Pose {
 fn cube_plus_cube_is_a_cube() {
     let c = poly(&cube_points(0.0, 1.0));
     let s = check_pair(&c, Pose::IDENTITY, &c, Pose::IDENTITY, true);
-    let m = s.to_mesh();
+    let m = s.try_to_mesh().unwrap();
     assert_eq!((m.vertices.len(), m.faces.len()), (8, 6));
     assert!((m.signed_volume() - 8.0).abs() < 1e-12);
 }
@@ -109,7 +109,7 @@ fn box_plus_box_turned_exactly_90_degrees() {
             Pose::IDENTITY,
             true,
         );
-        assert_eq!(s.to_mesh().faces.len(), 6);
+        assert_eq!(s.try_to_mesh().unwrap().faces.len(), 6);
     }
 }
 
@@ -124,7 +124,7 @@ fn tetrahedron_plus_its_point_reflection() {
     let neg: Vec<[f64; 3]> = t.iter().map(|p| [-p[0], -p[1], -p[2]]).collect();
     let s = check_pair(&poly(&t), Pose::IDENTITY, &poly(&neg), Pose::IDENTITY, true);
     // Regular tetrahedron ⊕ its reflection = cuboctahedron: 8 triangles, 6 squares.
-    let m = s.to_mesh();
+    let m = s.try_to_mesh().unwrap();
     assert_eq!((m.vertices.len(), m.faces.len()), (12, 14));
 }
 
@@ -172,7 +172,7 @@ fn identical_random_polytopes_share_every_face_direction() {
     let p = random_polytope(Kind::Ball, 30, &mut r);
     let s = check_pair(&p, Pose::IDENTITY, &p, Pose::IDENTITY, true);
     // P ⊕ P = 2P: same face count.
-    assert_eq!(s.to_mesh().faces.len(), p.face_count());
+    assert_eq!(s.try_to_mesh().unwrap().faces.len(), p.face_count());
 }
 
 #[test]

@@ -101,7 +101,8 @@ pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         if let Some(dir) = &a.frames_dir {
             if step % a.every == 0 || step == a.steps {
                 let path = frame_path(dir, step);
-                write_mesh_with(&path, &dynamic.to_mesh(), Format::Off)
+                let mesh = super::validated(dynamic.mesh_with_precision(), "the frame")?;
+                write_mesh_with(&path, &mesh, Format::Off)
                     .with_context(|| format!("writing frame {}", path.display()))?;
                 frames += 1;
             }

@@ -158,7 +158,13 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             let cob = CObstacle::new(r, o).context("reflecting the robot")?;
             let written = cob
                 .map_par(&orientations, |k, _, sum| {
-                    let mesh = sum.to_mesh();
+                    let mesh = match sum.try_to_mesh() {
+                        Ok(m) => m,
+                        Err(e) => {
+                            bar.inc(1);
+                            return Err(anyhow::Error::new(e).context(format!("slice {k}")));
+                        }
+                    };
                     let name = if union {
                         format!("slice_{k:05}_r{i}_o{j}.off")
                     } else {
@@ -166,7 +172,7 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                     };
                     let res = dymsum_io::formats::write_mesh(&a.out.join(&name), &mesh)
                         .map(|()| (mesh.faces.len(), name.clone()))
-                        .map_err(|e| format!("writing {}: {e}", a.out.join(&name).display()));
+                        .map_err(|e| anyhow!("writing {}: {e}", a.out.join(&name).display()));
                     bar.inc(1);
                     res
                 })
@@ -178,7 +184,7 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                     )
                 })?;
             for (k, w) in written.into_iter().enumerate() {
-                let (f, name) = w.map_err(|e| anyhow!(e))?;
+                let (f, name) = w?;
                 faces[k] += f;
                 files[k].push(name);
             }

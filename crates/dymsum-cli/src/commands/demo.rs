@@ -109,7 +109,7 @@ pub fn run(a: &DemoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     if fresh.facets() != dynamic.facets() {
         bail!("internal error: the dynamic facets differ from a fresh walk sum after {steps} steps (please report)");
     }
-    let mesh = dynamic.to_mesh();
+    let mesh = super::validated(dynamic.mesh_with_precision(), "the sum")?;
     write_mesh_with(Path::new(OUTPUT), &mesh, Format::Off)
         .with_context(|| format!("writing {OUTPUT}"))?;
 

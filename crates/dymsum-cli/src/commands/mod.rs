@@ -51,6 +51,23 @@ pub fn load(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Loaded> {
     load_polytope(spec, policy(strict)).map_err(|e| anyhow!(e.for_operand(operand)))
 }
 
+/// The validated mesh of a sum, with a warning on stderr when its
+/// coordinates are coarse relative to its size. Errors keep their type, so
+/// an internal one ([`dymsum::sum::MeshError::is_internal`]) exits with 3.
+pub fn validated(
+    mesh: Result<dymsum::sum::SumMesh, dymsum::sum::MeshError>,
+    what: &str,
+) -> anyhow::Result<dymsum::PolygonMesh> {
+    let m = mesh.map_err(|e| anyhow::Error::new(e).context(format!("the mesh of {what}")))?;
+    if m.precision.is_coarse() {
+        eprintln!(
+            "warning: {what}: coordinates lose precision: {}",
+            m.precision
+        );
+    }
+    Ok(m.mesh)
+}
+
 /// A short display name for an operand: the model name, or the file name.
 pub fn short_name(spec: &str) -> String {
     let path = std::path::Path::new(spec);

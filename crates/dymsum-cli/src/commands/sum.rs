@@ -24,7 +24,7 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let sum = minkowski_sum_posed(&p.polytope, pose_p, &q.polytope, Pose::IDENTITY, method)
         .with_context(|| format!("{} ⊕ {} ({})", a.p, a.q, method.name()))?;
     let elapsed = micros(start.elapsed());
-    let mesh = sum.to_mesh();
+    let mesh = super::validated(sum.mesh_with_precision(), "the sum")?;
     dymsum_io::formats::write_mesh(&a.output, &mesh)
         .with_context(|| format!("writing the sum to {}", a.output.display()))?;
     let (fv, vf, ee) = sum.counts();

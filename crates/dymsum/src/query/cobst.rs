@@ -75,7 +75,7 @@ impl<'a> CObstacle<'a> {
             Pose::IDENTITY,
             Method::Walk,
         )?;
-        Ok(sum.to_mesh())
+        Ok(sum.try_to_mesh()?)
     }
 
     /// The slices in order, one dynamic sum moved from slice to slice; the
@@ -90,7 +90,9 @@ impl<'a> CObstacle<'a> {
             if failed {
                 return None;
             }
-            let res = self.advance(&mut sum, r).map(|s| s.to_mesh());
+            let res = self
+                .advance(&mut sum, r)
+                .and_then(|s| s.try_to_mesh().map_err(QueryError::from));
             failed = res.is_err();
             Some(res)
         })
@@ -156,7 +158,10 @@ impl<'a> CObstacle<'a> {
 
     /// All slices, computed in parallel (see [`CObstacle::map_par`]).
     pub fn slices_par(&self, orientations: &[Rotation]) -> Result<Vec<PolygonMesh>, QueryError> {
-        self.map_par(orientations, |_, _, s| s.to_mesh())
+        self.map_par(orientations, |_, _, s| s.try_to_mesh())?
+            .into_iter()
+            .map(|m| m.map_err(QueryError::from))
+            .collect()
     }
 }
 

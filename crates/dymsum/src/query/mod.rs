@@ -106,6 +106,9 @@ pub enum QueryError {
     /// An internal invariant failed (a bug: please report the input).
     #[error("internal inconsistency: {0}")]
     Inconsistent(String),
+    /// The mesh of a slice could not be produced (see [`MeshError`]).
+    #[error(transparent)]
+    Mesh(#[from] crate::sum::MeshError),
     /// The exact penetration depth of a non-convex union is not supported:
     /// the minimum over piece pairs is *not* the union's depth (separating
     /// one pair can push it into another). Use [`ConvexUnion::collides`],

@@ -79,25 +79,43 @@ pub(crate) fn facet_corners(ops: &Operands<'_>, overlay: &Overlay) -> Vec<Vec<(u
     out
 }
 
-/// Outward unit normal of the ee-facet `(e, e2)`.
-fn ee_normal(ops: &Operands<'_>, e: u32, e2: u32) -> DVec3 {
-    let [u1, u2] = ops.p.edge(e as usize).vertices;
-    let [w1, w2] = ops.q.edge(e2 as usize).vertices;
-    let d1 = ops.p_vertex(u2) - ops.p_vertex(u1);
-    let d2 = ops.q_vertex(w2) - ops.q_vertex(w1);
-    let (vp, vq) = (ops.view_p(), ops.view_q());
-    let (a, b) = vp.edge_arc(e);
-    let (c, _) = vq.edge_arc(e2);
-    let n = d1.cross(d2).normalize_or_zero();
-    if sos_det3(&a, &b, &c).is_negative() {
-        n
-    } else {
-        -n
-    }
+/// The merged mesh of `P ⊕ Q` over the float sums of its vertices, and
+/// whether every coordinate is the exact sum (no rounding anywhere).
+pub(crate) struct Merged {
+    /// The mesh.
+    pub mesh: PolygonMesh,
+    /// `true` when every vertex coordinate is exact, so the mesh must pass
+    /// [`super::validate::check_convex_mesh`] as is.
+    pub exact: bool,
 }
 
-/// The merged mesh of `P ⊕ Q` (see the module docs).
-pub fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> PolygonMesh {
+/// `pose.apply(v)` if that is computed without rounding (signed-permutation
+/// rotation, exact translation), else `None`.
+fn exact_posed(pose: &crate::Pose, v: DVec3) -> Option<DVec3> {
+    let m = pose.rotation.matrix();
+    let rows = [m.row(0), m.row(1), m.row(2)];
+    let mut r = DVec3::ZERO;
+    for (k, row) in rows.iter().enumerate() {
+        let nz: Vec<usize> = (0..3).filter(|&i| row[i] != 0.0).collect();
+        if nz.len() != 1 || row[nz[0]].abs() != 1.0 {
+            return None;
+        }
+        r[k] = row[nz[0]] * v[nz[0]];
+    }
+    let t = pose.translation;
+    let out = r + t;
+    (0..3).all(|k| exact_sum(r[k], t[k], out[k])).then_some(out)
+}
+
+/// Knuth's TwoSum: whether `s = fl(a + b)` is exact.
+fn exact_sum(a: f64, b: f64, s: f64) -> bool {
+    let bb = s - a;
+    (a - (s - bb)) + (b - bb) == 0.0 && s.is_finite()
+}
+
+/// The merged mesh of `P ⊕ Q` (see the module docs), or why the facet
+/// complex could not be merged (an internal inconsistency).
+pub(crate) fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<Merged, String> {
     let m = overlay.fv.len();
     let n = overlay.vf.len();
     let total = overlay.len();
@@ -139,19 +157,59 @@ pub fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> PolygonMesh {
         }
     }
     let corners = facet_corners(ops, overlay);
-    // Groups meeting at each sum vertex.
-    let mut incidence: Vec<((u32, u32), u32)> = Vec::with_capacity(total * 4);
-    let mut root = vec![0u32; total];
+    // The facet on the other side of each directed facet edge.
+    let mut twin: HashMap<(SumVertex, SumVertex), u32> = HashMap::with_capacity(total * 4);
+    for (i, cyc) in corners.iter().enumerate() {
+        for k in 0..cyc.len() {
+            if twin
+                .insert((cyc[k], cyc[(k + 1) % cyc.len()]), i as u32)
+                .is_some()
+            {
+                return Err("facet edge used twice in one direction".into());
+            }
+        }
+    }
+    let across = |i: usize, k: usize| -> Result<usize, String> {
+        let cyc = &corners[i];
+        twin.get(&(cyc[(k + 1) % cyc.len()], cyc[k]))
+            .map(|&j| j as usize)
+            .ok_or_else(|| "facet edge without an opposite facet".to_string())
+    };
+    // A degenerate (zero-area) ee-facet lies on a segment. When all its
+    // neighbours lie in one face (the segment is inside that face, e.g. the
+    // edges of parallel faces that meet end to end) it joins that face;
+    // otherwise it lies on an edge of the sum and belongs to no face.
+    let mut in_face = degenerate.iter().map(|&d| !d).collect::<Vec<bool>>();
     for i in 0..total {
-        root[i] = uf.find(i as u32);
         if !degenerate[i] {
+            continue;
+        }
+        let mut roots = Vec::with_capacity(4);
+        for k in 0..corners[i].len() {
+            let j = across(i, k)?;
+            if degenerate[j] {
+                return Err("two degenerate facets share an edge".into());
+            }
+            roots.push(uf.find(j as u32));
+        }
+        if roots.iter().all(|&r| r == roots[0]) {
+            uf.union(i as u32, roots[0]);
+            in_face[i] = true;
+        }
+    }
+    let root: Vec<u32> = (0..total).map(|i| uf.find(i as u32)).collect();
+    // A sum vertex `u + w` is a corner iff at least three faces meet there.
+    let mut incidence: Vec<(SumVertex, u32)> = Vec::with_capacity(total * 4);
+    for i in 0..total {
+        if in_face[i] {
             incidence.extend(corners[i].iter().map(|&c| (c, root[i])));
         }
     }
     incidence.sort_unstable();
     incidence.dedup();
-    let mut kept: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut kept: HashMap<SumVertex, u32> = HashMap::new();
     let mut vertices = Vec::new();
+    let mut exact = true;
     let mut i = 0;
     while i < incidence.len() {
         let mut j = i;
@@ -161,63 +219,80 @@ pub fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> PolygonMesh {
         if j - i >= 3 {
             let (u, w) = incidence[i].0;
             kept.insert((u, w), vertices.len() as u32);
-            vertices.push(ops.p_vertex(u) + ops.q_vertex(w));
+            let (pu, qw) = (ops.p_vertex(u), ops.q_vertex(w));
+            let s = pu + qw;
+            exact &= match (
+                exact_posed(&ops.pose_p, ops.p.vertex(u as usize)),
+                exact_posed(&ops.pose_q, ops.q.vertex(w as usize)),
+            ) {
+                (Some(a), Some(b)) => {
+                    a == pu && b == qw && (0..3).all(|k| exact_sum(a[k], b[k], s[k]))
+                }
+                _ => false,
+            };
+            vertices.push(s);
         }
         i = j;
     }
-    // Corners and a normal per group.
-    let mut group_of_root: HashMap<u32, usize> = HashMap::new();
-    let mut groups: Vec<(DVec3, Vec<u32>)> = Vec::new();
+    // Each face: the boundary of the union of its facets, walked edge by
+    // edge (a simple cycle for a disk), with non-corner vertices dropped.
+    let mut boundary: HashMap<u32, HashMap<SumVertex, SumVertex>> = HashMap::new();
+    let mut order: Vec<u32> = Vec::new();
     for i in 0..total {
-        if degenerate[i] {
+        if !in_face[i] {
             continue;
         }
-        let gi = *group_of_root.entry(root[i]).or_insert_with(|| {
-            let rep = root[i] as usize; // smallest id: fv before vf before ee
-            let normal = if rep < m {
-                ops.pose_p.rotation.apply(ops.p.unit_normal(rep))
-            } else if rep < m + n {
-                ops.pose_q.rotation.apply(ops.q.unit_normal(rep - m))
-            } else {
-                let (e, e2) = overlay.ee[rep - m - n];
-                ee_normal(ops, e, e2)
-            };
-            groups.push((normal, Vec::new()));
-            groups.len() - 1
-        });
-        for c in &corners[i] {
-            if let Some(&v) = kept.get(c) {
-                groups[gi].1.push(v);
+        let cyc = &corners[i];
+        for k in 0..cyc.len() {
+            let j = across(i, k)?;
+            if in_face[j] && root[j] == root[i] {
+                continue;
+            }
+            let map = boundary.entry(root[i]).or_insert_with(|| {
+                order.push(root[i]);
+                HashMap::new()
+            });
+            if map.insert(cyc[k], cyc[(k + 1) % cyc.len()]).is_some() {
+                return Err(format!("the facets of face {} pinch at a vertex", root[i]));
             }
         }
     }
-    let faces = groups
-        .into_iter()
-        .map(|(normal, mut vs)| {
-            vs.sort_unstable();
-            vs.dedup();
-            sort_ccw(&vertices, normal, &mut vs);
-            vs.into_iter().map(|v| v as usize).collect()
-        })
-        .collect();
-    PolygonMesh {
-        vertices: vertices.iter().map(|v| v.to_array()).collect(),
-        faces,
+    let mut faces = Vec::with_capacity(order.len());
+    for r in order {
+        let map = &boundary[&r];
+        let Some(&start) = map.keys().min() else {
+            continue;
+        };
+        let mut face = Vec::new();
+        let mut at = start;
+        let mut steps = 0;
+        loop {
+            if let Some(&v) = kept.get(&at) {
+                face.push(v as usize);
+            }
+            at = *map
+                .get(&at)
+                .ok_or_else(|| format!("the boundary of face {r} is open"))?;
+            steps += 1;
+            if at == start {
+                break;
+            }
+        }
+        if steps != map.len() {
+            return Err(format!("the facets of face {r} do not form a disk"));
+        }
+        if face.len() < 3 {
+            return Err(format!("face {r} has {} corners", face.len()));
+        }
+        faces.push(face);
     }
-}
-
-fn sort_ccw(vertices: &[DVec3], normal: DVec3, vs: &mut [u32]) {
-    if vs.len() < 3 {
-        return;
-    }
-    let c = vs.iter().map(|&v| vertices[v as usize]).sum::<DVec3>() / vs.len() as f64;
-    let t = (vertices[vs[0] as usize] - c).normalize_or_zero();
-    let b = normal.cross(t);
-    let angle = |v: u32| {
-        let d = vertices[v as usize] - c;
-        d.dot(b).atan2(d.dot(t))
-    };
-    vs.sort_by(|&x, &y| angle(x).total_cmp(&angle(y)));
+    Ok(Merged {
+        mesh: PolygonMesh {
+            vertices: vertices.iter().map(|v| v.to_array()).collect(),
+            faces,
+        },
+        exact,
+    })
 }
 
 /// Checks the facet complex of an overlay: closed, 2-manifold, consistently
@@ -255,85 +330,148 @@ pub fn check_facet_complex(ops: &Operands<'_>, overlay: &Overlay) -> Result<(), 
     Ok(())
 }
 
-/// Checks a merged mesh: closed, 2-manifold, oriented, Euler 2, every face
-/// planar and every edge convex within a tolerance of `1e-9` of the size.
-/// The mesh is a float construction, so a face's plane is only as well
-/// determined as the face is wide: for sliver faces (nearly degenerate
-/// polygons, e.g. between nearly coplanar input faces) the tolerance grows
-/// with the face's conditioning `L² / (2·area)` times the coordinates'
-/// rounding. The exact combinatorial check is [`check_facet_complex`].
-pub fn check_mesh(mesh: &PolygonMesh) -> Result<(), String> {
-    let pts: Vec<DVec3> = mesh.vertices.iter().map(|p| DVec3::from(*p)).collect();
+/// Why the mesh of a sum could not be produced.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    /// The sum's vertices cannot be told apart in `f64`: after rounding
+    /// they are all coincident, collinear or coplanar. Cause: the sum lies
+    /// so far from the origin (or is so thin) that the rounding step of its
+    /// coordinates is comparable to its size. Fix: move the operands nearer
+    /// to the origin (subtract a common offset, add it back outside dymsum).
+    #[error(
+        "coordinates lose all precision: rounding step {ulp:e} against a size of {size:e}; the rounded vertices {collapse}"
+    )]
+    PrecisionLost {
+        /// The rounding step (ulp) of the largest output coordinate.
+        ulp: f64,
+        /// The size of the sum (sum of the operands' bounding-box diagonals).
+        size: f64,
+        /// How the rounded vertices collapsed.
+        collapse: String,
+    },
+    /// The facets could not be merged into faces (a bug: please report the
+    /// input).
+    #[error("internal error: merging the facets failed: {0}")]
+    Merge(String),
+    /// The produced mesh failed the exact validity check (a bug: please
+    /// report the input). Never written silently.
+    #[error("internal error: the merged mesh is invalid: {0}")]
+    Invalid(#[from] super::validate::MeshDefect),
+}
+
+impl MeshError {
+    /// `true` for a bug in dymsum (as opposed to an input beyond `f64`).
+    pub fn is_internal(&self) -> bool {
+        !matches!(self, MeshError::PrecisionLost { .. })
+    }
+}
+
+/// How faithfully the output coordinates hold the exact sum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Precision {
+    /// The rounding step (ulp) of the largest output coordinate.
+    pub ulp: f64,
+    /// The size of the sum (sum of the operands' bounding-box diagonals).
+    pub size: f64,
+}
+
+impl Precision {
+    /// Relative rounding above which callers should warn (about eight
+    /// significant digits of the size left).
+    pub const WARN_RELATIVE: f64 = 1e-8;
+    /// `ulp / size` (infinite for a zero size).
+    pub fn relative(&self) -> f64 {
+        self.ulp / self.size
+    }
+    /// `true` when [`Self::relative`] exceeds [`Self::WARN_RELATIVE`].
+    pub fn is_coarse(&self) -> bool {
+        self.relative().is_nan() || self.relative() > Self::WARN_RELATIVE
+    }
+}
+
+impl std::fmt::Display for Precision {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "rounding step {:e} relative to size {:e} ({:.1e})",
+            self.ulp,
+            self.size,
+            self.relative()
+        )
+    }
+}
+
+/// A validated mesh of a sum.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SumMesh {
+    /// The mesh: closed, oriented, convex, maximal faces, checked exactly.
+    pub mesh: PolygonMesh,
+    /// The rounding of its coordinates relative to the sum's size.
+    pub precision: Precision,
+    /// `true` when rounding broke the exact faces and the mesh is the exact
+    /// hull of the rounded vertices instead.
+    pub hull_fallback: bool,
+}
+
+fn ulp(x: f64) -> f64 {
+    let a = x.abs();
+    if a.is_finite() {
+        f64::from_bits(a.to_bits() + 1) - a
+    } else {
+        f64::INFINITY
+    }
+}
+
+fn diagonal(poly: &crate::Polytope) -> f64 {
+    let pts: Vec<DVec3> = (0..poly.vertex_count()).map(|v| poly.vertex(v)).collect();
     let (lo, hi) = crate::polytope::bounds(&pts);
-    let size = (hi - lo).length().max(f64::MIN_POSITIVE);
-    let coord = lo.abs().max(hi.abs()).max_element();
-    let tol = 1e-9 * size;
-    let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
-    for (fi, f) in mesh.faces.iter().enumerate() {
-        if f.len() < 3 {
-            return Err(format!("face {fi} has {} vertices", f.len()));
-        }
-        for k in 0..f.len() {
-            if directed.insert((f[k], f[(k + 1) % f.len()]), fi).is_some() {
-                return Err(format!(
-                    "mesh edge {:?} used twice in one direction",
-                    (f[k], f[(k + 1) % f.len()])
-                ));
-            }
-        }
-    }
-    // (unit normal, offset, tolerance) per face.
-    let plane = |f: &Vec<usize>| {
-        let c = f.iter().map(|&i| pts[i]).sum::<DVec3>() / f.len() as f64;
-        let mut nrm = DVec3::ZERO;
-        let mut extent: f64 = 0.0;
-        for k in 0..f.len() {
-            nrm += (pts[f[k]] - c).cross(pts[f[(k + 1) % f.len()]] - c);
-            extent = extent.max((pts[f[k]] - c).length() * 2.0);
-        }
-        let area = 0.5 * nrm.length();
-        let nrm = nrm.normalize_or_zero();
-        let conditioning = extent * extent / (2.0 * area).max(f64::MIN_POSITIVE);
-        let face_tol = tol + 32.0 * f64::EPSILON * coord.max(size) * conditioning;
-        (nrm, nrm.dot(c), face_tol)
+    (hi - lo).length()
+}
+
+/// The merged mesh, validated exactly (see [`super::validate`]): the
+/// combinatorial merge when its float coordinates are exactly convex, else
+/// the exact hull of the rounded vertices.
+pub fn validated_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<SumMesh, MeshError> {
+    use super::validate::{check_convex_mesh, ExactPoints};
+    let merged = merged_mesh(ops, overlay).map_err(MeshError::Merge)?;
+    let max = merged
+        .mesh
+        .vertices
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let precision = Precision {
+        ulp: ulp(max),
+        size: diagonal(ops.p) + diagonal(ops.q),
     };
-    let planes: Vec<_> = mesh.faces.iter().map(plane).collect();
-    for (fi, f) in mesh.faces.iter().enumerate() {
-        let (nrm, d, t) = planes[fi];
-        if nrm == DVec3::ZERO {
-            return Err(format!("face {fi} has zero area"));
+    match check_convex_mesh(&merged.mesh) {
+        Ok(()) => {
+            return Ok(SumMesh {
+                mesh: merged.mesh,
+                precision,
+                hull_fallback: false,
+            })
         }
-        for &v in f {
-            if (nrm.dot(pts[v]) - d).abs() > t {
-                return Err(format!("face {fi} is not planar"));
-            }
-        }
+        Err(defect) if merged.exact => return Err(MeshError::Invalid(defect)),
+        Err(_) => {}
     }
-    for (&(a, b), &fi) in &directed {
-        let Some(&gi) = directed.get(&(b, a)) else {
-            return Err(format!("mesh edge {:?} has no opposite face", (a, b)));
-        };
-        let (nrm, d, t) = planes[fi];
-        for &v in &mesh.faces[gi] {
-            if nrm.dot(pts[v]) - d > t {
-                return Err(format!(
-                    "edge {:?} between faces {fi} and {gi} is not convex",
-                    (a, b)
-                ));
-            }
-        }
-    }
-    let used: std::collections::HashSet<usize> = mesh.faces.iter().flatten().copied().collect();
-    let (v, e, f) = (
-        used.len() as i64,
-        directed.len() as i64 / 2,
-        mesh.faces.len() as i64,
-    );
-    if v - e + f != 2 {
-        return Err(format!("mesh Euler characteristic {} != 2", v - e + f));
-    }
-    if mesh.signed_volume() <= 0.0 {
-        return Err("mesh is not outward (volume <= 0)".into());
-    }
-    Ok(())
+    let pts: Vec<DVec3> = merged.mesh.vertices.iter().map(|&v| v.into()).collect();
+    let points = ExactPoints::new(&pts);
+    let hull = crate::hull::convex_hull(&points).map_err(|e| MeshError::PrecisionLost {
+        ulp: precision.ulp,
+        size: precision.size,
+        collapse: match e {
+            crate::hull::HullError::AllCoincident { .. } => "coincide".into(),
+            crate::hull::HullError::AllCollinear { .. } => "are collinear".into(),
+            crate::hull::HullError::AllCoplanar { .. } => "are coplanar (flat)".into(),
+            other => other.to_string(),
+        },
+    })?;
+    let mesh = hull.to_mesh(&points);
+    check_convex_mesh(&mesh)?;
+    Ok(SumMesh {
+        mesh,
+        precision,
+        hull_fallback: true,
+    })
 }

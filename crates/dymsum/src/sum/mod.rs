@@ -14,7 +14,7 @@
 //!
 //! All three use the same exact predicates with the same symbolic
 //! perturbation ([`overlay`]), so they return identical facet sets, which
-//! [`MinkowskiSum::facets`] lists in canonical order. [`MinkowskiSum::to_mesh`]
+//! [`MinkowskiSum::facets`] lists in canonical order. [`MinkowskiSum::try_to_mesh`]
 //! merges coplanar facets into the true faces (see [`merge`]).
 //!
 //! ```
@@ -31,14 +31,17 @@
 //! // P may be posed: rotated about the origin, then translated.
 //! let turn = Pose::new(Rotation::from_axis_angle(DVec3::Z, 0.3).unwrap(), DVec3::X);
 //! let moved = minkowski_sum_posed(&tet, turn, &cube, Pose::IDENTITY, Method::Walk).unwrap();
-//! assert!(moved.to_mesh().faces.len() > 6);
+//! assert!(moved.try_to_mesh().unwrap().faces.len() > 6);
 //! ```
 
 mod brute;
 mod hull_method;
 pub mod merge;
 pub mod overlay;
+pub mod validate;
 mod walk;
+
+pub use merge::{MeshError, Precision, SumMesh};
 
 use crate::polytope::Polytope;
 use crate::Pose;
@@ -331,16 +334,29 @@ impl<'a> MinkowskiSum<'a> {
         )
     }
     /// The merged polygon mesh: coplanar facets merged into maximal faces,
-    /// collinear vertices dropped, counter-clockwise outward.
-    pub fn to_mesh(&self) -> crate::PolygonMesh {
-        merge::merged_mesh(&self.operands, &self.overlay)
+    /// collinear vertices dropped, counter-clockwise outward, checked
+    /// without tolerance ([`validate::check_convex_mesh`]). Where rounding of
+    /// the coordinates breaks the exact faces, it is the exact hull of the
+    /// rounded vertices instead (see [`merge::validated_mesh`]).
+    ///
+    /// # Errors
+    /// [`MeshError::PrecisionLost`] when the rounded vertices collapse (the
+    /// sum is too far from the origin for its size);
+    /// [`MeshError::Merge`] / [`MeshError::Invalid`] are internal errors.
+    pub fn try_to_mesh(&self) -> Result<crate::PolygonMesh, MeshError> {
+        self.mesh_with_precision().map(|m| m.mesh)
+    }
+    /// [`Self::try_to_mesh`] with the coordinates' rounding relative to the
+    /// sum's size, and whether the hull fallback was used.
+    pub fn mesh_with_precision(&self) -> Result<merge::SumMesh, MeshError> {
+        merge::validated_mesh(&self.operands, &self.overlay)
     }
     /// Checks the facet complex: every facet edge shared by exactly two facets
     /// in opposite directions (closed, 2-manifold, consistently oriented),
     /// Euler `V − E + F = 2`, and the merged mesh closed and convex.
     pub fn sanity_check(&self) -> Result<(), String> {
         merge::check_facet_complex(&self.operands, &self.overlay)?;
-        merge::check_mesh(&self.to_mesh())
+        self.try_to_mesh().map(|_| ()).map_err(|e| e.to_string())
     }
 }
 

@@ -225,7 +225,7 @@ pub mod oracle {
             .iter()
             .map(|&v| d.pose_q().apply(v))
             .collect();
-        let mesh = d.to_mesh();
+        let mesh = d.try_to_mesh().map_err(|e| format!("{ctx}: mesh: {e}"))?;
         let sums = PairwiseSums::new(&pp, &qq);
         let hull = convex_hull(&sums).map_err(|e| format!("{ctx}: hull of sums: {e}"))?;
         let hull_mesh = hull.to_mesh(&sums);

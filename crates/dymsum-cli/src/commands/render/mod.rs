@@ -181,7 +181,7 @@ pub fn run(a: &RenderArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         }
         None => None,
     };
-    let mesh = dynamic.to_mesh();
+    let mesh = super::validated(dynamic.mesh_with_precision(), "the sum")?;
     let scene = scene::Scene::build(
         &mesh,
         &dynamic,
