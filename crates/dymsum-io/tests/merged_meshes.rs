@@ -62,15 +62,6 @@ fn exact_turns() -> Vec<(String, Rotation)> {
     out
 }
 
-/// Whether [`reload`] uses `MeshPolicy::strict()`. The reader's strict
-/// comparison in `polytope/build.rs` (picks the nearest *float* plane, then
-/// tests exactly against that one face) refuses valid meshes ("vertex 6 is
-/// not on the hull boundary, off by 0"), although the exact hull of the
-/// vertices equals the mesh face by face (checked below); it is being
-/// rewritten separately. `strict_reader_sweep` (ignored) runs the paper sweep
-/// with it.
-static STRICT: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-
 /// The write → read → reload round trip of a mesh, and the independent
 /// oracle: the exact hull of its vertices is the mesh, face by face.
 fn reload(mesh: &PolygonMesh) -> Result<(), String> {
@@ -87,12 +78,7 @@ fn reload(mesh: &PolygonMesh) -> Result<(), String> {
         return Err("OFF round trip changed the mesh".into());
     }
     check_convex_mesh(&back).map_err(|e| format!("reloaded: {e}"))?;
-    let policy = if STRICT.load(std::sync::atomic::Ordering::Relaxed) {
-        MeshPolicy::strict()
-    } else {
-        MeshPolicy::default()
-    };
-    let (p, _) = Polytope::from_mesh(&back, policy).map_err(|e| e.to_string())?;
+    let (p, _) = Polytope::from_mesh(&back, MeshPolicy::strict()).map_err(|e| e.to_string())?;
     if p.face_count() != mesh.faces.len() || p.vertex_count() != mesh.vertices.len() {
         return Err(format!(
             "strict reload has {} faces, {} vertices; the mesh {}, {}",
@@ -180,14 +166,6 @@ fn sums_exact(p: &Polytope, pose: Pose, q: &Polytope) -> bool {
 
 #[test]
 fn paper_models_at_exact_turns() {
-    paper_sweep();
-}
-
-/// The paper sweep reloaded with `MeshPolicy::strict()` (see [`STRICT`]).
-#[test]
-#[ignore = "the strict reader's comparison is being rewritten (issue 8 §3/§4)"]
-fn strict_reader_sweep() {
-    STRICT.store(true, std::sync::atomic::Ordering::Relaxed);
     paper_sweep();
 }
 
