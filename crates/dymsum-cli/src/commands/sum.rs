@@ -26,7 +26,7 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let elapsed = micros(start.elapsed());
     let mesh = sum.to_mesh();
     dymsum_io::formats::write_mesh(&a.output, &mesh)
-        .with_context(|| format!("writing the sum to {}", a.output.display()))?;
+        .context("writing the sum")?;
     let (fv, vf, ee) = sum.counts();
     writeln!(
         out,
