@@ -290,3 +290,17 @@ fn missing_operand_and_unreadable_file_say_the_os_error_once() {
     assert!(err.contains("d.off") && err.contains("directory"), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
 }
+
+#[test]
+fn huge_numbers_are_printed_in_scientific_form() {
+    let out = ok(&["query", "cube", "cube", "--pose=1e300,0,0,1,0,0,0"]);
+    assert!(out.starts_with("t = (1e300, 0, 0), q = (1, 0, 0, 0)"), "{out}");
+    assert!(out.len() < 200, "{out}");
+    let out = ok(&["info", "box:1e100"]);
+    assert!(out.contains("diameter:         1.7320508075688773e100"), "{out}");
+    assert!(out.lines().all(|l| l.len() < 120), "{out}");
+    let o = run(&["info", "box:1e300"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("got 1e300"), "{}", stderr(&o));
+    assert!(stderr(&o).len() < 200, "{}", stderr(&o));
+}
