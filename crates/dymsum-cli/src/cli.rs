@@ -200,7 +200,8 @@ pub fn parse_steps_per_rev(s: &str) -> Result<f64, String> {
 pub fn parse_positive(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        Ok(_) => Err(format!("`{s}` must be a finite number greater than 0")),
+        Ok(x) if x.is_finite() => Err(format!("`{s}` must be greater than 0")),
+        Ok(_) => Err(format!("`{s}` is not a finite number")),
         Err(_) => Err(format!("`{s}` is not a number")),
     }
 }

@@ -31,7 +31,14 @@ fn failed_sum_keeps_the_earlier_output_and_leaves_no_temp() {
     ok(&["sum", "cube", "gs1", "-o", s(&out)]);
     let good = std::fs::read(&out).unwrap();
     // Coordinates beyond f32: the STL cannot be written.
-    let o = run(&["sum", "cube", "gs1", "-o", s(&out), "--translate-p=1e39,0,0"]);
+    let o = run(&[
+        "sum",
+        "cube",
+        "gs1",
+        "-o",
+        s(&out),
+        "--translate-p=1e39,0,0",
+    ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(std::fs::read(&out).unwrap(), good);
     assert_eq!(names(&dir), ["sum.stl"]);
@@ -63,15 +70,36 @@ fn write_into_a_missing_directory_names_the_path_and_the_os_error_once() {
 fn failed_animate_keeps_the_earlier_csv() {
     let dir = temp_dir("csv");
     let csv = dir.join("run.csv");
-    ok(&["animate", "cube", "gs1", "--steps-per-rev", "100", "--steps", "5", "--csv", s(&csv)]);
+    ok(&[
+        "animate",
+        "cube",
+        "gs1",
+        "--steps-per-rev",
+        "100",
+        "--steps",
+        "5",
+        "--csv",
+        s(&csv),
+    ]);
     let good = std::fs::read(&csv).unwrap();
     assert_eq!(String::from_utf8_lossy(&good).lines().count(), 6);
     // The frames directory cannot be created (a file is in the way).
     let blocker = dir.join("frames");
     std::fs::write(&blocker, "not a directory").unwrap();
     let o = run(&[
-        "animate", "cube", "gs1", "--steps-per-rev", "100", "--steps", "9", "--csv", s(&csv),
-        "--frames-dir", s(&blocker), "--every", "1",
+        "animate",
+        "cube",
+        "gs1",
+        "--steps-per-rev",
+        "100",
+        "--steps",
+        "9",
+        "--csv",
+        s(&csv),
+        "--frames-dir",
+        s(&blocker),
+        "--every",
+        "1",
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(std::fs::read(&csv).unwrap(), good);
@@ -82,19 +110,53 @@ fn failed_animate_keeps_the_earlier_csv() {
 fn cobst_refuses_a_non_empty_directory_and_force_clears_only_its_own_files() {
     let dir = temp_dir("cobst");
     let out = dir.join("slices");
-    ok(&["cobst", "cube", "gs1", "--axis", "0,0,1", "--slices", "3", "--out", s(&out)]);
+    ok(&[
+        "cobst",
+        "cube",
+        "gs1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "3",
+        "--out",
+        s(&out),
+    ]);
     assert_eq!(
         names(&out),
-        ["index.json", "slice_00000.off", "slice_00001.off", "slice_00002.off"]
+        [
+            "index.json",
+            "slice_00000.off",
+            "slice_00001.off",
+            "slice_00002.off"
+        ]
     );
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
-    let o = run(&["cobst", "cube", "gs1", "--axis", "0,0,1", "--slices", "1", "--out", s(&out)]);
+    let o = run(&[
+        "cobst",
+        "cube",
+        "gs1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "1",
+        "--out",
+        s(&out),
+    ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("not empty"), "{}", stderr(&o));
     assert!(stderr(&o).contains("--force"), "{}", stderr(&o));
     assert_eq!(names(&out).len(), 5);
     ok(&[
-        "cobst", "cube", "gs1", "--axis", "0,0,1", "--slices", "1", "--out", s(&out), "--force",
+        "cobst",
+        "cube",
+        "gs1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "1",
+        "--out",
+        s(&out),
+        "--force",
     ]);
     assert_eq!(names(&out), ["index.json", "notes.txt", "slice_00000.off"]);
     let index = std::fs::read_to_string(out.join("index.json")).unwrap();
@@ -102,7 +164,17 @@ fn cobst_refuses_a_non_empty_directory_and_force_clears_only_its_own_files() {
     // An empty existing directory is fine without --force.
     let empty = dir.join("empty");
     std::fs::create_dir(&empty).unwrap();
-    ok(&["cobst", "cube", "gs1", "--axis", "0,0,1", "--slices", "2", "--out", s(&empty)]);
+    ok(&[
+        "cobst",
+        "cube",
+        "gs1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "2",
+        "--out",
+        s(&empty),
+    ]);
 }
 
 /// Runs the binary with a deadline: a hang is a failure, not a stuck test.
@@ -130,32 +202,67 @@ fn run_with_deadline(args: &[&str], secs: u64) -> std::process::Output {
 fn fifo_and_device_operands_are_refused_promptly() {
     let dir = temp_dir("fifo");
     let fifo = dir.join("pipe.off");
-    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
     let zero = dir.join("x.stl");
     std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
     let quats = dir.join("quats.txt");
-    assert!(Command::new("mkfifo").arg(&quats).status().unwrap().success());
+    assert!(Command::new("mkfifo")
+        .arg(&quats)
+        .status()
+        .unwrap()
+        .success());
     for args in [
         vec!["info", s(&fifo)],
         vec!["info", s(&zero)],
         vec!["query", s(&zero), "cube", "--pose", "0,0,0,1,0,0,0"],
         vec!["sum", s(&fifo), "cube", "-o", "/dev/null/never.off"],
-        vec!["cobst", "cube", "cube", "--orientations", s(&quats), "--out", "/dev/null/never"],
+        vec![
+            "cobst",
+            "cube",
+            "cube",
+            "--orientations",
+            s(&quats),
+            "--out",
+            "/dev/null/never",
+        ],
     ] {
         let o = run_with_deadline(&args, 20);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
-        assert!(stderr(&o).contains("not a regular file"), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("not a regular file"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
     }
 }
 
 #[test]
 fn steps_per_rev_with_a_non_finite_step_angle_is_a_usage_error() {
     for x in ["1e-320", "4.9e-324", "1e-309"] {
-        let o = run(&["animate", "cube", "gs1", "--steps-per-rev", x, "--steps", "1"]);
+        let o = run(&[
+            "animate",
+            "cube",
+            "gs1",
+            "--steps-per-rev",
+            x,
+            "--steps",
+            "1",
+        ]);
         assert_eq!(o.status.code(), Some(2), "{x}: {}", stderr(&o));
         assert!(stderr(&o).contains("not finite"), "{}", stderr(&o));
     }
-    let o = run(&["bench", "rotation", "--steps-per-rev", "100,1e-320", "--out", "/dev/null/x"]);
+    let o = run(&[
+        "bench",
+        "rotation",
+        "--steps-per-rev",
+        "100,1e-320",
+        "--out",
+        "/dev/null/x",
+    ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
 
@@ -163,7 +270,15 @@ fn steps_per_rev_with_a_non_finite_step_angle_is_a_usage_error() {
 fn huge_and_tiny_quaternions_are_normalised_not_called_zero() {
     let dir = temp_dir("quat");
     let reference = dir.join("ref.off");
-    ok(&["sum", "cone", "gs1", "-o", s(&reference), "--rotate-p", "1,0,0,1"]);
+    ok(&[
+        "sum",
+        "cone",
+        "gs1",
+        "-o",
+        s(&reference),
+        "--rotate-p",
+        "1,0,0,1",
+    ]);
     for q in ["1e200,0,0,1e200", "1e-200,0,0,1e-200", "1e308,0,0,1e308"] {
         let out = dir.join("q.off");
         ok(&["sum", "cone", "gs1", "-o", s(&out), "--rotate-p", q]);
@@ -179,11 +294,21 @@ fn huge_and_tiny_quaternions_are_normalised_not_called_zero() {
 #[test]
 fn orientation_lines_with_empty_fields_are_errors_with_the_line() {
     let dir = temp_dir("orient");
-    for (line, field) in [("1,,0,0,0", "field 2"), (",1,0,0", "field 1"), ("1,0,0,", "field 4")] {
+    for (line, field) in [
+        ("1,,0,0,0", "field 2"),
+        (",1,0,0", "field 1"),
+        ("1,0,0,", "field 4"),
+    ] {
         let file = dir.join("q.txt");
         std::fs::write(&file, format!("# header\n1,0,0,0\n{line}\n")).unwrap();
         let o = run(&[
-            "cobst", "cube", "gs1", "--orientations", s(&file), "--out", s(&dir.join("out")),
+            "cobst",
+            "cube",
+            "gs1",
+            "--orientations",
+            s(&file),
+            "--out",
+            s(&dir.join("out")),
         ]);
         assert_eq!(o.status.code(), Some(1), "{line}");
         let err = stderr(&o);
@@ -193,7 +318,15 @@ fn orientation_lines_with_empty_fields_are_errors_with_the_line() {
     // Whitespace separated still works.
     let file = dir.join("ws.txt");
     std::fs::write(&file, "1 0 0 0\n0.7 0 0 0.7\n").unwrap();
-    ok(&["cobst", "cube", "gs1", "--orientations", s(&file), "--out", s(&dir.join("ws"))]);
+    ok(&[
+        "cobst",
+        "cube",
+        "gs1",
+        "--orientations",
+        s(&file),
+        "--out",
+        s(&dir.join("ws")),
+    ]);
 }
 
 const CUBE_FACES: [&str; 6] = [
@@ -232,15 +365,29 @@ fn obj_point_cloud_object_is_a_body_in_query() {
     std::fs::write(&robot, text).unwrap();
     // Moved by -10.2, only the point-cloud object reaches the obstacle.
     let out = ok(&[
-        "query", s(&robot), "box:1,1,1", "--pose=-10.2,-10.2,-10.2,1,0,0,0", "--json",
+        "query",
+        s(&robot),
+        "box:1,1,1",
+        "--pose=-10.2,-10.2,-10.2,1,0,0,0",
+        "--json",
     ]);
     assert!(out.contains("\"collides\":true"), "{out}");
-    let out = ok(&["query", s(&robot), "box:1,1,1", "--pose=20,20,20,1,0,0,0", "--json"]);
+    let out = ok(&[
+        "query",
+        s(&robot),
+        "box:1,1,1",
+        "--pose=20,20,20,1,0,0,0",
+        "--json",
+    ]);
     assert!(out.contains("\"collides\":false"), "{out}");
     // One body asked for: refused, naming the bodies.
     let o = run(&["info", s(&robot)]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("3 separate bodies (`a`, `b`, `pts`)"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("3 separate bodies (`a`, `b`, `pts`)"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]
@@ -259,9 +406,24 @@ fn obj_groups_of_one_mesh_are_one_body_in_every_command() {
     };
     assert_eq!(info(&grouped), info(&plain));
     for (name, p) in [("g", &grouped), ("p", &plain)] {
-        ok(&["sum", s(p), "gs1", "-o", s(&dir.join(format!("{name}.off")))]);
-        ok(&["cobst", s(p), "gs1", "--axis", "0,0,1", "--slices", "2", "--out",
-             s(&dir.join(format!("{name}_slices")))]);
+        ok(&[
+            "sum",
+            s(p),
+            "gs1",
+            "-o",
+            s(&dir.join(format!("{name}.off"))),
+        ]);
+        ok(&[
+            "cobst",
+            s(p),
+            "gs1",
+            "--axis",
+            "0,0,1",
+            "--slices",
+            "2",
+            "--out",
+            s(&dir.join(format!("{name}_slices"))),
+        ]);
     }
     assert_eq!(
         std::fs::read(dir.join("g.off")).unwrap(),
@@ -294,10 +456,16 @@ fn missing_operand_and_unreadable_file_say_the_os_error_once() {
 #[test]
 fn huge_numbers_are_printed_in_scientific_form() {
     let out = ok(&["query", "cube", "cube", "--pose=1e300,0,0,1,0,0,0"]);
-    assert!(out.starts_with("t = (1e300, 0, 0), q = (1, 0, 0, 0)"), "{out}");
+    assert!(
+        out.starts_with("t = (1e300, 0, 0), q = (1, 0, 0, 0)"),
+        "{out}"
+    );
     assert!(out.len() < 200, "{out}");
     let out = ok(&["info", "box:1e100"]);
-    assert!(out.contains("diameter:         1.7320508075688773e100"), "{out}");
+    assert!(
+        out.contains("diameter:         1.7320508075688773e100"),
+        "{out}"
+    );
     assert!(out.lines().all(|l| l.len() < 120), "{out}");
     let o = run(&["info", "box:1e300"]);
     assert_eq!(o.status.code(), Some(1));

@@ -155,10 +155,7 @@ fn fifo_and_device_are_refused_without_blocking() {
     assert!(made.success());
     // Nobody writes to the FIFO: opening it for reading would block forever.
     let err = read_mesh(&fifo).unwrap_err();
-    assert!(
-        matches!(err, FormatError::NotRegularFile { .. }),
-        "{err:?}"
-    );
+    assert!(matches!(err, FormatError::NotRegularFile { .. }), "{err:?}");
     assert!(err.to_string().contains("pipe.off"), "{err}");
     let err = load_polytope(fifo.to_str().unwrap(), MeshPolicy::default()).unwrap_err();
     assert!(err.to_string().contains("not a regular file"), "{err}");
@@ -167,10 +164,7 @@ fn fifo_and_device_are_refused_without_blocking() {
     let zero = dir.join("x.stl");
     std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
     let err = read_mesh(&zero).unwrap_err();
-    assert!(
-        matches!(err, FormatError::NotRegularFile { .. }),
-        "{err:?}"
-    );
+    assert!(matches!(err, FormatError::NotRegularFile { .. }), "{err:?}");
     let err = read_regular_file(Path::new("/dev/null")).unwrap_err();
     assert!(matches!(err, FileError::NotRegular { .. }), "{err:?}");
     let err = read_regular_file(&dir).unwrap_err();
@@ -305,11 +299,7 @@ fn ply_errors_are_in_our_words_with_line_or_element() {
             "line 4",
             "cannot understand the header line `property floot x`",
         ),
-        (
-            "plx\n".to_string(),
-            "line 1",
-            "not a PLY file",
-        ),
+        ("plx\n".to_string(), "line 1", "not a PLY file"),
     ];
     for (text, at, want) in &cases {
         let err = read_mesh_bytes(text.as_bytes(), Format::Ply, "t.ply").unwrap_err();
@@ -352,10 +342,16 @@ fn every_model_parameter_beyond_its_limit_is_refused_with_the_limit() {
     ];
     for (spec, want) in cases {
         let err = model(spec).unwrap_err();
-        assert!(matches!(err, ModelError::BadParameter { .. }), "{spec}: {err:?}");
+        assert!(
+            matches!(err, ModelError::BadParameter { .. }),
+            "{spec}: {err:?}"
+        );
         let text = err.to_string();
         assert!(text.contains(want), "{spec}: {text}");
-        assert!(text.len() < 200, "{spec}: a number with hundreds of digits? {text}");
+        assert!(
+            text.len() < 200,
+            "{spec}: a number with hundreds of digits? {text}"
+        );
     }
     // The limits themselves are accepted (the largest ones load in seconds;
     // loading is tested for the cheap ones only).
@@ -376,7 +372,10 @@ fn every_model_parameter_beyond_its_limit_is_refused_with_the_limit() {
     }
     // "non-finite" only for non-finite values.
     let err = model("box:abc").unwrap_err().to_string();
-    assert!(err.contains("must be a number") && !err.contains("finite"), "{err}");
+    assert!(
+        err.contains("must be a number") && !err.contains("finite"),
+        "{err}"
+    );
     let err = model("box:inf").unwrap_err().to_string();
     assert!(err.contains("must be finite"), "{err}");
 }
@@ -388,7 +387,10 @@ fn quaternions_that_overflow_or_underflow_when_squared_are_normalised() {
         let r = Rotation::from_wxyz(s, 0.0, 0.0, s).unwrap_or_else(|| panic!("scale {s:e}"));
         let (a, b) = (r.wxyz(), unit.wxyz());
         for k in 0..4 {
-            assert!((a[k] - b[k]).abs() <= 2.0 * f64::EPSILON, "scale {s:e}: {a:?}");
+            assert!(
+                (a[k] - b[k]).abs() <= 2.0 * f64::EPSILON,
+                "scale {s:e}: {a:?}"
+            );
         }
     }
     // Powers of two are exact: bit-identical.
@@ -399,10 +401,19 @@ fn quaternions_that_overflow_or_underflow_when_squared_are_normalised() {
     }
     let r = Rotation::from_wxyz(1e200, 2e200, 0.0, -2e200).unwrap();
     let w = r.wxyz();
-    assert!((w[0] - 1.0 / 3.0).abs() < 1e-15 && (w[3] + 2.0 / 3.0).abs() < 1e-15, "{w:?}");
+    assert!(
+        (w[0] - 1.0 / 3.0).abs() < 1e-15 && (w[3] + 2.0 / 3.0).abs() < 1e-15,
+        "{w:?}"
+    );
     // Powers of two: scaling is exact, so a scaled quaternion is the same rotation bit for bit.
     let q = Rotation::from_wxyz(0.9, 0.2, 0.3, 0.1).unwrap();
-    let q2 = Rotation::from_wxyz(0.9 * 2f64.powi(900), 0.2 * 2f64.powi(900), 0.3 * 2f64.powi(900), 0.1 * 2f64.powi(900)).unwrap();
+    let q2 = Rotation::from_wxyz(
+        0.9 * 2f64.powi(900),
+        0.2 * 2f64.powi(900),
+        0.3 * 2f64.powi(900),
+        0.1 * 2f64.powi(900),
+    )
+    .unwrap();
     assert_eq!(q.wxyz(), q2.wxyz());
     assert!(Rotation::from_wxyz(0.0, 0.0, 0.0, 0.0).is_none());
     assert!(Rotation::from_wxyz(f64::INFINITY, 0.0, 0.0, 0.0).is_none());

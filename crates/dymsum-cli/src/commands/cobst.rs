@@ -118,7 +118,8 @@ pub fn read_orientations(path: &Path) -> anyhow::Result<Vec<Rotation>> {
         for (slot, p) in q.iter_mut().zip(&parts) {
             *slot = match p.parse::<f64>() {
                 Ok(x) if x.is_finite() => x,
-                _ => bail!("{}: `{p}` is not a finite number", at()),
+                Ok(_) => bail!("{}: `{p}` is not a finite number", at()),
+                Err(_) => bail!("{}: `{p}` is not a number", at()),
             };
         }
         let r = Rotation::from_wxyz(q[0], q[1], q[2], q[3])

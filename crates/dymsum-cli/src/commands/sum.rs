@@ -25,8 +25,7 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         .with_context(|| format!("{} ⊕ {} ({})", a.p, a.q, method.name()))?;
     let elapsed = micros(start.elapsed());
     let mesh = sum.to_mesh();
-    dymsum_io::formats::write_mesh(&a.output, &mesh)
-        .context("writing the sum")?;
+    dymsum_io::formats::write_mesh(&a.output, &mesh).context("writing the sum")?;
     let (fv, vf, ee) = sum.counts();
     writeln!(
         out,

@@ -235,9 +235,9 @@ fn message(e: &ParseError, kind: Option<&str>) -> String {
             .filter(|t| !t.is_empty())
             .collect();
         return match counts.as_slice() {
-            [want, got] => format!(
-                "`{text}`: the list count says {want} entries, but only {got} follow"
-            ),
+            [want, got] => {
+                format!("`{text}`: the list count says {want} entries, but only {got} follow")
+            }
             _ => format!("`{text}`: a list is shorter than its count"),
         };
     }
@@ -247,7 +247,9 @@ fn message(e: &ParseError, kind: Option<&str>) -> String {
             None => "cannot understand a header line".to_string(),
         };
     }
-    if head.starts_with("Couldn't read element line") || head.starts_with("Couldn't parse element line") {
+    if head.starts_with("Couldn't read element line")
+        || head.starts_with("Couldn't parse element line")
+    {
         return match quoted {
             Some(t) => format!(
                 "cannot read `{t}` as the values of {element} element (plain decimal numbers, \
@@ -327,12 +329,14 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
         }
     }
 
-    let mut payload = parser
-        .read_payload(&mut reader, &header)
-        .map_err(|e| {
-            let kind = loc.kind_at(e.line());
-            FormatError::parse(name, loc.payload_error(e.line()), message(&e, kind.as_deref()))
-        })?;
+    let mut payload = parser.read_payload(&mut reader, &header).map_err(|e| {
+        let kind = loc.kind_at(e.line());
+        FormatError::parse(
+            name,
+            loc.payload_error(e.line()),
+            message(&e, kind.as_deref()),
+        )
+    })?;
 
     let velems = payload.swap_remove("vertex").unwrap_or_default();
     let mut vertices = Vec::with_capacity(velems.len());

@@ -589,11 +589,11 @@ impl Params<'_> {
         };
         match s.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
-            Ok(_) => Err(bad(
+            Ok(_) => Err(bad(self.name, format!("{what} must be finite, got `{s}`"))),
+            Err(_) => Err(bad(
                 self.name,
-                format!("{what} must be finite, got `{s}`"),
+                format!("{what} must be a number, got `{s}`"),
             )),
-            Err(_) => Err(bad(self.name, format!("{what} must be a number, got `{s}`"))),
         }
     }
 
