@@ -119,7 +119,7 @@ pub struct AnimateArgs {
     #[arg(value_name = "Q")]
     pub q: String,
     /// Steps per full turn: each step turns P by 2π/X about the current axis.
-    #[arg(long, value_name = "X", value_parser = parse_positive)]
+    #[arg(long, value_name = "X", value_parser = parse_steps_per_rev)]
     pub steps_per_rev: f64,
     /// Number of steps.
     #[arg(long, value_name = "N")]
@@ -182,11 +182,26 @@ pub fn parse_vector(s: &str) -> Result<DVec3, String> {
     Ok(DVec3::new(v[0], v[1], v[2]))
 }
 
+/// Parses `--steps-per-rev X`: a finite number > 0 whose step angle 2π/X is
+/// finite too (so not a subnormal like `1e-320`).
+pub fn parse_steps_per_rev(s: &str) -> Result<f64, String> {
+    let x = parse_positive(s)?;
+    let angle = std::f64::consts::TAU / x;
+    if !angle.is_finite() {
+        return Err(format!(
+            "`{s}` steps per turn gives a step angle 2π/X that is not finite; give at least {:e}",
+            std::f64::consts::TAU / f64::MAX
+        ));
+    }
+    Ok(x)
+}
+
 /// Parses a finite number > 0.
 pub fn parse_positive(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        Ok(_) => Err(format!("`{s}` must be a finite number greater than 0")),
+        Ok(x) if x.is_finite() => Err(format!("`{s}` must be greater than 0")),
+        Ok(_) => Err(format!("`{s}` is not a finite number")),
         Err(_) => Err(format!("`{s}` is not a number")),
     }
 }

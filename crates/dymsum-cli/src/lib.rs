@@ -30,11 +30,11 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) if is_internal(&e) => {
-            let _ = writeln!(io::stderr(), "internal error: {e:#}");
+            let _ = writeln!(io::stderr(), "internal error: {}", error_text(&e));
             ExitCode::from(3)
         }
         Err(e) => {
-            let _ = writeln!(io::stderr(), "error: {e:#}");
+            let _ = writeln!(io::stderr(), "error: {}", error_text(&e));
             ExitCode::from(1)
         }
     }
@@ -48,6 +48,23 @@ fn is_internal(e: &anyhow::Error) -> bool {
         c.downcast_ref::<MeshError>().is_some_and(MeshError::is_internal)
             || matches!(c.downcast_ref::<QueryError>(), Some(QueryError::Mesh(m)) if m.is_internal())
     })
+}
+
+/// The error and its causes joined by `": "`, each said once: a cause whose
+/// text the message so far already ends with (an OS error that a
+/// `"{path}: {source}"` error also carries as its source) is not repeated.
+pub fn error_text(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let c = cause.to_string();
+        if text.is_empty() {
+            text = c;
+        } else if !text.ends_with(&c) {
+            text.push_str(": ");
+            text.push_str(&c);
+        }
+    }
+    text
 }
 
 /// `true` when the error is a closed stdout (`dymsum models | head`).

@@ -43,6 +43,40 @@ pub fn human_us(us: f64) -> String {
     }
 }
 
+/// A number for human-readable output, never hundreds of digits: Rust's
+/// shortest round-trip form when `1e-4 <= |x| < 1e15` (or `x` is 0, or not
+/// finite), otherwise scientific (`{:e}`), e.g. `1e300`.
+///
+/// ```
+/// use dymsum_cli::stats::short;
+/// assert_eq!(short(2.5), "2.5");
+/// assert_eq!(short(1e300), "1e300");
+/// assert_eq!(short(-1.5e-200), "-1.5e-200");
+/// ```
+pub fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// `x` with `decimals` decimals, switching to scientific notation with as
+/// many mantissa decimals outside `1e-4 <= |x| < 1e15` (0 stays fixed).
+///
+/// ```
+/// use dymsum_cli::stats::fixed;
+/// assert_eq!(fixed(1.5, 3), "1.500");
+/// assert_eq!(fixed(1e300, 3), "1.000e300");
+/// ```
+pub fn fixed(x: f64, decimals: usize) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.decimals$e}")
+    }
+}
+
 /// Microseconds elapsed in a [`std::time::Duration`], as a float.
 pub fn micros(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1e6

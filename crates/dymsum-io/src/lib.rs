@@ -4,11 +4,13 @@
 //!   (ASCII and binary read, binary write), chosen by file extension.
 //! * [`models`]: the paper's 13 models, tessellated cubes and parametric
 //!   primitives, by name.
+//! * [`atomic`]: atomic file writes and bounded reads of regular files.
 //! * [`load`]: an operand from a file path or a model name, as a polytope
 //!   ([`load_polytope`]).
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod atomic;
 pub mod formats;
 pub mod load;
 pub mod models;

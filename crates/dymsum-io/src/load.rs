@@ -93,6 +93,17 @@ pub enum LoadError {
         #[source]
         source: ModelError,
     },
+    /// An OBJ file holds several separate bodies (objects or groups not
+    /// joined by shared vertices, or a point-cloud object next to a mesh),
+    /// but one convex body was asked for. Fix: split the file, or use a
+    /// command that takes unions (`query`, `cobst`).
+    #[error("{origin}: {}", several_bodies_text(.names))]
+    SeveralBodies {
+        /// `"file parts.obj"`.
+        origin: String,
+        /// The bodies' object or group names, in file order.
+        names: Vec<String>,
+    },
     /// The mesh or point cloud is not a valid convex polytope (open,
     /// non-manifold, non-convex, flat, too few points, non-finite, or, under
     /// the strict policy, convex only within tolerance).
@@ -114,6 +125,7 @@ impl LoadError {
             LoadError::NotFound { spec, .. } => format!("`{spec}`"),
             LoadError::Format { origin, .. }
             | LoadError::Model { origin, .. }
+            | LoadError::SeveralBodies { origin, .. }
             | LoadError::Polytope { origin, .. } => origin.clone(),
         }
     }
@@ -129,6 +141,7 @@ impl LoadError {
             } => not_found_text(spec, suggestion, *looks_like_file),
             LoadError::Format { source, .. } => format_cause(source),
             LoadError::Model { source, .. } => source.to_string(),
+            LoadError::SeveralBodies { names, .. } => several_bodies_text(names),
             LoadError::Polytope { source, .. } => source.to_string(),
         }
     }
@@ -155,11 +168,22 @@ fn not_found_text(spec: &str, suggestion: &Option<String>, looks_like_file: bool
     }
 }
 
+fn several_bodies_text(names: &[String]) -> String {
+    let list: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    format!(
+        "the OBJ file holds {} separate bodies ({}), but one convex body is needed \
+         (`query` and `cobst` take unions)",
+        names.len(),
+        list.join(", ")
+    )
+}
+
 /// A format error's message without the file name it starts with (the
 /// origin already names the file).
 fn format_cause(e: &FormatError) -> String {
     match e {
         FormatError::Io { source, .. } => source.to_string(),
+        FormatError::NotRegularFile { kind, .. } => format!("not a regular file ({kind})"),
         FormatError::UnknownExtension { .. } => {
             "unknown mesh file extension (expected .off, .obj, .ply or .stl)".to_string()
         }
@@ -234,10 +258,25 @@ pub fn load_polytope(spec: &str, policy: MeshPolicy) -> Result<Loaded, LoadError
 
 fn load_file(spec: &str, path: &Path, policy: MeshPolicy) -> Result<Loaded, LoadError> {
     let origin = format!("file {spec}");
-    let mesh = formats::read_mesh(path).map_err(|source| LoadError::Format {
+    let format_err = |source| LoadError::Format {
         origin: origin.clone(),
         source,
-    })?;
+    };
+    let is_obj = formats::Format::from_path(path).ok() == Some(formats::Format::Obj);
+    let mesh = if is_obj {
+        // The same bodies as `query` and `cobst` see: groups of one closed
+        // mesh are one body, a faceless object is a point cloud.
+        let mut bodies = formats::read_obj_objects(path).map_err(format_err)?;
+        if bodies.len() > 1 {
+            return Err(LoadError::SeveralBodies {
+                origin,
+                names: bodies.into_iter().map(|(n, _)| n).collect(),
+            });
+        }
+        bodies.pop().map(|(_, m)| m).unwrap_or_default()
+    } else {
+        formats::read_mesh(path).map_err(format_err)?
+    };
     build(mesh, origin, policy)
 }
 

@@ -308,15 +308,16 @@ mod formats {
             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\ng a\nf 1 2 4\ng b c\nf 2 3 4\no empty\n",
         )
         .unwrap();
+        // Groups that share vertices are faces of one body (issue 8): one
+        // mesh, named after the group of its first face.
         let objects = read_obj_objects(&path).unwrap();
         let names: Vec<&str> = objects.iter().map(|(n, _)| n.as_str()).collect();
-        assert_eq!(names, ["default", "a", "b c"]);
+        assert_eq!(names, ["default"]);
+        assert_eq!(objects[0].1.vertices.len(), 4);
         assert_eq!(
-            objects[1].1.vertices,
-            vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
+            objects[0].1.faces,
+            vec![vec![0, 1, 2], vec![0, 1, 3], vec![1, 2, 3]]
         );
-        assert_eq!(objects[1].1.faces, vec![vec![0, 1, 2]]);
-        assert_eq!(objects[2].1.faces, vec![vec![0, 1, 2]]);
         // The whole file as one mesh keeps global indices.
         assert_eq!(read_mesh(&path).unwrap().faces.len(), 3);
     }

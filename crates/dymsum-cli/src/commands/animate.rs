@@ -8,14 +8,14 @@
 //! in microseconds. Frames `DIR/step_NNNNNN.off` hold the merged sum after the
 //! update of the row with the same step number, every K-th step and the last.
 
-use std::fs::File;
-use std::io::{BufWriter, IsTerminal, Write};
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context};
 use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DynamicSum, Pose};
+use dymsum_io::atomic::AtomicFile;
 use dymsum_io::formats::{write_mesh_with, Format};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -56,9 +56,9 @@ pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let q = load(&a.q, "Q", a.strict)?;
     let mut csv = match &a.csv {
         Some(path) => {
-            let f = File::create(path)
-                .with_context(|| format!("cannot create the CSV file {}", path.display()))?;
-            let mut w = BufWriter::new(f);
+            // Written under a temporary name and renamed at the end: a failed
+            // run leaves an earlier CSV intact.
+            let mut w = AtomicFile::create(path).context("the CSV file")?;
             writeln!(w, "{CSV_HEADER}")?;
             Some(w)
         }
@@ -103,15 +103,15 @@ pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                 let path = frame_path(dir, step);
                 let mesh = super::validated(dynamic.mesh_with_precision(), "the frame")?;
                 write_mesh_with(&path, &mesh, Format::Off)
-                    .with_context(|| format!("writing frame {}", path.display()))?;
+                    .with_context(|| format!("frame of step {step}"))?;
                 frames += 1;
             }
         }
         bar.inc(1);
     }
     bar.finish_and_clear();
-    if let Some(mut w) = csv {
-        w.flush().context("writing the CSV file")?;
+    if let Some(w) = csv {
+        w.commit().context("the CSV file")?;
     }
 
     // The dynamic facet set must equal a fresh static sum at the final pose.

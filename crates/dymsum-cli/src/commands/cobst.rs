@@ -6,6 +6,13 @@
 //! split into contiguous chunks over the cores (identical to the sequential
 //! result). Writes `DIR/slice_NNNNN.off` and `DIR/index.json`, an array of
 //! `{"slice": k, "orientation": [w,x,y,z], "faces": n, "file": "slice_NNNNN.off"}`.
+//! Every file is written atomically (temporary name, then rename).
+//!
+//! A non-empty output directory is refused unless `--force` is given, so
+//! slices of an earlier run never sit next to new ones unnoticed; with
+//! `--force`, the files an earlier run may have written there
+//! (`slice_*.off` and `index.json`) are removed first and nothing else is
+//! touched.
 //!
 //! With a union of convex pieces as robot or obstacle (`a.off+b.off`, or an
 //! OBJ file with several objects), a slice is the union of the piece-pair
@@ -50,9 +57,15 @@ pub struct CobstArgs {
     /// separated) per line; `#` starts a comment.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["axis", "slices"])]
     pub orientations: Option<PathBuf>,
-    /// Output directory (created if missing).
+    /// Output directory (created if missing). A non-empty directory is
+    /// refused unless --force is given.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+    /// Write into a non-empty --out directory: first remove the slices and
+    /// index an earlier run left there (`slice_*.off`, `index.json`); other
+    /// files are kept.
+    #[arg(long)]
+    pub force: bool,
     /// Refuse meshes that are convex only within tolerance.
     #[arg(long)]
     pub strict: bool,
@@ -71,20 +84,29 @@ fn parse_axis(s: &str) -> Result<DVec3, String> {
 /// whitespace separated), blank lines and `#` comments ignored. Errors name
 /// the file and line.
 pub fn read_orientations(path: &Path) -> anyhow::Result<Vec<Rotation>> {
-    let file = std::fs::File::open(path)
-        .with_context(|| format!("orientation file {}", path.display()))?;
+    let bytes = dymsum_io::atomic::read_regular_file(path).context("orientation file")?;
     let mut out = Vec::new();
-    for (i, line) in std::io::BufReader::new(file).lines().enumerate() {
-        let line = line.with_context(|| format!("orientation file {}", path.display()))?;
+    for (i, line) in bytes.as_slice().lines().enumerate() {
+        let at = || format!("{} line {}", path.display(), i + 1);
+        let line = line.map_err(|_| anyhow!("{}: not valid UTF-8 text", at()))?;
         let text = line.split('#').next().unwrap_or("").trim();
         if text.is_empty() {
             continue;
         }
-        let at = || format!("{} line {}", path.display(), i + 1);
-        let parts: Vec<&str> = text
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|p| !p.is_empty())
-            .collect();
+        // Comma separated (each field non-empty) or whitespace separated.
+        let parts: Vec<&str> = if text.contains(',') {
+            let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+            if let Some(k) = fields.iter().position(|f| f.is_empty()) {
+                bail!(
+                    "{}: field {} of `{text}` is empty (expected w,x,y,z)",
+                    at(),
+                    k + 1
+                );
+            }
+            fields
+        } else {
+            text.split_whitespace().collect()
+        };
         if parts.len() != 4 {
             bail!(
                 "{}: expected a quaternion w,x,y,z (4 numbers), got {} in `{text}`",
@@ -96,7 +118,8 @@ pub fn read_orientations(path: &Path) -> anyhow::Result<Vec<Rotation>> {
         for (slot, p) in q.iter_mut().zip(&parts) {
             *slot = match p.parse::<f64>() {
                 Ok(x) if x.is_finite() => x,
-                _ => bail!("{}: `{p}` is not a finite number", at()),
+                Ok(_) => bail!("{}: `{p}` is not a finite number", at()),
+                Err(_) => bail!("{}: `{p}` is not a number", at()),
             };
         }
         let r = Rotation::from_wxyz(q[0], q[1], q[2], q[3])
@@ -107,6 +130,49 @@ pub fn read_orientations(path: &Path) -> anyhow::Result<Vec<Rotation>> {
         bail!("orientation file {}: no orientations", path.display());
     }
     Ok(out)
+}
+
+/// `true` for the names cobst writes: `index.json` and `slice_*.off`.
+fn is_own_output(name: &str) -> bool {
+    name == "index.json" || (name.starts_with("slice_") && name.ends_with(".off"))
+}
+
+/// Creates the output directory, or checks an existing one: empty, or with
+/// `force` cleared of an earlier run's slices and index (only those).
+fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
+    if !dir.exists() {
+        return std::fs::create_dir_all(dir)
+            .with_context(|| format!("creating the output directory {}", dir.display()));
+    }
+    if !dir.is_dir() {
+        bail!("--out {}: exists and is not a directory", dir.display());
+    }
+    let entries: Vec<std::fs::DirEntry> = std::fs::read_dir(dir)
+        .with_context(|| format!("--out {}", dir.display()))?
+        .collect::<Result<_, _>>()
+        .with_context(|| format!("--out {}", dir.display()))?;
+    if entries.is_empty() {
+        return Ok(());
+    }
+    if !force {
+        bail!(
+            "--out {}: the directory is not empty ({} entries); slices of an earlier run would \
+             mix with the new ones. Choose an empty or new directory, or add --force to remove \
+             the earlier slice_*.off and index.json there first",
+            dir.display(),
+            entries.len()
+        );
+    }
+    for e in entries {
+        let name = e.file_name();
+        let is_file = e.file_type().is_ok_and(|t| t.is_file());
+        if is_file && name.to_str().is_some_and(is_own_output) {
+            let path = e.path();
+            std::fs::remove_file(&path)
+                .with_context(|| format!("removing the earlier {}", path.display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// One entry of `index.json`.
@@ -144,8 +210,7 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             .ok_or_else(|| anyhow!("--axis must be a non-zero vector"))?,
         _ => bail!("give --axis X,Y,Z with --slices N, or --orientations FILE"),
     };
-    std::fs::create_dir_all(&a.out)
-        .with_context(|| format!("creating the output directory {}", a.out.display()))?;
+    prepare_out_dir(&a.out, a.force)?;
     let union = robot.len() > 1 || obstacle.len() > 1;
     let bar = progress((orientations.len() * robot.len() * obstacle.len()) as u64);
     let start = Instant::now();
@@ -172,7 +237,7 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                     };
                     let res = dymsum_io::formats::write_mesh(&a.out.join(&name), &mesh)
                         .map(|()| (mesh.faces.len(), name.clone()))
-                        .map_err(|e| anyhow!("writing {}: {e}", a.out.join(&name).display()));
+                        .map_err(anyhow::Error::from);
                     bar.inc(1);
                     res
                 })
@@ -204,8 +269,8 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         })
         .collect();
     let index_path = a.out.join("index.json");
-    std::fs::write(&index_path, serde_json::to_string_pretty(&index)? + "\n")
-        .with_context(|| format!("writing {}", index_path.display()))?;
+    let json = serde_json::to_string_pretty(&index)? + "\n";
+    dymsum_io::atomic::write_atomic_bytes(&index_path, json.as_bytes())?;
     let (lo, hi) = (
         faces.iter().min().copied().unwrap_or(0),
         faces.iter().max().copied().unwrap_or(0),

@@ -9,6 +9,7 @@ use serde::Serialize;
 
 use super::load;
 use crate::cli::InfoArgs;
+use crate::stats::short;
 
 /// The machine-readable form of `dymsum info`.
 #[derive(Debug, Serialize)]
@@ -89,11 +90,11 @@ pub fn run(a: &InfoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             )
         },
     )?;
-    row(out, "volume:", format!("{}", info.volume))?;
+    row(out, "volume:", short(info.volume))?;
     row(
         out,
         "diameter:",
-        format!("{} (bounding-box diagonal)", info.diameter),
+        format!("{} (bounding-box diagonal)", short(info.diameter)),
     )?;
     if let Some(c) = &info.convexity {
         let verdict = if c.exactly_convex {

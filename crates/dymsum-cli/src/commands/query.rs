@@ -24,6 +24,7 @@ use dymsum::{DVec3, Polytope, Pose, Rotation};
 use serde::Serialize;
 
 use super::{load, policy, short_name};
+use crate::stats::{fixed, short};
 
 /// Arguments of `dymsum query`.
 #[derive(Debug, Args)]
@@ -229,6 +230,7 @@ pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             writeln!(out, "{}", serde_json::to_string(&line)?)?;
         } else {
             let v = p.values;
+            let v = v.map(short);
             let pose = format!(
                 "t = ({}, {}, {}), q = ({}, {}, {}, {})",
                 v[0], v[1], v[2], v[3], v[4], v[5], v[6]
@@ -241,7 +243,8 @@ pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                 match ans.depth {
                     Some(depth) => writeln!(
                         out,
-                        "{pose}: collides, depth {depth:.9}, separate by moving the robot along {}",
+                        "{pose}: collides, depth {}, separate by moving the robot along {}",
+                        fixed(depth, 9),
                         dir(ans.direction)
                     )?,
                     None => writeln!(
@@ -252,8 +255,8 @@ pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             } else {
                 writeln!(
                     out,
-                    "{pose}: apart, distance {:.9}, obstacle towards {}",
-                    ans.distance,
+                    "{pose}: apart, distance {}, obstacle towards {}",
+                    fixed(ans.distance, 9),
                     dir(ans.direction)
                 )?;
             }

@@ -25,8 +25,7 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         .with_context(|| format!("{} ⊕ {} ({})", a.p, a.q, method.name()))?;
     let elapsed = micros(start.elapsed());
     let mesh = super::validated(sum.mesh_with_precision(), "the sum")?;
-    dymsum_io::formats::write_mesh(&a.output, &mesh)
-        .with_context(|| format!("writing the sum to {}", a.output.display()))?;
+    dymsum_io::formats::write_mesh(&a.output, &mesh).context("writing the sum")?;
     let (fv, vf, ee) = sum.counts();
     writeln!(
         out,

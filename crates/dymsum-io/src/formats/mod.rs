@@ -207,6 +207,17 @@ pub enum FormatError {
         source: std::io::Error,
     },
 
+    /// The path names a FIFO, device, socket or directory rather than a
+    /// regular file; it is refused before being opened (reading it could
+    /// block forever or never end). Fix: copy the data into a mesh file.
+    #[error("{}: not a regular file ({kind})", path.display())]
+    NotRegularFile {
+        /// The path given.
+        path: PathBuf,
+        /// What it is instead.
+        kind: &'static str,
+    },
+
     /// The path's extension is not `.off`, `.obj`, `.ply` or `.stl`. Fix:
     /// rename the file or name the format explicitly
     /// ([`write_mesh_with`], [`read_mesh_bytes`]).
@@ -377,12 +388,15 @@ pub fn read_mesh_bytes(
     }
 }
 
-/// Reads an OBJ file as one mesh per object or group (`o` / `g` statement),
-/// in file order, each with only the vertices its faces use, re-indexed from
-/// 0 (in file order). Objects and groups without faces are skipped; faces
-/// before the first `o`/`g` form an object named `default`. A file with
-/// vertices but no faces at all gives one object `default` holding every
-/// vertex and no faces.
+/// Reads an OBJ file as its separate bodies, in order of their first face:
+/// faces connected through shared vertices form one body whatever their
+/// `o` / `g` statements (so per-face groups of one closed mesh are one
+/// body), each with only the vertices its faces use, re-indexed from 0 (in
+/// file order) and named after the object or group of its first face
+/// (`default` before any `o`/`g`). An object or group with vertices but no
+/// faces is a point cloud body (its vertices that no face uses, no faces),
+/// never dropped. A file with vertices but no faces at all gives one point
+/// cloud holding every vertex.
 pub fn read_obj_objects(path: &Path) -> Result<Vec<(String, PolygonMesh)>, FormatError> {
     let bytes = read_file(path)?;
     read_obj_objects_bytes(&bytes, &path.display().to_string())
@@ -403,13 +417,13 @@ pub fn write_mesh(path: &Path, mesh: &PolygonMesh) -> Result<(), FormatError> {
     write_mesh_with(path, mesh, format)
 }
 
-/// Writes a mesh in the given format, whatever the path's extension.
+/// Writes a mesh in the given format, whatever the path's extension. The
+/// file is written atomically ([`crate::atomic::write_atomic`]): on any
+/// error an earlier file at `path` is left intact and no partial file is
+/// left behind.
 pub fn write_mesh_with(path: &Path, mesh: &PolygonMesh, format: Format) -> Result<(), FormatError> {
     let bytes = write_mesh_bytes(mesh, format)?;
-    std::fs::write(path, bytes).map_err(|source| FormatError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    crate::atomic::write_atomic_bytes(path, &bytes).map_err(FormatError::from)
 }
 
 /// Encodes a mesh in the given format. Fails with
@@ -439,10 +453,19 @@ pub fn write_mesh_bytes(mesh: &PolygonMesh, format: Format) -> Result<Vec<u8>, F
 }
 
 fn read_file(path: &Path) -> Result<Vec<u8>, FormatError> {
-    std::fs::read(path).map_err(|source| FormatError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    crate::atomic::read_regular_file(path).map_err(FormatError::from)
+}
+
+impl From<crate::atomic::FileError> for FormatError {
+    fn from(e: crate::atomic::FileError) -> Self {
+        use crate::atomic::FileError;
+        match e {
+            FileError::Write { path, source } | FileError::Read { path, source } => {
+                FormatError::Io { path, source }
+            }
+            FileError::NotRegular { path, kind } => FormatError::NotRegularFile { path, kind },
+        }
+    }
 }
 
 fn validate_for_writing(mesh: &PolygonMesh) -> Result<(), FormatError> {

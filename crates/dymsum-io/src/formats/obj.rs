@@ -28,6 +28,8 @@ struct Parsed {
     faces: Vec<Vec<usize>>,
     /// For each face, the index of its object/group in `pieces`.
     face_piece: Vec<usize>,
+    /// For each vertex, the index of the object/group it was defined in.
+    vertex_piece: Vec<usize>,
     /// Object/group names, in order of their `o`/`g` statements.
     pieces: Vec<String>,
 }
@@ -68,6 +70,7 @@ fn parse(bytes: &[u8], name: &str) -> Result<Parsed, FormatError> {
         vertices: Vec::new(),
         faces: Vec::new(),
         face_piece: Vec::new(),
+        vertex_piece: Vec::new(),
         pieces: vec!["default".to_string()],
     };
     let mut face_lines: Vec<usize> = Vec::new();
@@ -116,6 +119,7 @@ fn parse(bytes: &[u8], name: &str) -> Result<Parsed, FormatError> {
                     }
                 }
                 p.vertices.push(v);
+                p.vertex_piece.push(current);
             }
             "f" | "fo" => {
                 let nv = p.vertices.len();
@@ -214,6 +218,19 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
     })
 }
 
+/// Union-find root with path halving.
+fn root(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+/// The bodies of an OBJ file (see [`super::read_obj_objects`]): faces joined
+/// by shared vertices form one body whatever their `o`/`g` statements say;
+/// the vertices of an object with no faces (not used by any face) form a
+/// point-cloud body.
 pub(crate) fn read_objects(
     bytes: &[u8],
     name: &str,
@@ -221,40 +238,85 @@ pub(crate) fn read_objects(
     let p = parse(bytes, name)?;
     if p.faces.is_empty() {
         return Ok(vec![(
-            "default".to_string(),
+            p.pieces[0].clone(),
             PolygonMesh {
                 vertices: p.vertices,
                 faces: Vec::new(),
             },
         )]);
     }
-    let mut by_piece: Vec<Vec<usize>> = vec![Vec::new(); p.pieces.len()];
-    for (fi, &piece) in p.face_piece.iter().enumerate() {
-        by_piece[piece].push(fi);
-    }
     let nv = p.vertices.len();
+    // Connected components of the faces through shared vertices.
+    let mut parent: Vec<usize> = (0..nv).collect();
+    for f in &p.faces {
+        let a = root(&mut parent, f[0]);
+        for &v in &f[1..] {
+            let b = root(&mut parent, v);
+            if a != b {
+                parent[b] = a;
+            }
+        }
+    }
+    let mut used = vec![false; nv];
+    for f in &p.faces {
+        for &v in f {
+            used[v] = true;
+        }
+    }
+    // Components in order of their first face.
+    let mut component_of_root = vec![usize::MAX; nv];
+    let mut components: Vec<(usize, Vec<usize>)> = Vec::new(); // (piece of first face, faces)
+    for (fi, f) in p.faces.iter().enumerate() {
+        let r = root(&mut parent, f[0]);
+        if component_of_root[r] == usize::MAX {
+            component_of_root[r] = components.len();
+            components.push((p.face_piece[fi], Vec::new()));
+        }
+        components[component_of_root[r]].1.push(fi);
+    }
     let mut remap = vec![usize::MAX; nv];
     let mut out = Vec::new();
-    for (piece, face_ids) in by_piece.into_iter().enumerate() {
-        if face_ids.is_empty() {
-            continue;
-        }
-        // The piece's vertices in file order.
-        let mut used: Vec<usize> = face_ids
+    for (piece, face_ids) in components {
+        // The body's vertices in file order.
+        let mut verts: Vec<usize> = face_ids
             .iter()
             .flat_map(|&fi| p.faces[fi].iter().copied())
             .collect();
-        used.sort_unstable();
-        used.dedup();
-        for (new, &old) in used.iter().enumerate() {
+        verts.sort_unstable();
+        verts.dedup();
+        for (new, &old) in verts.iter().enumerate() {
             remap[old] = new;
         }
-        let vertices = used.iter().map(|&i| p.vertices[i]).collect();
+        let vertices = verts.iter().map(|&i| p.vertices[i]).collect();
         let faces = face_ids
             .iter()
             .map(|&fi| p.faces[fi].iter().map(|&i| remap[i]).collect())
             .collect();
         out.push((p.pieces[piece].clone(), PolygonMesh { vertices, faces }));
+    }
+    // Objects with vertices but no faces: point clouds of their own
+    // vertices that no face uses.
+    let mut has_faces = vec![false; p.pieces.len()];
+    for &piece in &p.face_piece {
+        has_faces[piece] = true;
+    }
+    let mut clouds: Vec<Vec<[f64; 3]>> = vec![Vec::new(); p.pieces.len()];
+    for (i, v) in p.vertices.iter().enumerate() {
+        let piece = p.vertex_piece[i];
+        if !used[i] && !has_faces[piece] {
+            clouds[piece].push(*v);
+        }
+    }
+    for (piece, vertices) in clouds.into_iter().enumerate() {
+        if !vertices.is_empty() {
+            out.push((
+                p.pieces[piece].clone(),
+                PolygonMesh {
+                    vertices,
+                    faces: Vec::new(),
+                },
+            ));
+        }
     }
     Ok(out)
 }

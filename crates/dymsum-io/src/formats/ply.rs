@@ -178,12 +178,90 @@ impl Locator<'_> {
     }
 }
 
-fn message(e: &ParseError) -> String {
-    // ply-rs-bw's Display prefixes "Line n: ", which our Location replaces.
-    let s = e.to_string();
-    match (e.line(), s.split_once(": ")) {
-        (Some(_), Some((prefix, rest))) if prefix.starts_with("Line ") => rest.to_string(),
-        _ => s,
+impl Locator<'_> {
+    /// The element kind on a payload line (ASCII) or at a payload error.
+    fn kind_at(&self, line: Option<usize>) -> Option<String> {
+        let mut g = line?.checked_sub(self.first_data_line)?;
+        for (kind, e) in &self.header.elements {
+            if g < e.count {
+                return Some(kind.clone());
+            }
+            g -= e.count;
+        }
+        None
+    }
+}
+
+/// ply-rs-bw's error text, restated in our own words: its text is
+/// multi-line, quotes parser internals (`ParseError { location: ... }`) and
+/// its own line numbers, which our [`Location`] replaces.
+fn message(e: &ParseError, kind: Option<&str>) -> String {
+    let raw = e.to_string();
+    let raw = match raw.split_once(": ") {
+        Some((prefix, rest)) if prefix.starts_with("Line ") => rest,
+        _ => raw.as_str(),
+    };
+    let head = raw.lines().next().unwrap_or("").trim();
+    let quoted = raw
+        .split_once("String: '")
+        .and_then(|(_, r)| r.split_once('\''))
+        .map(|(t, _)| t.trim());
+    let detail = raw.rsplit_once("Error: ").map(|(_, d)| d.trim());
+    let element = kind.map_or_else(|| "an".to_string(), |k| format!("a `{k}`"));
+    if head.contains("magic number") {
+        return "not a PLY file: the first line must be `ply`".to_string();
+    }
+    if head.starts_with("Unexpected end of file") {
+        // "... element 'vertex' (expected 4, got 3)."
+        let what = head
+            .split_once("element '")
+            .and_then(|(_, r)| r.split_once('\''))
+            .map(|(k, _)| k);
+        let counts = head
+            .split_once("(expected ")
+            .and_then(|(_, r)| r.split_once(')'))
+            .and_then(|(c, _)| c.split_once(", got "));
+        if let (Some(what), Some((declared, found))) = (what, counts) {
+            return format!(
+                "the file ends after {found} of the {declared} `{what}` elements the header declares"
+            );
+        }
+        return "the file ends before all elements the header declares".to_string();
+    }
+    if let Some(d) = detail.filter(|d| d.contains("list elements")) {
+        let text = quoted.unwrap_or("");
+        let counts: Vec<&str> = d
+            .split(|c: char| !c.is_ascii_digit())
+            .filter(|t| !t.is_empty())
+            .collect();
+        return match counts.as_slice() {
+            [want, got] => {
+                format!("`{text}`: the list count says {want} entries, but only {got} follow")
+            }
+            _ => format!("`{text}`: a list is shorter than its count"),
+        };
+    }
+    if head.starts_with("Couldn't parse line") {
+        return match quoted {
+            Some(t) => format!("cannot understand the header line `{t}`"),
+            None => "cannot understand a header line".to_string(),
+        };
+    }
+    if head.starts_with("Couldn't read element line")
+        || head.starts_with("Couldn't parse element line")
+    {
+        return match quoted {
+            Some(t) => format!(
+                "cannot read `{t}` as the values of {element} element (plain decimal numbers, \
+                 one per property of the header; nan and inf are not allowed)"
+            ),
+            None => format!("cannot read the values of {element} element"),
+        };
+    }
+    // Anything else: its first line, without the parser's internals.
+    match head.split_once("ParseError {") {
+        Some((before, _)) => before.trim().to_string(),
+        None => head.trim_end_matches('.').to_string(),
     }
 }
 
@@ -197,7 +275,7 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
     let mut reader = Reader::new(Cursor::new(bytes));
     let header = parser.read_header(&mut reader).map_err(|e| {
         let at = e.line().map_or(Location::Whole, Location::Line);
-        FormatError::parse(name, at, format!("PLY header: {}", message(&e)))
+        FormatError::parse(name, at, format!("PLY header: {}", message(&e, None)))
     })?;
     let loc = Locator {
         header: &header,
@@ -251,9 +329,14 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
         }
     }
 
-    let mut payload = parser
-        .read_payload(&mut reader, &header)
-        .map_err(|e| FormatError::parse(name, loc.payload_error(e.line()), message(&e)))?;
+    let mut payload = parser.read_payload(&mut reader, &header).map_err(|e| {
+        let kind = loc.kind_at(e.line());
+        FormatError::parse(
+            name,
+            loc.payload_error(e.line()),
+            message(&e, kind.as_deref()),
+        )
+    })?;
 
     let velems = payload.swap_remove("vertex").unwrap_or_default();
     let mut vertices = Vec::with_capacity(velems.len());

@@ -9,7 +9,8 @@
 //!   when the file does not start with `solid`. Triangles are read with
 //!   `stl_io` after the length has been checked against the header count, so
 //!   a truncated file or a lying count gives [`FormatError::CountMismatch`] at
-//!   the byte offset of the first incomplete triangle.
+//!   the byte offset of the first incomplete triangle, and bytes beyond the
+//!   declared triangles give [`FormatError::Parse`] at the first extra byte.
 //! * ASCII: an own line-based parser (so errors carry line numbers and a bare
 //!   `solid` line without a name is accepted); coordinates are parsed as `f32`
 //!   like binary STL, so ASCII and binary STL of the same data read alike.
@@ -118,6 +119,21 @@ fn read_binary(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
             declared: count,
             found: complete,
         });
+    }
+    let expected = 84 + 50 * count as u64;
+    if bytes.len() as u64 != expected {
+        // More bytes than the header's count: trailing data or a count that
+        // lies (the file is binary, so its size fixes the count).
+        let extra = bytes.len() as u64 - expected;
+        return Err(FormatError::parse(
+            name,
+            Location::Byte(expected),
+            format!(
+                "the header declares {count} triangles ({expected} bytes), but the file has \
+                 {} bytes ({extra} more)",
+                bytes.len()
+            ),
+        ));
     }
     if count == 0 {
         return Err(FormatError::Empty {

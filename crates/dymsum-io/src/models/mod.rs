@@ -43,24 +43,30 @@
 //! * `tcube:K` (K = 1..=100, default 1): the paper's Fig. 5 cube, 10×10×10,
 //!   each face split into K×K squares of 2 triangles (12 K² triangles).
 //! * `box[:X,Y,Z]` or `box:S`: a box with side lengths X, Y, Z (default 1).
-//! * `sphere[:N]`: geodesic sphere of radius 1, frequency N (1..=300,
+//! * `sphere[:N]`: geodesic sphere of radius 1, frequency N (1..=32,
 //!   default 4): each icosahedron face split into N² triangles, projected
 //!   onto the sphere (20 N² triangles). `sphere:1` is the icosahedron.
 //! * `ellipsoid:A,B,C[:N]`: the geodesic sphere of frequency N (default 4)
 //!   scaled to semi-axes A, B, C along x, y, z.
-//! * `cylinder:N[:R,H]`: prism over a regular N-gon (N = 3..), circumradius
+//! * `cylinder:N[:R,H]`: prism over a regular N-gon (N = 3..=10⁴), circumradius
 //!   R (default 1), height H (default 2).
-//! * `cone:N[:R,H]`: pyramid over a regular N-gon, circumradius R (default
+//! * `cone:N[:R,H]`: pyramid over a regular N-gon (N = 3..=10⁴), circumradius R (default
 //!   1), height H (default 2).
 //! * `capsule:N:K[:R,L]`: capsule with N vertices per ring (N = 3..), K
-//!   rings per hemisphere, radius R (default 0.5), cylindrical length L
+//!   rings per hemisphere (N·K at most 5000), radius R (default 0.5), cylindrical length L
 //!   (default 4, may be 0): 4 N K triangles.
-//! * `random:N[:SEED]`: N (4..=10⁷) points uniformly in the unit ball from
+//! * `random:N[:SEED]`: N (4..=10⁶) points uniformly in the unit ball from
 //!   ChaCha8 seeded with SEED (default 0); identical on every platform.
 //!   **The returned mesh has no faces: its `vertices` are a point cloud**
 //!   whose convex hull the caller builds.
 //! * `tetra`, `octa`, `dodeca`, `icosa` (also the full `…hedron` names):
 //!   regular solids with circumradius 1.
+//!
+//! Every size parameter (side, radius, height, length, semi-axis) must be
+//! from 1e-150 to 1e150 ([`SIZE_MIN`], [`SIZE_MAX`]; a capsule's L may also
+//! be 0). The count limits ([`SPHERE_MAX`], [`AROUND_MAX`], [`RINGS_MAX`],
+//! [`CAPSULE_MAX`], [`RANDOM_MAX`]) keep every accepted model loadable in a
+//! few seconds; a parameter beyond a limit is refused with the limit named.
 
 mod generators;
 
@@ -159,13 +165,13 @@ pub fn catalogue() -> Vec<ModelInfo> {
         fixed("vrod", "capsule rod, not described by the paper: radius 0.5, cylinder length 4, 27 around, 3 rings per cap (alias v-rod); = capsule:27:3:0.5,4", Some(324), GENERATED),
         fixed("ellipsoid_1.0_0.5_0.5", "Fogel's flatter ellipsoid, semi-axes 1, 0.5, 0.5 (960 triangles)", None, FOGEL),
         family("tcube:K", "tcube:10", "the paper's Fig. 5 cube: 10x10x10, each face K x K squares of 2 triangles (12 K^2 triangles), K = 1..100"),
-        family("box:X,Y,Z", "box:1,2,3", "box with side lengths X, Y, Z (box:S for a cube, box alone = 1,1,1)"),
-        family("sphere:N", "sphere:4", "geodesic sphere, radius 1, icosahedron faces split N x N (20 N^2 triangles), N = 1..300, default 4"),
+        family("box:X,Y,Z", "box:1,2,3", "box with side lengths X, Y, Z (box:S for a cube, box alone = 1,1,1); sizes 1e-150..1e150"),
+        family("sphere:N", "sphere:4", "geodesic sphere, radius 1, icosahedron faces split N x N (20 N^2 triangles), N = 1..32, default 4"),
         family("ellipsoid:A,B,C[:N]", "ellipsoid:2,1,0.5:4", "geodesic sphere of frequency N (default 4) scaled to semi-axes A, B, C"),
-        family("cylinder:N[:R,H]", "cylinder:12:1,3", "prism over a regular N-gon, circumradius R (default 1), height H (default 2)"),
-        family("cone:N[:R,H]", "cone:12:1,3", "pyramid over a regular N-gon, circumradius R (default 1), height H (default 2)"),
-        family("capsule:N:K[:R,L]", "capsule:16:4", "capsule: N around, K rings per cap, radius R (default 0.5), cylinder length L (default 4, may be 0); 4 N K triangles"),
-        family("random:N[:SEED]", "random:1000:7", "point cloud (NO faces: build the hull) of N points uniform in the unit ball, ChaCha8 seeded with SEED (default 0)"),
+        family("cylinder:N[:R,H]", "cylinder:12:1,3", "prism over a regular N-gon (N = 3..10000), circumradius R (default 1), height H (default 2)"),
+        family("cone:N[:R,H]", "cone:12:1,3", "pyramid over a regular N-gon (N = 3..10000), circumradius R (default 1), height H (default 2)"),
+        family("capsule:N:K[:R,L]", "capsule:16:4", "capsule: N around, K rings per cap, radius R (default 0.5), cylinder length L (default 4, may be 0); 4 N K triangles, N K <= 5000"),
+        family("random:N[:SEED]", "random:1000:7", "point cloud (NO faces: build the hull) of N (4..1000000) points uniform in the unit ball, ChaCha8 seeded with SEED (default 0)"),
         family("tetra", "tetra", "regular tetrahedron, circumradius 1 (alias tetrahedron)"),
         family("octa", "octa", "regular octahedron, circumradius 1 (alias octahedron)"),
         family("dodeca", "dodeca", "regular dodecahedron, circumradius 1 (alias dodecahedron)"),
@@ -304,14 +310,24 @@ const VROD_LENGTH: f64 = 4.0;
 const TCUBE_SIDE: f64 = 10.0;
 /// Largest `tcube` K (the paper's Fig. 5 goes to K = 10; 100 is 120,000 triangles).
 const TCUBE_MAX: usize = 100;
-/// Largest geodesic frequency (20 · 300² = 1.8 million triangles).
-const SPHERE_MAX: usize = 300;
+// The size limits below keep every accepted model loadable in a few seconds
+// (`dymsum info`, release build, one core: sphere:32 3.3 s, cylinder:10000
+// 1.9 s, capsule:100:50 2.0 s, tcube:100 0.6 s, random:1000000 1.0 s); the
+// mesh validation is what grows fastest with size.
+/// Largest geodesic frequency (20 · 32² = 20,480 triangles).
+pub const SPHERE_MAX: usize = 32;
 /// Largest polygon side count for cylinders, cones and capsules.
-const AROUND_MAX: usize = 1_000_000;
+pub const AROUND_MAX: usize = 10_000;
 /// Largest number of capsule rings per cap.
-const RINGS_MAX: usize = 10_000;
+pub const RINGS_MAX: usize = 1_000;
+/// Largest capsule N·K (vertices per cap).
+pub const CAPSULE_MAX: usize = 5_000;
 /// Largest random point count.
-const RANDOM_MAX: usize = 10_000_000;
+pub const RANDOM_MAX: usize = 1_000_000;
+/// Largest size parameter (side, radius, length, semi-axis) of a model.
+pub const SIZE_MAX: f64 = 1e150;
+/// Smallest positive size parameter of a model.
+pub const SIZE_MIN: f64 = 1e-150;
 
 /// Resolves a built-in model name (case-insensitive; see the module docs
 /// and [`catalogue`] for the names and parametric syntax).
@@ -409,10 +425,10 @@ pub fn model(name: &str) -> Result<PolygonMesh, ModelError> {
             }
             let n = p.int_or(0, 0, "N (around)", 0, 3, AROUND_MAX)?;
             let k = p.int_or(1, 0, "K (rings per cap)", 0, 1, RINGS_MAX)?;
-            if n.saturating_mul(k) > AROUND_MAX {
+            if n.saturating_mul(k) > CAPSULE_MAX {
                 return Err(bad(
                     name,
-                    format!("N·K must be at most {AROUND_MAX}, got {n}·{k}"),
+                    format!("N·K must be at most {CAPSULE_MAX}, got {n}·{k}"),
                 ));
             }
             let g = p.group(2);
@@ -482,6 +498,24 @@ fn fogel(name: &str, stem: &str) -> Result<PolygonMesh, ModelError> {
             message: e.to_string(),
         },
     )
+}
+
+/// A number for a message: plain when short, else in `{:e}` form with at
+/// most 6 significant digits (never hundreds of digits).
+pub(crate) fn short_number(v: f64) -> String {
+    let plain = format!("{v}");
+    if plain.len() <= 12 {
+        plain
+    } else {
+        let e = format!("{v:.5e}");
+        // Trim trailing zeros of the mantissa: 1.00000e300 -> 1e300.
+        match e.split_once('e') {
+            Some((m, x)) if m.contains('.') => {
+                format!("{}e{x}", m.trim_end_matches('0').trim_end_matches('.'))
+            }
+            _ => e,
+        }
+    }
 }
 
 fn bad(name: &str, message: String) -> ModelError {
@@ -555,21 +589,25 @@ impl Params<'_> {
         };
         match s.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(bad(
+            Ok(_) => Err(bad(self.name, format!("{what} must be finite, got `{s}`"))),
+            Err(_) => Err(bad(
                 self.name,
-                format!("{what} must be a finite number, got `{s}`"),
+                format!("{what} must be a number, got `{s}`"),
             )),
         }
     }
 
     fn positive(&self, g: usize, i: usize, what: &str, default: f64) -> Result<f64, ModelError> {
         let v = self.number(g, i, what, default)?;
-        if v > 0.0 && v <= 1e150 {
+        if (SIZE_MIN..=SIZE_MAX).contains(&v) {
             Ok(v)
         } else {
             Err(bad(
                 self.name,
-                format!("{what} must be positive (and at most 1e150), got {v}"),
+                format!(
+                    "{what} must be from {SIZE_MIN:e} to {SIZE_MAX:e}, got {}",
+                    short_number(v)
+                ),
             ))
         }
     }
@@ -582,12 +620,15 @@ impl Params<'_> {
         default: f64,
     ) -> Result<f64, ModelError> {
         let v = self.number(g, i, what, default)?;
-        if (0.0..=1e150).contains(&v) {
+        if v == 0.0 || (SIZE_MIN..=SIZE_MAX).contains(&v) {
             Ok(v.abs()) // normalises -0 to 0
         } else {
             Err(bad(
                 self.name,
-                format!("{what} must be zero or positive (and at most 1e150), got {v}"),
+                format!(
+                    "{what} must be 0 or from {SIZE_MIN:e} to {SIZE_MAX:e}, got {}",
+                    short_number(v)
+                ),
             ))
         }
     }

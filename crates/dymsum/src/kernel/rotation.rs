@@ -53,7 +53,20 @@ impl Rotation {
     /// From quaternion components `w, x, y, z`; renormalised. Returns `None`
     /// for a zero or non-finite quaternion.
     pub fn from_wxyz(w: f64, x: f64, y: f64, z: f64) -> Option<Rotation> {
-        let q = DQuat::from_xyzw(x, y, z, w);
+        // Scale by a power of two (exact) so the largest component is in
+        // [1, 2): squaring can then neither overflow (1e200) nor underflow
+        // (1e-200), and a non-zero finite quaternion is never called zero.
+        let m = w.abs().max(x.abs()).max(y.abs()).max(z.abs());
+        if !m.is_finite() || m == 0.0 {
+            return None;
+        }
+        // Unbiased exponent of m (subnormals count as -1023: the scaled
+        // maximum is then at least 2^-51, still safe to square).
+        let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+        let pow2 = |k: i32| f64::from_bits(((k + 1023) as u64) << 52);
+        // Two factors, each within the normal range, for |e| up to 1023.
+        let (s1, s2) = (pow2(-(e / 2)), pow2(-(e - e / 2)));
+        let q = DQuat::from_xyzw(x * s1 * s2, y * s1 * s2, z * s1 * s2, w * s1 * s2);
         let len = q.length();
         if !len.is_finite() || len == 0.0 {
             return None;

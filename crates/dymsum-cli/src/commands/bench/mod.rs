@@ -86,13 +86,16 @@ where
     R::Item: AsRef<[u8]>,
 {
     let path = out_file(dir, name)?;
-    let mut w = csv::Writer::from_path(&path)
-        .map_err(|e| anyhow::anyhow!("writing {}: {e}", path.display()))?;
+    let file = dymsum_io::atomic::AtomicFile::create(&path)?;
+    let mut w = csv::Writer::from_writer(file);
     w.write_record(header)?;
     for r in records {
         w.write_record(r)?;
     }
-    w.flush()?;
+    let file = w
+        .into_inner()
+        .map_err(|e| anyhow::anyhow!("{}", e.error()))?;
+    file.commit()?;
     Ok(path)
 }
 

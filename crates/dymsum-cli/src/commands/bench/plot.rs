@@ -15,6 +15,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+use dymsum_io::atomic::AtomicFile;
+
 use super::measure::Figures;
 
 /// The font family name the charts use (registered from bytes).
@@ -125,17 +127,27 @@ pub const SIZE: (u32, u32) = (1000, 600);
 /// Writes the chart as an SVG file and a PNG file.
 pub fn write_chart(chart: &Chart, svg: &Path, png: &Path) -> anyhow::Result<()> {
     register_fonts();
+    // Drawn under temporary names and renamed into place: a failure never
+    // leaves a truncated chart or destroys an earlier one.
     {
-        let root = SVGBackend::new(svg, SIZE).into_drawing_area();
-        draw(&root, chart).with_context(|| format!("drawing {}", svg.display()))?;
-        root.present()
-            .map_err(|e| anyhow!("writing {}: {e}", svg.display()))?;
+        let file = AtomicFile::create(svg)?;
+        {
+            let root = SVGBackend::new(file.temp_path(), SIZE).into_drawing_area();
+            draw(&root, chart).with_context(|| format!("drawing {}", svg.display()))?;
+            root.present()
+                .map_err(|e| anyhow!("{}: {e}", svg.display()))?;
+        }
+        file.commit()?;
     }
     {
-        let root = BitMapBackend::new(png, SIZE).into_drawing_area();
-        draw(&root, chart).with_context(|| format!("drawing {}", png.display()))?;
-        root.present()
-            .map_err(|e| anyhow!("writing {}: {e}", png.display()))?;
+        let file = AtomicFile::create(png)?;
+        {
+            let root = BitMapBackend::new(file.temp_path(), SIZE).into_drawing_area();
+            draw(&root, chart).with_context(|| format!("drawing {}", png.display()))?;
+            root.present()
+                .map_err(|e| anyhow!("{}: {e}", png.display()))?;
+        }
+        file.commit()?;
     }
     Ok(())
 }

@@ -15,7 +15,7 @@ use clap::Args;
 use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
 use super::plot::{method_series, write_chart, Chart, COLORS};
 use super::{out_file, progress, write_csv};
-use crate::cli::parse_positive;
+use crate::cli::parse_steps_per_rev;
 use crate::commands::load;
 use crate::stats::human_us;
 
@@ -42,7 +42,7 @@ pub const CSV_HEADER: [&str; 10] = [
 #[derive(Debug, Args)]
 pub struct RotationArgs {
     /// Steps per full turn (each step turns P by 2π/X), comma-separated.
-    #[arg(long, value_name = "LIST", value_delimiter = ',', value_parser = parse_positive,
+    #[arg(long, value_name = "LIST", value_delimiter = ',', value_parser = parse_steps_per_rev,
           default_value = DEFAULT_STEPS_PER_REV)]
     pub steps_per_rev: Vec<f64>,
     /// Pairs `P+Q` of built-in models or files, comma-separated (P turns, Q is fixed).

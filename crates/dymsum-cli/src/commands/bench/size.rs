@@ -49,7 +49,7 @@ pub struct SizeArgs {
     pub tcube: Vec<u32>,
     /// Frequencies N of the geodesic sphere `sphere:N` (20 N² triangles), comma-separated.
     #[arg(long, value_name = "LIST", value_delimiter = ',', default_value = "1,2,3,4,5,6,7,8",
-          value_parser = clap::value_parser!(u32).range(1..=300))]
+          value_parser = clap::value_parser!(u32).range(1..=32))]
     pub sphere: Vec<u32>,
     /// DYMSUM steps per model.
     #[arg(long, value_name = "N", default_value_t = 2000,

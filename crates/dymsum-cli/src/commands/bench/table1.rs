@@ -193,8 +193,8 @@ pub fn run(a: &Table1Args, out: &mut dyn Write) -> anyhow::Result<()> {
         rows.iter().map(Row::csv_record),
     )?;
     let md_path = out_file(&a.out, "table1.md")?;
-    std::fs::write(&md_path, markdown(a, &plan, &rows, elapsed))
-        .map_err(|e| anyhow::anyhow!("writing {}: {e}", md_path.display()))?;
+    let md = markdown(a, &plan, &rows, elapsed);
+    dymsum_io::atomic::write_atomic_bytes(&md_path, md.as_bytes())?;
 
     // Report.
     writeln!(out)?;

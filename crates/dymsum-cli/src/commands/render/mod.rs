@@ -193,8 +193,7 @@ pub fn run(a: &RenderArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         PictureFormat::Svg => svg::to_svg(&scene, &name).into_bytes(),
         PictureFormat::Png => raster::to_png(&scene)?,
     };
-    std::fs::write(&a.output, bytes)
-        .with_context(|| format!("writing the picture to {}", a.output.display()))?;
+    dymsum_io::atomic::write_atomic_bytes(&a.output, &bytes).context("writing the picture")?;
     let front = scene.faces.len();
     match &added {
         Some(added) => writeln!(
