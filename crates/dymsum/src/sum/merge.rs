@@ -339,7 +339,7 @@ pub enum MeshError {
     /// coordinates is comparable to its size. Fix: move the operands nearer
     /// to the origin (subtract a common offset, add it back outside dymsum).
     #[error(
-        "coordinates lose all precision: rounding step {ulp:e} against a size of {size:e}; the rounded vertices {collapse}"
+        "coordinates lose all precision: rounding step {ulp:.3e} against a size of {size:.3e}; the rounded vertices {collapse} (move the operands nearer to the origin)"
     )]
     PrecisionLost {
         /// The rounding step (ulp) of the largest output coordinate.
@@ -393,7 +393,7 @@ impl std::fmt::Display for Precision {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "rounding step {:e} relative to size {:e} ({:.1e})",
+            "rounding step {:.3e} relative to size {:.3e} ({:.1e})",
             self.ulp,
             self.size,
             self.relative()
