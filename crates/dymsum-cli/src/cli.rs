@@ -84,7 +84,7 @@ pub struct SumArgs {
     /// Static algorithm.
     #[arg(long, value_enum, default_value_t = MethodArg::Walk)]
     pub method: MethodArg,
-    /// Rotate P about the origin by this quaternion (renormalised) before summing.
+    /// Rotate P about the origin by this unit quaternion, scalar first (W,X,Y,Z; renormalised), before summing.
     #[arg(long, value_name = "W,X,Y,Z", value_parser = parse_quaternion, allow_hyphen_values = true)]
     pub rotate_p: Option<Rotation>,
     /// Then translate P by this vector.

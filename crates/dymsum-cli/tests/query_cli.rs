@@ -42,8 +42,20 @@ fn query_json_lines_match_the_library() {
             "key order: {line}"
         );
         let v: serde_json::Value = serde_json::from_str(line).unwrap();
-        let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
-        assert_eq!(keys.len(), 5, "{line}");
+        let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+        keys.sort_unstable();
+        let mut want_keys = [
+            "pose",
+            "collides",
+            "depth",
+            "distance",
+            "direction",
+            "point_on_robot",
+            "point_on_obstacle",
+        ];
+        want_keys.sort_unstable();
+        assert_eq!(keys, want_keys, "{line}");
+        assert!(line.contains("],\"point_on_robot\":["), "key order: {line}");
         let n: Vec<f64> = p.split(',').map(|x| x.parse().unwrap()).collect();
         let pose = Pose::new(
             Rotation::from_wxyz(n[3], n[4], n[5], n[6]).unwrap(),
@@ -66,6 +78,31 @@ fn query_json_lines_match_the_library() {
             (DVec3::new(d[0], d[1], d[2]) - want.a_direction()).length() <= 1e-15,
             "{line}"
         );
+        // Witness points: the library's, and consistent with the numbers
+        // (apart: the obstacle's point is `distance` along `direction` from
+        // the robot's; colliding: the robot's point is `depth` along
+        // `-direction` from the obstacle's).
+        let pr = numbers(&v["point_on_robot"]);
+        let po = numbers(&v["point_on_obstacle"]);
+        let (pr, po) = (
+            DVec3::new(pr[0], pr[1], pr[2]),
+            DVec3::new(po[0], po[1], po[2]),
+        );
+        let (wa, wb) = match &want {
+            dymsum::query::Proximity::Penetrating(c) => (c.point_on_a, c.point_on_b),
+            dymsum::query::Proximity::Separated(s) => (s.point_on_a, s.point_on_b),
+        };
+        assert!(
+            (pr - wa).length() <= 1e-12 && (po - wb).length() <= 1e-12,
+            "{line}"
+        );
+        let dir = DVec3::new(d[0], d[1], d[2]);
+        let gap = if want.intersects() {
+            pr - po + dir * want.depth()
+        } else {
+            po - pr - dir * want.distance()
+        };
+        assert!(gap.length() <= 1e-9, "{line}: witness gap {gap}");
         let pose_back: Vec<f64> = numbers(&v["pose"]);
         for (x, y) in pose_back.iter().zip(&n) {
             assert!(close(*x, *y), "{line}");

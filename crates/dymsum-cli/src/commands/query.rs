@@ -41,8 +41,12 @@ pub struct QueryArgs {
     #[arg(long = "pose", value_name = "X,Y,Z,W,QX,QY,QZ", required = true,
           value_parser = parse_pose, allow_hyphen_values = true)]
     pub poses: Vec<PoseArg>,
-    /// One JSON object per pose and line:
-    /// `{"pose":[..7],"collides":b,"depth":d,"distance":s,"direction":[x,y,z]}`.
+    /// One JSON object per pose and line: `{"pose":[..7],"collides":b,
+    /// "depth":d,"distance":s,"direction":[x,y,z],"point_on_robot":[x,y,z],
+    /// "point_on_obstacle":[x,y,z]}`. `direction` is the unit direction to move
+    /// the robot to separate when colliding, and from the robot towards the
+    /// obstacle when apart; the points are the deepest points when colliding
+    /// and the closest points when apart (in world coordinates).
     #[arg(long)]
     pub json: bool,
     /// Refuse meshes that are convex only within tolerance.
@@ -138,6 +142,8 @@ struct JsonLine {
     depth: Option<f64>,
     distance: f64,
     direction: Option<[f64; 3]>,
+    point_on_robot: Option<[f64; 3]>,
+    point_on_obstacle: Option<[f64; 3]>,
 }
 
 /// One pose's answer.
@@ -147,14 +153,22 @@ struct Answer {
     depth: Option<f64>,
     distance: f64,
     direction: Option<DVec3>,
+    /// Witness points (robot, obstacle): the deepest points when colliding,
+    /// the closest points when apart; `None` with `depth`.
+    witnesses: Option<(DVec3, DVec3)>,
 }
 
 fn from_proximity(p: &Proximity) -> Answer {
+    let witnesses = match p {
+        Proximity::Penetrating(c) => (c.point_on_a, c.point_on_b),
+        Proximity::Separated(s) => (s.point_on_a, s.point_on_b),
+    };
     Answer {
         collides: p.intersects(),
         depth: Some(p.depth()),
         distance: p.distance(),
         direction: Some(p.a_direction()),
+        witnesses: Some(witnesses),
     }
 }
 
@@ -200,6 +214,7 @@ pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                             depth: Some(c.depth),
                             distance: 0.0,
                             direction: Some(-c.normal),
+                            witnesses: Some((c.point_on_a, c.point_on_b)),
                         }
                     }
                     UnionProximity::Colliding(_) => Answer {
@@ -207,12 +222,14 @@ pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                         depth: None,
                         distance: 0.0,
                         direction: None,
+                        witnesses: None,
                     },
                     UnionProximity::Separated(_, s) => Answer {
                         collides: false,
                         depth: Some(0.0),
                         distance: s.distance,
                         direction: Some(s.direction),
+                        witnesses: Some((s.point_on_a, s.point_on_b)),
                     },
                 })
             })
@@ -226,6 +243,8 @@ pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                 depth: ans.depth,
                 distance: ans.distance,
                 direction: ans.direction.map(|d| d.to_array()),
+                point_on_robot: ans.witnesses.map(|w| w.0.to_array()),
+                point_on_obstacle: ans.witnesses.map(|w| w.1.to_array()),
             };
             writeln!(out, "{}", serde_json::to_string(&line)?)?;
         } else {

@@ -78,13 +78,13 @@ pub struct RenderArgs {
     /// The picture; the format follows the extension (.svg or .png).
     #[arg(short, long, value_name = "OUT", value_parser = parse_picture_path)]
     pub output: PathBuf,
-    /// Rotate P about the origin by this quaternion (renormalised).
+    /// Rotate P about the origin by this unit quaternion, scalar first (W,X,Y,Z; renormalised).
     #[arg(long, value_name = "W,X,Y,Z", value_parser = parse_quaternion, allow_hyphen_values = true)]
     pub rotate_p: Option<Rotation>,
     /// Then translate P by this vector.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
     pub translate_p: Option<DVec3>,
-    /// Turn P further by this quaternion and draw the sum after the turn, the
+    /// Turn P further by this unit quaternion (W,X,Y,Z, scalar first) and draw the sum after the turn, the
     /// facets the turn added (those facing the viewer) in red.
     #[arg(long, value_name = "W,X,Y,Z", value_parser = parse_quaternion, allow_hyphen_values = true)]
     pub highlight_after: Option<Rotation>,
