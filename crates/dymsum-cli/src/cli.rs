@@ -32,8 +32,10 @@ pub enum Command {
     Sum(SumArgs),
     /// Describe a polytope: counts, volume, and what validation changed.
     Info(InfoArgs),
-    /// List the built-in models.
-    Models,
+    /// List the built-in models, or write one to a file (`--write NAME FILE`).
+    Models(crate::commands::models::ModelsArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    Completions(crate::commands::completions::CompletionsArgs),
     /// Turn P under the paper's random motion and keep P ⊕ Q up to date (DYMSUM).
     Animate(AnimateArgs),
     /// The main job on built-in models: DYMSUM vs static sums on ellipse ⊕ gs4.
@@ -72,13 +74,15 @@ impl From<MethodArg> for Method {
 /// `dymsum sum`.
 #[derive(Debug, Args)]
 pub struct SumArgs {
-    /// First operand P: a mesh file or a built-in model name.
+    /// First operand P: a mesh file or a built-in model name; `-` reads OFF
+    /// from standard input.
     #[arg(value_name = "P")]
     pub p: String,
-    /// Second operand Q: a mesh file or a built-in model name.
+    /// Second operand Q: as P.
     #[arg(value_name = "Q")]
     pub q: String,
-    /// Output mesh; the format follows the extension (.off, .obj, .ply, .stl).
+    /// Output mesh; the format follows the extension (.off, .obj, .ply, .stl);
+    /// `-` writes OFF to standard output (the summary line then goes to stderr).
     #[arg(short, long, value_name = "OUT", value_parser = parse_output_path)]
     pub output: PathBuf,
     /// Static algorithm.
@@ -215,9 +219,13 @@ pub fn parse_seconds(s: &str) -> Result<f64, String> {
     }
 }
 
-/// Checks that an output path has a mesh extension.
+/// Checks that an output path has a mesh extension (`-`: OFF on standard
+/// output).
 pub fn parse_output_path(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
+    if s == crate::commands::STDIO {
+        return Ok(path);
+    }
     dymsum_io::formats::Format::from_path(&path)
         .map(|_| path)
         .map_err(|_| format!("`{s}` has no mesh extension (expected .off, .obj, .ply or .stl)"))

@@ -472,3 +472,72 @@ fn huge_numbers_are_printed_in_scientific_form() {
     assert!(stderr(&o).contains("got 1e300"), "{}", stderr(&o));
     assert!(stderr(&o).len() < 200, "{}", stderr(&o));
 }
+
+/// Runs the binary with `input` on standard input.
+fn run_with_stdin(args: &[&str], input: &[u8]) -> std::process::Output {
+    use std::io::Write;
+    let mut child = Command::new(BIN)
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child.stdin.take().unwrap().write_all(input).unwrap();
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn models_write_then_sum_through_standard_input_and_output() {
+    let dir = temp_dir("stdio");
+    // `models --write NAME -` prints the model as dymsum uses it.
+    let box_off = run(&["models", "--write", "box:1,2,3", "-"]);
+    assert_eq!(box_off.status.code(), Some(0), "{}", stderr(&box_off));
+    let mesh = dymsum_io::formats::read_mesh_bytes(
+        &box_off.stdout,
+        dymsum_io::formats::Format::Off,
+        "stdout",
+    )
+    .unwrap();
+    assert_eq!((mesh.vertices.len(), mesh.faces.len()), (8, 6));
+    // `sum - Q -o -`: P from stdin, the sum's OFF on stdout, summary on stderr.
+    let o = run_with_stdin(&["sum", "-", "box:2,2,2", "-o", "-"], &box_off.stdout);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("stdin ⊕ box:2,2,2"), "{}", stderr(&o));
+    let sum =
+        dymsum_io::formats::read_mesh_bytes(&o.stdout, dymsum_io::formats::Format::Off, "stdout")
+            .unwrap();
+    dymsum::sum::validate::check_convex_mesh(&sum).unwrap();
+    // box 1×2×3 ⊕ box 2×2×2 is the box 3×4×5.
+    assert_eq!((sum.vertices.len(), sum.faces.len()), (8, 6));
+    assert!((sum.signed_volume() - 60.0).abs() < 1e-12);
+    // The same through files.
+    let file = dir.join("b.ply");
+    ok(&["models", "--write", "box:1,2,3", s(&file)]);
+    let back = dymsum_io::formats::read_mesh(&file).unwrap();
+    assert_eq!((back.vertices.len(), back.faces.len()), (8, 6));
+}
+
+#[test]
+fn standard_input_serves_one_operand_and_empty_input_is_an_error() {
+    let cube = run(&["models", "--write", "box:1,1,1", "-"]).stdout;
+    let o = run_with_stdin(&["sum", "-", "-", "-o", "-"], &cube);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("one operand only"), "{}", stderr(&o));
+    let o = run_with_stdin(&["info", "-"], b"");
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("standard input"), "{}", stderr(&o));
+    let o = run(&["models", "--write", "nosuch", "-"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("unknown model"), "{}", stderr(&o));
+}
+
+#[test]
+fn completions_are_generated_for_every_shell() {
+    for shell in ["bash", "zsh", "fish", "elvish", "powershell"] {
+        let text = ok(&["completions", shell]);
+        assert!(text.contains("dymsum") && text.contains("cobst"), "{shell}");
+    }
+    let o = run(&["completions", "tcsh"]);
+    assert_eq!(o.status.code(), Some(2));
+}

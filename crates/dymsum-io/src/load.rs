@@ -256,6 +256,36 @@ pub fn load_polytope(spec: &str, policy: MeshPolicy) -> Result<Loaded, LoadError
     }
 }
 
+/// Loads a polytope from mesh bytes already in memory (standard input, a
+/// network buffer) in the given format; `origin` labels errors and
+/// [`Loaded::source`] (e.g. `"standard input"`). A mesh without faces is a
+/// point cloud, as for files. Never panics.
+///
+/// # Errors
+/// [`LoadError::Format`] when the bytes do not parse, [`LoadError::Polytope`]
+/// (or the other build errors) when the mesh is not a valid convex body.
+///
+/// ```
+/// use dymsum::polytope::MeshPolicy;
+/// use dymsum_io::formats::Format;
+/// let off = b"OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+/// let loaded = dymsum_io::load_polytope_bytes(off, Format::Off, "standard input", MeshPolicy::default()).unwrap();
+/// assert_eq!(loaded.polytope.face_count(), 4);
+/// ```
+pub fn load_polytope_bytes(
+    bytes: &[u8],
+    format: formats::Format,
+    origin: &str,
+    policy: MeshPolicy,
+) -> Result<Loaded, LoadError> {
+    let mesh =
+        formats::read_mesh_bytes(bytes, format, origin).map_err(|source| LoadError::Format {
+            origin: origin.to_string(),
+            source,
+        })?;
+    build(mesh, origin.to_string(), policy)
+}
+
 fn load_file(spec: &str, path: &Path, policy: MeshPolicy) -> Result<Loaded, LoadError> {
     let origin = format!("file {spec}");
     let format_err = |source| LoadError::Format {

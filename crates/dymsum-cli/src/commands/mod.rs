@@ -5,6 +5,7 @@
 pub mod animate;
 pub mod bench;
 pub mod cobst;
+pub mod completions;
 pub mod demo;
 pub mod info;
 pub mod models;
@@ -25,7 +26,8 @@ pub fn run(command: Command, out: &mut dyn Write) -> anyhow::Result<()> {
     match command {
         Command::Sum(a) => sum::run(&a, out),
         Command::Info(a) => info::run(&a, out),
-        Command::Models => models::run(out),
+        Command::Models(a) => models::run(&a, out),
+        Command::Completions(a) => completions::run(&a, out),
         Command::Animate(a) => animate::run(&a, out),
         Command::Demo(a) => demo::run(&a, out),
         Command::Bench(a) => bench::run(&a, out),
@@ -47,8 +49,57 @@ pub fn policy(strict: bool) -> MeshPolicy {
 /// Loads operand `operand` (`"P"`, `"Q"`, `"input"`) from a file or model
 /// name, with an error message like
 /// `P (file cube_open.off): open mesh: edge (3, 7) borders only one face`.
+/// `-` reads an OFF mesh from standard input (once per run).
 pub fn load(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Loaded> {
+    if spec == STDIO {
+        let bytes = read_stdin_once(operand)?;
+        return dymsum_io::load_polytope_bytes(
+            &bytes,
+            dymsum_io::formats::Format::Off,
+            "standard input",
+            policy(strict),
+        )
+        .map_err(|e| anyhow!(e.for_operand(operand)));
+    }
     load_polytope(spec, policy(strict)).map_err(|e| anyhow!(e.for_operand(operand)))
+}
+
+/// The operand or output name for standard input or output.
+pub const STDIO: &str = "-";
+
+/// Reads all of standard input, refusing a second reader in the same run
+/// (the first took every byte).
+fn read_stdin_once(operand: &str) -> anyhow::Result<Vec<u8>> {
+    use std::io::Read;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    static TAKEN: AtomicBool = AtomicBool::new(false);
+    if TAKEN.swap(true, Ordering::SeqCst) {
+        return Err(anyhow!(
+            "{operand}: standard input (`-`) can be read by one operand only"
+        ));
+    }
+    let mut bytes = Vec::new();
+    std::io::stdin()
+        .lock()
+        .read_to_end(&mut bytes)
+        .map_err(|e| anyhow!("{operand}: reading standard input: {e}"))?;
+    Ok(bytes)
+}
+
+/// Writes a mesh to `path`, atomically, in the format its extension names,
+/// or as OFF to `out` when `path` is `-`.
+pub fn write_mesh_or_stdout(
+    path: &std::path::Path,
+    mesh: &dymsum::PolygonMesh,
+    out: &mut dyn Write,
+) -> anyhow::Result<()> {
+    if path.as_os_str() == STDIO {
+        let bytes = dymsum_io::formats::write_mesh_bytes(mesh, dymsum_io::formats::Format::Off)?;
+        out.write_all(&bytes)?;
+        return Ok(());
+    }
+    dymsum_io::formats::write_mesh(path, mesh)?;
+    Ok(())
 }
 
 /// The validated mesh of a sum, with a warning on stderr when its
@@ -70,6 +121,9 @@ pub fn validated(
 
 /// A short display name for an operand: the model name, or the file name.
 pub fn short_name(spec: &str) -> String {
+    if spec == STDIO {
+        return "stdin".to_string();
+    }
     let path = std::path::Path::new(spec);
     if path.is_file() {
         path.file_name()

@@ -1,11 +1,59 @@
-//! `dymsum models`: the built-in model catalogue as a table.
+//! `dymsum models`: the built-in model catalogue as a table, or with
+//! `--write NAME FILE` one model written as a mesh file, exactly as dymsum
+//! uses it (after validation: maximal faces, outward, the exact hull where
+//! the built-in mesh is convex only within tolerance).
 
 use std::io::Write;
+use std::path::PathBuf;
 
+use anyhow::{anyhow, Context};
+use clap::Args;
 use dymsum_io::models::catalogue;
 
+/// Arguments of `dymsum models`.
+#[derive(Debug, Args)]
+pub struct ModelsArgs {
+    /// Write the model NAME (any spec `dymsum models` accepts, e.g. `ellipse`,
+    /// `box:1,2,3`, `tcube:10`) to FILE, in the format its extension names
+    /// (`-`: OFF on standard output), instead of listing the models.
+    #[arg(long, num_args = 2, value_names = ["NAME", "FILE"])]
+    pub write: Option<Vec<String>>,
+}
+
 /// Runs `dymsum models`.
-pub fn run(out: &mut dyn Write) -> anyhow::Result<()> {
+pub fn run(a: &ModelsArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    match a.write.as_deref() {
+        Some([name, file]) => write_model(name, file, out),
+        Some(_) => Err(anyhow!("--write takes NAME FILE")),
+        None => list(out),
+    }
+}
+
+fn write_model(name: &str, file: &str, out: &mut dyn Write) -> anyhow::Result<()> {
+    let path: PathBuf = crate::cli::parse_output_path(file).map_err(|e| anyhow!("FILE: {e}"))?;
+    if dymsum_io::models::model(name).is_err() {
+        // Not a model (an unknown name, or a bad parameter): say why.
+        dymsum_io::models::model(name).map_err(|e| anyhow!("NAME: {e}"))?;
+    }
+    let loaded = super::load(name, "NAME", false)?;
+    let mesh = loaded.polytope.to_mesh();
+    dymsum::sum::validate::check_convex_mesh(&mesh)
+        .map_err(|e| anyhow!("internal: the mesh of model {name} is not valid: {e}"))?;
+    super::write_mesh_or_stdout(&path, &mesh, out)
+        .with_context(|| format!("writing model {name}"))?;
+    if path.as_os_str() != super::STDIO {
+        writeln!(
+            out,
+            "{name}: {} vertices, {} faces written to {}",
+            mesh.vertices.len(),
+            mesh.faces.len(),
+            path.display()
+        )?;
+    }
+    Ok(())
+}
+
+fn list(out: &mut dyn Write) -> anyhow::Result<()> {
     let cat = catalogue();
     let width = cat.iter().map(|m| m.name.len()).max().unwrap_or(4).max(4);
     writeln!(out, "{:<width$}  {:>9}  DESCRIPTION", "NAME", "PAPER TRI")?;
@@ -20,7 +68,8 @@ pub fn run(out: &mut dyn Write) -> anyhow::Result<()> {
     writeln!(
         out,
         "\n{paper} models from the paper (PAPER TRI = triangles in the paper's Table 1); \
-         families take parameters after colons, e.g. tcube:10, box:1,2,3, random:1000:7."
+         families take parameters after colons, e.g. tcube:10, box:1,2,3, random:1000:7. \
+         `dymsum models --write NAME FILE` writes one as a mesh file."
     )?;
     Ok(())
 }

@@ -25,10 +25,14 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         .with_context(|| format!("{} ⊕ {} ({})", a.p, a.q, method.name()))?;
     let elapsed = micros(start.elapsed());
     let mesh = super::validated(sum.mesh_with_precision(), "the sum")?;
-    dymsum_io::formats::write_mesh(&a.output, &mesh).context("writing the sum")?;
+    // With `-o -` the mesh goes to standard output and the summary to stderr.
+    let to_stdout = a.output.as_os_str() == super::STDIO;
+    super::write_mesh_or_stdout(&a.output, &mesh, out).context("writing the sum")?;
     let (fv, vf, ee) = sum.counts();
+    let mut stderr = std::io::stderr();
+    let summary: &mut dyn Write = if to_stdout { &mut stderr } else { out };
     writeln!(
-        out,
+        summary,
         "{} ⊕ {} ({}): {fv} fv + {vf} vf + {ee} ee = {} facets, {} faces after merging, {}",
         short_name(&a.p),
         short_name(&a.q),
