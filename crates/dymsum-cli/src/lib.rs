@@ -11,7 +11,9 @@
 pub mod cli;
 pub mod commands;
 pub mod motion;
+pub mod progress;
 pub mod stats;
+pub mod values;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
@@ -26,7 +28,7 @@ pub fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     let stdout = io::stdout();
     let mut out = stdout.lock();
-    match commands::run(cli.command, &mut out).and_then(|()| Ok(out.flush()?)) {
+    match cli.command.run(&mut out).and_then(|()| Ok(out.flush()?)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) if is_internal(&e) => {

@@ -8,21 +8,55 @@
 //! in microseconds. Frames `DIR/step_NNNNNN.off` hold the merged sum after the
 //! update of the row with the same step number, every K-th step and the last.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context};
+use clap::Args;
 use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DynamicSum, Pose};
 use dymsum_io::atomic::AtomicFile;
 use dymsum_io::formats::{write_mesh_with, Format};
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
 
 use super::{load, short_name};
-use crate::cli::AnimateArgs;
 use crate::motion::PaperMotion;
 use crate::stats::{human_us, mean, median, micros};
+use crate::values::parse_steps_per_rev;
+
+/// `dymsum animate`.
+#[derive(Debug, Args)]
+pub struct AnimateArgs {
+    /// The moving operand P: a mesh file or a built-in model name.
+    #[arg(value_name = "P")]
+    pub p: String,
+    /// The fixed operand Q: a mesh file or a built-in model name.
+    #[arg(value_name = "Q")]
+    pub q: String,
+    /// Steps per full turn: each step turns P by 2π/X about the current axis.
+    #[arg(long, value_name = "X", value_parser = parse_steps_per_rev)]
+    pub steps_per_rev: f64,
+    /// Number of steps.
+    #[arg(long, value_name = "N")]
+    pub steps: u64,
+    /// Seed of the random axes and hold times.
+    #[arg(long, value_name = "S", default_value_t = 0)]
+    pub seed: u64,
+    /// Write one CSV row per step to this file.
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
+    /// Write the merged sum as DIR/step_NNNNNN.off every K-th step and after the last.
+    #[arg(long, value_name = "DIR")]
+    pub frames_dir: Option<PathBuf>,
+    /// Frame interval K (with --frames-dir).
+    #[arg(long, value_name = "K", default_value_t = 1, requires = "frames_dir",
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub every: u64,
+    /// Refuse meshes that are convex only within tolerance.
+    #[arg(long)]
+    pub strict: bool,
+}
 
 /// The CSV header, exactly.
 pub const CSV_HEADER: &str = "step,qw,qx,qy,qz,fv_errors,ee_errors,removed,added,facets,update_us";
@@ -30,19 +64,12 @@ pub const CSV_HEADER: &str = "step,qw,qx,qy,qz,fv_errors,ee_errors,removed,added
 /// Runs with at least this many steps show a progress bar (on a terminal).
 const PROGRESS_MIN_STEPS: u64 = 2000;
 
-/// A progress bar on stderr for long runs on a terminal; hidden otherwise.
-pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
-    if len < PROGRESS_MIN_STEPS || !std::io::stderr().is_terminal() {
+/// A progress bar for long runs (on a terminal); hidden for short ones.
+fn progress_bar(len: u64) -> ProgressBar {
+    if len < PROGRESS_MIN_STEPS {
         return ProgressBar::hidden();
     }
-    let bar = ProgressBar::new(len);
-    if let Ok(style) = ProgressStyle::with_template(
-        "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} steps (eta {eta})",
-    ) {
-        bar.set_style(style);
-    }
-    bar.set_message(what.to_string());
-    bar
+    crate::progress::bar(len, "animate", "steps")
 }
 
 /// The frame file for a step: `DIR/step_NNNNNN.off`.
@@ -72,7 +99,7 @@ pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let mut dynamic = DynamicSum::new(&p.polytope, Pose::IDENTITY, &q.polytope, Pose::IDENTITY)
         .context("initial sum")?;
     let mut motion = PaperMotion::new(a.steps_per_rev, a.seed);
-    let bar = progress_bar(a.steps, "animate");
+    let bar = progress_bar(a.steps);
     let mut times = Vec::with_capacity(a.steps.min(1 << 24) as usize);
     let mut frames = 0usize;
     let (mut fv_total, mut ee_total) = (0usize, 0usize);

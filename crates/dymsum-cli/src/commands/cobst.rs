@@ -19,7 +19,7 @@
 //! sums: they are written as `slice_NNNNN_rI_oJ.off` and the index entry
 //! lists them under `"files"` (with `"faces"` their total).
 
-use std::io::{BufRead, IsTerminal, Write};
+use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -27,7 +27,6 @@ use anyhow::{anyhow, bail, Context};
 use clap::Args;
 use dymsum::query::{orientations_about_axis, CObstacle};
 use dymsum::{DVec3, Rotation};
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 
 use super::query::load_body;
@@ -73,7 +72,7 @@ pub struct CobstArgs {
 
 /// Parses a non-zero axis `X,Y,Z`.
 fn parse_axis(s: &str) -> Result<DVec3, String> {
-    let v = crate::cli::parse_vector(s)?;
+    let v = crate::values::parse_vector(s)?;
     if v.length() == 0.0 || !v.length().is_finite() {
         return Err("the axis must be a non-zero vector".into());
     }
@@ -187,19 +186,6 @@ struct IndexEntry {
     files: Option<Vec<String>>,
 }
 
-fn progress(len: u64) -> ProgressBar {
-    if !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::new(len);
-    if let Ok(style) = ProgressStyle::with_template(
-        "slices [{elapsed_precise}] {wide_bar} {pos}/{len} (eta {eta})",
-    ) {
-        bar.set_style(style);
-    }
-    bar
-}
-
 /// Runs `dymsum cobst`.
 pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let robot = load_body(&a.robot, "ROBOT", a.strict)?;
@@ -212,7 +198,11 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     };
     prepare_out_dir(&a.out, a.force)?;
     let union = robot.len() > 1 || obstacle.len() > 1;
-    let bar = progress((orientations.len() * robot.len() * obstacle.len()) as u64);
+    let bar = crate::progress::bar(
+        (orientations.len() * robot.len() * obstacle.len()) as u64,
+        "cobst",
+        "slices",
+    );
     let start = Instant::now();
     let n = orientations.len();
     // faces[k] and files[k] per slice, accumulated over piece pairs.

@@ -9,7 +9,7 @@
 
 use std::io::Write;
 
-use clap::{Args, CommandFactory};
+use clap::Args;
 use clap_complete::Shell;
 
 /// Arguments of `dymsum completions`.
@@ -21,8 +21,11 @@ pub struct CompletionsArgs {
 }
 
 /// Runs `dymsum completions`.
-pub fn run(a: &CompletionsArgs, out: &mut dyn Write) -> anyhow::Result<()> {
-    let mut command = crate::cli::Cli::command();
-    clap_complete::generate(a.shell, &mut command, "dymsum", out);
+pub fn run(
+    a: &CompletionsArgs,
+    command: &mut clap::Command,
+    out: &mut dyn Write,
+) -> anyhow::Result<()> {
+    clap_complete::generate(a.shell, command, "dymsum", out);
     Ok(())
 }

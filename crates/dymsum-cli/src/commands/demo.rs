@@ -15,14 +15,23 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context};
+use clap::Args;
 use dymsum::sum::{minkowski_sum_posed, Facet, Method};
 use dymsum::{DynamicSum, Polytope, Pose};
 use dymsum_io::formats::{write_mesh_with, Format};
 
 use super::load;
-use crate::cli::DemoArgs;
 use crate::motion::PaperMotion;
 use crate::stats::{mean, median, micros};
+use crate::values::parse_seconds;
+
+/// `dymsum demo`.
+#[derive(Debug, Args)]
+pub struct DemoArgs {
+    /// How long to run the motion, in seconds.
+    #[arg(long, value_name = "S", default_value_t = 3.0, value_parser = parse_seconds)]
+    pub seconds: f64,
+}
 
 /// The moving operand.
 pub const DEMO_P: &str = "ellipse";

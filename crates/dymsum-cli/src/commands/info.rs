@@ -3,13 +3,27 @@
 
 use std::io::Write;
 
+use clap::Args;
 use dymsum::polytope::ConvexityReport;
 use dymsum_io::Loaded;
 use serde::Serialize;
 
 use super::load;
-use crate::cli::InfoArgs;
 use crate::stats::short;
+
+/// `dymsum info`.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// A mesh file or a built-in model name.
+    #[arg(value_name = "FILE|NAME")]
+    pub spec: String,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Refuse meshes that are convex only within tolerance.
+    #[arg(long)]
+    pub strict: bool,
+}
 
 /// The machine-readable form of `dymsum info`.
 #[derive(Debug, Serialize)]

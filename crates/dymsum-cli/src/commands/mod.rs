@@ -19,23 +19,7 @@ use anyhow::anyhow;
 use dymsum::polytope::MeshPolicy;
 use dymsum_io::{load_polytope, Loaded};
 
-use crate::cli::Command;
-
-/// Runs one subcommand, writing its report to `out`.
-pub fn run(command: Command, out: &mut dyn Write) -> anyhow::Result<()> {
-    match command {
-        Command::Sum(a) => sum::run(&a, out),
-        Command::Info(a) => info::run(&a, out),
-        Command::Models(a) => models::run(&a, out),
-        Command::Completions(a) => completions::run(&a, out),
-        Command::Animate(a) => animate::run(&a, out),
-        Command::Demo(a) => demo::run(&a, out),
-        Command::Bench(a) => bench::run(&a, out),
-        Command::Render(a) => render::run(&a, out),
-        Command::Cobst(a) => cobst::run(&a, out),
-        Command::Query(a) => query::run(&a, out),
-    }
-}
+pub use crate::values::STDIO;
 
 /// The mesh policy for the `--strict` flag.
 pub fn policy(strict: bool) -> MeshPolicy {
@@ -63,9 +47,6 @@ pub fn load(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Loaded> {
     }
     load_polytope(spec, policy(strict)).map_err(|e| anyhow!(e.for_operand(operand)))
 }
-
-/// The operand or output name for standard input or output.
-pub const STDIO: &str = "-";
 
 /// Reads all of standard input, refusing a second reader in the same run
 /// (the first took every byte).

@@ -30,7 +30,7 @@ pub fn run(a: &ModelsArgs, out: &mut dyn Write) -> anyhow::Result<()> {
 }
 
 fn write_model(name: &str, file: &str, out: &mut dyn Write) -> anyhow::Result<()> {
-    let path: PathBuf = crate::cli::parse_output_path(file).map_err(|e| anyhow!("FILE: {e}"))?;
+    let path: PathBuf = crate::values::parse_output_path(file).map_err(|e| anyhow!("FILE: {e}"))?;
     if dymsum_io::models::model(name).is_err() {
         // Not a model (an unknown name, or a bad parameter): say why.
         dymsum_io::models::model(name).map_err(|e| anyhow!("NAME: {e}"))?;

@@ -1,15 +1,45 @@
 //! `dymsum sum P Q -o OUT`: one static Minkowski sum, written as a mesh.
 
 use std::io::Write;
+use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::Context;
+use clap::Args;
 use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DVec3, Pose, Rotation};
 
 use super::{load, short_name};
-use crate::cli::SumArgs;
 use crate::stats::{human_us, micros};
+use crate::values::{parse_output_path, parse_quaternion, parse_vector, MethodArg};
+
+/// `dymsum sum`.
+#[derive(Debug, Args)]
+pub struct SumArgs {
+    /// First operand P: a mesh file or a built-in model name; `-` reads OFF
+    /// from standard input.
+    #[arg(value_name = "P")]
+    pub p: String,
+    /// Second operand Q: as P.
+    #[arg(value_name = "Q")]
+    pub q: String,
+    /// Output mesh; the format follows the extension (.off, .obj, .ply, .stl);
+    /// `-` writes OFF to standard output (the summary line then goes to stderr).
+    #[arg(short, long, value_name = "OUT", value_parser = parse_output_path)]
+    pub output: PathBuf,
+    /// Static algorithm.
+    #[arg(long, value_enum, default_value_t = MethodArg::Walk)]
+    pub method: MethodArg,
+    /// Rotate P about the origin by this unit quaternion, scalar first (W,X,Y,Z; renormalised), before summing.
+    #[arg(long, value_name = "W,X,Y,Z", value_parser = parse_quaternion, allow_hyphen_values = true)]
+    pub rotate_p: Option<Rotation>,
+    /// Then translate P by this vector.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
+    pub translate_p: Option<DVec3>,
+    /// Refuse meshes that are convex only within tolerance (instead of using their exact hull).
+    #[arg(long)]
+    pub strict: bool,
+}
 
 /// Runs `dymsum sum`.
 pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {

@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
 
 /// Arguments of `dymsum bench`.
 #[derive(Debug, Args)]
@@ -55,15 +55,9 @@ pub fn run(a: &BenchArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     }
 }
 
-/// A progress bar on stderr (hidden when stderr is not a terminal).
+/// The bench progress bar (see [`crate::progress::bar`]).
 pub(crate) fn progress(len: u64) -> ProgressBar {
-    let pb = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template(
-        "{spinner} [{elapsed_precise}] [{bar:32}] {pos}/{len} (ETA {eta}) {msg}",
-    ) {
-        pb.set_style(style.progress_chars("=> "));
-    }
-    pb
+    crate::progress::bar(len, "bench", "runs")
 }
 
 /// Creates the output directory and returns the path of `name` in it.

@@ -15,9 +15,9 @@ use clap::Args;
 use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
 use super::plot::{method_series, write_chart, Chart, COLORS};
 use super::{out_file, progress, write_csv};
-use crate::cli::parse_steps_per_rev;
 use crate::commands::load;
 use crate::stats::human_us;
+use crate::values::parse_steps_per_rev;
 
 /// Default steps per full turn (10 to 100,000).
 pub const DEFAULT_STEPS_PER_REV: &str = "10,30,100,300,500,1000,3000,10000,30000,100000";

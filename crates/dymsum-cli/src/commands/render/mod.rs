@@ -62,7 +62,7 @@ use clap::Args;
 use dymsum::{DVec3, DynamicSum, Pose, Rotation};
 
 use super::{load, short_name};
-use crate::cli::{parse_quaternion, parse_vector};
+use crate::values::{parse_quaternion, parse_vector};
 
 pub use scene::{facet_geometry, View, FRONT_EPS};
 
