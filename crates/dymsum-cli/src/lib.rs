@@ -25,6 +25,7 @@ use clap::Parser;
 /// usage errors (clap prints them and exits), 3 for internal errors (an
 /// output mesh failed its exact validation: a bug, never written).
 pub fn main() -> ExitCode {
+    init_logging();
     let cli = cli::Cli::parse();
     let stdout = io::stdout();
     let mut out = stdout.lock();
@@ -81,3 +82,13 @@ fn is_broken_pipe(e: &anyhow::Error) -> bool {
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// Diagnostics on stderr, `RUST_LOG`-style and off by default:
+/// `RUST_LOG=debug dymsum sum ...` shows what was loaded and how validation
+/// and the output mesh went; `RUST_LOG=dymsum_cli=trace` adds per-step detail.
+fn init_logging() {
+    let env = env_logger::Env::default().filter_or("RUST_LOG", "off");
+    let _ignored_if_already_set = env_logger::Builder::from_env(env)
+        .format_timestamp(None)
+        .try_init();
+}

@@ -158,7 +158,7 @@ fn sum_rotate_and_translate() {
     ]);
     let faces: usize = line
         .split(", ")
-        .find(|s| s.ends_with("faces after merging"))
+        .find(|s| s.contains(" faces after merging"))
         .and_then(|s| s.split(' ').next())
         .and_then(|n| n.parse().ok())
         .unwrap();

@@ -43,9 +43,35 @@ pub fn load(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Loaded> {
             "standard input",
             policy(strict),
         )
-        .map_err(|e| anyhow!(e.for_operand(operand)));
+        .map_err(|e| anyhow!(e.for_operand(operand)))
+        .inspect(|l| log_loaded(operand, l));
     }
-    load_polytope(spec, policy(strict)).map_err(|e| anyhow!(e.for_operand(operand)))
+    let loaded =
+        load_polytope(spec, policy(strict)).map_err(|e| anyhow!(e.for_operand(operand)))?;
+    log_loaded(operand, &loaded);
+    Ok(loaded)
+}
+
+fn log_loaded(operand: &str, l: &Loaded) {
+    log::debug!(
+        "{operand}: {} -> {} vertices, {} faces, {} edges",
+        l.source,
+        l.polytope.vertex_count(),
+        l.polytope.face_count(),
+        l.polytope.edge_count()
+    );
+    if let Some(r) = &l.report {
+        log::debug!(
+            "{operand}: input {} vertices, {} faces; exactly convex: {}, replaced by hull: {}, \
+             max deviation {:e} (tolerance {:e})",
+            r.input_vertices,
+            r.input_faces,
+            r.exactly_convex,
+            r.replaced_by_hull,
+            r.max_deviation,
+            r.tolerance
+        );
+    }
 }
 
 /// Reads all of standard input, refusing a second reader in the same run
@@ -91,6 +117,17 @@ pub fn validated(
     what: &str,
 ) -> anyhow::Result<dymsum::PolygonMesh> {
     let m = mesh.map_err(|e| anyhow::Error::new(e).context(format!("the mesh of {what}")))?;
+    log::debug!(
+        "{what}: {} vertices, {} faces; {}{}",
+        m.mesh.vertices.len(),
+        m.mesh.faces.len(),
+        m.precision,
+        if m.hull_fallback {
+            "; merged faces bent by rounding: exact hull of the rounded vertices"
+        } else {
+            ""
+        }
+    );
     if m.precision.is_coarse() {
         eprintln!(
             "warning: {what}: coordinates lose precision: {}",

@@ -54,7 +54,9 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let sum = minkowski_sum_posed(&p.polytope, pose_p, &q.polytope, Pose::IDENTITY, method)
         .with_context(|| format!("{} ⊕ {} ({})", a.p, a.q, method.name()))?;
     let elapsed = micros(start.elapsed());
-    let mesh = super::validated(sum.mesh_with_precision(), "the sum")?;
+    let with_precision = sum.mesh_with_precision();
+    let bent = matches!(&with_precision, Ok(m) if m.hull_fallback);
+    let mesh = super::validated(with_precision, "the sum")?;
     // With `-o -` the mesh goes to standard output and the summary to stderr.
     let to_stdout = a.output.as_os_str() == super::STDIO;
     super::write_mesh_or_stdout(&a.output, &mesh, out).context("writing the sum")?;
@@ -63,12 +65,17 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let summary: &mut dyn Write = if to_stdout { &mut stderr } else { out };
     writeln!(
         summary,
-        "{} ⊕ {} ({}): {fv} fv + {vf} vf + {ee} ee = {} facets, {} faces after merging, {}",
+        "{} ⊕ {} ({}): {fv} fv + {vf} vf + {ee} ee = {} facets, {} faces after merging{}, {}",
         short_name(&a.p),
         short_name(&a.q),
         method.name(),
         fv + vf + ee,
         mesh.faces.len(),
+        if bent {
+            " (faces bent by rounding to f64 split)"
+        } else {
+            ""
+        },
         human_us(elapsed),
     )?;
     Ok(())
