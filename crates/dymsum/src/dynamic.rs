@@ -91,6 +91,9 @@
 //! assert_eq!(dynamic.facets(), fresh.facets());
 //! ```
 
+use crate::kernel::exact::{self, ExactVec};
+use crate::kernel::predicates::{others, sos_terms, ExactVector, SosTerm};
+use crate::kernel::Sign;
 use crate::polytope::Polytope;
 use crate::sum::{
     relative_rotation, walk_overlay, Facet, GaussView, MinkowskiSum, Operands, Overlay, SumError,
@@ -164,6 +167,9 @@ pub struct DynamicSum<'a> {
     stamp_p: Vec<u32>,
     stamp_q: Vec<u32>,
     scratch_toggled: Vec<(u32, u32)>,
+    /// Exact zero structure of both maps (for steps about a coordinate axis).
+    zeros_p: ExactZeros,
+    zeros_q: ExactZeros,
     /// After fallbacks, how many steps of similar size skip the scan.
     backoff: Backoff,
     step: u32,
@@ -211,6 +217,8 @@ fn margin(poly: &Polytope, arcs: &[DVec3], v: u32, x: DVec3) -> f64 {
 const EXACT_BELOW: f64 = 1e-12;
 /// Slack added to the drift bound to cover float error in margins.
 const SLACK: f64 = 1e-10;
+/// Unit roundoff.
+const U: f64 = f64::EPSILON / 2.0;
 
 impl<'a> DynamicSum<'a> {
     /// Starts from a static `walk` sum at the given poses.
@@ -250,6 +258,8 @@ impl<'a> DynamicSum<'a> {
             stamp_p: vec![0; p.edge_count()],
             stamp_q: vec![0; q.edge_count()],
             scratch_toggled: Vec::new(),
+            zeros_p: ExactZeros::of(p),
+            zeros_q: ExactZeros::of(q),
             backoff: Backoff::default(),
             step: 0,
             ops,
@@ -370,6 +380,7 @@ impl<'a> DynamicSum<'a> {
             drift,
             before,
             after: self.theta_acc,
+            axis: coordinate_axis(&rot_old, &rot),
         };
         let scan_p = scan_side(
             &self.ops.view_p(),
@@ -377,6 +388,11 @@ impl<'a> DynamicSum<'a> {
             &self.arc_q,
             (rot, rot_old),
             Some(&self.ops.np),
+            Tied {
+                moving: &self.zeros_p,
+                fixed: &self.zeros_q,
+                moving_is_p: true,
+            },
             SideState {
                 assign: &mut self.fv,
                 margin: &mut self.margin_p,
@@ -391,6 +407,11 @@ impl<'a> DynamicSum<'a> {
             &self.arc_p,
             (rot.transpose(), rot_old.transpose()),
             None,
+            Tied {
+                moving: &self.zeros_q,
+                fixed: &self.zeros_p,
+                moving_is_p: false,
+            },
             SideState {
                 assign: &mut self.vf,
                 margin: &mut self.margin_q,
@@ -711,6 +732,10 @@ struct StepBounds {
     /// Accumulated rotation before and after this step (for lazy margins).
     before: f64,
     after: f64,
+    /// The coordinate axis `k` the step turns about exactly, if any (see
+    /// [`coordinate_axis`]): then exact ties that persist along the whole
+    /// step are certified by [`stays_in_cell_tied`].
+    axis: Option<usize>,
 }
 
 /// One side's mutable state: for each moving face, its cell and margin.
@@ -750,6 +775,7 @@ fn scan_side(
     cell_arcs: &[DVec3],
     to_cells: (DMat3, DMat3),
     rotated: Option<&[DVec3]>,
+    tied: Tied<'_>,
     state: SideState<'_>,
     step: &StepBounds,
 ) -> SideScan {
@@ -773,6 +799,25 @@ fn scan_side(
         };
         let v = state.assign[f];
         let mut m1 = margin(cpoly, cell_arcs, v, x_new);
+        // Exact ties that persist along a step about a coordinate axis: the
+        // normal is certified to stay in its cell without exact predicates.
+        if let Some(k) = step.axis {
+            if (m1 <= EXACT_BELOW + delta || lower.min(m1) <= step.drift + delta)
+                && stays_in_cell_tied(
+                    (faces, cells),
+                    cell_arcs,
+                    (f as u32, v),
+                    (to_cells.1 * unit, x_new),
+                    step.drift + delta,
+                    (k, step.theta),
+                    &tied,
+                )
+            {
+                state.margin[f] = m1;
+                state.margin_at[f] = step.after;
+                continue;
+            }
+        }
         if m1 <= EXACT_BELOW + delta {
             let x = faces.normal(f as u32);
             // A margin clearly below zero is certainly outside.
@@ -807,6 +852,209 @@ fn scan_side(
         state.margin_at[f] = step.after;
     }
     out
+}
+
+/// Which components of the exact reference normals and of the exact arc
+/// normals (cross products of the two faces' exact normals) are zero:
+/// computed once, exactly, for the certification of persistent ties.
+#[derive(Clone, Debug)]
+struct ExactZeros {
+    /// Per face.
+    normal: Vec<[bool; 3]>,
+    /// Per edge.
+    arc: Vec<[bool; 3]>,
+}
+
+impl ExactZeros {
+    fn of(poly: &Polytope) -> ExactZeros {
+        let view = GaussView {
+            poly,
+            normals: poly.normals(),
+            arcs: poly.arc_normals(),
+            arc_errs: poly.arc_errors(),
+            base: 0,
+            rotation: None,
+        };
+        let zero = |v: &ExactVec| [0, 1, 2].map(|c| v[c].sign() == Sign::Zero);
+        let exact: Vec<ExactVec> = (0..poly.face_count() as u32)
+            .map(|f| view.normal(f).exact())
+            .collect();
+        ExactZeros {
+            normal: exact.iter().map(zero).collect(),
+            arc: (0..poly.edge_count())
+                .map(|e| {
+                    let [f0, f1] = poly.edge(e).faces;
+                    zero(&exact::cross(&exact[f0 as usize], &exact[f1 as usize]))
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The coordinate axis `k` about which both relative rotations turn
+/// exactly: in both (snapped) matrices row and column `k` are the unit
+/// vector `e_k`, and the other two rows and columns form a matrix
+/// `[[c, −s], [s, c]]` exactly (a positive multiple of a plane rotation).
+/// Then the step can be taken along rotations about `e_k`, on which the
+/// `k`-components of P's rotated normals are constant and the sign of every
+/// SoS term is invariant under the positive scale.
+fn coordinate_axis(a: &DMat3, b: &DMat3) -> Option<usize> {
+    (0..3).find(|&k| {
+        [a, b].iter().all(|m| {
+            let (i, j) = plane(k);
+            let e = DVec3::AXES[k];
+            m.row(k) == e
+                && m.col(k) == e
+                && m.col(i)[i] == m.col(j)[j]
+                && m.col(j)[i] == -m.col(i)[j]
+        })
+    })
+}
+
+/// The two coordinates other than `k`.
+#[inline]
+fn plane(k: usize) -> (usize, usize) {
+    match k {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    }
+}
+
+/// The exact zero structure of the moving and the fixed map of a scan.
+struct Tied<'t> {
+    moving: &'t ExactZeros,
+    fixed: &'t ExactZeros,
+    /// The moving normals are P's (lower SoS indices than Q's).
+    moving_is_p: bool,
+}
+
+/// Whether the face normal `f` of `faces`, in cell `v` of `cells` at the
+/// start of a step about coordinate axis `k` by angle `θ`, certainly stays
+/// in that cell along the whole step (under the symbolic perturbation), so
+/// that it has no event and its fv-pair is unchanged.
+///
+/// Per arc of the cell, one of:
+/// * both end margins exceed `reach` (the drift argument of the module
+///   docs);
+/// * the determinant `det[a, b, x]` is zero at every rotation about `e_k`
+///   (a *persistent tie*, read off the exact zero structure: for P's normal
+///   `x = R n`, `(a × b) · R n = (a × b)_k n_k + (a × b)_⊥ · R_⊥ n_⊥`, and
+///   symmetrically for an arc of P), and its SoS sign is constant along the
+///   step. When the normal is P's it has the lowest index, so the first SoS
+///   terms are the cofactors of its row, the components of `a × b` of Q's
+///   fixed arc: constant, and not all zero. When it is Q's, the sign is
+///   decided by [`sos_term_certified`].
+///
+/// Any other case (a tie that may break during the step) returns `false`
+/// and the caller's exact path takes over.
+fn stays_in_cell_tied(
+    (faces, cells): (&GaussView<'_>, &GaussView<'_>),
+    cell_arcs: &[DVec3],
+    (f, v): (u32, u32),
+    (x_old, x_new): (DVec3, DVec3),
+    reach: f64,
+    (k, theta): (usize, f64),
+    tied: &Tied<'_>,
+) -> bool {
+    let (i, j) = plane(k);
+    let off = cells.poly.ring_offset(v as usize);
+    let nz = tied.moving.normal[f as usize];
+    cells
+        .poly
+        .ring(v as usize)
+        .iter()
+        .enumerate()
+        .all(|(r, entry)| {
+            let m = cell_arcs[off + r];
+            if m.dot(x_old).min(m.dot(x_new)) > reach {
+                return true;
+            }
+            let cz = tied.fixed.arc[entry.edge as usize];
+            let persistent = (cz[k] || nz[k]) && ((cz[i] && cz[j]) || (nz[i] && nz[j]));
+            if !persistent {
+                return false;
+            }
+            tied.moving_is_p || sos_term_certified(cells, entry.edge, faces, f, (k, theta), tied)
+        })
+}
+
+/// For an arc `e` of P (the `arcs` view, rotated to the new pose) and a
+/// face normal `g` of Q whose determinant is a persistent tie: whether the
+/// SoS sign is constant along the step. Rows sorted by index are P's two
+/// normals, then Q's. The SoS terms are scanned in order of significance:
+/// a term that vanishes at every rotation about `e_k` (a product of exact
+/// structural zeros, or the rotation-invariant minor `(a × b)_k = 0` of P's
+/// two rows in the plane coordinates) is skipped; the first other term
+/// decides the sign, and is certified constant when its value exceeds its
+/// float error plus the most it can change over a rotation by `θ`
+/// (`2θ |u| |v|` for a 2×2 minor, `θ |u|` for an entry) plus slack.
+fn sos_term_certified(
+    arcs: &GaussView<'_>,
+    e: u32,
+    normals: &GaussView<'_>,
+    g: u32,
+    (k, theta): (usize, f64),
+    tied: &Tied<'_>,
+) -> bool {
+    let [f0, f1] = arcs.poly.edge(e as usize).faces;
+    let (lo, hi) = (f0.min(f1), f0.max(f1));
+    let rows = [arcs.normal(lo), arcs.normal(hi), normals.normal(g)];
+    let a = rows.each_ref().map(|r| r.approx());
+    let err = rows.each_ref().map(|r| r.error());
+    let (pz, qz) = (&tied.fixed.normal, &tied.moving.normal);
+    let zeros = [pz[lo as usize], pz[hi as usize], qz[g as usize]];
+    let (i, j) = plane(k);
+    // Structurally zero at every rotation about e_k; varying along it.
+    let zero = |r: usize, c: usize| {
+        if r == 2 || c == k {
+            zeros[r][c]
+        } else {
+            zeros[r][i] && zeros[r][j]
+        }
+    };
+    let varies = |r: usize, c: usize| r < 2 && c != k && !(zeros[r][i] && zeros[r][j]);
+    let norm = |r: usize| a[r].length() + err[r];
+    for t in sos_terms() {
+        match *t {
+            SosTerm::Cofactor { row, col } => {
+                let [r0, r1] = others(row as usize);
+                let [c0, c1] = others(col as usize);
+                if (zero(r0, c0) || zero(r1, c1)) && (zero(r0, c1) || zero(r1, c0)) {
+                    continue;
+                }
+                if r1 < 2 && c0 != k && c1 != k {
+                    // P's two rows in the plane: `det(B) (a × b)_k`, constant.
+                    if tied.fixed.arc[e as usize][k] {
+                        continue;
+                    }
+                    return true;
+                }
+                let (u, w) = (a[r0], a[r1]);
+                let d = u[c0] * w[c1] - u[c1] * w[c0];
+                let (mu, mw) = (u[c0].abs().max(u[c1].abs()), w[c0].abs().max(w[c1].abs()));
+                let (eu, ew) = (err[r0], err[r1]);
+                let bound = 1.01 * (2.0 * (eu * (mw + ew) + mu * ew) + 8.0 * U * mu * mw)
+                    + f64::MIN_POSITIVE;
+                let moving = [(r0, c0), (r0, c1), (r1, c0), (r1, c1)]
+                    .iter()
+                    .any(|&(r, c)| varies(r, c));
+                let scale = norm(r0) * norm(r1);
+                let change = if moving { 2.01 * theta * scale } else { 0.0 };
+                return d.abs() > bound + change + SLACK * scale;
+            }
+            SosTerm::Entry { row, col, .. } => {
+                let (r, c) = (row as usize, col as usize);
+                if zero(r, c) {
+                    continue;
+                }
+                let change = if varies(r, c) { 1.01 * theta * norm(r) } else { 0.0 };
+                return a[r][c].abs() > 1.01 * err[r] + change + SLACK * norm(r);
+            }
+            SosTerm::Constant(_) => return true,
+        }
+    }
+    true
 }
 
 /// Hill climbing in floats on the unit ring arcs (oriented inwards): cross
