@@ -57,17 +57,34 @@
 //! * *Anything else* is at risk: all arcs at that normal are re-walked from
 //!   scratch, which recomputes every pair an event at that normal can flip.
 //!
+//! * *Persistent ties.* Exact ties have margin 0. When both relative
+//!   rotations of a step turn exactly about a coordinate axis `e_k` (row and
+//!   column `k` of both matrices are `e_k`, as for boxes turning about `z`),
+//!   the step is taken along rotations about `e_k`, on which the
+//!   `k`-components of P's rotated normals are constant. A determinant
+//!   `det[a, b, x]` that is then zero at every rotation (read off the exact
+//!   zero pattern of the normals and of the arcs' cross products, computed
+//!   once) keeps its SoS sign if the first SoS term that is not itself zero
+//!   at every rotation stays away from zero: for P's normal (lowest index)
+//!   that term is a component of Q's fixed `a × b`, constant; for Q's normal
+//!   it is a minor or entry of the rotating rows, certified by its size
+//!   against its rate of change. A normal all of whose arcs are so certified
+//!   (the others by their margins) stays in its cell and has no event; its
+//!   certified margin is reused lazily while the steps stay about `e_k`.
+//!
 //! A pair not on a re-walked arc therefore had events only at normals with a
 //! known event set, and toggling by parity gives its final status. Margins
 //! are computed in floats from accurate arc normals, and every comparison
 //! adds the face's bound on its float normal's direction error plus a slack
-//! of `1e-10`; exact ties have margin 0 and are always at risk. Steps above
+//! of `1e-10`; exact ties have margin 0 and are at risk unless certified as
+//! persistent (above). Steps above
 //! [`DynamicConfig::max_step_angle`], or steps where more than
 //! [`DynamicConfig::fallback_fraction`] of all arcs would be re-walked, are
 //! recomputed from scratch by `walk` instead (cheaper, and trivially correct);
 //! after such a fallback a few steps at least 90% as large go straight to the
-//! recomputation (an exponential backoff), and the update's report is the
-//! diff of the two overlays.
+//! recomputation (an exponential backoff; not after steps about a coordinate
+//! axis, where many arcs at risk means an isolated exact coincidence such as
+//! a quarter turn), and the update's report is the diff of the two overlays.
 //!
 //! # Complexity
 //! O(m + n) to scan the normals near their cells' boundaries (the others are
@@ -170,6 +187,22 @@ pub struct DynamicSum<'a> {
     /// Exact zero structure of both maps (for steps about a coordinate axis).
     zeros_p: ExactZeros,
     zeros_q: ExactZeros,
+    /// Per face: the rotation about the coordinate axis `tie_axis` it can
+    /// still absorb with its persistent ties certified (see
+    /// [`stays_in_cell_tied`]); `NO_AXIS` when not certified that way.
+    tie_margin_p: Vec<f64>,
+    tie_margin_q: Vec<f64>,
+    tie_axis_p: Vec<u8>,
+    tie_axis_q: Vec<u8>,
+    /// The incremental step at which each face's tie margin was computed.
+    tie_tick_p: Vec<u64>,
+    tie_tick_q: Vec<u64>,
+    /// Incremental steps so far.
+    tick: u64,
+    /// The coordinate axis of the current run of incremental steps about
+    /// one axis, and the step that began the run.
+    axis_run: Option<usize>,
+    axis_since: u64,
     /// After fallbacks, how many steps of similar size skip the scan.
     backoff: Backoff,
     step: u32,
@@ -217,6 +250,8 @@ fn margin(poly: &Polytope, arcs: &[DVec3], v: u32, x: DVec3) -> f64 {
 const EXACT_BELOW: f64 = 1e-12;
 /// Slack added to the drift bound to cover float error in margins.
 const SLACK: f64 = 1e-10;
+/// No coordinate axis.
+const NO_AXIS: u8 = u8::MAX;
 /// Unit roundoff.
 const U: f64 = f64::EPSILON / 2.0;
 
@@ -260,6 +295,15 @@ impl<'a> DynamicSum<'a> {
             scratch_toggled: Vec::new(),
             zeros_p: ExactZeros::of(p),
             zeros_q: ExactZeros::of(q),
+            tie_margin_p: vec![0.0; p.face_count()],
+            tie_margin_q: vec![0.0; q.face_count()],
+            tie_axis_p: vec![NO_AXIS; p.face_count()],
+            tie_axis_q: vec![NO_AXIS; q.face_count()],
+            tie_tick_p: vec![0; p.face_count()],
+            tie_tick_q: vec![0; q.face_count()],
+            tick: 0,
+            axis_run: None,
+            axis_since: 0,
             backoff: Backoff::default(),
             step: 0,
             ops,
@@ -278,6 +322,8 @@ impl<'a> DynamicSum<'a> {
         }
         self.fv = overlay.fv;
         self.vf = overlay.vf;
+        self.tie_axis_p.fill(NO_AXIS);
+        self.tie_axis_q.fill(NO_AXIS);
         let rot = self.ops.relative.matrix();
         let inv = rot.transpose();
         for f in 0..self.fv.len() {
@@ -375,12 +421,20 @@ impl<'a> DynamicSum<'a> {
         let (rot, rot_old) = (new.matrix(), old.matrix());
         let before = self.theta_acc;
         self.theta_acc += theta;
+        let axis = coordinate_axis(&rot_old, &rot);
+        self.tick += 1;
+        if axis != self.axis_run {
+            self.axis_run = axis;
+            self.axis_since = self.tick;
+        }
         let step = StepBounds {
             theta,
             drift,
             before,
             after: self.theta_acc,
-            axis: coordinate_axis(&rot_old, &rot),
+            axis,
+            tick: self.tick,
+            run_start: self.axis_since,
         };
         let scan_p = scan_side(
             &self.ops.view_p(),
@@ -397,6 +451,9 @@ impl<'a> DynamicSum<'a> {
                 assign: &mut self.fv,
                 margin: &mut self.margin_p,
                 margin_at: &mut self.margin_at_p,
+                tie_margin: &mut self.tie_margin_p,
+                tie_axis: &mut self.tie_axis_p,
+                tie_tick: &mut self.tie_tick_p,
                 dir_err: &self.dir_err_p,
             },
             &step,
@@ -416,6 +473,9 @@ impl<'a> DynamicSum<'a> {
                 assign: &mut self.vf,
                 margin: &mut self.margin_q,
                 margin_at: &mut self.margin_at_q,
+                tie_margin: &mut self.tie_margin_q,
+                tie_axis: &mut self.tie_axis_q,
+                tie_tick: &mut self.tie_tick_q,
                 dir_err: &self.dir_err_q,
             },
             &step,
@@ -466,7 +526,13 @@ impl<'a> DynamicSum<'a> {
         let total_arcs = self.ee_p.len() + self.ee_q.len();
         if (arcs_p.len() + arcs_q.len()) as f64 > self.config.fallback_fraction * total_arcs as f64
         {
-            self.backoff.fell_back(theta);
+            // About a coordinate axis, many arcs at risk means an isolated
+            // exact coincidence (faces becoming parallel at a quarter turn):
+            // the next steps are certified by their persistent ties again, so
+            // no backoff.
+            if axis.is_none() {
+                self.backoff.fell_back(theta);
+            }
             return self.recompute(report);
         }
         self.backoff = Backoff::default();
@@ -736,6 +802,11 @@ struct StepBounds {
     /// [`coordinate_axis`]): then exact ties that persist along the whole
     /// step are certified by [`stays_in_cell_tied`].
     axis: Option<usize>,
+    /// This step's number, and the one that began the current run of steps
+    /// about `axis`: tie margins computed since then (every step in between
+    /// was about the same axis) are valid for this step.
+    tick: u64,
+    run_start: u64,
 }
 
 /// One side's mutable state: for each moving face, its cell and margin.
@@ -743,6 +814,9 @@ struct SideState<'s> {
     assign: &'s mut [u32],
     margin: &'s mut [f64],
     margin_at: &'s mut [f64],
+    tie_margin: &'s mut [f64],
+    tie_axis: &'s mut [u8],
+    tie_tick: &'s mut [u64],
     dir_err: &'s [f64],
 }
 
@@ -789,6 +863,17 @@ fn scan_side(
         if lower - step.theta > step.drift + delta {
             continue;
         }
+        // The same for a normal certified through its persistent ties, as
+        // long as every step since was about the same coordinate axis.
+        if let Some(k) = step.axis {
+            if state.tie_axis[f] == k as u8 && state.tie_tick[f] >= step.run_start {
+                let tie_lower = state.tie_margin[f] - (step.before - state.margin_at[f]);
+                if tie_lower - step.theta > step.drift + delta {
+                    continue;
+                }
+            }
+        }
+        state.tie_axis[f] = NO_AXIS;
         out.checked += 1;
         let unit = faces.poly.unit_normal(f);
         // The moving normals are already rotated into the cells' frame (P's
@@ -802,8 +887,8 @@ fn scan_side(
         // Exact ties that persist along a step about a coordinate axis: the
         // normal is certified to stay in its cell without exact predicates.
         if let Some(k) = step.axis {
-            if (m1 <= EXACT_BELOW + delta || lower.min(m1) <= step.drift + delta)
-                && stays_in_cell_tied(
+            if m1 <= EXACT_BELOW + delta || lower.min(m1) <= step.drift + delta {
+                if let Some(tm) = stays_in_cell_tied(
                     (faces, cells),
                     cell_arcs,
                     (f as u32, v),
@@ -811,11 +896,14 @@ fn scan_side(
                     step.drift + delta,
                     (k, step.theta),
                     &tied,
-                )
-            {
-                state.margin[f] = m1;
-                state.margin_at[f] = step.after;
-                continue;
+                ) {
+                    state.margin[f] = m1;
+                    state.margin_at[f] = step.after;
+                    state.tie_margin[f] = tm;
+                    state.tie_axis[f] = k as u8;
+                    state.tie_tick[f] = step.tick;
+                    continue;
+                }
             }
         }
         if m1 <= EXACT_BELOW + delta {
@@ -946,8 +1034,11 @@ struct Tied<'t> {
 ///   fixed arc: constant, and not all zero. When it is Q's, the sign is
 ///   decided by [`sos_term_certified`].
 ///
-/// Any other case (a tie that may break during the step) returns `false`
-/// and the caller's exact path takes over.
+/// Returns the rotation about `e_k` the normal can still absorb from the
+/// new pose with all this still certain (the smallest margin of a non-tied
+/// arc, or of a deciding SoS term; a sine of an angle, or an angle), or
+/// `None` in any other case (a tie that may break during the step): then the
+/// caller's exact path takes over.
 fn stays_in_cell_tied(
     (faces, cells): (&GaussView<'_>, &GaussView<'_>),
     cell_arcs: &[DVec3],
@@ -956,27 +1047,32 @@ fn stays_in_cell_tied(
     reach: f64,
     (k, theta): (usize, f64),
     tied: &Tied<'_>,
-) -> bool {
+) -> Option<f64> {
     let (i, j) = plane(k);
     let off = cells.poly.ring_offset(v as usize);
     let nz = tied.moving.normal[f as usize];
-    cells
-        .poly
-        .ring(v as usize)
-        .iter()
-        .enumerate()
-        .all(|(r, entry)| {
-            let m = cell_arcs[off + r];
-            if m.dot(x_old).min(m.dot(x_new)) > reach {
-                return true;
+    let mut least = f64::INFINITY;
+    for (r, entry) in cells.poly.ring(v as usize).iter().enumerate() {
+        let m = cell_arcs[off + r];
+        let now = m.dot(x_new);
+        if m.dot(x_old).min(now) > reach {
+            least = least.min(now);
+            continue;
+        }
+        let cz = tied.fixed.arc[entry.edge as usize];
+        let persistent = (cz[k] || nz[k]) && ((cz[i] && cz[j]) || (nz[i] && nz[j]));
+        if !persistent {
+            return None;
+        }
+        if !tied.moving_is_p {
+            let absorb = sos_term_certified(cells, entry.edge, faces, f, k, tied)?;
+            if absorb <= theta {
+                return None;
             }
-            let cz = tied.fixed.arc[entry.edge as usize];
-            let persistent = (cz[k] || nz[k]) && ((cz[i] && cz[j]) || (nz[i] && nz[j]));
-            if !persistent {
-                return false;
-            }
-            tied.moving_is_p || sos_term_certified(cells, entry.edge, faces, f, (k, theta), tied)
-        })
+            least = least.min(absorb);
+        }
+    }
+    Some(least)
 }
 
 /// For an arc `e` of P (the `arcs` view, rotated to the new pose) and a
@@ -986,17 +1082,20 @@ fn stays_in_cell_tied(
 /// a term that vanishes at every rotation about `e_k` (a product of exact
 /// structural zeros, or the rotation-invariant minor `(a × b)_k = 0` of P's
 /// two rows in the plane coordinates) is skipped; the first other term
-/// decides the sign, and is certified constant when its value exceeds its
-/// float error plus the most it can change over a rotation by `θ`
-/// (`2θ |u| |v|` for a 2×2 minor, `θ |u|` for an entry) plus slack.
+/// decides the sign, and stays non-zero over any rotation by less than
+/// (its value less its float error and slack) divided by its rate of change
+/// (at most `|u| |v|` per radian for each rotating row of a 2×2 minor, `|u|`
+/// for an entry).
+/// Returns that rotation (`∞` for a constant term), or `None` when the
+/// deciding term is not certainly non-zero now.
 fn sos_term_certified(
     arcs: &GaussView<'_>,
     e: u32,
     normals: &GaussView<'_>,
     g: u32,
-    (k, theta): (usize, f64),
+    k: usize,
     tied: &Tied<'_>,
-) -> bool {
+) -> Option<f64> {
     let [f0, f1] = arcs.poly.edge(e as usize).faces;
     let (lo, hi) = (f0.min(f1), f0.max(f1));
     let rows = [arcs.normal(lo), arcs.normal(hi), normals.normal(g)];
@@ -1028,7 +1127,7 @@ fn sos_term_certified(
                     if tied.fixed.arc[e as usize][k] {
                         continue;
                     }
-                    return true;
+                    return Some(f64::INFINITY);
                 }
                 let (u, w) = (a[r0], a[r1]);
                 let d = u[c0] * w[c1] - u[c1] * w[c0];
@@ -1036,25 +1135,40 @@ fn sos_term_certified(
                 let (eu, ew) = (err[r0], err[r1]);
                 let bound = 1.01 * (2.0 * (eu * (mw + ew) + mu * ew) + 8.0 * U * mu * mw)
                     + f64::MIN_POSITIVE;
-                let moving = [(r0, c0), (r0, c1), (r1, c0), (r1, c1)]
+                // Rows with an entry that varies: each changes the minor by
+                // at most |u| |v| per radian.
+                let moving = [r0, r1]
                     .iter()
-                    .any(|&(r, c)| varies(r, c));
+                    .filter(|&&r| varies(r, c0) || varies(r, c1))
+                    .count();
                 let scale = norm(r0) * norm(r1);
-                let change = if moving { 2.01 * theta * scale } else { 0.0 };
-                return d.abs() > bound + change + SLACK * scale;
+                let left = d.abs() - bound - SLACK * scale;
+                return (left > 0.0).then(|| {
+                    if moving > 0 {
+                        left / (1.01 * moving as f64 * scale)
+                    } else {
+                        f64::INFINITY
+                    }
+                });
             }
             SosTerm::Entry { row, col, .. } => {
                 let (r, c) = (row as usize, col as usize);
                 if zero(r, c) {
                     continue;
                 }
-                let change = if varies(r, c) { 1.01 * theta * norm(r) } else { 0.0 };
-                return a[r][c].abs() > 1.01 * err[r] + change + SLACK * norm(r);
+                let left = a[r][c].abs() - 1.01 * err[r] - SLACK * norm(r);
+                return (left > 0.0).then(|| {
+                    if varies(r, c) {
+                        left / (1.01 * norm(r))
+                    } else {
+                        f64::INFINITY
+                    }
+                });
             }
-            SosTerm::Constant(_) => return true,
+            SosTerm::Constant(_) => return Some(f64::INFINITY),
         }
     }
-    true
+    Some(f64::INFINITY)
 }
 
 /// Hill climbing in floats on the unit ring arcs (oriented inwards): cross
