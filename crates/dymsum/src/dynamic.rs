@@ -991,10 +991,12 @@ fn coordinate_axis(a: &DMat3, b: &DMat3) -> Option<usize> {
         [a, b].iter().all(|m| {
             let (i, j) = plane(k);
             let e = DVec3::AXES[k];
+            let (c, s) = (m.col(i)[i], m.col(i)[j]);
             m.row(k) == e
                 && m.col(k) == e
-                && m.col(i)[i] == m.col(j)[j]
-                && m.col(j)[i] == -m.col(i)[j]
+                && m.col(j)[j] == c
+                && m.col(j)[i] == -s
+                && c * c + s * s > 0.5
         })
     })
 }
