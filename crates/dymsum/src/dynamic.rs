@@ -437,8 +437,7 @@ impl<'a> DynamicSum<'a> {
             run_start: self.axis_since,
         };
         let scan_p = scan_side(
-            &self.ops.view_p(),
-            &self.ops.view_q(),
+            (&self.ops.view_p(), &self.ops.view_q()),
             &self.arc_q,
             (rot, rot_old),
             Some(&self.ops.np),
@@ -459,8 +458,7 @@ impl<'a> DynamicSum<'a> {
             &step,
         );
         let scan_q = scan_side(
-            &self.ops.view_q(),
-            &self.ops.view_p(),
+            (&self.ops.view_q(), &self.ops.view_p()),
             &self.arc_p,
             (rot.transpose(), rot_old.transpose()),
             None,
@@ -844,8 +842,7 @@ struct SideScan {
 /// docs. `to_cells` maps a unit normal of `faces` into the reference frame
 /// of `cells` at the new and at the old orientation.
 fn scan_side(
-    faces: &GaussView<'_>,
-    cells: &GaussView<'_>,
+    (faces, cells): (&GaussView<'_>, &GaussView<'_>),
     cell_arcs: &[DVec3],
     to_cells: (DMat3, DMat3),
     rotated: Option<&[DVec3]>,
