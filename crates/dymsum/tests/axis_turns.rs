@@ -231,3 +231,30 @@ fn regression_box_pair_turning_about_axes_certifies_its_ties() {
         assert!(rewalked <= 9 * 24, "axis {k}: {rewalked} arcs re-walked");
     }
 }
+
+/// Found by breaking the certification on purpose (skipping the SoS-term
+/// check for Q's normals on P's rotating arcs): two equal cubes, P turned
+/// by a small angle about x, always incremental. Q's side normals sit
+/// exactly on P's equator arcs; their SoS sign is decided by the rotating
+/// minors, which must stay clear of zero over the step.
+#[test]
+fn regression_equal_cubes_small_turn_about_x_certifies_q_ties_by_sos_terms() {
+    let p = boxed(0.25, 0.25, 0.25);
+    let q = boxed(0.25, 0.25, 0.25);
+    for incremental in [true, false] {
+        let cfg = if incremental {
+            INCREMENTAL
+        } else {
+            DynamicConfig::default()
+        };
+        let mut c = Checked::new(
+            DynamicSum::with_config(p, Pose::IDENTITY, q, Pose::IDENTITY, cfg).unwrap(),
+            1,
+            format!("equal cubes about x incremental={incremental}"),
+        );
+        c.rotate_p_by(rot(DVec3::X, -0.00889004508531647));
+        for _ in 0..20 {
+            c.rotate_p_by(rot(DVec3::X, -0.00889004508531647));
+        }
+    }
+}
