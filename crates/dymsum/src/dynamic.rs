@@ -184,9 +184,9 @@ pub struct DynamicSum<'a> {
     stamp_p: Vec<u32>,
     stamp_q: Vec<u32>,
     scratch_toggled: Vec<(u32, u32)>,
-    /// Exact zero structure of both maps (for steps about a coordinate axis).
-    zeros_p: ExactZeros,
-    zeros_q: ExactZeros,
+    /// Exact zero structure of P's and Q's maps, computed at the first step
+    /// about a coordinate axis (see [`stays_in_cell_tied`]).
+    zeros: Option<Box<[ExactZeros; 2]>>,
     /// Per face: the rotation about the coordinate axis `tie_axis` it can
     /// still absorb with its persistent ties certified (see
     /// [`stays_in_cell_tied`]); `NO_AXIS` when not certified that way.
@@ -293,8 +293,7 @@ impl<'a> DynamicSum<'a> {
             stamp_p: vec![0; p.edge_count()],
             stamp_q: vec![0; q.edge_count()],
             scratch_toggled: Vec::new(),
-            zeros_p: ExactZeros::of(p),
-            zeros_q: ExactZeros::of(q),
+            zeros: None,
             tie_margin_p: vec![0.0; p.face_count()],
             tie_margin_q: vec![0.0; q.face_count()],
             tie_axis_p: vec![NO_AXIS; p.face_count()],
@@ -427,6 +426,10 @@ impl<'a> DynamicSum<'a> {
             self.axis_run = axis;
             self.axis_since = self.tick;
         }
+        if axis.is_some() && self.zeros.is_none() {
+            let (p, q) = (self.ops.p, self.ops.q);
+            self.zeros = Some(Box::new([ExactZeros::of(p), ExactZeros::of(q)]));
+        }
         let step = StepBounds {
             theta,
             drift,
@@ -441,11 +444,11 @@ impl<'a> DynamicSum<'a> {
             &self.arc_q,
             (rot, rot_old),
             Some(&self.ops.np),
-            Tied {
-                moving: &self.zeros_p,
-                fixed: &self.zeros_q,
+            self.zeros.as_deref().map(|[zp, zq]| Tied {
+                moving: zp,
+                fixed: zq,
                 moving_is_p: true,
-            },
+            }),
             SideState {
                 assign: &mut self.fv,
                 margin: &mut self.margin_p,
@@ -462,11 +465,11 @@ impl<'a> DynamicSum<'a> {
             &self.arc_p,
             (rot.transpose(), rot_old.transpose()),
             None,
-            Tied {
-                moving: &self.zeros_q,
-                fixed: &self.zeros_p,
+            self.zeros.as_deref().map(|[zp, zq]| Tied {
+                moving: zq,
+                fixed: zp,
                 moving_is_p: false,
-            },
+            }),
             SideState {
                 assign: &mut self.vf,
                 margin: &mut self.margin_q,
@@ -846,7 +849,7 @@ fn scan_side(
     cell_arcs: &[DVec3],
     to_cells: (DMat3, DMat3),
     rotated: Option<&[DVec3]>,
-    tied: Tied<'_>,
+    tied: Option<Tied<'_>>,
     state: SideState<'_>,
     step: &StepBounds,
 ) -> SideScan {
@@ -883,7 +886,7 @@ fn scan_side(
         let mut m1 = margin(cpoly, cell_arcs, v, x_new);
         // Exact ties that persist along a step about a coordinate axis: the
         // normal is certified to stay in its cell without exact predicates.
-        if let Some(k) = step.axis {
+        if let (Some(k), Some(tied)) = (step.axis, &tied) {
             if m1 <= EXACT_BELOW + delta || lower.min(m1) <= step.drift + delta {
                 if let Some(tm) = stays_in_cell_tied(
                     (faces, cells),
@@ -892,7 +895,7 @@ fn scan_side(
                     (to_cells.1 * unit, x_new),
                     step.drift + delta,
                     (k, step.theta),
-                    &tied,
+                    tied,
                 ) {
                     state.margin[f] = m1;
                     state.margin_at[f] = step.after;
