@@ -57,17 +57,34 @@
 //! * *Anything else* is at risk: all arcs at that normal are re-walked from
 //!   scratch, which recomputes every pair an event at that normal can flip.
 //!
+//! * *Persistent ties.* Exact ties have margin 0. When both relative
+//!   rotations of a step turn exactly about a coordinate axis `e_k` (row and
+//!   column `k` of both matrices are `e_k`, as for boxes turning about `z`),
+//!   the step is taken along rotations about `e_k`, on which the
+//!   `k`-components of P's rotated normals are constant. A determinant
+//!   `det[a, b, x]` that is then zero at every rotation (read off the exact
+//!   zero pattern of the normals and of the arcs' cross products, computed
+//!   once) keeps its SoS sign if the first SoS term that is not itself zero
+//!   at every rotation stays away from zero: for P's normal (lowest index)
+//!   that term is a component of Q's fixed `a × b`, constant; for Q's normal
+//!   it is a minor or entry of the rotating rows, certified by its size
+//!   against its rate of change. A normal all of whose arcs are so certified
+//!   (the others by their margins) stays in its cell and has no event; its
+//!   certified margin is reused lazily while the steps stay about `e_k`.
+//!
 //! A pair not on a re-walked arc therefore had events only at normals with a
 //! known event set, and toggling by parity gives its final status. Margins
 //! are computed in floats from accurate arc normals, and every comparison
 //! adds the face's bound on its float normal's direction error plus a slack
-//! of `1e-10`; exact ties have margin 0 and are always at risk. Steps above
+//! of `1e-10`; exact ties have margin 0 and are at risk unless certified as
+//! persistent (above). Steps above
 //! [`DynamicConfig::max_step_angle`], or steps where more than
 //! [`DynamicConfig::fallback_fraction`] of all arcs would be re-walked, are
 //! recomputed from scratch by `walk` instead (cheaper, and trivially correct);
 //! after such a fallback a few steps at least 90% as large go straight to the
-//! recomputation (an exponential backoff), and the update's report is the
-//! diff of the two overlays.
+//! recomputation (an exponential backoff; not after steps about a coordinate
+//! axis, where many arcs at risk means an isolated exact coincidence such as
+//! a quarter turn), and the update's report is the diff of the two overlays.
 //!
 //! # Complexity
 //! O(m + n) to scan the normals near their cells' boundaries (the others are
@@ -91,6 +108,9 @@
 //! assert_eq!(dynamic.facets(), fresh.facets());
 //! ```
 
+use crate::kernel::exact::{self, ExactVec};
+use crate::kernel::predicates::{others, sos_terms, ExactVector, SosTerm};
+use crate::kernel::Sign;
 use crate::polytope::Polytope;
 use crate::sum::{
     relative_rotation, walk_overlay, Facet, GaussView, MinkowskiSum, Operands, Overlay, SumError,
@@ -164,6 +184,25 @@ pub struct DynamicSum<'a> {
     stamp_p: Vec<u32>,
     stamp_q: Vec<u32>,
     scratch_toggled: Vec<(u32, u32)>,
+    /// Exact zero structure of P's and Q's maps, computed at the first step
+    /// about a coordinate axis (see [`stays_in_cell_tied`]).
+    zeros: Option<Box<[ExactZeros; 2]>>,
+    /// Per face: the rotation about the coordinate axis `tie_axis` it can
+    /// still absorb with its persistent ties certified (see
+    /// [`stays_in_cell_tied`]); `NO_AXIS` when not certified that way.
+    tie_margin_p: Vec<f64>,
+    tie_margin_q: Vec<f64>,
+    tie_axis_p: Vec<u8>,
+    tie_axis_q: Vec<u8>,
+    /// The incremental step at which each face's tie margin was computed.
+    tie_tick_p: Vec<u64>,
+    tie_tick_q: Vec<u64>,
+    /// Incremental steps so far.
+    tick: u64,
+    /// The coordinate axis of the current run of incremental steps about
+    /// one axis, and the step that began the run.
+    axis_run: Option<usize>,
+    axis_since: u64,
     /// After fallbacks, how many steps of similar size skip the scan.
     backoff: Backoff,
     step: u32,
@@ -211,6 +250,10 @@ fn margin(poly: &Polytope, arcs: &[DVec3], v: u32, x: DVec3) -> f64 {
 const EXACT_BELOW: f64 = 1e-12;
 /// Slack added to the drift bound to cover float error in margins.
 const SLACK: f64 = 1e-10;
+/// No coordinate axis.
+const NO_AXIS: u8 = u8::MAX;
+/// Unit roundoff.
+const U: f64 = f64::EPSILON / 2.0;
 
 impl<'a> DynamicSum<'a> {
     /// Starts from a static `walk` sum at the given poses.
@@ -250,6 +293,16 @@ impl<'a> DynamicSum<'a> {
             stamp_p: vec![0; p.edge_count()],
             stamp_q: vec![0; q.edge_count()],
             scratch_toggled: Vec::new(),
+            zeros: None,
+            tie_margin_p: vec![0.0; p.face_count()],
+            tie_margin_q: vec![0.0; q.face_count()],
+            tie_axis_p: vec![NO_AXIS; p.face_count()],
+            tie_axis_q: vec![NO_AXIS; q.face_count()],
+            tie_tick_p: vec![0; p.face_count()],
+            tie_tick_q: vec![0; q.face_count()],
+            tick: 0,
+            axis_run: None,
+            axis_since: 0,
             backoff: Backoff::default(),
             step: 0,
             ops,
@@ -268,6 +321,8 @@ impl<'a> DynamicSum<'a> {
         }
         self.fv = overlay.fv;
         self.vf = overlay.vf;
+        self.tie_axis_p.fill(NO_AXIS);
+        self.tie_axis_q.fill(NO_AXIS);
         let rot = self.ops.relative.matrix();
         let inv = rot.transpose();
         for f in 0..self.fv.len() {
@@ -365,36 +420,63 @@ impl<'a> DynamicSum<'a> {
         let (rot, rot_old) = (new.matrix(), old.matrix());
         let before = self.theta_acc;
         self.theta_acc += theta;
+        let axis = coordinate_axis(&rot_old, &rot);
+        self.tick += 1;
+        if axis != self.axis_run {
+            self.axis_run = axis;
+            self.axis_since = self.tick;
+        }
+        if axis.is_some() && self.zeros.is_none() {
+            let (p, q) = (self.ops.p, self.ops.q);
+            self.zeros = Some(Box::new([ExactZeros::of(p), ExactZeros::of(q)]));
+        }
         let step = StepBounds {
             theta,
             drift,
             before,
             after: self.theta_acc,
+            axis,
+            tick: self.tick,
+            run_start: self.axis_since,
         };
         let scan_p = scan_side(
-            &self.ops.view_p(),
-            &self.ops.view_q(),
+            (&self.ops.view_p(), &self.ops.view_q()),
             &self.arc_q,
             (rot, rot_old),
             Some(&self.ops.np),
+            self.zeros.as_deref().map(|[zp, zq]| Tied {
+                moving: zp,
+                fixed: zq,
+                moving_is_p: true,
+            }),
             SideState {
                 assign: &mut self.fv,
                 margin: &mut self.margin_p,
                 margin_at: &mut self.margin_at_p,
+                tie_margin: &mut self.tie_margin_p,
+                tie_axis: &mut self.tie_axis_p,
+                tie_tick: &mut self.tie_tick_p,
                 dir_err: &self.dir_err_p,
             },
             &step,
         );
         let scan_q = scan_side(
-            &self.ops.view_q(),
-            &self.ops.view_p(),
+            (&self.ops.view_q(), &self.ops.view_p()),
             &self.arc_p,
             (rot.transpose(), rot_old.transpose()),
             None,
+            self.zeros.as_deref().map(|[zp, zq]| Tied {
+                moving: zq,
+                fixed: zp,
+                moving_is_p: false,
+            }),
             SideState {
                 assign: &mut self.vf,
                 margin: &mut self.margin_q,
                 margin_at: &mut self.margin_at_q,
+                tie_margin: &mut self.tie_margin_q,
+                tie_axis: &mut self.tie_axis_q,
+                tie_tick: &mut self.tie_tick_q,
                 dir_err: &self.dir_err_q,
             },
             &step,
@@ -445,7 +527,13 @@ impl<'a> DynamicSum<'a> {
         let total_arcs = self.ee_p.len() + self.ee_q.len();
         if (arcs_p.len() + arcs_q.len()) as f64 > self.config.fallback_fraction * total_arcs as f64
         {
-            self.backoff.fell_back(theta);
+            // About a coordinate axis, many arcs at risk means an isolated
+            // exact coincidence (faces becoming parallel at a quarter turn):
+            // the next steps are certified by their persistent ties again, so
+            // no backoff.
+            if axis.is_none() {
+                self.backoff.fell_back(theta);
+            }
             return self.recompute(report);
         }
         self.backoff = Backoff::default();
@@ -711,6 +799,15 @@ struct StepBounds {
     /// Accumulated rotation before and after this step (for lazy margins).
     before: f64,
     after: f64,
+    /// The coordinate axis `k` the step turns about exactly, if any (see
+    /// [`coordinate_axis`]): then exact ties that persist along the whole
+    /// step are certified by [`stays_in_cell_tied`].
+    axis: Option<usize>,
+    /// This step's number, and the one that began the current run of steps
+    /// about `axis`: tie margins computed since then (every step in between
+    /// was about the same axis) are valid for this step.
+    tick: u64,
+    run_start: u64,
 }
 
 /// One side's mutable state: for each moving face, its cell and margin.
@@ -718,6 +815,9 @@ struct SideState<'s> {
     assign: &'s mut [u32],
     margin: &'s mut [f64],
     margin_at: &'s mut [f64],
+    tie_margin: &'s mut [f64],
+    tie_axis: &'s mut [u8],
+    tie_tick: &'s mut [u64],
     dir_err: &'s [f64],
 }
 
@@ -745,11 +845,11 @@ struct SideScan {
 /// docs. `to_cells` maps a unit normal of `faces` into the reference frame
 /// of `cells` at the new and at the old orientation.
 fn scan_side(
-    faces: &GaussView<'_>,
-    cells: &GaussView<'_>,
+    (faces, cells): (&GaussView<'_>, &GaussView<'_>),
     cell_arcs: &[DVec3],
     to_cells: (DMat3, DMat3),
     rotated: Option<&[DVec3]>,
+    tied: Option<Tied<'_>>,
     state: SideState<'_>,
     step: &StepBounds,
 ) -> SideScan {
@@ -763,6 +863,17 @@ fn scan_side(
         if lower - step.theta > step.drift + delta {
             continue;
         }
+        // The same for a normal certified through its persistent ties, as
+        // long as every step since was about the same coordinate axis.
+        if let Some(k) = step.axis {
+            if state.tie_axis[f] == k as u8 && state.tie_tick[f] >= step.run_start {
+                let tie_lower = state.tie_margin[f] - (step.before - state.margin_at[f]);
+                if tie_lower - step.theta > step.drift + delta {
+                    continue;
+                }
+            }
+        }
+        state.tie_axis[f] = NO_AXIS;
         out.checked += 1;
         let unit = faces.poly.unit_normal(f);
         // The moving normals are already rotated into the cells' frame (P's
@@ -773,6 +884,28 @@ fn scan_side(
         };
         let v = state.assign[f];
         let mut m1 = margin(cpoly, cell_arcs, v, x_new);
+        // Exact ties that persist along a step about a coordinate axis: the
+        // normal is certified to stay in its cell without exact predicates.
+        if let (Some(k), Some(tied)) = (step.axis, &tied) {
+            if m1 <= EXACT_BELOW + delta || lower.min(m1) <= step.drift + delta {
+                if let Some(tm) = stays_in_cell_tied(
+                    (faces, cells),
+                    cell_arcs,
+                    (f as u32, v),
+                    (to_cells.1 * unit, x_new),
+                    step.drift + delta,
+                    (k, step.theta),
+                    tied,
+                ) {
+                    state.margin[f] = m1;
+                    state.margin_at[f] = step.after;
+                    state.tie_margin[f] = tm;
+                    state.tie_axis[f] = k as u8;
+                    state.tie_tick[f] = step.tick;
+                    continue;
+                }
+            }
+        }
         if m1 <= EXACT_BELOW + delta {
             let x = faces.normal(f as u32);
             // A margin clearly below zero is certainly outside.
@@ -807,6 +940,237 @@ fn scan_side(
         state.margin_at[f] = step.after;
     }
     out
+}
+
+/// Which components of the exact reference normals and of the exact arc
+/// normals (cross products of the two faces' exact normals) are zero:
+/// computed once, exactly, for the certification of persistent ties.
+#[derive(Clone, Debug)]
+struct ExactZeros {
+    /// Per face.
+    normal: Vec<[bool; 3]>,
+    /// Per edge.
+    arc: Vec<[bool; 3]>,
+}
+
+impl ExactZeros {
+    fn of(poly: &Polytope) -> ExactZeros {
+        let view = GaussView {
+            poly,
+            normals: poly.normals(),
+            arcs: poly.arc_normals(),
+            arc_errs: poly.arc_errors(),
+            base: 0,
+            rotation: None,
+        };
+        let zero = |v: &ExactVec| [0, 1, 2].map(|c| v[c].sign() == Sign::Zero);
+        let exact: Vec<ExactVec> = (0..poly.face_count() as u32)
+            .map(|f| view.normal(f).exact())
+            .collect();
+        ExactZeros {
+            normal: exact.iter().map(zero).collect(),
+            arc: (0..poly.edge_count())
+                .map(|e| {
+                    let [f0, f1] = poly.edge(e).faces;
+                    zero(&exact::cross(&exact[f0 as usize], &exact[f1 as usize]))
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The coordinate axis `k` about which both relative rotations turn
+/// exactly: in both (snapped) matrices row and column `k` are the unit
+/// vector `e_k`, and the other two rows and columns form a matrix
+/// `[[c, −s], [s, c]]` exactly (a positive multiple of a plane rotation).
+/// Then the step can be taken along rotations about `e_k`, on which the
+/// `k`-components of P's rotated normals are constant and the sign of every
+/// SoS term is invariant under the positive scale.
+fn coordinate_axis(a: &DMat3, b: &DMat3) -> Option<usize> {
+    (0..3).find(|&k| {
+        [a, b].iter().all(|m| {
+            let (i, j) = plane(k);
+            let e = DVec3::AXES[k];
+            let (c, s) = (m.col(i)[i], m.col(i)[j]);
+            m.row(k) == e
+                && m.col(k) == e
+                && m.col(j)[j] == c
+                && m.col(j)[i] == -s
+                && c * c + s * s > 0.5
+        })
+    })
+}
+
+/// The two coordinates other than `k`.
+#[inline]
+fn plane(k: usize) -> (usize, usize) {
+    match k {
+        0 => (1, 2),
+        1 => (0, 2),
+        _ => (0, 1),
+    }
+}
+
+/// The exact zero structure of the moving and the fixed map of a scan.
+struct Tied<'t> {
+    moving: &'t ExactZeros,
+    fixed: &'t ExactZeros,
+    /// The moving normals are P's (lower SoS indices than Q's).
+    moving_is_p: bool,
+}
+
+/// Whether the face normal `f` of `faces`, in cell `v` of `cells` at the
+/// start of a step about coordinate axis `k` by angle `θ`, certainly stays
+/// in that cell along the whole step (under the symbolic perturbation), so
+/// that it has no event and its fv-pair is unchanged.
+///
+/// Per arc of the cell, one of:
+/// * both end margins exceed `reach` (the drift argument of the module
+///   docs);
+/// * the determinant `det[a, b, x]` is zero at every rotation about `e_k`
+///   (a *persistent tie*, read off the exact zero structure: for P's normal
+///   `x = R n`, `(a × b) · R n = (a × b)_k n_k + (a × b)_⊥ · R_⊥ n_⊥`, and
+///   symmetrically for an arc of P), and its SoS sign is constant along the
+///   step. When the normal is P's it has the lowest index, so the first SoS
+///   terms are the cofactors of its row, the components of `a × b` of Q's
+///   fixed arc: constant, and not all zero. When it is Q's, the sign is
+///   decided by [`sos_term_certified`].
+///
+/// Returns the rotation about `e_k` the normal can still absorb from the
+/// new pose with all this still certain (the smallest margin of a non-tied
+/// arc, or of a deciding SoS term; a sine of an angle, or an angle), or
+/// `None` in any other case (a tie that may break during the step): then the
+/// caller's exact path takes over.
+fn stays_in_cell_tied(
+    (faces, cells): (&GaussView<'_>, &GaussView<'_>),
+    cell_arcs: &[DVec3],
+    (f, v): (u32, u32),
+    (x_old, x_new): (DVec3, DVec3),
+    reach: f64,
+    (k, theta): (usize, f64),
+    tied: &Tied<'_>,
+) -> Option<f64> {
+    let (i, j) = plane(k);
+    let off = cells.poly.ring_offset(v as usize);
+    let nz = tied.moving.normal[f as usize];
+    let mut least = f64::INFINITY;
+    for (r, entry) in cells.poly.ring(v as usize).iter().enumerate() {
+        let m = cell_arcs[off + r];
+        let now = m.dot(x_new);
+        if m.dot(x_old).min(now) > reach {
+            least = least.min(now);
+            continue;
+        }
+        let cz = tied.fixed.arc[entry.edge as usize];
+        let persistent = (cz[k] || nz[k]) && ((cz[i] && cz[j]) || (nz[i] && nz[j]));
+        if !persistent {
+            return None;
+        }
+        if !tied.moving_is_p {
+            let absorb = sos_term_certified(cells, entry.edge, faces, f, k, tied)?;
+            if absorb <= theta {
+                return None;
+            }
+            least = least.min(absorb);
+        }
+    }
+    Some(least)
+}
+
+/// For an arc `e` of P (the `arcs` view, rotated to the new pose) and a
+/// face normal `g` of Q whose determinant is a persistent tie: whether the
+/// SoS sign is constant along the step. Rows sorted by index are P's two
+/// normals, then Q's. The SoS terms are scanned in order of significance:
+/// a term that vanishes at every rotation about `e_k` (a product of exact
+/// structural zeros, or the rotation-invariant minor `(a × b)_k = 0` of P's
+/// two rows in the plane coordinates) is skipped; the first other term
+/// decides the sign, and stays non-zero over any rotation by less than
+/// (its value less its float error and slack) divided by its rate of change
+/// (at most `|u| |v|` per radian for each rotating row of a 2×2 minor, `|u|`
+/// for an entry).
+/// Returns that rotation (`∞` for a constant term), or `None` when the
+/// deciding term is not certainly non-zero now.
+fn sos_term_certified(
+    arcs: &GaussView<'_>,
+    e: u32,
+    normals: &GaussView<'_>,
+    g: u32,
+    k: usize,
+    tied: &Tied<'_>,
+) -> Option<f64> {
+    let [f0, f1] = arcs.poly.edge(e as usize).faces;
+    let (lo, hi) = (f0.min(f1), f0.max(f1));
+    let rows = [arcs.normal(lo), arcs.normal(hi), normals.normal(g)];
+    let a = rows.each_ref().map(|r| r.approx());
+    let err = rows.each_ref().map(|r| r.error());
+    let (pz, qz) = (&tied.fixed.normal, &tied.moving.normal);
+    let zeros = [pz[lo as usize], pz[hi as usize], qz[g as usize]];
+    let (i, j) = plane(k);
+    // Structurally zero at every rotation about e_k; varying along it.
+    let zero = |r: usize, c: usize| {
+        if r == 2 || c == k {
+            zeros[r][c]
+        } else {
+            zeros[r][i] && zeros[r][j]
+        }
+    };
+    let varies = |r: usize, c: usize| r < 2 && c != k && !(zeros[r][i] && zeros[r][j]);
+    let norm = |r: usize| a[r].length() + err[r];
+    for t in sos_terms() {
+        match *t {
+            SosTerm::Cofactor { row, col } => {
+                let [r0, r1] = others(row as usize);
+                let [c0, c1] = others(col as usize);
+                if (zero(r0, c0) || zero(r1, c1)) && (zero(r0, c1) || zero(r1, c0)) {
+                    continue;
+                }
+                if r1 < 2 && c0 != k && c1 != k {
+                    // P's two rows in the plane: `det(B) (a × b)_k`, constant.
+                    if tied.fixed.arc[e as usize][k] {
+                        continue;
+                    }
+                    return Some(f64::INFINITY);
+                }
+                let (u, w) = (a[r0], a[r1]);
+                let d = u[c0] * w[c1] - u[c1] * w[c0];
+                let (mu, mw) = (u[c0].abs().max(u[c1].abs()), w[c0].abs().max(w[c1].abs()));
+                let (eu, ew) = (err[r0], err[r1]);
+                let bound = 1.01 * (2.0 * (eu * (mw + ew) + mu * ew) + 8.0 * U * mu * mw)
+                    + f64::MIN_POSITIVE;
+                // Rows with an entry that varies: each changes the minor by
+                // at most |u| |v| per radian.
+                let moving = [r0, r1]
+                    .iter()
+                    .filter(|&&r| varies(r, c0) || varies(r, c1))
+                    .count();
+                let scale = norm(r0) * norm(r1);
+                let left = d.abs() - bound - SLACK * scale;
+                return (left > 0.0).then(|| {
+                    if moving > 0 {
+                        left / (1.01 * moving as f64 * scale)
+                    } else {
+                        f64::INFINITY
+                    }
+                });
+            }
+            SosTerm::Entry { row, col, .. } => {
+                let (r, c) = (row as usize, col as usize);
+                if zero(r, c) {
+                    continue;
+                }
+                let left = a[r][c].abs() - 1.01 * err[r] - SLACK * norm(r);
+                return (left > 0.0).then(|| {
+                    if varies(r, c) {
+                        left / (1.01 * norm(r))
+                    } else {
+                        f64::INFINITY
+                    }
+                });
+            }
+            SosTerm::Constant(_) => return Some(f64::INFINITY),
+        }
+    }
+    Some(f64::INFINITY)
 }
 
 /// Hill climbing in floats on the unit ring arcs (oriented inwards): cross

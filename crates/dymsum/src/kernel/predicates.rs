@@ -380,7 +380,7 @@ pub fn det2(p0: f64, p1: f64, q0: f64, q1: f64) -> Sign {
 
 /// One term of the SoS expansion of a 3×3 determinant.
 #[derive(Clone, Copy, Debug)]
-enum SosTerm {
+pub(crate) enum SosTerm {
     /// The cofactor of entry (row, col): the signed 2×2 minor.
     Cofactor { row: u8, col: u8 },
     /// `sign * A[row][col]`.
@@ -402,11 +402,11 @@ fn perm_sign(p: [usize; 3]) -> i8 {
 }
 
 /// Number of SoS terms: 9 cofactors, 18 entries, 6 constants.
-const SOS_TERMS: usize = 9 + 18 + 6;
+pub(crate) const SOS_TERMS: usize = 9 + 18 + 6;
 
 /// The 33 perturbation terms in decreasing order of significance (computed
 /// once, without allocation).
-fn sos_terms() -> &'static [SosTerm; SOS_TERMS] {
+pub(crate) fn sos_terms() -> &'static [SosTerm; SOS_TERMS] {
     static TERMS: OnceLock<[SosTerm; SOS_TERMS]> = OnceLock::new();
     TERMS.get_or_init(|| {
         // Bit of the perturbation exponent of entry (row, col): row-major with
@@ -467,7 +467,7 @@ fn sos_terms() -> &'static [SosTerm; SOS_TERMS] {
 
 /// The rows and columns other than `i`.
 #[inline]
-fn others(i: usize) -> [usize; 2] {
+pub(crate) fn others(i: usize) -> [usize; 2] {
     match i {
         0 => [1, 2],
         1 => [0, 2],
