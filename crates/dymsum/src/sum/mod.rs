@@ -122,7 +122,7 @@ pub enum SumError {
     /// The hull of rounded pairwise sums disagrees with the exact overlay
     /// (only [`Method::Hull`]; happens when rotation rounding makes faces of
     /// P non-planar). Use [`Method::Walk`].
-    #[error("the hull of pairwise sums is inconsistent with the exact overlay: {0}")]
+    #[error("the hull of pairwise sums is inconsistent with the exact overlay: {0} (rounding the rotated vertices bent P's faces; use the walk or brute method)")]
     HullMismatch(String),
 }
 
