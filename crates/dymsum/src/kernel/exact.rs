@@ -448,11 +448,22 @@ pub fn det2(p0: &Dyadic, p1: &Dyadic, q0: &Dyadic, q1: &Dyadic) -> Dyadic {
     }
 }
 
-/// Whether a finite coordinate set is within what the exact predicates
-/// decide: every non-zero magnitude within `2^MAX_COORD_SPAN` of the
-/// largest one. Returns the largest and smallest non-zero binary exponents
-/// `(top, low)` on failure; `Ok(())` also for sets of zeros.
-pub fn coordinate_span_ok(coords: impl Iterator<Item = f64>) -> Result<(), (i32, i32)> {
+/// `x · 2^k`, computed in steps so that the factor itself never overflows:
+/// exact whenever the result is representable without rounding (every
+/// step moves the value monotonically towards the result).
+pub fn mul_pow2(mut x: f64, mut k: i32) -> f64 {
+    while k != 0 && x != 0.0 {
+        let s = k.clamp(-1000, 1000);
+        x *= f64::from_bits(((s + 1023) as u64) << 52);
+        k -= s;
+    }
+    x
+}
+
+/// The largest top exponent and the smallest low exponent (see
+/// [`top_exponent`], [`low_exponent`]) over the non-zero finite values,
+/// `None` when there are none.
+pub fn exponent_range(coords: impl Iterator<Item = f64>) -> Option<(i32, i32)> {
     let mut top = i32::MIN;
     let mut low = i32::MAX;
     for x in coords {
@@ -461,10 +472,27 @@ pub fn coordinate_span_ok(coords: impl Iterator<Item = f64>) -> Result<(), (i32,
             low = low.min(low_exponent(x));
         }
     }
-    if top == i32::MIN || top - low <= MAX_COORD_SPAN {
-        Ok(())
-    } else {
-        Err((top, low))
+    (top != i32::MIN).then_some((top, low))
+}
+
+/// The power-of-two *frame* of a finite coordinate set: the exponent `k`
+/// with the largest magnitude times `2^k` in `[1, 2)`. Scaling every
+/// coordinate by `2^k` is exact when the set passes
+/// [`coordinate_span_ok`] (its lowest bit stays above `2^-1074`), and a set
+/// scaled by `2^j` has frame `k − j`, so frame coordinates do not depend on
+/// the input's scale. `0` for a set of zeros.
+pub fn frame_exponent(coords: impl Iterator<Item = f64>) -> i32 {
+    exponent_range(coords).map_or(0, |(top, _)| -top)
+}
+
+/// Whether a finite coordinate set is within what the exact predicates
+/// decide: every non-zero magnitude within `2^MAX_COORD_SPAN` of the
+/// largest one. Returns the largest and smallest non-zero binary exponents
+/// `(top, low)` on failure; `Ok(())` also for sets of zeros.
+pub fn coordinate_span_ok(coords: impl Iterator<Item = f64>) -> Result<(), (i32, i32)> {
+    match exponent_range(coords) {
+        Some((top, low)) if top - low > MAX_COORD_SPAN => Err((top, low)),
+        _ => Ok(()),
     }
 }
 
