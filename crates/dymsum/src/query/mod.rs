@@ -118,6 +118,12 @@ pub enum QueryError {
          (the minimum over piece pairs is not the union's depth)"
     )]
     UnionDepthUnsupported,
+    /// The bodies at their poses are beyond what `f64` holds: a posed
+    /// coordinate (`R p + t`) or the answer overflows (magnitudes above
+    /// `1.8e308`). Every finite pose whose posed coordinates and answer are
+    /// finite is supported, at any scale.
+    #[error("outside the supported range: {0}")]
+    OutOfRange(String),
 }
 
 /// The features of `A` and `B` generating a facet of `A ⊕ (−B)` (indices
@@ -361,7 +367,7 @@ impl<'a> ConvexPair<'a> {
             Reflected::pose(pose_b),
             Method::Walk,
         )?;
-        Ok(self.evaluate(pose_a, pose_b, sum.overlay()))
+        self.evaluate(pose_a, pose_b, sum.overlay())
     }
 
     /// The penetration depth, or `None` when apart.
@@ -404,7 +410,7 @@ impl<'a> ConvexPair<'a> {
         pose_a: Pose,
         pose_b: Pose,
         overlay: &crate::sum::Overlay,
-    ) -> Proximity {
+    ) -> Result<Proximity, QueryError> {
         depth::evaluate(self, pose_a, pose_b, overlay)
     }
 }
