@@ -18,12 +18,23 @@
 //! The predicates evaluate at most degree 9 in the vertex coordinates of one
 //! polytope (the determinant of three rotated exact normals: each normal is
 //! degree 2 in coordinates, times a rotation entry) and degree 3 in
-//! pairwise sums of two polytopes' coordinates (the hull method). For
-//! polytopes whose coordinates span at most [`MAX_COORD_SPAN`] bits
-//! ([`coordinate_span_ok`], meant to be called by the constructors) every
-//! value stays below [`CAPACITY_BITS`] (the worst case is worked out at
-//! [`CAPACITY_BITS`]). Exceeding the capacity panics with a message rather
-//! than answering wrongly.
+//! pairwise sums of two polytopes' coordinates (the hull method), and degree
+//! 3 (`orient`) or 2 (`orient2`) in differences of arbitrary finite floats
+//! (at most 2100 bits each). Every polytope constructor checks
+//! [`coordinate_span_ok`] (coordinates spanning more than [`MAX_COORD_SPAN`]
+//! bits are refused with the typed `PolytopeError::OutOfRange`), so every
+//! value stays below [`CAPACITY_BITS`] (the worst cases are worked out at
+//! [`CAPACITY_BITS`]) and the capacity assertions cannot fire on any input
+//! a constructor accepted; they remain as a guard against a wrong answer.
+//!
+//! # Scale
+//!
+//! Exponents are normalised by exact power-of-two scaling: [`mul_pow2`],
+//! [`frame_exponent`] (a coordinate set's *frame*: the largest magnitude
+//! scaled into `[1, 2)`). Polytopes derive their float data in their frame,
+//! queries work in the pair's frame, and the float predicates scale their
+//! inputs into Shewchuk's exact range per call (see
+//! `kernel::predicates::orient`), so results do not depend on the scale.
 //!
 //! Complexity: addition `O(n)` and multiplication `O(n²)` in the number of
 //! 64-bit limbs actually used (one or two for typical coordinates).

@@ -228,9 +228,8 @@ impl Polytope {
 /// float heuristics see bit-identical coordinates for the same shape at
 /// any scale `2^k`, so the result does not depend on the scale at all.
 fn framed(points: &[DVec3]) -> Result<Vec<DVec3>, PolytopeError> {
-    let coords = || points.iter().flat_map(|p| p.to_array());
-    exact::coordinate_span_ok(coords()).map_err(|(top, low)| super::out_of_range(top, low))?;
-    let k = exact::frame_exponent(coords());
+    super::check_span(points)?;
+    let k = exact::frame_exponent(points.iter().flat_map(|p| p.to_array()));
     Ok(points
         .iter()
         .map(|p| DVec3::new(exact::mul_pow2(p.x, k), exact::mul_pow2(p.y, k), exact::mul_pow2(p.z, k)))

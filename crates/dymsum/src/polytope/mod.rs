@@ -356,11 +356,7 @@ impl Polytope {
                 return Err(PolytopeError::NonManifoldVertex { vertex: v });
             }
         }
-        if let Err((top, low)) =
-            exact::coordinate_span_ok(vertices.iter().flat_map(|v| v.to_array()))
-        {
-            return Err(out_of_range(top, low));
-        }
+        check_span(&vertices)?;
         let frame = exact::frame_exponent(vertices.iter().flat_map(|v| v.to_array()));
         let framed: Vec<DVec3> = vertices.iter().map(|&v| scale_vec(v, frame)).collect();
         let mut normals = Vec::with_capacity(faces.len());
@@ -604,12 +600,19 @@ fn scale_vec(v: DVec3, k: i32) -> DVec3 {
     )
 }
 
-/// The [`PolytopeError::OutOfRange`] for exponents `(top, low)`.
-pub(crate) fn out_of_range(top: i32, low: i32) -> PolytopeError {
-    PolytopeError::OutOfRange {
-        largest: exact::mul_pow2(1.0, top),
-        smallest: exact::mul_pow2(1.0, low),
+/// [`PolytopeError::OutOfRange`] when the coordinates span more than
+/// [`exact::MAX_COORD_SPAN`] bits, naming their largest and smallest
+/// non-zero magnitudes.
+pub(crate) fn check_span(points: &[DVec3]) -> Result<(), PolytopeError> {
+    let coords = || points.iter().flat_map(|p| p.to_array());
+    if exact::coordinate_span_ok(coords()).is_ok() {
+        return Ok(());
     }
+    let mags = coords().map(f64::abs).filter(|&x| x > 0.0);
+    Err(PolytopeError::OutOfRange {
+        largest: mags.clone().fold(0.0, f64::max),
+        smallest: mags.fold(f64::INFINITY, f64::min),
+    })
 }
 
 /// Error bound of a float normal rotated by a (nearly orthogonal) float
