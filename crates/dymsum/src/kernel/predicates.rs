@@ -133,7 +133,7 @@ const ORIENT3_RANGE: ShewchukRange = ShewchukRange {
 /// `orient2d` (degree 2): `2 · (−537) = −1074`, `2 · 480 = 960`.
 const ORIENT2_RANGE: ShewchukRange = ShewchukRange {
     fast_min: 1.2813331809171846e-144, // 2^-478 (lowest bit ≥ 2^-530)
-    fast_max: 3.121748550315992e144,  // 2^480
+    fast_max: 3.1217485503159922e144, // 2^480
     low: -537,
     top: 479,
 };
@@ -734,6 +734,80 @@ mod tests {
         // invariant under positive scaling of a vector
         let b2 = p(2., 2., 0., 1);
         assert_eq!(sos_det3(&a, &b2, &c), s);
+    }
+
+    #[test]
+    fn range_constants_are_powers_of_two() {
+        assert_eq!(ORIENT3_RANGE.fast_min, 2f64.powi(-300));
+        assert_eq!(ORIENT3_RANGE.fast_max, 2f64.powi(320));
+        assert_eq!(ORIENT2_RANGE.fast_min, 2f64.powi(-478));
+        assert_eq!(ORIENT2_RANGE.fast_max, 2f64.powi(480));
+    }
+
+    /// `orient` and `orient2` against exact dyadic evaluation on points
+    /// with awkward mantissas scaled by powers of two from `2^-1074` to
+    /// `2^990`: one common scale (the fast and the scaled Shewchuk paths)
+    /// and independent scales per point (up to the dyadic fallback).
+    #[test]
+    fn orient_is_exact_at_every_scale() {
+        use super::super::exact::{self, mul_pow2};
+        let mut s = 99u64;
+        let mut next = |m: u64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 33) % m
+        };
+        let mut seen = [0usize; 3];
+        for round in 0..6000 {
+            let common = round % 2 == 0;
+            let ints = round % 4 == 0;
+            let base = next(1960) as i32 - 1000;
+            let mut pt = |i: usize| {
+                let k = if common { base } else { next(1960) as i32 - 1000 };
+                // Small integers (exact ties) or full 53-bit mantissas.
+                let c = |x: u64| {
+                    let v = if ints {
+                        (x % 3) as f64 - 1.0
+                    } else if i % 2 == 0 {
+                        (x % 7) as f64 - 3.0
+                    } else {
+                        x as f64 / 7.0
+                    };
+                    mul_pow2(v, k.max(-1070))
+                };
+                DVec3::new(c(next(1 << 30)), c(next(1 << 30)), c(next(1 << 30)))
+            };
+            let (a, b, c, d) = (pt(0), pt(1), pt(2), pt(3));
+            let e = exact::sub;
+            let want = exact::det3(&e(b, a), &e(c, a), &e(d, a)).sign();
+            assert_eq!(orient(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
+            seen[(want as usize).min(2)] += 1;
+            // 2-D: the projection on (x, y).
+            let d2 = |p: DVec3, q: DVec3| [exact::Dyadic::from_f64(p.x).sub(&exact::Dyadic::from_f64(q.x)), exact::Dyadic::from_f64(p.y).sub(&exact::Dyadic::from_f64(q.y))];
+            let (u, v) = (d2(a, c), d2(b, c));
+            let want2 = exact::det2(&u[0], &u[1], &v[0], &v[1]).sign();
+            assert_eq!(orient2([a.x, a.y], [b.x, b.y], [c.x, c.y]), want2);
+        }
+        // Both signs and exact zeros occurred.
+        assert!(seen.iter().all(|&n| n > 100), "{seen:?}");
+    }
+
+    #[test]
+    fn unit_cube_orientation_at_extreme_scales() {
+        for k in [-1074, -1050, -600, -300, -110, 0, 150, 320, 500, 1000, 1023] {
+            let s = super::super::exact::mul_pow2(1.0, k);
+            let (o, x, y, z) = (DVec3::ZERO, DVec3::X * s, DVec3::Y * s, DVec3::Z * s);
+            assert_eq!(orient(o, x, y, z), Sign::Positive, "2^{k}");
+            assert_eq!(orient(o, x, y, -z), Sign::Negative, "2^{k}");
+            assert_eq!(orient(o, x, y, x + y), Sign::Zero, "2^{k}");
+            assert_eq!(orient2([0.0, 0.0], [s, 0.0], [0.0, s]), Sign::Positive, "2^{k}");
+        }
+        // Mixed scales in one call (the dyadic fallback): 1e300 and 1e-300.
+        let (big, tiny) = (1e300, 1e-300);
+        let (o, x, y) = (DVec3::ZERO, DVec3::X * big, DVec3::Y * big);
+        assert_eq!(orient(o, x, y, DVec3::Z * tiny), Sign::Positive);
+        assert_eq!(orient(o, x, y, DVec3::new(tiny, tiny, 0.0)), Sign::Zero);
     }
 
     #[test]
