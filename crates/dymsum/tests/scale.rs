@@ -49,7 +49,11 @@ fn check_sums(pa: &[DVec3], pb: &[DVec3], pose: Pose, k: i32) -> Result<(), Stri
         if !a.faces().eq(b.faces()) {
             return Err(format!("k={k}: polytope faces differ"));
         }
-        if a.vertices().iter().zip(b.vertices()).any(|(x, y)| *x * s != *y) {
+        if a.vertices()
+            .iter()
+            .zip(b.vertices())
+            .any(|(x, y)| *x * s != *y)
+        {
             return Err(format!("k={k}: polytope vertices not scaled exactly"));
         }
         let (v0, v) = (a.volume(), b.volume());
@@ -58,7 +62,8 @@ fn check_sums(pa: &[DVec3], pb: &[DVec3], pose: Pose, k: i32) -> Result<(), Stri
         }
     }
     for m in Method::ALL {
-        let base = minkowski_sum_posed(&p0, pose, &q0, Pose::IDENTITY, m).map_err(|e| e.to_string())?;
+        let base =
+            minkowski_sum_posed(&p0, pose, &q0, Pose::IDENTITY, m).map_err(|e| e.to_string())?;
         let sum = minkowski_sum_posed(&p, scale_pose(pose, k), &q, Pose::IDENTITY, m)
             .map_err(|e| format!("k={k} {}: {e}", m.name()))?;
         if sum.facets() != base.facets() {
@@ -72,10 +77,19 @@ fn check_sums(pa: &[DVec3], pb: &[DVec3], pose: Pose, k: i32) -> Result<(), Stri
             return Err(format!("k={k} {}: merged faces differ", m.name()));
         }
         let scaled = |v: &[f64; 3]| [v[0] * s, v[1] * s, v[2] * s];
-        if sm.vertices.iter().zip(&bm.vertices).any(|(a, b)| *a != scaled(b)) {
-            return Err(format!("k={k} {}: mesh vertices not scaled exactly", m.name()));
+        if sm
+            .vertices
+            .iter()
+            .zip(&bm.vertices)
+            .any(|(a, b)| *a != scaled(b))
+        {
+            return Err(format!(
+                "k={k} {}: mesh vertices not scaled exactly",
+                m.name()
+            ));
         }
-        sum.sanity_check().map_err(|e| format!("k={k} {}: {e}", m.name()))?;
+        sum.sanity_check()
+            .map_err(|e| format!("k={k} {}: {e}", m.name()))?;
     }
     // A few DYMSUM steps, against the unscaled run and a fresh static sum.
     let step = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.07).unwrap();
@@ -84,7 +98,8 @@ fn check_sums(pa: &[DVec3], pb: &[DVec3], pose: Pose, k: i32) -> Result<(), Stri
         .map_err(|e| format!("k={k} dynamic: {e}"))?;
     for i in 0..4 {
         d0.rotate_p_by(step).map_err(|e| e.to_string())?;
-        d.rotate_p_by(step).map_err(|e| format!("k={k} step {i}: {e}"))?;
+        d.rotate_p_by(step)
+            .map_err(|e| format!("k={k} step {i}: {e}"))?;
         if d.facets() != d0.facets() {
             return Err(format!("k={k} step {i}: dynamic facets differ"));
         }
@@ -99,7 +114,13 @@ fn check_sums(pa: &[DVec3], pb: &[DVec3], pose: Pose, k: i32) -> Result<(), Stri
 
 /// Depth or distance, points and direction at scale `2^k` equal the ones at
 /// scale 1 times `2^k` (direction unchanged).
-fn check_query(pa: &[DVec3], pb: &[DVec3], pose_a: Pose, pose_b: Pose, k: i32) -> Result<(), String> {
+fn check_query(
+    pa: &[DVec3],
+    pb: &[DVec3],
+    pose_a: Pose,
+    pose_b: Pose,
+    k: i32,
+) -> Result<(), String> {
     let (a0, b0) = (
         Polytope::from_dvec3s(pa).unwrap(),
         Polytope::from_dvec3s(pb).unwrap(),
@@ -205,15 +226,24 @@ proptest! {
 #[test]
 fn unit_cube_far_scales_load_and_sum() {
     for s in [1e150, 1e-110, 1e300, 1e-300, 1e-8] {
-        let c = Polytope::from_points(&cube_points(0.0, s)).unwrap_or_else(|e| panic!("{s:e}: {e}"));
-        assert_eq!((c.vertex_count(), c.edge_count(), c.face_count()), (8, 12, 6), "{s:e}");
+        let c =
+            Polytope::from_points(&cube_points(0.0, s)).unwrap_or_else(|e| panic!("{s:e}: {e}"));
+        assert_eq!(
+            (c.vertex_count(), c.edge_count(), c.face_count()),
+            (8, 12, 6),
+            "{s:e}"
+        );
         c.sanity_check().unwrap();
         for m in Method::ALL {
             let sum = minkowski_sum_posed(&c, Pose::IDENTITY, &c, Pose::IDENTITY, m).unwrap();
             assert_eq!(sum.counts(), (6, 6, 12), "{s:e} {}", m.name());
             let mesh = sum.try_to_mesh().unwrap();
             assert_eq!((mesh.vertices.len(), mesh.faces.len()), (8, 6), "{s:e}");
-            let top = mesh.vertices.iter().flatten().fold(0.0f64, |a, &x| a.max(x));
+            let top = mesh
+                .vertices
+                .iter()
+                .flatten()
+                .fold(0.0f64, |a, &x| a.max(x));
             assert_eq!(top, 2.0 * s);
         }
     }
@@ -225,7 +255,14 @@ fn cube_mesh(size: f64, at: f64) -> PolygonMesh {
         .iter()
         .map(|p| [p[0] + at, p[1] + at, p[2] + at])
         .collect();
-    let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
     PolygonMesh::new(v, quads.iter().map(|q| q.to_vec()).collect())
 }
 
@@ -251,11 +288,22 @@ fn small_boxes_far_from_the_origin_load_and_sum() {
 /// a typed error naming the supported range, from points and from a mesh.
 #[test]
 fn mixed_range_shape_is_refused_with_the_range() {
-    let pts = [[1e300, 0.0, 0.0], [0.0, 1e300, 0.0], [0.0, 0.0, 1e-300], [0.0, 0.0, 0.0]];
+    let pts = [
+        [1e300, 0.0, 0.0],
+        [0.0, 1e300, 0.0],
+        [0.0, 0.0, 1e-300],
+        [0.0, 0.0, 0.0],
+    ];
     let e = Polytope::from_points(&pts).unwrap_err();
-    assert!(matches!(e, PolytopeError::OutOfRange { largest, smallest } if largest == 1e300 && smallest == 1e-300), "{e:?}");
+    assert!(
+        matches!(e, PolytopeError::OutOfRange { largest, smallest } if largest == 1e300 && smallest == 1e-300),
+        "{e:?}"
+    );
     let msg = e.to_string();
-    assert!(msg.contains("supported range") && msg.contains("960 bits"), "{msg}");
+    assert!(
+        msg.contains("supported range") && msg.contains("960 bits"),
+        "{msg}"
+    );
     assert!(msg.len() < 400, "{msg}");
     let mesh = PolygonMesh::new(
         pts.to_vec(),
@@ -264,7 +312,12 @@ fn mixed_range_shape_is_refused_with_the_range() {
     let e = Polytope::from_mesh(&mesh, MeshPolicy::default()).unwrap_err();
     assert!(matches!(e, PolytopeError::OutOfRange { .. }), "{e:?}");
     // Just inside the range: 2^900 and 2^-50 (span 950 bits) is accepted.
-    let ok = [[pow2(900), 0.0, 0.0], [0.0, pow2(900), 0.0], [0.0, 0.0, pow2(-50)], [0.0, 0.0, 0.0]];
+    let ok = [
+        [pow2(900), 0.0, 0.0],
+        [0.0, pow2(900), 0.0],
+        [0.0, 0.0, pow2(-50)],
+        [0.0, 0.0, 0.0],
+    ];
     let t = Polytope::from_points(&ok).unwrap();
     assert_eq!(t.face_count(), 4);
     t.sanity_check().unwrap();
@@ -275,25 +328,39 @@ fn mixed_range_shape_is_refused_with_the_range() {
 #[test]
 fn pair_spanning_1e200_to_1e_minus_200_agrees_across_methods() {
     let big = Polytope::from_dvec3s(&scale_pts(&dv(&box_points(1.0, 2.0, 0.5)), 660)).unwrap();
-    let small = Polytope::from_dvec3s(&scale_pts(&points(Kind::Ball, 12, &mut rng(5)), -660)).unwrap();
+    let small =
+        Polytope::from_dvec3s(&scale_pts(&points(Kind::Ball, 12, &mut rng(5)), -660)).unwrap();
     let rot = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.4).unwrap();
     for (p, q) in [(&big, &small), (&small, &big)] {
         let sums: Vec<_> = Method::ALL
             .iter()
-            .map(|&m| minkowski_sum_posed(p, Pose::new(rot, DVec3::ZERO), q, Pose::IDENTITY, m).unwrap().facets())
+            .map(|&m| {
+                minkowski_sum_posed(p, Pose::new(rot, DVec3::ZERO), q, Pose::IDENTITY, m)
+                    .unwrap()
+                    .facets()
+            })
             .collect();
         assert_eq!(sums[0], sums[1]);
         assert_eq!(sums[0], sums[2]);
         // The tiny shape is below the rounding of the big one's
         // coordinates: the validated mesh is the hull of the rounded
         // vertices (the big box), or a typed precision error.
-        let sum = minkowski_sum_posed(p, Pose::new(rot, DVec3::ZERO), q, Pose::IDENTITY, Method::Walk).unwrap();
+        let sum = minkowski_sum_posed(
+            p,
+            Pose::new(rot, DVec3::ZERO),
+            q,
+            Pose::IDENTITY,
+            Method::Walk,
+        )
+        .unwrap();
         match sum.mesh_with_precision() {
             Ok(m) => assert_eq!(m.mesh.vertices.len(), 8),
             Err(e) => assert!(!e.is_internal(), "{e}"),
         }
         let pair = ConvexPair::new(p, q).unwrap();
-        let got = pair.query(Pose::new(rot, DVec3::ZERO), Pose::IDENTITY).unwrap();
+        let got = pair
+            .query(Pose::new(rot, DVec3::ZERO), Pose::IDENTITY)
+            .unwrap();
         assert!(got.depth().is_finite() && got.distance().is_finite());
     }
 }
@@ -305,7 +372,10 @@ fn overflowing_poses_and_sums_are_typed_errors() {
     let far = Pose::new(Rotation::IDENTITY, DVec3::new(1e308, 0.0, 0.0));
     for m in Method::ALL {
         let e = minkowski_sum_posed(&c, far, &c, Pose::IDENTITY, m).unwrap_err();
-        assert!(matches!(e, SumError::OutOfRange { operand: "P", .. }), "{e:?}");
+        assert!(
+            matches!(e, SumError::OutOfRange { operand: "P", .. }),
+            "{e:?}"
+        );
         assert!(e.to_string().contains("supported range"));
         // P ⊕ P itself overflows: the facets are right, the mesh is refused.
         let sum = minkowski_sum_posed(&c, Pose::IDENTITY, &c, Pose::IDENTITY, m).unwrap();
@@ -315,7 +385,10 @@ fn overflowing_poses_and_sums_are_typed_errors() {
     let pair = ConvexPair::new(&c, &c).unwrap();
     let e = pair.query(far, Pose::IDENTITY).unwrap_err();
     assert!(
-        matches!(e, QueryError::OutOfRange(_) | QueryError::Sum(SumError::OutOfRange { .. })),
+        matches!(
+            e,
+            QueryError::OutOfRange(_) | QueryError::Sum(SumError::OutOfRange { .. })
+        ),
         "{e:?}"
     );
     assert!(e.to_string().contains("supported range"), "{e}");
@@ -334,7 +407,10 @@ fn overflowing_poses_and_sums_are_typed_errors() {
 fn regression_boxes_at_2_pow_340() {
     let pa = dv(&box_points(1.0, 2.0, 0.5));
     let pb = dv(&box_points(0.25, 1.0, 3.0));
-    let pose = Pose::new(Rotation::from_axis_angle(DVec3::Z, 0.3).unwrap(), DVec3::new(0.3, -0.2, 0.1));
+    let pose = Pose::new(
+        Rotation::from_axis_angle(DVec3::Z, 0.3).unwrap(),
+        DVec3::new(0.3, -0.2, 0.1),
+    );
     check_sums(&pa, &pb, pose, 340).unwrap();
     check_sums(&pa, &pb, pose, -340).unwrap();
 }
@@ -362,24 +438,71 @@ fn regression_box_queries_at_2_pow_255_and_minus_270() {
 #[test]
 fn regression_grid_hull_at_2_pow_minus_270() {
     let pa = dv(&[
-        [-0.8528263236817217, -0.03889225381640493, 0.24867243314901044],
-        [-0.32847636392942325, 0.5301972252575622, -0.6458215238956053],
+        [
+            -0.8528263236817217,
+            -0.03889225381640493,
+            0.24867243314901044,
+        ],
+        [
+            -0.32847636392942325,
+            0.5301972252575622,
+            -0.6458215238956053,
+        ],
         [-0.81095122994742, 0.4605076889091855, -0.1589809964726956],
-        [-0.04179373725961533, -0.9695465555357314, 0.01753554883876607],
-        [0.28052023095277123, -0.5571045389859965, 0.31594302588169754],
+        [
+            -0.04179373725961533,
+            -0.9695465555357314,
+            0.01753554883876607,
+        ],
+        [
+            0.28052023095277123,
+            -0.5571045389859965,
+            0.31594302588169754,
+        ],
         [0.37691750972398275, -0.4928800808012159, 0.5450480301847414],
         [-0.4421938344741396, 0.6611673476064825, -0.3459167885638994],
-        [-0.6294266953114986, -0.6366805093336683, 0.02486843489137014],
-        [-0.48773752799413206, -0.4379224478712631, -0.06523543105853724],
-        [-0.5229212749719578, 0.26290740097766063, 0.25337814651002066],
-        [-0.2745348589755898, -0.8244200291657182, 0.40543821333365093],
-        [0.11845808179306028, -0.6012507578275548, -0.04263136971912784],
+        [
+            -0.6294266953114986,
+            -0.6366805093336683,
+            0.02486843489137014,
+        ],
+        [
+            -0.48773752799413206,
+            -0.4379224478712631,
+            -0.06523543105853724,
+        ],
+        [
+            -0.5229212749719578,
+            0.26290740097766063,
+            0.25337814651002066,
+        ],
+        [
+            -0.2745348589755898,
+            -0.8244200291657182,
+            0.40543821333365093,
+        ],
+        [
+            0.11845808179306028,
+            -0.6012507578275548,
+            -0.04263136971912784,
+        ],
     ]);
     let pb = dv(&[
-        [2.0, 2.0, -2.0], [0.0, -1.0, -2.0], [-2.0, 0.0, 0.0], [1.0, -2.0, -2.0],
-        [0.0, 2.0, 0.0], [-1.0, -1.0, 2.0], [2.0, 2.0, 2.0], [-2.0, -2.0, -1.0],
-        [-2.0, 2.0, 1.0], [0.0, 2.0, 0.0], [-2.0, 2.0, -2.0], [1.0, 2.0, 2.0],
-        [2.0, 0.0, 1.0], [1.0, 0.0, 2.0], [1.0, 2.0, 2.0],
+        [2.0, 2.0, -2.0],
+        [0.0, -1.0, -2.0],
+        [-2.0, 0.0, 0.0],
+        [1.0, -2.0, -2.0],
+        [0.0, 2.0, 0.0],
+        [-1.0, -1.0, 2.0],
+        [2.0, 2.0, 2.0],
+        [-2.0, -2.0, -1.0],
+        [-2.0, 2.0, 1.0],
+        [0.0, 2.0, 0.0],
+        [-2.0, 2.0, -2.0],
+        [1.0, 2.0, 2.0],
+        [2.0, 0.0, 1.0],
+        [1.0, 0.0, 2.0],
+        [1.0, 2.0, 2.0],
     ]);
     let rot = Rotation::from_wxyz(
         0.5818999106201119,

@@ -125,7 +125,7 @@ struct ShewchukRange {
 /// `orient3d` (degree 3): `3 · (−358) ≥ −1074`, `3 · 320 = 960`.
 const ORIENT3_RANGE: ShewchukRange = ShewchukRange {
     fast_min: 4.909093465297727e-91, // 2^-300 (lowest bit ≥ 2^-352)
-    fast_max: 2.13598703592091e96,  // 2^320
+    fast_max: 2.13598703592091e96,   // 2^320
     low: -358,
     top: 319,
 };
@@ -133,7 +133,7 @@ const ORIENT3_RANGE: ShewchukRange = ShewchukRange {
 /// `orient2d` (degree 2): `2 · (−537) = −1074`, `2 · 480 = 960`.
 const ORIENT2_RANGE: ShewchukRange = ShewchukRange {
     fast_min: 1.2813331809171846e-144, // 2^-478 (lowest bit ≥ 2^-530)
-    fast_max: 3.1217485503159922e144, // 2^480
+    fast_max: 3.1217485503159922e144,  // 2^480
     low: -537,
     top: 479,
 };
@@ -764,12 +764,16 @@ mod tests {
             let ints = round % 4 == 0;
             let base = next(1960) as i32 - 1000;
             let mut pt = |i: usize| {
-                let k = if common { base } else { next(1960) as i32 - 1000 };
+                let k = if common {
+                    base
+                } else {
+                    next(1960) as i32 - 1000
+                };
                 // Small integers (exact ties) or full 53-bit mantissas.
                 let c = |x: u64| {
                     let v = if ints {
                         (x % 3) as f64 - 1.0
-                    } else if i % 2 == 0 {
+                    } else if i.is_multiple_of(2) {
                         (x % 7) as f64 - 3.0
                     } else {
                         x as f64 / 7.0
@@ -784,7 +788,12 @@ mod tests {
             assert_eq!(orient(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
             seen[(want as usize).min(2)] += 1;
             // 2-D: the projection on (x, y).
-            let d2 = |p: DVec3, q: DVec3| [exact::Dyadic::from_f64(p.x).sub(&exact::Dyadic::from_f64(q.x)), exact::Dyadic::from_f64(p.y).sub(&exact::Dyadic::from_f64(q.y))];
+            let d2 = |p: DVec3, q: DVec3| {
+                [
+                    exact::Dyadic::from_f64(p.x).sub(&exact::Dyadic::from_f64(q.x)),
+                    exact::Dyadic::from_f64(p.y).sub(&exact::Dyadic::from_f64(q.y)),
+                ]
+            };
             let (u, v) = (d2(a, c), d2(b, c));
             let want2 = exact::det2(&u[0], &u[1], &v[0], &v[1]).sign();
             assert_eq!(orient2([a.x, a.y], [b.x, b.y], [c.x, c.y]), want2);
@@ -801,7 +810,11 @@ mod tests {
             assert_eq!(orient(o, x, y, z), Sign::Positive, "2^{k}");
             assert_eq!(orient(o, x, y, -z), Sign::Negative, "2^{k}");
             assert_eq!(orient(o, x, y, x + y), Sign::Zero, "2^{k}");
-            assert_eq!(orient2([0.0, 0.0], [s, 0.0], [0.0, s]), Sign::Positive, "2^{k}");
+            assert_eq!(
+                orient2([0.0, 0.0], [s, 0.0], [0.0, s]),
+                Sign::Positive,
+                "2^{k}"
+            );
         }
         // Mixed scales in one call (the dyadic fallback): 1e300 and 1e-300.
         let (big, tiny) = (1e300, 1e-300);

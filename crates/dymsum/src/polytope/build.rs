@@ -232,7 +232,13 @@ fn framed(points: &[DVec3]) -> Result<Vec<DVec3>, PolytopeError> {
     let k = exact::frame_exponent(points.iter().flat_map(|p| p.to_array()));
     Ok(points
         .iter()
-        .map(|p| DVec3::new(exact::mul_pow2(p.x, k), exact::mul_pow2(p.y, k), exact::mul_pow2(p.z, k)))
+        .map(|p| {
+            DVec3::new(
+                exact::mul_pow2(p.x, k),
+                exact::mul_pow2(p.y, k),
+                exact::mul_pow2(p.z, k),
+            )
+        })
         .collect())
 }
 
