@@ -377,6 +377,37 @@ impl Dyadic {
         r
     }
 
+    /// The binary exponent `k` with `2^k ≤ |self| < 2^(k+1)`, `None` for
+    /// zero.
+    pub fn top_exponent(&self) -> Option<i32> {
+        let len = self.len as usize;
+        if len == 0 {
+            return None;
+        }
+        let bits = 64 * (len - 1) + (64 - self.m[len - 1].leading_zeros() as usize);
+        Some(self.e + bits as i32 - 1)
+    }
+
+    /// `self · 2^k` as a float, with a relative error below `3u` when the
+    /// result is a normal float (the top three limbs, rounded and summed).
+    pub fn to_f64_shifted(&self, k: i32) -> f64 {
+        let len = self.len as usize;
+        if len == 0 {
+            return 0.0;
+        }
+        let mut v = 0.0;
+        let lo = len.saturating_sub(3);
+        for i in (lo..len).rev() {
+            v += mul_pow2(self.m[i] as f64, 64 * (i as i32 - (len as i32 - 1)));
+        }
+        let v = mul_pow2(v, self.e + 64 * (len as i32 - 1) + k);
+        if self.neg {
+            -v
+        } else {
+            v
+        }
+    }
+
     /// The value as the nearest-ish float (for tests and diagnostics; not
     /// correctly rounded, may overflow to infinity).
     pub fn to_f64_approx(&self) -> f64 {
@@ -683,6 +714,26 @@ mod tests {
                 + m(2) * (m(3) * m(7) - m(4) * m(6));
             assert_eq!(d.to_f64_approx(), want as f64);
         }
+    }
+
+    #[test]
+    fn shifted_conversion() {
+        for x in [1.0, -3.5, 0.1, 1e300, 5e-324, -2.5e-310, 123456789.123] {
+            let d = Dyadic::from_f64(x);
+            let t = d.top_exponent().unwrap();
+            assert_eq!(t, top_exponent(x));
+            let y = d.to_f64_shifted(-t);
+            assert!((1.0..2.0).contains(&y.abs()), "{x}: {y}");
+            assert_eq!(mul_pow2(y, t), x);
+        }
+        // A long value: (2^200 − 1) · 2^-1100, shifted into [1, 2).
+        let a = Dyadic::from_f64(2f64.powi(200))
+            .sub(&Dyadic::from_f64(1.0))
+            .mul(&Dyadic::from_f64(2f64.powi(-1000)))
+            .mul(&Dyadic::from_f64(2f64.powi(-100)));
+        assert_eq!(a.top_exponent(), Some(-901));
+        assert_eq!(a.to_f64_shifted(901), 2.0); // 2 − 2^-199, rounded
+        assert_eq!(Dyadic::zero().top_exponent(), None);
     }
 
     #[test]

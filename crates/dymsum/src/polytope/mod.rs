@@ -654,10 +654,11 @@ fn face_normal(vertices: &[DVec3], face: &[u32]) -> Option<(DVec3, [u32; 3], f64
     // underflow add an absolute error of at most 2^-1074 each.
     let mut err = (16.0 * f64::EPSILON / 2.0 * lens + 8.0 * TINY) * 1.01;
     let m = n.abs().max_element();
-    // In the frame (coordinates below 2) a normal below 2^-1000 belongs to
-    // a face about 2^-500 of the shape's size: beyond the supported range.
-    if !(m.is_finite() && m >= 9.332636185032189e-302) {
-        return None;
+    // A sliver face (float cancellation leaves the float normal mostly
+    // rounding error, or exactly zero) or a normal below 2^-1000 in the
+    // frame: round the exact normal instead.
+    if !(m > 64.0 * err && m >= 9.332636185032189e-302) {
+        return exact_rounded_normal(ta, tb, tc).map(|(n, err, s)| (n, triple, err, s));
     }
     let e = exact::top_exponent(m) + 1;
     let s = exact::mul_pow2(1.0, -e);
@@ -667,6 +668,26 @@ fn face_normal(vertices: &[DVec3], face: &[u32]) -> Option<(DVec3, [u32; 3], f64
         err = 0.0;
     }
     Some((n * s, triple, err, s))
+}
+
+/// The exact normal `(B − A) × (C − A)` scaled by `s = 2^-e` so that its
+/// largest component lies in `[0.5, 1)`, rounded componentwise (error below
+/// `3u` of the largest component), with an error bound and `s`. `None`
+/// when the exact normal is zero or below `2^-1000` (a face about `2^-500`
+/// of the shape's size: beyond the supported range).
+fn exact_rounded_normal(a: DVec3, b: DVec3, c: DVec3) -> Option<(DVec3, f64, f64)> {
+    let n = exact::cross(&exact::sub(b, a), &exact::sub(c, a));
+    let top = n.iter().filter_map(|d| d.top_exponent()).max()?;
+    if top < -1000 {
+        return None;
+    }
+    let e = top + 1;
+    let v = DVec3::new(
+        n[0].to_f64_shifted(-e),
+        n[1].to_f64_shifted(-e),
+        n[2].to_f64_shifted(-e),
+    );
+    Some((v, 4.0 * f64::EPSILON + TINY, exact::mul_pow2(1.0, -e)))
 }
 
 pub(crate) fn bounds(pts: &[DVec3]) -> (DVec3, DVec3) {
