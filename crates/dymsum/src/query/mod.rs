@@ -106,7 +106,7 @@ pub enum QueryError {
     /// An internal invariant failed (a bug: please report the input).
     #[error("internal inconsistency: {0}")]
     Inconsistent(String),
-    /// The mesh of a slice could not be produced (see [`MeshError`]).
+    /// The mesh of a slice could not be produced (see [`crate::sum::MeshError`]).
     #[error(transparent)]
     Mesh(#[from] crate::sum::MeshError),
     /// The exact penetration depth of a non-convex union is not supported:

@@ -7,7 +7,7 @@
 //!   identity, summed by DYMSUM ([`DynamicSum::new`]). With
 //!   `--highlight-after H`, P is then turned further by `H`
 //!   ([`DynamicSum::rotate_p_by`]) and the picture shows the sum **after**
-//!   the turn. The merged faces of the sum ([`DynamicSum::to_mesh`]) are
+//!   the turn. The merged faces of the sum ([`DynamicSum::try_to_mesh`]) are
 //!   drawn in an orthographic projection from the direction `--view
 //!   AZIMUTH,ELEVATION` (degrees; default `30,20`), Lambert-shaded by a light
 //!   fixed relative to the viewer, each front face outlined (its visible
