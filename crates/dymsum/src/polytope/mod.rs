@@ -22,6 +22,20 @@
 //! polygon (its *cell*) spanned by the normals of its faces, listed
 //! counter-clockwise by [`Polytope::ring`]. Construction checks exactly that
 //! every cell is strictly convex ([`PolytopeError::DegenerateGaussMap`]).
+//!
+//! # Scale
+//! Every constructor checks that the coordinates span at most
+//! [`crate::kernel::exact::MAX_COORD_SPAN`] = 960 bits (else
+//! [`PolytopeError::OutOfRange`]: one shape mixing `1e300` and `1e-300`),
+//! and works in the shape's power-of-two *frame* (coordinates times `2^k`,
+//! the largest in `[1, 2)`; exact): the hull is built on frame coordinates
+//! and all float data (normals, arcs, error bounds) is derived from them.
+//! So the same shape scaled by any `2^j` has identical faces, identical
+//! normals and identical Gaussian-map decisions, at any overall scale from
+//! about `1e-300` to `1e300`. A face whose float normal is lost to
+//! cancellation (a sliver) gets its exact normal rounded instead; a face
+//! below about `2^-500` of the shape's size is
+//! [`PolytopeError::FaceOutOfRange`].
 
 pub mod build;
 mod convexity;

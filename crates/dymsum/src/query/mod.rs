@@ -62,6 +62,15 @@
 //! representable contacts (axis-aligned faces, dyadic coordinates, identity
 //! or quarter-turn rotations) are exact: touching boxes report depth `0`.
 //!
+//! # Scale
+//! Answers are computed in the pair's power-of-two frame (posed coordinates
+//! times `2^k`, the largest in `[1, 2)`) and scaled back, so scaling both
+//! bodies and their translations by `2^j` scales depth, distance and
+//! witness points by exactly `2^j` (directions unchanged), with no overflow
+//! or underflow of intermediate squared lengths at any scale. A posed
+//! coordinate or an answer beyond `f64` is [`QueryError::OutOfRange`] (or
+//! [`SumError::OutOfRange`] from the sum); never NaN.
+//!
 //! ```
 //! use dymsum::{Polytope, Pose, Rotation, DVec3};
 //! use dymsum::query::{penetration_depth, distance};
