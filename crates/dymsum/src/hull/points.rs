@@ -32,9 +32,9 @@ use glam::DVec3;
 
 /// Plain float points; the hull predicates are exact on the coordinates.
 ///
-/// Coordinates must be finite. (Shewchuk's predicates are exact unless
-/// intermediate products overflow or underflow, i.e. for coordinates of
-/// magnitude roughly within `1e-90 ..= 1e90`, or zero.)
+/// Coordinates must be finite; the predicates are then exact at any scale
+/// ([`orient`] normalises exponents by a power of two, or falls back to
+/// exact dyadic arithmetic).
 #[derive(Clone, Copy, Debug)]
 pub struct FloatPoints<'a>(pub &'a [DVec3]);
 
@@ -58,17 +58,9 @@ impl HullPoints for FloatPoints<'_> {
 /// 2-D orientations of the projections on the coordinate planes, each
 /// evaluated exactly.
 pub(crate) fn collinear_floats(a: DVec3, b: DVec3, c: DVec3) -> bool {
-    use robust::{orient2d, Coord};
-    let o = |a: (f64, f64), b: (f64, f64), c: (f64, f64)| {
-        orient2d(
-            Coord { x: a.0, y: a.1 },
-            Coord { x: b.0, y: b.1 },
-            Coord { x: c.0, y: c.1 },
-        )
-    };
-    o((a.x, a.y), (b.x, b.y), (c.x, c.y)) == 0.0
-        && o((a.y, a.z), (b.y, b.z), (c.y, c.z)) == 0.0
-        && o((a.z, a.x), (b.z, b.x), (c.z, c.x)) == 0.0
+    use crate::kernel::predicates::orient2;
+    let o = |i: usize, j: usize| orient2([a[i], a[j]], [b[i], b[j]], [c[i], c[j]]);
+    o(0, 1) == Sign::Zero && o(1, 2) == Sign::Zero && o(2, 0) == Sign::Zero
 }
 
 /// The m×n pairwise sums `p[i] + q[j]` of two float point sets (the candidate

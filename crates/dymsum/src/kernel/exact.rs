@@ -18,12 +18,23 @@
 //! The predicates evaluate at most degree 9 in the vertex coordinates of one
 //! polytope (the determinant of three rotated exact normals: each normal is
 //! degree 2 in coordinates, times a rotation entry) and degree 3 in
-//! pairwise sums of two polytopes' coordinates (the hull method). For
-//! polytopes whose coordinates span at most [`MAX_COORD_SPAN`] bits
-//! ([`coordinate_span_ok`], meant to be called by the constructors) every
-//! value stays below [`CAPACITY_BITS`] (the worst case is worked out at
-//! [`CAPACITY_BITS`]). Exceeding the capacity panics with a message rather
-//! than answering wrongly.
+//! pairwise sums of two polytopes' coordinates (the hull method), and degree
+//! 3 (`orient`) or 2 (`orient2`) in differences of arbitrary finite floats
+//! (at most 2100 bits each). Every polytope constructor checks
+//! [`coordinate_span_ok`] (coordinates spanning more than [`MAX_COORD_SPAN`]
+//! bits are refused with the typed `PolytopeError::OutOfRange`), so every
+//! value stays below [`CAPACITY_BITS`] (the worst cases are worked out at
+//! [`CAPACITY_BITS`]) and the capacity assertions cannot fire on any input
+//! a constructor accepted; they remain as a guard against a wrong answer.
+//!
+//! # Scale
+//!
+//! Exponents are normalised by exact power-of-two scaling: [`mul_pow2`],
+//! [`frame_exponent`] (a coordinate set's *frame*: the largest magnitude
+//! scaled into `[1, 2)`). Polytopes derive their float data in their frame,
+//! queries work in the pair's frame, and the float predicates scale their
+//! inputs into Shewchuk's exact range per call (see
+//! `kernel::predicates::orient`), so results do not depend on the scale.
 //!
 //! Complexity: addition `O(n)` and multiplication `O(n²)` in the number of
 //! 64-bit limbs actually used (one or two for typical coordinates).
@@ -366,6 +377,37 @@ impl Dyadic {
         r
     }
 
+    /// The binary exponent `k` with `2^k ≤ |self| < 2^(k+1)`, `None` for
+    /// zero.
+    pub fn top_exponent(&self) -> Option<i32> {
+        let len = self.len as usize;
+        if len == 0 {
+            return None;
+        }
+        let bits = 64 * (len - 1) + (64 - self.m[len - 1].leading_zeros() as usize);
+        Some(self.e + bits as i32 - 1)
+    }
+
+    /// `self · 2^k` as a float, with a relative error below `3u` when the
+    /// result is a normal float (the top three limbs, rounded and summed).
+    pub fn to_f64_shifted(&self, k: i32) -> f64 {
+        let len = self.len as usize;
+        if len == 0 {
+            return 0.0;
+        }
+        let mut v = 0.0;
+        let lo = len.saturating_sub(3);
+        for i in (lo..len).rev() {
+            v += mul_pow2(self.m[i] as f64, 64 * (i as i32 - (len as i32 - 1)));
+        }
+        let v = mul_pow2(v, self.e + 64 * (len as i32 - 1) + k);
+        if self.neg {
+            -v
+        } else {
+            v
+        }
+    }
+
     /// The value as the nearest-ish float (for tests and diagnostics; not
     /// correctly rounded, may overflow to infinity).
     pub fn to_f64_approx(&self) -> f64 {
@@ -448,11 +490,22 @@ pub fn det2(p0: &Dyadic, p1: &Dyadic, q0: &Dyadic, q1: &Dyadic) -> Dyadic {
     }
 }
 
-/// Whether a finite coordinate set is within what the exact predicates
-/// decide: every non-zero magnitude within `2^MAX_COORD_SPAN` of the
-/// largest one. Returns the largest and smallest non-zero binary exponents
-/// `(top, low)` on failure; `Ok(())` also for sets of zeros.
-pub fn coordinate_span_ok(coords: impl Iterator<Item = f64>) -> Result<(), (i32, i32)> {
+/// `x · 2^k`, computed in steps so that the factor itself never overflows:
+/// exact whenever the result is representable without rounding (every
+/// step moves the value monotonically towards the result).
+pub fn mul_pow2(mut x: f64, mut k: i32) -> f64 {
+    while k != 0 && x != 0.0 {
+        let s = k.clamp(-1000, 1000);
+        x *= f64::from_bits(((s + 1023) as u64) << 52);
+        k -= s;
+    }
+    x
+}
+
+/// The largest top exponent and the smallest low exponent (see
+/// [`top_exponent`], [`low_exponent`]) over the non-zero finite values,
+/// `None` when there are none.
+pub fn exponent_range(coords: impl Iterator<Item = f64>) -> Option<(i32, i32)> {
     let mut top = i32::MIN;
     let mut low = i32::MAX;
     for x in coords {
@@ -461,10 +514,27 @@ pub fn coordinate_span_ok(coords: impl Iterator<Item = f64>) -> Result<(), (i32,
             low = low.min(low_exponent(x));
         }
     }
-    if top == i32::MIN || top - low <= MAX_COORD_SPAN {
-        Ok(())
-    } else {
-        Err((top, low))
+    (top != i32::MIN).then_some((top, low))
+}
+
+/// The power-of-two *frame* of a finite coordinate set: the exponent `k`
+/// with the largest magnitude times `2^k` in `[1, 2)`. Scaling every
+/// coordinate by `2^k` is exact when the set passes
+/// [`coordinate_span_ok`] (its lowest bit stays above `2^-1074`), and a set
+/// scaled by `2^j` has frame `k − j`, so frame coordinates do not depend on
+/// the input's scale. `0` for a set of zeros.
+pub fn frame_exponent(coords: impl Iterator<Item = f64>) -> i32 {
+    exponent_range(coords).map_or(0, |(top, _)| -top)
+}
+
+/// Whether a finite coordinate set is within what the exact predicates
+/// decide: every non-zero magnitude within `2^MAX_COORD_SPAN` of the
+/// largest one. Returns the largest and smallest non-zero binary exponents
+/// `(top, low)` on failure; `Ok(())` also for sets of zeros.
+pub fn coordinate_span_ok(coords: impl Iterator<Item = f64>) -> Result<(), (i32, i32)> {
+    match exponent_range(coords) {
+        Some((top, low)) if top - low > MAX_COORD_SPAN => Err((top, low)),
+        _ => Ok(()),
     }
 }
 
@@ -644,6 +714,26 @@ mod tests {
                 + m(2) * (m(3) * m(7) - m(4) * m(6));
             assert_eq!(d.to_f64_approx(), want as f64);
         }
+    }
+
+    #[test]
+    fn shifted_conversion() {
+        for x in [1.0, -3.5, 0.1, 1e300, 5e-324, -2.5e-310, 123456789.123] {
+            let d = Dyadic::from_f64(x);
+            let t = d.top_exponent().unwrap();
+            assert_eq!(t, top_exponent(x));
+            let y = d.to_f64_shifted(-t);
+            assert!((1.0..2.0).contains(&y.abs()), "{x}: {y}");
+            assert_eq!(mul_pow2(y, t), x);
+        }
+        // A long value: (2^200 − 1) · 2^-1100, shifted into [1, 2).
+        let a = Dyadic::from_f64(2f64.powi(200))
+            .sub(&Dyadic::from_f64(1.0))
+            .mul(&Dyadic::from_f64(2f64.powi(-1000)))
+            .mul(&Dyadic::from_f64(2f64.powi(-100)));
+        assert_eq!(a.top_exponent(), Some(-901));
+        assert_eq!(a.to_f64_shifted(901), 2.0); // 2 − 2^-199, rounded
+        assert_eq!(Dyadic::zero().top_exponent(), None);
     }
 
     #[test]

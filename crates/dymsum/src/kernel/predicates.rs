@@ -101,13 +101,133 @@ fn c3(p: DVec3) -> Coord3D<f64> {
     }
 }
 
+/// Where Shewchuk's adaptive predicates are exact: every intermediate value
+/// of a degree-`n` predicate must neither overflow nor underflow inexactly.
+///
+/// Inputs whose non-zero magnitudes lie in `[fast_min, fast_max]` are safe
+/// as they are (checked with a few comparisons). Otherwise the inputs are
+/// scaled by one power of two so that every top exponent is at most `top`
+/// and every lowest set bit at least `low`: then every product of `n`
+/// differences is a multiple of `2^(n·low) ≥ 2^-1074` (so even subnormal
+/// intermediate values are exact) and below `2^(n·(top+1)) ≤ 2^960` (no
+/// overflow, also in Dekker's splitting). Scaling all inputs by a positive
+/// power of two does not change the sign. When no shift fits (the inputs
+/// span more bits than `top − low`), the sign is evaluated with exact
+/// dyadic arithmetic instead, so the predicates are exact for **every**
+/// finite input.
+struct ShewchukRange {
+    fast_min: f64,
+    fast_max: f64,
+    low: i32,
+    top: i32,
+}
+
+/// `orient3d` (degree 3): `3 · (−358) ≥ −1074`, `3 · 320 = 960`.
+const ORIENT3_RANGE: ShewchukRange = ShewchukRange {
+    fast_min: 4.909093465297727e-91, // 2^-300 (lowest bit ≥ 2^-352)
+    fast_max: 2.13598703592091e96,   // 2^320
+    low: -358,
+    top: 319,
+};
+
+/// `orient2d` (degree 2): `2 · (−537) = −1074`, `2 · 480 = 960`.
+const ORIENT2_RANGE: ShewchukRange = ShewchukRange {
+    fast_min: 1.2813331809171846e-144, // 2^-478 (lowest bit ≥ 2^-530)
+    fast_max: 3.1217485503159922e144,  // 2^480
+    low: -537,
+    top: 479,
+};
+
+impl ShewchukRange {
+    /// `true` when every value is zero or within `[fast_min, fast_max]`.
+    #[inline]
+    fn fast(&self, xs: &[f64]) -> bool {
+        xs.iter().all(|x| {
+            let a = x.abs();
+            a <= self.fast_max && (a >= self.fast_min || a == 0.0)
+        })
+    }
+
+    /// Scales `xs` by one power of two into the safe range; `false` (and
+    /// `xs` unchanged) when their exponents span too much for any shift.
+    fn fit(&self, xs: &mut [f64]) -> bool {
+        let Some((top, low)) = super::exact::exponent_range(xs.iter().copied()) else {
+            return true; // all zero
+        };
+        let (lo, hi) = (self.low - low, self.top - top);
+        if lo > hi {
+            return false;
+        }
+        let shift = 0.clamp(lo, hi);
+        for x in xs.iter_mut() {
+            *x = super::exact::mul_pow2(*x, shift);
+        }
+        true
+    }
+}
+
 /// Exact orientation of `d` relative to the plane through `a`, `b`, `c`:
 /// `Positive` when `d` lies on the side from which `a, b, c` appear
 /// counter-clockwise ("above"), i.e. the sign of `det[b − a, c − a, d − a]`.
+///
+/// Exact for every finite input, at any scale: Shewchuk's adaptive
+/// `orient3d` where its arithmetic is exact (directly for magnitudes in
+/// `[2^-300, 2^320]` or zero, else after scaling all twelve coordinates by
+/// one power of two), exact dyadic arithmetic when the coordinates of one
+/// call span more than about 670 bits. So scaling all inputs by `2^k`
+/// never changes the answer.
 #[inline]
 pub fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
-    // robust::orient3d is positive when d is *below* the ccw plane.
-    Sign::of(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)))
+    let xs = [a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, d.x, d.y, d.z];
+    if ORIENT3_RANGE.fast(&xs) {
+        // robust::orient3d is positive when d is *below* the ccw plane.
+        return Sign::of(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)));
+    }
+    orient_wide(xs)
+}
+
+#[cold]
+#[inline(never)]
+fn orient_wide(mut xs: [f64; 12]) -> Sign {
+    let p = |xs: &[f64; 12], i: usize| DVec3::new(xs[3 * i], xs[3 * i + 1], xs[3 * i + 2]);
+    if ORIENT3_RANGE.fit(&mut xs) {
+        let (a, b, c, d) = (p(&xs, 0), p(&xs, 1), p(&xs, 2), p(&xs, 3));
+        return Sign::of(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)));
+    }
+    let (a, b, c, d) = (p(&xs, 0), p(&xs, 1), p(&xs, 2), p(&xs, 3));
+    let e = super::exact::sub;
+    super::exact::det3(&e(b, a), &e(c, a), &e(d, a)).sign()
+}
+
+/// Exact sign of the 2-D orientation `(a − c) × (b − c)`:
+/// `Positive` when `a, b, c` turn counter-clockwise. Exact for every finite
+/// input, like [`orient`].
+#[inline]
+pub fn orient2(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Sign {
+    let xs = [a[0], a[1], b[0], b[1], c[0], c[1]];
+    if ORIENT2_RANGE.fast(&xs) {
+        return Sign::of(robust::orient2d(co(a), co(b), co(c)));
+    }
+    orient2_wide(xs)
+}
+
+#[inline]
+fn co(p: [f64; 2]) -> Coord<f64> {
+    Coord { x: p[0], y: p[1] }
+}
+
+#[cold]
+#[inline(never)]
+fn orient2_wide(mut xs: [f64; 6]) -> Sign {
+    if ORIENT2_RANGE.fit(&mut xs) {
+        let (a, b, c) = ([xs[0], xs[1]], [xs[2], xs[3]], [xs[4], xs[5]]);
+        return Sign::of(robust::orient2d(co(a), co(b), co(c)));
+    }
+    use super::exact::Dyadic;
+    let d = Dyadic::from_f64;
+    let (ax, ay) = (d(xs[0]).sub(&d(xs[4])), d(xs[1]).sub(&d(xs[5])));
+    let (bx, by) = (d(xs[2]).sub(&d(xs[4])), d(xs[3]).sub(&d(xs[5])));
+    super::exact::det2(&ax, &ay, &bx, &by).sign()
 }
 
 /// A direction known exactly, with a float approximation for fast filters.
@@ -368,14 +488,11 @@ pub fn same_direction<V: ExactVector>(a: &V, b: &V) -> bool {
     super::exact::dot(&ea, &eb).sign() == Sign::Positive
 }
 
-/// Exact sign of the 2×2 determinant `p.0 * q.1 − p.1 * q.0`.
+/// Exact sign of the 2×2 determinant `p.0 * q.1 − p.1 * q.0` (exact for
+/// every finite input, see [`orient2`]).
 #[inline]
 pub fn det2(p0: f64, p1: f64, q0: f64, q1: f64) -> Sign {
-    Sign::of(robust::orient2d(
-        Coord { x: p0, y: p1 },
-        Coord { x: q0, y: q1 },
-        Coord { x: 0.0, y: 0.0 },
-    ))
+    orient2([p0, p1], [q0, q1], [0.0, 0.0])
 }
 
 /// One term of the SoS expansion of a 3×3 determinant.
@@ -617,6 +734,93 @@ mod tests {
         // invariant under positive scaling of a vector
         let b2 = p(2., 2., 0., 1);
         assert_eq!(sos_det3(&a, &b2, &c), s);
+    }
+
+    #[test]
+    fn range_constants_are_powers_of_two() {
+        assert_eq!(ORIENT3_RANGE.fast_min, 2f64.powi(-300));
+        assert_eq!(ORIENT3_RANGE.fast_max, 2f64.powi(320));
+        assert_eq!(ORIENT2_RANGE.fast_min, 2f64.powi(-478));
+        assert_eq!(ORIENT2_RANGE.fast_max, 2f64.powi(480));
+    }
+
+    /// `orient` and `orient2` against exact dyadic evaluation on points
+    /// with awkward mantissas scaled by powers of two from `2^-1074` to
+    /// `2^990`: one common scale (the fast and the scaled Shewchuk paths)
+    /// and independent scales per point (up to the dyadic fallback).
+    #[test]
+    fn orient_is_exact_at_every_scale() {
+        use super::super::exact::{self, mul_pow2};
+        let mut s = 99u64;
+        let mut next = |m: u64| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 33) % m
+        };
+        let mut seen = [0usize; 3];
+        for round in 0..6000 {
+            let common = round % 2 == 0;
+            let ints = round % 4 == 0;
+            let base = next(1960) as i32 - 1000;
+            let mut pt = |i: usize| {
+                let k = if common {
+                    base
+                } else {
+                    next(1960) as i32 - 1000
+                };
+                // Small integers (exact ties) or full 53-bit mantissas.
+                let c = |x: u64| {
+                    let v = if ints {
+                        (x % 3) as f64 - 1.0
+                    } else if i.is_multiple_of(2) {
+                        (x % 7) as f64 - 3.0
+                    } else {
+                        x as f64 / 7.0
+                    };
+                    mul_pow2(v, k.max(-1070))
+                };
+                DVec3::new(c(next(1 << 30)), c(next(1 << 30)), c(next(1 << 30)))
+            };
+            let (a, b, c, d) = (pt(0), pt(1), pt(2), pt(3));
+            let e = exact::sub;
+            let want = exact::det3(&e(b, a), &e(c, a), &e(d, a)).sign();
+            assert_eq!(orient(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
+            seen[(want as usize).min(2)] += 1;
+            // 2-D: the projection on (x, y).
+            let d2 = |p: DVec3, q: DVec3| {
+                [
+                    exact::Dyadic::from_f64(p.x).sub(&exact::Dyadic::from_f64(q.x)),
+                    exact::Dyadic::from_f64(p.y).sub(&exact::Dyadic::from_f64(q.y)),
+                ]
+            };
+            let (u, v) = (d2(a, c), d2(b, c));
+            let want2 = exact::det2(&u[0], &u[1], &v[0], &v[1]).sign();
+            assert_eq!(orient2([a.x, a.y], [b.x, b.y], [c.x, c.y]), want2);
+        }
+        // Both signs and exact zeros occurred.
+        assert!(seen.iter().all(|&n| n > 100), "{seen:?}");
+    }
+
+    #[test]
+    fn unit_cube_orientation_at_extreme_scales() {
+        for k in [-1074, -1050, -600, -300, -110, 0, 150, 320, 500, 1000, 1023] {
+            let s = super::super::exact::mul_pow2(1.0, k);
+            let (o, x, y, z) = (DVec3::ZERO, DVec3::X * s, DVec3::Y * s, DVec3::Z * s);
+            assert_eq!(orient(o, x, y, z), Sign::Positive, "2^{k}");
+            assert_eq!(orient(o, x, y, -z), Sign::Negative, "2^{k}");
+            assert_eq!(orient(o, x, y, x + y), Sign::Zero, "2^{k}");
+            assert_eq!(
+                orient2([0.0, 0.0], [s, 0.0], [0.0, s]),
+                Sign::Positive,
+                "2^{k}"
+            );
+        }
+        // Mixed scales in one call (the dyadic fallback): 1e300 and 1e-300.
+        let (big, tiny) = (1e300, 1e-300);
+        let (o, x, y) = (DVec3::ZERO, DVec3::X * big, DVec3::Y * big);
+        assert_eq!(orient(o, x, y, DVec3::Z * tiny), Sign::Positive);
+        assert_eq!(orient(o, x, y, DVec3::new(tiny, tiny, 0.0)), Sign::Zero);
     }
 
     #[test]

@@ -31,6 +31,7 @@
 use super::convexity::{compare_with_hull, Frame};
 use super::{Polytope, PolytopeError};
 use crate::hull::{convex_hull, ConvexHull, FloatPoints};
+use crate::kernel::exact;
 use crate::PolygonMesh;
 use glam::DVec3;
 
@@ -119,7 +120,8 @@ impl Polytope {
                 count: points.len(),
             });
         }
-        let hull = convex_hull(&FloatPoints(points))?;
+        let framed = framed(points)?;
+        let hull = convex_hull(&FloatPoints(&framed))?;
         Self::from_hull(points, &hull)
     }
 
@@ -171,7 +173,7 @@ impl Polytope {
         if pts.len() < 4 {
             return Err(PolytopeError::TooFewPoints { count: pts.len() });
         }
-        let hull = convex_hull(&FloatPoints(&pts))?;
+        let hull = convex_hull(&FloatPoints(&framed(&pts)?))?;
         let poly = Self::from_hull(&pts, &hull)?;
         // The hull's corners, as polytope vertices, by mesh vertex.
         let mut corner = vec![usize::MAX; all.len()];
@@ -216,6 +218,28 @@ impl Polytope {
         };
         Ok((poly, report))
     }
+}
+
+/// The points in their power-of-two frame (largest magnitude in `[1, 2)`),
+/// after checking that their exponents span at most
+/// [`exact::MAX_COORD_SPAN`] bits ([`PolytopeError::OutOfRange`]
+/// otherwise), which makes the scaling exact. The hull is built on these:
+/// its exact predicates give the same answers as on the input, and its
+/// float heuristics see bit-identical coordinates for the same shape at
+/// any scale `2^k`, so the result does not depend on the scale at all.
+fn framed(points: &[DVec3]) -> Result<Vec<DVec3>, PolytopeError> {
+    super::check_span(points)?;
+    let k = exact::frame_exponent(points.iter().flat_map(|p| p.to_array()));
+    Ok(points
+        .iter()
+        .map(|p| {
+            DVec3::new(
+                exact::mul_pow2(p.x, k),
+                exact::mul_pow2(p.y, k),
+                exact::mul_pow2(p.z, k),
+            )
+        })
+        .collect())
 }
 
 fn check_finite(points: &[DVec3]) -> Result<(), PolytopeError> {

@@ -109,6 +109,37 @@ pub enum PolytopeError {
         /// The vertex.
         vertex: usize,
     },
+    /// The coordinates span more binary orders of magnitude than the exact
+    /// predicates decide: from the top bit of the largest magnitude to the
+    /// lowest set bit of any non-zero coordinate, one polytope may span at
+    /// most [`crate::kernel::exact::MAX_COORD_SPAN`] = 960 bits (`2^960` ≈
+    /// `1e289`; about `1e273` between magnitudes of full-precision values).
+    /// Any overall scale is fine (`1e-300` to `1e300`); what is refused is
+    /// a shape mixing, say, `1e300` and `1e-300`. Round the tiny
+    /// coordinates to zero, or split the input.
+    #[error(
+        "coordinates outside the supported range: largest magnitude {largest:e}, smallest non-zero \
+         {smallest:e}; the coordinates of one polytope may span at most 960 bits (2^960, about \
+         1e289, from the largest magnitude down to the lowest bit of the smallest; any overall \
+         scale is supported)"
+    )]
+    OutOfRange {
+        /// The largest coordinate magnitude.
+        largest: f64,
+        /// The smallest non-zero coordinate magnitude.
+        smallest: f64,
+    },
+    /// A face is so small relative to the whole shape (below about `2^-500`
+    /// of its size) that its normal is not representable in `f64` in the
+    /// shape's frame; such a face is beyond the supported range.
+    #[error(
+        "face {face} is too small relative to the shape (below about 2^-500 of its size) for \
+         its normal to be represented; outside the supported range"
+    )]
+    FaceOutOfRange {
+        /// The face (of the polytope's maximal faces).
+        face: usize,
+    },
 }
 
 impl From<HullError> for PolytopeError {

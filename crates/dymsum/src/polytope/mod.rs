@@ -22,6 +22,20 @@
 //! polygon (its *cell*) spanned by the normals of its faces, listed
 //! counter-clockwise by [`Polytope::ring`]. Construction checks exactly that
 //! every cell is strictly convex ([`PolytopeError::DegenerateGaussMap`]).
+//!
+//! # Scale
+//! Every constructor checks that the coordinates span at most
+//! [`crate::kernel::exact::MAX_COORD_SPAN`] = 960 bits (else
+//! [`PolytopeError::OutOfRange`]: one shape mixing `1e300` and `1e-300`),
+//! and works in the shape's power-of-two *frame* (coordinates times `2^k`,
+//! the largest in `[1, 2)`; exact): the hull is built on frame coordinates
+//! and all float data (normals, arcs, error bounds) is derived from them.
+//! So the same shape scaled by any `2^j` has identical faces, identical
+//! normals and identical Gaussian-map decisions, at any overall scale from
+//! about `1e-300` to `1e300`. A face whose float normal is lost to
+//! cancellation (a sliver) gets its exact normal rounded instead; a face
+//! below about `2^-500` of the shape's size is
+//! [`PolytopeError::FaceOutOfRange`].
 
 pub mod build;
 mod convexity;
@@ -75,6 +89,11 @@ pub struct Polytope {
     inv_normal_len: Vec<f64>,
     ring_start: Vec<u32>,
     ring: Vec<RingEntry>,
+    /// The power-of-two frame: all float data derived from the geometry
+    /// (normals, arcs, error bounds) is computed from `vertices · 2^frame`
+    /// (exact, see [`exact::frame_exponent`]), so it is bit-identical for
+    /// the same shape at any scale `2^k`.
+    frame: i32,
 }
 
 impl Polytope {
@@ -198,19 +217,34 @@ impl Polytope {
         }
         best
     }
-    /// Volume, by the divergence theorem (a float construction).
+    /// Volume, by the divergence theorem (a float construction, made in the
+    /// shape's power-of-two frame and scaled back, so it scales exactly
+    /// with the shape; `inf` only when the volume exceeds `f64`).
     pub fn volume(&self) -> f64 {
-        let c = self.centroid_of_vertices();
+        let vs: Vec<DVec3> = self.vertices.iter().map(|&v| self.to_frame(v)).collect();
+        let c = vs.iter().copied().sum::<DVec3>() / vs.len() as f64;
         let mut vol = 0.0;
         for f in self.faces() {
-            let a = self.vertices[f[0] as usize] - c;
+            let a = vs[f[0] as usize] - c;
             for w in f[1..].windows(2) {
-                let b = self.vertices[w[0] as usize] - c;
-                let d = self.vertices[w[1] as usize] - c;
+                let b = vs[w[0] as usize] - c;
+                let d = vs[w[1] as usize] - c;
                 vol += a.dot(b.cross(d));
             }
         }
-        vol / 6.0
+        exact::mul_pow2(vol / 6.0, -3 * self.frame)
+    }
+    /// The frame exponent `k`: the largest coordinate magnitude times `2^k`
+    /// lies in `[1, 2)`. Float data derived from the geometry (normals,
+    /// arcs) is computed from the vertices scaled by `2^k`.
+    #[inline]
+    pub fn frame_exponent(&self) -> i32 {
+        self.frame
+    }
+    /// `v · 2^frame` (exact for the polytope's vertices).
+    #[inline]
+    pub fn to_frame(&self, v: DVec3) -> DVec3 {
+        scale_vec(v, self.frame)
     }
     /// Mean of the vertices.
     pub fn centroid_of_vertices(&self) -> DVec3 {
@@ -219,7 +253,8 @@ impl Polytope {
     /// Length of the bounding-box diagonal.
     pub fn diameter(&self) -> f64 {
         let (lo, hi) = bounds(&self.vertices);
-        (hi - lo).length()
+        let d = (self.to_frame(hi) - self.to_frame(lo)).length();
+        exact::mul_pow2(d, -self.frame)
     }
 
     /// Builds the half-edge structure from maximal ccw faces over `vertices`
@@ -335,12 +370,16 @@ impl Polytope {
                 return Err(PolytopeError::NonManifoldVertex { vertex: v });
             }
         }
+        check_span(&vertices)?;
+        let frame = exact::frame_exponent(vertices.iter().flat_map(|v| v.to_array()));
+        let framed: Vec<DVec3> = vertices.iter().map(|&v| scale_vec(v, frame)).collect();
         let mut normals = Vec::with_capacity(faces.len());
         let mut normal_triple = Vec::with_capacity(faces.len());
         let mut normal_err = Vec::with_capacity(faces.len());
         let mut normal_scale = Vec::with_capacity(faces.len());
-        for f in faces {
-            let (n, triple, err, scale) = face_normal(&vertices, f);
+        for (face, f) in faces.iter().enumerate() {
+            let (n, triple, err, scale) =
+                face_normal(&framed, f).ok_or(PolytopeError::FaceOutOfRange { face })?;
             normals.push(n);
             normal_triple.push(triple);
             normal_err.push(err);
@@ -364,6 +403,7 @@ impl Polytope {
             inv_normal_len,
             ring_start,
             ring,
+            frame,
         };
         let (arcs, errs) = (0..poly.edge_count())
             .map(|e| poly.accurate_arc_normal(e))
@@ -423,14 +463,15 @@ impl Polytope {
     /// The exact normal of face `f`, scaled like [`Polytope::normal`], in
     /// double-double, with a bound on its error.
     pub fn refined_normal(&self, f: usize) -> (DDVec, f64) {
-        let [a, b, c] = self.normal_triple[f].map(|v| self.vertices[v as usize]);
+        let [a, b, c] = self.normal_triple[f].map(|v| self.to_frame(self.vertices[v as usize]));
         let d1 = [DD::diff(b.x, a.x), DD::diff(b.y, a.y), DD::diff(b.z, a.z)];
         let d2 = [DD::diff(c.x, a.x), DD::diff(c.y, a.y), DD::diff(c.z, a.z)];
         let s = self.normal_scale[f];
         let n = dd::cross(&d1, &d2).map(|x| x.scale(s));
         // Each component: two DD products and a DD difference, relative
-        // error ≤ ~12u² of |d1||d2|.
-        let err = 32.0 * U * U * (b - a).length() * (c - a).length() * s * 1.01;
+        // error ≤ ~12u² of |d1||d2|; plus the absolute error of low parts
+        // that underflow (a few units of 2^-1074 per operation).
+        let err = (32.0 * U * U * (b - a).length() * (c - a).length() + 64.0 * TINY) * s * 1.01;
         (n, err)
     }
 
@@ -557,6 +598,36 @@ impl ExactVector for FaceNormal<'_> {
 }
 
 const U: f64 = f64::EPSILON / 2.0;
+/// The smallest positive subnormal, `2^-1074`.
+const TINY: f64 = 5e-324;
+
+/// `v · 2^k`, exact when representable.
+#[inline]
+fn scale_vec(v: DVec3, k: i32) -> DVec3 {
+    if k == 0 {
+        return v;
+    }
+    DVec3::new(
+        exact::mul_pow2(v.x, k),
+        exact::mul_pow2(v.y, k),
+        exact::mul_pow2(v.z, k),
+    )
+}
+
+/// [`PolytopeError::OutOfRange`] when the coordinates span more than
+/// [`exact::MAX_COORD_SPAN`] bits, naming their largest and smallest
+/// non-zero magnitudes.
+pub(crate) fn check_span(points: &[DVec3]) -> Result<(), PolytopeError> {
+    let coords = || points.iter().flat_map(|p| p.to_array());
+    if exact::coordinate_span_ok(coords()).is_ok() {
+        return Ok(());
+    }
+    let mags = coords().map(f64::abs).filter(|&x| x > 0.0);
+    Err(PolytopeError::OutOfRange {
+        largest: mags.clone().fold(0.0, f64::max),
+        smallest: mags.fold(f64::INFINITY, f64::min),
+    })
+}
 
 /// Error bound of a float normal rotated by a (nearly orthogonal) float
 /// matrix, relative to the exact product of that matrix and the exact normal.
@@ -574,7 +645,7 @@ pub fn rotated_error(err: f64, approx: DVec3) -> f64 {
 /// Because the exact normal is a cross product of exact vertex differences,
 /// exact coincidences of the geometry (parallel faces, a normal on an arc)
 /// are exact coincidences of the normals.
-fn face_normal(vertices: &[DVec3], face: &[u32]) -> (DVec3, [u32; 3], f64, f64) {
+fn face_normal(vertices: &[DVec3], face: &[u32]) -> Option<(DVec3, [u32; 3], f64, f64)> {
     let a = vertices[face[0] as usize];
     let mut best = (DVec3::ZERO, [face[0], face[1], face[2]], -1.0, 0.0);
     for w in face[1..].windows(2) {
@@ -593,24 +664,44 @@ fn face_normal(vertices: &[DVec3], face: &[u32]) -> (DVec3, [u32; 3], f64, f64) 
         .zip(exact::float::sub(tc, ta))
         .and_then(|(d1, d2)| exact::float::cross(d1, d2))
         .filter(|&c| c == n);
-    // |fl(d1 × d2) − (B−A) × (C−A)| ≤ ~7u |d1||d2|; use 16u.
-    let mut err = 16.0 * f64::EPSILON / 2.0 * lens * 1.01;
+    // |fl(d1 × d2) − (B−A) × (C−A)| ≤ ~7u |d1||d2|; use 16u. Products that
+    // underflow add an absolute error of at most 2^-1074 each.
+    let mut err = (16.0 * f64::EPSILON / 2.0 * lens + 8.0 * TINY) * 1.01;
     let m = n.abs().max_element();
-    if m > 0.0 && m.is_finite() {
-        let e = m.log2().floor() as i32 + 1;
-        let s = 2f64.powi(-e);
-        if s.is_finite() && s > 0.0 {
-            err *= s;
-            if exact_n.and_then(|c| exact::float::scale(c, s)).is_some() {
-                err = 0.0;
-            }
-            return (n * s, triple, err, s);
-        }
+    // A sliver face (float cancellation leaves the float normal mostly
+    // rounding error, or exactly zero) or a normal below 2^-1000 in the
+    // frame: round the exact normal instead.
+    if !(m > 64.0 * err && m >= 9.332636185032189e-302) {
+        return exact_rounded_normal(ta, tb, tc).map(|(n, err, s)| (n, triple, err, s));
     }
-    if exact_n.is_some() {
+    let e = exact::top_exponent(m) + 1;
+    let s = exact::mul_pow2(1.0, -e);
+    // (+ TINY: scaling down may round a subnormal component.)
+    err = err * s + TINY;
+    if exact_n.and_then(|c| exact::float::scale(c, s)).is_some() {
         err = 0.0;
     }
-    (n, triple, err, 1.0)
+    Some((n * s, triple, err, s))
+}
+
+/// The exact normal `(B − A) × (C − A)` scaled by `s = 2^-e` so that its
+/// largest component lies in `[0.5, 1)`, rounded componentwise (error below
+/// `3u` of the largest component), with an error bound and `s`. `None`
+/// when the exact normal is zero or below `2^-1000` (a face about `2^-500`
+/// of the shape's size: beyond the supported range).
+fn exact_rounded_normal(a: DVec3, b: DVec3, c: DVec3) -> Option<(DVec3, f64, f64)> {
+    let n = exact::cross(&exact::sub(b, a), &exact::sub(c, a));
+    let top = n.iter().filter_map(|d| d.top_exponent()).max()?;
+    if top < -1000 {
+        return None;
+    }
+    let e = top + 1;
+    let v = DVec3::new(
+        n[0].to_f64_shifted(-e),
+        n[1].to_f64_shifted(-e),
+        n[2].to_f64_shifted(-e),
+    );
+    Some((v, 4.0 * f64::EPSILON + TINY, exact::mul_pow2(1.0, -e)))
 }
 
 pub(crate) fn bounds(pts: &[DVec3]) -> (DVec3, DVec3) {

@@ -19,7 +19,8 @@
 //! refining all of them.
 
 use super::distance::{line_line, separation};
-use super::{Contact, ConvexPair, FeaturePair, Proximity};
+use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Separation};
+use crate::kernel::exact;
 use crate::polytope::Polytope;
 use crate::sum::Overlay;
 use crate::Pose;
@@ -257,15 +258,43 @@ fn winner(cands: &[Candidate], tol: f64) -> (usize, f64) {
 }
 
 /// Depth or distance from an overlay of `A ⊕ (−B)`.
+///
+/// Scale: the posed vertices of both bodies are first scaled by one power
+/// of two `2^k` (their common frame: the largest magnitude in `[1, 2)`),
+/// every construction is made there, and lengths and points are scaled
+/// back by `2^-k`. Scaling is exact, so the same pair at poses scaled by
+/// `2^j` gives bit-identical frame coordinates and answers scaled by
+/// exactly `2^j`; nothing overflows or underflows at any scale (squared
+/// lengths of `1e200` or `1e-200` would). Posed coordinates that overflow
+/// `f64`, or an answer that does, is [`QueryError::OutOfRange`].
 pub(super) fn evaluate(
     pair: &ConvexPair<'_>,
     pose_a: Pose,
     pose_b: Pose,
     overlay: &Overlay,
-) -> Proximity {
+) -> Result<Proximity, QueryError> {
+    let mut a: Vec<DVec3> = pair.a.vertices().iter().map(|&v| pose_a.apply(v)).collect();
+    let mut b: Vec<DVec3> = pair.b.vertices().iter().map(|&v| pose_b.apply(v)).collect();
+    if !a.iter().chain(&b).all(|v| v.is_finite()) {
+        return Err(QueryError::OutOfRange(
+            "the posed coordinates overflow f64 (|x| > 1.8e308)".into(),
+        ));
+    }
+    let k = exact::frame_exponent(a.iter().chain(&b).flat_map(|v| v.to_array()));
+    let to_frame = |v: &mut DVec3| {
+        *v = DVec3::new(
+            exact::mul_pow2(v.x, k),
+            exact::mul_pow2(v.y, k),
+            exact::mul_pow2(v.z, k),
+        )
+    };
+    a.iter_mut().for_each(to_frame);
+    b.iter_mut().for_each(to_frame);
+    let back = |x: f64| exact::mul_pow2(x, -k);
+    let back_v = |v: DVec3| DVec3::new(back(v.x), back(v.y), back(v.z));
     let posed = Posed {
-        a: pair.a.vertices().iter().map(|&v| pose_a.apply(v)).collect(),
-        b: pair.b.vertices().iter().map(|&v| pose_b.apply(v)).collect(),
+        a,
+        b,
         na: (0..pair.a.face_count())
             .map(|f| pose_a.rotation.apply(pair.a.unit_normal(f)))
             .collect(),
@@ -275,11 +304,44 @@ pub(super) fn evaluate(
         pose_a,
         pose_b,
     };
-    let tol = tie_tolerance(&posed);
-    let cands = refine(pair, &posed, candidates(pair, &posed, overlay), tol);
+    let answer = evaluate_in_frame(pair, &posed, overlay);
+    let out = match answer {
+        Proximity::Penetrating(c) => Proximity::Penetrating(Contact {
+            depth: back(c.depth),
+            point_on_a: back_v(c.point_on_a),
+            point_on_b: back_v(c.point_on_b),
+            ..c
+        }),
+        Proximity::Separated(s) => Proximity::Separated(Separation {
+            distance: back(s.distance),
+            point_on_a: back_v(s.point_on_a),
+            point_on_b: back_v(s.point_on_b),
+            ..s
+        }),
+    };
+    let finite = match &out {
+        Proximity::Penetrating(c) => {
+            c.depth.is_finite() && c.point_on_a.is_finite() && c.point_on_b.is_finite()
+        }
+        Proximity::Separated(s) => {
+            s.distance.is_finite() && s.point_on_a.is_finite() && s.point_on_b.is_finite()
+        }
+    };
+    if !finite {
+        return Err(QueryError::OutOfRange(
+            "the answer overflows f64 (|x| > 1.8e308)".into(),
+        ));
+    }
+    Ok(out)
+}
+
+/// [`evaluate`] on frame coordinates.
+fn evaluate_in_frame(pair: &ConvexPair<'_>, posed: &Posed, overlay: &Overlay) -> Proximity {
+    let tol = tie_tolerance(posed);
+    let cands = refine(pair, posed, candidates(pair, posed, overlay), tol);
     let (w, hmin) = winner(&cands, tol);
     if hmin < 0.0 {
-        return Proximity::Separated(separation(pair, &posed, &cands, tol, cands[w]));
+        return Proximity::Separated(separation(pair, posed, &cands, tol, cands[w]));
     }
     let c = cands[w];
     let depth = hmin;

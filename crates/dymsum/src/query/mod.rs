@@ -62,6 +62,15 @@
 //! representable contacts (axis-aligned faces, dyadic coordinates, identity
 //! or quarter-turn rotations) are exact: touching boxes report depth `0`.
 //!
+//! # Scale
+//! Answers are computed in the pair's power-of-two frame (posed coordinates
+//! times `2^k`, the largest in `[1, 2)`) and scaled back, so scaling both
+//! bodies and their translations by `2^j` scales depth, distance and
+//! witness points by exactly `2^j` (directions unchanged), with no overflow
+//! or underflow of intermediate squared lengths at any scale. A posed
+//! coordinate or an answer beyond `f64` is [`QueryError::OutOfRange`] (or
+//! [`SumError::OutOfRange`] from the sum); never NaN.
+//!
 //! ```
 //! use dymsum::{Polytope, Pose, Rotation, DVec3};
 //! use dymsum::query::{penetration_depth, distance};
@@ -118,6 +127,12 @@ pub enum QueryError {
          (the minimum over piece pairs is not the union's depth)"
     )]
     UnionDepthUnsupported,
+    /// The bodies at their poses are beyond what `f64` holds: a posed
+    /// coordinate (`R p + t`) or the answer overflows (magnitudes above
+    /// `1.8e308`). Every finite pose whose posed coordinates and answer are
+    /// finite is supported, at any scale.
+    #[error("outside the supported range: {0}")]
+    OutOfRange(String),
 }
 
 /// The features of `A` and `B` generating a facet of `A ⊕ (−B)` (indices
@@ -361,7 +376,7 @@ impl<'a> ConvexPair<'a> {
             Reflected::pose(pose_b),
             Method::Walk,
         )?;
-        Ok(self.evaluate(pose_a, pose_b, sum.overlay()))
+        self.evaluate(pose_a, pose_b, sum.overlay())
     }
 
     /// The penetration depth, or `None` when apart.
@@ -404,7 +419,7 @@ impl<'a> ConvexPair<'a> {
         pose_a: Pose,
         pose_b: Pose,
         overlay: &crate::sum::Overlay,
-    ) -> Proximity {
+    ) -> Result<Proximity, QueryError> {
         depth::evaluate(self, pose_a, pose_b, overlay)
     }
 }

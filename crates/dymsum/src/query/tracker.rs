@@ -46,7 +46,7 @@ impl<'p> ContactTracker<'p> {
             &pair.neg_b.polytope,
             Reflected::pose(pose_b),
         )?;
-        let last = pair.evaluate(pose_a, pose_b, &sum.overlay());
+        let last = pair.evaluate(pose_a, pose_b, &sum.overlay())?;
         Ok(ContactTracker {
             pair,
             sum,
@@ -58,7 +58,7 @@ impl<'p> ContactTracker<'p> {
     /// Moves both bodies (a dynamic update) and answers the query.
     pub fn update(&mut self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
         self.report = self.sum.set_pose(pose_a, Reflected::pose(pose_b))?;
-        self.last = self.pair.evaluate(pose_a, pose_b, &self.sum.overlay());
+        self.last = self.pair.evaluate(pose_a, pose_b, &self.sum.overlay())?;
         Ok(self.last)
     }
 

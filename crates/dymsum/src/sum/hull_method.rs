@@ -43,13 +43,35 @@ fn features_near(poly: &Polytope, set: &[u32]) -> (Vec<u32>, Vec<u32>) {
     (faces.into_iter().collect(), edges.into_iter().collect())
 }
 
+/// Scales both posed vertex sets by one power of two (their common frame,
+/// largest magnitude in `[1, 2)`) when that is exact for every coordinate.
+/// The hull's exact predicates answer the same either way; its float
+/// heuristics then see bit-identical input for the same pair at any scale
+/// `2^k`, and pairwise sums cannot overflow.
+fn to_common_frame(pp: &mut [glam::DVec3], qq: &mut [glam::DVec3]) {
+    use crate::kernel::exact::{frame_exponent, mul_pow2};
+    let k = frame_exponent(pp.iter().chain(qq.iter()).flat_map(|v| v.to_array()));
+    let exact = pp
+        .iter()
+        .chain(qq.iter())
+        .flat_map(|v| v.to_array())
+        .all(|x| mul_pow2(mul_pow2(x, k), -k) == x);
+    if k == 0 || !exact {
+        return;
+    }
+    for v in pp.iter_mut().chain(qq.iter_mut()) {
+        *v = glam::DVec3::new(mul_pow2(v.x, k), mul_pow2(v.y, k), mul_pow2(v.z, k));
+    }
+}
+
 pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
-    let pp: Vec<_> = (0..ops.p.vertex_count() as u32)
+    let mut pp: Vec<_> = (0..ops.p.vertex_count() as u32)
         .map(|u| ops.p_vertex(u))
         .collect();
-    let qq: Vec<_> = (0..ops.q.vertex_count() as u32)
+    let mut qq: Vec<_> = (0..ops.q.vertex_count() as u32)
         .map(|w| ops.q_vertex(w))
         .collect();
+    to_common_frame(&mut pp, &mut qq);
     let sums = PairwiseSums { p: &pp, q: &qq };
     let hull = convex_hull(&sums).map_err(|e| SumError::HullMismatch(e.to_string()))?;
     let (vp, vq) = (ops.view_p(), ops.view_q());

@@ -349,6 +349,10 @@ pub enum MeshError {
         /// How the rounded vertices collapsed.
         collapse: String,
     },
+    /// A vertex of the sum overflows `f64` (an exact vertex sum `p + q`
+    /// beyond `±1.8e308`): the sum is outside the supported range.
+    #[error("the sum's coordinates overflow f64 (a vertex sum exceeds 1.8e308 in magnitude); outside the supported range")]
+    OutOfRange,
     /// The facets could not be merged into faces (a bug: please report the
     /// input).
     #[error("internal error: merging the facets failed: {0}")]
@@ -362,7 +366,10 @@ pub enum MeshError {
 impl MeshError {
     /// `true` for a bug in dymsum (as opposed to an input beyond `f64`).
     pub fn is_internal(&self) -> bool {
-        !matches!(self, MeshError::PrecisionLost { .. })
+        !matches!(
+            self,
+            MeshError::PrecisionLost { .. } | MeshError::OutOfRange
+        )
     }
 }
 
@@ -422,12 +429,6 @@ fn ulp(x: f64) -> f64 {
     }
 }
 
-fn diagonal(poly: &crate::Polytope) -> f64 {
-    let pts: Vec<DVec3> = (0..poly.vertex_count()).map(|v| poly.vertex(v)).collect();
-    let (lo, hi) = crate::polytope::bounds(&pts);
-    (hi - lo).length()
-}
-
 /// The merged mesh, validated exactly (see [`super::validate`]): the
 /// combinatorial merge when its float coordinates are exactly convex, else
 /// the exact hull of the rounded vertices.
@@ -442,8 +443,13 @@ pub fn validated_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<SumMesh, 
         .fold(0.0f64, |m, x| m.max(x.abs()));
     let precision = Precision {
         ulp: ulp(max),
-        size: diagonal(ops.p) + diagonal(ops.q),
+        // Bounding-box diagonals, computed in each shape's frame (no
+        // overflow of squared lengths at large scales).
+        size: ops.p.diameter() + ops.q.diameter(),
     };
+    if !max.is_finite() {
+        return Err(MeshError::OutOfRange);
+    }
     match check_convex_mesh(&merged.mesh) {
         Ok(()) => {
             return Ok(SumMesh {

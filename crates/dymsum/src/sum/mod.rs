@@ -124,6 +124,16 @@ pub enum SumError {
     /// P non-planar). Use [`Method::Walk`].
     #[error("the hull of pairwise sums is inconsistent with the exact overlay: {0} (rounding the rotated vertices bent P's faces; use the walk or brute method)")]
     HullMismatch(String),
+    /// An operand's posed vertex (`R p + t`) overflows `f64`: outside the
+    /// supported range (every pose whose posed coordinates are finite is
+    /// supported, at any scale).
+    #[error("{operand}'s posed vertex {vertex} overflows f64 (|coordinate| > 1.8e308); outside the supported range")]
+    OutOfRange {
+        /// `"P"` or `"Q"`.
+        operand: &'static str,
+        /// The vertex.
+        vertex: usize,
+    },
 }
 
 /// The overlay state: for every face of P its vertex of Q, for every face of
@@ -289,6 +299,23 @@ impl<'a> Operands<'a> {
             rotation: None,
         }
     }
+    /// [`SumError::OutOfRange`] when a posed vertex of P or Q overflows.
+    pub fn check_range(&self) -> Result<(), SumError> {
+        let bad = |n: usize, f: &dyn Fn(u32) -> DVec3| (0..n as u32).find(|&v| !f(v).is_finite());
+        if let Some(v) = bad(self.p.vertex_count(), &|u| self.p_vertex(u)) {
+            return Err(SumError::OutOfRange {
+                operand: "P",
+                vertex: v as usize,
+            });
+        }
+        if let Some(v) = bad(self.q.vertex_count(), &|w| self.q_vertex(w)) {
+            return Err(SumError::OutOfRange {
+                operand: "Q",
+                vertex: v as usize,
+            });
+        }
+        Ok(())
+    }
     /// Position of vertex `u` of P under its pose.
     #[inline]
     pub fn p_vertex(&self, u: u32) -> DVec3 {
@@ -378,6 +405,7 @@ pub fn minkowski_sum_posed<'a>(
     method: Method,
 ) -> Result<MinkowskiSum<'a>, SumError> {
     let ops = Operands::new(p, pose_p, q, pose_q);
+    ops.check_range()?;
     let overlay = match method {
         Method::Brute => brute::overlay(&ops)?,
         Method::Walk => walk::overlay(&ops)?,
