@@ -7,7 +7,7 @@
 //! itself stays `#![forbid(unsafe_code)]`.
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::cell::Cell;
 
 use dymsum::hull::{FloatPoints, HullPoints, PairwiseSums};
 use dymsum::kernel::predicates::{det2, det3, orient, same_direction, sos_det3, Plain};
@@ -17,18 +17,28 @@ use dymsum::{DVec3, Polytope, Rotation};
 
 struct Counting;
 
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    /// Allocations made by *this* thread: the test harness's other threads
+    /// (its timer, its output capture) allocate at unpredictable times,
+    /// which made a process-wide counter flaky under load.
+    static ALLOCS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count_one() {
+    // `try_with`: the slot may already be gone while the thread exits.
+    let _gone_at_thread_exit = ALLOCS.try_with(|c| c.set(c.get() + 1));
+}
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        count_one();
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::SeqCst);
+        count_one();
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -38,9 +48,9 @@ static GLOBAL: Counting = Counting;
 
 /// Runs `f` and returns its result and the number of allocations it made.
 fn counted<T>(f: impl FnOnce() -> T) -> (T, usize) {
-    let before = ALLOCS.load(Ordering::SeqCst);
+    let before = ALLOCS.with(Cell::get);
     let r = f();
-    (r, ALLOCS.load(Ordering::SeqCst) - before)
+    (r, ALLOCS.with(Cell::get) - before)
 }
 
 fn boxed(x: f64, y: f64, z: f64, s: f64) -> Polytope {
@@ -201,4 +211,29 @@ fn predicates_do_not_allocate() {
         }
     });
     assert_eq!(allocs, 0);
+}
+
+/// The counter itself works: an allocation on this thread is seen, one on
+/// another thread is not (so the zero counts above are meaningful and not
+/// disturbed by the harness's threads).
+#[test]
+fn the_counter_sees_this_threads_allocations_only() {
+    let (v, allocs) = counted(|| std::hint::black_box(Vec::<u64>::with_capacity(16)));
+    assert_eq!(allocs, 1);
+    drop(v);
+    let (_, allocs) = counted(|| {
+        std::thread::scope(|s| {
+            s.spawn(|| std::hint::black_box(vec![1u8; 64]))
+                .join()
+                .unwrap();
+        })
+    });
+    // Spawning a thread allocates on this thread (its handle); the vector
+    // allocated inside it must not be counted here: at most the spawn's own.
+    let (_, spawn_only) = counted(|| {
+        std::thread::scope(|s| {
+            s.spawn(|| ()).join().unwrap();
+        })
+    });
+    assert_eq!(allocs, spawn_only);
 }
