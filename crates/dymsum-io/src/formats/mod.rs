@@ -522,3 +522,22 @@ pub(crate) fn push_coords(out: &mut String, v: &[f64; 3]) {
 pub(crate) fn text(bytes: &[u8]) -> std::borrow::Cow<'_, str> {
     String::from_utf8_lossy(bytes)
 }
+
+/// Checks a vertex index read from a face list: `Ok` with the index if it
+/// lies in `0..vertex_count`, [`FormatError::BadIndex`] at `at` otherwise.
+pub(crate) fn vertex_index(
+    raw: i64,
+    vertex_count: usize,
+    source_name: &str,
+    at: Location,
+) -> Result<usize, FormatError> {
+    if raw < 0 || raw as u64 >= vertex_count as u64 {
+        return Err(FormatError::BadIndex {
+            source_name: source_name.to_string(),
+            at,
+            index: raw,
+            vertex_count,
+        });
+    }
+    Ok(raw as usize)
+}
