@@ -79,6 +79,15 @@ pub(crate) fn measure_each<J, R>(
     Ok(results)
 }
 
+/// The last line of every experiment's introduction: how the figures
+/// combine the repeats.
+pub(crate) fn write_repeats_line(out: &mut dyn Write, repeats: usize) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "all repeated {repeats} times with the same motion, each figure the median of the repeats' means."
+    )
+}
+
 /// Creates the output directory and returns the path of `name` in it.
 pub(crate) fn out_file(dir: &Path, name: &str) -> anyhow::Result<PathBuf> {
     std::fs::create_dir_all(dir)

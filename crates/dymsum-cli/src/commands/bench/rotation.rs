@@ -11,10 +11,11 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
+use dymsum_io::Loaded;
 
 use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
 use super::plot::{method_series, write_chart, Chart, COLORS};
-use super::{measure_each, out_file, write_csv};
+use super::{measure_each, out_file, write_csv, write_repeats_line};
 use crate::commands::load;
 use crate::stats::human_us;
 use crate::values::parse_steps_per_rev;
@@ -98,13 +99,12 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     writeln!(
         out,
         "dymsum bench rotation: mean time per step against steps per full turn X; P turns {} steps of 2π/X \
-         (random axis held 1..=50 steps, seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;\n\
-         all repeated {} times with the same motion, each figure the median of the repeats' means.",
+         (random axis held 1..=50 steps, seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;",
         a.steps,
         a.seed,
         a.static_poses.min(a.steps),
-        a.repeats,
     )?;
+    write_repeats_line(out, a.repeats)?;
     out.flush()?;
 
     let jobs: Vec<(usize, f64)> = (0..a.pairs.len())
@@ -116,16 +116,7 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             let (pn, qn) = &a.pairs[i];
             format!("{pn} + {qn}, X = {x}")
         },
-        |&(pair, x)| {
-            let plan = Plan::walk_and_brute(x, a.seed, a.steps, a.static_poses, a.repeats);
-            let (p, q) = &loaded[pair];
-            let t = measure(&p.polytope, &q.polytope, &plan)?;
-            Ok(Point {
-                pair,
-                x,
-                f: t.figures(),
-            })
-        },
+        |&(pair, x)| measure_point(a, &loaded[pair], pair, x),
     )?;
 
     let csv_path = write_rotation_csv(a, &points)?;
@@ -145,6 +136,24 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         started.elapsed().as_secs_f64()
     )?;
     ensure_no_mismatches(mismatches)
+}
+
+/// Measures one pair (`loaded`, the pair's index `pair`) at `x` steps per
+/// turn.
+fn measure_point(
+    a: &RotationArgs,
+    loaded: &(Loaded, Loaded),
+    pair: usize,
+    x: f64,
+) -> anyhow::Result<Point> {
+    let plan = Plan::walk_and_brute(x, a.seed, a.steps, a.static_poses, a.repeats);
+    let (p, q) = loaded;
+    let t = measure(&p.polytope, &q.polytope, &plan)?;
+    Ok(Point {
+        pair,
+        x,
+        f: t.figures(),
+    })
 }
 
 /// Writes `rotation.csv` in `a.out`; returns its path.

@@ -18,7 +18,7 @@ use clap::Args;
 
 use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
 use super::plot::{method_series, write_chart, Chart, MethodTime, Series, COLORS, METHODS};
-use super::{loglog_slope, measure_each, num, out_file, write_csv};
+use super::{loglog_slope, measure_each, num, out_file, write_csv, write_repeats_line};
 use crate::commands::load;
 use crate::stats::human_us;
 
@@ -95,13 +95,12 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     writeln!(
         out,
         "dymsum bench size: two identical operands P = Q of growing size; P turns {} steps at {STEPS_PER_REV} \
-         steps per turn (seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;\n\
-         all repeated {} times with the same motion, each figure the median of the repeats' means.",
+         steps per turn (seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;",
         a.steps,
         a.seed,
         a.static_poses.min(a.steps),
-        a.repeats,
     )?;
+    write_repeats_line(out, a.repeats)?;
     out.flush()?;
 
     let points = measure_each(

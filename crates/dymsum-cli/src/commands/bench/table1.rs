@@ -19,7 +19,7 @@ use dymsum_io::Loaded;
 
 use super::measure::{measure, Plan, Timings};
 use super::paper::{pairs, paper_name, paper_speedup, MODELS};
-use super::{command_line, measure_each, num, out_file, sig3, write_csv};
+use super::{command_line, measure_each, num, out_file, sig3, write_csv, write_repeats_line};
 use crate::commands::load;
 use crate::stats::human_us;
 
@@ -187,15 +187,14 @@ fn write_intro(out: &mut dyn Write, a: &Table1Args, plan: &Plan) -> std::io::Res
         out,
         "dymsum bench table1: 91 pairs of the paper's 13 models; P (row) turns {STEPS_PER_REV} steps per turn \
          (random axis held 1..=50 steps, seed {}), Q (column) fixed.\n\
-         DYMSUM timed on all {} steps; walk on {}, brute on {} and hull on {} evenly spaced poses of the same run;\n\
-         all repeated {} times with the same motion, each figure the median of the repeats' means.",
+         DYMSUM timed on all {} steps; walk on {}, brute on {} and hull on {} evenly spaced poses of the same run;",
         a.seed,
         a.steps,
         plan.walk_poses.min(a.steps),
         plan.brute_poses.min(a.steps),
         plan.hull_poses.min(a.steps),
-        a.repeats,
     )?;
+    write_repeats_line(out, a.repeats)?;
     out.flush()
 }
 
