@@ -46,18 +46,17 @@ pub const OUTPUT: &str = "demo_sum.off";
 /// At most this share of the run goes to timing each static method.
 const STATIC_SHARE: f64 = 0.25;
 
-/// Times one static sum at a pose; returns microseconds and the facets.
+/// Times one static sum at a pose (see [`super::bench::measure::time_static`]);
+/// returns microseconds and the facets.
 fn time_static(
     p: &Polytope,
     pose: Pose,
     q: &Polytope,
     method: Method,
 ) -> anyhow::Result<(f64, Vec<Facet>)> {
-    let start = Instant::now();
-    let sum = minkowski_sum_posed(p, pose, q, Pose::IDENTITY, method)
-        .with_context(|| format!("static {} sum", method.name()))?;
-    let us = micros(start.elapsed());
-    Ok((us, sum.facets()))
+    let (us, facets) = super::bench::measure::time_static(p, pose, q, method);
+    let facets = facets.with_context(|| format!("static {} sum", method.name()))?;
+    Ok((us, facets))
 }
 
 /// Runs `dymsum demo`.

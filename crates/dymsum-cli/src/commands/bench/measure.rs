@@ -14,7 +14,7 @@ use std::io::Write;
 use std::time::Instant;
 
 use anyhow::Context;
-use dymsum::sum::{minkowski_sum_posed, Facet, Method};
+use dymsum::sum::{minkowski_sum_posed, Facet, Method, SumError};
 use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
 
 use super::num;
@@ -209,18 +209,19 @@ pub fn sample_indices(n: usize, k: usize) -> Vec<usize> {
     (0..k).map(|j| ((2 * j + 1) * n) / (2 * k)).collect()
 }
 
-/// Times one static sum; returns microseconds and the facets (or the error).
-fn time_static(
+/// Times one static sum of P at `pose_p` and Q at the identity; returns
+/// microseconds and the facets (or the error). Only the sum is timed, not
+/// the extraction of its facets.
+pub(crate) fn time_static(
     p: &Polytope,
-    rot: Rotation,
+    pose_p: Pose,
     q: &Polytope,
     method: Method,
-) -> (f64, Result<Vec<Facet>, String>) {
-    let pose = Pose::new(rot, DVec3::ZERO);
+) -> (f64, Result<Vec<Facet>, SumError>) {
     let start = Instant::now();
-    let sum = minkowski_sum_posed(p, pose, q, Pose::IDENTITY, method);
+    let sum = minkowski_sum_posed(p, pose_p, q, Pose::IDENTITY, method);
     let us = micros(start.elapsed());
-    (us, sum.map(|s| s.facets()).map_err(|e| e.to_string()))
+    (us, sum.map(|s| s.facets()))
 }
 
 /// Runs the plan on P (moving) and Q (fixed at the identity).
@@ -239,7 +240,7 @@ pub fn measure(p: &Polytope, q: &Polytope, plan: &Plan) -> anyhow::Result<Timing
         ..Timings::default()
     };
     // Warm-up (untimed): one static sum at the start pose.
-    let _ = time_static(p, Rotation::IDENTITY, q, Method::Walk);
+    let _ = time_static(p, Pose::IDENTITY, q, Method::Walk);
 
     // The first repeat also records the poses and the facets to compare.
     let first_run = run_dynamic(p, q, plan, &check_at, true)?;
@@ -356,7 +357,7 @@ fn time_static_at(
 ) -> anyhow::Result<Vec<f64>> {
     let mut times = Vec::with_capacity(at.len());
     for &i in at {
-        let (us, facets) = time_static(p, poses[i], q, method);
+        let (us, facets) = time_static(p, Pose::new(poses[i], DVec3::ZERO), q, method);
         if method == Method::Hull {
             t.hull_calls += 1;
         }
