@@ -207,39 +207,14 @@ fn message(e: &ParseError, kind: Option<&str>) -> String {
         .and_then(|(_, r)| r.split_once('\''))
         .map(|(t, _)| t.trim());
     let detail = raw.rsplit_once("Error: ").map(|(_, d)| d.trim());
-    let element = kind.map_or_else(|| "an".to_string(), |k| format!("a `{k}`"));
     if head.contains("magic number") {
         return "not a PLY file: the first line must be `ply`".to_string();
     }
     if head.starts_with("Unexpected end of file") {
-        // "... element 'vertex' (expected 4, got 3)."
-        let what = head
-            .split_once("element '")
-            .and_then(|(_, r)| r.split_once('\''))
-            .map(|(k, _)| k);
-        let counts = head
-            .split_once("(expected ")
-            .and_then(|(_, r)| r.split_once(')'))
-            .and_then(|(c, _)| c.split_once(", got "));
-        if let (Some(what), Some((declared, found))) = (what, counts) {
-            return format!(
-                "the file ends after {found} of the {declared} `{what}` elements the header declares"
-            );
-        }
-        return "the file ends before all elements the header declares".to_string();
+        return end_of_file_message(head);
     }
     if let Some(d) = detail.filter(|d| d.contains("list elements")) {
-        let text = quoted.unwrap_or("");
-        let counts: Vec<&str> = d
-            .split(|c: char| !c.is_ascii_digit())
-            .filter(|t| !t.is_empty())
-            .collect();
-        return match counts.as_slice() {
-            [want, got] => {
-                format!("`{text}`: the list count says {want} entries, but only {got} follow")
-            }
-            _ => format!("`{text}`: a list is shorter than its count"),
-        };
+        return short_list_message(d, quoted.unwrap_or(""));
     }
     if head.starts_with("Couldn't parse line") {
         return match quoted {
@@ -250,18 +225,59 @@ fn message(e: &ParseError, kind: Option<&str>) -> String {
     if head.starts_with("Couldn't read element line")
         || head.starts_with("Couldn't parse element line")
     {
-        return match quoted {
-            Some(t) => format!(
-                "cannot read `{t}` as the values of {element} element (plain decimal numbers, \
-                 one per property of the header; nan and inf are not allowed)"
-            ),
-            None => format!("cannot read the values of {element} element"),
-        };
+        return element_line_message(quoted, kind);
     }
     // Anything else: its first line, without the parser's internals.
     match head.split_once("ParseError {") {
         Some((before, _)) => before.trim().to_string(),
         None => head.trim_end_matches('.').to_string(),
+    }
+}
+
+/// "Unexpected end of file ... element 'vertex' (expected 4, got 3)." in
+/// our words.
+fn end_of_file_message(head: &str) -> String {
+    let what = head
+        .split_once("element '")
+        .and_then(|(_, r)| r.split_once('\''))
+        .map(|(k, _)| k);
+    let counts = head
+        .split_once("(expected ")
+        .and_then(|(_, r)| r.split_once(')'))
+        .and_then(|(c, _)| c.split_once(", got "));
+    if let (Some(what), Some((declared, found))) = (what, counts) {
+        return format!(
+            "the file ends after {found} of the {declared} `{what}` elements the header declares"
+        );
+    }
+    "the file ends before all elements the header declares".to_string()
+}
+
+/// A list shorter than its count: `detail` holds the two numbers, `text`
+/// the offending payload line.
+fn short_list_message(detail: &str, text: &str) -> String {
+    let counts: Vec<&str> = detail
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|t| !t.is_empty())
+        .collect();
+    match counts.as_slice() {
+        [want, got] => {
+            format!("`{text}`: the list count says {want} entries, but only {got} follow")
+        }
+        _ => format!("`{text}`: a list is shorter than its count"),
+    }
+}
+
+/// A payload line whose values cannot be read (`quoted`: the line, `kind`:
+/// its element kind).
+fn element_line_message(quoted: Option<&str>, kind: Option<&str>) -> String {
+    let element = kind.map_or_else(|| "an".to_string(), |k| format!("a `{k}`"));
+    match quoted {
+        Some(t) => format!(
+            "cannot read `{t}` as the values of {element} element (plain decimal numbers, \
+             one per property of the header; nan and inf are not allowed)"
+        ),
+        None => format!("cannot read the values of {element} element"),
     }
 }
 
