@@ -541,3 +541,27 @@ pub(crate) fn vertex_index(
     }
     Ok(raw as usize)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vertex_index_accepts_exactly_zero_to_count_minus_one() {
+        let at = || Location::Line(7);
+        assert_eq!(vertex_index(0, 3, "m", at()).unwrap(), 0);
+        assert_eq!(vertex_index(2, 3, "m", at()).unwrap(), 2);
+        for raw in [3, -1, i64::MIN, i64::MAX] {
+            let e = vertex_index(raw, 3, "m", at()).unwrap_err();
+            assert!(
+                matches!(
+                    &e,
+                    FormatError::BadIndex { source_name, at: Location::Line(7), index, vertex_count: 3 }
+                        if source_name == "m" && *index == raw
+                ),
+                "raw index {raw}: {e:?}"
+            );
+        }
+        assert!(vertex_index(0, 0, "m", at()).is_err());
+    }
+}

@@ -402,3 +402,34 @@ pub(crate) fn write(mesh: &PolygonMesh) -> Vec<u8> {
     }
     out.into_bytes()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vertex_references_are_one_based_or_relative() {
+        let r = |tok: &str, nv: usize| parse_vertex_reference(tok, nv, "m", 4);
+        assert_eq!(r("3", 5).unwrap(), 2);
+        assert_eq!(r("3/1", 5).unwrap(), 2);
+        assert_eq!(r("3//2", 5).unwrap(), 2);
+        assert_eq!(r("3/1/2", 5).unwrap(), 2);
+        // Forward references pass here; check_forward_references bounds them.
+        assert_eq!(r("7", 5).unwrap(), 6);
+        // -1 is the latest vertex, -nv the first.
+        assert_eq!(r("-1", 5).unwrap(), 4);
+        assert_eq!(r("-5", 5).unwrap(), 0);
+        for (tok, raw) in [("-6", -6), ("0", 0)] {
+            let e = r(tok, 5).unwrap_err();
+            assert!(
+                matches!(
+                    &e,
+                    FormatError::BadIndex { at: Location::Line(4), index, vertex_count: 5, .. }
+                        if *index == raw
+                ),
+                "{tok}: {e:?}"
+            );
+        }
+        assert!(matches!(r("x/1", 5), Err(FormatError::Parse { .. })));
+    }
+}
