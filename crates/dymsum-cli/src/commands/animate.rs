@@ -15,7 +15,7 @@ use std::time::Instant;
 use anyhow::{bail, Context};
 use clap::Args;
 use dymsum::sum::{minkowski_sum_posed, Method};
-use dymsum::{DynamicSum, Pose};
+use dymsum::{DynamicSum, Pose, UpdateReport};
 use dymsum_io::atomic::AtomicFile;
 use dymsum_io::formats::{write_mesh_with, Format};
 use indicatif::ProgressBar;
@@ -81,16 +81,7 @@ pub fn frame_path(dir: &Path, step: u64) -> PathBuf {
 pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let p = load(&a.p, "P", a.strict)?;
     let q = load(&a.q, "Q", a.strict)?;
-    let mut csv = match &a.csv {
-        Some(path) => {
-            // Written under a temporary name and renamed at the end: a failed
-            // run leaves an earlier CSV intact.
-            let mut w = AtomicFile::create(path).context("the CSV file")?;
-            writeln!(w, "{CSV_HEADER}")?;
-            Some(w)
-        }
-        None => None,
-    };
+    let mut csv = open_csv(a.csv.as_deref())?;
     if let Some(dir) = &a.frames_dir {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("cannot create the frames directory {}", dir.display()))?;
@@ -98,45 +89,7 @@ pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
 
     let mut dynamic = DynamicSum::new(&p.polytope, Pose::IDENTITY, &q.polytope, Pose::IDENTITY)
         .context("initial sum")?;
-    let mut motion = PaperMotion::new(a.steps_per_rev, a.seed);
-    let bar = progress_bar(a.steps);
-    let mut times = Vec::with_capacity(a.steps.min(1 << 24) as usize);
-    let mut frames = 0usize;
-    let (mut fv_total, mut ee_total) = (0usize, 0usize);
-    for step in 1..=a.steps {
-        let rot = motion.next_step();
-        let start = Instant::now();
-        let report = dynamic
-            .rotate_p_by(rot)
-            .with_context(|| format!("DYMSUM update at step {step}"))?;
-        let us = micros(start.elapsed());
-        times.push(us);
-        fv_total += report.fv_errors;
-        ee_total += report.ee_errors;
-        if let Some(w) = csv.as_mut() {
-            let [qw, qx, qy, qz] = dynamic.pose_p().rotation.wxyz();
-            writeln!(
-                w,
-                "{step},{qw},{qx},{qy},{qz},{},{},{},{},{},{us:.3}",
-                report.fv_errors,
-                report.ee_errors,
-                report.removed.len(),
-                report.added.len(),
-                dynamic.facet_count(),
-            )?;
-        }
-        if let Some(dir) = &a.frames_dir {
-            if step % a.every == 0 || step == a.steps {
-                let path = frame_path(dir, step);
-                let mesh = super::validated(dynamic.mesh_with_precision(), "the frame")?;
-                write_mesh_with(&path, &mesh, Format::Off)
-                    .with_context(|| format!("frame of step {step}"))?;
-                frames += 1;
-            }
-        }
-        bar.inc(1);
-    }
-    bar.finish_and_clear();
+    let totals = animate(a, &mut dynamic, csv.as_mut())?;
     if let Some(w) = csv {
         w.commit().context("the CSV file")?;
     }
@@ -159,25 +112,121 @@ pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             a.steps_per_rev
         );
     }
+    write_summary(out, a, &totals, dynamic.facet_count())
+}
 
+/// Opens the CSV file, if asked for, and writes its header. It is written
+/// under a temporary name and renamed at the end: a failed run leaves an
+/// earlier CSV intact.
+fn open_csv(path: Option<&Path>) -> anyhow::Result<Option<AtomicFile>> {
+    let Some(path) = path else {
+        return Ok(None);
+    };
+    let mut w = AtomicFile::create(path).context("the CSV file")?;
+    writeln!(w, "{CSV_HEADER}")?;
+    Ok(Some(w))
+}
+
+/// What a run adds up to.
+struct Totals {
+    /// Each update's time (µs).
+    times: Vec<f64>,
+    /// Frames written.
+    frames: usize,
+    /// fv-errors over all updates.
+    fv_errors: usize,
+    /// ee-errors over all updates.
+    ee_errors: usize,
+}
+
+/// Turns P `a.steps` steps under the paper's motion, timing each DYMSUM
+/// update, with a CSV row per step (if `csv`) and the frames due.
+fn animate(
+    a: &AnimateArgs,
+    dynamic: &mut DynamicSum<'_>,
+    mut csv: Option<&mut AtomicFile>,
+) -> anyhow::Result<Totals> {
+    let mut motion = PaperMotion::new(a.steps_per_rev, a.seed);
+    let bar = progress_bar(a.steps);
+    let mut totals = Totals {
+        times: Vec::with_capacity(a.steps.min(1 << 24) as usize),
+        frames: 0,
+        fv_errors: 0,
+        ee_errors: 0,
+    };
+    for step in 1..=a.steps {
+        let rot = motion.next_step();
+        let start = Instant::now();
+        let report = dynamic
+            .rotate_p_by(rot)
+            .with_context(|| format!("DYMSUM update at step {step}"))?;
+        let us = micros(start.elapsed());
+        totals.times.push(us);
+        totals.fv_errors += report.fv_errors;
+        totals.ee_errors += report.ee_errors;
+        if let Some(w) = csv.as_deref_mut() {
+            write_csv_row(w, step, dynamic, &report, us)?;
+        }
+        if let Some(dir) = &a.frames_dir {
+            if step % a.every == 0 || step == a.steps {
+                let mesh = super::validated(dynamic.mesh_with_precision(), "the frame")?;
+                write_mesh_with(&frame_path(dir, step), &mesh, Format::Off)
+                    .with_context(|| format!("frame of step {step}"))?;
+                totals.frames += 1;
+            }
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    Ok(totals)
+}
+
+/// The CSV row of `step` (see [`CSV_HEADER`]).
+fn write_csv_row(
+    w: &mut dyn Write,
+    step: u64,
+    dynamic: &DynamicSum<'_>,
+    report: &UpdateReport,
+    us: f64,
+) -> std::io::Result<()> {
+    let [qw, qx, qy, qz] = dynamic.pose_p().rotation.wxyz();
+    writeln!(
+        w,
+        "{step},{qw},{qx},{qy},{qz},{},{},{},{},{},{us:.3}",
+        report.fv_errors,
+        report.ee_errors,
+        report.removed.len(),
+        report.added.len(),
+        dynamic.facet_count(),
+    )
+}
+
+/// The closing lines: times, errors, facets and the files written.
+fn write_summary(
+    out: &mut dyn Write,
+    a: &AnimateArgs,
+    totals: &Totals,
+    facets: usize,
+) -> anyhow::Result<()> {
     writeln!(
         out,
         "{} ⊕ {}: {} steps at {} steps per turn (seed {}): DYMSUM update mean {}, median {}; \
-         {fv_total} fv-errors, {ee_total} ee-errors in all; {} facets at the end (verified against walk)",
+         {} fv-errors, {} ee-errors in all; {facets} facets at the end (verified against walk)",
         short_name(&a.p),
         short_name(&a.q),
         a.steps,
         a.steps_per_rev,
         a.seed,
-        human_us(mean(&times)),
-        human_us(median(&times)),
-        dynamic.facet_count(),
+        human_us(mean(&totals.times)),
+        human_us(median(&totals.times)),
+        totals.fv_errors,
+        totals.ee_errors,
     )?;
     if let Some(path) = &a.csv {
         writeln!(out, "wrote {} ({} rows)", path.display(), a.steps)?;
     }
     if let Some(dir) = &a.frames_dir {
-        writeln!(out, "wrote {frames} frames to {}", dir.display())?;
+        writeln!(out, "wrote {} frames to {}", totals.frames, dir.display())?;
     }
     Ok(())
 }

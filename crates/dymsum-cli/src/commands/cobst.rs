@@ -26,7 +26,7 @@ use std::time::Instant;
 use anyhow::{anyhow, bail, Context};
 use clap::Args;
 use dymsum::query::{orientations_about_axis, CObstacle};
-use dymsum::{DVec3, Rotation};
+use dymsum::{DVec3, DynamicSum, Polytope, Rotation};
 use serde::Serialize;
 
 use super::query::load_body;
@@ -190,44 +190,79 @@ struct IndexEntry {
 pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let robot = load_body(&a.robot, "ROBOT", a.strict)?;
     let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
-    let orientations = match (&a.orientations, a.axis, a.slices) {
+    let orientations = chosen_orientations(a)?;
+    prepare_out_dir(&a.out, a.force)?;
+    let union = robot.len() > 1 || obstacle.len() > 1;
+    let start = Instant::now();
+    let slices = write_slices(a, &robot, &obstacle, &orientations)?;
+    let elapsed = micros(start.elapsed());
+    write_index(&a.out, &orientations, &slices, union)?;
+    let faces = &slices.faces;
+    let (lo, hi) = (
+        faces.iter().min().copied().unwrap_or(0),
+        faces.iter().max().copied().unwrap_or(0),
+    );
+    let pairs = robot.len() * obstacle.len();
+    writeln!(
+        out,
+        "C-obstacle of {} among {}: {} slices ({} piece pair{}), {lo}–{hi} faces per slice, \
+         written to {} in {}",
+        short_name(&a.robot),
+        short_name(&a.obstacle),
+        orientations.len(),
+        pairs,
+        if pairs == 1 { "" } else { "s" },
+        a.out.display(),
+        human_us(elapsed),
+    )?;
+    Ok(())
+}
+
+/// The robot orientations asked for: from `--orientations FILE`, or
+/// `--slices N` evenly spaced turns about `--axis`.
+fn chosen_orientations(a: &CobstArgs) -> anyhow::Result<Vec<Rotation>> {
+    Ok(match (&a.orientations, a.axis, a.slices) {
         (Some(file), _, _) => read_orientations(file)?,
         (None, Some(axis), Some(n)) => orientations_about_axis(axis, n as usize)
             .ok_or_else(|| anyhow!("--axis must be a non-zero vector"))?,
         _ => bail!("give --axis X,Y,Z with --slices N, or --orientations FILE"),
-    };
-    prepare_out_dir(&a.out, a.force)?;
+    })
+}
+
+/// What was written for each slice, over all piece pairs.
+struct Slices {
+    /// Faces of each slice (summed over its piece pairs).
+    faces: Vec<usize>,
+    /// The files of each slice, one per piece pair.
+    files: Vec<Vec<String>>,
+}
+
+/// Writes one OFF file per slice and piece pair into `a.out` (named
+/// `slice_K.off`, or `slice_K_rI_oJ.off` when a body has several pieces).
+fn write_slices(
+    a: &CobstArgs,
+    robot: &[Polytope],
+    obstacle: &[Polytope],
+    orientations: &[Rotation],
+) -> anyhow::Result<Slices> {
     let union = robot.len() > 1 || obstacle.len() > 1;
-    let bar = crate::progress::bar(
-        (orientations.len() * robot.len() * obstacle.len()) as u64,
-        "cobst",
-        "slices",
-    );
-    let start = Instant::now();
     let n = orientations.len();
-    // faces[k] and files[k] per slice, accumulated over piece pairs.
-    let mut faces = vec![0usize; n];
-    let mut files: Vec<Vec<String>> = vec![Vec::new(); n];
+    let bar = crate::progress::bar((n * robot.len() * obstacle.len()) as u64, "cobst", "slices");
+    let mut slices = Slices {
+        faces: vec![0usize; n],
+        files: vec![Vec::new(); n],
+    };
     for (i, r) in robot.iter().enumerate() {
         for (j, o) in obstacle.iter().enumerate() {
             let cob = CObstacle::new(r, o).context("reflecting the robot")?;
             let written = cob
-                .map_par(&orientations, |k, _, sum| {
-                    let mesh = match sum.try_to_mesh() {
-                        Ok(m) => m,
-                        Err(e) => {
-                            bar.inc(1);
-                            return Err(anyhow::Error::new(e).context(format!("slice {k}")));
-                        }
-                    };
+                .map_par(orientations, |k, _, sum| {
                     let name = if union {
                         format!("slice_{k:05}_r{i}_o{j}.off")
                     } else {
                         format!("slice_{k:05}.off")
                     };
-                    let res = dymsum_io::formats::write_mesh(&a.out.join(&name), &mesh)
-                        .map(|()| (mesh.faces.len(), name.clone()))
-                        .map_err(anyhow::Error::from);
+                    let res = write_slice(sum, k, &a.out.join(&name)).map(|f| (f, name));
                     bar.inc(1);
                     res
                 })
@@ -240,45 +275,44 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                 })?;
             for (k, w) in written.into_iter().enumerate() {
                 let (f, name) = w?;
-                faces[k] += f;
-                files[k].push(name);
+                slices.faces[k] += f;
+                slices.files[k].push(name);
             }
         }
     }
     bar.finish_and_clear();
-    let elapsed = micros(start.elapsed());
+    Ok(slices)
+}
+
+/// Writes slice `k`, the sum's mesh, to `path`; returns its face count.
+fn write_slice(sum: &DynamicSum<'_>, k: usize, path: &Path) -> anyhow::Result<usize> {
+    let mesh = sum
+        .try_to_mesh()
+        .map_err(|e| anyhow::Error::new(e).context(format!("slice {k}")))?;
+    dymsum_io::formats::write_mesh(path, &mesh)?;
+    Ok(mesh.faces.len())
+}
+
+/// Writes `index.json` into `dir`: per slice its orientation, face count
+/// and file (`files` when a body has several pieces).
+fn write_index(
+    dir: &Path,
+    orientations: &[Rotation],
+    slices: &Slices,
+    union: bool,
+) -> anyhow::Result<()> {
     let index: Vec<IndexEntry> = orientations
         .iter()
         .enumerate()
         .map(|(k, r)| IndexEntry {
             slice: k,
             orientation: r.wxyz(),
-            faces: faces[k],
-            file: (!union).then(|| files[k][0].clone()),
-            files: union.then(|| files[k].clone()),
+            faces: slices.faces[k],
+            file: (!union).then(|| slices.files[k][0].clone()),
+            files: union.then(|| slices.files[k].clone()),
         })
         .collect();
-    let index_path = a.out.join("index.json");
     let json = serde_json::to_string_pretty(&index)? + "\n";
-    dymsum_io::atomic::write_atomic_bytes(&index_path, json.as_bytes())?;
-    let (lo, hi) = (
-        faces.iter().min().copied().unwrap_or(0),
-        faces.iter().max().copied().unwrap_or(0),
-    );
-    writeln!(
-        out,
-        "C-obstacle of {} among {}: {n} slices ({} piece pair{}), {lo}–{hi} faces per slice, \
-         written to {} in {}",
-        short_name(&a.robot),
-        short_name(&a.obstacle),
-        robot.len() * obstacle.len(),
-        if robot.len() * obstacle.len() == 1 {
-            ""
-        } else {
-            "s"
-        },
-        a.out.display(),
-        human_us(elapsed),
-    )?;
+    dymsum_io::atomic::write_atomic_bytes(&dir.join("index.json"), json.as_bytes())?;
     Ok(())
 }

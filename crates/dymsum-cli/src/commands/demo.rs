@@ -46,18 +46,17 @@ pub const OUTPUT: &str = "demo_sum.off";
 /// At most this share of the run goes to timing each static method.
 const STATIC_SHARE: f64 = 0.25;
 
-/// Times one static sum at a pose; returns microseconds and the facets.
+/// Times one static sum at a pose (see [`super::bench::measure::time_static`]);
+/// returns microseconds and the facets.
 fn time_static(
     p: &Polytope,
     pose: Pose,
     q: &Polytope,
     method: Method,
 ) -> anyhow::Result<(f64, Vec<Facet>)> {
-    let start = Instant::now();
-    let sum = minkowski_sum_posed(p, pose, q, Pose::IDENTITY, method)
-        .with_context(|| format!("static {} sum", method.name()))?;
-    let us = micros(start.elapsed());
-    Ok((us, sum.facets()))
+    let (us, facets) = super::bench::measure::time_static(p, pose, q, method);
+    let facets = facets.with_context(|| format!("static {} sum", method.name()))?;
+    Ok((us, facets))
 }
 
 /// Runs `dymsum demo`.
@@ -77,40 +76,10 @@ pub fn run(a: &DemoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
 
     let mut dynamic =
         DynamicSum::new(pp, Pose::IDENTITY, qq, Pose::IDENTITY).context("initial sum")?;
-    let mut motion = PaperMotion::new(STEPS_PER_REV, SEED);
     // Warm-up (not recorded).
     time_static(pp, Pose::IDENTITY, qq, Method::Walk)?;
-
-    let budget = Duration::from_secs_f64(a.seconds);
-    let run_start = Instant::now();
-    let mut dyn_us: Vec<f64> = Vec::new();
-    let (mut walk_us, mut brute_us) = (Vec::new(), Vec::new());
-    let mut spent = [Duration::ZERO; 2];
-    let mut step = 0usize;
-    while step == 0 || run_start.elapsed() < budget {
-        step += 1;
-        let rot = motion.next_step();
-        let start = Instant::now();
-        dynamic
-            .rotate_p_by(rot)
-            .with_context(|| format!("DYMSUM update at step {step}"))?;
-        dyn_us.push(micros(start.elapsed()));
-        // Time a static method at this pose whenever it has used at most its
-        // share of the run so far: about every k-th step, k = its cost /
-        // (share × DYMSUM cost).
-        let elapsed = run_start.elapsed().as_secs_f64();
-        for (i, (method, times)) in [(Method::Walk, &mut walk_us), (Method::Brute, &mut brute_us)]
-            .into_iter()
-            .enumerate()
-        {
-            if spent[i].as_secs_f64() <= STATIC_SHARE * elapsed {
-                let t = Instant::now();
-                sample(&dynamic, step, method, times)?;
-                spent[i] += t.elapsed();
-            }
-        }
-    }
-    let steps = dyn_us.len();
+    let times = timed_run(&mut dynamic, Duration::from_secs_f64(a.seconds))?;
+    let steps = times.dymsum.len();
 
     // Final check: the dynamic facets equal a fresh static walk sum.
     let fresh = minkowski_sum_posed(pp, dynamic.pose_p(), qq, dynamic.pose_q(), Method::Walk)
@@ -122,8 +91,80 @@ pub fn run(a: &DemoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     write_mesh_with(Path::new(OUTPUT), &mesh, Format::Off)
         .with_context(|| format!("writing {OUTPUT}"))?;
 
-    let d_mean = mean(&dyn_us);
     writeln!(out)?;
+    write_timing_table(out, &times)?;
+    writeln!(out)?;
+    let (fv, vf, ee) = fresh.counts();
+    writeln!(
+        out,
+        "verified: dynamic facets == static walk facets (final pose: {fv} fv + {vf} vf + {ee} ee = {} facets; \
+         and at every sampled pose, DYMSUM == walk and DYMSUM == brute)",
+        fv + vf + ee,
+    )?;
+    writeln!(
+        out,
+        "wrote {OUTPUT} ({} vertices, {} faces after merging)",
+        mesh.vertices.len(),
+        mesh.faces.len()
+    )?;
+    Ok(())
+}
+
+/// The timings of a demo run (µs).
+struct DemoTimes {
+    /// Every DYMSUM update.
+    dymsum: Vec<f64>,
+    /// `walk` at its sampled poses.
+    walk: Vec<f64>,
+    /// `brute` at its sampled poses.
+    brute: Vec<f64>,
+}
+
+/// Turns P under the paper's motion for about `budget` (at least one
+/// step), timing every DYMSUM update, and times `walk` and `brute` at a
+/// pose whenever each has used at most [`STATIC_SHARE`] of the run so far
+/// (about every k-th step, k = its cost / (share × DYMSUM cost)), checking
+/// their facets against DYMSUM's there.
+fn timed_run(dynamic: &mut DynamicSum<'_>, budget: Duration) -> anyhow::Result<DemoTimes> {
+    let mut motion = PaperMotion::new(STEPS_PER_REV, SEED);
+    let run_start = Instant::now();
+    let mut times = DemoTimes {
+        dymsum: Vec::new(),
+        walk: Vec::new(),
+        brute: Vec::new(),
+    };
+    let mut spent = [Duration::ZERO; 2];
+    let mut step = 0usize;
+    while step == 0 || run_start.elapsed() < budget {
+        step += 1;
+        let rot = motion.next_step();
+        let start = Instant::now();
+        dynamic
+            .rotate_p_by(rot)
+            .with_context(|| format!("DYMSUM update at step {step}"))?;
+        times.dymsum.push(micros(start.elapsed()));
+        let elapsed = run_start.elapsed().as_secs_f64();
+        for (i, (method, samples)) in [
+            (Method::Walk, &mut times.walk),
+            (Method::Brute, &mut times.brute),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            if spent[i].as_secs_f64() <= STATIC_SHARE * elapsed {
+                let t = Instant::now();
+                sample(dynamic, step, method, samples)?;
+                spent[i] += t.elapsed();
+            }
+        }
+    }
+    Ok(times)
+}
+
+/// The table of mean and median times and speedups, and what it means.
+fn write_timing_table(out: &mut dyn Write, times: &DemoTimes) -> std::io::Result<()> {
+    let steps = times.dymsum.len();
+    let d_mean = mean(&times.dymsum);
     writeln!(
         out,
         "{:<8} {:>9} {:>12} {:>12} {:>16}",
@@ -135,10 +176,10 @@ pub fn run(a: &DemoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         "DYMSUM",
         steps,
         d_mean,
-        median(&dyn_us),
+        median(&times.dymsum),
         "-"
     )?;
-    for (name, t) in [("walk", &walk_us), ("brute", &brute_us)] {
+    for (name, t) in [("walk", &times.walk), ("brute", &times.brute)] {
         writeln!(
             out,
             "{:<8} {:>9} {:>12.1} {:>12.1} {:>15.1}x",
@@ -155,24 +196,10 @@ pub fn run(a: &DemoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         "DYMSUM timed on every step; to keep the run short, walk and brute timed on a subsample \
          of the same poses (walk on {} and brute on {} of the {steps} steps, each limited to about {:.0}% of the run). \
          Speedup = mean static time / mean DYMSUM time.",
-        walk_us.len(),
-        brute_us.len(),
+        times.walk.len(),
+        times.brute.len(),
         STATIC_SHARE * 100.0,
-    )?;
-    let (fv, vf, ee) = fresh.counts();
-    writeln!(
-        out,
-        "verified: dynamic facets == static walk facets (final pose: {fv} fv + {vf} vf + {ee} ee = {} facets; \
-         and at every sampled pose, DYMSUM == walk and DYMSUM == brute)",
-        fv + vf + ee,
-    )?;
-    writeln!(
-        out,
-        "wrote {OUTPUT} ({} vertices, {} faces after merging)",
-        mesh.vertices.len(),
-        mesh.faces.len()
-    )?;
-    Ok(())
+    )
 }
 
 /// Times a static method at the dynamic sum's current pose and checks that

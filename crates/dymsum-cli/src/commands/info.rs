@@ -84,7 +84,20 @@ pub fn run(a: &InfoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         writeln!(out)?;
         return Ok(());
     }
-    let row = |out: &mut dyn Write, k: &str, v: String| writeln!(out, "{k:<18}{v}");
+    write_counts(out, &info)?;
+    if let Some(c) = &info.convexity {
+        write_convexity(out, c)?;
+    }
+    Ok(())
+}
+
+/// One `key: value` line of the text report.
+fn row(out: &mut dyn Write, k: &str, v: String) -> std::io::Result<()> {
+    writeln!(out, "{k:<18}{v}")
+}
+
+/// The source, counts, input, volume and diameter lines.
+fn write_counts(out: &mut dyn Write, info: &Info) -> std::io::Result<()> {
     row(out, "source:", info.source.clone())?;
     row(out, "vertices:", info.vertices.to_string())?;
     row(out, "edges:", info.edges.to_string())?;
@@ -109,31 +122,32 @@ pub fn run(a: &InfoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         out,
         "diameter:",
         format!("{} (bounding-box diagonal)", short(info.diameter)),
+    )
+}
+
+/// What validation found and changed: the convexity lines.
+fn write_convexity(out: &mut dyn Write, c: &ConvexityReport) -> std::io::Result<()> {
+    let verdict = if c.exactly_convex {
+        "exactly convex (kept as is; coplanar faces merged)".to_string()
+    } else if c.replaced_by_hull {
+        "convex within tolerance: replaced by hull (the exact hull of its vertices)".to_string()
+    } else {
+        "convex".to_string()
+    };
+    row(out, "convexity:", verdict)?;
+    row(
+        out,
+        "max deviation:",
+        format!("{:.3e} (tolerance {:.3e})", c.max_deviation, c.tolerance),
     )?;
-    if let Some(c) = &info.convexity {
-        let verdict = if c.exactly_convex {
-            "exactly convex (kept as is; coplanar faces merged)".to_string()
-        } else if c.replaced_by_hull {
-            "convex within tolerance: replaced by hull (the exact hull of its vertices)".to_string()
+    row(out, "dropped vertices:", c.dropped_vertices.to_string())?;
+    row(
+        out,
+        "orientation:",
+        if c.inward_oriented {
+            "inward in the input (flipped to outward)".to_string()
         } else {
-            "convex".to_string()
-        };
-        row(out, "convexity:", verdict)?;
-        row(
-            out,
-            "max deviation:",
-            format!("{:.3e} (tolerance {:.3e})", c.max_deviation, c.tolerance),
-        )?;
-        row(out, "dropped vertices:", c.dropped_vertices.to_string())?;
-        row(
-            out,
-            "orientation:",
-            if c.inward_oriented {
-                "inward in the input (flipped to outward)".to_string()
-            } else {
-                "outward".to_string()
-            },
-        )?;
-    }
-    Ok(())
+            "outward".to_string()
+        },
+    )
 }

@@ -176,110 +176,143 @@ fn from_proximity(p: &Proximity) -> Answer {
 pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let robot = load_body(&a.robot, "ROBOT", a.strict)?;
     let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
-    let answers: Vec<Answer> = if robot.len() == 1 && obstacle.len() == 1 {
-        let pair = ConvexPair::new(&robot[0], &obstacle[0]).context("preparing the query")?;
-        let mut tracker = pair
-            .tracker(a.poses[0].pose, Pose::IDENTITY)
-            .context("the first pose")?;
-        let mut answers = Vec::with_capacity(a.poses.len());
-        for (k, p) in a.poses.iter().enumerate() {
-            let prox = if k == 0 {
-                *tracker.last()
-            } else {
-                tracker
-                    .update(p.pose, Pose::IDENTITY)
-                    .with_context(|| format!("pose {}", k + 1))?
-            };
-            answers.push(from_proximity(&prox));
-        }
-        answers
+    let answers = if robot.len() == 1 && obstacle.len() == 1 {
+        convex_answers(&robot[0], &obstacle[0], &a.poses)?
     } else {
-        let (ru, ou) = (
-            ConvexUnion::new(robot).ok_or_else(|| anyhow!("ROBOT has no pieces"))?,
-            ConvexUnion::new(obstacle).ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?,
-        );
-        let single = ru.pieces().len() == 1 && ou.pieces().len() == 1;
-        a.poses
-            .iter()
-            .enumerate()
-            .map(|(k, p)| {
-                let q = ru
-                    .query(p.pose, &ou, Pose::IDENTITY)
-                    .with_context(|| format!("pose {}", k + 1))?;
-                Ok(match q {
-                    UnionProximity::Colliding(hits) if single => {
-                        let c = hits[0].1;
-                        Answer {
-                            collides: true,
-                            depth: Some(c.depth),
-                            distance: 0.0,
-                            direction: Some(-c.normal),
-                            witnesses: Some((c.point_on_a, c.point_on_b)),
-                        }
-                    }
-                    UnionProximity::Colliding(_) => Answer {
-                        collides: true,
-                        depth: None,
-                        distance: 0.0,
-                        direction: None,
-                        witnesses: None,
-                    },
-                    UnionProximity::Separated(_, s) => Answer {
-                        collides: false,
-                        depth: Some(0.0),
-                        distance: s.distance,
-                        direction: Some(s.direction),
-                        witnesses: Some((s.point_on_a, s.point_on_b)),
-                    },
-                })
-            })
-            .collect::<anyhow::Result<_>>()?
+        union_answers(robot, obstacle, &a.poses)?
     };
     for (p, ans) in a.poses.iter().zip(&answers) {
         if a.json {
-            let line = JsonLine {
-                pose: p.values,
-                collides: ans.collides,
-                depth: ans.depth,
-                distance: ans.distance,
-                direction: ans.direction.map(|d| d.to_array()),
-                point_on_robot: ans.witnesses.map(|w| w.0.to_array()),
-                point_on_obstacle: ans.witnesses.map(|w| w.1.to_array()),
-            };
-            writeln!(out, "{}", serde_json::to_string(&line)?)?;
+            write_json_answer(out, p, ans)?;
         } else {
-            let v = p.values;
-            let v = v.map(short);
-            let pose = format!(
-                "t = ({}, {}, {}), q = ({}, {}, {}, {})",
-                v[0], v[1], v[2], v[3], v[4], v[5], v[6]
-            );
-            let dir = |d: Option<DVec3>| match d {
-                Some(d) => format!("({:.6}, {:.6}, {:.6})", d.x, d.y, d.z),
-                None => "n/a".to_string(),
-            };
-            if ans.collides {
-                match ans.depth {
-                    Some(depth) => writeln!(
-                        out,
-                        "{pose}: collides, depth {}, separate by moving the robot along {}",
-                        fixed(depth, 9),
-                        dir(ans.direction)
-                    )?,
-                    None => writeln!(
-                        out,
-                        "{pose}: collides (depth of a non-convex union is not supported)"
-                    )?,
-                }
-            } else {
-                writeln!(
-                    out,
-                    "{pose}: apart, distance {}, obstacle towards {}",
-                    fixed(ans.distance, 9),
-                    dir(ans.direction)
-                )?;
-            }
+            write_text_answer(out, p, ans)?;
         }
     }
     Ok(())
+}
+
+/// Answers for two convex bodies: one tracker carried from pose to pose.
+fn convex_answers(
+    robot: &Polytope,
+    obstacle: &Polytope,
+    poses: &[PoseArg],
+) -> anyhow::Result<Vec<Answer>> {
+    let pair = ConvexPair::new(robot, obstacle).context("preparing the query")?;
+    let mut tracker = pair
+        .tracker(poses[0].pose, Pose::IDENTITY)
+        .context("the first pose")?;
+    let mut answers = Vec::with_capacity(poses.len());
+    for (k, p) in poses.iter().enumerate() {
+        let prox = if k == 0 {
+            *tracker.last()
+        } else {
+            tracker
+                .update(p.pose, Pose::IDENTITY)
+                .with_context(|| format!("pose {}", k + 1))?
+        };
+        answers.push(from_proximity(&prox));
+    }
+    Ok(answers)
+}
+
+/// Answers for bodies of several convex pieces, pose by pose.
+fn union_answers(
+    robot: Vec<Polytope>,
+    obstacle: Vec<Polytope>,
+    poses: &[PoseArg],
+) -> anyhow::Result<Vec<Answer>> {
+    let (ru, ou) = (
+        ConvexUnion::new(robot).ok_or_else(|| anyhow!("ROBOT has no pieces"))?,
+        ConvexUnion::new(obstacle).ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?,
+    );
+    let single = ru.pieces().len() == 1 && ou.pieces().len() == 1;
+    poses
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let q = ru
+                .query(p.pose, &ou, Pose::IDENTITY)
+                .with_context(|| format!("pose {}", k + 1))?;
+            Ok(from_union_proximity(&q, single))
+        })
+        .collect()
+}
+
+/// The answer of a union query; `single` when both unions have one piece
+/// (then a collision's depth is known).
+fn from_union_proximity(q: &UnionProximity, single: bool) -> Answer {
+    match q {
+        UnionProximity::Colliding(hits) if single => {
+            let c = hits[0].1;
+            Answer {
+                collides: true,
+                depth: Some(c.depth),
+                distance: 0.0,
+                direction: Some(-c.normal),
+                witnesses: Some((c.point_on_a, c.point_on_b)),
+            }
+        }
+        UnionProximity::Colliding(_) => Answer {
+            collides: true,
+            depth: None,
+            distance: 0.0,
+            direction: None,
+            witnesses: None,
+        },
+        UnionProximity::Separated(_, s) => Answer {
+            collides: false,
+            depth: Some(0.0),
+            distance: s.distance,
+            direction: Some(s.direction),
+            witnesses: Some((s.point_on_a, s.point_on_b)),
+        },
+    }
+}
+
+/// One answer as a JSON line.
+fn write_json_answer(out: &mut dyn Write, p: &PoseArg, ans: &Answer) -> anyhow::Result<()> {
+    let line = JsonLine {
+        pose: p.values,
+        collides: ans.collides,
+        depth: ans.depth,
+        distance: ans.distance,
+        direction: ans.direction.map(|d| d.to_array()),
+        point_on_robot: ans.witnesses.map(|w| w.0.to_array()),
+        point_on_obstacle: ans.witnesses.map(|w| w.1.to_array()),
+    };
+    writeln!(out, "{}", serde_json::to_string(&line)?)?;
+    Ok(())
+}
+
+/// One answer as a line of text.
+fn write_text_answer(out: &mut dyn Write, p: &PoseArg, ans: &Answer) -> std::io::Result<()> {
+    let v = p.values.map(short);
+    let pose = format!(
+        "t = ({}, {}, {}), q = ({}, {}, {}, {})",
+        v[0], v[1], v[2], v[3], v[4], v[5], v[6]
+    );
+    let dir = |d: Option<DVec3>| match d {
+        Some(d) => format!("({:.6}, {:.6}, {:.6})", d.x, d.y, d.z),
+        None => "n/a".to_string(),
+    };
+    if !ans.collides {
+        return writeln!(
+            out,
+            "{pose}: apart, distance {}, obstacle towards {}",
+            fixed(ans.distance, 9),
+            dir(ans.direction)
+        );
+    }
+    match ans.depth {
+        Some(depth) => writeln!(
+            out,
+            "{pose}: collides, depth {}, separate by moving the robot along {}",
+            fixed(depth, 9),
+            dir(ans.direction)
+        ),
+        None => writeln!(
+            out,
+            "{pose}: collides (depth of a non-convex union is not supported)"
+        ),
+    }
 }

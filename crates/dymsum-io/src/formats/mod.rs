@@ -522,3 +522,46 @@ pub(crate) fn push_coords(out: &mut String, v: &[f64; 3]) {
 pub(crate) fn text(bytes: &[u8]) -> std::borrow::Cow<'_, str> {
     String::from_utf8_lossy(bytes)
 }
+
+/// Checks a vertex index read from a face list: `Ok` with the index if it
+/// lies in `0..vertex_count`, [`FormatError::BadIndex`] at `at` otherwise.
+pub(crate) fn vertex_index(
+    raw: i64,
+    vertex_count: usize,
+    source_name: &str,
+    at: Location,
+) -> Result<usize, FormatError> {
+    if raw < 0 || raw as u64 >= vertex_count as u64 {
+        return Err(FormatError::BadIndex {
+            source_name: source_name.to_string(),
+            at,
+            index: raw,
+            vertex_count,
+        });
+    }
+    Ok(raw as usize)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vertex_index_accepts_exactly_zero_to_count_minus_one() {
+        let at = || Location::Line(7);
+        assert_eq!(vertex_index(0, 3, "m", at()).unwrap(), 0);
+        assert_eq!(vertex_index(2, 3, "m", at()).unwrap(), 2);
+        for raw in [3, -1, i64::MIN, i64::MAX] {
+            let e = vertex_index(raw, 3, "m", at()).unwrap_err();
+            assert!(
+                matches!(
+                    &e,
+                    FormatError::BadIndex { source_name, at: Location::Line(7), index, vertex_count: 3 }
+                        if source_name == "m" && *index == raw
+                ),
+                "raw index {raw}: {e:?}"
+            );
+        }
+        assert!(vertex_index(0, 0, "m", at()).is_err());
+    }
+}

@@ -83,99 +83,17 @@ fn parse(bytes: &[u8], name: &str) -> Result<Parsed, FormatError> {
         };
         match keyword {
             "v" => {
-                let vals: Vec<&str> = tokens.collect();
-                if vals.len() < 3 {
-                    return Err(FormatError::parse(
-                        name,
-                        Location::Line(no),
-                        format!("vertex needs 3 coordinates, found {}", vals.len()),
-                    ));
-                }
-                let mut v = [
-                    parse_coord(vals[0], name, no)?,
-                    parse_coord(vals[1], name, no)?,
-                    parse_coord(vals[2], name, no)?,
-                ];
-                if vals.len() == 4 {
-                    let w = parse_coord(vals[3], name, no)?;
-                    if w == 0.0 {
-                        return Err(FormatError::parse(
-                            name,
-                            Location::Line(no),
-                            "vertex weight w is zero",
-                        ));
-                    }
-                    if w != 1.0 {
-                        for c in &mut v {
-                            *c /= w;
-                        }
-                        if v.iter().any(|c| !c.is_finite()) {
-                            return Err(FormatError::NonFinite {
-                                source_name: name.to_string(),
-                                at: Location::Line(no),
-                                value: format!("{v:?} after dividing by w = {w}"),
-                            });
-                        }
-                    }
-                }
-                p.vertices.push(v);
+                p.vertices.push(parse_vertex(tokens, name, no)?);
                 p.vertex_piece.push(current);
             }
             "f" | "fo" => {
-                let nv = p.vertices.len();
-                let mut face = Vec::new();
-                for tok in tokens {
-                    let first = tok.split('/').next().unwrap_or("");
-                    let raw = first.parse::<i64>().map_err(|_| {
-                        FormatError::parse(
-                            name,
-                            Location::Line(no),
-                            format!(
-                                "expected a vertex reference like 3, 3/1 or 3//2, found {tok:?}"
-                            ),
-                        )
-                    })?;
-                    let bad = || FormatError::BadIndex {
-                        source_name: name.to_string(),
-                        at: Location::Line(no),
-                        index: raw,
-                        vertex_count: nv,
-                    };
-                    let idx = if raw > 0 {
-                        // Checked against the final vertex count below
-                        // (forward references are tolerated).
-                        usize::try_from(raw - 1).map_err(|_| bad())?
-                    } else if raw < 0 {
-                        // -1 is the most recently defined vertex.
-                        let back = raw.unsigned_abs();
-                        if back > nv as u64 {
-                            return Err(bad());
-                        }
-                        nv - back as usize
-                    } else {
-                        return Err(bad());
-                    };
-                    face.push(idx);
-                }
-                if face.len() < 3 {
-                    return Err(FormatError::DegenerateFace {
-                        source_name: name.to_string(),
-                        at: Location::Line(no),
-                        len: face.len(),
-                    });
-                }
-                p.faces.push(face);
+                p.faces
+                    .push(parse_face(tokens, p.vertices.len(), name, no)?);
                 p.face_piece.push(current);
                 face_lines.push(no);
             }
             "o" | "g" => {
-                let rest: Vec<&str> = tokens.collect();
-                let piece = if rest.is_empty() {
-                    "default".to_string()
-                } else {
-                    rest.join(" ")
-                };
-                p.pieces.push(piece);
+                p.pieces.push(piece_name(tokens));
                 current = p.pieces.len() - 1;
             }
             k if FREE_FORM.contains(&k) => {
@@ -196,8 +114,136 @@ fn parse(bytes: &[u8], name: &str) -> Result<Parsed, FormatError> {
             source_name: name.to_string(),
         });
     }
+    check_forward_references(&p, &face_lines, name)?;
+    Ok(p)
+}
+
+/// The values after a `v` keyword: `x y z [w]`, divided by `w` when it is
+/// present and not 1 (a zero `w` or a non-finite quotient is an error);
+/// further values such as vertex colours are ignored.
+fn parse_vertex<'a>(
+    tokens: impl Iterator<Item = &'a str>,
+    name: &str,
+    no: usize,
+) -> Result<[f64; 3], FormatError> {
+    let vals: Vec<&str> = tokens.collect();
+    if vals.len() < 3 {
+        return Err(FormatError::parse(
+            name,
+            Location::Line(no),
+            format!("vertex needs 3 coordinates, found {}", vals.len()),
+        ));
+    }
+    let mut v = [
+        parse_coord(vals[0], name, no)?,
+        parse_coord(vals[1], name, no)?,
+        parse_coord(vals[2], name, no)?,
+    ];
+    if vals.len() == 4 {
+        let w = parse_coord(vals[3], name, no)?;
+        if w == 0.0 {
+            return Err(FormatError::parse(
+                name,
+                Location::Line(no),
+                "vertex weight w is zero",
+            ));
+        }
+        if w != 1.0 {
+            for c in &mut v {
+                *c /= w;
+            }
+            if v.iter().any(|c| !c.is_finite()) {
+                return Err(FormatError::NonFinite {
+                    source_name: name.to_string(),
+                    at: Location::Line(no),
+                    value: format!("{v:?} after dividing by w = {w}"),
+                });
+            }
+        }
+    }
+    Ok(v)
+}
+
+/// The vertex references after an `f` keyword as 0-based indices, `nv`
+/// being the number of vertices defined so far (for negative, relative
+/// references). Positive references past `nv` are kept: forward references
+/// are checked against the final count by [`check_forward_references`].
+fn parse_face<'a>(
+    tokens: impl Iterator<Item = &'a str>,
+    nv: usize,
+    name: &str,
+    no: usize,
+) -> Result<Vec<usize>, FormatError> {
+    let mut face = Vec::new();
+    for tok in tokens {
+        face.push(parse_vertex_reference(tok, nv, name, no)?);
+    }
+    if face.len() < 3 {
+        return Err(FormatError::DegenerateFace {
+            source_name: name.to_string(),
+            at: Location::Line(no),
+            len: face.len(),
+        });
+    }
+    Ok(face)
+}
+
+/// One face entry `v`, `v/vt`, `v//vn` or `v/vt/vn` as a 0-based vertex
+/// index: `v > 0` is 1-based, `v < 0` counts back from the `nv` vertices
+/// defined so far (-1 is the latest), `v = 0` is invalid.
+fn parse_vertex_reference(
+    tok: &str,
+    nv: usize,
+    name: &str,
+    no: usize,
+) -> Result<usize, FormatError> {
+    let first = tok.split('/').next().unwrap_or("");
+    let raw = first.parse::<i64>().map_err(|_| {
+        FormatError::parse(
+            name,
+            Location::Line(no),
+            format!("expected a vertex reference like 3, 3/1 or 3//2, found {tok:?}"),
+        )
+    })?;
+    let bad = || FormatError::BadIndex {
+        source_name: name.to_string(),
+        at: Location::Line(no),
+        index: raw,
+        vertex_count: nv,
+    };
+    if raw > 0 {
+        usize::try_from(raw - 1).map_err(|_| bad())
+    } else if raw < 0 {
+        let back = raw.unsigned_abs();
+        if back > nv as u64 {
+            return Err(bad());
+        }
+        Ok(nv - back as usize)
+    } else {
+        Err(bad())
+    }
+}
+
+/// The name after an `o` or `g` keyword (`default` if none).
+fn piece_name<'a>(tokens: impl Iterator<Item = &'a str>) -> String {
+    let rest: Vec<&str> = tokens.collect();
+    if rest.is_empty() {
+        "default".to_string()
+    } else {
+        rest.join(" ")
+    }
+}
+
+/// Checks every face index against the final vertex count (faces may refer
+/// forward to vertices defined later in the file); `face_lines` holds each
+/// face's line number.
+fn check_forward_references(
+    p: &Parsed,
+    face_lines: &[usize],
+    name: &str,
+) -> Result<(), FormatError> {
     let nv = p.vertices.len();
-    for (face, &no) in p.faces.iter().zip(&face_lines) {
+    for (face, &no) in p.faces.iter().zip(face_lines) {
         if let Some(&bad) = face.iter().find(|&&i| i >= nv) {
             return Err(FormatError::BadIndex {
                 source_name: name.to_string(),
@@ -207,7 +253,7 @@ fn parse(bytes: &[u8], name: &str) -> Result<Parsed, FormatError> {
             });
         }
     }
-    Ok(p)
+    Ok(())
 }
 
 pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
@@ -245,8 +291,23 @@ pub(crate) fn read_objects(
             },
         )]);
     }
+    let mut remap = vec![usize::MAX; p.vertices.len()];
+    let mut out: Vec<(String, PolygonMesh)> = face_components(&p)
+        .into_iter()
+        .map(|(piece, face_ids)| {
+            let body = body_of_faces(&p, &face_ids, &mut remap);
+            (p.pieces[piece].clone(), body)
+        })
+        .collect();
+    out.extend(point_clouds(&p));
+    Ok(out)
+}
+
+/// The connected components of the faces through shared vertices, in order
+/// of their first face: for each, the object/group of its first face and
+/// its face indices in file order.
+fn face_components(p: &Parsed) -> Vec<(usize, Vec<usize>)> {
     let nv = p.vertices.len();
-    // Connected components of the faces through shared vertices.
     let mut parent: Vec<usize> = (0..nv).collect();
     for f in &p.faces {
         let a = root(&mut parent, f[0]);
@@ -257,15 +318,8 @@ pub(crate) fn read_objects(
             }
         }
     }
-    let mut used = vec![false; nv];
-    for f in &p.faces {
-        for &v in f {
-            used[v] = true;
-        }
-    }
-    // Components in order of their first face.
     let mut component_of_root = vec![usize::MAX; nv];
-    let mut components: Vec<(usize, Vec<usize>)> = Vec::new(); // (piece of first face, faces)
+    let mut components: Vec<(usize, Vec<usize>)> = Vec::new();
     for (fi, f) in p.faces.iter().enumerate() {
         let r = root(&mut parent, f[0]);
         if component_of_root[r] == usize::MAX {
@@ -274,28 +328,38 @@ pub(crate) fn read_objects(
         }
         components[component_of_root[r]].1.push(fi);
     }
-    let mut remap = vec![usize::MAX; nv];
-    let mut out = Vec::new();
-    for (piece, face_ids) in components {
-        // The body's vertices in file order.
-        let mut verts: Vec<usize> = face_ids
-            .iter()
-            .flat_map(|&fi| p.faces[fi].iter().copied())
-            .collect();
-        verts.sort_unstable();
-        verts.dedup();
-        for (new, &old) in verts.iter().enumerate() {
-            remap[old] = new;
-        }
-        let vertices = verts.iter().map(|&i| p.vertices[i]).collect();
-        let faces = face_ids
-            .iter()
-            .map(|&fi| p.faces[fi].iter().map(|&i| remap[i]).collect())
-            .collect();
-        out.push((p.pieces[piece].clone(), PolygonMesh { vertices, faces }));
+    components
+}
+
+/// The mesh of the faces `face_ids`: their vertices in file order,
+/// re-indexed from 0. `remap` is scratch space of one entry per vertex.
+fn body_of_faces(p: &Parsed, face_ids: &[usize], remap: &mut [usize]) -> PolygonMesh {
+    let mut verts: Vec<usize> = face_ids
+        .iter()
+        .flat_map(|&fi| p.faces[fi].iter().copied())
+        .collect();
+    verts.sort_unstable();
+    verts.dedup();
+    for (new, &old) in verts.iter().enumerate() {
+        remap[old] = new;
     }
-    // Objects with vertices but no faces: point clouds of their own
-    // vertices that no face uses.
+    let vertices = verts.iter().map(|&i| p.vertices[i]).collect();
+    let faces = face_ids
+        .iter()
+        .map(|&fi| p.faces[fi].iter().map(|&i| remap[i]).collect())
+        .collect();
+    PolygonMesh { vertices, faces }
+}
+
+/// Objects with vertices but no faces: point clouds of their own vertices
+/// that no face uses, in object order.
+fn point_clouds(p: &Parsed) -> Vec<(String, PolygonMesh)> {
+    let mut used = vec![false; p.vertices.len()];
+    for f in &p.faces {
+        for &v in f {
+            used[v] = true;
+        }
+    }
     let mut has_faces = vec![false; p.pieces.len()];
     for &piece in &p.face_piece {
         has_faces[piece] = true;
@@ -307,18 +371,18 @@ pub(crate) fn read_objects(
             clouds[piece].push(*v);
         }
     }
-    for (piece, vertices) in clouds.into_iter().enumerate() {
-        if !vertices.is_empty() {
-            out.push((
-                p.pieces[piece].clone(),
-                PolygonMesh {
-                    vertices,
-                    faces: Vec::new(),
-                },
-            ));
-        }
-    }
-    Ok(out)
+    clouds
+        .into_iter()
+        .enumerate()
+        .filter(|(_, vertices)| !vertices.is_empty())
+        .map(|(piece, vertices)| {
+            let mesh = PolygonMesh {
+                vertices,
+                faces: Vec::new(),
+            };
+            (p.pieces[piece].clone(), mesh)
+        })
+        .collect()
 }
 
 pub(crate) fn write(mesh: &PolygonMesh) -> Vec<u8> {
@@ -337,4 +401,35 @@ pub(crate) fn write(mesh: &PolygonMesh) -> Vec<u8> {
         out.push('\n');
     }
     out.into_bytes()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vertex_references_are_one_based_or_relative() {
+        let r = |tok: &str, nv: usize| parse_vertex_reference(tok, nv, "m", 4);
+        assert_eq!(r("3", 5).unwrap(), 2);
+        assert_eq!(r("3/1", 5).unwrap(), 2);
+        assert_eq!(r("3//2", 5).unwrap(), 2);
+        assert_eq!(r("3/1/2", 5).unwrap(), 2);
+        // Forward references pass here; check_forward_references bounds them.
+        assert_eq!(r("7", 5).unwrap(), 6);
+        // -1 is the latest vertex, -nv the first.
+        assert_eq!(r("-1", 5).unwrap(), 4);
+        assert_eq!(r("-5", 5).unwrap(), 0);
+        for (tok, raw) in [("-6", -6), ("0", 0)] {
+            let e = r(tok, 5).unwrap_err();
+            assert!(
+                matches!(
+                    &e,
+                    FormatError::BadIndex { at: Location::Line(4), index, vertex_count: 5, .. }
+                        if *index == raw
+                ),
+                "{tok}: {e:?}"
+            );
+        }
+        assert!(matches!(r("x/1", 5), Err(FormatError::Parse { .. })));
+    }
 }

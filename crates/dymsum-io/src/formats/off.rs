@@ -17,7 +17,7 @@ use std::fmt::Write;
 
 use dymsum::PolygonMesh;
 
-use super::{capped, parse_coord, push_coords, text, FormatError, Location};
+use super::{capped, parse_coord, push_coords, text, vertex_index, FormatError, Location};
 
 /// Content lines: 1-based number and text with comments stripped and
 /// surrounding whitespace trimmed; blank lines skipped.
@@ -79,12 +79,40 @@ fn parse_count(token: &str, what: &str, name: &str, line: usize) -> Result<usize
     })
 }
 
+/// The counts a header declares: vertices and faces (the edge count, when
+/// present, is checked to be a number and ignored).
+struct Counts {
+    vertices: usize,
+    faces: usize,
+}
+
 pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
     let src = text(bytes);
-    let total_lines = src.lines().count();
-    let eof = Location::Line(total_lines + 1);
+    let eof = Location::Line(src.lines().count() + 1);
     let mut lines = content_lines(&src);
+    let (header, counts) = read_header(&mut lines, name, &eof)?;
+    let vertices = read_vertices(&mut lines, &header, counts.vertices, name, &eof)?;
+    let faces = read_faces(&mut lines, counts.vertices, counts.faces, name, &eof)?;
+    if let Some((no, _)) = lines.next() {
+        return Err(FormatError::CountMismatch {
+            source_name: name.to_string(),
+            at: Location::Line(no),
+            what: "faces",
+            declared: counts.faces,
+            found: counts.faces + 1,
+        });
+    }
+    Ok(PolygonMesh { vertices, faces })
+}
 
+/// Reads the optional `*OFF` keyword and the counts line (the keyword may
+/// stand alone on its line or start the counts line). Rejects binary OFF,
+/// malformed counts and a zero vertex count.
+fn read_header<'a>(
+    lines: &mut impl Iterator<Item = (usize, &'a str)>,
+    name: &str,
+    eof: &Location,
+) -> Result<(Header, Counts), FormatError> {
     let Some((first_no, first)) = lines.next() else {
         return Err(FormatError::Empty {
             source_name: name.to_string(),
@@ -112,7 +140,7 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
             let Some((no, l)) = lines.next() else {
                 return Err(FormatError::parse(
                     name,
-                    eof,
+                    eof.clone(),
                     "missing the counts line after the OFF header",
                 ));
             };
@@ -120,33 +148,51 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
             tokens = l.split_whitespace().collect();
         }
     }
+    let counts = parse_counts(&tokens, name, counts_line)?;
+    Ok((header, counts))
+}
+
+/// Parses `vertex_count face_count [edge_count]` from the counts line's
+/// tokens; a zero vertex count means the file holds no mesh.
+fn parse_counts(tokens: &[&str], name: &str, line: usize) -> Result<Counts, FormatError> {
     if tokens.len() != 2 && tokens.len() != 3 {
         return Err(FormatError::parse(
             name,
-            Location::Line(counts_line),
+            Location::Line(line),
             format!(
                 "expected \"vertex_count face_count [edge_count]\", found {:?}",
                 tokens.join(" ")
             ),
         ));
     }
-    let nv = parse_count(tokens[0], "vertices", name, counts_line)?;
-    let nf = parse_count(tokens[1], "faces", name, counts_line)?;
+    let vertices = parse_count(tokens[0], "vertices", name, line)?;
+    let faces = parse_count(tokens[1], "faces", name, line)?;
     if tokens.len() == 3 {
-        parse_count(tokens[2], "edges", name, counts_line)?;
+        parse_count(tokens[2], "edges", name, line)?;
     }
-    if nv == 0 {
+    if vertices == 0 {
         return Err(FormatError::Empty {
             source_name: name.to_string(),
         });
     }
+    Ok(Counts { vertices, faces })
+}
 
+/// Reads `nv` vertex lines `x y z` (extra values allowed only if the header
+/// keyword announced them).
+fn read_vertices<'a>(
+    lines: &mut impl Iterator<Item = (usize, &'a str)>,
+    header: &Header,
+    nv: usize,
+    name: &str,
+    eof: &Location,
+) -> Result<Vec<[f64; 3]>, FormatError> {
     let mut vertices = Vec::with_capacity(capped(nv));
     while vertices.len() < nv {
         let Some((no, l)) = lines.next() else {
             return Err(FormatError::CountMismatch {
                 source_name: name.to_string(),
-                at: eof,
+                at: eof.clone(),
                 what: "vertices",
                 declared: nv,
                 found: vertices.len(),
@@ -171,80 +217,78 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
             parse_coord(t[2], name, no)?,
         ]);
     }
+    Ok(vertices)
+}
 
+/// Reads `nf` face lines `k i1 .. ik` with indices below `nv`.
+fn read_faces<'a>(
+    lines: &mut impl Iterator<Item = (usize, &'a str)>,
+    nv: usize,
+    nf: usize,
+    name: &str,
+    eof: &Location,
+) -> Result<Vec<Vec<usize>>, FormatError> {
     let mut faces = Vec::with_capacity(capped(nf));
     while faces.len() < nf {
         let Some((no, l)) = lines.next() else {
             return Err(FormatError::CountMismatch {
                 source_name: name.to_string(),
-                at: eof,
+                at: eof.clone(),
                 what: "faces",
                 declared: nf,
                 found: faces.len(),
             });
         };
-        let mut t = l.split_whitespace();
-        let k_tok = t.next().unwrap_or("");
-        let k = k_tok.parse::<usize>().map_err(|_| {
+        faces.push(parse_face(l, faces.len(), nv, name, no)?);
+    }
+    Ok(faces)
+}
+
+/// Parses face number `index` from its line `k i1 .. ik [ignored...]`:
+/// `k >= 3` indices, each in `0..nv`.
+fn parse_face(
+    l: &str,
+    index: usize,
+    nv: usize,
+    name: &str,
+    no: usize,
+) -> Result<Vec<usize>, FormatError> {
+    let mut t = l.split_whitespace();
+    let k_tok = t.next().unwrap_or("");
+    let k = k_tok.parse::<usize>().map_err(|_| {
+        FormatError::parse(
+            name,
+            Location::Line(no),
+            format!("face {index}: expected the vertex count, found {k_tok:?}"),
+        )
+    })?;
+    if k < 3 {
+        return Err(FormatError::DegenerateFace {
+            source_name: name.to_string(),
+            at: Location::Line(no),
+            len: k,
+        });
+    }
+    let mut face = Vec::with_capacity(k.min(64));
+    for j in 0..k {
+        let Some(tok) = t.next() else {
+            return Err(FormatError::parse(
+                name,
+                Location::Line(no),
+                format!("face {index} declares {k} vertices but lists only {j}"),
+            ));
+        };
+        let idx = tok.parse::<i64>().map_err(|_| {
             FormatError::parse(
                 name,
                 Location::Line(no),
-                format!(
-                    "face {}: expected the vertex count, found {k_tok:?}",
-                    faces.len()
-                ),
+                format!("expected a vertex index, found {tok:?}"),
             )
         })?;
-        if k < 3 {
-            return Err(FormatError::DegenerateFace {
-                source_name: name.to_string(),
-                at: Location::Line(no),
-                len: k,
-            });
-        }
-        let mut face = Vec::with_capacity(k.min(64));
-        for j in 0..k {
-            let Some(tok) = t.next() else {
-                return Err(FormatError::parse(
-                    name,
-                    Location::Line(no),
-                    format!(
-                        "face {} declares {k} vertices but lists only {j}",
-                        faces.len()
-                    ),
-                ));
-            };
-            let idx = tok.parse::<i64>().map_err(|_| {
-                FormatError::parse(
-                    name,
-                    Location::Line(no),
-                    format!("expected a vertex index, found {tok:?}"),
-                )
-            })?;
-            if idx < 0 || idx as u64 >= nv as u64 {
-                return Err(FormatError::BadIndex {
-                    source_name: name.to_string(),
-                    at: Location::Line(no),
-                    index: idx,
-                    vertex_count: nv,
-                });
-            }
-            face.push(idx as usize);
-        }
-        // Remaining tokens (e.g. a face colour) are ignored.
-        faces.push(face);
+        face.push(vertex_index(idx, nv, name, Location::Line(no))?);
     }
-
-    if let Some((no, _)) = lines.next() {
-        return Err(FormatError::CountMismatch {
-            source_name: name.to_string(),
-            at: Location::Line(no),
-            what: "faces",
-            declared: nf,
-            found: nf + 1,
-        });
-    }
-    Ok(PolygonMesh { vertices, faces })
+    // Remaining tokens (e.g. a face colour) are ignored.
+    Ok(face)
 }
 
 pub(crate) fn write(mesh: &PolygonMesh) -> Vec<u8> {

@@ -21,7 +21,7 @@ use dymsum::PolygonMesh;
 use ply_rs_bw::parser::{ParseError, Parser, Reader};
 use ply_rs_bw::ply::{Encoding, Header, PropertyAccess, PropertyAccessResult, PropertyType};
 
-use super::{push_coords, FormatError, Location};
+use super::{push_coords, vertex_index, FormatError, Location};
 
 /// One PLY element of any kind: only the properties we use are kept.
 #[derive(Default)]
@@ -207,39 +207,14 @@ fn message(e: &ParseError, kind: Option<&str>) -> String {
         .and_then(|(_, r)| r.split_once('\''))
         .map(|(t, _)| t.trim());
     let detail = raw.rsplit_once("Error: ").map(|(_, d)| d.trim());
-    let element = kind.map_or_else(|| "an".to_string(), |k| format!("a `{k}`"));
     if head.contains("magic number") {
         return "not a PLY file: the first line must be `ply`".to_string();
     }
     if head.starts_with("Unexpected end of file") {
-        // "... element 'vertex' (expected 4, got 3)."
-        let what = head
-            .split_once("element '")
-            .and_then(|(_, r)| r.split_once('\''))
-            .map(|(k, _)| k);
-        let counts = head
-            .split_once("(expected ")
-            .and_then(|(_, r)| r.split_once(')'))
-            .and_then(|(c, _)| c.split_once(", got "));
-        if let (Some(what), Some((declared, found))) = (what, counts) {
-            return format!(
-                "the file ends after {found} of the {declared} `{what}` elements the header declares"
-            );
-        }
-        return "the file ends before all elements the header declares".to_string();
+        return end_of_file_message(head);
     }
     if let Some(d) = detail.filter(|d| d.contains("list elements")) {
-        let text = quoted.unwrap_or("");
-        let counts: Vec<&str> = d
-            .split(|c: char| !c.is_ascii_digit())
-            .filter(|t| !t.is_empty())
-            .collect();
-        return match counts.as_slice() {
-            [want, got] => {
-                format!("`{text}`: the list count says {want} entries, but only {got} follow")
-            }
-            _ => format!("`{text}`: a list is shorter than its count"),
-        };
+        return short_list_message(d, quoted.unwrap_or(""));
     }
     if head.starts_with("Couldn't parse line") {
         return match quoted {
@@ -250,18 +225,59 @@ fn message(e: &ParseError, kind: Option<&str>) -> String {
     if head.starts_with("Couldn't read element line")
         || head.starts_with("Couldn't parse element line")
     {
-        return match quoted {
-            Some(t) => format!(
-                "cannot read `{t}` as the values of {element} element (plain decimal numbers, \
-                 one per property of the header; nan and inf are not allowed)"
-            ),
-            None => format!("cannot read the values of {element} element"),
-        };
+        return element_line_message(quoted, kind);
     }
     // Anything else: its first line, without the parser's internals.
     match head.split_once("ParseError {") {
         Some((before, _)) => before.trim().to_string(),
         None => head.trim_end_matches('.').to_string(),
+    }
+}
+
+/// "Unexpected end of file ... element 'vertex' (expected 4, got 3)." in
+/// our words.
+fn end_of_file_message(head: &str) -> String {
+    let what = head
+        .split_once("element '")
+        .and_then(|(_, r)| r.split_once('\''))
+        .map(|(k, _)| k);
+    let counts = head
+        .split_once("(expected ")
+        .and_then(|(_, r)| r.split_once(')'))
+        .and_then(|(c, _)| c.split_once(", got "));
+    if let (Some(what), Some((declared, found))) = (what, counts) {
+        return format!(
+            "the file ends after {found} of the {declared} `{what}` elements the header declares"
+        );
+    }
+    "the file ends before all elements the header declares".to_string()
+}
+
+/// A list shorter than its count: `detail` holds the two numbers, `text`
+/// the offending payload line.
+fn short_list_message(detail: &str, text: &str) -> String {
+    let counts: Vec<&str> = detail
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|t| !t.is_empty())
+        .collect();
+    match counts.as_slice() {
+        [want, got] => {
+            format!("`{text}`: the list count says {want} entries, but only {got} follow")
+        }
+        _ => format!("`{text}`: a list is shorter than its count"),
+    }
+}
+
+/// A payload line whose values cannot be read (`quoted`: the line, `kind`:
+/// its element kind).
+fn element_line_message(quoted: Option<&str>, kind: Option<&str>) -> String {
+    let element = kind.map_or_else(|| "an".to_string(), |k| format!("a `{k}`"));
+    match quoted {
+        Some(t) => format!(
+            "cannot read `{t}` as the values of {element} element (plain decimal numbers, \
+             one per property of the header; nan and inf are not allowed)"
+        ),
+        None => format!("cannot read the values of {element} element"),
     }
 }
 
@@ -282,8 +298,34 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
         first_data_line: reader.line(),
     };
     let header_end = Location::Line(reader.line().saturating_sub(1));
+    check_mesh_header(&header, name, header_end)?;
 
-    // Check the header describes a polygon mesh before reading the payload.
+    let mut payload = parser.read_payload(&mut reader, &header).map_err(|e| {
+        let kind = loc.kind_at(e.line());
+        FormatError::parse(
+            name,
+            loc.payload_error(e.line()),
+            message(&e, kind.as_deref()),
+        )
+    })?;
+    let vertices = vertex_positions(
+        &payload.swap_remove("vertex").unwrap_or_default(),
+        &loc,
+        name,
+    )?;
+    let faces = face_lists(
+        payload.swap_remove("face").unwrap_or_default(),
+        vertices.len(),
+        &loc,
+        name,
+    )?;
+    Ok(PolygonMesh { vertices, faces })
+}
+
+/// Checks the header describes a polygon mesh before the payload is read: a
+/// non-empty `vertex` element with scalar `x`, `y`, `z`, and, if there are
+/// faces, a `vertex_indices` list on them. Errors point at `header_end`.
+fn check_mesh_header(header: &Header, name: &str, header_end: Location) -> Result<(), FormatError> {
     let Some(vdef) = header.elements.get("vertex") else {
         return Err(FormatError::unsupported(
             name,
@@ -328,17 +370,15 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
             ));
         }
     }
+    Ok(())
+}
 
-    let mut payload = parser.read_payload(&mut reader, &header).map_err(|e| {
-        let kind = loc.kind_at(e.line());
-        FormatError::parse(
-            name,
-            loc.payload_error(e.line()),
-            message(&e, kind.as_deref()),
-        )
-    })?;
-
-    let velems = payload.swap_remove("vertex").unwrap_or_default();
+/// The `x y z` of each `vertex` element, all finite.
+fn vertex_positions(
+    velems: &[Elem],
+    loc: &Locator<'_>,
+    name: &str,
+) -> Result<Vec<[f64; 3]>, FormatError> {
     let mut vertices = Vec::with_capacity(velems.len());
     for (i, e) in velems.iter().enumerate() {
         let (Some(x), Some(y), Some(z)) = (e.xyz[0], e.xyz[1], e.xyz[2]) else {
@@ -357,10 +397,17 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
         }
         vertices.push([x, y, z]);
     }
-    drop(velems);
-    let nv = vertices.len();
+    Ok(vertices)
+}
 
-    let felems = payload.swap_remove("face").unwrap_or_default();
+/// The index list of each `face` element: at least 3 indices, each in
+/// `0..nv`.
+fn face_lists(
+    felems: Vec<Elem>,
+    nv: usize,
+    loc: &Locator<'_>,
+    name: &str,
+) -> Result<Vec<Vec<usize>>, FormatError> {
     let mut faces = Vec::with_capacity(felems.len());
     for (j, e) in felems.into_iter().enumerate() {
         let raw = e.indices.unwrap_or_default();
@@ -371,21 +418,13 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
                 len: raw.len(),
             });
         }
-        let mut face = Vec::with_capacity(raw.len());
-        for r in raw {
-            if r < 0 || r as u64 >= nv as u64 {
-                return Err(FormatError::BadIndex {
-                    source_name: name.to_string(),
-                    at: loc.element("face", j),
-                    index: r,
-                    vertex_count: nv,
-                });
-            }
-            face.push(r as usize);
-        }
+        let face = raw
+            .into_iter()
+            .map(|r| vertex_index(r, nv, name, loc.element("face", j)))
+            .collect::<Result<Vec<usize>, _>>()?;
         faces.push(face);
     }
-    Ok(PolygonMesh { vertices, faces })
+    Ok(faces)
 }
 
 /// Header for writing; `format` is `ascii` or `binary_little_endian`.

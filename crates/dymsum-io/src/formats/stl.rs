@@ -99,6 +99,47 @@ pub(crate) fn read(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError>
 }
 
 fn read_binary(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
+    let count = checked_binary_count(bytes, name)?;
+    // stl_io takes anything whose first line starts with "solid " for ASCII;
+    // the 80-byte header carries no data, so blank it in that case.
+    let data: std::borrow::Cow<'_, [u8]> = if bytes.starts_with(b"solid") {
+        let mut v = bytes[..84 + 50 * count].to_vec();
+        v[..80].fill(0);
+        v.into()
+    } else {
+        bytes[..84 + 50 * count].into()
+    };
+    let mut cursor = Cursor::new(&data[..]);
+    let reader = stl_io::create_stl_reader(&mut cursor)
+        .map_err(|e| FormatError::parse(name, Location::Byte(0), e.to_string()))?;
+    let mut m = Merger {
+        index: HashMap::with_capacity(capped(count)),
+        vertices: Vec::with_capacity(capped(count)),
+        faces: Vec::with_capacity(capped(count)),
+    };
+    for (i, t) in reader.enumerate() {
+        let at = || Location::Element {
+            kind: "triangle".to_string(),
+            index: i,
+        };
+        let t = t.map_err(|e| FormatError::parse(name, at(), e.to_string()))?;
+        let corners = t.vertices.map(|v| v.0.map(f64::from));
+        if let Some(bad) = corners.iter().flatten().find(|c| !c.is_finite()) {
+            return Err(FormatError::NonFinite {
+                source_name: name.to_string(),
+                at: at(),
+                value: bad.to_string(),
+            });
+        }
+        m.triangle(corners);
+    }
+    m.finish(name)
+}
+
+/// The triangle count of a binary STL, checked against the file size: the
+/// header must be complete, the file exactly `84 + 50 * count` bytes long
+/// and the count non-zero.
+fn checked_binary_count(bytes: &[u8], name: &str) -> Result<usize, FormatError> {
     let Some(count) = binary_count(bytes) else {
         return Err(FormatError::parse(
             name,
@@ -140,48 +181,7 @@ fn read_binary(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
             source_name: name.to_string(),
         });
     }
-    // stl_io takes anything whose first line starts with "solid " for ASCII;
-    // the 80-byte header carries no data, so blank it in that case.
-    let data: std::borrow::Cow<'_, [u8]> = if bytes.starts_with(b"solid") {
-        let mut v = bytes[..84 + 50 * count].to_vec();
-        v[..80].fill(0);
-        v.into()
-    } else {
-        bytes[..84 + 50 * count].into()
-    };
-    let mut cursor = Cursor::new(&data[..]);
-    let reader = stl_io::create_stl_reader(&mut cursor)
-        .map_err(|e| FormatError::parse(name, Location::Byte(0), e.to_string()))?;
-    let mut m = Merger {
-        index: HashMap::with_capacity(capped(count)),
-        vertices: Vec::with_capacity(capped(count)),
-        faces: Vec::with_capacity(capped(count)),
-    };
-    for (i, t) in reader.enumerate() {
-        let t = t.map_err(|e| {
-            FormatError::parse(
-                name,
-                Location::Element {
-                    kind: "triangle".to_string(),
-                    index: i,
-                },
-                e.to_string(),
-            )
-        })?;
-        let corners = t.vertices.map(|v| v.0.map(f64::from));
-        if let Some(bad) = corners.iter().flatten().find(|c| !c.is_finite()) {
-            return Err(FormatError::NonFinite {
-                source_name: name.to_string(),
-                at: Location::Element {
-                    kind: "triangle".to_string(),
-                    index: i,
-                },
-                value: bad.to_string(),
-            });
-        }
-        m.triangle(corners);
-    }
-    m.finish(name)
+    Ok(count)
 }
 
 fn read_ascii(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
@@ -216,11 +216,8 @@ fn read_ascii(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
             continue;
         }
         match kw.as_str() {
-            "endsolid" => {
-                in_solid = false;
-                continue;
-            }
-            "facet" => {}
+            "endsolid" => in_solid = false,
+            "facet" => m.triangle(read_facet_body(&mut lines, name, &eof)?),
             _ => {
                 return Err(err(
                     Location::Line(no),
@@ -231,44 +228,64 @@ fn read_ascii(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
                 ))
             }
         }
-        // The facet normal is ignored.
-        expect_line(&mut lines, "outer loop", name, &eof)?;
-        let mut corners = [[0.0f64; 3]; 3];
-        for corner in &mut corners {
-            let Some((no, t)) = lines.next() else {
-                return Err(err(
-                    eof.clone(),
-                    "end of file, expected \"vertex x y z\"".to_string(),
-                ));
-            };
-            if t.len() != 4 || !t[0].eq_ignore_ascii_case("vertex") {
-                return Err(err(
-                    Location::Line(no),
-                    format!("expected \"vertex x y z\", found {:?}", t.join(" ")),
-                ));
-            }
-            for (c, tok) in corner.iter_mut().zip(&t[1..]) {
-                let v = tok.parse::<f32>().map_err(|_| {
-                    err(
-                        Location::Line(no),
-                        format!("expected a number, found {tok:?}"),
-                    )
-                })?;
-                if !v.is_finite() {
-                    return Err(FormatError::NonFinite {
-                        source_name: name.to_string(),
-                        at: Location::Line(no),
-                        value: tok.to_string(),
-                    });
-                }
-                *c = f64::from(v);
-            }
-        }
-        expect_line(&mut lines, "endloop", name, &eof)?;
-        expect_line(&mut lines, "endfacet", name, &eof)?;
-        m.triangle(corners);
     }
     m.finish(name)
+}
+
+/// The lines of a facet after its `facet normal ...` line (the normal is
+/// ignored): `outer loop`, three `vertex x y z`, `endloop`, `endfacet`.
+/// Returns the three corners.
+fn read_facet_body<'a>(
+    lines: &mut impl Iterator<Item = (usize, Vec<&'a str>)>,
+    name: &str,
+    eof: &Location,
+) -> Result<[[f64; 3]; 3], FormatError> {
+    expect_line(lines, "outer loop", name, eof)?;
+    let mut corners = [[0.0f64; 3]; 3];
+    for corner in &mut corners {
+        let Some((no, t)) = lines.next() else {
+            return Err(FormatError::parse(
+                name,
+                eof.clone(),
+                "end of file, expected \"vertex x y z\"",
+            ));
+        };
+        *corner = parse_vertex_line(&t, name, no)?;
+    }
+    expect_line(lines, "endloop", name, eof)?;
+    expect_line(lines, "endfacet", name, eof)?;
+    Ok(corners)
+}
+
+/// One `vertex x y z` line; the coordinates are read as `f32`, as the
+/// format stores them, and must be finite.
+fn parse_vertex_line(t: &[&str], name: &str, no: usize) -> Result<[f64; 3], FormatError> {
+    if t.len() != 4 || !t[0].eq_ignore_ascii_case("vertex") {
+        return Err(FormatError::parse(
+            name,
+            Location::Line(no),
+            format!("expected \"vertex x y z\", found {:?}", t.join(" ")),
+        ));
+    }
+    let mut corner = [0.0f64; 3];
+    for (c, tok) in corner.iter_mut().zip(&t[1..]) {
+        let v = tok.parse::<f32>().map_err(|_| {
+            FormatError::parse(
+                name,
+                Location::Line(no),
+                format!("expected a number, found {tok:?}"),
+            )
+        })?;
+        if !v.is_finite() {
+            return Err(FormatError::NonFinite {
+                source_name: name.to_string(),
+                at: Location::Line(no),
+                value: tok.to_string(),
+            });
+        }
+        *c = f64::from(v);
+    }
+    Ok(corner)
 }
 
 /// Consumes the next content line, which must be `what` (case insensitive).

@@ -347,123 +347,147 @@ pub fn model(name: &str) -> Result<PolygonMesh, ModelError> {
     if FIXED_NAMES.iter().any(|(n, _)| *n == family) && !FAMILIES.contains(&family) {
         return Err(bad(name, format!("`{family}` takes no parameters")));
     }
-    let groups: Vec<Vec<&str>> = match params {
-        None => Vec::new(),
-        Some(p) => p
-            .split(':')
-            .map(|g| g.split(',').map(str::trim).collect())
-            .collect(),
+    let p = Params {
+        name,
+        groups: parameter_groups(params),
     };
-    let p = Params { name, groups };
     match family {
         "tcube" => {
             p.max_groups(1)?;
             let k = p.int_or(0, 0, "K", 1, 1, TCUBE_MAX)?;
             Ok(generators::tessellated_cube(TCUBE_SIDE, k))
         }
-        "box" => {
-            p.max_groups(1)?;
-            let g = p.group(0);
-            let (x, y, z) = match g.len() {
-                0 => (1.0, 1.0, 1.0),
-                1 => {
-                    let s = p.positive(0, 0, "S (side length)", 1.0)?;
-                    (s, s, s)
-                }
-                3 => (
-                    p.positive(0, 0, "X", 1.0)?,
-                    p.positive(0, 1, "Y", 1.0)?,
-                    p.positive(0, 2, "Z", 1.0)?,
-                ),
-                n => {
-                    return Err(bad(
-                        name,
-                        format!("box takes 1 or 3 sizes (box:S or box:X,Y,Z), got {n}"),
-                    ))
-                }
-            };
-            Ok(generators::box_mesh(x, y, z))
-        }
+        "box" => build_box(&p),
         "sphere" => {
             p.max_groups(1)?;
             let n = p.int_or(0, 0, "N (frequency)", 4, 1, SPHERE_MAX)?;
             Ok(generators::geodesic_sphere(n))
         }
-        "ellipsoid" => {
-            p.max_groups(2)?;
-            if p.group(0).len() != 3 {
-                return Err(bad(
-                    name,
-                    "ellipsoid needs three semi-axes: ellipsoid:A,B,C[:N] \
-                     (use `ellipse` for the paper's ellipsoid)"
-                        .to_string(),
-                ));
-            }
-            let a = p.positive(0, 0, "A", 1.0)?;
-            let b = p.positive(0, 1, "B", 1.0)?;
-            let c = p.positive(0, 2, "C", 1.0)?;
-            let n = p.int_or(1, 0, "N (frequency)", 4, 1, SPHERE_MAX)?;
-            Ok(generators::ellipsoid(a, b, c, n))
-        }
-        "cylinder" | "cone" => {
-            p.max_groups(2)?;
-            if p.group(0).is_empty() {
-                return Err(bad(name, format!("{family} needs N: {family}:N[:R,H]")));
-            }
-            let n = p.int_or(0, 0, "N (sides)", 0, 3, AROUND_MAX)?;
-            let (r, h) = p.pair(1, ("R", 1.0), ("H", 2.0))?;
-            Ok(if family == "cone" {
-                generators::cone(n, r, h)
-            } else {
-                generators::cylinder(n, r, h)
-            })
-        }
-        "capsule" => {
-            p.max_groups(3)?;
-            if p.group(0).is_empty() || p.group(1).is_empty() {
-                return Err(bad(name, "capsule needs N and K: capsule:N:K[:R,L]".into()));
-            }
-            let n = p.int_or(0, 0, "N (around)", 0, 3, AROUND_MAX)?;
-            let k = p.int_or(1, 0, "K (rings per cap)", 0, 1, RINGS_MAX)?;
-            if n.saturating_mul(k) > CAPSULE_MAX {
-                return Err(bad(
-                    name,
-                    format!("N·K must be at most {CAPSULE_MAX}, got {n}·{k}"),
-                ));
-            }
-            let g = p.group(2);
-            if g.len() > 2 {
-                return Err(bad(name, "capsule takes at most R,L".into()));
-            }
-            let r = p.positive(2, 0, "R", VROD_RADIUS)?;
-            let l = p.non_negative(2, 1, "L", VROD_LENGTH)?;
-            Ok(generators::capsule(n, k, r, l))
-        }
-        "random" => {
-            p.max_groups(2)?;
-            if p.group(0).is_empty() {
-                return Err(bad(name, "random needs N: random:N[:SEED]".into()));
-            }
-            let n = p.int_or(0, 0, "N (points)", 0, 4, RANDOM_MAX)?;
-            let seed = match p.single(1, 0) {
-                None => 0,
-                Some(s) => s.parse::<u64>().map_err(|_| {
-                    bad(
-                        name,
-                        format!("SEED must be an integer from 0 to {}, got `{s}`", u64::MAX),
-                    )
-                })?,
-            };
-            if p.group(1).len() > 1 {
-                return Err(bad(name, "random takes one SEED".into()));
-            }
-            Ok(generators::random_ball(n, seed))
-        }
+        "ellipsoid" => build_ellipsoid(&p),
+        "cylinder" | "cone" => build_prism_or_cone(&p, family),
+        "capsule" => build_capsule(&p),
+        "random" => build_random(&p),
         _ => Err(ModelError::Unknown {
             name: name.to_string(),
             suggestion: suggest(family, params),
         }),
     }
+}
+
+/// The parameters after a family name, `a,b:c` → `[[a, b], [c]]` (trimmed).
+fn parameter_groups(params: Option<&str>) -> Vec<Vec<&str>> {
+    match params {
+        None => Vec::new(),
+        Some(p) => p
+            .split(':')
+            .map(|g| g.split(',').map(str::trim).collect())
+            .collect(),
+    }
+}
+
+/// `box`, `box:S` or `box:X,Y,Z`.
+fn build_box(p: &Params<'_>) -> Result<PolygonMesh, ModelError> {
+    p.max_groups(1)?;
+    let g = p.group(0);
+    let (x, y, z) = match g.len() {
+        0 => (1.0, 1.0, 1.0),
+        1 => {
+            let s = p.positive(0, 0, "S (side length)", 1.0)?;
+            (s, s, s)
+        }
+        3 => (
+            p.positive(0, 0, "X", 1.0)?,
+            p.positive(0, 1, "Y", 1.0)?,
+            p.positive(0, 2, "Z", 1.0)?,
+        ),
+        n => {
+            return Err(bad(
+                p.name,
+                format!("box takes 1 or 3 sizes (box:S or box:X,Y,Z), got {n}"),
+            ))
+        }
+    };
+    Ok(generators::box_mesh(x, y, z))
+}
+
+/// `ellipsoid:A,B,C[:N]`.
+fn build_ellipsoid(p: &Params<'_>) -> Result<PolygonMesh, ModelError> {
+    p.max_groups(2)?;
+    if p.group(0).len() != 3 {
+        return Err(bad(
+            p.name,
+            "ellipsoid needs three semi-axes: ellipsoid:A,B,C[:N] \
+             (use `ellipse` for the paper's ellipsoid)"
+                .to_string(),
+        ));
+    }
+    let a = p.positive(0, 0, "A", 1.0)?;
+    let b = p.positive(0, 1, "B", 1.0)?;
+    let c = p.positive(0, 2, "C", 1.0)?;
+    let n = p.int_or(1, 0, "N (frequency)", 4, 1, SPHERE_MAX)?;
+    Ok(generators::ellipsoid(a, b, c, n))
+}
+
+/// `cylinder:N[:R,H]` or `cone:N[:R,H]` (`family` says which).
+fn build_prism_or_cone(p: &Params<'_>, family: &str) -> Result<PolygonMesh, ModelError> {
+    p.max_groups(2)?;
+    if p.group(0).is_empty() {
+        return Err(bad(p.name, format!("{family} needs N: {family}:N[:R,H]")));
+    }
+    let n = p.int_or(0, 0, "N (sides)", 0, 3, AROUND_MAX)?;
+    let (r, h) = p.pair(1, ("R", 1.0), ("H", 2.0))?;
+    Ok(if family == "cone" {
+        generators::cone(n, r, h)
+    } else {
+        generators::cylinder(n, r, h)
+    })
+}
+
+/// `capsule:N:K[:R,L]`, with N·K at most [`CAPSULE_MAX`].
+fn build_capsule(p: &Params<'_>) -> Result<PolygonMesh, ModelError> {
+    p.max_groups(3)?;
+    if p.group(0).is_empty() || p.group(1).is_empty() {
+        return Err(bad(
+            p.name,
+            "capsule needs N and K: capsule:N:K[:R,L]".into(),
+        ));
+    }
+    let n = p.int_or(0, 0, "N (around)", 0, 3, AROUND_MAX)?;
+    let k = p.int_or(1, 0, "K (rings per cap)", 0, 1, RINGS_MAX)?;
+    if n.saturating_mul(k) > CAPSULE_MAX {
+        return Err(bad(
+            p.name,
+            format!("N·K must be at most {CAPSULE_MAX}, got {n}·{k}"),
+        ));
+    }
+    if p.group(2).len() > 2 {
+        return Err(bad(p.name, "capsule takes at most R,L".into()));
+    }
+    let r = p.positive(2, 0, "R", VROD_RADIUS)?;
+    let l = p.non_negative(2, 1, "L", VROD_LENGTH)?;
+    Ok(generators::capsule(n, k, r, l))
+}
+
+/// `random:N[:SEED]`: a point cloud.
+fn build_random(p: &Params<'_>) -> Result<PolygonMesh, ModelError> {
+    p.max_groups(2)?;
+    if p.group(0).is_empty() {
+        return Err(bad(p.name, "random needs N: random:N[:SEED]".into()));
+    }
+    let n = p.int_or(0, 0, "N (points)", 0, 4, RANDOM_MAX)?;
+    let seed = match p.single(1, 0) {
+        None => 0,
+        Some(s) => s.parse::<u64>().map_err(|_| {
+            bad(
+                p.name,
+                format!("SEED must be an integer from 0 to {}, got `{s}`", u64::MAX),
+            )
+        })?,
+    };
+    if p.group(1).len() > 1 {
+        return Err(bad(p.name, "random takes one SEED".into()));
+    }
+    Ok(generators::random_ball(n, seed))
 }
 
 fn build_fixed(name: &str, fixed: Fixed) -> Result<PolygonMesh, ModelError> {

@@ -14,7 +14,7 @@ use std::io::Write;
 use std::time::Instant;
 
 use anyhow::Context;
-use dymsum::sum::{minkowski_sum_posed, Facet, Method};
+use dymsum::sum::{minkowski_sum_posed, Facet, Method, SumError};
 use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
 
 use super::num;
@@ -41,6 +41,28 @@ pub struct Plan {
     /// means, which keeps one run disturbed by other load on a shared
     /// machine from moving the result.
     pub repeats: usize,
+}
+
+impl Plan {
+    /// The plan of the rotation and size experiments: DYMSUM and `walk` at
+    /// every one of `steps` steps, `brute` at `brute_poses` poses, no `hull`.
+    pub fn walk_and_brute(
+        steps_per_rev: f64,
+        seed: u64,
+        steps: usize,
+        brute_poses: usize,
+        repeats: usize,
+    ) -> Plan {
+        Plan {
+            steps_per_rev,
+            seed,
+            steps,
+            walk_poses: steps,
+            brute_poses,
+            hull_poses: 0,
+            repeats,
+        }
+    }
 }
 
 /// The timings of one pair: for each method, the mean time (microseconds
@@ -187,18 +209,19 @@ pub fn sample_indices(n: usize, k: usize) -> Vec<usize> {
     (0..k).map(|j| ((2 * j + 1) * n) / (2 * k)).collect()
 }
 
-/// Times one static sum; returns microseconds and the facets (or the error).
-fn time_static(
+/// Times one static sum of P at `pose_p` and Q at the identity; returns
+/// microseconds and the facets (or the error). Only the sum is timed, not
+/// the extraction of its facets.
+pub(crate) fn time_static(
     p: &Polytope,
-    rot: Rotation,
+    pose_p: Pose,
     q: &Polytope,
     method: Method,
-) -> (f64, Result<Vec<Facet>, String>) {
-    let pose = Pose::new(rot, DVec3::ZERO);
+) -> (f64, Result<Vec<Facet>, SumError>) {
     let start = Instant::now();
-    let sum = minkowski_sum_posed(p, pose, q, Pose::IDENTITY, method);
+    let sum = minkowski_sum_posed(p, pose_p, q, Pose::IDENTITY, method);
     let us = micros(start.elapsed());
-    (us, sum.map(|s| s.facets()).map_err(|e| e.to_string()))
+    (us, sum.map(|s| s.facets()))
 }
 
 /// Runs the plan on P (moving) and Q (fixed at the identity).
@@ -217,69 +240,30 @@ pub fn measure(p: &Polytope, q: &Polytope, plan: &Plan) -> anyhow::Result<Timing
         ..Timings::default()
     };
     // Warm-up (untimed): one static sum at the start pose.
-    let _ = time_static(p, Rotation::IDENTITY, q, Method::Walk);
+    let _ = time_static(p, Pose::IDENTITY, q, Method::Walk);
 
-    let mut poses = Vec::with_capacity(n);
-    let mut saved: Vec<Option<Vec<Facet>>> = vec![None; n];
-    for repeat in 0..plan.repeats.max(1) {
-        let first = repeat == 0;
-        let mut dynamic =
-            DynamicSum::new(p, Pose::IDENTITY, q, Pose::IDENTITY).context("initial DYMSUM sum")?;
-        let mut motion = PaperMotion::new(plan.steps_per_rev, plan.seed);
-        let mut rot = Rotation::IDENTITY;
-        let mut times = Vec::with_capacity(n);
-        for (i, save) in check_at.iter().enumerate() {
-            rot = rot.then(&motion.next_step());
-            let start = Instant::now();
-            let report = dynamic
-                .set_pose_p(Pose::new(rot, DVec3::ZERO))
-                .with_context(|| format!("DYMSUM update at step {}", i + 1))?;
-            times.push(micros(start.elapsed()));
-            if first {
-                t.recomputed += usize::from(report.recomputed);
-                poses.push(rot);
-                if *save {
-                    saved[i] = Some(dynamic.facets());
-                }
-            }
-        }
-        t.dymsum.push(mean(&times));
-        if first {
-            // The final pose: the dynamic facets against a fresh walk sum.
-            let fresh = minkowski_sum_posed(p, dynamic.pose_p(), q, Pose::IDENTITY, Method::Walk)
-                .context("final static walk sum")?;
-            t.checks += 1;
-            t.mismatches += usize::from(fresh.facets() != dynamic.facets());
-        }
+    // The first repeat also records the poses and the facets to compare.
+    let first_run = run_dynamic(p, q, plan, &check_at, true)?;
+    t.dymsum.push(mean(&first_run.times));
+    t.recomputed = first_run.recomputed;
+    if let Some(agrees) = first_run.final_agrees {
+        t.checks += 1;
+        t.mismatches += usize::from(!agrees);
+    }
+    for _ in 1..plan.repeats.max(1) {
+        let run = run_dynamic(p, q, plan, &check_at, false)?;
+        t.dymsum.push(mean(&run.times));
     }
 
     for repeat in 0..plan.repeats.max(1) {
-        let first = repeat == 0;
+        // Only the first repeat compares facet sets with the saved ones.
+        let saved = (repeat == 0).then_some(first_run.saved.as_slice());
         for (method, at) in [
             (Method::Walk, &walk_at),
             (Method::Brute, &brute_at),
             (Method::Hull, &hull_at),
         ] {
-            let mut times = Vec::with_capacity(at.len());
-            for &i in at {
-                let (us, facets) = time_static(p, poses[i], q, method);
-                if method == Method::Hull {
-                    t.hull_calls += 1;
-                }
-                match facets {
-                    Ok(f) => {
-                        times.push(us);
-                        if let (true, Some(d)) = (first, &saved[i]) {
-                            t.checks += 1;
-                            t.mismatches += usize::from(*d != f);
-                        }
-                    }
-                    Err(_) if method == Method::Hull => t.hull_errors += 1,
-                    Err(e) => {
-                        anyhow::bail!("static {} sum at step {}: {e}", method.name(), i + 1)
-                    }
-                }
-            }
+            let times = time_static_at(p, q, method, at, &first_run.poses, saved, &mut t)?;
             if !times.is_empty() {
                 let m = mean(&times);
                 match method {
@@ -291,6 +275,107 @@ pub fn measure(p: &Polytope, q: &Polytope, plan: &Plan) -> anyhow::Result<Timing
         }
     }
     Ok(t)
+}
+
+/// One timed DYMSUM run along the motion.
+struct DynamicRun {
+    /// Time of each update (µs).
+    times: Vec<f64>,
+    /// P's rotation after each step (recorded runs only).
+    poses: Vec<Rotation>,
+    /// The dynamic facets at the steps marked for checking (recorded runs
+    /// only).
+    saved: Vec<Option<Vec<Facet>>>,
+    /// Updates that fell back to a from-scratch sum (recorded runs only).
+    recomputed: usize,
+    /// Whether the final dynamic facets equal a fresh `walk` sum's
+    /// (recorded runs only).
+    final_agrees: Option<bool>,
+}
+
+/// Runs DYMSUM from the identity through `check_at.len()` steps of the
+/// paper's motion, timing each update and saving (untimed) the facets at
+/// the steps `check_at` marks; then compares the final facets with a fresh
+/// `walk` sum (untimed). Poses, facets, fallbacks and the final comparison
+/// are recorded only if `record`.
+fn run_dynamic(
+    p: &Polytope,
+    q: &Polytope,
+    plan: &Plan,
+    check_at: &[bool],
+    record: bool,
+) -> anyhow::Result<DynamicRun> {
+    let n = check_at.len();
+    let mut dynamic =
+        DynamicSum::new(p, Pose::IDENTITY, q, Pose::IDENTITY).context("initial DYMSUM sum")?;
+    let mut motion = PaperMotion::new(plan.steps_per_rev, plan.seed);
+    let mut rot = Rotation::IDENTITY;
+    let mut run = DynamicRun {
+        times: Vec::with_capacity(n),
+        poses: Vec::with_capacity(n),
+        saved: vec![None; n],
+        recomputed: 0,
+        final_agrees: None,
+    };
+    for (i, save) in check_at.iter().enumerate() {
+        rot = rot.then(&motion.next_step());
+        let start = Instant::now();
+        let report = dynamic
+            .set_pose_p(Pose::new(rot, DVec3::ZERO))
+            .with_context(|| format!("DYMSUM update at step {}", i + 1))?;
+        run.times.push(micros(start.elapsed()));
+        if record {
+            run.recomputed += usize::from(report.recomputed);
+            run.poses.push(rot);
+            if *save {
+                run.saved[i] = Some(dynamic.facets());
+            }
+        }
+    }
+    if record {
+        // The final pose: the dynamic facets against a fresh walk sum.
+        let fresh = minkowski_sum_posed(p, dynamic.pose_p(), q, Pose::IDENTITY, Method::Walk)
+            .context("final static walk sum")?;
+        run.final_agrees = Some(fresh.facets() == dynamic.facets());
+    }
+    Ok(run)
+}
+
+/// Times `method` at the steps `at` (poses from `poses`), returning the
+/// successful calls' times. Where `saved` holds DYMSUM's facets for a step,
+/// they are compared with the method's (counted in `t.checks` and
+/// `t.mismatches`); `hull` calls and failures are counted in `t`, a failure
+/// of another method is an error.
+fn time_static_at(
+    p: &Polytope,
+    q: &Polytope,
+    method: Method,
+    at: &[usize],
+    poses: &[Rotation],
+    saved: Option<&[Option<Vec<Facet>>]>,
+    t: &mut Timings,
+) -> anyhow::Result<Vec<f64>> {
+    let mut times = Vec::with_capacity(at.len());
+    for &i in at {
+        let (us, facets) = time_static(p, Pose::new(poses[i], DVec3::ZERO), q, method);
+        if method == Method::Hull {
+            t.hull_calls += 1;
+        }
+        match facets {
+            Ok(f) => {
+                times.push(us);
+                if let Some(Some(d)) = saved.map(|s| &s[i]) {
+                    t.checks += 1;
+                    t.mismatches += usize::from(*d != f);
+                }
+            }
+            Err(_) if method == Method::Hull => t.hull_errors += 1,
+            Err(e) => {
+                anyhow::bail!("static {} sum at step {}: {e}", method.name(), i + 1)
+            }
+        }
+    }
+    Ok(times)
 }
 
 #[cfg(test)]

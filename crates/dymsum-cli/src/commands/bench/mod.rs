@@ -60,6 +60,34 @@ pub(crate) fn progress(len: u64) -> ProgressBar {
     crate::progress::bar(len, "bench", "runs")
 }
 
+/// Runs `measure_job` on every job in order under one progress bar, whose
+/// message names the job being measured (`label`); returns the results in
+/// job order. The experiments' common measurement loop.
+pub(crate) fn measure_each<J, R>(
+    jobs: &[J],
+    label: impl Fn(&J) -> String,
+    mut measure_job: impl FnMut(&J) -> anyhow::Result<R>,
+) -> anyhow::Result<Vec<R>> {
+    let pb = progress(jobs.len() as u64);
+    let mut results = Vec::with_capacity(jobs.len());
+    for job in jobs {
+        pb.set_message(label(job));
+        results.push(measure_job(job)?);
+        pb.inc(1);
+    }
+    pb.finish_and_clear();
+    Ok(results)
+}
+
+/// The last line of every experiment's introduction: how the figures
+/// combine the repeats.
+pub(crate) fn write_repeats_line(out: &mut dyn Write, repeats: usize) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "all repeated {repeats} times with the same motion, each figure the median of the repeats' means."
+    )
+}
+
 /// Creates the output directory and returns the path of `name` in it.
 pub(crate) fn out_file(dir: &Path, name: &str) -> anyhow::Result<PathBuf> {
     std::fs::create_dir_all(dir)

@@ -242,36 +242,52 @@ where
         .draw()
         .map_err(err)?;
     for (s, p) in chart.series.iter().zip(pts) {
-        let color = s.color;
-        let line = ShapeStyle::from(&color).stroke_width(2);
-        if s.dashed {
-            cc.draw_series(DashedLineSeries::new(p.iter().copied(), 8, 5, line))
-                .map_err(err)?;
-        } else {
-            cc.draw_series(LineSeries::new(p.iter().copied(), line))
-                .map_err(err)?;
-        }
-        let marker = s.marker;
-        match marker {
-            Marker::Circle => cc.draw_series(
-                p.iter()
-                    .map(|&c| Circle::new(c, 4, ShapeStyle::from(&color).filled())),
-            ),
-            Marker::Triangle => cc.draw_series(
-                p.iter()
-                    .map(|&c| TriangleMarker::new(c, 5, ShapeStyle::from(&color).filled())),
-            ),
-            Marker::Cross => cc.draw_series(
-                p.iter()
-                    .map(|&c| Cross::new(c, 4, ShapeStyle::from(&color).stroke_width(2))),
-            ),
-            Marker::Square => cc.draw_series(p.iter().map(|&(x, y)| {
-                EmptyElement::at((x, y))
-                    + Rectangle::new([(-4, -4), (4, 4)], ShapeStyle::from(&color).stroke_width(2))
-            })),
-        }
-        .map_err(err)?;
+        draw_one_series(&mut cc, s, p)?;
     }
+    Ok(())
+}
+
+/// One series: its line (solid or dashed) and its markers.
+fn draw_one_series<DB, X, Y>(
+    cc: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
+    s: &Series,
+    p: &[(f64, f64)],
+) -> anyhow::Result<()>
+where
+    DB: DrawingBackend,
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e}");
+    let color = s.color;
+    let line = ShapeStyle::from(&color).stroke_width(2);
+    if s.dashed {
+        cc.draw_series(DashedLineSeries::new(p.iter().copied(), 8, 5, line))
+            .map_err(err)?;
+    } else {
+        cc.draw_series(LineSeries::new(p.iter().copied(), line))
+            .map_err(err)?;
+    }
+    match s.marker {
+        Marker::Circle => cc.draw_series(
+            p.iter()
+                .map(|&c| Circle::new(c, 4, ShapeStyle::from(&color).filled())),
+        ),
+        Marker::Triangle => cc.draw_series(
+            p.iter()
+                .map(|&c| TriangleMarker::new(c, 5, ShapeStyle::from(&color).filled())),
+        ),
+        Marker::Cross => cc.draw_series(
+            p.iter()
+                .map(|&c| Cross::new(c, 4, ShapeStyle::from(&color).stroke_width(2))),
+        ),
+        Marker::Square => cc.draw_series(p.iter().map(|&(x, y)| {
+            EmptyElement::at((x, y))
+                + Rectangle::new([(-4, -4), (4, 4)], ShapeStyle::from(&color).stroke_width(2))
+        })),
+    }
+    .map_err(err)?;
     Ok(())
 }
 

@@ -11,10 +11,11 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
+use dymsum_io::Loaded;
 
 use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
 use super::plot::{method_series, write_chart, Chart, COLORS};
-use super::{out_file, progress, write_csv};
+use super::{measure_each, out_file, write_csv, write_repeats_line};
 use crate::commands::load;
 use crate::stats::human_us;
 use crate::values::parse_steps_per_rev;
@@ -98,41 +99,66 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     writeln!(
         out,
         "dymsum bench rotation: mean time per step against steps per full turn X; P turns {} steps of 2π/X \
-         (random axis held 1..=50 steps, seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;\n\
-         all repeated {} times with the same motion, each figure the median of the repeats' means.",
+         (random axis held 1..=50 steps, seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;",
         a.steps,
         a.seed,
         a.static_poses.min(a.steps),
-        a.repeats,
     )?;
+    write_repeats_line(out, a.repeats)?;
     out.flush()?;
 
-    let pb = progress((a.pairs.len() * xs.len()) as u64);
-    let mut points = Vec::new();
-    for (i, ((pn, qn), (p, q))) in a.pairs.iter().zip(&loaded).enumerate() {
-        for &x in &xs {
-            pb.set_message(format!("{pn} + {qn}, X = {x}"));
-            let plan = Plan {
-                steps_per_rev: x,
-                seed: a.seed,
-                steps: a.steps,
-                walk_poses: a.steps,
-                brute_poses: a.static_poses,
-                hull_poses: 0,
-                repeats: a.repeats,
-            };
-            let t = measure(&p.polytope, &q.polytope, &plan)?;
-            points.push(Point {
-                pair: i,
-                x,
-                f: t.figures(),
-            });
-            pb.inc(1);
-        }
-    }
-    pb.finish_and_clear();
+    let jobs: Vec<(usize, f64)> = (0..a.pairs.len())
+        .flat_map(|i| xs.iter().map(move |&x| (i, x)))
+        .collect();
+    let points = measure_each(
+        &jobs,
+        |&(i, x)| {
+            let (pn, qn) = &a.pairs[i];
+            format!("{pn} + {qn}, X = {x}")
+        },
+        |&(pair, x)| measure_point(a, &loaded[pair], pair, x),
+    )?;
 
-    let csv_path = write_csv(
+    let csv_path = write_rotation_csv(a, &points)?;
+    let svg = out_file(&a.out, "rotation.svg")?;
+    let png = out_file(&a.out, "rotation.png")?;
+    write_chart(&rotation_chart(&a.pairs, &points), &svg, &png)?;
+
+    writeln!(out)?;
+    write_rotation_table(out, &a.pairs, &points)?;
+    let mismatches = write_verified(out, points.iter().map(|p| &p.f))?;
+    writeln!(
+        out,
+        "wrote {}, {} and {} ({:.0} s)",
+        csv_path.display(),
+        svg.display(),
+        png.display(),
+        started.elapsed().as_secs_f64()
+    )?;
+    ensure_no_mismatches(mismatches)
+}
+
+/// Measures one pair (`loaded`, the pair's index `pair`) at `x` steps per
+/// turn.
+fn measure_point(
+    a: &RotationArgs,
+    loaded: &(Loaded, Loaded),
+    pair: usize,
+    x: f64,
+) -> anyhow::Result<Point> {
+    let plan = Plan::walk_and_brute(x, a.seed, a.steps, a.static_poses, a.repeats);
+    let (p, q) = loaded;
+    let t = measure(&p.polytope, &q.polytope, &plan)?;
+    Ok(Point {
+        pair,
+        x,
+        f: t.figures(),
+    })
+}
+
+/// Writes `rotation.csv` in `a.out`; returns its path.
+fn write_rotation_csv(a: &RotationArgs, points: &[Point]) -> anyhow::Result<PathBuf> {
+    write_csv(
         &a.out,
         "rotation.csv",
         &CSV_HEADER,
@@ -142,10 +168,13 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             record.extend(pt.f.csv_fields());
             record
         }),
-    )?;
+    )
+}
 
+/// Fig. 4: time per step against X, one colour per pair.
+fn rotation_chart(pairs: &[(String, String)], points: &[Point]) -> Chart {
     let mut series = Vec::new();
-    for (i, (pn, qn)) in a.pairs.iter().enumerate() {
+    for (i, (pn, qn)) in pairs.iter().enumerate() {
         let color = COLORS[i % COLORS.len()];
         series.extend(method_series(
             &format!("{pn}+{qn}"),
@@ -160,27 +189,29 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             },
         ));
     }
-    let chart = Chart {
+    Chart {
         title: "Fig. 4: mean time per step vs rotational resolution".into(),
         x_label: "steps per full turn (X); each step turns P by 2π/X".into(),
         y_label: "mean time per step (µs)".into(),
         x_log: true,
         y_log: true,
         series,
-    };
-    let svg = out_file(&a.out, "rotation.svg")?;
-    let png = out_file(&a.out, "rotation.png")?;
-    write_chart(&chart, &svg, &png)?;
+    }
+}
 
-    // Report.
-    writeln!(out)?;
+/// The per-pair, per-X table of the report.
+fn write_rotation_table(
+    out: &mut dyn Write,
+    pairs: &[(String, String)],
+    points: &[Point],
+) -> std::io::Result<()> {
     writeln!(
         out,
         "{:<18} {:>8} {:>12} {:>12} {:>12} {:>9} {:>9} {:>11}",
         "P+Q", "X", "DYMSUM", "walk", "brute", "÷walk", "÷brute", "recomputed"
     )?;
-    for pt in &points {
-        let (pn, qn) = &a.pairs[pt.pair];
+    for pt in points {
+        let (pn, qn) = &pairs[pt.pair];
         writeln!(
             out,
             "{:<18} {:>8} {:>12} {:>12} {:>12} {:>8.1}x {:>8.1}x {:>11}",
@@ -194,14 +225,5 @@ pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             format!("{}/{}", pt.f.recomputed, pt.f.steps),
         )?;
     }
-    let mismatches = write_verified(out, points.iter().map(|p| &p.f))?;
-    writeln!(
-        out,
-        "wrote {}, {} and {} ({:.0} s)",
-        csv_path.display(),
-        svg.display(),
-        png.display(),
-        started.elapsed().as_secs_f64()
-    )?;
-    ensure_no_mismatches(mismatches)
+    Ok(())
 }

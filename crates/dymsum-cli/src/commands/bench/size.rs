@@ -11,14 +11,14 @@
 //! 5a: DYMSUM and brute) and `size_dymsum.svg/.png` (Fig. 5b: DYMSUM alone).
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
 
 use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
 use super::plot::{method_series, write_chart, Chart, MethodTime, Series, COLORS, METHODS};
-use super::{loglog_slope, num, out_file, progress, write_csv};
+use super::{loglog_slope, measure_each, num, out_file, write_csv, write_repeats_line};
 use crate::commands::load;
 use crate::stats::human_us;
 
@@ -91,46 +91,57 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let mut models: Vec<(&'static str, String)> = Vec::new();
     models.extend(a.tcube.iter().map(|k| ("tcube", format!("tcube:{k}"))));
     models.extend(a.sphere.iter().map(|n| ("sphere", format!("sphere:{n}"))));
-    let plan = Plan {
-        steps_per_rev: STEPS_PER_REV,
-        seed: a.seed,
-        steps: a.steps,
-        walk_poses: a.steps,
-        brute_poses: a.static_poses,
-        hull_poses: 0,
-        repeats: a.repeats,
-    };
+    let plan = Plan::walk_and_brute(STEPS_PER_REV, a.seed, a.steps, a.static_poses, a.repeats);
     writeln!(
         out,
         "dymsum bench size: two identical operands P = Q of growing size; P turns {} steps at {STEPS_PER_REV} \
-         steps per turn (seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;\n\
-         all repeated {} times with the same motion, each figure the median of the repeats' means.",
+         steps per turn (seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;",
         a.steps,
         a.seed,
         a.static_poses.min(a.steps),
-        a.repeats,
     )?;
+    write_repeats_line(out, a.repeats)?;
     out.flush()?;
 
-    let pb = progress(models.len() as u64);
-    let mut points = Vec::new();
-    for (family, name) in &models {
-        pb.set_message(format!("{name} + {name}"));
-        let m = load(name, "P", false)?;
-        let t = measure(&m.polytope, &m.polytope, &plan)?;
-        points.push(Point {
-            family,
-            model: name.clone(),
-            triangles: m.input.triangle_count(),
-            faces: m.polytope.face_count(),
-            f: t.figures(),
-        });
-        pb.inc(1);
-    }
-    pb.finish_and_clear();
+    let points = measure_each(
+        &models,
+        |(_, name)| format!("{name} + {name}"),
+        |(family, name)| measure_model(family, name, &plan),
+    )?;
+    let mut written = vec![write_size_csv(&a.out, &points)?.display().to_string()];
+    written.extend(write_size_charts(&a.out, &points)?);
 
-    let csv_path = write_csv(
-        &a.out,
+    writeln!(out)?;
+    write_size_table(out, &points)?;
+    writeln!(out)?;
+    write_growth_exponents(out, &points)?;
+    let mismatches = write_verified(out, points.iter().map(|p| &p.f))?;
+    writeln!(
+        out,
+        "wrote {} ({:.0} s)",
+        written.join(", "),
+        started.elapsed().as_secs_f64()
+    )?;
+    ensure_no_mismatches(mismatches)
+}
+
+/// Measures the model `name` of `family` summed with itself.
+fn measure_model(family: &'static str, name: &str, plan: &Plan) -> anyhow::Result<Point> {
+    let m = load(name, "P", false)?;
+    let t = measure(&m.polytope, &m.polytope, plan)?;
+    Ok(Point {
+        family,
+        model: name.to_string(),
+        triangles: m.input.triangle_count(),
+        faces: m.polytope.face_count(),
+        f: t.figures(),
+    })
+}
+
+/// Writes `size.csv` in `dir`; returns its path.
+fn write_size_csv(dir: &Path, points: &[Point]) -> anyhow::Result<PathBuf> {
+    write_csv(
+        dir,
         "size.csv",
         &CSV_HEADER,
         points.iter().map(|p| {
@@ -143,23 +154,33 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             record.extend(p.f.csv_fields());
             record
         }),
-    )?;
+    )
+}
 
-    let family_points = |fam: &str, time: MethodTime| -> Vec<(f64, f64)> {
-        points
-            .iter()
-            .filter(|p| p.family == fam)
-            .map(|p| (p.triangles as f64, time(&p.f)))
-            .collect()
-    };
-    let series_for = |wanted: &[&str]| -> Vec<Series> {
-        let mut v = Vec::new();
-        for (fi, (fam, _)) in FAMILIES.iter().enumerate() {
-            let all = method_series(fam, COLORS[fi], wanted, |time| family_points(fam, time));
-            v.extend(all.into_iter().filter(|s| !s.points.is_empty()));
-        }
-        v
-    };
+/// `(input triangles, time)` of every point of `family`, `time` picking a
+/// method's figure.
+fn family_points(points: &[Point], family: &str, time: MethodTime) -> Vec<(f64, f64)> {
+    points
+        .iter()
+        .filter(|p| p.family == family)
+        .map(|p| (p.triangles as f64, time(&p.f)))
+        .collect()
+}
+
+/// The non-empty series of the methods `wanted`, for both families.
+fn family_series(points: &[Point], wanted: &[&str]) -> Vec<Series> {
+    let mut v = Vec::new();
+    for (fi, (fam, _)) in FAMILIES.iter().enumerate() {
+        let all = method_series(fam, COLORS[fi], wanted, |time| {
+            family_points(points, fam, time)
+        });
+        v.extend(all.into_iter().filter(|s| !s.points.is_empty()));
+    }
+    v
+}
+
+/// Writes Fig. 5 (a) and (b) as SVG and PNG in `dir`; returns the paths.
+fn write_size_charts(dir: &Path, points: &[Point]) -> anyhow::Result<Vec<String>> {
     let x_label = "input triangles per operand (P = Q)".to_string();
     let chart_a = Chart {
         title: "Fig. 5 (a): DYMSUM and brute force vs input size".into(),
@@ -167,7 +188,7 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         y_label: "mean time per step (µs)".into(),
         x_log: true,
         y_log: true,
-        series: series_for(&["DYMSUM", "brute"]),
+        series: family_series(points, &["DYMSUM", "brute"]),
     };
     let chart_b = Chart {
         title: "Fig. 5 (b): DYMSUM alone vs input size".into(),
@@ -175,28 +196,30 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         y_label: "mean DYMSUM update time (µs)".into(),
         x_log: false,
         y_log: false,
-        series: series_for(&["DYMSUM"]),
+        series: family_series(points, &["DYMSUM"]),
     };
     let files = [
         ("size_vs_brute.svg", "size_vs_brute.png", &chart_a),
         ("size_dymsum.svg", "size_dymsum.png", &chart_b),
     ];
-    let mut written = vec![csv_path.display().to_string()];
+    let mut written = Vec::new();
     for (svg, png, chart) in files {
-        let (svg, png) = (out_file(&a.out, svg)?, out_file(&a.out, png)?);
+        let (svg, png) = (out_file(dir, svg)?, out_file(dir, png)?);
         write_chart(chart, &svg, &png)?;
         written.push(svg.display().to_string());
         written.push(png.display().to_string());
     }
+    Ok(written)
+}
 
-    // Report.
-    writeln!(out)?;
+/// The per-model table of the report.
+fn write_size_table(out: &mut dyn Write, points: &[Point]) -> std::io::Result<()> {
     writeln!(
         out,
         "{:<11} {:>9} {:>6} {:>12} {:>12} {:>12} {:>9} {:>11}",
         "model", "triangles", "faces", "DYMSUM", "walk", "brute", "÷brute", "recomputed"
     )?;
-    for p in &points {
+    for p in points {
         writeln!(
             out,
             "{:<11} {:>9} {:>6} {:>12} {:>12} {:>12} {:>8.1}x {:>11}",
@@ -210,7 +233,11 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             format!("{}/{}", p.f.recomputed, p.f.steps),
         )?;
     }
-    writeln!(out)?;
+    Ok(())
+}
+
+/// The fitted growth exponent of every method, per measured family.
+fn write_growth_exponents(out: &mut dyn Write, points: &[Point]) -> std::io::Result<()> {
     writeln!(
         out,
         "fitted growth exponent (time ~ triangles^k, least squares on log-log):"
@@ -224,18 +251,11 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             .map(|&(method, _, _, time)| {
                 format!(
                     "{method} k = {}",
-                    num(loglog_slope(&family_points(fam, time)), 2)
+                    num(loglog_slope(&family_points(points, fam, time)), 2)
                 )
             })
             .collect();
         writeln!(out, "  {desc}: {}", ks.join(", "))?;
     }
-    let mismatches = write_verified(out, points.iter().map(|p| &p.f))?;
-    writeln!(
-        out,
-        "wrote {} ({:.0} s)",
-        written.join(", "),
-        started.elapsed().as_secs_f64()
-    )?;
-    ensure_no_mismatches(mismatches)
+    Ok(())
 }

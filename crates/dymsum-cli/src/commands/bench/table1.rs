@@ -19,7 +19,7 @@ use dymsum_io::Loaded;
 
 use super::measure::{measure, Plan, Timings};
 use super::paper::{pairs, paper_name, paper_speedup, MODELS};
-use super::{command_line, num, out_file, progress, sig3, write_csv};
+use super::{command_line, measure_each, num, out_file, sig3, write_csv, write_repeats_line};
 use crate::commands::load;
 use crate::stats::human_us;
 
@@ -135,10 +135,6 @@ pub fn run(a: &Table1Args, out: &mut dyn Write) -> anyhow::Result<()> {
         .iter()
         .map(|(m, _)| load(m, "P", false))
         .collect::<anyhow::Result<_>>()?;
-    let get = |name: &str| {
-        let i = MODELS.iter().position(|(m, _)| *m == name).unwrap_or(0);
-        &loaded[i]
-    };
     let plan = Plan {
         steps_per_rev: STEPS_PER_REV,
         seed: a.seed,
@@ -148,41 +144,13 @@ pub fn run(a: &Table1Args, out: &mut dyn Write) -> anyhow::Result<()> {
         hull_poses: a.hull_poses,
         repeats: a.repeats,
     };
-    writeln!(
-        out,
-        "dymsum bench table1: 91 pairs of the paper's 13 models; P (row) turns {STEPS_PER_REV} steps per turn \
-         (random axis held 1..=50 steps, seed {}), Q (column) fixed.\n\
-         DYMSUM timed on all {} steps; walk on {}, brute on {} and hull on {} evenly spaced poses of the same run;\n\
-         all repeated {} times with the same motion, each figure the median of the repeats' means.",
-        a.seed,
-        a.steps,
-        plan.walk_poses.min(a.steps),
-        plan.brute_poses.min(a.steps),
-        plan.hull_poses.min(a.steps),
-        a.repeats,
-    )?;
-    out.flush()?;
+    write_intro(out, a, &plan)?;
 
-    let all = pairs();
-    let pb = progress(all.len() as u64);
-    let mut rows = Vec::with_capacity(all.len());
-    for (pn, qn) in all {
-        pb.set_message(format!("{pn} + {qn}"));
-        let (p, q) = (get(pn), get(qn));
-        let t = measure(&p.polytope, &q.polytope, &plan)?;
-        rows.push(Row {
-            p: pn.to_string(),
-            q: qn.to_string(),
-            p_input_facets: p.input.triangle_count(),
-            p_faces: p.polytope.face_count(),
-            q_input_facets: q.input.triangle_count(),
-            q_faces: q.polytope.face_count(),
-            t,
-            paper: paper_speedup(pn, qn).unwrap_or(f64::NAN),
-        });
-        pb.inc(1);
-    }
-    pb.finish_and_clear();
+    let rows = measure_each(
+        &pairs(),
+        |(pn, qn)| format!("{pn} + {qn}"),
+        |&(pn, qn)| measure_row(&loaded, pn, qn, &plan),
+    )?;
     let elapsed = started.elapsed().as_secs_f64();
 
     // Files.
@@ -196,29 +164,7 @@ pub fn run(a: &Table1Args, out: &mut dyn Write) -> anyhow::Result<()> {
     let md = markdown(a, &plan, &rows, elapsed);
     dymsum_io::atomic::write_atomic_bytes(&md_path, md.as_bytes())?;
 
-    // Report.
-    writeln!(out)?;
-    writeln!(
-        out,
-        "Speedup of DYMSUM over brute force, ours / paper's (brute_us / dymsum_us; the paper's t_bf / t_d):"
-    )?;
-    write!(out, "{}", layout_text(&rows))?;
-    writeln!(out)?;
-    let s = summary(&rows);
-    writeln!(out, "{}", s.text())?;
-    if let Some(ee) = rows.iter().find(|r| r.p == "ellipse" && r.q == "ellipse") {
-        writeln!(
-            out,
-            "ellipse + ellipse: DYMSUM {} per update, walk {}, brute {}, hull {}: {:.1}x brute (paper {:.2}x), {:.1}x walk",
-            human_us(ee.t.dymsum_us()),
-            human_us(ee.t.walk_us()),
-            human_us(ee.t.brute_us()),
-            if ee.t.hull.is_empty() { "-".to_string() } else { human_us(ee.t.hull_us()) },
-            ee.speedup_brute(),
-            ee.paper,
-            ee.speedup_walk(),
-        )?;
-    }
+    let s = write_report(out, &rows)?;
     writeln!(
         out,
         "wrote {} and {} ({elapsed:.0} s)",
@@ -233,6 +179,72 @@ pub fn run(a: &Table1Args, out: &mut dyn Write) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// The opening paragraph: what is measured, how often.
+fn write_intro(out: &mut dyn Write, a: &Table1Args, plan: &Plan) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "dymsum bench table1: 91 pairs of the paper's 13 models; P (row) turns {STEPS_PER_REV} steps per turn \
+         (random axis held 1..=50 steps, seed {}), Q (column) fixed.\n\
+         DYMSUM timed on all {} steps; walk on {}, brute on {} and hull on {} evenly spaced poses of the same run;",
+        a.seed,
+        a.steps,
+        plan.walk_poses.min(a.steps),
+        plan.brute_poses.min(a.steps),
+        plan.hull_poses.min(a.steps),
+    )?;
+    write_repeats_line(out, a.repeats)?;
+    out.flush()
+}
+
+/// Measures the pair `pn + qn` of the paper's models (`loaded` in the order
+/// of [`MODELS`]).
+fn measure_row(loaded: &[Loaded], pn: &str, qn: &str, plan: &Plan) -> anyhow::Result<Row> {
+    let get = |name: &str| {
+        let i = MODELS.iter().position(|(m, _)| *m == name).unwrap_or(0);
+        &loaded[i]
+    };
+    let (p, q) = (get(pn), get(qn));
+    let t = measure(&p.polytope, &q.polytope, plan)?;
+    Ok(Row {
+        p: pn.to_string(),
+        q: qn.to_string(),
+        p_input_facets: p.input.triangle_count(),
+        p_faces: p.polytope.face_count(),
+        q_input_facets: q.input.triangle_count(),
+        q_faces: q.polytope.face_count(),
+        t,
+        paper: paper_speedup(pn, qn).unwrap_or(f64::NAN),
+    })
+}
+
+/// The report after the run: the table of speedups, the summary and the
+/// ellipse + ellipse line. Returns the summary.
+fn write_report(out: &mut dyn Write, rows: &[Row]) -> std::io::Result<Summary> {
+    writeln!(out)?;
+    writeln!(
+        out,
+        "Speedup of DYMSUM over brute force, ours / paper's (brute_us / dymsum_us; the paper's t_bf / t_d):"
+    )?;
+    write!(out, "{}", layout_text(rows))?;
+    writeln!(out)?;
+    let s = summary(rows);
+    writeln!(out, "{}", s.text())?;
+    if let Some(ee) = find(rows, "ellipse", "ellipse") {
+        writeln!(
+            out,
+            "ellipse + ellipse: DYMSUM {} per update, walk {}, brute {}, hull {}: {:.1}x brute (paper {:.2}x), {:.1}x walk",
+            human_us(ee.t.dymsum_us()),
+            human_us(ee.t.walk_us()),
+            human_us(ee.t.brute_us()),
+            if ee.t.hull.is_empty() { "-".to_string() } else { human_us(ee.t.hull_us()) },
+            ee.speedup_brute(),
+            ee.paper,
+            ee.speedup_walk(),
+        )?;
+    }
+    Ok(s)
 }
 
 /// Totals over the rows.

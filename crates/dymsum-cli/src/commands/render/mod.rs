@@ -55,10 +55,11 @@ mod scene;
 mod svg;
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
+use dymsum::sum::Facet;
 use dymsum::{DVec3, DynamicSum, Pose, Rotation};
 
 use super::{load, short_name};
@@ -194,21 +195,39 @@ pub fn run(a: &RenderArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         PictureFormat::Png => raster::to_png(&scene)?,
     };
     dymsum_io::atomic::write_atomic_bytes(&a.output, &bytes).context("writing the picture")?;
+    write_summary(
+        out,
+        &name,
+        mesh.faces.len(),
+        &scene,
+        added.as_deref(),
+        &a.output,
+    )
+}
+
+/// The one-line report: faces, faces drawn, the facets the turn added and
+/// those highlighted, the file written.
+fn write_summary(
+    out: &mut dyn Write,
+    name: &str,
+    faces: usize,
+    scene: &scene::Scene,
+    added: Option<&[Facet]>,
+    output: &Path,
+) -> anyhow::Result<()> {
     let front = scene.faces.len();
-    match &added {
+    match added {
         Some(added) => writeln!(
             out,
-            "{name}: {} faces ({front} drawn); the turn added {} facets, {} highlighted (facing the viewer); wrote {}",
-            mesh.faces.len(),
+            "{name}: {faces} faces ({front} drawn); the turn added {} facets, {} highlighted (facing the viewer); wrote {}",
             added.len(),
             scene.changed.len(),
-            a.output.display()
+            output.display()
         )?,
         None => writeln!(
             out,
-            "{name}: {} faces ({front} drawn); wrote {}",
-            mesh.faces.len(),
-            a.output.display()
+            "{name}: {faces} faces ({front} drawn); wrote {}",
+            output.display()
         )?,
     }
     Ok(())

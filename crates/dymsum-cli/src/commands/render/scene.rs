@@ -135,21 +135,23 @@ fn shade(rgb: [f64; 3], n: DVec3, l: DVec3) -> [u8; 3] {
     rgb.map(|c| (c * k * 255.0).round().clamp(0.0, 255.0) as u8)
 }
 
-impl Scene {
-    /// Projects the merged mesh and the `added` facets of the current sum.
-    pub fn build(
-        mesh: &PolygonMesh,
-        sum: &DynamicSum<'_>,
-        added: &[Facet],
-        view: View,
-        size: u32,
-    ) -> Scene {
-        let (right, up, toward) = view.basis();
-        let light = (-0.45 * right + 0.65 * up + 1.0 * toward).normalize();
-        let verts: Vec<DVec3> = mesh.vertices.iter().map(|&v| DVec3::from(v)).collect();
-        // Fit the projection of all vertices into the square.
+/// The orthographic projection of the view onto the picture square, fitted
+/// so that the given points fill it up to the margin.
+struct Projection {
+    right: DVec3,
+    up: DVec3,
+    /// Picture side in pixels.
+    px: f64,
+    /// Pixels per model unit.
+    scale: f64,
+    /// The centre of the fitted points' projection (model units).
+    centre: [f64; 2],
+}
+
+impl Projection {
+    fn fit(points: &[DVec3], right: DVec3, up: DVec3, size: u32) -> Projection {
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for v in &verts {
+        for v in points {
             let s = [v.dot(right), v.dot(up)];
             for k in 0..2 {
                 lo[k] = lo[k].min(s[k]);
@@ -163,23 +165,51 @@ impl Scene {
         } else {
             1.0
         };
-        let (mx, my) = (0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]));
-        let project = |v: DVec3| -> [f64; 2] {
-            [
-                0.5 * px + scale * (v.dot(right) - mx),
-                0.5 * px - scale * (v.dot(up) - my),
-            ]
+        let centre = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+        Projection {
+            right,
+            up,
+            px,
+            scale,
+            centre,
+        }
+    }
+
+    /// Picture coordinates of `v` (y down).
+    fn apply(&self, v: DVec3) -> [f64; 2] {
+        [
+            0.5 * self.px + self.scale * (v.dot(self.right) - self.centre[0]),
+            0.5 * self.px - self.scale * (v.dot(self.up) - self.centre[1]),
+        ]
+    }
+}
+
+impl Scene {
+    /// Projects the merged mesh and the `added` facets of the current sum.
+    pub fn build(
+        mesh: &PolygonMesh,
+        sum: &DynamicSum<'_>,
+        added: &[Facet],
+        view: View,
+        size: u32,
+    ) -> Scene {
+        let (right, up, toward) = view.basis();
+        let light = (-0.45 * right + 0.65 * up + 1.0 * toward).normalize();
+        let verts: Vec<DVec3> = mesh.vertices.iter().map(|&v| DVec3::from(v)).collect();
+        let projection = Projection::fit(&verts, right, up, size);
+        // A polygon with outward normal `n`, if it faces the viewer.
+        let front_shape = |corners: &[DVec3], n: DVec3, rgb: [f64; 3]| {
+            (n.dot(toward) > FRONT_EPS).then(|| Shape {
+                points: corners.iter().map(|&v| projection.apply(v)).collect(),
+                fill: shade(rgb, n, light),
+            })
         };
         let faces = mesh
             .faces
             .iter()
             .filter_map(|f| {
                 let pts: Vec<DVec3> = f.iter().map(|&i| verts[i]).collect();
-                let n = newell_normal(&pts);
-                (n.dot(toward) > FRONT_EPS).then(|| Shape {
-                    points: pts.iter().map(|&v| project(v)).collect(),
-                    fill: shade(FACE_RGB, n, light),
-                })
+                front_shape(&pts, newell_normal(&pts), FACE_RGB)
             })
             .collect();
         let (pose_p, pose_q) = (sum.pose_p(), sum.pose_q());
@@ -187,12 +217,10 @@ impl Scene {
             .iter()
             .filter_map(|&facet| {
                 let (corners, n) = facet_geometry(sum.p(), &pose_p, sum.q(), &pose_q, facet);
-                (n.dot(toward) > FRONT_EPS).then(|| Shape {
-                    points: corners.iter().map(|&v| project(v)).collect(),
-                    fill: shade(CHANGED_RGB, n, light),
-                })
+                front_shape(&corners, n, CHANGED_RGB)
             })
             .collect();
+        let px = size as f64;
         Scene {
             size,
             faces,
