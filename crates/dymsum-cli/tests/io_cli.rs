@@ -9,7 +9,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{ok, run, run_in, stderr, temp_dir, BIN};
+use common::{assert_fails, ok, run, run_in, stderr, temp_dir, BIN};
 
 fn names(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
@@ -142,8 +142,7 @@ fn cobst_refuses_a_non_empty_directory_and_force_clears_only_its_own_files() {
         "--out",
         s(&out),
     ]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("not empty"), "{}", stderr(&o));
+    assert_fails(&o, 1, "not empty");
     assert!(stderr(&o).contains("--force"), "{}", stderr(&o));
     assert_eq!(names(&out).len(), 5);
     ok(&[
@@ -231,12 +230,7 @@ fn fifo_and_device_operands_are_refused_promptly() {
         ],
     ] {
         let o = run_with_deadline(&args, 20);
-        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
-        assert!(
-            stderr(&o).contains("not a regular file"),
-            "{args:?}: {}",
-            stderr(&o)
-        );
+        assert_fails(&o, 1, "not a regular file");
     }
 }
 
@@ -252,8 +246,7 @@ fn steps_per_rev_with_a_non_finite_step_angle_is_a_usage_error() {
             "--steps",
             "1",
         ]);
-        assert_eq!(o.status.code(), Some(2), "{x}: {}", stderr(&o));
-        assert!(stderr(&o).contains("not finite"), "{}", stderr(&o));
+        assert_fails(&o, 2, "not finite");
     }
     let o = run(&[
         "bench",
@@ -382,12 +375,7 @@ fn obj_point_cloud_object_is_a_body_in_query() {
     assert!(out.contains("\"collides\":false"), "{out}");
     // One body asked for: refused, naming the bodies.
     let o = run(&["info", s(&robot)]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(
-        stderr(&o).contains("3 separate bodies (`a`, `b`, `pts`)"),
-        "{}",
-        stderr(&o)
-    );
+    assert_fails(&o, 1, "3 separate bodies (`a`, `b`, `pts`)");
 }
 
 #[test]
@@ -441,8 +429,7 @@ fn missing_operand_and_unreadable_file_say_the_os_error_once() {
     let f = dir.join("locked.off");
     std::fs::write(&f, "OFF\n").unwrap();
     let o = run_in(Some(&dir), &["info", "nope/cube.off"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("does not exist"));
+    assert_fails(&o, 1, "does not exist");
     // A directory with a mesh extension.
     let d = dir.join("d.off");
     std::fs::create_dir(&d).unwrap();
@@ -468,8 +455,7 @@ fn huge_numbers_are_printed_in_scientific_form() {
     );
     assert!(out.lines().all(|l| l.len() < 120), "{out}");
     let o = run(&["info", "box:1e300"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("got 1e300"), "{}", stderr(&o));
+    assert_fails(&o, 1, "got 1e300");
     assert!(stderr(&o).len() < 200, "{}", stderr(&o));
 }
 
@@ -502,8 +488,7 @@ fn models_write_then_sum_through_standard_input_and_output() {
     assert_eq!((mesh.vertices.len(), mesh.faces.len()), (8, 6));
     // `sum - Q -o -`: P from stdin, the sum's OFF on stdout, summary on stderr.
     let o = run_with_stdin(&["sum", "-", "box:2,2,2", "-o", "-"], &box_off.stdout);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(stderr(&o).contains("stdin ⊕ box:2,2,2"), "{}", stderr(&o));
+    assert_fails(&o, 0, "stdin ⊕ box:2,2,2");
     let sum =
         dymsum_io::formats::read_mesh_bytes(&o.stdout, dymsum_io::formats::Format::Off, "stdout")
             .unwrap();
@@ -522,14 +507,11 @@ fn models_write_then_sum_through_standard_input_and_output() {
 fn standard_input_serves_one_operand_and_empty_input_is_an_error() {
     let cube = run(&["models", "--write", "box:1,1,1", "-"]).stdout;
     let o = run_with_stdin(&["sum", "-", "-", "-o", "-"], &cube);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("one operand only"), "{}", stderr(&o));
+    assert_fails(&o, 1, "one operand only");
     let o = run_with_stdin(&["info", "-"], b"");
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("standard input"), "{}", stderr(&o));
+    assert_fails(&o, 1, "standard input");
     let o = run(&["models", "--write", "nosuch", "-"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("unknown model"), "{}", stderr(&o));
+    assert_fails(&o, 1, "unknown model");
 }
 
 #[test]

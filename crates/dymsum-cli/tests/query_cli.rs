@@ -5,7 +5,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{model, ok, run, stderr, temp_dir};
+use common::{assert_fails, model, ok, run, stderr, temp_dir};
 use dymsum::query::{orientations_about_axis, ConvexPair};
 use dymsum::{DVec3, Pose, Rotation};
 
@@ -133,8 +133,7 @@ fn query_human_output_and_errors() {
     assert_eq!(run(&["query", "box", "box"]).status.code(), Some(2));
     // Bad input: exit 1, naming the operand.
     let o = run(&["query", "no_such.off", "box", "--pose", "0,0,0,1,0,0,0"]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("ROBOT"), "{}", stderr(&o));
+    assert_fails(&o, 1, "ROBOT");
 }
 
 #[test]
@@ -230,8 +229,7 @@ fn cobst_orientation_file_and_its_errors() {
     let bad = dir.join("bad.txt");
     std::fs::write(&bad, "1,0,0,0\n1,0,0\n").unwrap();
     let o = cobst(&["--orientations", bad.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("line 2"), "{}", stderr(&o));
+    assert_fails(&o, 1, "line 2");
     // Neither source, or both: usage errors.
     let o = cobst(&[]);
     assert_eq!(o.status.code(), Some(2));

@@ -80,3 +80,12 @@ pub fn model(spec: &str) -> Polytope {
         .unwrap()
         .polytope
 }
+
+/// Asserts that a run failed with exit `code` and that its stderr names
+/// `needle`; the message shows the whole stderr otherwise.
+#[track_caller]
+pub fn assert_fails(o: &Output, code: i32, needle: &str) {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(code), "stderr: {err}");
+    assert!(err.contains(needle), "stderr lacks `{needle}`: {err}");
+}
