@@ -743,7 +743,10 @@ impl<'a> DynamicSum<'a> {
 
     /// Checks the internal state: the two ee indices agree, and the current
     /// sum passes [`MinkowskiSum::sanity_check`].
-    pub fn sanity_check(&self) -> Result<(), String> {
+    ///
+    /// # Errors
+    /// The first broken invariant ([`crate::SanityError`]).
+    pub fn sanity_check(&self) -> Result<(), crate::SanityError> {
         let mut a: Vec<(u32, u32)> = self.overlay().ee;
         let mut b: Vec<(u32, u32)> = self
             .ee_q
@@ -754,7 +757,7 @@ impl<'a> DynamicSum<'a> {
         a.sort_unstable();
         b.sort_unstable();
         if a != b {
-            return Err("the ee indices by P edge and by Q edge disagree".into());
+            return Err(crate::SanityError::EeIndicesDisagree);
         }
         self.sum().sanity_check()
     }

@@ -34,6 +34,7 @@ pub mod kernel;
 pub mod mesh;
 pub mod polytope;
 pub mod query;
+pub mod sanity;
 pub mod sum;
 
 pub use dynamic::{DynamicSum, UpdateReport};
@@ -41,3 +42,4 @@ pub use glam::DVec3;
 pub use kernel::rotation::{Pose, Rotation};
 pub use mesh::PolygonMesh;
 pub use polytope::{Polytope, PolytopeError};
+pub use sanity::SanityError;

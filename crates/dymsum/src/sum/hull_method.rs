@@ -138,6 +138,7 @@ pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
         ee: ee.into_iter().collect(),
     };
     // A crossing the hull did not expose would leave a hole: check.
-    super::merge::check_facet_complex(ops, &overlay).map_err(SumError::HullMismatch)?;
+    super::merge::check_facet_complex(ops, &overlay)
+        .map_err(|e| SumError::HullMismatch(e.to_string()))?;
     Ok(overlay)
 }

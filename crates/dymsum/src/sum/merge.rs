@@ -22,6 +22,7 @@
 use super::{Operands, Overlay};
 use crate::kernel::predicates::{det3, same_direction, sos_det3};
 use crate::kernel::Sign;
+use crate::sanity::SanityError;
 use crate::PolygonMesh;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -298,7 +299,7 @@ pub(crate) fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<Merge
 /// Checks the facet complex of an overlay: closed, 2-manifold, consistently
 /// oriented (each directed facet edge once, with its reverse once), Euler
 /// characteristic 2.
-pub fn check_facet_complex(ops: &Operands<'_>, overlay: &Overlay) -> Result<(), String> {
+pub fn check_facet_complex(ops: &Operands<'_>, overlay: &Overlay) -> Result<(), SanityError> {
     let corners = facet_corners(ops, overlay);
     let mut directed: HashMap<(SumVertex, SumVertex), u32> = HashMap::new();
     let mut verts = std::collections::HashSet::new();
@@ -307,13 +308,16 @@ pub fn check_facet_complex(ops: &Operands<'_>, overlay: &Overlay) -> Result<(), 
             verts.insert(cyc[k]);
             let key = (cyc[k], cyc[(k + 1) % cyc.len()]);
             if directed.insert(key, i as u32).is_some() {
-                return Err(format!("facet edge {key:?} used twice in one direction"));
+                return Err(SanityError::FacetEdgeTwice {
+                    from: key.0,
+                    to: key.1,
+                });
             }
         }
     }
     for &(a, b) in directed.keys() {
         if !directed.contains_key(&(b, a)) {
-            return Err(format!("facet edge {:?} has no opposite facet", (a, b)));
+            return Err(SanityError::FacetEdgeUnmatched { from: a, to: b });
         }
     }
     let (v, e, f) = (
@@ -322,10 +326,7 @@ pub fn check_facet_complex(ops: &Operands<'_>, overlay: &Overlay) -> Result<(), 
         corners.len() as i64,
     );
     if v - e + f != 2 {
-        return Err(format!(
-            "facet complex Euler characteristic {} != 2",
-            v - e + f
-        ));
+        return Err(SanityError::FacetComplexEuler { chi: v - e + f });
     }
     Ok(())
 }

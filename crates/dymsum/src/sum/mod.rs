@@ -381,9 +381,13 @@ impl<'a> MinkowskiSum<'a> {
     /// Checks the facet complex: every facet edge shared by exactly two facets
     /// in opposite directions (closed, 2-manifold, consistently oriented),
     /// Euler `V − E + F = 2`, and the merged mesh closed and convex.
-    pub fn sanity_check(&self) -> Result<(), String> {
+    ///
+    /// # Errors
+    /// The first broken invariant ([`crate::SanityError`]).
+    pub fn sanity_check(&self) -> Result<(), crate::SanityError> {
         merge::check_facet_complex(&self.operands, &self.overlay)?;
-        self.try_to_mesh().map(|_| ()).map_err(|e| e.to_string())
+        self.try_to_mesh()?;
+        Ok(())
     }
 }
 
