@@ -38,6 +38,9 @@ pub mod sanity;
 pub mod sum;
 
 pub use dynamic::{DynamicSum, UpdateReport};
+/// The `glam` dymsum uses: 0.33, the version `parry3d-f64` 0.31 uses, so
+/// `dymsum::DVec3` and parry's `math::Vector` are one type.
+pub use glam;
 pub use glam::DVec3;
 pub use kernel::rotation::{Pose, Rotation};
 pub use mesh::PolygonMesh;

@@ -111,20 +111,16 @@ fn point_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
 fn parry(a: &Polytope, pa: Pose, b: &Polytope, pb: Pose) -> Option<(f64, f64, DVec3)> {
     use parry3d_f64::math::{Pose as PPose, Vector};
     use parry3d_f64::shape::ConvexPolyhedron;
-    let conv = |v: Vec<DVec3>| -> Vec<Vector> {
-        v.into_iter().map(|p| Vector::new(p.x, p.y, p.z)).collect()
-    };
-    let sa = ConvexPolyhedron::from_convex_hull(&conv(posed(a, pa)))?;
-    let sb = ConvexPolyhedron::from_convex_hull(&conv(posed(b, pb)))?;
+    // dymsum's `DVec3` is parry's `Vector` (the same glam version): no
+    // conversion. This stops compiling if the versions ever split.
+    let (va, vb): (Vec<Vector>, Vec<Vector>) = (posed(a, pa), posed(b, pb));
+    let sa = ConvexPolyhedron::from_convex_hull(&va)?;
+    let sb = ConvexPolyhedron::from_convex_hull(&vb)?;
     let id = PPose::IDENTITY;
     let c = parry3d_f64::query::contact(&id, &sa, &id, &sb, 0.0).ok()?;
     let d = parry3d_f64::query::distance(&id, &sa, &id, &sb).ok()?;
     Some(match c {
-        Some(c) => (
-            -c.dist,
-            d.distance,
-            DVec3::new(c.normal1.x, c.normal1.y, c.normal1.z),
-        ),
+        Some(c) => (-c.dist, d.distance, c.normal1),
         None => (f64::NAN, d.distance, DVec3::NAN),
     })
 }
