@@ -74,6 +74,27 @@ impl Rotation {
         Some(Self::from_unit_quat(q / len))
     }
 
+    /// From quaternion components in the order `x, y, z, w` (scalar last, as
+    /// glam, parry, ROS and Eigen store them); renormalised. The same as
+    /// [`Self::from_wxyz`]`(w, x, y, z)`.
+    ///
+    /// ```
+    /// use dymsum::Rotation;
+    /// let h = std::f64::consts::FRAC_1_SQRT_2;
+    /// assert_eq!(Rotation::from_xyzw(0.0, 0.0, h, h), Rotation::from_wxyz(h, 0.0, 0.0, h));
+    /// assert!(Rotation::from_xyzw(0.0, 0.0, 0.0, 0.0).is_none());
+    /// ```
+    pub fn from_xyzw(x: f64, y: f64, z: f64, w: f64) -> Option<Rotation> {
+        Self::from_wxyz(w, x, y, z)
+    }
+
+    /// The unit quaternion's components in the order `x, y, z, w` (scalar
+    /// last).
+    pub fn xyzw(&self) -> [f64; 4] {
+        let [w, x, y, z] = self.wxyz();
+        [x, y, z, w]
+    }
+
     /// From a quaternion assumed (close to) unit length; renormalised.
     pub fn from_quat(q: DQuat) -> Rotation {
         Self::from_unit_quat(q)
@@ -208,11 +229,61 @@ impl Pose {
     pub fn apply(&self, p: DVec3) -> DVec3 {
         self.rotation.apply(p) + self.translation
     }
+
+    /// From a 4×4 homogeneous rigid transform (column-major glam `DMat4`:
+    /// rotation in the upper 3×3 block, translation in the last column, last
+    /// row `0, 0, 0, 1`). Returns `None` unless the block is a rotation (see
+    /// [`Rotation::from_matrix`]), the last row is exactly `0, 0, 0, 1` and
+    /// every entry is finite.
+    ///
+    /// ```
+    /// use dymsum::glam::{DMat4, DQuat};
+    /// use dymsum::{DVec3, Pose, Rotation};
+    /// let m = DMat4::from_rotation_translation(DQuat::from_rotation_z(0.5), DVec3::new(1.0, 2.0, 3.0));
+    /// let pose = Pose::from_mat4(m).unwrap();
+    /// let p = DVec3::new(0.3, -0.2, 0.1);
+    /// assert!((pose.apply(p) - m.transform_point3(p)).length() < 1e-15);
+    /// assert!(Pose::from_mat4(DMat4::from_scale(DVec3::splat(2.0))).is_none());
+    /// ```
+    pub fn from_mat4(m: glam::DMat4) -> Option<Pose> {
+        if !m.is_finite() || m.row(3) != glam::DVec4::new(0.0, 0.0, 0.0, 1.0) {
+            return None;
+        }
+        let rotation = Rotation::from_matrix(glam::DMat3::from_mat4(m))?;
+        Some(Pose::new(rotation, m.w_axis.truncate()))
+    }
+
+    /// The pose as a 4×4 homogeneous transform (column-major glam `DMat4`).
+    pub fn to_mat4(&self) -> glam::DMat4 {
+        glam::DMat4::from_rotation_translation(self.rotation.quat(), self.translation)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quaternion_orders_and_homogeneous_matrices() {
+        let r = Rotation::from_wxyz(0.9, 0.1, -0.3, 0.2).unwrap();
+        let [x, y, z, w] = r.xyzw();
+        assert_eq!(Rotation::from_xyzw(x, y, z, w), Some(r));
+        assert_eq!(r.wxyz(), [w, x, y, z]);
+        let pose = Pose::new(r, DVec3::new(-1.0, 2.5, 1e3));
+        let back = Pose::from_mat4(pose.to_mat4()).unwrap();
+        assert!((back.translation - pose.translation).length() == 0.0);
+        assert!(back.rotation.angle_to(&r) < 1e-12);
+        // Not rigid: scaled, sheared, projective, non-finite.
+        let mut m = pose.to_mat4();
+        m.x_axis.x *= 1.5;
+        assert!(Pose::from_mat4(m).is_none());
+        let mut m = pose.to_mat4();
+        m.x_axis.w = 1e-3;
+        assert!(Pose::from_mat4(m).is_none());
+        let mut m = pose.to_mat4();
+        m.w_axis.x = f64::NAN;
+        assert!(Pose::from_mat4(m).is_none());
+    }
     use std::f64::consts::FRAC_PI_2;
 
     #[test]
