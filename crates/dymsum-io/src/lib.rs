@@ -15,4 +15,4 @@ pub mod formats;
 pub mod load;
 pub mod models;
 
-pub use load::{load_polytope, load_polytope_bytes, LoadError, Loaded};
+pub use load::{load_mesh, load_polytope, load_polytope_bytes, LoadError, Loaded};

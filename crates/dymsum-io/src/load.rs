@@ -243,7 +243,7 @@ pub fn load_polytope(spec: &str, policy: MeshPolicy) -> Result<Loaded, LoadError
         }
     }
     match models::model(spec) {
-        Ok(mesh) => build(mesh, format!("built-in {}", spec.trim()), policy),
+        Ok(mesh) => load_mesh(mesh, format!("built-in {}", spec.trim()), policy),
         Err(ModelError::Unknown { suggestion, .. }) => Err(LoadError::NotFound {
             spec: spec.to_string(),
             suggestion,
@@ -283,7 +283,7 @@ pub fn load_polytope_bytes(
             origin: origin.to_string(),
             source,
         })?;
-    build(mesh, origin.to_string(), policy)
+    load_mesh(mesh, origin.to_string(), policy)
 }
 
 fn load_file(spec: &str, path: &Path, policy: MeshPolicy) -> Result<Loaded, LoadError> {
@@ -307,10 +307,22 @@ fn load_file(spec: &str, path: &Path, policy: MeshPolicy) -> Result<Loaded, Load
     } else {
         formats::read_mesh(path).map_err(format_err)?
     };
-    build(mesh, origin, policy)
+    load_mesh(mesh, origin, policy)
 }
 
-fn build(input: PolygonMesh, source: String, policy: MeshPolicy) -> Result<Loaded, LoadError> {
+/// Loads a polytope from a mesh already in memory (a built-in model's, or
+/// one read elsewhere): a mesh without faces is a point cloud (its hull),
+/// otherwise it is validated under `policy`. `source` labels errors and
+/// [`Loaded::source`] (e.g. `"built-in ellipse"`).
+///
+/// # Errors
+/// [`LoadError::Polytope`] (or another build error) when the mesh is not a
+/// valid convex body.
+pub fn load_mesh(
+    input: PolygonMesh,
+    source: String,
+    policy: MeshPolicy,
+) -> Result<Loaded, LoadError> {
     let result = if input.faces.is_empty() {
         Polytope::from_points(&input.vertices).map(|p| (p, None))
     } else {

@@ -31,11 +31,11 @@ pub fn run(a: &ModelsArgs, out: &mut dyn Write) -> anyhow::Result<()> {
 
 fn write_model(name: &str, file: &str, out: &mut dyn Write) -> anyhow::Result<()> {
     let path: PathBuf = crate::values::parse_output_path(file).map_err(|e| anyhow!("FILE: {e}"))?;
-    if dymsum_io::models::model(name).is_err() {
-        // Not a model (an unknown name, or a bad parameter): say why.
-        dymsum_io::models::model(name).map_err(|e| anyhow!("NAME: {e}"))?;
-    }
-    let loaded = super::load(name, "NAME", false)?;
+    // Only a model (never a file of that name); an unknown name or a bad
+    // parameter says why.
+    let model = dymsum_io::models::model(name).map_err(|e| anyhow!("NAME: {e}"))?;
+    let loaded = dymsum_io::load_mesh(model, format!("built-in {name}"), super::policy(false))
+        .map_err(|e| anyhow!(e.for_operand("NAME")))?;
     let mesh = loaded.polytope.to_mesh();
     dymsum::sum::validate::check_convex_mesh(&mesh)
         .map_err(|e| anyhow!("internal: the mesh of model {name} is not valid: {e}"))?;
