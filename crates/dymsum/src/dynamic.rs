@@ -395,17 +395,7 @@ impl<'a> DynamicSum<'a> {
         if new == old {
             return Ok(report);
         }
-        self.ops.relative = new;
-        self.ops.rot_p = (new != Rotation::IDENTITY).then(|| new.matrix());
-        crate::sum::rotate_arcs(
-            self.ops.p,
-            self.ops.rot_p.as_ref(),
-            &mut self.ops.arc_p,
-            &mut self.ops.arc_p_err,
-        );
-        for (n, r) in self.ops.np.iter_mut().zip(self.ops.p.normals()) {
-            *n = new.apply(*r);
-        }
+        self.ops.set_relative(new);
         // Too large a step, or within the backoff after a step as large fell
         // back because too many arcs were at risk: recompute without scanning.
         if theta > self.config.max_step_angle {
@@ -965,6 +955,7 @@ impl ExactZeros {
             arc_errs: poly.arc_errors(),
             base: 0,
             rotation: None,
+            ties: None,
         };
         let zero = |v: &ExactVec| [0, 1, 2].map(|c| v[c].sign() == Sign::Zero);
         let exact: Vec<ExactVec> = (0..poly.face_count() as u32)

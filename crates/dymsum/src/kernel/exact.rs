@@ -560,7 +560,19 @@ pub mod float {
         if !p.is_finite() || p.abs() < MIN_EXACT_PRODUCT {
             return None;
         }
+        // A power-of-two factor (unit normals' ±1, halves) only shifts the
+        // other's exponent: exact here, without the fused multiply-add
+        // (a library call on targets without FMA).
+        if is_pow2(a) || is_pow2(b) {
+            return Some(p);
+        }
         (a.mul_add(b, -p) == 0.0).then_some(p)
+    }
+
+    /// `true` for a normal float `±2^k` (zero fraction bits).
+    #[inline]
+    fn is_pow2(x: f64) -> bool {
+        x.is_normal() && x.to_bits() & ((1u64 << 52) - 1) == 0
     }
 
     /// `a + b` if the float sum is exact (Knuth's TwoSum).

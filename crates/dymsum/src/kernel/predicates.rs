@@ -259,6 +259,17 @@ pub trait ExactVector {
             None => [None; 3],
         }
     }
+    /// Components known to be exactly zero without any arithmetic (bit `k`
+    /// for component `k`): a subset of the zeros of
+    /// [`ExactVector::exact_components`] (a rotated normal may report only
+    /// the components that are zero by the structure of the rotation
+    /// matrix). Together with `error() == 0` (then `approx()` is exact), this
+    /// is where the tie-breaking stage starts; it asks for
+    /// [`ExactVector::exact_components`] only when that does not suffice.
+    fn zero_mask(&self) -> u8 {
+        let c = self.exact_components();
+        (0..3).fold(0, |m, k| m | u8::from(c[k] == Some(0.0)) << k)
+    }
 }
 
 /// A float vector taken as exact (error 0), with an SoS index.
@@ -344,15 +355,74 @@ struct Known {
     approx: [DVec3; 3],
     err: [f64; 3],
     exact: [[Option<f64>; 3]; 3],
+    /// Bit `3r + k` set when entry `(r, k)` is known to be exactly zero.
+    zeros: u16,
 }
 
 impl Known {
     fn of<V: ExactVector>(v: [&V; 3]) -> Known {
-        Known {
-            approx: v.map(|x| x.approx()),
-            err: v.map(|x| x.error()),
-            exact: v.map(|x| x.exact_components()),
+        Known::with(
+            v,
+            [
+                v[0].exact_components(),
+                v[1].exact_components(),
+                v[2].exact_components(),
+            ],
+        )
+    }
+
+    /// What is known without arithmetic: exact rows (error bound zero) and
+    /// the zeros of [`ExactVector::zero_mask`].
+    fn cheap<V: ExactVector>(v: [&V; 3]) -> Known {
+        let row = |x: &V| {
+            let (a, m) = (x.approx(), x.zero_mask());
+            if x.error() == 0.0 {
+                [Some(a.x), Some(a.y), Some(a.z)]
+            } else {
+                [0, 1, 2].map(|k| (m >> k & 1 != 0).then_some(0.0))
+            }
+        };
+        Known::with(v, [row(v[0]), row(v[1]), row(v[2])])
+    }
+
+    #[inline]
+    fn with<V: ExactVector>(v: [&V; 3], exact: [[Option<f64>; 3]; 3]) -> Known {
+        let mut zeros = 0;
+        for (r, row) in exact.iter().enumerate() {
+            for (k, x) in row.iter().enumerate() {
+                if *x == Some(0.0) {
+                    zeros |= 1 << (3 * r + k);
+                }
+            }
         }
+        Known {
+            approx: [v[0].approx(), v[1].approx(), v[2].approx()],
+            err: [v[0].error(), v[1].error(), v[2].error()],
+            exact,
+            zeros,
+        }
+    }
+
+    /// `true` when every term of the Leibniz expansion
+    /// `Σ_σ sgn σ · A[0][σ0] A[1][σ1] A[2][σ2]` has an exactly zero factor,
+    /// so the determinant is exactly zero by the zero pattern alone (a
+    /// column of zeros, two rows supported on one coordinate, a normal on an
+    /// arc whose cross product vanishes where the normal does not).
+    #[inline]
+    fn zero_by_pattern(&self) -> bool {
+        // The entries (r, σ(r)) of each permutation σ, as bit masks.
+        const fn term(p: [usize; 3]) -> u16 {
+            1 << p[0] | 1 << (3 + p[1]) | 1 << (6 + p[2])
+        }
+        const TERMS: [u16; 6] = [
+            term([0, 1, 2]),
+            term([0, 2, 1]),
+            term([1, 0, 2]),
+            term([1, 2, 0]),
+            term([2, 0, 1]),
+            term([2, 1, 0]),
+        ];
+        TERMS.iter().all(|&t| self.zeros & t != 0)
     }
 
     /// The exact sign of entry `(r, k)`, when known cheaply.
@@ -366,7 +436,7 @@ impl Known {
 
     #[inline]
     fn is_zero(&self, r: usize, k: usize) -> bool {
-        self.exact[r][k] == Some(0.0)
+        self.zeros >> (3 * r + k) & 1 != 0
     }
 
     /// Row `r` as an exact float vector, if all its components are known.
@@ -601,6 +671,13 @@ pub fn sos_det3<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
     Sign::certified(det, bound).unwrap_or_else(|| sos_slow(a, b, c))
 }
 
+/// [`sos_det3`] without its float filter, for callers whose own filter
+/// (say, against a precomputed arc normal) has just failed.
+#[cold]
+pub(crate) fn sos_det3_unfiltered<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
+    sos_slow(a, b, c)
+}
+
 #[cold]
 fn sos_slow<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
     let (ia, ib, ic) = (a.index(), b.index(), c.index());
@@ -621,8 +698,20 @@ fn sos_slow<V: ExactVector>(a: &V, b: &V, c: &V) -> Sign {
     }
     let vs = [a, b, c];
     let [v0, v1, v2] = order.map(|(_, k)| vs[k]);
-    let known = Known::of([v0, v1, v2]);
-    let s = det3_exact_known(v0, v1, v2, &known);
+    // Exact ties of simple geometry (parallel faces, normals on arcs under a
+    // rotation about a coordinate axis) are zero by their zero pattern: the
+    // perturbation terms then start from what is known without arithmetic.
+    let cheap = Known::cheap([v0, v1, v2]);
+    let known = if cheap.zero_by_pattern() {
+        cheap
+    } else {
+        Known::of([v0, v1, v2])
+    };
+    let s = if known.zero_by_pattern() {
+        Sign::Zero
+    } else {
+        det3_exact_known(v0, v1, v2, &known)
+    };
     if s != Sign::Zero {
         return if flips % 2 == 1 { s.flip() } else { s };
     }

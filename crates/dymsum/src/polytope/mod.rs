@@ -82,6 +82,10 @@ pub struct Polytope {
     normals: Vec<DVec3>,
     normal_triple: Vec<[u32; 3]>,
     normal_err: Vec<f64>,
+    /// Per face: bit `k` set when component `k` of the exact normal is known
+    /// to be non-zero or unknown, i.e. clear only for components known to
+    /// be exactly zero (the float normal is exact and that component is 0).
+    normal_support: Vec<u8>,
     normal_scale: Vec<f64>,
     arc_normals: Vec<DVec3>,
     arc_err: Vec<f64>,
@@ -385,6 +389,17 @@ impl Polytope {
             normal_err.push(err);
             normal_scale.push(scale);
         }
+        let normal_support = normals
+            .iter()
+            .zip(&normal_err)
+            .map(|(n, &err)| {
+                if err == 0.0 {
+                    n.cmpne(DVec3::ZERO).bitmask() as u8
+                } else {
+                    0b111
+                }
+            })
+            .collect();
         let unit_normals = normals.iter().map(|n| n.normalize()).collect();
         let inv_normal_len = normals.iter().map(|n| 1.0 / n.length()).collect();
         let mut poly = Polytope {
@@ -396,6 +411,7 @@ impl Polytope {
             normals,
             normal_triple,
             normal_err,
+            normal_support,
             normal_scale,
             arc_normals: Vec::new(),
             arc_err: Vec::new(),
@@ -575,8 +591,34 @@ impl ExactVector for FaceNormal<'_> {
         let n = self.poly.normals[self.face as usize];
         match self.rotation {
             None => [Some(n.x), Some(n.y), Some(n.z)],
-            Some(m) => [0, 1, 2].map(|r| exact::float::dot(m.row(r), n)),
+            Some(m) => [
+                rotated_component(m.row(0), n),
+                rotated_component(m.row(1), n),
+                rotated_component(m.row(2), n),
+            ],
         }
+    }
+    #[inline]
+    fn zero_mask(&self) -> u8 {
+        let Some(m) = self.rotation else {
+            // Unrotated, `approx` is the polytope's normal (bit for bit) and
+            // `err` its bound: exact when the bound is zero.
+            let n = self.approx;
+            let exact = self.err == 0.0;
+            return u8::from(exact && n.x == 0.0)
+                | u8::from(exact && n.y == 0.0) << 1
+                | u8::from(exact && n.z == 0.0) << 2;
+        };
+        // (M n)_r is exactly zero when M[r][k] = 0 for every k where n_k
+        // may be non-zero.
+        let support = self.poly.normal_support[self.face as usize];
+        let mut zero = 0b111;
+        for (k, col) in [m.x_axis, m.y_axis, m.z_axis].into_iter().enumerate() {
+            if support >> k & 1 != 0 {
+                zero &= col.cmpeq(DVec3::ZERO).bitmask() as u8;
+            }
+        }
+        zero
     }
     fn refined(&self) -> (DDVec, f64) {
         let (n, err) = self.poly.refined_normal(self.face as usize);
@@ -594,6 +636,22 @@ impl ExactVector for FaceNormal<'_> {
                 )
             }
         }
+    }
+}
+
+/// `row · n` when it is a float obtainable without rounding. Terms with an
+/// exactly zero factor are skipped, so the components that a rotation about
+/// a coordinate axis leaves alone (and the exact zeros it produces) cost a
+/// compare or one product, not a compensated dot product.
+#[inline]
+fn rotated_component(row: DVec3, n: DVec3) -> Option<f64> {
+    let live = |k: usize| row[k] != 0.0 && n[k] != 0.0;
+    match (live(0), live(1), live(2)) {
+        (false, false, false) => Some(0.0),
+        (true, false, false) => exact::float::mul(row.x, n.x),
+        (false, true, false) => exact::float::mul(row.y, n.y),
+        (false, false, true) => exact::float::mul(row.z, n.z),
+        _ => exact::float::dot(row, n),
     }
 }
 

@@ -205,6 +205,8 @@ pub struct Operands<'a> {
     pub arc_p: Vec<DVec3>,
     /// Error bounds of `arc_p`.
     pub arc_p_err: Vec<f64>,
+    /// Exact ties met at this relative rotation.
+    pub(crate) ties: overlay::TieCache,
 }
 
 /// P's arc normals under a rotation, and their error bounds. Exact normals
@@ -268,6 +270,7 @@ impl<'a> Operands<'a> {
             rot_p: (relative != crate::Rotation::IDENTITY).then(|| relative.matrix()),
             arc_p: Vec::new(),
             arc_p_err: Vec::new(),
+            ties: overlay::TieCache::new(),
             pose_p,
             pose_q,
             relative,
@@ -275,6 +278,23 @@ impl<'a> Operands<'a> {
         rotate_arcs(p, ops.rot_p.as_ref(), &mut ops.arc_p, &mut ops.arc_p_err);
         ops
     }
+    /// Turns P to the relative rotation `new`: its normals, its arcs, and
+    /// a fresh tie memo.
+    pub(crate) fn set_relative(&mut self, new: crate::Rotation) {
+        self.relative = new;
+        self.rot_p = (new != crate::Rotation::IDENTITY).then(|| new.matrix());
+        rotate_arcs(
+            self.p,
+            self.rot_p.as_ref(),
+            &mut self.arc_p,
+            &mut self.arc_p_err,
+        );
+        for (n, r) in self.np.iter_mut().zip(self.p.normals()) {
+            *n = new.apply(*r);
+        }
+        self.ties.clear();
+    }
+
     /// P's Gaussian map (global indices `0..m`).
     #[inline]
     pub fn view_p(&self) -> GaussView<'_> {
@@ -285,6 +305,7 @@ impl<'a> Operands<'a> {
             arc_errs: &self.arc_p_err,
             base: 0,
             rotation: self.rot_p.as_ref(),
+            ties: Some(&self.ties),
         }
     }
     /// Q's Gaussian map (global indices `m..m+n`).
@@ -297,6 +318,7 @@ impl<'a> Operands<'a> {
             arc_errs: self.q.arc_errors(),
             base: self.p.face_count() as u32,
             rotation: None,
+            ties: Some(&self.ties),
         }
     }
     /// [`SumError::OutOfRange`] when a posed vertex of P or Q overflows.
