@@ -16,21 +16,21 @@ use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
 use dymsum_io::models::model;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
-fn load(name: &str) -> &'static Polytope {
+fn load(name: &str) -> Polytope {
     let mesh = model(name).unwrap_or_else(|e| panic!("model {name}: {e}"));
     let (p, _) = Polytope::from_mesh(&mesh, MeshPolicy::default())
         .unwrap_or_else(|e| panic!("model {name}: {e}"));
-    Box::leak(Box::new(p))
+    p
 }
 
-fn load_file(file: &str) -> &'static Polytope {
+fn load_file(file: &str) -> Polytope {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("models/fogel")
         .join(file);
     let mesh = dymsum_io::formats::read_mesh(&path).unwrap_or_else(|e| panic!("{file}: {e}"));
     let (p, _) =
         Polytope::from_mesh(&mesh, MeshPolicy::default()).unwrap_or_else(|e| panic!("{file}: {e}"));
-    Box::leak(Box::new(p))
+    p
 }
 
 fn rot(axis: DVec3, angle: f64) -> Rotation {
@@ -65,7 +65,7 @@ fn run_with(
     seed: u64,
     cfg: DynamicConfig,
 ) {
-    let (p, q) = (load(p_name), load(q_name));
+    let (p, q) = (&load(p_name), &load(q_name));
     let mut r = rng(seed);
     let start = Pose::new(random_rotation(&mut r), DVec3::new(1.0, -2.0, 0.5));
     let d = DynamicSum::with_config(p, start, q, Pose::IDENTITY, cfg).unwrap();
@@ -139,7 +139,7 @@ fn fogel_files_mixed_protocol() {
     ];
     for i in 0..files.len() {
         let (a, b) = (files[i], files[(i + 1) % files.len()]);
-        let (p, q) = (load_file(a), load_file(b));
+        let (p, q) = (&load_file(a), &load_file(b));
         let mut r = rng(300 + i as u64);
         let mut c = Checked::start(
             p,
@@ -166,7 +166,7 @@ fn models_both_moving_always_incremental() {
         .iter()
         .enumerate()
     {
-        let (p, q) = (load(pn), load(qn));
+        let (p, q) = (&load(pn), &load(qn));
         let d = DynamicSum::with_config(p, Pose::IDENTITY, q, Pose::IDENTITY, incremental).unwrap();
         let mut c = Checked::new(d, 0, format!("{pn}+{qn} both moving"));
         let mut r = rng(400 + i as u64);
@@ -195,9 +195,9 @@ fn models_both_moving_always_incremental() {
 /// and tiny turns off the aligned pose.
 #[test]
 fn tessellated_cubes_through_quarter_turns() {
-    let t3 = load("tcube:3");
+    let t3 = &load("tcube:3");
     assert_eq!(t3.face_count(), 6);
-    for (label, q) in [("tcube:3", t3), ("cube", load("cube"))] {
+    for (label, q) in [("tcube:3", t3), ("cube", &load("cube"))] {
         let mut c = Checked::start(t3, Pose::IDENTITY, q, Pose::IDENTITY, 4, label);
         for k in 1..=8 {
             for _ in 0..10 {

@@ -166,8 +166,8 @@ pub struct UpdateReport {
 
 /// The dynamic Minkowski sum (see the module docs).
 #[derive(Clone, Debug)]
-pub struct DynamicSum<'a> {
-    ops: Operands<'a>,
+pub struct DynamicSum {
+    ops: Operands,
     fv: Vec<u32>,
     vf: Vec<u32>,
     ee_p: Vec<Vec<u32>>,
@@ -255,22 +255,17 @@ const NO_AXIS: u8 = u8::MAX;
 /// Unit roundoff.
 const U: f64 = f64::EPSILON / 2.0;
 
-impl<'a> DynamicSum<'a> {
+impl DynamicSum {
     /// Starts from a static `walk` sum at the given poses.
-    pub fn new(
-        p: &'a Polytope,
-        pose_p: Pose,
-        q: &'a Polytope,
-        pose_q: Pose,
-    ) -> Result<Self, SumError> {
+    pub fn new(p: &Polytope, pose_p: Pose, q: &Polytope, pose_q: Pose) -> Result<Self, SumError> {
         Self::with_config(p, pose_p, q, pose_q, DynamicConfig::default())
     }
 
     /// [`DynamicSum::new`] with explicit tuning.
     pub fn with_config(
-        p: &'a Polytope,
+        p: &Polytope,
         pose_p: Pose,
-        q: &'a Polytope,
+        q: &Polytope,
         pose_q: Pose,
         config: DynamicConfig,
     ) -> Result<Self, SumError> {
@@ -338,13 +333,13 @@ impl<'a> DynamicSum<'a> {
     #[inline]
     fn margin_of_p_face(&self, rot: DMat3, f: usize) -> f64 {
         let x = rot * self.ops.p.unit_normal(f);
-        margin(self.ops.q, &self.arc_q, self.fv[f], x)
+        margin(&self.ops.q, &self.arc_q, self.fv[f], x)
     }
 
     #[inline]
     fn margin_of_q_face(&self, inv: DMat3, g: usize) -> f64 {
         let x = inv * self.ops.q.unit_normal(g);
-        margin(self.ops.p, &self.arc_p, self.vf[g], x)
+        margin(&self.ops.p, &self.arc_p, self.vf[g], x)
     }
 
     /// P's current pose.
@@ -356,12 +351,12 @@ impl<'a> DynamicSum<'a> {
         self.ops.pose_q
     }
     /// P.
-    pub fn p(&self) -> &'a Polytope {
-        self.ops.p
+    pub fn p(&self) -> &Polytope {
+        &self.ops.p
     }
     /// Q.
-    pub fn q(&self) -> &'a Polytope {
-        self.ops.q
+    pub fn q(&self) -> &Polytope {
+        &self.ops.q
     }
     /// The tuning in force.
     pub fn config(&self) -> DynamicConfig {
@@ -417,7 +412,7 @@ impl<'a> DynamicSum<'a> {
             self.axis_since = self.tick;
         }
         if axis.is_some() && self.zeros.is_none() {
-            let (p, q) = (self.ops.p, self.ops.q);
+            let (p, q) = (&self.ops.p, &self.ops.q);
             self.zeros = Some(Box::new([ExactZeros::of(p), ExactZeros::of(q)]));
         }
         let step = StepBounds {
@@ -716,7 +711,7 @@ impl<'a> DynamicSum<'a> {
     }
 
     /// The current sum as a static [`MinkowskiSum`] (no recomputation).
-    pub fn sum(&self) -> MinkowskiSum<'a> {
+    pub fn sum(&self) -> MinkowskiSum {
         MinkowskiSum::from_overlay(self.ops.clone(), self.overlay())
     }
 

@@ -26,12 +26,8 @@ const INCREMENTAL: DynamicConfig = DynamicConfig {
     fallback_fraction: f64::INFINITY,
 };
 
-fn leak(p: Polytope) -> &'static Polytope {
-    Box::leak(Box::new(p))
-}
-
-fn boxed(x: f64, y: f64, z: f64) -> &'static Polytope {
-    leak(Polytope::from_points(&box_points(x, y, z)).unwrap())
+fn boxed(x: f64, y: f64, z: f64) -> Polytope {
+    Polytope::from_points(&box_points(x, y, z)).unwrap()
 }
 
 fn axis(k: usize) -> DVec3 {
@@ -44,7 +40,7 @@ fn rot(axis: DVec3, angle: f64) -> Rotation {
 
 /// An axis-aligned part: a box, or the hull of integer grid points (many
 /// exactly parallel faces), offset so it need not contain the origin.
-fn part(kind: u8, dims: [u8; 3], seed: u64) -> &'static Polytope {
+fn part(kind: u8, dims: [u8; 3], seed: u64) -> Polytope {
     let [x, y, z] = dims.map(|d| f64::from(d) * 0.25 + 0.25);
     match kind {
         0 => boxed(x, y, z),
@@ -53,12 +49,12 @@ fn part(kind: u8, dims: [u8; 3], seed: u64) -> &'static Polytope {
                 .into_iter()
                 .map(|[a, b, c]| [a + 0.5, b - 0.25, c + 1.0])
                 .collect();
-            leak(Polytope::from_points(&pts).unwrap())
+            Polytope::from_points(&pts).unwrap()
         }
         _ => {
             let mut r = rng(seed);
             let n = 5 + (seed % 16) as usize;
-            leak(random_polytope(Kind::Grid, n, &mut r))
+            random_polytope(Kind::Grid, n, &mut r)
         }
     }
 }
@@ -69,8 +65,8 @@ fn part(kind: u8, dims: [u8; 3], seed: u64) -> &'static Polytope {
 /// every step against recomputation.
 #[allow(clippy::too_many_arguments)]
 fn run(
-    p: &'static Polytope,
-    q: &'static Polytope,
+    p: &Polytope,
+    q: &Polytope,
     k: usize,
     q_axis: Option<usize>,
     angles: &[f64],
@@ -141,8 +137,8 @@ proptest! {
         angles in angles(), absolute in any::<bool>(), q_turns in any::<bool>(),
         incremental in any::<bool>(),
     ) {
-        let p = part(kp, dp, seed);
-        let q = part(kq, dq, seed.wrapping_add(1));
+        let p = &part(kp, dp, seed);
+        let q = &part(kq, dq, seed.wrapping_add(1));
         let label = format!(
             "axis turns kp={kp} kq={kq} dp={dp:?} dq={dq:?} seed={seed} k={k} q_axis={q_axis:?} \
              absolute={absolute} q_turns={q_turns} incremental={incremental}"
@@ -159,8 +155,8 @@ proptest! {
         dp in prop::array::uniform3(0u8..8), dq in prop::array::uniform3(0u8..8),
         k in 0usize..3, angles in angles(), offset in prop::array::uniform3(-2.0f64..2.0),
     ) {
-        let p = part(0, dp, 0);
-        let q = part(0, dq, 0);
+        let p = &part(0, dp, 0);
+        let q = &part(0, dq, 0);
         let pair = ConvexPair::new(p, q).unwrap();
         let pose_b = Pose::new(Rotation::IDENTITY, DVec3::from_array(offset));
         let mut tracker = pair.tracker(Pose::IDENTITY, pose_b).unwrap();
@@ -180,8 +176,8 @@ proptest! {
 /// at every step, and the same about x and y.
 #[test]
 fn regression_bench_workload_box_pair_500_steps_per_turn() {
-    let p = boxed(0.5, 1.0, 1.5);
-    let q = boxed(1.0, 0.5, 0.5);
+    let p = &boxed(0.5, 1.0, 1.5);
+    let q = &boxed(1.0, 0.5, 0.5);
     for k in 0..3 {
         for incremental in [false, true] {
             let label = format!("bench workload axis {k} incremental={incremental}");
@@ -210,8 +206,8 @@ fn regression_bench_workload_box_pair_500_steps_per_turn() {
 /// recomputed, and no face normal is re-checked on most steps.
 #[test]
 fn regression_box_pair_turning_about_axes_certifies_its_ties() {
-    let p = boxed(0.5, 1.0, 1.5);
-    let q = boxed(1.0, 0.5, 0.5);
+    let p = &boxed(0.5, 1.0, 1.5);
+    let q = &boxed(1.0, 0.5, 0.5);
     for k in 0..3 {
         let mut c = Checked::new(
             DynamicSum::new(p, Pose::IDENTITY, q, Pose::IDENTITY).unwrap(),
@@ -239,8 +235,8 @@ fn regression_box_pair_turning_about_axes_certifies_its_ties() {
 /// minors, which must stay clear of zero over the step.
 #[test]
 fn regression_equal_cubes_small_turn_about_x_certifies_q_ties_by_sos_terms() {
-    let p = boxed(0.25, 0.25, 0.25);
-    let q = boxed(0.25, 0.25, 0.25);
+    let p = &boxed(0.25, 0.25, 0.25);
+    let q = &boxed(0.25, 0.25, 0.25);
     for incremental in [true, false] {
         let cfg = if incremental {
             INCREMENTAL

@@ -40,12 +40,8 @@ fn config(incremental: bool) -> DynamicConfig {
     }
 }
 
-fn leak(p: Polytope) -> &'static Polytope {
-    Box::leak(Box::new(p))
-}
-
-fn poly(points: &[[f64; 3]]) -> &'static Polytope {
-    leak(Polytope::from_points(points).unwrap())
+fn poly(points: &[[f64; 3]]) -> Polytope {
+    Polytope::from_points(points).unwrap()
 }
 
 fn rot(axis: DVec3, angle: f64) -> Rotation {
@@ -57,14 +53,14 @@ fn pose(r: Rotation) -> Pose {
 }
 
 fn checked(
-    p: &'static Polytope,
+    p: &Polytope,
     pose_p: Pose,
-    q: &'static Polytope,
+    q: &Polytope,
     pose_q: Pose,
     cfg: DynamicConfig,
     deep_every: usize,
     label: impl Into<String>,
-) -> Checked<'static> {
+) -> Checked {
     Checked::new(
         DynamicSum::with_config(p, pose_p, q, pose_q, cfg).expect("DynamicSum"),
         deep_every,
@@ -93,8 +89,8 @@ fn run_paper_protocol(
 ) -> Result<(), String> {
     let (steps, jump_prob) = (150, 0.04);
     let mut r = rng(seed);
-    let p = leak(random_polytope(kp, np, &mut r));
-    let q = leak(random_polytope(kq, nq, &mut r));
+    let p = &random_polytope(kp, np, &mut r);
+    let q = &random_polytope(kq, nq, &mut r);
     let start = Pose::new(random_rotation(&mut r), DVec3::new(0.25, -1.0, 2.0));
     let label = format!(
         "paper protocol kp={kp:?} kq={kq:?} np={np} nq={nq} seed={seed} incremental={incremental}"
@@ -125,8 +121,8 @@ fn run_jittered(
     steps: usize,
 ) -> Result<(), String> {
     let mut r = rng(seed);
-    let p = leak(jittered_grid_polytope(np, eps, &mut r));
-    let q = leak(jittered_grid_polytope(nq, eps, &mut r));
+    let p = &jittered_grid_polytope(np, eps, &mut r);
+    let q = &jittered_grid_polytope(nq, eps, &mut r);
     let label =
         format!("jittered np={np} nq={nq} eps={eps:e} seed={seed} incremental={incremental}");
     let mut c = checked(
@@ -183,8 +179,8 @@ proptest! {
     #[test]
     fn both_bodies_move(kp in kind(), kq in kind(), np in 4usize..30, nq in 4usize..30, seed in any::<u64>(), incremental in any::<bool>()) {
         let mut r = rng(seed);
-        let p = leak(random_polytope(kp, np, &mut r));
-        let q = leak(random_polytope(kq, nq, &mut r));
+        let p = &random_polytope(kp, np, &mut r);
+        let q = &random_polytope(kq, nq, &mut r);
         let label = format!("both move kp={kp:?} kq={kq:?} np={np} nq={nq} seed={seed} incremental={incremental}");
         let mut c = checked(p, Pose::IDENTITY, q, Pose::new(random_rotation(&mut r), DVec3::ZERO), config(incremental), 20, label);
         let mut mp = PaperMotion::new(seed, None, 0.03);
@@ -210,8 +206,8 @@ proptest! {
     #[test]
     fn rotation_magnitudes(kp in kind(), kq in kind(), np in 4usize..30, nq in 4usize..30, seed in any::<u64>(), incremental in any::<bool>()) {
         let mut r = rng(seed);
-        let p = leak(random_polytope(kp, np, &mut r));
-        let q = leak(random_polytope(kq, nq, &mut r));
+        let p = &random_polytope(kp, np, &mut r);
+        let q = &random_polytope(kq, nq, &mut r);
         let label = format!("magnitudes kp={kp:?} kq={kq:?} np={np} nq={nq} seed={seed} incremental={incremental}");
         let start = if seed % 3 == 0 { Pose::IDENTITY } else { pose(random_rotation(&mut r)) };
         let mut c = checked(p, start, q, Pose::IDENTITY, config(incremental), 0, label);
@@ -232,8 +228,8 @@ proptest! {
     #[test]
     fn grid_polytopes_at_exact_quarter_turns(np in 4usize..30, nq in 4usize..30, seed in any::<u64>(), incremental in any::<bool>()) {
         let mut r = rng(seed);
-        let p = leak(random_polytope(Kind::Grid, np, &mut r));
-        let q = leak(random_polytope(Kind::Grid, nq, &mut r));
+        let p = &random_polytope(Kind::Grid, np, &mut r);
+        let q = &random_polytope(Kind::Grid, nq, &mut r);
         let label = format!("grid quarter turns np={np} nq={nq} seed={seed} incremental={incremental}");
         let mut c = checked(p, Pose::IDENTITY, q, Pose::IDENTITY, config(incremental), 10, label);
         for _ in 0..12 {
@@ -263,8 +259,8 @@ fn magnitudes() -> Vec<f64> {
 fn identity_steps_report_nothing() {
     let mut r = rng(21);
     for kind in [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere] {
-        let p = leak(random_polytope(kind, 20, &mut r));
-        let q = leak(random_polytope(Kind::Ball, 20, &mut r));
+        let p = &random_polytope(kind, 20, &mut r);
+        let q = &random_polytope(Kind::Ball, 20, &mut r);
         let mut c = Checked::start(
             p,
             pose(random_rotation(&mut r)),
@@ -292,8 +288,8 @@ fn identity_steps_report_nothing() {
 #[test]
 fn pure_translation_changes_no_facet() {
     let mut r = rng(22);
-    let p = leak(random_polytope(Kind::Ball, 25, &mut r));
-    let q = leak(random_polytope(Kind::Sphere, 25, &mut r));
+    let p = &random_polytope(Kind::Ball, 25, &mut r);
+    let q = &random_polytope(Kind::Sphere, 25, &mut r);
     let rp = random_rotation(&mut r);
     let rq = random_rotation(&mut r);
     let mut c = Checked::start(p, pose(rp), q, pose(rq), 3, "translation");
@@ -344,8 +340,8 @@ fn common_rotation_of_both_bodies() {
     // Turning both bodies by the same rotation leaves the relative rotation
     // (up to rounding): the facets must still equal walk at every pose.
     let mut r = rng(23);
-    let p = leak(random_polytope(Kind::Ball, 25, &mut r));
-    let q = leak(random_polytope(Kind::Grid, 25, &mut r));
+    let p = &random_polytope(Kind::Ball, 25, &mut r);
+    let q = &random_polytope(Kind::Grid, 25, &mut r);
     let mut c = Checked::start(p, Pose::IDENTITY, q, Pose::IDENTITY, 10, "common rotation");
     let axis = random_axis(&mut r);
     for k in 1..=40 {
@@ -356,7 +352,7 @@ fn common_rotation_of_both_bodies() {
 
 #[test]
 fn cube_plus_cube_quarter_turns_about_z() {
-    let cube = poly(&cube_points(0.0, 1.0));
+    let cube = &poly(&cube_points(0.0, 1.0));
     for incremental in [false, true] {
         let mut c = checked(
             cube,
@@ -392,7 +388,7 @@ fn cube_plus_cube_quarter_turns_about_z() {
 
 #[test]
 fn cube_plus_cube_eighth_turns_about_z() {
-    let cube = poly(&cube_points(-0.5, 0.5));
+    let cube = &poly(&cube_points(-0.5, 0.5));
     for incremental in [false, true] {
         let mut c = checked(
             cube,
@@ -422,7 +418,7 @@ fn cube_plus_cube_small_turns_about_z_through_90_degrees() {
     // 2π/X steps about z for X in {100, 500, 1000} land exactly on 90° only
     // through rounding of the composed quaternion; the absolute k·90° poses
     // are set exactly in between.
-    let cube = poly(&cube_points(0.0, 1.0));
+    let cube = &poly(&cube_points(0.0, 1.0));
     for x in [100.0, 500.0, 1000.0] {
         for incremental in [false, true] {
             let mut c = checked(
@@ -450,7 +446,7 @@ fn cube_plus_cube_small_turns_about_z_through_90_degrees() {
 
 #[test]
 fn cube_plus_cube_tiny_turns_from_identity() {
-    let cube = poly(&cube_points(0.0, 1.0));
+    let cube = &poly(&cube_points(0.0, 1.0));
     let mut r = rng(24);
     for incremental in [false, true] {
         for angle in [1e-12, 1e-9, 1e-6, 1e-3] {
@@ -481,8 +477,8 @@ fn cube_plus_cube_tiny_turns_from_identity() {
 
 #[test]
 fn box_plus_box_turns_landing_on_90_degrees() {
-    let a = poly(&box_points(3.0, 1.0, 0.5));
-    let b = poly(&box_points(0.5, 2.0, 1.0));
+    let a = &poly(&box_points(3.0, 1.0, 0.5));
+    let b = &poly(&box_points(0.5, 2.0, 1.0));
     for incremental in [false, true] {
         for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
             let mut c = checked(
@@ -520,7 +516,7 @@ fn tetrahedron_plus_its_reflection_turning() {
         [-1.0, -1.0, 1.0],
     ];
     let neg: Vec<[f64; 3]> = t.iter().map(|p| [-p[0], -p[1], -p[2]]).collect();
-    let (a, b) = (poly(&t), poly(&neg));
+    let (a, b) = (&poly(&t), &poly(&neg));
     for incremental in [false, true] {
         let mut c = checked(
             a,
@@ -557,8 +553,8 @@ fn tetrahedron_plus_its_reflection_turning() {
 fn exactly_pi_turns() {
     let mut r = rng(25);
     for kind in [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere] {
-        let p = leak(random_polytope(kind, 16, &mut r));
-        let q = leak(random_polytope(kind, 16, &mut r));
+        let p = &random_polytope(kind, 16, &mut r);
+        let q = &random_polytope(kind, 16, &mut r);
         for incremental in [false, true] {
             let mut c = checked(
                 p,
@@ -583,8 +579,8 @@ fn steps_around_the_max_step_angle() {
     // The default switches to a from-scratch walk above π/4: just below and
     // just above, in both directions.
     let mut r = rng(26);
-    let p = leak(random_polytope(Kind::Ball, 30, &mut r));
-    let q = leak(random_polytope(Kind::Sphere, 30, &mut r));
+    let p = &random_polytope(Kind::Ball, 30, &mut r);
+    let q = &random_polytope(Kind::Sphere, 30, &mut r);
     let mut c = Checked::start(p, Pose::IDENTITY, q, Pose::IDENTITY, 4, "around π/4");
     for _ in 0..10 {
         let axis = random_axis(&mut r);
@@ -605,8 +601,8 @@ fn forced_recompute_and_forced_incremental_agree() {
     // fallback_fraction = 0 recomputes (nearly) every step: the diffs must
     // still be exact.
     let mut r = rng(27);
-    let p = leak(random_polytope(Kind::Coplanar, 25, &mut r));
-    let q = leak(random_polytope(Kind::Grid, 25, &mut r));
+    let p = &random_polytope(Kind::Coplanar, 25, &mut r);
+    let q = &random_polytope(Kind::Grid, 25, &mut r);
     let always_scratch = DynamicConfig {
         max_step_angle: 0.0,
         fallback_fraction: 0.0,
@@ -652,8 +648,8 @@ fn forced_recompute_and_forced_incremental_agree() {
 fn back_and_forth_over_the_same_step() {
     let mut r = rng(28);
     for kind in [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere] {
-        let p = leak(random_polytope(kind, 20, &mut r));
-        let q = leak(random_polytope(Kind::Sphere, 20, &mut r));
+        let p = &random_polytope(kind, 20, &mut r);
+        let q = &random_polytope(Kind::Sphere, 20, &mut r);
         for incremental in [false, true] {
             let mut c = checked(
                 p,
@@ -683,8 +679,8 @@ fn back_and_forth_over_the_same_step() {
 fn rotation_constructors_agree() {
     // A pose from a matrix and from axis-angle: same facets as walk.
     let mut r = rng(29);
-    let p = leak(random_polytope(Kind::Grid, 20, &mut r));
-    let q = leak(random_polytope(Kind::Grid, 20, &mut r));
+    let p = &random_polytope(Kind::Grid, 20, &mut r);
+    let q = &random_polytope(Kind::Grid, 20, &mut r);
     let mut c = Checked::start(p, Pose::IDENTITY, q, Pose::IDENTITY, 1, "constructors");
     let m = glam::DMat3::from_cols(DVec3::Y, DVec3::Z, DVec3::X); // 120° about (1,1,1)
     let from_matrix = Rotation::from_matrix(m).unwrap();
@@ -698,8 +694,8 @@ fn rotation_constructors_agree() {
 /// renormalises), and the facets stay equal to walk.
 #[test]
 fn orientation_stays_a_unit_quaternion() {
-    let t = poly(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]);
-    let cube = poly(&cube_points(-1.0, 1.0));
+    let t = &poly(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]);
+    let cube = &poly(&cube_points(-1.0, 1.0));
     let mut d = DynamicSum::new(t, Pose::IDENTITY, cube, Pose::IDENTITY).unwrap();
     let mut r = rng(30);
     let mut worst = 0.0f64;
@@ -723,10 +719,10 @@ fn orientation_stays_a_unit_quaternion() {
 #[test]
 fn no_drift_over_a_million_steps() {
     let mut r = rng(31);
-    let tet = poly(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]);
-    let cube = poly(&cube_points(-1.0, 1.0));
-    let a = leak(random_polytope(Kind::Ball, 8, &mut r));
-    let b = leak(random_polytope(Kind::Ball, 8, &mut r));
+    let tet = &poly(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]);
+    let cube = &poly(&cube_points(-1.0, 1.0));
+    let a = &random_polytope(Kind::Ball, 8, &mut r);
+    let b = &random_polytope(Kind::Ball, 8, &mut r);
     for (label, p, q) in [("tet+cube", tet, cube), ("random8+random8", a, b)] {
         let t0 = Instant::now();
         let mut d = DynamicSum::new(p, Pose::IDENTITY, q, Pose::IDENTITY).unwrap();
@@ -769,7 +765,7 @@ fn no_drift_over_a_million_steps() {
 /// defeats "turning in steps that land exactly on 90°".
 #[test]
 fn regression_composed_quarter_turns_stay_exact() {
-    let cube = poly(&cube_points(0.0, 1.0));
+    let cube = &poly(&cube_points(0.0, 1.0));
     let quarter = rot(DVec3::Z, TAU / 4.0);
     let mut c = Checked::start(cube, Pose::IDENTITY, cube, Pose::IDENTITY, 0, "quarter");
     let mut bad = Vec::new();
@@ -794,8 +790,8 @@ fn regression_composed_quarter_turns_stay_exact() {
 #[test]
 fn regression_rotate_p_by_identity_is_a_no_op() {
     let mut r = rng(21);
-    let p = leak(random_polytope(Kind::Ball, 20, &mut r));
-    let q = leak(random_polytope(Kind::Ball, 20, &mut r));
+    let p = &random_polytope(Kind::Ball, 20, &mut r);
+    let q = &random_polytope(Kind::Ball, 20, &mut r);
     let start = pose(random_rotation(&mut r));
     let mut d = DynamicSum::new(p, start, q, Pose::IDENTITY).unwrap();
     let rep = d.rotate_p_by(Rotation::IDENTITY).unwrap();
@@ -821,8 +817,8 @@ fn regression_rotate_p_by_identity_is_a_no_op() {
 #[test]
 fn regression_sanity_check_rejects_sliver_faces_of_jittered_grids() {
     let mut r = rng(18057924686234793125);
-    let p = leak(jittered_grid_polytope(6, 1e-12, &mut r));
-    let q = leak(jittered_grid_polytope(6, 1e-12, &mut r));
+    let p = &jittered_grid_polytope(6, 1e-12, &mut r);
+    let q = &jittered_grid_polytope(6, 1e-12, &mut r);
     let walk = minkowski_sum_posed(p, Pose::IDENTITY, q, Pose::IDENTITY, Method::Walk).unwrap();
     let brute = minkowski_sum_posed(p, Pose::IDENTITY, q, Pose::IDENTITY, Method::Brute).unwrap();
     assert_eq!(walk.facets(), brute.facets());
@@ -847,7 +843,7 @@ fn regression_sanity_check_rejects_sliver_faces_of_jittered_grids() {
 /// is ill-conditioned (sliver faces, tiny arcs).
 #[test]
 fn regression_sliver_face_margin_misses_fv_error() {
-    let p = poly(&[
+    let p = &poly(&[
         [
             2.340009397032569e-13,
             -6.077123633284333e-13,
@@ -870,7 +866,7 @@ fn regression_sliver_face_margin_misses_fv_error() {
             -0.9999999999995702,
         ],
     ]);
-    let q = poly(&cube_points(-1.0, 1.0));
+    let q = &poly(&cube_points(-1.0, 1.0));
     let old = rot(
         DVec3::new(0.7306414739288218, 0.6351046565716771, 0.6413612140039722),
         1.9015911029721613,
@@ -898,8 +894,8 @@ fn regression_sliver_face_margin_misses_fv_error() {
 #[test]
 fn regression_sliver_faces_arc_walk_finds_no_exit() {
     let mut r = rng(16759713592623883560);
-    let p = leak(jittered_grid_polytope(19, 1e-12, &mut r));
-    let q = leak(jittered_grid_polytope(9, 1e-12, &mut r));
+    let p = &jittered_grid_polytope(19, 1e-12, &mut r);
+    let q = &jittered_grid_polytope(9, 1e-12, &mut r);
     let old = rot(
         DVec3::new(0.7208289049252024, -0.3365186816062553, 0.35868807249563783),
         2.107190767282398,

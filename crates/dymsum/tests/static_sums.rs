@@ -29,11 +29,7 @@ fn check_pair(
     q: &Polytope,
     pose_q: Pose,
     exact_geometry: bool,
-) -> MinkowskiSum<'static>
-where
-{
-    let p: &'static Polytope = Box::leak(Box::new(p.clone()));
-    let q: &'static Polytope = Box::leak(Box::new(q.clone()));
+) -> MinkowskiSum {
     let walk = minkowski_sum_posed(p, pose_p, q, pose_q, Method::Walk).expect("walk");
     let brute = minkowski_sum_posed(p, pose_p, q, pose_q, Method::Brute).expect("brute");
     assert_eq!(walk.facets(), brute.facets(), "walk and brute differ");

@@ -143,7 +143,7 @@ struct Totals {
 /// update, with a CSV row per step (if `csv`) and the frames due.
 fn animate(
     a: &AnimateArgs,
-    dynamic: &mut DynamicSum<'_>,
+    dynamic: &mut DynamicSum,
     mut csv: Option<&mut AtomicFile>,
 ) -> anyhow::Result<Totals> {
     let mut motion = PaperMotion::new(a.steps_per_rev, a.seed);
@@ -185,7 +185,7 @@ fn animate(
 fn write_csv_row(
     w: &mut dyn Write,
     step: u64,
-    dynamic: &DynamicSum<'_>,
+    dynamic: &DynamicSum,
     report: &UpdateReport,
     us: f64,
 ) -> std::io::Result<()> {

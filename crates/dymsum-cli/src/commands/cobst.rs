@@ -285,7 +285,7 @@ fn write_slices(
 }
 
 /// Writes slice `k`, the sum's mesh, to `path`; returns its face count.
-fn write_slice(sum: &DynamicSum<'_>, k: usize, path: &Path) -> anyhow::Result<usize> {
+fn write_slice(sum: &DynamicSum, k: usize, path: &Path) -> anyhow::Result<usize> {
     let mesh = sum
         .try_to_mesh()
         .map_err(|e| anyhow::Error::new(e).context(format!("slice {k}")))?;

@@ -125,7 +125,7 @@ struct DemoTimes {
 /// pose whenever each has used at most [`STATIC_SHARE`] of the run so far
 /// (about every k-th step, k = its cost / (share × DYMSUM cost)), checking
 /// their facets against DYMSUM's there.
-fn timed_run(dynamic: &mut DynamicSum<'_>, budget: Duration) -> anyhow::Result<DemoTimes> {
+fn timed_run(dynamic: &mut DynamicSum, budget: Duration) -> anyhow::Result<DemoTimes> {
     let mut motion = PaperMotion::new(STEPS_PER_REV, SEED);
     let run_start = Instant::now();
     let mut times = DemoTimes {
@@ -205,7 +205,7 @@ fn write_timing_table(out: &mut dyn Write, times: &DemoTimes) -> std::io::Result
 /// Times a static method at the dynamic sum's current pose and checks that
 /// its facets equal the dynamic ones.
 fn sample(
-    dynamic: &DynamicSum<'_>,
+    dynamic: &DynamicSum,
     step: usize,
     method: Method,
     times: &mut Vec<f64>,

@@ -72,8 +72,45 @@ pub struct RingEntry {
 }
 
 /// A convex polytope with O(1) adjacency and its Gaussian map.
-#[derive(Clone, Debug)]
+///
+/// A cheap, immutable, shareable handle: the data lives behind an
+/// [`Arc`](std::sync::Arc), so `clone()` costs one reference count and
+/// every structure built from a polytope ([`crate::DynamicSum`],
+/// [`crate::query::ConvexPair`], [`crate::query::ContactTracker`],
+/// [`crate::query::CObstacle`], ...) owns its own handle: none of them has
+/// a lifetime parameter, all are `Send + Sync`, and a program can keep them
+/// in its own structs. `Polytope` itself is `Send + Sync`.
+///
+/// ```
+/// use dymsum::Polytope;
+///
+/// let cube = Polytope::from_points(&[
+///     [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0],
+///     [0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0], [1.0, 1.0, 1.0],
+/// ])?;
+/// assert_eq!((cube.vertex_count(), cube.edge_count(), cube.face_count()), (8, 12, 6));
+/// let shared = cube.clone(); // shares the data
+/// assert!(shared.same_data(&cube));
+/// # Ok::<(), dymsum::PolytopeError>(())
+/// ```
+#[derive(Clone)]
 pub struct Polytope {
+    data: std::sync::Arc<PolytopeData>,
+}
+
+impl std::fmt::Debug for Polytope {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Polytope")
+            .field("vertices", &self.vertex_count())
+            .field("edges", &self.edge_count())
+            .field("faces", &self.face_count())
+            .finish()
+    }
+}
+
+/// The data behind a [`Polytope`] handle.
+#[derive(Clone, Debug)]
+struct PolytopeData {
     vertices: Vec<DVec3>,
     face_start: Vec<u32>,
     face_verts: Vec<u32>,
@@ -104,91 +141,92 @@ impl Polytope {
     /// Number of vertices.
     #[inline]
     pub fn vertex_count(&self) -> usize {
-        self.vertices.len()
+        self.data.vertices.len()
     }
     /// Number of (maximal) faces.
     #[inline]
     pub fn face_count(&self) -> usize {
-        self.face_start.len() - 1
+        self.data.face_start.len() - 1
     }
     /// Number of edges.
     #[inline]
     pub fn edge_count(&self) -> usize {
-        self.edges.len()
+        self.data.edges.len()
     }
     /// Vertex coordinates.
     #[inline]
     pub fn vertices(&self) -> &[DVec3] {
-        &self.vertices
+        &self.data.vertices
     }
     /// Vertex `v`.
     #[inline]
     pub fn vertex(&self, v: usize) -> DVec3 {
-        self.vertices[v]
+        self.data.vertices[v]
     }
     /// The vertices of face `f`, counter-clockwise seen from outside.
     #[inline]
     pub fn face(&self, f: usize) -> &[u32] {
-        &self.face_verts[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+        &self.data.face_verts
+            [self.data.face_start[f] as usize..self.data.face_start[f + 1] as usize]
     }
     /// The edges of face `f`: the `k`-th runs from `face(f)[k]` to `face(f)[k+1]`.
     #[inline]
     pub fn face_edges(&self, f: usize) -> &[u32] {
-        &self.he_edge[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+        &self.data.he_edge[self.data.face_start[f] as usize..self.data.face_start[f + 1] as usize]
     }
     /// All edges.
     #[inline]
     pub fn edges(&self) -> &[Edge] {
-        &self.edges
+        &self.data.edges
     }
     /// Edge `e`.
     #[inline]
     pub fn edge(&self, e: usize) -> Edge {
-        self.edges[e]
+        self.data.edges[e]
     }
     /// The exact-input outward normal of face `f` (not unit length; see the
     /// module docs). This is the face's point on the Gaussian sphere.
     #[inline]
     pub fn normal(&self, f: usize) -> DVec3 {
-        self.normals[f]
+        self.data.normals[f]
     }
     /// All exact-input normals.
     #[inline]
     pub fn normals(&self) -> &[DVec3] {
-        &self.normals
+        &self.data.normals
     }
     /// `1 / |normal(f)|`, so a rotated exact-input normal becomes a unit
     /// normal with one multiplication.
     #[inline]
     pub fn inverse_normal_length(&self, f: usize) -> f64 {
-        self.inv_normal_len[f]
+        self.data.inv_normal_len[f]
     }
     /// The unit outward normal of face `f` (a float construction).
     #[inline]
     pub fn unit_normal(&self, f: usize) -> DVec3 {
-        self.unit_normals[f]
+        self.data.unit_normals[f]
     }
     /// The ring of vertex `v`: its faces counter-clockwise seen from outside,
     /// i.e. the corners and arcs of its Gaussian cell.
     #[inline]
     pub fn ring(&self, v: usize) -> &[RingEntry] {
-        &self.ring[self.ring_start[v] as usize..self.ring_start[v + 1] as usize]
+        &self.data.ring[self.data.ring_start[v] as usize..self.data.ring_start[v + 1] as usize]
     }
     /// Offset of vertex `v`'s ring in the flat array of all rings (so
     /// per-ring-entry data can be stored in one `Vec`).
     #[inline]
     pub fn ring_offset(&self, v: usize) -> usize {
-        self.ring_start[v] as usize
+        self.data.ring_start[v] as usize
     }
     /// Total number of ring entries (twice the number of edges).
     #[inline]
     pub fn ring_len_total(&self) -> usize {
-        self.ring.len()
+        self.data.ring.len()
     }
     /// Degree of vertex `v`.
     #[inline]
     pub fn degree(&self, v: usize) -> usize {
-        (self.ring_start[v + 1] - self.ring_start[v]) as usize
+        (self.data.ring_start[v + 1] - self.data.ring_start[v]) as usize
     }
     /// Faces as vertex-index polygons.
     pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
@@ -197,7 +235,7 @@ impl Polytope {
     /// The polytope as a polygon mesh (maximal faces).
     pub fn to_mesh(&self) -> crate::PolygonMesh {
         crate::PolygonMesh {
-            vertices: self.vertices.iter().map(|v| v.to_array()).collect(),
+            vertices: self.data.vertices.iter().map(|v| v.to_array()).collect(),
             faces: self
                 .faces()
                 .map(|f| f.iter().map(|&v| v as usize).collect())
@@ -212,7 +250,7 @@ impl Polytope {
     pub fn support_vertex(&self, dir: DVec3) -> usize {
         let mut best = 0;
         let mut best_val = f64::NEG_INFINITY;
-        for (i, v) in self.vertices.iter().enumerate() {
+        for (i, v) in self.data.vertices.iter().enumerate() {
             let d = dir.dot(*v);
             if d > best_val {
                 best_val = d;
@@ -225,7 +263,12 @@ impl Polytope {
     /// shape's power-of-two frame and scaled back, so it scales exactly
     /// with the shape; `inf` only when the volume exceeds `f64`).
     pub fn volume(&self) -> f64 {
-        let vs: Vec<DVec3> = self.vertices.iter().map(|&v| self.to_frame(v)).collect();
+        let vs: Vec<DVec3> = self
+            .data
+            .vertices
+            .iter()
+            .map(|&v| self.to_frame(v))
+            .collect();
         let c = vs.iter().copied().sum::<DVec3>() / vs.len() as f64;
         let mut vol = 0.0;
         for f in self.faces() {
@@ -236,29 +279,29 @@ impl Polytope {
                 vol += a.dot(b.cross(d));
             }
         }
-        exact::mul_pow2(vol / 6.0, -3 * self.frame)
+        exact::mul_pow2(vol / 6.0, -3 * self.data.frame)
     }
     /// The frame exponent `k`: the largest coordinate magnitude times `2^k`
     /// lies in `[1, 2)`. Float data derived from the geometry (normals,
     /// arcs) is computed from the vertices scaled by `2^k`.
     #[inline]
     pub fn frame_exponent(&self) -> i32 {
-        self.frame
+        self.data.frame
     }
     /// `v · 2^frame` (exact for the polytope's vertices).
     #[inline]
     pub fn to_frame(&self, v: DVec3) -> DVec3 {
-        scale_vec(v, self.frame)
+        scale_vec(v, self.data.frame)
     }
     /// Mean of the vertices.
     pub fn centroid_of_vertices(&self) -> DVec3 {
-        self.vertices.iter().copied().sum::<DVec3>() / self.vertices.len() as f64
+        self.data.vertices.iter().copied().sum::<DVec3>() / self.data.vertices.len() as f64
     }
     /// Length of the bounding-box diagonal.
     pub fn diameter(&self) -> f64 {
-        let (lo, hi) = bounds(&self.vertices);
+        let (lo, hi) = bounds(&self.data.vertices);
         let d = (self.to_frame(hi) - self.to_frame(lo)).length();
-        exact::mul_pow2(d, -self.frame)
+        exact::mul_pow2(d, -self.data.frame)
     }
 
     /// Builds the half-edge structure from maximal ccw faces over `vertices`
@@ -402,7 +445,7 @@ impl Polytope {
             .collect();
         let unit_normals = normals.iter().map(|n| n.normalize()).collect();
         let inv_normal_len = normals.iter().map(|n| 1.0 / n.length()).collect();
-        let mut poly = Polytope {
+        let data = PolytopeData {
             vertices,
             face_start,
             face_verts,
@@ -421,13 +464,23 @@ impl Polytope {
             ring,
             frame,
         };
+        let mut poly = Polytope {
+            data: std::sync::Arc::new(data),
+        };
         let (arcs, errs) = (0..poly.edge_count())
             .map(|e| poly.accurate_arc_normal(e))
             .unzip();
-        poly.arc_normals = arcs;
-        poly.arc_err = errs;
+        // The handle is unique here, so this borrows without copying.
+        let data = std::sync::Arc::make_mut(&mut poly.data);
+        data.arc_normals = arcs;
+        data.arc_err = errs;
         poly.check_gauss_map()?;
         Ok(poly)
+    }
+
+    /// `true` when both handles share the same data (a clone of the other).
+    pub fn same_data(&self, other: &Polytope) -> bool {
+        std::sync::Arc::ptr_eq(&self.data, &other.data)
     }
 
     /// Checks exactly that every Gaussian cell is a strictly convex spherical
@@ -462,8 +515,8 @@ impl Polytope {
         FaceNormal {
             poly: self,
             face: f,
-            approx: self.normals[f as usize],
-            err: self.normal_err[f as usize],
+            approx: self.data.normals[f as usize],
+            err: self.data.normal_err[f as usize],
             idx: f,
             rotation: None,
         }
@@ -473,16 +526,17 @@ impl Polytope {
     /// normal (scaled alike).
     #[inline]
     pub fn normal_error(&self, f: usize) -> f64 {
-        self.normal_err[f]
+        self.data.normal_err[f]
     }
 
     /// The exact normal of face `f`, scaled like [`Polytope::normal`], in
     /// double-double, with a bound on its error.
     pub fn refined_normal(&self, f: usize) -> (DDVec, f64) {
-        let [a, b, c] = self.normal_triple[f].map(|v| self.to_frame(self.vertices[v as usize]));
+        let [a, b, c] =
+            self.data.normal_triple[f].map(|v| self.to_frame(self.data.vertices[v as usize]));
         let d1 = [DD::diff(b.x, a.x), DD::diff(b.y, a.y), DD::diff(b.z, a.z)];
         let d2 = [DD::diff(c.x, a.x), DD::diff(c.y, a.y), DD::diff(c.z, a.z)];
-        let s = self.normal_scale[f];
+        let s = self.data.normal_scale[f];
         let n = dd::cross(&d1, &d2).map(|x| x.scale(s));
         // Each component: two DD products and a DD difference, relative
         // error ≤ ~12u² of |d1||d2|; plus the absolute error of low parts
@@ -496,7 +550,7 @@ impl Polytope {
     /// double-double, and a bound on its error. `det[n(left), n(right), x]`
     /// is then one dot product, even for very short arcs.
     fn accurate_arc_normal(&self, e: usize) -> (DVec3, f64) {
-        let [f0, f1] = self.edges[e].faces;
+        let [f0, f1] = self.data.edges[e].faces;
         let ((a, ea), (b, eb)) = (
             self.refined_normal(f0 as usize),
             self.refined_normal(f1 as usize),
@@ -517,18 +571,18 @@ impl Polytope {
     /// Great-circle normals of all edge arcs (`n(left) × n(right)`, accurate to a few ulps).
     #[inline]
     pub fn arc_normals(&self) -> &[DVec3] {
-        &self.arc_normals
+        &self.data.arc_normals
     }
     /// Error bounds of [`Polytope::arc_normals`].
     #[inline]
     pub fn arc_errors(&self) -> &[f64] {
-        &self.arc_err
+        &self.data.arc_err
     }
 
     /// The exact (unscaled) normal of face `f`: `(B − A) × (C − A)` for the
     /// face's defining vertex triple.
     pub fn exact_normal(&self, f: usize) -> ExactVec {
-        let [a, b, c] = self.normal_triple[f].map(|v| self.vertices[v as usize]);
+        let [a, b, c] = self.data.normal_triple[f].map(|v| self.data.vertices[v as usize]);
         exact::cross(&exact::sub(b, a), &exact::sub(c, a))
     }
 }
@@ -574,10 +628,10 @@ impl ExactVector for FaceNormal<'_> {
     }
     #[inline]
     fn exact_float(&self) -> Option<DVec3> {
-        if self.poly.normal_err[self.face as usize] != 0.0 {
+        if self.poly.data.normal_err[self.face as usize] != 0.0 {
             return None;
         }
-        let n = self.poly.normals[self.face as usize];
+        let n = self.poly.data.normals[self.face as usize];
         match self.rotation {
             None => Some(n),
             Some(m) => exact::float::mat_vec(m, n),
@@ -585,10 +639,10 @@ impl ExactVector for FaceNormal<'_> {
     }
     #[inline]
     fn exact_components(&self) -> [Option<f64>; 3] {
-        if self.poly.normal_err[self.face as usize] != 0.0 {
+        if self.poly.data.normal_err[self.face as usize] != 0.0 {
             return [None; 3];
         }
-        let n = self.poly.normals[self.face as usize];
+        let n = self.poly.data.normals[self.face as usize];
         match self.rotation {
             None => [Some(n.x), Some(n.y), Some(n.z)],
             Some(m) => [
@@ -611,7 +665,7 @@ impl ExactVector for FaceNormal<'_> {
         };
         // (M n)_r is exactly zero when M[r][k] = 0 for every k where n_k
         // may be non-zero.
-        let support = self.poly.normal_support[self.face as usize];
+        let support = self.poly.data.normal_support[self.face as usize];
         let mut zero = 0b111;
         for (k, col) in [m.x_axis, m.y_axis, m.z_axis].into_iter().enumerate() {
             if support >> k & 1 != 0 {

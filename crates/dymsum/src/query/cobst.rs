@@ -47,17 +47,17 @@ pub fn orientations_about_axis(axis: DVec3, n: usize) -> Option<Vec<Rotation>> {
 
 /// A robot (reflected once) and an obstacle, ready to be sliced.
 #[derive(Clone, Debug)]
-pub struct CObstacle<'a> {
-    neg_robot: Reflected,
-    obstacle: &'a Polytope,
+pub struct CObstacle {
+    neg_robot: std::sync::Arc<Reflected>,
+    obstacle: Polytope,
 }
 
-impl<'a> CObstacle<'a> {
+impl CObstacle {
     /// Prepares `robot` (reflects it: one convex hull) against `obstacle`.
-    pub fn new(robot: &Polytope, obstacle: &'a Polytope) -> Result<Self, QueryError> {
+    pub fn new(robot: &Polytope, obstacle: &Polytope) -> Result<Self, QueryError> {
         Ok(CObstacle {
-            neg_robot: Reflected::new(robot)?,
-            obstacle,
+            neg_robot: std::sync::Arc::new(Reflected::new(robot)?),
+            obstacle: obstacle.clone(),
         })
     }
 
@@ -71,7 +71,7 @@ impl<'a> CObstacle<'a> {
         let sum = minkowski_sum_posed(
             &self.neg_robot.polytope,
             Pose::new(orientation, DVec3::ZERO),
-            self.obstacle,
+            &self.obstacle,
             Pose::IDENTITY,
             Method::Walk,
         )?;
@@ -84,7 +84,7 @@ impl<'a> CObstacle<'a> {
         &'s self,
         orientations: &'s [Rotation],
     ) -> impl Iterator<Item = Result<PolygonMesh, QueryError>> + 's {
-        let mut sum: Option<DynamicSum<'s>> = None;
+        let mut sum: Option<DynamicSum> = None;
         let mut failed = false;
         orientations.iter().map_while(move |&r| {
             if failed {
@@ -98,26 +98,24 @@ impl<'a> CObstacle<'a> {
         })
     }
 
-    fn advance<'s, 'b>(
-        &'s self,
-        sum: &'b mut Option<DynamicSum<'s>>,
+    fn advance<'b>(
+        &self,
+        sum: &'b mut Option<DynamicSum>,
         r: Rotation,
-    ) -> Result<&'b DynamicSum<'s>, QueryError> {
+    ) -> Result<&'b DynamicSum, QueryError> {
         let pose = Pose::new(r, DVec3::ZERO);
-        match sum {
+        Ok(match sum {
             Some(s) => {
                 s.set_pose(pose, Pose::IDENTITY)?;
+                s
             }
-            None => {
-                *sum = Some(DynamicSum::new(
-                    &self.neg_robot.polytope,
-                    pose,
-                    self.obstacle,
-                    Pose::IDENTITY,
-                )?);
-            }
-        }
-        Ok(sum.as_ref().expect("set above"))
+            None => sum.insert(DynamicSum::new(
+                &self.neg_robot.polytope,
+                pose,
+                &self.obstacle,
+                Pose::IDENTITY,
+            )?),
+        })
     }
 
     /// Maps every slice through `f(index, orientation, sum)` in parallel:
@@ -127,7 +125,7 @@ impl<'a> CObstacle<'a> {
     pub fn map_par<T, F>(&self, orientations: &[Rotation], f: F) -> Result<Vec<T>, QueryError>
     where
         T: Send,
-        F: Fn(usize, Rotation, &DynamicSum<'_>) -> T + Sync,
+        F: Fn(usize, Rotation, &DynamicSum) -> T + Sync,
     {
         if orientations.is_empty() {
             return Ok(Vec::new());

@@ -78,13 +78,8 @@ fn support(poly: &Polytope, posed: &[DVec3], dir: DVec3, starts: &[u32]) -> f64 
 
 /// Replaces the lower bounds `h₀` by true support values where they matter
 /// (see the module docs) and returns those candidates.
-fn refine(
-    pair: &ConvexPair<'_>,
-    posed: &Posed,
-    mut cands: Vec<Candidate>,
-    tol: f64,
-) -> Vec<Candidate> {
-    let (a, b) = (pair.a, pair.b);
+fn refine(pair: &ConvexPair, posed: &Posed, mut cands: Vec<Candidate>, tol: f64) -> Vec<Candidate> {
+    let (a, b) = (&pair.a, &pair.b);
     let climb = |c: &Candidate| -> f64 {
         let (sa, sb): (Vec<u32>, Vec<u32>) = match c.features {
             FeaturePair::FaceVertex { a_face, b_vertex } => {
@@ -123,8 +118,8 @@ fn refine(
 
 /// The candidates of all facets of the overlay (P = A, Q = −B), with the
 /// lower bounds `h₀` as values.
-fn candidates(pair: &ConvexPair<'_>, posed: &Posed, overlay: &Overlay) -> Vec<Candidate> {
-    let (a, b, r) = (pair.a, pair.b, &pair.neg_b);
+fn candidates(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) -> Vec<Candidate> {
+    let (a, b, r) = (&pair.a, &pair.b, &pair.neg_b);
     let (na, nb) = (&posed.na, &posed.nb);
     let mut out = Vec::with_capacity(overlay.len() + 4);
     // The lower bound h₀ at the facet's own features (refined later).
@@ -268,7 +263,7 @@ fn winner(cands: &[Candidate], tol: f64) -> (usize, f64) {
 /// lengths of `1e200` or `1e-200` would). Posed coordinates that overflow
 /// `f64`, or an answer that does, is [`QueryError::OutOfRange`].
 pub(super) fn evaluate(
-    pair: &ConvexPair<'_>,
+    pair: &ConvexPair,
     pose_a: Pose,
     pose_b: Pose,
     overlay: &Overlay,
@@ -336,7 +331,7 @@ pub(super) fn evaluate(
 }
 
 /// [`evaluate`] on frame coordinates.
-fn evaluate_in_frame(pair: &ConvexPair<'_>, posed: &Posed, overlay: &Overlay) -> Proximity {
+fn evaluate_in_frame(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) -> Proximity {
     let tol = tie_tolerance(posed);
     let cands = refine(pair, posed, candidates(pair, posed, overlay), tol);
     let (w, hmin) = winner(&cands, tol);

@@ -114,13 +114,13 @@ pub(super) fn line_line(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (DVec3, D
 /// The separation: minimum feature distance over the facets on whose outer
 /// side the origin lies (support value below `tol`).
 pub(super) fn separation(
-    pair: &ConvexPair<'_>,
+    pair: &ConvexPair,
     posed: &Posed,
     cands: &[Candidate],
     tol: f64,
     fallback: Candidate,
 ) -> Separation {
-    let (a, b) = (pair.a, pair.b);
+    let (a, b) = (&pair.a, &pair.b);
     let mut best: Option<(f64, DVec3, DVec3, FeaturePair)> = None;
     let mut poly = Vec::new();
     for c in cands.iter().filter(|c| c.h <= tol) {

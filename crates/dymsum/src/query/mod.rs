@@ -339,28 +339,30 @@ impl Reflected {
 /// built once. Use it (or a [`ContactTracker`]) instead of the free functions
 /// when querying the same pair at many poses.
 #[derive(Clone, Debug)]
-pub struct ConvexPair<'a> {
-    a: &'a Polytope,
-    b: &'a Polytope,
-    neg_b: Reflected,
+pub struct ConvexPair {
+    a: Polytope,
+    b: Polytope,
+    neg_b: std::sync::Arc<Reflected>,
 }
 
-impl<'a> ConvexPair<'a> {
-    /// Prepares `a` and `b` (reflects `b`: one convex hull).
-    pub fn new(a: &'a Polytope, b: &'a Polytope) -> Result<Self, QueryError> {
+impl ConvexPair {
+    /// Prepares `a` and `b` (reflects `b`: one convex hull). The pair keeps
+    /// its own handles on the bodies (cheap clones, see [`Polytope`]); a
+    /// clone of the pair shares them and the reflection.
+    pub fn new(a: &Polytope, b: &Polytope) -> Result<Self, QueryError> {
         Ok(ConvexPair {
-            a,
-            b,
-            neg_b: Reflected::new(b)?,
+            a: a.clone(),
+            b: b.clone(),
+            neg_b: std::sync::Arc::new(Reflected::new(b)?),
         })
     }
     /// Body A.
-    pub fn a(&self) -> &'a Polytope {
-        self.a
+    pub fn a(&self) -> &Polytope {
+        &self.a
     }
     /// Body B.
-    pub fn b(&self) -> &'a Polytope {
-        self.b
+    pub fn b(&self) -> &Polytope {
+        &self.b
     }
     /// B's reflection.
     pub fn reflected_b(&self) -> &Reflected {
@@ -370,7 +372,7 @@ impl<'a> ConvexPair<'a> {
     /// Depth or distance at the given poses (a static `walk` sum).
     pub fn query(&self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
         let sum = minkowski_sum_posed(
-            self.a,
+            &self.a,
             pose_a,
             &self.neg_b.polytope,
             Reflected::pose(pose_b),
@@ -409,7 +411,7 @@ impl<'a> ConvexPair<'a> {
     }
 
     /// A tracker starting at the given poses.
-    pub fn tracker(&self, pose_a: Pose, pose_b: Pose) -> Result<ContactTracker<'_>, QueryError> {
+    pub fn tracker(&self, pose_a: Pose, pose_b: Pose) -> Result<ContactTracker, QueryError> {
         ContactTracker::new(self, pose_a, pose_b)
     }
 

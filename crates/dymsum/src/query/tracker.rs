@@ -30,18 +30,21 @@ use crate::{DynamicSum, Pose};
 
 /// Depth or distance of two moving convex bodies, frame after frame.
 #[derive(Clone, Debug)]
-pub struct ContactTracker<'p> {
-    pair: &'p ConvexPair<'p>,
-    sum: DynamicSum<'p>,
+pub struct ContactTracker {
+    pair: ConvexPair,
+    sum: DynamicSum,
     last: Proximity,
     report: UpdateReport,
 }
 
-impl<'p> ContactTracker<'p> {
-    /// A tracker at the given poses (one static sum).
-    pub fn new(pair: &'p ConvexPair<'p>, pose_a: Pose, pose_b: Pose) -> Result<Self, QueryError> {
+impl ContactTracker {
+    /// A tracker at the given poses (one static sum). It keeps its own
+    /// handle on the pair (a cheap clone: the bodies and `B`'s reflection
+    /// are shared).
+    pub fn new(pair: &ConvexPair, pose_a: Pose, pose_b: Pose) -> Result<Self, QueryError> {
+        let pair = pair.clone();
         let sum = DynamicSum::new(
-            pair.a,
+            &pair.a,
             pose_a,
             &pair.neg_b.polytope,
             Reflected::pose(pose_b),
@@ -79,7 +82,7 @@ impl<'p> ContactTracker<'p> {
     }
 
     /// The dynamic sum `A ⊕ (−B)`.
-    pub fn sum(&self) -> &DynamicSum<'p> {
+    pub fn sum(&self) -> &DynamicSum {
         &self.sum
     }
 }

@@ -64,7 +64,7 @@ fn to_common_frame(pp: &mut [glam::DVec3], qq: &mut [glam::DVec3]) {
     }
 }
 
-pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
+pub(super) fn overlay(ops: &Operands) -> Result<Overlay, SumError> {
     let mut pp: Vec<_> = (0..ops.p.vertex_count() as u32)
         .map(|u| ops.p_vertex(u))
         .collect();
@@ -92,8 +92,8 @@ pub(super) fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
         sp.dedup();
         sq.sort_unstable();
         sq.dedup();
-        let (pf, pe) = features_near(ops.p, &sp);
-        let (qf, qe) = features_near(ops.q, &sq);
+        let (pf, pe) = features_near(&ops.p, &sp);
+        let (qf, qe) = features_near(&ops.q, &sq);
         for &f in &pf {
             if fv[f as usize] != u32::MAX {
                 continue;

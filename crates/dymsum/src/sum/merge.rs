@@ -54,7 +54,7 @@ impl UnionFind {
 
 /// The corners of every facet as `(vertex of P, vertex of Q)` keys, in
 /// counter-clockwise order about the facet's outward normal.
-pub(crate) fn facet_corners(ops: &Operands<'_>, overlay: &Overlay) -> Vec<Vec<(u32, u32)>> {
+pub(crate) fn facet_corners(ops: &Operands, overlay: &Overlay) -> Vec<Vec<(u32, u32)>> {
     let mut out = Vec::with_capacity(overlay.len());
     for (f, &w) in overlay.fv.iter().enumerate() {
         out.push(ops.p.face(f).iter().map(|&u| (u, w)).collect());
@@ -116,7 +116,7 @@ fn exact_sum(a: f64, b: f64, s: f64) -> bool {
 
 /// The merged mesh of `P ⊕ Q` (see the module docs), or why the facet
 /// complex could not be merged (an internal inconsistency).
-pub(crate) fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<Merged, String> {
+pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, String> {
     let m = overlay.fv.len();
     let n = overlay.vf.len();
     let total = overlay.len();
@@ -299,7 +299,7 @@ pub(crate) fn merged_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<Merge
 /// Checks the facet complex of an overlay: closed, 2-manifold, consistently
 /// oriented (each directed facet edge once, with its reverse once), Euler
 /// characteristic 2.
-pub fn check_facet_complex(ops: &Operands<'_>, overlay: &Overlay) -> Result<(), SanityError> {
+pub fn check_facet_complex(ops: &Operands, overlay: &Overlay) -> Result<(), SanityError> {
     let corners = facet_corners(ops, overlay);
     let mut directed: HashMap<(SumVertex, SumVertex), u32> = HashMap::new();
     let mut verts = std::collections::HashSet::new();
@@ -433,7 +433,7 @@ fn ulp(x: f64) -> f64 {
 /// The merged mesh, validated exactly (see [`super::validate`]): the
 /// combinatorial merge when its float coordinates are exactly convex, else
 /// the exact hull of the rounded vertices.
-pub fn validated_mesh(ops: &Operands<'_>, overlay: &Overlay) -> Result<SumMesh, MeshError> {
+pub fn validated_mesh(ops: &Operands, overlay: &Overlay) -> Result<SumMesh, MeshError> {
     use super::validate::{check_convex_mesh, ExactPoints};
     let merged = merged_mesh(ops, overlay).map_err(MeshError::Merge)?;
     let max = merged

@@ -184,11 +184,11 @@ impl Overlay {
 /// normals are `R n`, Q's are its own reference normals. Translations and a
 /// common rotation of both bodies therefore never change the facet set.
 #[derive(Clone, Debug)]
-pub struct Operands<'a> {
+pub struct Operands {
     /// P.
-    pub p: &'a Polytope,
+    pub p: Polytope,
     /// Q.
-    pub q: &'a Polytope,
+    pub q: Polytope,
     /// P's pose.
     pub pose_p: Pose,
     /// Q's pose.
@@ -258,13 +258,13 @@ pub fn relative_rotation(pose_p: &Pose, pose_q: &Pose) -> crate::Rotation {
     }
 }
 
-impl<'a> Operands<'a> {
+impl Operands {
     /// Rotates P's normals into Q's frame.
-    pub fn new(p: &'a Polytope, pose_p: Pose, q: &'a Polytope, pose_q: Pose) -> Self {
+    pub fn new(p: &Polytope, pose_p: Pose, q: &Polytope, pose_q: Pose) -> Self {
         let relative = relative_rotation(&pose_p, &pose_q);
         let mut ops = Operands {
-            p,
-            q,
+            p: p.clone(),
+            q: q.clone(),
             np: p.normals().iter().map(|&n| relative.apply(n)).collect(),
             nq: q.normals().to_vec(),
             rot_p: (relative != crate::Rotation::IDENTITY).then(|| relative.matrix()),
@@ -284,7 +284,7 @@ impl<'a> Operands<'a> {
         self.relative = new;
         self.rot_p = (new != crate::Rotation::IDENTITY).then(|| new.matrix());
         rotate_arcs(
-            self.p,
+            &self.p,
             self.rot_p.as_ref(),
             &mut self.arc_p,
             &mut self.arc_p_err,
@@ -299,7 +299,7 @@ impl<'a> Operands<'a> {
     #[inline]
     pub fn view_p(&self) -> GaussView<'_> {
         GaussView {
-            poly: self.p,
+            poly: &self.p,
             normals: &self.np,
             arcs: &self.arc_p,
             arc_errs: &self.arc_p_err,
@@ -312,7 +312,7 @@ impl<'a> Operands<'a> {
     #[inline]
     pub fn view_q(&self) -> GaussView<'_> {
         GaussView {
-            poly: self.q,
+            poly: &self.q,
             normals: &self.nq,
             arcs: self.q.arc_normals(),
             arc_errs: self.q.arc_errors(),
@@ -352,18 +352,18 @@ impl<'a> Operands<'a> {
 
 /// A Minkowski sum: the operands and their overlay.
 #[derive(Clone, Debug)]
-pub struct MinkowskiSum<'a> {
-    operands: Operands<'a>,
+pub struct MinkowskiSum {
+    operands: Operands,
     overlay: Overlay,
 }
 
-impl<'a> MinkowskiSum<'a> {
+impl MinkowskiSum {
     /// Wraps an overlay computed for these operands.
-    pub fn from_overlay(operands: Operands<'a>, overlay: Overlay) -> Self {
+    pub fn from_overlay(operands: Operands, overlay: Overlay) -> Self {
         MinkowskiSum { operands, overlay }
     }
     /// The operands.
-    pub fn operands(&self) -> &Operands<'a> {
+    pub fn operands(&self) -> &Operands {
         &self.operands
     }
     /// The overlay (fv, vf and ee pairs).
@@ -414,22 +414,18 @@ impl<'a> MinkowskiSum<'a> {
 }
 
 /// `P ⊕ Q` at the polytopes' own coordinates.
-pub fn minkowski_sum<'a>(
-    p: &'a Polytope,
-    q: &'a Polytope,
-    method: Method,
-) -> Result<MinkowskiSum<'a>, SumError> {
+pub fn minkowski_sum(p: &Polytope, q: &Polytope, method: Method) -> Result<MinkowskiSum, SumError> {
     minkowski_sum_posed(p, Pose::IDENTITY, q, Pose::IDENTITY, method)
 }
 
 /// `(R_p P + t_p) ⊕ (R_q Q + t_q)`.
-pub fn minkowski_sum_posed<'a>(
-    p: &'a Polytope,
+pub fn minkowski_sum_posed(
+    p: &Polytope,
     pose_p: Pose,
-    q: &'a Polytope,
+    q: &Polytope,
     pose_q: Pose,
     method: Method,
-) -> Result<MinkowskiSum<'a>, SumError> {
+) -> Result<MinkowskiSum, SumError> {
     let ops = Operands::new(p, pose_p, q, pose_q);
     ops.check_range()?;
     let overlay = match method {

@@ -21,7 +21,7 @@
 //! 1. a [`TieCache`] shared by both maps of one pair of operands returns a
 //!    tie already settled at this relative rotation (each recurs two or
 //!    three times per sum);
-//! 2. [`GaussView::structural_tie`] proves the determinant zero from the
+//! 2. `GaussView::structural_tie` proves the determinant zero from the
 //!    zero pattern of the vectors alone (no arithmetic) and reads the
 //!    leading perturbation term off the certified arc normal or one
 //!    certified 2×2 minor;
@@ -529,7 +529,7 @@ mod tests {
     /// Checks every (arc, normal) pair of both maps: where the structural
     /// tie rule answers, it equals the general symbolic perturbation.
     /// Returns how many pairs it answered.
-    fn check_pairs(ops: &Operands<'_>) -> usize {
+    fn check_pairs(ops: &Operands) -> usize {
         let mut answered = 0;
         for (arcs, normals) in [(ops.view_p(), ops.view_q()), (ops.view_q(), ops.view_p())] {
             for e in 0..arcs.poly.edge_count() as u32 {

@@ -46,7 +46,7 @@ fn locate_all(faces: &GaussView<'_>, cells: &GaussView<'_>) -> Vec<u32> {
 /// The ee-pairs along edge `e` of P, given the fv-pairs: appends
 /// `(e, edge of Q)` for every arc of Q the arc of `e` crosses.
 pub fn walk_ee_of_p_edge(
-    ops: &Operands<'_>,
+    ops: &Operands,
     fv: &[u32],
     e: u32,
     out: &mut Vec<(u32, u32)>,
@@ -59,7 +59,7 @@ pub fn walk_ee_of_p_edge(
 }
 
 /// The full overlay by walking.
-pub fn overlay(ops: &Operands<'_>) -> Result<Overlay, SumError> {
+pub fn overlay(ops: &Operands) -> Result<Overlay, SumError> {
     let (vp, vq) = (ops.view_p(), ops.view_q());
     let fv = locate_all(&vp, &vq);
     let vf = locate_all(&vq, &vp);

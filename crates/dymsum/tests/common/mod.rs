@@ -254,9 +254,9 @@ pub mod oracle {
     /// A dynamic sum under test: every update is checked against `walk`
     /// and the report; every `deep_every` updates the sanity check and the
     /// hull-of-sums oracle run too.
-    pub struct Checked<'a> {
+    pub struct Checked {
         /// The sum under test.
-        pub d: DynamicSum<'a>,
+        pub d: DynamicSum,
         /// Facets after the last update.
         pub prev: Vec<Facet>,
         /// Updates so far.
@@ -269,9 +269,9 @@ pub mod oracle {
         pub recomputed: usize,
     }
 
-    impl<'a> Checked<'a> {
+    impl Checked {
         /// Wraps a dynamic sum, checking its initial state.
-        pub fn new(d: DynamicSum<'a>, deep_every: usize, label: impl Into<String>) -> Self {
+        pub fn new(d: DynamicSum, deep_every: usize, label: impl Into<String>) -> Self {
             let label = label.into();
             let prev = d.facets();
             assert_eq!(
@@ -291,9 +291,9 @@ pub mod oracle {
 
         /// Starts at the given poses with the default configuration.
         pub fn start(
-            p: &'a Polytope,
+            p: &Polytope,
             pose_p: Pose,
-            q: &'a Polytope,
+            q: &Polytope,
             pose_q: Pose,
             deep_every: usize,
             label: impl Into<String>,

@@ -188,7 +188,7 @@ impl Scene {
     /// Projects the merged mesh and the `added` facets of the current sum.
     pub fn build(
         mesh: &PolygonMesh,
-        sum: &DynamicSum<'_>,
+        sum: &DynamicSum,
         added: &[Facet],
         view: View,
         size: u32,
