@@ -390,7 +390,7 @@ impl Dyadic {
 
     /// `self · 2^k` as a float, with a relative error below `3u` when the
     /// result is a normal float (the top three limbs, rounded and summed).
-    pub fn to_f64_shifted(&self, k: i32) -> f64 {
+    pub fn to_f64_shifted(self, k: i32) -> f64 {
         let len = self.len as usize;
         if len == 0 {
             return 0.0;
@@ -410,7 +410,7 @@ impl Dyadic {
 
     /// The value as the nearest-ish float (for tests and diagnostics; not
     /// correctly rounded, may overflow to infinity).
-    pub fn to_f64_approx(&self) -> f64 {
+    pub fn to_f64_approx(self) -> f64 {
         let mut v = 0.0;
         for &x in self.mag().iter().rev() {
             v = v * 18446744073709551616.0 + x as f64;

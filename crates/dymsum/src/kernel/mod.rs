@@ -8,12 +8,12 @@
 //! * [`predicates::sos_det3`]: the same with Simulation of Simplicity, the one
 //!   consistent tie-breaking rule for exact degeneracies between two Gaussian
 //!   maps. Never returns zero for three distinct indices.
-//! * [`dd`]: double-double arithmetic, the filters' second stage.
-//! * [`exact`]: exact dyadic arithmetic behind the filters.
+//! * `dd`: double-double arithmetic, the filters' second stage.
+//! * `exact`: exact dyadic arithmetic behind the filters.
 //! * [`rotation`]: unit quaternions, rotation matrices and rigid poses.
 
-pub mod dd;
-pub mod exact;
+pub(crate) mod dd;
+pub(crate) mod exact;
 pub mod predicates;
 pub mod rotation;
 

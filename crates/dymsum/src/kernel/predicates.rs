@@ -11,7 +11,7 @@
 //! cross product of two exact vertex differences (times a float rotation
 //! matrix taken as exact), so it is *not* a float; the filter decides from
 //! the approximation when the error bound allows and otherwise evaluates
-//! exactly with [`super::exact::Dyadic`] arithmetic. So "a normal lies exactly
+//! exactly with `super::exact::Dyadic` arithmetic. So "a normal lies exactly
 //! on an arc" or "two faces are exactly parallel" is decided on the true
 //! geometry, never on rounded normals.
 //!

@@ -112,7 +112,7 @@ pub enum PolytopeError {
     /// The coordinates span more binary orders of magnitude than the exact
     /// predicates decide: from the top bit of the largest magnitude to the
     /// lowest set bit of any non-zero coordinate, one polytope may span at
-    /// most [`crate::kernel::exact::MAX_COORD_SPAN`] = 960 bits (`2^960` ≈
+    /// most `crate::kernel::exact::MAX_COORD_SPAN` = 960 bits (`2^960` ≈
     /// `1e289`; about `1e273` between magnitudes of full-precision values).
     /// Any overall scale is fine (`1e-300` to `1e300`); what is refused is
     /// a shape mixing, say, `1e300` and `1e-300`. Round the tiny

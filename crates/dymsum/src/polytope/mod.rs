@@ -25,7 +25,7 @@
 //!
 //! # Scale
 //! Every constructor checks that the coordinates span at most
-//! [`crate::kernel::exact::MAX_COORD_SPAN`] = 960 bits (else
+//! `crate::kernel::exact::MAX_COORD_SPAN` = 960 bits (else
 //! [`PolytopeError::OutOfRange`]: one shape mixing `1e300` and `1e-300`),
 //! and works in the shape's power-of-two *frame* (coordinates times `2^k`,
 //! the largest in `[1, 2)`; exact): the hull is built on frame coordinates

@@ -299,7 +299,7 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
 /// Checks the facet complex of an overlay: closed, 2-manifold, consistently
 /// oriented (each directed facet edge once, with its reverse once), Euler
 /// characteristic 2.
-pub fn check_facet_complex(ops: &Operands, overlay: &Overlay) -> Result<(), SanityError> {
+pub(crate) fn check_facet_complex(ops: &Operands, overlay: &Overlay) -> Result<(), SanityError> {
     let corners = facet_corners(ops, overlay);
     let mut directed: HashMap<(SumVertex, SumVertex), u32> = HashMap::new();
     let mut verts = std::collections::HashSet::new();
@@ -433,7 +433,7 @@ fn ulp(x: f64) -> f64 {
 /// The merged mesh, validated exactly (see [`super::validate`]): the
 /// combinatorial merge when its float coordinates are exactly convex, else
 /// the exact hull of the rounded vertices.
-pub fn validated_mesh(ops: &Operands, overlay: &Overlay) -> Result<SumMesh, MeshError> {
+pub(crate) fn validated_mesh(ops: &Operands, overlay: &Overlay) -> Result<SumMesh, MeshError> {
     use super::validate::{check_convex_mesh, ExactPoints};
     let merged = merged_mesh(ops, overlay).map_err(MeshError::Merge)?;
     let max = merged

@@ -13,9 +13,9 @@
 //! | [`Method::Hull`] | exact hull of all m·n vertex sums, then label its faces | O(mn log mn) |
 //!
 //! All three use the same exact predicates with the same symbolic
-//! perturbation ([`overlay`]), so they return identical facet sets, which
+//! perturbation (`overlay`), so they return identical facet sets, which
 //! [`MinkowskiSum::facets`] lists in canonical order. [`MinkowskiSum::try_to_mesh`]
-//! merges coplanar facets into the true faces (see [`merge`]).
+//! merges coplanar facets into the true faces (see `merge`).
 //!
 //! ```
 //! use dymsum::{Polytope, Pose, Rotation, DVec3};
@@ -36,8 +36,8 @@
 
 mod brute;
 mod hull_method;
-pub mod merge;
-pub mod overlay;
+pub(crate) mod merge;
+pub(crate) mod overlay;
 pub mod validate;
 mod walk;
 
@@ -46,7 +46,7 @@ pub use merge::{MeshError, Precision, SumMesh};
 use crate::polytope::Polytope;
 use crate::Pose;
 use glam::DVec3;
-pub use overlay::GaussView;
+pub(crate) use overlay::GaussView;
 
 /// Which static algorithm computes the sum.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -184,7 +184,7 @@ impl Overlay {
 /// normals are `R n`, Q's are its own reference normals. Translations and a
 /// common rotation of both bodies therefore never change the facet set.
 #[derive(Clone, Debug)]
-pub struct Operands {
+pub(crate) struct Operands {
     /// P.
     pub p: Polytope,
     /// Q.
@@ -215,7 +215,7 @@ pub struct Operands {
 /// depend on the rotation (they cover the rounding of any nearly orthogonal
 /// matrix and of the identity), so they are computed once, when `errs` is
 /// empty; only the arcs are recomputed per rotation.
-pub fn rotate_arcs(
+pub(crate) fn rotate_arcs(
     p: &Polytope,
     rot: Option<&glam::DMat3>,
     arcs: &mut Vec<DVec3>,
@@ -250,7 +250,7 @@ fn cofactor(m: &glam::DMat3) -> glam::DMat3 {
 }
 
 /// The relative rotation `R_q⁻¹ R_p` (exactly `R_p` when Q is not rotated).
-pub fn relative_rotation(pose_p: &Pose, pose_q: &Pose) -> crate::Rotation {
+pub(crate) fn relative_rotation(pose_p: &Pose, pose_q: &Pose) -> crate::Rotation {
     if pose_q.rotation == crate::Rotation::IDENTITY {
         pose_p.rotation
     } else {
@@ -359,12 +359,8 @@ pub struct MinkowskiSum {
 
 impl MinkowskiSum {
     /// Wraps an overlay computed for these operands.
-    pub fn from_overlay(operands: Operands, overlay: Overlay) -> Self {
+    pub(crate) fn from_overlay(operands: Operands, overlay: Overlay) -> Self {
         MinkowskiSum { operands, overlay }
-    }
-    /// The operands.
-    pub fn operands(&self) -> &Operands {
-        &self.operands
     }
     /// The overlay (fv, vf and ee pairs).
     pub fn overlay(&self) -> &Overlay {
@@ -386,7 +382,7 @@ impl MinkowskiSum {
     /// collinear vertices dropped, counter-clockwise outward, checked
     /// without tolerance ([`validate::check_convex_mesh`]). Where rounding of
     /// the coordinates breaks the exact faces, it is the exact hull of the
-    /// rounded vertices instead (see [`merge::validated_mesh`]).
+    /// rounded vertices instead (see `merge::validated_mesh`).
     ///
     /// # Errors
     /// [`MeshError::PrecisionLost`] when the rounded vertices collapse (the
@@ -436,4 +432,4 @@ pub fn minkowski_sum_posed(
     Ok(MinkowskiSum::from_overlay(ops, overlay))
 }
 
-pub use walk::{overlay as walk_overlay, walk_ee_of_p_edge};
+pub(crate) use walk::overlay as walk_overlay;
