@@ -13,25 +13,8 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use dymsum::polytope::MeshPolicy;
-use dymsum::{PolygonMesh, Polytope};
-
-fn sphere_mesh(n: usize) -> PolygonMesh {
-    let pts: Vec<[f64; 3]> = (0..n)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            let t = i as f64 * 2.399_963_229_728_653;
-            [r * t.cos(), r * t.sin(), z]
-        })
-        .collect();
-    let m = Polytope::from_points(&pts).expect("sphere hull").to_mesh();
-    let faces = m
-        .faces
-        .iter()
-        .flat_map(|f| (1..f.len() - 1).map(move |k| vec![f[0], f[k], f[k + 1]]))
-        .collect();
-    PolygonMesh::new(m.vertices, faces)
-}
+use dymsum::Polytope;
+use dymsum_testkit::sphere_mesh;
 
 fn mesh_load(c: &mut Criterion) {
     let mut group = c.benchmark_group("mesh_load");

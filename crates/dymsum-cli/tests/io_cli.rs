@@ -10,15 +10,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use common::{assert_fails, ok, run, run_in, stderr, temp_dir, BIN};
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
+use dymsum_testkit::files::names;
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()

@@ -201,7 +201,7 @@ fn cobst_axis_writes_slices_and_index() {
         assert_eq!(e["faces"].as_u64().unwrap() as usize, mesh.faces.len());
         assert_eq!(mesh.faces.len(), slices[k].faces.len());
     }
-    let _ = std::fs::remove_dir_all(&dir);
+    dymsum_testkit::files::remove_dir(&dir);
 }
 
 #[test]
@@ -237,5 +237,5 @@ fn cobst_orientation_file_and_its_errors() {
     assert_eq!(o.status.code(), Some(2));
     let o = cobst(&["--axis", "0,0,0", "--slices", "3"]);
     assert_eq!(o.status.code(), Some(2));
-    let _ = std::fs::remove_dir_all(&dir);
+    dymsum_testkit::files::remove_dir(&dir);
 }

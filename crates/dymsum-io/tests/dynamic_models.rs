@@ -5,15 +5,12 @@
 //! exact diff; the hull-of-pairwise-sums oracle runs at the end of each run.
 //! The oracles are shared with `dymsum/tests/dynamic_sums.rs`.
 
-#[path = "../../dymsum/tests/common/mod.rs"]
-mod common;
-
-use common::oracle::*;
-use common::*;
 use dymsum::dynamic::DynamicConfig;
 use dymsum::polytope::MeshPolicy;
 use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
 use dymsum_io::models::model;
+use dymsum_testkit::oracle::*;
+use dymsum_testkit::*;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 fn load(name: &str) -> Polytope {

@@ -16,21 +16,6 @@ mod formats {
         write_mesh_bytes, write_mesh_with, Format, FormatError, Location,
     };
 
-    fn cube() -> PolygonMesh {
-        let vertices = (0..8)
-            .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
-            .collect();
-        let faces = vec![
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-        ];
-        PolygonMesh::new(vertices, faces)
-    }
-
     /// A tetrahedron with awkward coordinates, plus a pentagon face on extra
     /// vertices (faces need not be closed for the format layer).
     fn awkward() -> PolygonMesh {
@@ -74,10 +59,10 @@ mod formats {
     }
 
     fn tmp_dir() -> PathBuf {
-        let d = std::env::temp_dir().join(format!("dymsum-io-formats-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
-        d
+        dymsum_testkit::files::temp_dir("io-formats", "files")
     }
+
+    use dymsum_testkit::cube_mesh as cube;
 
     fn off(text: &str) -> Result<PolygonMesh, FormatError> {
         read_mesh_bytes(text.as_bytes(), Format::Off, "t.off")
@@ -719,11 +704,25 @@ property float z\nend_header\n0 0 nan\n";
                 inputs.push(m);
             }
         }
+        // Whatever the bytes, the reader answers: a mesh whose faces index
+        // its own vertices, or an error with a message.
+        let well_formed = |m: &PolygonMesh| {
+            m.faces
+                .iter()
+                .flatten()
+                .all(|&v| v < m.vertices.len())
+        };
         for input in &inputs {
             for format in Format::ALL {
-                let _ = read_mesh_bytes(input, format, "garbage");
+                match read_mesh_bytes(input, format, "garbage") {
+                    Ok(m) => assert!(well_formed(&m), "{format:?}: face index out of range"),
+                    Err(e) => assert!(!e.to_string().is_empty()),
+                }
             }
-            let _ = read_obj_objects_bytes(input, "garbage");
+            match read_obj_objects_bytes(input, "garbage") {
+                Ok(objects) => assert!(objects.iter().all(|(_, m)| well_formed(m))),
+                Err(e) => assert!(!e.to_string().is_empty()),
+            }
         }
     }
 

@@ -3,51 +3,20 @@
 
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use dymsum::polytope::MeshPolicy;
-use dymsum::{PolygonMesh, Rotation};
+use dymsum::Rotation;
 use dymsum_io::atomic::{read_regular_file, write_atomic, AtomicFile, FileError};
 use dymsum_io::formats::{
     read_mesh, read_mesh_bytes, read_obj_objects_bytes, write_mesh, write_mesh_bytes, Format,
     FormatError,
 };
 use dymsum_io::{load_polytope, LoadError};
+use dymsum_testkit::cube_mesh as cube;
+use dymsum_testkit::files::names;
 
 fn temp_dir(name: &str) -> PathBuf {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "dymsum-io-safety-{}-{}-{name}",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
-
-fn cube() -> PolygonMesh {
-    let vertices = (0..8)
-        .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
-        .collect();
-    let faces = vec![
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
-    ];
-    PolygonMesh::new(vertices, faces)
+    dymsum_testkit::files::temp_dir("io-safety", name)
 }
 
 /// A writer that accepts `limit` bytes, then fails like a full disk.

@@ -493,7 +493,11 @@ fn no_string_panics() {
         "ellipsoid:1,1,1:1:1",
     ];
     for w in weird {
-        let _ = model(w);
+        // A model, or an error that says why; never a panic.
+        match model(w) {
+            Ok(m) => assert!(!m.vertices.is_empty(), "{w}"),
+            Err(e) => assert!(!e.to_string().is_empty(), "{w}"),
+        }
     }
     let long = "x".repeat(10_000);
     assert!(matches!(model(&long), Err(ModelError::Unknown { .. })));
@@ -502,7 +506,10 @@ fn no_string_panics() {
 proptest::proptest! {
     #[test]
     fn arbitrary_names_never_panic(name in "\\PC{0,40}") {
-        let _ = model(&name);
+        match model(&name) {
+            Ok(m) => proptest::prop_assert!(!m.vertices.is_empty()),
+            Err(e) => proptest::prop_assert!(!e.to_string().is_empty()),
+        }
     }
 
     #[test]

@@ -6,18 +6,16 @@
 //!
 //! Oracle: after every step the dynamic facet set equals the static `walk`
 //! facet set at the same poses, and the report is the exact diff (the shared
-//! `common::oracle::Checked`); every few steps the sanity check and the
+//! `dymsum_testkit::oracle::Checked`); every few steps the sanity check and the
 //! hull-of-sums check. The static queries (`ConvexPair::query`) agree with
 //! the contact tracker (which runs on the dynamic sum) at every step.
 //! Both the default configuration and the always-incremental one.
 
-mod common;
-
-use common::oracle::*;
-use common::*;
 use dymsum::dynamic::DynamicConfig;
 use dymsum::query::ConvexPair;
 use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
+use dymsum_testkit::oracle::*;
+use dymsum_testkit::*;
 use proptest::prelude::*;
 use std::f64::consts::TAU;
 

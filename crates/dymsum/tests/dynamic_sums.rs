@@ -6,7 +6,7 @@
 //! `ee_errors` counting the removed facets of each kind; and every so often
 //! the internal sanity check must pass and the merged mesh must equal the
 //! exact hull of the pairwise sums of the posed vertices (volume, support
-//! function). The oracles live in `common::oracle` (shared with
+//! function). The oracles live in `dymsum_testkit::oracle` (shared with
 //! `dymsum-io/tests/dynamic_models.rs`).
 //!
 //! Most runs are made twice: with the default configuration (large steps and
@@ -15,13 +15,11 @@
 //! `fallback_fraction = ∞`), which exercises the module's certification
 //! argument on steps of every size instead of the fallback.
 
-mod common;
-
-use common::oracle::*;
-use common::*;
 use dymsum::dynamic::DynamicConfig;
 use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
+use dymsum_testkit::oracle::*;
+use dymsum_testkit::*;
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI, TAU};
 use std::time::Instant;
@@ -590,7 +588,10 @@ fn steps_around_the_max_step_angle() {
             above.recomputed,
             "a step above max_step_angle is recomputed"
         );
-        let _ = below;
+        assert!(
+            (below.step_angle - (FRAC_PI_4 - 1e-6)).abs() < 1e-9,
+            "the report states the step's angle"
+        );
         c.rotate_p_by(rot(axis, -(FRAC_PI_4 + 1e-6)));
     }
     assert!(c.recomputed >= 10);
@@ -665,10 +666,19 @@ fn back_and_forth_over_the_same_step() {
                 let start = c.d.pose_p();
                 let there = Pose::new(start.rotation.then(&rot(axis, angle)), DVec3::ZERO);
                 for _ in 0..5 {
-                    c.set_pose_p(there);
-                    let rep = c.set_pose_p(start);
+                    let mut out = c.set_pose_p(there);
+                    let mut back = c.set_pose_p(start);
                     // Coming back exactly undoes the last step's diff.
-                    let _ = rep;
+                    for v in [
+                        &mut out.added,
+                        &mut out.removed,
+                        &mut back.added,
+                        &mut back.removed,
+                    ] {
+                        v.sort();
+                    }
+                    assert_eq!(back.added, out.removed, "{axis:?} {angle}");
+                    assert_eq!(back.removed, out.added, "{axis:?} {angle}");
                 }
             }
         }
@@ -697,7 +707,6 @@ fn orientation_stays_a_unit_quaternion() {
     let t = &poly(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]);
     let cube = &poly(&cube_points(-1.0, 1.0));
     let mut d = DynamicSum::new(t, Pose::IDENTITY, cube, Pose::IDENTITY).unwrap();
-    let mut r = rng(30);
     let mut worst = 0.0f64;
     for i in 0..200_000 {
         let step = rot(DVec3::new(1.0, 2.0 + (i / 1000) as f64, 3.0), TAU / 1000.0);
@@ -706,7 +715,6 @@ fn orientation_stays_a_unit_quaternion() {
         worst = worst.max((len - 1.0).abs());
         if i % 20_000 == 0 {
             assert_eq!(d.facets(), walk_facets(&d), "step {i}");
-            let _ = r.random_range(0..2);
         }
     }
     assert!(worst <= 1e-12, "quaternion length drifted by {worst}");
@@ -787,12 +795,177 @@ fn regression_composed_quarter_turns_stay_exact() {
 /// polytope of 20 points at a random orientation: step_angle 1.24e-16).
 /// The report's facet diff is empty, but the pose changed and the step was
 /// processed as a real (tiny) rotation.
+/// Points of P and Q (20 in a ball each; pinned from `rng(21)`).
+const IDENTITY_STEP_P: [[f64; 3]; 20] = [
+    [
+        -0.06432628148490283,
+        0.23669906098281768,
+        -0.8496567813340463,
+    ],
+    [
+        -0.03818238832974208,
+        0.36497709916232424,
+        -0.025332153305444916,
+    ],
+    [
+        0.44984603345906793,
+        0.14233191770609732,
+        -0.5470178098126923,
+    ],
+    [
+        -0.42945222017653384,
+        -0.7896052947010679,
+        -0.13015406493779658,
+    ],
+    [-0.1624078873203998, 0.2951943857448227, -0.4203017987542532],
+    [
+        0.7254141287176887,
+        -0.10001381091916439,
+        -0.15822547038461154,
+    ],
+    [
+        -0.42576635982792244,
+        0.4803391020943777,
+        -0.3071867238532948,
+    ],
+    [
+        -0.12255163759347942,
+        -0.11328283040505749,
+        0.7866638878292584,
+    ],
+    [-0.3268784136851859, -0.1630991695303905, 0.5351698136344756],
+    [
+        -0.3942762038170673,
+        -0.5784843748035775,
+        0.015388775792682274,
+    ],
+    [0.4766839393685056, -0.24918568440935474, 0.2550945641446849],
+    [-0.3982233528601862, 0.03995908748782062, 0.8608921136902143],
+    [
+        0.06461086134353211,
+        0.00804084000257177,
+        -0.6872847749649593,
+    ],
+    [
+        0.11551621925660083,
+        -0.5378750347874299,
+        -0.21683192845289057,
+    ],
+    [
+        0.7616520289150093,
+        0.013834703813771831,
+        -0.22432692987236402,
+    ],
+    [
+        -0.22317370579510554,
+        0.07316754977262763,
+        -0.9046389579726482,
+    ],
+    [0.7646084585060167, 0.5212638454924452, 0.16365902207701133],
+    [0.2641183089033987, -0.4604072374281123, 0.22587421701549415],
+    [
+        -0.20096166455708708,
+        -0.6692244777368268,
+        0.23526438488541235,
+    ],
+    [
+        -0.1328064326042675,
+        -0.07663289018369923,
+        -0.09403930800071159,
+    ],
+];
+const IDENTITY_STEP_Q: [[f64; 3]; 20] = [
+    [0.8183896291966954, 0.3563414649519978, 0.1644653600834296],
+    [
+        -0.9417484430205265,
+        0.016246557723945898,
+        -0.10789612152401729,
+    ],
+    [
+        0.48076233556704295,
+        -0.08602233609147758,
+        -0.14228870809916705,
+    ],
+    [0.786911701489045, 0.33020107899541795, -0.45293804091559986],
+    [
+        -0.22205896459976104,
+        -0.04146848376145673,
+        -0.1314223018846028,
+    ],
+    [
+        -0.8364628031421883,
+        -0.24433586310589694,
+        0.46441724202273127,
+    ],
+    [0.5431373057835343, 0.07914623618512362, 0.7158519323667538],
+    [
+        -0.2957497395822237,
+        0.5124219133876169,
+        -0.19073159361531244,
+    ],
+    [
+        -0.2864437101745718,
+        0.30383216324734574,
+        0.07843051019678127,
+    ],
+    [
+        -0.7527052778190955,
+        -0.450148737658135,
+        -0.17588806565198478,
+    ],
+    [0.3639589056350232, 0.6517872068060968, 0.3335708880517312],
+    [0.07912807085384665, 0.4154989744988451, -0.8276781872225953],
+    [
+        0.9314511653200226,
+        -0.17426164863182425,
+        -0.0026216465288229074,
+    ],
+    [
+        -0.3770135429948138,
+        -0.11141220111335137,
+        -0.06454120804557117,
+    ],
+    [
+        0.1271353559777899,
+        -0.38210783602154486,
+        -0.6443319925727278,
+    ],
+    [-0.705585414623688, 0.4365193442827504, 0.1475809758685802],
+    [
+        0.03178669171953663,
+        -0.17560118358929921,
+        -0.6440664580754873,
+    ],
+    [
+        0.6345712644247676,
+        -0.20339007408964527,
+        0.15827761327240264,
+    ],
+    [
+        -0.135189640282523,
+        -0.48838379813111654,
+        -0.4238227732525939,
+    ],
+    [
+        -0.3153064548112221,
+        0.23822900408438352,
+        0.016863597419323195,
+    ],
+];
+
 #[test]
 fn regression_rotate_p_by_identity_is_a_no_op() {
-    let mut r = rng(21);
-    let p = &random_polytope(Kind::Ball, 20, &mut r);
-    let q = &random_polytope(Kind::Ball, 20, &mut r);
-    let start = pose(random_rotation(&mut r));
+    let p = &poly(&IDENTITY_STEP_P);
+    let q = &poly(&IDENTITY_STEP_Q);
+    let start = pose(
+        Rotation::from_wxyz(
+            0.2517646835630894,
+            -0.2109519282102856,
+            0.3334826831838388,
+            0.8836872343262899,
+        )
+        .unwrap(),
+    );
     let mut d = DynamicSum::new(p, start, q, Pose::IDENTITY).unwrap();
     let rep = d.rotate_p_by(Rotation::IDENTITY).unwrap();
     assert!(rep.removed.is_empty() && rep.added.is_empty());
@@ -814,11 +987,40 @@ fn regression_rotate_p_by_identity_is_a_no_op() {
 /// product, is off by ~1e-4, so its own corners fail the 1e-9·size test.
 /// `DynamicSum::sanity_check` inherits the false failure. (The facets equal
 /// brute's and the volume and support function match the hull of sums.)
+/// The two jittered grids (pinned from `rng(18057924686234793125)`).
+const SLIVER_SANITY_P: [[f64; 3]; 6] = [
+    [-2.0000000000002154, 1.0000000000004847, 2.000000000000656],
+    [0.9999999999991266, 0.9999999999999485, -1.999999999999879],
+    [2.0000000000004237, -1.00000000000061, -0.9999999999991064],
+    [-2.000000000000851, 0.9999999999996765, 1.0000000000007332],
+    [
+        4.711464782404957e-13,
+        -1.0000000000004718,
+        1.9999999999993348,
+    ],
+    [1.9999999999999427, -1.0000000000007503, -0.9999999999996682],
+];
+const SLIVER_SANITY_Q: [[f64; 3]; 6] = [
+    [-2.000000000000348, 1.9999999999993177, 2.000000000000005],
+    [1.000000000000023, -1.999999999999503, -0.9999999999995149],
+    [
+        -1.3062161968327423e-14,
+        2.000000000000372,
+        -0.999999999999503,
+    ],
+    [
+        -6.960694249402422e-13,
+        -2.000000000000836,
+        -1.000000000000194,
+    ],
+    [-2.000000000000434, 1.0000000000000937, 0.9999999999990776],
+    [2.0000000000005267, 1.000000000000923, -0.9999999999994406],
+];
+
 #[test]
 fn regression_sanity_check_rejects_sliver_faces_of_jittered_grids() {
-    let mut r = rng(18057924686234793125);
-    let p = &jittered_grid_polytope(6, 1e-12, &mut r);
-    let q = &jittered_grid_polytope(6, 1e-12, &mut r);
+    let p = &poly(&SLIVER_SANITY_P);
+    let q = &poly(&SLIVER_SANITY_Q);
     let walk = minkowski_sum_posed(p, Pose::IDENTITY, q, Pose::IDENTITY, Method::Walk).unwrap();
     let brute = minkowski_sum_posed(p, Pose::IDENTITY, q, Pose::IDENTITY, Method::Brute).unwrap();
     assert_eq!(walk.facets(), brute.facets());
@@ -891,11 +1093,104 @@ fn regression_sliver_face_margin_misses_fv_error() {
 /// `paper_protocol_jittered_grids`). A step of 0.3 rad from `old` returns
 /// `Err(Inconsistent("arc walk found no exit from cell 7"))`: an ee re-walk
 /// starts from a stale fv-pair. Static walk at the new pose works.
+/// The two jittered grids (pinned from `rng(16759713592623883560)`).
+const NO_EXIT_P: [[f64; 3]; 19] = [
+    [
+        -1.9999999999993692,
+        2.1429822578611056e-13,
+        -5.279607459878668e-13,
+    ],
+    [2.0000000000007256, -0.9999999999996824, 2.000000000000153],
+    [
+        2.4940526655165477e-13,
+        1.5598624615104266e-13,
+        -9.726617810975843e-13,
+    ],
+    [-1.9999999999992966, 1.9999999999998237, 1.0000000000005471],
+    [
+        -1.9999999999997617,
+        -3.543393296323125e-13,
+        2.000000000000646,
+    ],
+    [0.9999999999997764, 1.9999999999994897, -1.9999999999992093],
+    [
+        7.943443585084835e-13,
+        -0.9999999999998285,
+        2.000000000000682,
+    ],
+    [
+        -1.99999999999983,
+        -5.96840310317138e-13,
+        1.4081918696997285e-13,
+    ],
+    [
+        0.9999999999994802,
+        -9.3370179952904e-13,
+        8.905411452770584e-13,
+    ],
+    [0.9999999999997221, 1.9999999999997937, -2.0000000000000386],
+    [
+        -3.6011566658916645e-13,
+        0.9999999999994764,
+        0.9999999999990288,
+    ],
+    [-1.000000000000073, 0.999999999999296, 2.0000000000005356],
+    [0.9999999999997419, -1.000000000000749, -2.0000000000006675],
+    [-1.0000000000007183, -2.000000000000534, 1.9999999999990836],
+    [-0.9999999999998933, 0.9999999999990486, -0.9999999999993816],
+    [
+        -2.7085241441598383e-13,
+        -0.9999999999996092,
+        -0.999999999999646,
+    ],
+    [
+        -1.0000000000008964,
+        -2.0000000000000355,
+        -9.854568249619011e-13,
+    ],
+    [-0.9999999999990988, -0.9999999999990709, 2.000000000000044],
+    [
+        -0.9999999999994397,
+        3.616389151545878e-13,
+        -1.0000000000009546,
+    ],
+];
+const NO_EXIT_Q: [[f64; 3]; 9] = [
+    [
+        -5.212332873178189e-13,
+        -2.0000000000006324,
+        1.0000000000004443,
+    ],
+    [
+        -1.0000000000004654,
+        -0.9999999999997864,
+        -0.9999999999998415,
+    ],
+    [
+        -1.9999999999999294,
+        1.9999999999995814,
+        5.272032333666018e-13,
+    ],
+    [-0.9999999999991389, 2.0000000000007794, 1.0000000000003295],
+    [2.0000000000007803, -2.000000000000918, -1.999999999999094],
+    [
+        4.587817116011701e-13,
+        2.0000000000002554,
+        -1.9999999999998588,
+    ],
+    [1.00000000000054, 2.0000000000003855, 1.9999999999999838],
+    [0.9999999999997964, -0.9999999999996113, -2.0000000000002176],
+    [
+        1.9999999999996048,
+        -2.000000000000445,
+        -9.437587643459282e-13,
+    ],
+];
+
 #[test]
 fn regression_sliver_faces_arc_walk_finds_no_exit() {
-    let mut r = rng(16759713592623883560);
-    let p = &jittered_grid_polytope(19, 1e-12, &mut r);
-    let q = &jittered_grid_polytope(9, 1e-12, &mut r);
+    let p = &poly(&NO_EXIT_P);
+    let q = &poly(&NO_EXIT_Q);
     let old = rot(
         DVec3::new(0.7208289049252024, -0.3365186816062553, 0.35868807249563783),
         2.107190767282398,

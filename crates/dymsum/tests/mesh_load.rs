@@ -3,6 +3,7 @@
 
 use dymsum::polytope::{MeshPolicy, PolytopeError};
 use dymsum::{PolygonMesh, Polytope};
+use dymsum_testkit::sphere_mesh;
 use proptest::prelude::*;
 
 const QUADS: [[usize; 4]; 6] = [
@@ -169,27 +170,6 @@ fn fogel_models_translated_far_away_still_load() {
             assert!(p.vertex_count() <= p0.vertex_count() + 2, "{name}");
         }
     }
-}
-
-/// A triangulated sphere-like convex mesh: the hull of `n` points on a
-/// sphere (golden spiral), fan-triangulated.
-fn sphere_mesh(n: usize) -> PolygonMesh {
-    let pts: Vec<[f64; 3]> = (0..n)
-        .map(|i| {
-            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            let t = i as f64 * 2.399_963_229_728_653;
-            [r * t.cos(), r * t.sin(), z]
-        })
-        .collect();
-    let p = Polytope::from_points(&pts).unwrap();
-    let m = p.to_mesh();
-    let faces = m
-        .faces
-        .iter()
-        .flat_map(|f| (1..f.len() - 1).map(move |k| vec![f[0], f[k], f[k + 1]]))
-        .collect();
-    PolygonMesh::new(m.vertices, faces)
 }
 
 #[test]

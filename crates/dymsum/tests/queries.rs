@@ -21,6 +21,7 @@ use dymsum::query::{
     FeaturePair, Proximity, QueryError, UnionProximity,
 };
 use dymsum::{DVec3, Polytope, Pose, Rotation};
+use dymsum_testkit::{cube_points, proptest_cases, random_rotation, Kind};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -198,7 +199,7 @@ fn check(a: &Polytope, pa: Pose, b: &Polytope, pb: Pose, label: &str) -> Proximi
 }
 
 fn cube(lo: f64, hi: f64) -> Polytope {
-    box_(DVec3::splat(lo), DVec3::splat(hi))
+    Polytope::from_points(&cube_points(lo, hi)).unwrap()
 }
 
 fn box_(lo: DVec3, hi: DVec3) -> Polytope {
@@ -218,31 +219,8 @@ fn at(x: f64, y: f64, z: f64) -> Pose {
     Pose::new(Rotation::IDENTITY, DVec3::new(x, y, z))
 }
 
-fn random_rotation(r: &mut ChaCha8Rng) -> Rotation {
-    loop {
-        let q: [f64; 4] = std::array::from_fn(|_| r.random_range(-1.0..1.0));
-        let l2: f64 = q.iter().map(|x| x * x).sum();
-        if l2 > 1e-3 && l2 <= 1.0 {
-            return Rotation::from_wxyz(q[0], q[1], q[2], q[3]).unwrap();
-        }
-    }
-}
-
 fn random_polytope(r: &mut ChaCha8Rng, n: usize) -> Polytope {
-    loop {
-        let pts: Vec<DVec3> = (0..n)
-            .map(|_| {
-                DVec3::new(
-                    r.random_range(-1.0..1.0),
-                    r.random_range(-1.0..1.0),
-                    r.random_range(-1.0..1.0),
-                )
-            })
-            .collect();
-        if let Ok(p) = Polytope::from_dvec3s(&pts) {
-            return p;
-        }
-    }
+    dymsum_testkit::random_polytope(Kind::Cube, n, r)
 }
 
 fn random_pose(r: &mut ChaCha8Rng, spread: f64) -> Pose {
@@ -254,13 +232,6 @@ fn random_pose(r: &mut ChaCha8Rng, spread: f64) -> Pose {
             r.random_range(-spread..spread),
         ),
     )
-}
-
-fn cases(default: u32) -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
 }
 
 // ---------------------------------------------------------------- named cases
@@ -447,7 +418,7 @@ fn swapping_bodies_negates_the_direction() {
 // ---------------------------------------------------------------- proptest
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(cases(64)))]
+    #![proptest_config(ProptestConfig::with_cases(proptest_cases(64)))]
 
     #[test]
     fn random_pairs_match_brute_force(

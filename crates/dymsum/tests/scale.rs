@@ -7,12 +7,11 @@
 //! errors naming the supported range; nothing panics, nothing is called
 //! flat, nothing is silently wrong.
 
-mod common;
-use common::*;
 use dymsum::polytope::MeshPolicy;
 use dymsum::query::{ConvexPair, Proximity, QueryError};
 use dymsum::sum::{minkowski_sum_posed, MeshError, Method, SumError};
 use dymsum::{DVec3, DynamicSum, PolygonMesh, Polytope, PolytopeError, Pose, Rotation};
+use dymsum_testkit::*;
 use proptest::prelude::*;
 
 fn pow2(k: i32) -> f64 {

@@ -4,7 +4,6 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use dymsum::polytope::MeshPolicy;
 use dymsum::Polytope;
@@ -15,16 +14,7 @@ pub const BIN: &str = env!("CARGO_BIN_EXE_dymsum");
 /// A fresh empty directory under the system temp dir, named after the test
 /// suite, the process, a counter and `name`.
 pub fn temp_dir(name: &str) -> PathBuf {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let dir = std::env::temp_dir().join(format!(
-        "dymsum-{}-test-{}-{}-{name}",
-        env!("CARGO_CRATE_NAME"),
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    dymsum_testkit::files::temp_dir(env!("CARGO_CRATE_NAME"), name)
 }
 
 /// The path of `tests/fixtures/NAME`.

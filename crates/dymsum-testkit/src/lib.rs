@@ -1,5 +1,11 @@
-//! Shared generators for the oracle tests.
-#![allow(dead_code)]
+//! Shared test support for the dymsum crates, written once: random shape
+//! generators (including the degenerate kinds), random rotations and axes,
+//! the paper's motion, the oracles every dynamic step is checked against
+//! (a fresh `walk` sum, the exact diff, the hull of all pairwise vertex
+//! sums), and small fixtures (literal meshes, directory listings).
+//!
+//! A dev-dependency of `dymsum`, `dymsum-io` and `dymsum-cli`, and a
+//! dependency of `dymsum-bench`; never published.
 
 use dymsum::{DVec3, Polytope, Rotation};
 use rand::{Rng, SeedableRng};
@@ -20,6 +26,8 @@ pub enum Kind {
     Coplanar,
     /// On a sphere.
     Sphere,
+    /// Uniform in the cube `[-1, 1]³`.
+    Cube,
 }
 
 pub fn points(kind: Kind, n: usize, r: &mut ChaCha8Rng) -> Vec<DVec3> {
@@ -50,6 +58,11 @@ pub fn points(kind: Kind, n: usize, r: &mut ChaCha8Rng) -> Vec<DVec3> {
                 p[axis] = if r.random_bool(0.5) { 1.0 } else { -1.0 };
                 p
             }
+            Kind::Cube => DVec3::new(
+                r.random_range(-1.0..1.0),
+                r.random_range(-1.0..1.0),
+                r.random_range(-1.0..1.0),
+            ),
             Kind::Sphere => loop {
                 let p = DVec3::new(
                     r.random_range(-1.0..1.0),
@@ -509,6 +522,93 @@ pub fn jittered_grid_polytope(n: usize, eps: f64, r: &mut ChaCha8Rng) -> Polytop
         if let Ok(p) = Polytope::from_dvec3s(&pts) {
             return p;
         }
+    }
+}
+
+/// A triangulated sphere-like convex mesh: the hull of `n` points on the
+/// unit sphere (golden spiral), fan-triangulated (large meshes for the load
+/// tests and the `mesh_load` bench).
+pub fn sphere_mesh(n: usize) -> dymsum::PolygonMesh {
+    let pts: Vec<[f64; 3]> = (0..n)
+        .map(|i| {
+            let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+            let r = (1.0 - z * z).sqrt();
+            let t = i as f64 * 2.399_963_229_728_653;
+            [r * t.cos(), r * t.sin(), z]
+        })
+        .collect();
+    let m = Polytope::from_points(&pts).expect("sphere hull").to_mesh();
+    let faces = m
+        .faces
+        .iter()
+        .flat_map(|f| (1..f.len() - 1).map(move |k| vec![f[0], f[k], f[k + 1]]))
+        .collect();
+    dymsum::PolygonMesh::new(m.vertices, faces)
+}
+
+/// The unit cube `[0, 1]³` as a polygon mesh: 8 vertices (`i` at
+/// `(i & 1, i >> 1 & 1, i >> 2 & 1)`), 6 outward quads. The literal fixture
+/// of the format and I/O tests.
+pub fn cube_mesh() -> dymsum::PolygonMesh {
+    let vertices = (0..8)
+        .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+        .collect();
+    let faces = vec![
+        vec![0, 2, 3, 1],
+        vec![4, 5, 7, 6],
+        vec![0, 1, 5, 4],
+        vec![2, 6, 7, 3],
+        vec![0, 4, 6, 2],
+        vec![1, 3, 7, 5],
+    ];
+    dymsum::PolygonMesh::new(vertices, faces)
+}
+
+/// Scratch directories and listings for the tests that write files.
+pub mod files {
+    use std::path::{Path, PathBuf};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// A fresh, empty directory under the system temp dir, named after
+    /// `suite`, the process, a counter and `name` (unique per call, so
+    /// parallel tests never share one). A leftover of an earlier run with the
+    /// same name is removed first.
+    pub fn temp_dir(suite: &str, name: &str) -> PathBuf {
+        static COUNTER: AtomicUsize = AtomicUsize::new(0);
+        let dir = std::env::temp_dir().join(format!(
+            "dymsum-{suite}-{}-{}-{name}",
+            std::process::id(),
+            COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        if dir.exists() {
+            std::fs::remove_dir_all(&dir).expect("remove a stale scratch directory");
+        }
+        std::fs::create_dir_all(&dir).expect("create a scratch directory");
+        dir
+    }
+
+    /// Removes a scratch directory made by [`temp_dir`] (best effort at
+    /// the end of a test: a failure to clean up is not the test's subject,
+    /// so it is reported, not fatal).
+    pub fn remove_dir(dir: &Path) {
+        if let Err(e) = std::fs::remove_dir_all(dir) {
+            eprintln!("note: could not remove {}: {e}", dir.display());
+        }
+    }
+
+    /// The file names in `dir`, sorted.
+    pub fn names(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .expect("list a scratch directory")
+            .map(|e| {
+                e.expect("read a directory entry")
+                    .file_name()
+                    .to_string_lossy()
+                    .into_owned()
+            })
+            .collect();
+        v.sort();
+        v
     }
 }
 
