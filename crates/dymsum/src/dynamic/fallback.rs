@@ -1,0 +1,87 @@
+//! Falling back to a recomputation: steps too large for DYMSUM, or with
+//! too many arcs at risk, are recomputed by the static `walk` and reported
+//! as the diff of the two overlays; an exponential [`Backoff`] skips the
+//! scan on the next steps of similar size.
+
+use super::*;
+
+/// Exponential backoff of the incremental attempt after fallbacks: a step
+/// that falls back because too many arcs are at risk makes the next `skip`
+/// steps at least 90% as large recompute without scanning first; each
+/// further fallback doubles the count (up to 64), an incremental step resets
+/// it. A one-off fallback (say, a degenerate start) costs a few steps; a
+/// motion too fast for incremental updates wastes a scan on at most one step
+/// in 64. Either way the result is exact: only the work differs.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Backoff {
+    pub(super) theta: f64,
+    pub(super) skip: u32,
+    pub(super) next: u32,
+}
+
+impl Backoff {
+    pub(super) fn fell_back(&mut self, theta: f64) {
+        self.theta = theta;
+        self.next = (self.next * 2).clamp(4, 64);
+        self.skip = self.next;
+    }
+}
+
+impl DynamicSum {
+    /// Recomputes from scratch with `walk` (large steps), reporting the diff.
+    pub(super) fn recompute(&mut self, mut report: UpdateReport) -> Result<UpdateReport, SumError> {
+        // Diff whole overlays: the state before this step is the current one
+        // with the fv-corrections already made in this step undone.
+        let mut before = self.overlay();
+        for f in &report.removed {
+            match *f {
+                Facet::Fv { p_face, q_vertex } => before.fv[p_face as usize] = q_vertex,
+                Facet::Vf { p_vertex, q_face } => before.vf[q_face as usize] = p_vertex,
+                Facet::Ee { .. } => {}
+            }
+        }
+        let fresh = walk_overlay(&self.ops)?;
+        let (removed, added) = overlay_diff(&before, &fresh);
+        report.removed = removed;
+        report.added = added;
+        report.fv_errors = report
+            .removed
+            .iter()
+            .filter(|f| !matches!(f, Facet::Ee { .. }))
+            .count();
+        report.ee_errors = report.removed.len() - report.fv_errors;
+        report.rewalked_arcs = self.p.ee.len();
+        report.recomputed = true;
+        self.load_overlay(fresh);
+        Ok(report)
+    }
+
+    /// Too large a step, or a step within the backoff after a step as large
+    /// fell back: recompute without scanning.
+    pub(super) fn must_recompute(&mut self, theta: f64) -> bool {
+        if theta > self.config.max_step_angle {
+            return true;
+        }
+        if self.backoff.skip > 0 && theta >= 0.9 * self.backoff.theta {
+            self.backoff.skip -= 1;
+            return true;
+        }
+        false
+    }
+
+    /// More than [`DynamicConfig::fallback_fraction`] of all arcs at risk.
+    pub(super) fn too_many_at_risk(&self, at_risk: &[Vec<u32>; 2]) -> bool {
+        let total = self.p.ee.len() + self.q.ee.len();
+        (at_risk[0].len() + at_risk[1].len()) as f64 > self.config.fallback_fraction * total as f64
+    }
+
+    /// Starts or extends the backoff after a fallback, except about a
+    /// coordinate axis: there many arcs at risk means an isolated exact
+    /// coincidence (faces becoming parallel at a quarter turn), and the next
+    /// steps are certified by their persistent ties again.
+    pub(super) fn note_fallback(&mut self, axis: Option<usize>, theta: f64) {
+        if axis.is_none() {
+            self.backoff.fell_back(theta);
+        }
+    }
+}

@@ -1,0 +1,227 @@
+//! FindErrors (paper §4.1) and the fv-corrections (§4.2), one map's face
+//! normals at a time (`scan_side`).
+//!
+//! For each face normal of the moving map: skip it if its lazy margin
+//! certifies it stays in its cell; else certify its persistent exact ties
+//! (steps about a coordinate axis, [`super::ties`]); else decide its cell
+//! exactly and, if it left, correct the fv-pair at once by hill climbing
+//! (§4.2: the correction happens at detection) and classify the move as a
+//! certified single crossing or as at risk (its arcs are re-walked, §4.3).
+//! The scan does not touch the ee-pairs.
+//!
+//! Complexity: O(m + n) for the pass, less the normals skipped by their lazy
+//! margins, plus the hill climbs of the normals that moved.
+
+use super::*;
+
+/// The bounds of one step, shared by both sides' scans.
+pub(super) struct StepBounds {
+    /// The step angle.
+    pub(super) theta: f64,
+    /// `θ²/4` plus slack: how far a moving normal's path strays from the
+    /// great arc between its end positions.
+    pub(super) drift: f64,
+    /// Accumulated rotation before and after this step (for lazy margins).
+    pub(super) before: f64,
+    pub(super) after: f64,
+    /// The coordinate axis `k` the step turns about exactly, if any (see
+    /// [`coordinate_axis`]): then exact ties that persist along the whole
+    /// step are certified by [`stays_in_cell_tied`].
+    pub(super) axis: Option<usize>,
+    /// This step's number, and the one that began the current run of steps
+    /// about `axis`: tie margins computed since then (every step in between
+    /// was about the same axis) are valid for this step.
+    pub(super) tick: u64,
+    pub(super) run_start: u64,
+    /// The new and the old relative rotation matrices.
+    pub(super) rot: DMat3,
+    pub(super) rot_old: DMat3,
+}
+
+/// A face whose cell changed.
+pub(super) struct Change {
+    pub(super) face: u32,
+    pub(super) old: u32,
+    pub(super) new: u32,
+}
+
+/// What a side's FindErrors pass found.
+#[derive(Default)]
+pub(super) struct SideScan {
+    pub(super) changed: Vec<Change>,
+    pub(super) checked: usize,
+    /// Faces whose normal may have had events that are not certified: all
+    /// arcs at them are re-walked.
+    pub(super) uncertain: Vec<u32>,
+    /// `(face, arc)`: the normal crossed exactly that arc of the other map.
+    pub(super) certified: Vec<(u32, u32)>,
+}
+
+/// FindErrors and fv-corrections for the face normals of `faces` in the
+/// cells of `cells` (paper §4.1–4.2), with the certification of the module
+/// docs. `to_cells` maps a unit normal of `faces` into the reference frame
+/// of `cells` at the new and at the old orientation.
+pub(super) fn scan_side(
+    (faces, cells): (&GaussView<'_>, &GaussView<'_>),
+    cell_arcs: &[DVec3],
+    to_cells: (DMat3, DMat3),
+    rotated: Option<&[DVec3]>,
+    tied: Option<Tied<'_>>,
+    state: &mut Side,
+    step: &StepBounds,
+) -> SideScan {
+    let mut out = SideScan::default();
+    let cpoly = cells.poly;
+    for f in 0..state.assign.len() {
+        let delta = state.dir_err[f];
+        // Lazy margins: a normal whose margin, less the rotation since it was
+        // computed, still exceeds this step's needs cannot have had an event.
+        let lower = state.margin[f] - (step.before - state.margin_at[f]);
+        if lower - step.theta > step.drift + delta {
+            continue;
+        }
+        // The same for a normal certified through its persistent ties, as
+        // long as every step since was about the same coordinate axis.
+        if let Some(k) = step.axis {
+            if state.tie_axis[f] == k as u8 && state.tie_tick[f] >= step.run_start {
+                let tie_lower = state.tie_margin[f] - (step.before - state.margin_at[f]);
+                if tie_lower - step.theta > step.drift + delta {
+                    continue;
+                }
+            }
+        }
+        state.tie_axis[f] = NO_AXIS;
+        out.checked += 1;
+        let unit = faces.poly.unit_normal(f);
+        // The moving normals are already rotated into the cells' frame (P's
+        // in `set_pose`); a fixed map's normals are rotated here.
+        let x_new = match rotated {
+            Some(n) => n[f] * faces.poly.inverse_normal_length(f),
+            None => to_cells.0 * unit,
+        };
+        let v = state.assign[f];
+        let mut m1 = margin(cpoly, cell_arcs, v, x_new);
+        // Exact ties that persist along a step about a coordinate axis: the
+        // normal is certified to stay in its cell without exact predicates.
+        if let (Some(k), Some(tied)) = (step.axis, &tied) {
+            if m1 <= EXACT_BELOW + delta || lower.min(m1) <= step.drift + delta {
+                if let Some(tm) = stays_in_cell_tied(
+                    (faces, cells),
+                    cell_arcs,
+                    (f as u32, v),
+                    (to_cells.1 * unit, x_new),
+                    step.drift + delta,
+                    (k, step.theta),
+                    tied,
+                ) {
+                    state.margin[f] = m1;
+                    state.margin_at[f] = step.after;
+                    state.tie_margin[f] = tm;
+                    state.tie_axis[f] = k as u8;
+                    state.tie_tick[f] = step.tick;
+                    continue;
+                }
+            }
+        }
+        if m1 <= EXACT_BELOW + delta {
+            let x = faces.normal(f as u32);
+            // A margin clearly below zero is certainly outside.
+            if m1 < -(EXACT_BELOW + delta) || !cells.in_cell(v, &x) {
+                let v2 = locate_certified(cpoly, cell_arcs, x_new, EXACT_BELOW + delta, v)
+                    .unwrap_or_else(|| cells.locate(&x, v).0);
+                state.assign[f] = v2;
+                m1 = margin(cpoly, cell_arcs, v2, x_new);
+                out.changed.push(Change {
+                    face: f as u32,
+                    old: v,
+                    new: v2,
+                });
+                let x_old = to_cells.1 * unit;
+                match single_crossing(
+                    cpoly,
+                    cell_arcs,
+                    (v, x_old),
+                    (v2, x_new),
+                    step.theta + delta,
+                ) {
+                    Some(arc) => out.certified.push((f as u32, arc)),
+                    None => out.uncertain.push(f as u32),
+                }
+            } else if lower.min(m1) <= step.drift + delta {
+                out.uncertain.push(f as u32);
+            }
+        } else if lower.min(m1) <= step.drift + delta {
+            out.uncertain.push(f as u32);
+        }
+        state.margin[f] = m1;
+        state.margin_at[f] = step.after;
+    }
+    out
+}
+
+impl DynamicSum {
+    /// The bounds of this step, and the bookkeeping they rest on (the
+    /// accumulated rotation of the lazy margins, the current run of steps
+    /// about one coordinate axis, the exact zero structure at its first
+    /// step).
+    pub(super) fn step_bounds(&mut self, old: Rotation, theta: f64) -> StepBounds {
+        self.step = self.step.wrapping_add(1).max(1);
+        let (rot, rot_old) = (self.ops.relative.matrix(), old.matrix());
+        let before = self.theta_acc;
+        self.theta_acc += theta;
+        let axis = coordinate_axis(&rot_old, &rot);
+        self.tick += 1;
+        if axis != self.axis_run {
+            self.axis_run = axis;
+            self.axis_since = self.tick;
+        }
+        if axis.is_some() && self.zeros.is_none() {
+            let (p, q) = (&self.ops.p, &self.ops.q);
+            self.zeros = Some(Box::new([ExactZeros::of(p), ExactZeros::of(q)]));
+        }
+        StepBounds {
+            theta,
+            drift: theta * theta / 4.0 + SLACK,
+            before,
+            after: self.theta_acc,
+            axis,
+            tick: self.tick,
+            run_start: self.axis_since,
+            rot,
+            rot_old,
+        }
+    }
+
+    /// FindErrors on both maps: P's normals in Q's cells, then Q's in P's,
+    /// each fv-error corrected where it is found.
+    pub(super) fn find_errors(&mut self, step: &StepBounds) -> [SideScan; 2] {
+        let zeros = self.zeros.as_deref();
+        let scan_p = scan_side(
+            (&self.ops.view_p(), &self.ops.view_q()),
+            &self.q.arcs,
+            (step.rot, step.rot_old),
+            Some(&self.ops.np),
+            zeros.map(|[zp, zq]| Tied {
+                moving: zp,
+                fixed: zq,
+                moving_is_p: true,
+            }),
+            &mut self.p,
+            step,
+        );
+        let scan_q = scan_side(
+            (&self.ops.view_q(), &self.ops.view_p()),
+            &self.p.arcs,
+            (step.rot.transpose(), step.rot_old.transpose()),
+            None,
+            zeros.map(|[zp, zq]| Tied {
+                moving: zq,
+                fixed: zp,
+                moving_is_p: false,
+            }),
+            &mut self.q,
+            step,
+        );
+        [scan_p, scan_q]
+    }
+}

@@ -1,0 +1,468 @@
+//! DYMSUM: the Minkowski sum `P ⊕ Q` kept up to date while P and Q move
+//! (paper §4).
+//!
+//! # What it computes
+//! A [`DynamicSum`] holds both polytopes, their poses and the overlay of their
+//! Gaussian maps (for every face of P its vertex of Q, for every face of Q its
+//! vertex of P, and the crossing edge pairs). [`DynamicSum::set_pose`] moves
+//! the bodies and repairs the overlay; the result is *identical* to the static
+//! [`crate::sum::Method::Walk`] sum at the new poses, for every step size.
+//!
+//! # Steps of one update (Algorithm 4.1)
+//! [`DynamicSum::set_pose`] reads as the paper's algorithm; each step lives
+//! in its own file:
+//! 1. **Rotate** (`DynamicSum::rotate`, here): P's reference normals and arc
+//!    normals by the new relative rotation `R = R_q⁻¹ R_p` (always from the
+//!    reference data: no drift).
+//! 2. **FindErrors** (§4.1, `find_errors.rs`, with the float bounds of
+//!    `margins.rs` and the persistent ties of `ties.rs`): check the fv-pairs
+//!    of both maps. A float margin (the sine of the distance from the normal
+//!    to the nearest great circle of its cell's arcs, computed from accurate
+//!    arc normals) decides clear cases; the rest use the exact predicate. A
+//!    normal whose last margin, less the rotation accumulated since, still
+//!    exceeds this step's reach is not checked at all (lazy margins).
+//! 3. **Correct fv-errors** (§4.2) by hill climbing from the old vertex, in
+//!    the same pass, where each error is found (`find_errors.rs`).
+//! 4. **Correct ee-errors** (§4.3, `correct_ee.rs`): a normal that certainly
+//!    crossed exactly one arc `x` of the other map flips exactly the pairs
+//!    (arc at that normal, `x`): those are toggled. The arcs at every other
+//!    *at-risk* normal are re-walked through the other map between the
+//!    corrected fv-pairs, and their crossings diffed against the stored ones.
+//! 5. **Fallback** (`fallback.rs`): too large a step, or too many arcs at
+//!    risk, is recomputed by `walk`; **report** (`report.rs`): what changed.
+//!
+//! The state is two `Side`s, P's and Q's, with the same fields (a face's
+//! cell in the other map, an arc's crossings, margins, tie certificates);
+//! every pass runs once per side.
+//!
+//! # Why every step is correct, not only small ones
+//! The paper's locality argument (Theorem 4.1) holds for an infinitesimal
+//! motion: the overlay changes only when a normal of one map crosses an arc
+//! of the other. Over a finite step a normal can leave its cell and come back
+//! (so checking fv-pairs alone misses ee-changes). We certify instead.
+//! Move from the old relative rotation to the new one along the geodesic of
+//! SO(3): a rotation about a fixed axis by the step angle `θ`. Every
+//! combinatorial event on that path is a normal `x` crossing an arc of the
+//! other map, and flips exactly the crossing status of the pairs formed by
+//! that arc and the arcs incident to `x`; a pair's final status is its
+//! initial one flipped once per event involving it. Relative to the other
+//! map, `x` moves along a small-circle arc of length at most `θ`.
+//!
+//! * *No event.* For an interior point of a convex cell, the distance to the
+//!   boundary is the smallest distance to the great circles of its arcs, so
+//!   if the margin (a sine, hence at most the chordal distance) exceeds `θ`
+//!   the normal cannot reach the boundary. Margins decay by at most the
+//!   rotation since they were computed, which makes the lazy skip sound.
+//!   For a normal that ends in its old cell the bound is sharper: its path
+//!   lies within chordal distance `δ = θ²/4` of the great arc joining its end
+//!   positions, which lies in the convex cell, and along that great arc each
+//!   `m · x` is a positive sinusoid lobe, at least its smaller end value; so
+//!   if both end margins exceed `δ`, the path never leaves the cell.
+//! * *Exactly one event.* If the old and new cells `v`, `w` are adjacent
+//!   across arc `x`, the old position is farther than `θ` from every other
+//!   great circle of `v` and the new one from every other great circle of
+//!   `w`, then the path lies in `v ∪ w` (the intersection of those
+//!   half-spaces), whose common boundary is `x`, and meets `x`'s great circle
+//!   an odd number of times but at most twice (a small circle meets a great
+//!   circle in at most two points): exactly once. Its flips are known.
+//! * *Anything else* is at risk: all arcs at that normal are re-walked from
+//!   scratch, which recomputes every pair an event at that normal can flip.
+//!
+//! * *Persistent ties.* Exact ties have margin 0. When both relative
+//!   rotations of a step turn exactly about a coordinate axis `e_k` (row and
+//!   column `k` of both matrices are `e_k`, as for boxes turning about `z`),
+//!   the step is taken along rotations about `e_k`, on which the
+//!   `k`-components of P's rotated normals are constant. A determinant
+//!   `det[a, b, x]` that is then zero at every rotation (read off the exact
+//!   zero pattern of the normals and of the arcs' cross products, computed
+//!   once) keeps its SoS sign if the first SoS term that is not itself zero
+//!   at every rotation stays away from zero: for P's normal (lowest index)
+//!   that term is a component of Q's fixed `a × b`, constant; for Q's normal
+//!   it is a minor or entry of the rotating rows, certified by its size
+//!   against its rate of change. A normal all of whose arcs are so certified
+//!   (the others by their margins) stays in its cell and has no event; its
+//!   certified margin is reused lazily while the steps stay about `e_k`.
+//!
+//! A pair not on a re-walked arc therefore had events only at normals with a
+//! known event set, and toggling by parity gives its final status. Margins
+//! are computed in floats from accurate arc normals, and every comparison
+//! adds the face's bound on its float normal's direction error plus a slack
+//! of `1e-10`; exact ties have margin 0 and are at risk unless certified as
+//! persistent (above). Steps above
+//! [`DynamicConfig::max_step_angle`], or steps where more than
+//! [`DynamicConfig::fallback_fraction`] of all arcs would be re-walked, are
+//! recomputed from scratch by `walk` instead (cheaper, and trivially correct);
+//! after such a fallback a few steps at least 90% as large go straight to the
+//! recomputation (an exponential backoff; not after steps about a coordinate
+//! axis, where many arcs at risk means an isolated exact coincidence such as
+//! a quarter turn), and the update's report is the diff of the two overlays.
+//!
+//! # Complexity
+//! O(m + n) to scan the normals near their cells' boundaries (the others are
+//! skipped by their margins), O(deg) per certified crossing, plus the walks
+//! along the arcs at uncertain normals; for small steps the work is
+//! proportional to the number of changes.
+//!
+//! ```
+//! use dymsum::{DynamicSum, Polytope, Pose, Rotation, DVec3};
+//! use dymsum::sum::{minkowski_sum_posed, Method};
+//! let pts: Vec<[f64; 3]> = (0..8).map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64]).collect();
+//! let cube = Polytope::from_points(&pts).unwrap();
+//! let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]).unwrap();
+//! let mut dynamic = DynamicSum::new(&tet, Pose::IDENTITY, &cube, Pose::IDENTITY).unwrap();
+//! let step = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.01).unwrap();
+//! for _ in 0..100 {
+//!     let report = dynamic.rotate_p_by(step).unwrap();
+//!     assert!(report.fv_errors <= tet.face_count() + cube.face_count());
+//! }
+//! let fresh = minkowski_sum_posed(&tet, dynamic.pose_p(), &cube, dynamic.pose_q(), Method::Walk).unwrap();
+//! assert_eq!(dynamic.facets(), fresh.facets());
+//! ```
+
+use crate::kernel::exact::{self, ExactVec};
+use crate::kernel::predicates::{others, sos_terms, ExactVector, SosTerm};
+use crate::kernel::Sign;
+use crate::polytope::Polytope;
+use crate::sum::{
+    relative_rotation, walk_overlay, Facet, GaussView, MinkowskiSum, Operands, Overlay, SumError,
+};
+use crate::{Pose, Rotation};
+use glam::{DMat3, DVec3};
+
+mod correct_ee;
+mod fallback;
+mod find_errors;
+mod margins;
+mod report;
+mod ties;
+
+use fallback::Backoff;
+use find_errors::SideScan;
+use margins::{
+    arc_normals, direction_errors, locate_certified, margin, single_crossing, EXACT_BELOW, SLACK, U,
+};
+use report::overlay_diff;
+pub use report::UpdateReport;
+use ties::{coordinate_axis, stays_in_cell_tied, ExactZeros, Tied};
+
+/// Tuning of the dynamic update. The defaults are right for almost all uses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DynamicConfig {
+    /// Steps whose relative rotation angle exceeds this (radians) are
+    /// recomputed from scratch. Default `π/4`.
+    pub max_step_angle: f64,
+    /// When more than this fraction of all arcs would be re-walked, recompute
+    /// from scratch instead. Default `0.5`.
+    pub fallback_fraction: f64,
+}
+
+impl Default for DynamicConfig {
+    fn default() -> Self {
+        DynamicConfig {
+            max_step_angle: std::f64::consts::FRAC_PI_4,
+            fallback_fraction: 0.5,
+        }
+    }
+}
+
+/// The dynamic Minkowski sum (see the module docs).
+#[derive(Clone, Debug)]
+pub struct DynamicSum {
+    ops: Operands,
+    /// P's half: its faces in Q's cells (the fv-pairs), its arcs' crossings.
+    p: Side,
+    /// Q's half: its faces in P's cells (the vf-pairs), its arcs' crossings.
+    q: Side,
+    theta_acc: f64,
+    scratch_toggled: Vec<(u32, u32)>,
+    /// Exact zero structure of P's and Q's maps, computed at the first step
+    /// about a coordinate axis (see [`stays_in_cell_tied`]).
+    zeros: Option<Box<[ExactZeros; 2]>>,
+    /// Incremental steps so far.
+    tick: u64,
+    /// The coordinate axis of the current run of incremental steps about
+    /// one axis, and the step that began the run.
+    axis_run: Option<usize>,
+    axis_since: u64,
+    /// After fallbacks, how many steps of similar size skip the scan.
+    backoff: Backoff,
+    step: u32,
+    config: DynamicConfig,
+}
+
+/// No coordinate axis.
+const NO_AXIS: u8 = u8::MAX;
+
+impl DynamicSum {
+    /// Starts from a static `walk` sum at the given poses.
+    pub fn new(p: &Polytope, pose_p: Pose, q: &Polytope, pose_q: Pose) -> Result<Self, SumError> {
+        Self::with_config(p, pose_p, q, pose_q, DynamicConfig::default())
+    }
+
+    /// [`DynamicSum::new`] with explicit tuning.
+    pub fn with_config(
+        p: &Polytope,
+        pose_p: Pose,
+        q: &Polytope,
+        pose_q: Pose,
+        config: DynamicConfig,
+    ) -> Result<Self, SumError> {
+        let ops = Operands::new(p, pose_p, q, pose_q);
+        let overlay = walk_overlay(&ops)?;
+        let mut s = DynamicSum {
+            p: Side::new(p),
+            q: Side::new(q),
+            theta_acc: 0.0,
+            scratch_toggled: Vec::new(),
+            zeros: None,
+            tick: 0,
+            axis_run: None,
+            axis_since: 0,
+            backoff: Backoff::default(),
+            step: 0,
+            ops,
+            config,
+        };
+        s.load_overlay(overlay);
+        Ok(s)
+    }
+
+    fn load_overlay(&mut self, overlay: Overlay) {
+        self.p.ee.iter_mut().for_each(Vec::clear);
+        self.q.ee.iter_mut().for_each(Vec::clear);
+        for &(e, e2) in &overlay.ee {
+            self.p.ee[e as usize].push(e2);
+            self.q.ee[e2 as usize].push(e);
+        }
+        self.p.assign = overlay.fv;
+        self.q.assign = overlay.vf;
+        self.p.tie_axis.fill(NO_AXIS);
+        self.q.tie_axis.fill(NO_AXIS);
+        let rot = self.ops.relative.matrix();
+        let inv = rot.transpose();
+        for f in 0..self.p.assign.len() {
+            self.p.margin[f] = self.margin_of_p_face(rot, f);
+            self.p.margin_at[f] = self.theta_acc;
+        }
+        for g in 0..self.q.assign.len() {
+            self.q.margin[g] = self.margin_of_q_face(inv, g);
+            self.q.margin_at[g] = self.theta_acc;
+        }
+    }
+
+    #[inline]
+    fn margin_of_p_face(&self, rot: DMat3, f: usize) -> f64 {
+        let x = rot * self.ops.p.unit_normal(f);
+        margin(&self.ops.q, &self.q.arcs, self.p.assign[f], x)
+    }
+
+    #[inline]
+    fn margin_of_q_face(&self, inv: DMat3, g: usize) -> f64 {
+        let x = inv * self.ops.q.unit_normal(g);
+        margin(&self.ops.p, &self.p.arcs, self.q.assign[g], x)
+    }
+
+    /// P's current pose.
+    pub fn pose_p(&self) -> Pose {
+        self.ops.pose_p
+    }
+    /// Q's current pose.
+    pub fn pose_q(&self) -> Pose {
+        self.ops.pose_q
+    }
+    /// P.
+    pub fn p(&self) -> &Polytope {
+        &self.ops.p
+    }
+    /// Q.
+    pub fn q(&self) -> &Polytope {
+        &self.ops.q
+    }
+    /// The tuning in force.
+    pub fn config(&self) -> DynamicConfig {
+        self.config
+    }
+
+    /// Turns P further by `r` (applied after its current rotation, about the
+    /// origin of the world frame; P's translation is kept).
+    pub fn rotate_p_by(&mut self, r: Rotation) -> Result<UpdateReport, SumError> {
+        let mut pose = self.ops.pose_p;
+        pose.rotation = pose.rotation.then(&r);
+        self.set_pose(pose, self.ops.pose_q)
+    }
+
+    /// Moves P to `pose_p`, keeping Q where it is.
+    pub fn set_pose_p(&mut self, pose_p: Pose) -> Result<UpdateReport, SumError> {
+        self.set_pose(pose_p, self.ops.pose_q)
+    }
+
+    /// Moves both bodies and repairs the overlay: the paper's Algorithm 4.1
+    /// (see the module docs for why every step is exact).
+    ///
+    /// # Errors
+    /// [`SumError::OutOfRange`] when a posed vertex overflows (a pose far
+    /// beyond the shapes' scale), from the recomputation that such a step
+    /// falls back to; [`SumError::Inconsistent`] would mean a bug (an arc walk
+    /// that finds no exit), never a property of the input.
+    pub fn set_pose(&mut self, pose_p: Pose, pose_q: Pose) -> Result<UpdateReport, SumError> {
+        // Line 1: Rotate (P's normals and arcs, by the new relative rotation).
+        let Some((old, theta)) = self.rotate(pose_p, pose_q) else {
+            return Ok(UpdateReport::default());
+        };
+        let mut report = UpdateReport {
+            step_angle: theta,
+            ..UpdateReport::default()
+        };
+        if self.must_recompute(theta) {
+            return self.recompute(report);
+        }
+        // Line 2: FindErrors (§4.1), each fv-error corrected where found (§4.2).
+        let step = self.step_bounds(old, theta);
+        let scans = self.find_errors(&step);
+        report.record_fv_errors(&scans);
+        // Line 3: CorrectErrors for the ee-pairs (§4.3), or fall back.
+        let at_risk = self.arcs_at_risk(&scans);
+        if self.too_many_at_risk(&at_risk) {
+            self.note_fallback(step.axis, theta);
+            return self.recompute(report);
+        }
+        self.backoff = Backoff::default();
+        self.correct_ee_errors(&scans, &at_risk, &mut report)?;
+        Ok(report)
+    }
+
+    /// Algorithm 4.1, line 1: stores the poses and turns P's normals and arcs
+    /// to the new relative rotation. Returns the old relative rotation and
+    /// the step's angle, or `None` when the relative rotation did not change
+    /// (a translation or a common rotation of both bodies changes no facet).
+    fn rotate(&mut self, pose_p: Pose, pose_q: Pose) -> Option<(Rotation, f64)> {
+        let old = self.ops.relative;
+        let new = relative_rotation(&pose_p, &pose_q);
+        self.ops.pose_p = pose_p;
+        self.ops.pose_q = pose_q;
+        if new == old {
+            return None;
+        }
+        self.ops.set_relative(new);
+        Some((old, old.angle_to(&new)))
+    }
+
+    /// The current overlay, with ee-pairs sorted.
+    pub fn overlay(&self) -> Overlay {
+        let mut ee: Vec<(u32, u32)> = self
+            .p
+            .ee
+            .iter()
+            .enumerate()
+            .flat_map(|(e, l)| l.iter().map(move |&e2| (e as u32, e2)))
+            .collect();
+        ee.sort_unstable();
+        Overlay {
+            fv: self.p.assign.clone(),
+            vf: self.q.assign.clone(),
+            ee,
+        }
+    }
+
+    /// The current facets in canonical order (as [`MinkowskiSum::facets`]).
+    pub fn facets(&self) -> Vec<Facet> {
+        self.overlay().facets()
+    }
+
+    /// Number of facets.
+    pub fn facet_count(&self) -> usize {
+        self.p.assign.len() + self.q.assign.len() + self.p.ee.iter().map(Vec::len).sum::<usize>()
+    }
+
+    /// The current sum as a static [`MinkowskiSum`] (no recomputation).
+    pub fn sum(&self) -> MinkowskiSum {
+        MinkowskiSum::from_overlay(self.ops.clone(), self.overlay())
+    }
+
+    /// The merged, validated mesh of the current sum (see
+    /// [`MinkowskiSum::try_to_mesh`]).
+    pub fn try_to_mesh(&self) -> Result<crate::PolygonMesh, crate::sum::MeshError> {
+        self.sum().try_to_mesh()
+    }
+    /// [`Self::try_to_mesh`] with the coordinates' rounding relative to the
+    /// sum's size (see [`MinkowskiSum::mesh_with_precision`]).
+    pub fn mesh_with_precision(&self) -> Result<crate::sum::SumMesh, crate::sum::MeshError> {
+        self.sum().mesh_with_precision()
+    }
+
+    /// Checks the internal state: the two ee indices agree, and the current
+    /// sum passes [`MinkowskiSum::sanity_check`].
+    ///
+    /// # Errors
+    /// The first broken invariant ([`crate::SanityError`]).
+    pub fn sanity_check(&self) -> Result<(), crate::SanityError> {
+        let mut a: Vec<(u32, u32)> = self.overlay().ee;
+        let mut b: Vec<(u32, u32)> = self
+            .q
+            .ee
+            .iter()
+            .enumerate()
+            .flat_map(|(e2, l)| l.iter().map(move |&e| (e, e2 as u32)))
+            .collect();
+        a.sort_unstable();
+        b.sort_unstable();
+        if a != b {
+            return Err(crate::SanityError::EeIndicesDisagree);
+        }
+        self.sum().sanity_check()
+    }
+}
+
+/// Which polytope's arc is re-walked.
+#[derive(Clone, Copy)]
+enum Which {
+    P,
+    Q,
+}
+
+/// One operand's half of the state, the same for P and Q: where each of its
+/// face normals lies in the other map, which arcs of the other map each of
+/// its arcs crosses, its own cells' arc normals (for the other operand's
+/// margins), and per face the lazy margin and the persistent-tie
+/// certificate.
+#[derive(Clone, Debug)]
+struct Side {
+    /// Per face: the vertex of the other polytope whose cell holds its normal.
+    assign: Vec<u32>,
+    /// Per edge: the edges of the other polytope whose arcs its arc crosses.
+    ee: Vec<Vec<u32>>,
+    /// Unit normals of this polytope's ring arcs, oriented into the cells.
+    arcs: Vec<DVec3>,
+    /// Per face: bound on its float unit normal's direction error.
+    dir_err: Vec<f64>,
+    /// Per face: its last margin and the accumulated rotation then.
+    margin: Vec<f64>,
+    margin_at: Vec<f64>,
+    /// Per edge: the last step that queued its arc for a re-walk.
+    stamp: Vec<u32>,
+    /// Per face: the rotation about the coordinate axis `tie_axis` it can
+    /// still absorb with its persistent ties certified (see
+    /// `ties::stays_in_cell_tied`); `NO_AXIS` when not certified that way;
+    /// and the incremental step that computed it.
+    tie_margin: Vec<f64>,
+    tie_axis: Vec<u8>,
+    tie_tick: Vec<u64>,
+}
+
+impl Side {
+    fn new(poly: &Polytope) -> Side {
+        let (faces, edges) = (poly.face_count(), poly.edge_count());
+        Side {
+            assign: Vec::new(),
+            ee: vec![Vec::new(); edges],
+            arcs: arc_normals(poly),
+            dir_err: direction_errors(poly),
+            margin: vec![0.0; faces],
+            margin_at: vec![0.0; faces],
+            stamp: vec![0; edges],
+            tie_margin: vec![0.0; faces],
+            tie_axis: vec![NO_AXIS; faces],
+            tie_tick: vec![0; faces],
+        }
+    }
+}
