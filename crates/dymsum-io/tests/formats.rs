@@ -706,12 +706,7 @@ property float z\nend_header\n0 0 nan\n";
         }
         // Whatever the bytes, the reader answers: a mesh whose faces index
         // its own vertices, or an error with a message.
-        let well_formed = |m: &PolygonMesh| {
-            m.faces
-                .iter()
-                .flatten()
-                .all(|&v| v < m.vertices.len())
-        };
+        let well_formed = |m: &PolygonMesh| m.faces.iter().flatten().all(|&v| v < m.vertices.len());
         for input in &inputs {
             for format in Format::ALL {
                 match read_mesh_bytes(input, format, "garbage") {

@@ -86,6 +86,8 @@
 //! assert_eq!(gap.distance, 0.5);
 //! ```
 
+mod candidates;
+mod closest;
 mod cobst;
 mod depth;
 mod distance;

@@ -1,0 +1,254 @@
+//! The candidate directions of a proximity query: every facet label of the
+//! overlay of `D = A ⊕ (−B)` gives a direction `n` (computed from the
+//! original bodies' features, see the module docs of [`crate::query`] for
+//! why) and its support value `h(n) = h_A(n) + h_B(−n)`, each support found
+//! by a hill climb from the facet's feature, so `h(n)` is a true support
+//! value of `D` up to rounding even where the float direction is inaccurate.
+//!
+//! Branch and bound: the value at the facet's own features, `h₀ ≤ h`, costs
+//! two dot products. Only candidates with `h₀` within the tie tolerance of
+//! the best refined value (or of zero, for the separation) are refined by
+//! the hill climbs; every other candidate has `h > best + tol`, so it can
+//! neither win nor tie nor face the origin, and the answer is the same as
+//! refining all of them. The winner is chosen by a rule that does not depend
+//! on the order of the candidates (so answers never differ between runs).
+//!
+//! Complexity: O(facets) for the lower bounds, plus a hill climb per refined
+//! candidate.
+
+use super::{ConvexPair, FeaturePair};
+use crate::polytope::Polytope;
+use crate::sum::Overlay;
+use crate::Pose;
+use glam::DVec3;
+
+/// One candidate direction.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Candidate {
+    pub features: FeaturePair,
+    /// Unit direction, from A towards B.
+    pub n: DVec3,
+    /// `h_A(n) + h_B(−n)`.
+    pub h: f64,
+}
+
+/// The posed vertices of both bodies.
+pub(super) struct Posed {
+    pub a: Vec<DVec3>,
+    pub b: Vec<DVec3>,
+    /// Rotated unit face normals of A and B.
+    pub na: Vec<DVec3>,
+    pub nb: Vec<DVec3>,
+    pub pose_a: Pose,
+    pub pose_b: Pose,
+}
+
+/// `max dir · v` over the posed vertices of `poly`, by a hill climb from the
+/// best of `starts` (first one wins ties), moving to the first strictly
+/// better neighbour until none is better.
+pub(super) fn support(poly: &Polytope, posed: &[DVec3], dir: DVec3, starts: &[u32]) -> f64 {
+    let mut v = starts[0];
+    let mut best = dir.dot(posed[v as usize]);
+    for &s in &starts[1..] {
+        let d = dir.dot(posed[s as usize]);
+        if d > best {
+            best = d;
+            v = s;
+        }
+    }
+    loop {
+        let mut moved = false;
+        for r in poly.ring(v as usize) {
+            let d = dir.dot(posed[r.neighbor as usize]);
+            if d > best {
+                best = d;
+                v = r.neighbor;
+                moved = true;
+            }
+        }
+        if !moved {
+            return best;
+        }
+    }
+}
+
+/// Replaces the lower bounds `h₀` by true support values where they matter
+/// (see the module docs) and returns those candidates.
+pub(super) fn refine(
+    pair: &ConvexPair,
+    posed: &Posed,
+    mut cands: Vec<Candidate>,
+    tol: f64,
+) -> Vec<Candidate> {
+    let (a, b) = (&pair.a, &pair.b);
+    let climb = |c: &Candidate| -> f64 {
+        let (sa, sb): (Vec<u32>, Vec<u32>) = match c.features {
+            FeaturePair::FaceVertex { a_face, b_vertex } => {
+                (a.face(a_face as usize).to_vec(), vec![b_vertex])
+            }
+            FeaturePair::VertexFace { a_vertex, b_face } => {
+                (vec![a_vertex], b.face(b_face as usize).to_vec())
+            }
+            FeaturePair::EdgeEdge { a_edge, b_edge } => (
+                a.edge(a_edge as usize).vertices.to_vec(),
+                b.edge(b_edge as usize).vertices.to_vec(),
+            ),
+        };
+        support(a, &posed.a, c.n, &sa) + support(b, &posed.b, -c.n, &sb)
+    };
+    let Some(first) = (0..cands.len()).min_by(|&i, &j| cands[i].h.total_cmp(&cands[j].h)) else {
+        return cands;
+    };
+    let mut refined = vec![false; cands.len()];
+    cands[first].h = climb(&cands[first]);
+    refined[first] = true;
+    let mut best = cands[first].h;
+    for i in 0..cands.len() {
+        if !refined[i] && cands[i].h <= (best + tol).max(tol) {
+            cands[i].h = climb(&cands[i]);
+            refined[i] = true;
+            best = best.min(cands[i].h);
+        }
+    }
+    cands
+        .into_iter()
+        .zip(refined)
+        .filter_map(|(c, r)| r.then_some(c))
+        .collect()
+}
+
+/// The candidates of all facets of the overlay (P = A, Q = −B), with the
+/// lower bounds `h₀` as values.
+pub(super) fn candidates(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) -> Vec<Candidate> {
+    let (a, b, r) = (&pair.a, &pair.b, &pair.neg_b);
+    let (na, nb) = (&posed.na, &posed.nb);
+    let mut out = Vec::with_capacity(overlay.len() + 4);
+    // The lower bound h₀ at the facet's own features (refined later).
+    let value = |n: DVec3, sa: &[u32], sb: &[u32]| {
+        n.dot(posed.a[sa[0] as usize]) - n.dot(posed.b[sb[0] as usize])
+    };
+    for (f, &w) in overlay.fv.iter().enumerate() {
+        let w = r.vertex_map[w as usize];
+        let n = na[f];
+        out.push(Candidate {
+            features: FeaturePair::FaceVertex {
+                a_face: f as u32,
+                b_vertex: w,
+            },
+            n,
+            h: value(n, a.face(f), &[w]),
+        });
+    }
+    for (g, &u) in overlay.vf.iter().enumerate() {
+        let g = r.face_map[g] as usize;
+        let n = -nb[g];
+        out.push(Candidate {
+            features: FeaturePair::VertexFace {
+                a_vertex: u,
+                b_face: g as u32,
+            },
+            n,
+            h: value(n, &[u], b.face(g)),
+        });
+    }
+    for &(e, e2) in &overlay.ee {
+        let e2 = r.edge_map[e2 as usize];
+        let (ea, eb) = (a.edge(e as usize), b.edge(e2 as usize));
+        let ordered = |[x, y]: [u32; 2]| if x < y { [x, y] } else { [y, x] };
+        let [u1, u2] = ordered(ea.vertices);
+        let [w1, w2] = ordered(eb.vertices);
+        let da = posed.a[u2 as usize] - posed.a[u1 as usize];
+        let db = posed.b[w2 as usize] - posed.b[w1 as usize];
+        let c = da.cross(db);
+        let len = c.length();
+        if len == 0.0 || !len.is_finite() {
+            continue; // parallel edges: a degenerate facet of zero area
+        }
+        let n = c / len;
+        // Outward: n lies on A's arc (between its faces' normals) and −n on
+        // B's arc. Exactly antisymmetric under swapping A and B.
+        let sa_n = na[ea.faces[0] as usize] + na[ea.faces[1] as usize];
+        let sb_n = nb[eb.faces[0] as usize] + nb[eb.faces[1] as usize];
+        let s = n.dot(sa_n - sb_n);
+        let features = FeaturePair::EdgeEdge {
+            a_edge: e,
+            b_edge: e2,
+        };
+        let (sa, sb) = ([u1, u2], [w1, w2]);
+        if s.abs() < 1e-9 {
+            // Nearly antipodal arcs: the sign is uncertain, take both (every
+            // candidate is a true support value, so extra ones are harmless).
+            for n in [n, -n] {
+                out.push(Candidate {
+                    features,
+                    n,
+                    h: value(n, &sa, &sb),
+                });
+            }
+        } else {
+            let n = if s > 0.0 { n } else { -n };
+            out.push(Candidate {
+                features,
+                n,
+                h: value(n, &sa, &sb),
+            });
+        }
+    }
+    out
+}
+
+/// `n` or `−n`, whichever is lexicographically larger (a key invariant under
+/// negation), and whether `n` itself is that one.
+pub(super) fn sign_free_key(n: DVec3) -> ([f64; 3], bool) {
+    let pos = if n.x != 0.0 {
+        n.x > 0.0
+    } else if n.y != 0.0 {
+        n.y > 0.0
+    } else {
+        n.z >= 0.0
+    };
+    let k = if pos { n } else { -n };
+    // `+ 0.0` turns −0 into +0 so that equal keys compare equal.
+    ([k.x + 0.0, k.y + 0.0, k.z + 0.0], pos)
+}
+
+/// The tie tolerance: `16 ε` times the largest absolute posed coordinate.
+pub(super) fn tie_tolerance(posed: &Posed) -> f64 {
+    let scale = posed
+        .a
+        .iter()
+        .chain(&posed.b)
+        .map(|v| v.abs().max_element())
+        .fold(0.0f64, f64::max);
+    16.0 * f64::EPSILON * scale.max(f64::MIN_POSITIVE)
+}
+
+/// The winning candidate: minimum `h`; among those within `tol` of it the
+/// one with the smallest sign-free key, then the "positive" one, then the
+/// smaller `h`.
+pub(super) fn winner(cands: &[Candidate], tol: f64) -> (usize, f64) {
+    let hmin = cands.iter().map(|c| c.h).fold(f64::INFINITY, f64::min);
+    let mut best: Option<(usize, ([f64; 3], bool))> = None;
+    for (i, c) in cands.iter().enumerate() {
+        if c.h > hmin + tol {
+            continue;
+        }
+        let key = sign_free_key(c.n);
+        let better = match &best {
+            None => true,
+            Some((j, bk)) => {
+                let ord = key.0[0]
+                    .total_cmp(&bk.0[0])
+                    .then(key.0[1].total_cmp(&bk.0[1]))
+                    .then(key.0[2].total_cmp(&bk.0[2]))
+                    .then(bk.1.cmp(&key.1)) // positive first
+                    .then(c.h.total_cmp(&cands[*j].h));
+                ord.is_lt()
+            }
+        };
+        if better {
+            best = Some((i, key));
+        }
+    }
+    (best.map(|b| b.0).unwrap_or(0), hmin)
+}
