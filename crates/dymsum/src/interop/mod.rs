@@ -56,8 +56,8 @@
 //! [`crate::Polytope`] fails with the constructor's own
 //! [`crate::PolytopeError`]. Conversions *out of* dymsum types are `From`,
 //! except a polytope into parry's `ConvexPolyhedron`, which parry may
-//! refuse ([`InteropError::ParryRefused`],
-//! [`InteropError::ParryDegenerateNormal`]).
+//! refuse ([`InteropError::ParryOutOfRange`] for shapes its float
+//! arithmetic cannot represent, [`InteropError::ParryRefused`]).
 //!
 //! ```
 //! use dymsum::glam::{DMat4, DQuat};
@@ -117,23 +117,37 @@ pub enum InteropError {
         translation: [f64; 3],
     },
     /// parry3d-f64's `ConvexPolyhedron::from_convex_mesh` returned `None` for
-    /// the polytope's vertices and fan-triangulated faces (it refuses a
-    /// mesh with a triangle repeating a vertex, an edge shared by more than
-    /// two triangles, or an open edge; a valid polytope has none of these).
-    #[error("parry3d-f64 refused the polytope's mesh ({vertices} vertices, {triangles} triangles): ConvexPolyhedron::from_convex_mesh returned None")]
+    /// the polytope's vertices and fan-triangulated faces, or a polyhedron
+    /// without faces (it refuses a mesh with a triangle repeating a vertex,
+    /// an edge shared by more than two triangles, or an open edge; a valid
+    /// polytope has none of these).
+    #[error("parry3d-f64 refused the polytope's mesh ({vertices} vertices, {triangles} triangles): ConvexPolyhedron::from_convex_mesh gave no polyhedron or one without faces")]
     ParryRefused {
         /// Vertices passed to parry.
         vertices: usize,
         /// Triangles passed to parry.
         triangles: usize,
     },
+    /// A triangle of the polytope's fan triangulation (vertex indices of the
+    /// polytope) has an edge direction or a normal that parry's float
+    /// arithmetic cannot normalise accurately: parry squares coordinate
+    /// differences and their cross products, and a square that is not a
+    /// normal float (zero, subnormal or infinite) makes it drop the edge,
+    /// give the face a zero normal, or a "unit" normal off by up to 100%.
+    /// That happens for edges shorter than about `1.5e-154` or longer than
+    /// about `1.3e154` and for cross products (edge length times edge
+    /// length) outside the same range, so for a shape of even aspect below
+    /// about `1e-77` or above about `1e77` in size. dymsum works in a scaled
+    /// frame and supports these shapes. Scale the shape into parry's range.
+    #[error("triangle {triangle:?} of the polytope is outside parry3d-f64's float range: its edge directions or normal cannot be normalised accurately (squares underflow or overflow; sizes below about 1e-77 or above about 1e77)")]
+    ParryOutOfRange {
+        /// The triangle's vertices (indices of the polytope's vertices).
+        triangle: [u32; 3],
+    },
     /// parry3d-f64 built its face `face` with a normal that is not a finite
-    /// unit vector. parry computes face normals by float cross products of
-    /// the coordinates themselves, which underflow to zero for shapes below
-    /// about `1e-154` and overflow above about `1e154` (dymsum works in a
-    /// scaled frame and supports both); such a polyhedron would give parry
-    /// wrong contacts, so it is refused. Scale the shape into parry's range.
-    #[error("parry3d-f64 built face {face} with the normal {normal:?}, not a finite unit vector (its float cross products underflow or overflow at this scale)")]
+    /// unit vector (a check on parry's output, behind
+    /// [`InteropError::ParryOutOfRange`], which should make it unreachable).
+    #[error("parry3d-f64 built face {face} with the normal {normal:?}, not a finite unit vector")]
     ParryDegenerateNormal {
         /// The face, numbered as parry's `faces()`.
         face: usize,

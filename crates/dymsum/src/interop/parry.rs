@@ -27,30 +27,43 @@
 //!   (its `1 − √ε` test on the dot product), so its face count can be lower
 //!   than [`Polytope::face_count`] for nearly coplanar faces; the shape (the
 //!   hull of the same vertices) is the same.
-//! * `ConvexPolyhedron` → Polytope: parry's points and polygonal faces as a
+//! * `ConvexPolyhedron` → Polytope (`TryFrom`): the *exact* convex hull
+//!   of all of parry's points ([`Polytope::from_dvec3s`]), coordinates bit
+//!   for bit. That is the shape parry's own queries see: its support map
+//!   (GJK, EPA, distances, contacts) runs over all its points, while its
+//!   faces are a float approximation in which nearly coplanar triangles are
+//!   merged and a vertex inside such a merged face is on no face at all. So
+//!   `Polytope → ConvexPolyhedron → Polytope` gives back the same vertices
+//!   and faces for every polytope.
+//! * [`to_polytope`] instead reads parry's points *and* faces as a
 //!   [`PolygonMesh`] ([`to_polygon_mesh`]) through [`Polytope::from_mesh`]:
-//!   the mesh is validated (closed, manifold, a sphere, convex within the
-//!   policy's tolerance) and the polytope is the *exact* convex hull of the
-//!   points the faces use, with parry's coordinates bit for bit. Faces parry
-//!   merged within its angle tolerance are not exactly planar; the default
-//!   [`MeshPolicy`] then still gives that exact hull (with coplanar faces
-//!   merged exactly), [`MeshPolicy::strict`] refuses (see
-//!   [`to_polytope`]).
+//!   the face structure is validated (closed, manifold, a sphere, convex
+//!   within the policy's tolerance, exactly planar under
+//!   [`MeshPolicy::strict`]), the [`ConvexityReport`] says what was found,
+//!   and the polytope is the exact hull of the points the faces use (so
+//!   without a vertex parry's face merging left on no face).
 //!
 //! # What can fail
 //! * parry pose → [`Pose`]: a zero or non-finite quaternion
 //!   ([`InteropError::BadQuaternion`]) or a non-finite translation
 //!   ([`InteropError::NonFiniteTranslation`]).
-//! * Polytope → `ConvexPolyhedron`: parry returns `None`
-//!   ([`InteropError::ParryRefused`]; not seen for a valid polytope), or
-//!   builds a face whose normal is not a finite unit vector, which happens
-//!   when its float cross products underflow or overflow (coordinates below
-//!   about `1e-154` or above about `1e154`;
-//!   [`InteropError::ParryDegenerateNormal`]).
+//! * Polytope → `ConvexPolyhedron`: a triangle whose edge directions or
+//!   normal parry's float arithmetic cannot normalise (squares underflow or
+//!   overflow: shapes of even aspect below about `1e-77` or above about
+//!   `1e77` in size, which dymsum supports and parry would silently
+//!   mangle; [`InteropError::ParryOutOfRange`], checked before calling
+//!   parry by the same float operations parry does); parry returns `None`
+//!   or no faces ([`InteropError::ParryRefused`]; not seen for a valid
+//!   polytope); a face normal of parry's that is not a finite unit vector
+//!   ([`InteropError::ParryDegenerateNormal`]; a check on parry's output
+//!   that the range check makes unreachable).
 //! * `ConvexPolyhedron` → Polytope: any [`PolytopeError`] of
-//!   [`Polytope::from_mesh`] (e.g. [`PolytopeError::OpenEdge`] when parry
-//!   dropped a degenerate face, [`PolytopeError::Flat`] for a flat
-//!   polyhedron).
+//!   [`Polytope::from_dvec3s`] ([`PolytopeError::TooFewPoints`],
+//!   [`PolytopeError::Flat`] for a flat polyhedron,
+//!   [`PolytopeError::NonFinite`], [`PolytopeError::OutOfRange`]); through
+//!   [`to_polytope`] any of [`Polytope::from_mesh`] (e.g.
+//!   [`PolytopeError::OpenEdge`] when parry dropped a degenerate face,
+//!   [`PolytopeError::NonConvex`] for a dented mesh parry accepted).
 //!
 //! ```
 //! use dymsum::{DVec3, Polytope, Pose, Rotation};
@@ -107,10 +120,12 @@ impl TryFrom<&Polytope> for ConvexPolyhedron {
     /// merging).
     ///
     /// # Errors
-    /// [`InteropError::ParryRefused`] when parry returns `None`;
-    /// [`InteropError::ParryDegenerateNormal`] when parry's float face
-    /// normals underflow or overflow (coordinates below about `1e-154` or
-    /// above about `1e154`).
+    /// [`InteropError::ParryOutOfRange`] when parry's float arithmetic
+    /// cannot normalise an edge direction or a triangle normal (shapes below
+    /// about `1e-77` or above about `1e77`); [`InteropError::ParryRefused`]
+    /// when parry returns `None` or no faces;
+    /// [`InteropError::ParryDegenerateNormal`] when a face normal of parry's
+    /// is not a finite unit vector.
     fn try_from(p: &Polytope) -> Result<ConvexPolyhedron, InteropError> {
         let points = p.vertices().to_vec();
         let mut triangles = Vec::with_capacity(p.triangle_count());
@@ -119,14 +134,30 @@ impl TryFrom<&Polytope> for ConvexPolyhedron {
                 triangles.push([face[0], w[0], w[1]]);
             }
         }
+        // parry's own float steps (from_convex_mesh: each edge direction
+        // `(b - a).try_normalize()`, each triangle normal
+        // `(b - a).cross(c - a).try_normalize()`) need squared lengths that
+        // are normal floats: zero or infinite makes parry drop the edge or
+        // give the face a zero normal, subnormal makes the "unit" normal
+        // off by up to 100%, silently.
+        for t in &triangles {
+            let [a, b, c] = t.map(|i| points[i as usize]);
+            let normalisable = [b - a, c - b, a - c, (b - a).cross(c - a)]
+                .iter()
+                .all(|v| v.length_squared().is_normal());
+            if !normalisable {
+                return Err(InteropError::ParryOutOfRange { triangle: *t });
+            }
+        }
         let refused = InteropError::ParryRefused {
             vertices: points.len(),
             triangles: triangles.len(),
         };
-        let shape = ConvexPolyhedron::from_convex_mesh(points, &triangles).ok_or(refused)?;
+        let shape = ConvexPolyhedron::from_convex_mesh(points, &triangles)
+            .filter(|s| !s.faces().is_empty())
+            .ok_or(refused)?;
         for (face, f) in shape.faces().iter().enumerate() {
-            // parry normalises its normals; a zero (underflow) or missing
-            // (overflow) normal is stored as zero.
+            // parry normalises its normals and stores a failed one as zero.
             if !f.normal.is_finite() || (f.normal.length_squared() - 1.0).abs() > 1e-6 {
                 return Err(InteropError::ParryDegenerateNormal {
                     face,
@@ -141,15 +172,16 @@ impl TryFrom<&Polytope> for ConvexPolyhedron {
 impl TryFrom<&ConvexPolyhedron> for Polytope {
     type Error = PolytopeError;
 
-    /// The exact convex hull of the points parry's faces use, after
-    /// validating parry's points and faces as a closed convex mesh with the
-    /// default [`MeshPolicy`] (see [`to_polytope`] for another policy and
-    /// the report).
+    /// The exact convex hull of all of parry's points, the shape parry's
+    /// support map sees (see the module docs; [`to_polytope`] validates
+    /// parry's faces instead).
     ///
     /// # Errors
-    /// Any [`PolytopeError`] of [`Polytope::from_mesh`].
+    /// Any [`PolytopeError`] of [`Polytope::from_dvec3s`]: fewer than 4
+    /// points, all points in a plane ([`PolytopeError::Flat`]), a
+    /// non-finite coordinate, coordinates out of range.
     fn try_from(shape: &ConvexPolyhedron) -> Result<Polytope, PolytopeError> {
-        to_polytope(shape, MeshPolicy::default()).map(|(p, _)| p)
+        Polytope::from_dvec3s(shape.points())
     }
 }
 
@@ -170,9 +202,12 @@ pub fn to_polygon_mesh(shape: &ConvexPolyhedron) -> PolygonMesh {
     PolygonMesh::new(shape.points().iter().map(|p| p.to_array()).collect(), faces)
 }
 
-/// A polytope from a parry polyhedron under a given [`MeshPolicy`], with the
-/// report of what [`Polytope::from_mesh`] found (e.g. whether parry's faces
-/// were exactly planar).
+/// A polytope from a parry polyhedron's points *and* faces, validated as a
+/// mesh under a given [`MeshPolicy`], with the report of what
+/// [`Polytope::from_mesh`] found (e.g. whether parry's faces were exactly
+/// planar). The polytope is the exact hull of the points parry's faces use;
+/// a point on no face (inside a face parry merged) is left out, unlike
+/// `Polytope::try_from(&ConvexPolyhedron)`.
 ///
 /// ```
 /// use dymsum::interop::parry::to_polytope;
