@@ -13,7 +13,9 @@
 //! | [`Pose`] | `glam::DMat4` | `From` |
 //! | `glam::DMat4` | [`Pose`] | `TryFrom` |
 //!
-//! Behind optional Cargo features (none is on by default):
+//! Behind optional Cargo features (none is on by default; the crate's
+//! `rust-version` holds for the default features, `parry` needs Rust 1.90
+//! and `nalgebra` Rust 1.89 for their dependencies):
 //!
 //! * `parry` ([`parry`] module, parry3d-f64 0.31): [`Pose`] ⇄ parry's
 //!   `math::Pose` (its isometry), [`crate::Polytope`] ⇄
