@@ -17,15 +17,16 @@
 //! `rust-version` holds for the default features, `parry` needs Rust 1.90
 //! and `nalgebra` Rust 1.89 for their dependencies):
 //!
-//! * `parry` ([`parry`] module, parry3d-f64 0.31): [`Pose`] ⇄ parry's
-//!   `math::Pose` (its isometry), [`crate::Polytope`] ⇄
+//! * `parry` (module `interop::parry`, parry3d-f64 0.31): [`Pose`] ⇄
+//!   parry's `math::Pose` (its isometry), [`crate::Polytope`] ⇄
 //!   `shape::ConvexPolyhedron`.
-//! * `mint` ([`mint`] module, mint 0.5): [`Rotation`] ⇄ `mint::Quaternion`
-//!   and `mint::ColumnMatrix3`, [`Pose`] ⇄ `mint::ColumnMatrix4`; vectors
-//!   and matrices through glam's own `mint` feature, which this feature
-//!   turns on (`DVec3` ⇄ `mint::Vector3<f64>` / `mint::Point3<f64>`).
-//! * `nalgebra` ([`nalgebra`] module, nalgebra 0.35, the version of parry's
-//!   math stack): [`Rotation`] ⇄ `UnitQuaternion<f64>` and
+//! * `mint` (module `interop::mint`, mint 0.5): [`Rotation`] ⇄
+//!   `mint::Quaternion` and `mint::ColumnMatrix3`, [`Pose`] ⇄
+//!   `mint::ColumnMatrix4`; vectors and matrices through glam's own `mint`
+//!   feature, which this feature turns on (`DVec3` ⇄ `mint::Vector3<f64>` /
+//!   `mint::Point3<f64>`).
+//! * `nalgebra` (module `interop::nalgebra`, nalgebra 0.35, the version of
+//!   parry's math stack): [`Rotation`] ⇄ `UnitQuaternion<f64>` and
 //!   `Rotation3<f64>`, [`Pose`] ⇄ `Isometry3<f64>`; vectors, points and
 //!   matrices through nalgebra's own `convert-glam033` feature, which this
 //!   feature turns on (`DVec3` ⇄ `Vector3<f64>` / `Point3<f64>`).
@@ -75,7 +76,7 @@
 //! ```
 
 use crate::{Pose, Rotation};
-use glam::{DMat3, DMat4, DQuat, DVec3};
+use glam::{DMat4, DQuat};
 
 #[cfg(feature = "mint")]
 pub mod mint;
@@ -178,7 +179,8 @@ pub(crate) fn rotation_from_xyzw(xyzw: [f64; 4]) -> Result<Rotation, InteropErro
 }
 
 /// A rotation from a 3×3 matrix, checked ([`Rotation::from_matrix`]).
-pub(crate) fn rotation_from_matrix(m: DMat3) -> Result<Rotation, InteropError> {
+#[cfg(any(feature = "mint", feature = "nalgebra"))]
+pub(crate) fn rotation_from_matrix(m: glam::DMat3) -> Result<Rotation, InteropError> {
     Rotation::from_matrix(m).ok_or(InteropError::NotRotation {
         columns: m.to_cols_array_2d(),
     })
@@ -186,7 +188,11 @@ pub(crate) fn rotation_from_matrix(m: DMat3) -> Result<Rotation, InteropError> {
 
 /// A pose from a rotation's quaternion `x, y, z, w` and a translation,
 /// checked.
-pub(crate) fn pose_from_parts(xyzw: [f64; 4], translation: DVec3) -> Result<Pose, InteropError> {
+#[cfg(any(feature = "parry", feature = "nalgebra"))]
+pub(crate) fn pose_from_parts(
+    xyzw: [f64; 4],
+    translation: glam::DVec3,
+) -> Result<Pose, InteropError> {
     let rotation = rotation_from_xyzw(xyzw)?;
     if !translation.is_finite() {
         return Err(InteropError::NonFiniteTranslation {
