@@ -37,7 +37,7 @@ use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2};
 // ---------------------------------------------------------------- helpers
 
 /// The rotation of every representation, applied to `v`.
-fn actions(r: Rotation, v: DVec3) -> [(&'static str, DVec3); 6] {
+fn actions(r: Rotation, v: DVec3) -> [(&'static str, DVec3); 7] {
     let q = DQuat::from(r);
     let parry = ParryPose::from(Pose::new(r, DVec3::ZERO));
     let na_q = UnitQuaternion::from(r);
@@ -48,6 +48,7 @@ fn actions(r: Rotation, v: DVec3) -> [(&'static str, DVec3); 6] {
     let na = |w: Vector3<f64>| DVec3::new(w.x, w.y, w.z);
     [
         ("glam DQuat", q * v),
+        ("glam DMat3", DMat3::from(r) * v),
         ("parry Pose", parry.transform_vector(v)),
         ("nalgebra UnitQuaternion", na(na_q * nv)),
         ("nalgebra Rotation3", na(na_m * nv)),
@@ -121,10 +122,14 @@ fn quarter_turn_about_z_takes_x_to_y_in_every_crate() {
     assert!(wxyz(pq.w, pq.x, pq.y, pq.z), "parry {pq:?}");
 
     // The same turn built in each crate gives ours, exactly (snapped).
-    let built: [(&str, Result<Rotation, InteropError>); 6] = [
+    let built: [(&str, Result<Rotation, InteropError>); 7] = [
         (
             "glam",
             Rotation::try_from(DQuat::from_rotation_z(FRAC_PI_2)),
+        ),
+        (
+            "glam DMat3",
+            Rotation::try_from(DMat3::from_rotation_z(FRAC_PI_2)),
         ),
         (
             "parry",
@@ -241,6 +246,8 @@ proptest! {
         prop_assert_eq!(Rotation::try_from(mint::Quaternion::from(r)).unwrap(), r);
         // Matrix forms: the same rotation up to the matrix-to-quaternion
         // rounding.
+        let m = Rotation::try_from(DMat3::from(r)).unwrap();
+        prop_assert!(m.angle_to(&r) < 1e-12, "glam DMat3: {}", m.angle_to(&r));
         let m = Rotation::try_from(Rotation3::from(r)).unwrap();
         prop_assert!(m.angle_to(&r) < 1e-12, "nalgebra Rotation3: {}", m.angle_to(&r));
         let m = Rotation::try_from(mint::ColumnMatrix3::from(r)).unwrap();
@@ -494,6 +501,7 @@ fn non_rotation_matrices_and_non_rigid_transforms_are_refused() {
         );
         let na = Rotation3::from_matrix_unchecked(nalgebra::Matrix3::from(m));
         assert_eq!(matrix_err(Rotation::try_from(na)), want);
+        assert_eq!(matrix_err(Rotation::try_from(m)), want);
     }
     let good = Pose::new(r, DVec3::new(1.0, 2.0, 3.0)).to_mat4();
     let mut projective = good;

@@ -47,7 +47,7 @@
 //! assert_eq!(Pose::try_from(m).unwrap().apply(p.into()), DVec3::new(0.0, 1.0, 1.0));
 //! ```
 
-use super::{rotation_from_matrix, rotation_from_xyzw, InteropError};
+use super::{rotation_from_xyzw, InteropError};
 use crate::{Pose, Rotation};
 use glam::{DMat3, DMat4};
 
@@ -88,7 +88,7 @@ impl TryFrom<::mint::ColumnMatrix3<f64>> for Rotation {
     /// [`InteropError::NotRotation`] unless the matrix is finite,
     /// orthonormal and of determinant +1 (within `1e-6`).
     fn try_from(m: ::mint::ColumnMatrix3<f64>) -> Result<Rotation, InteropError> {
-        rotation_from_matrix(DMat3::from(m))
+        Rotation::try_from(DMat3::from(m))
     }
 }
 

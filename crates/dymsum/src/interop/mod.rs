@@ -10,6 +10,8 @@
 //! | --- | --- | --- |
 //! | [`Rotation`] | `glam::DQuat` | `From` |
 //! | `glam::DQuat` | [`Rotation`] | `TryFrom` |
+//! | [`Rotation`] | `glam::DMat3` | `From` |
+//! | `glam::DMat3` | [`Rotation`] | `TryFrom` |
 //! | [`Pose`] | `glam::DMat4` | `From` |
 //! | `glam::DMat4` | [`Pose`] | `TryFrom` |
 //!
@@ -76,7 +78,7 @@
 //! ```
 
 use crate::{Pose, Rotation};
-use glam::{DMat4, DQuat};
+use glam::{DMat3, DMat4, DQuat};
 
 #[cfg(feature = "mint")]
 pub mod mint;
@@ -179,8 +181,7 @@ pub(crate) fn rotation_from_xyzw(xyzw: [f64; 4]) -> Result<Rotation, InteropErro
 }
 
 /// A rotation from a 3×3 matrix, checked ([`Rotation::from_matrix`]).
-#[cfg(any(feature = "mint", feature = "nalgebra"))]
-pub(crate) fn rotation_from_matrix(m: glam::DMat3) -> Result<Rotation, InteropError> {
+pub(crate) fn rotation_from_matrix(m: DMat3) -> Result<Rotation, InteropError> {
     Rotation::from_matrix(m).ok_or(InteropError::NotRotation {
         columns: m.to_cols_array_2d(),
     })
@@ -219,6 +220,26 @@ impl TryFrom<DQuat> for Rotation {
     /// [`InteropError::BadQuaternion`] for a zero or non-finite quaternion.
     fn try_from(q: DQuat) -> Result<Rotation, InteropError> {
         rotation_from_xyzw(q.to_array())
+    }
+}
+
+impl From<Rotation> for DMat3 {
+    /// The rotation matrix ([`Rotation::matrix`], snapped).
+    fn from(r: Rotation) -> DMat3 {
+        r.matrix()
+    }
+}
+
+impl TryFrom<DMat3> for Rotation {
+    type Error = InteropError;
+
+    /// The rotation of a rotation matrix ([`Rotation::from_matrix`]).
+    ///
+    /// # Errors
+    /// [`InteropError::NotRotation`] unless the matrix is finite,
+    /// orthonormal and of determinant +1 (within `1e-6`).
+    fn try_from(m: DMat3) -> Result<Rotation, InteropError> {
+        rotation_from_matrix(m)
     }
 }
 

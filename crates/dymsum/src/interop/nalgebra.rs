@@ -54,7 +54,7 @@
 //! assert_eq!(Pose::try_from(iso).unwrap(), pose);
 //! ```
 
-use super::{pose_from_parts, rotation_from_matrix, rotation_from_xyzw, InteropError};
+use super::{pose_from_parts, rotation_from_xyzw, InteropError};
 use crate::{Pose, Rotation};
 use ::nalgebra::{Isometry3, Matrix3, Quaternion, Rotation3, Translation3, UnitQuaternion};
 use glam::{DMat3, DVec3};
@@ -109,7 +109,7 @@ impl TryFrom<Rotation3<f64>> for Rotation {
     /// [`InteropError::NotRotation`] unless the matrix is finite,
     /// orthonormal and of determinant +1 (within `1e-6`).
     fn try_from(r: Rotation3<f64>) -> Result<Rotation, InteropError> {
-        rotation_from_matrix(DMat3::from(r.into_inner()))
+        Rotation::try_from(DMat3::from(r.into_inner()))
     }
 }
 
