@@ -367,6 +367,7 @@ fn shapes_round_trip_through_parry() {
 #[test]
 fn parry_hulls_convert_to_the_exact_hull_of_their_points() {
     let mut g = rng(77);
+    let mut checked = 0;
     for kind in [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere] {
         for i in 0..10 {
             let pts = common::points(kind, 50, &mut g);
@@ -382,8 +383,12 @@ fn parry_hulls_convert_to_the_exact_hull_of_their_points() {
             assert_same_polytope(&ours, &via_mesh, &ctx);
             let (ov, pv) = (ours.volume(), shape.mass_properties(1.0).mass());
             assert!((ov - pv).abs() <= 1e-12 * ov, "{ctx}: {ov} vs {pv}");
+            checked += 1;
         }
     }
+    // parry's own hull may fail on a draw; not on most.
+    assert!(checked >= 36, "only {checked} of 40 parry hulls built");
+    println!("{checked} of 40 parry hulls checked");
 }
 
 /// A box whose top face has its centre lifted by `1e-7`: four exactly
