@@ -14,6 +14,9 @@
 //!   all returning the same labelled facet set, and the merged polygon mesh.
 //! * [`dynamic`]: DYMSUM, the sum kept up to date while the bodies rotate.
 //! * [`mesh`]: a plain polygon mesh, the exchange type with file formats.
+//! * [`interop`]: conversions of rotations, poses and shapes to and from
+//!   glam, and behind the optional features `parry`, `mint` and `nalgebra`,
+//!   to and from parry3d-f64, mint and nalgebra.
 //!
 //! ```
 //! use dymsum::{Polytope, sum::{minkowski_sum, Method}};
@@ -30,6 +33,7 @@
 
 pub mod dynamic;
 pub mod hull;
+pub mod interop;
 pub mod kernel;
 pub mod mesh;
 pub mod polytope;
