@@ -18,14 +18,12 @@
 //!   normals cannot represent, flat and dented parry meshes.
 #![cfg(all(feature = "parry", feature = "mint", feature = "nalgebra"))]
 
-mod common;
-
-use common::{proptest_cases, random_polytope, random_rotation, rng, Kind};
 use dymsum::glam::{DMat3, DMat4, DQuat};
 use dymsum::interop::parry::{to_polygon_mesh, to_polytope};
 use dymsum::interop::InteropError;
 use dymsum::polytope::MeshPolicy;
 use dymsum::{DVec3, Polytope, PolytopeError, Pose, Rotation};
+use dymsum_testkit::{proptest_cases, random_polytope, random_rotation, rng, Kind};
 use nalgebra::{Isometry3, Point3, Quaternion, Rotation3, UnitQuaternion, Vector3};
 use parry3d_f64::math::Pose as ParryPose;
 use parry3d_f64::shape::{ConvexPolyhedron, Shape};
@@ -94,7 +92,7 @@ fn quat_err<T>(r: Result<T, InteropError>) -> Option<[u64; 4]> {
 }
 
 fn cube(s: f64) -> Polytope {
-    Polytope::from_points(&common::cube_points(-s, s)).unwrap()
+    Polytope::from_points(&dymsum_testkit::cube_points(-s, s)).unwrap()
 }
 
 // ---------------------------------------------------------------- conventions
@@ -370,7 +368,7 @@ fn parry_hulls_convert_to_the_exact_hull_of_their_points() {
     let mut checked = 0;
     for kind in [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere] {
         for i in 0..10 {
-            let pts = common::points(kind, 50, &mut g);
+            let pts = dymsum_testkit::points(kind, 50, &mut g);
             let Some(shape) = ConvexPolyhedron::from_convex_hull(&pts) else {
                 continue;
             };
@@ -396,7 +394,7 @@ fn parry_hulls_convert_to_the_exact_hull_of_their_points() {
 /// within its `1 − √ε` test), on which the centre lies on no face.
 #[test]
 fn parry_face_merging_is_seen_by_to_polytope_not_by_try_from() {
-    let mut pts = common::box_points(1.0, 1.0, 1.0);
+    let mut pts = dymsum_testkit::box_points(1.0, 1.0, 1.0);
     pts.push([0.0, 0.0, 1.0 + 1e-7]);
     let p = Polytope::from_points(&pts).unwrap();
     assert_eq!((p.vertex_count(), p.face_count()), (9, 9));
