@@ -56,8 +56,6 @@ pub(super) fn margin(poly: &Polytope, arcs: &[DVec3], v: u32, x: DVec3) -> f64 {
 pub(super) const EXACT_BELOW: f64 = 1e-12;
 /// Slack added to the drift bound to cover float error in margins.
 pub(super) const SLACK: f64 = 1e-10;
-/// Unit roundoff.
-pub(super) const U: f64 = f64::EPSILON / 2.0;
 
 /// Hill climbing in floats on the unit ring arcs (oriented inwards): cross
 /// the most violated arc until every arc is clearly satisfied. Returns

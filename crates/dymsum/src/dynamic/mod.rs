@@ -139,7 +139,7 @@ mod ties;
 use fallback::Backoff;
 use find_errors::SideScan;
 use margins::{
-    arc_normals, direction_errors, locate_certified, margin, single_crossing, EXACT_BELOW, SLACK, U,
+    arc_normals, direction_errors, locate_certified, margin, single_crossing, EXACT_BELOW, SLACK,
 };
 use report::overlay_diff;
 pub use report::UpdateReport;

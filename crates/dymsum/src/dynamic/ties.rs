@@ -200,12 +200,8 @@ pub(super) fn sos_term_certified(
                     }
                     return Some(f64::INFINITY);
                 }
-                let (u, w) = (a[r0], a[r1]);
-                let d = u[c0] * w[c1] - u[c1] * w[c0];
-                let (mu, mw) = (u[c0].abs().max(u[c1].abs()), w[c0].abs().max(w[c1].abs()));
-                let (eu, ew) = (err[r0], err[r1]);
-                let bound = 1.01 * (2.0 * (eu * (mw + ew) + mu * ew) + 8.0 * U * mu * mw)
-                    + f64::MIN_POSITIVE;
+                let (d, bound) =
+                    crate::kernel::bounds::minor(a[r0], err[r0], a[r1], err[r1], c0, c1);
                 // Rows with an entry that varies: each changes the minor by
                 // at most |u| |v| per radian.
                 let moving = [r0, r1]

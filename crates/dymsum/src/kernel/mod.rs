@@ -12,6 +12,7 @@
 //! * `exact`: exact dyadic arithmetic behind the filters.
 //! * [`rotation`]: unit quaternions, rotation matrices and rigid poses.
 
+pub(crate) mod bounds;
 pub(crate) mod dd;
 pub(crate) mod exact;
 pub mod predicates;

@@ -477,16 +477,15 @@ impl Known {
             }
         }
         // Float filter on the approximations.
-        let (a, b) = (self.approx[r0], self.approx[r1]);
-        let (ea, eb) = (self.err[r0], self.err[r1]);
-        let d = a[c0] * b[c1] - a[c1] * b[c0];
-        let (ma, mb) = (a[c0].abs().max(a[c1].abs()), b[c0].abs().max(b[c1].abs()));
-        let bound =
-            1.01 * (2.0 * (ea * (mb + eb) + ma * eb) + 8.0 * U * ma * mb) + f64::MIN_POSITIVE;
-        if d.is_finite() && bound.is_finite() {
-            return Sign::certified(d, bound);
-        }
-        None
+        let (d, bound) = super::bounds::minor(
+            self.approx[r0],
+            self.err[r0],
+            self.approx[r1],
+            self.err[r1],
+            c0,
+            c1,
+        );
+        Sign::certified(d, bound)
     }
 
     /// `Some(Zero)` when the determinant is exactly zero for a structural

@@ -33,6 +33,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use crate::kernel::bounds;
 use crate::kernel::predicates::sos_det3_unfiltered;
 use crate::kernel::Sign;
 use crate::polytope::{rotated_error, FaceNormal, Polytope, RingEntry};
@@ -158,9 +159,6 @@ pub struct GaussView<'a> {
     pub ties: Option<&'a TieCache>,
 }
 
-const U: f64 = f64::EPSILON / 2.0;
-const SQRT3: f64 = 1.7320508075688774;
-
 impl<'a> GaussView<'a> {
     /// Normal of face `f` as an exact predicate argument.
     #[inline]
@@ -194,12 +192,8 @@ impl<'a> GaussView<'a> {
     /// normal to its right face's): the SoS sign of `det[n_left, n_right, x]`.
     #[inline]
     pub fn arc_side(&self, e: u32, x: &FaceNormal<'_>) -> Sign {
-        let m = self.arcs[e as usize];
-        let em = self.arc_errs[e as usize];
-        let v = m.dot(x.approx);
-        let mm = m.abs().max_element() * SQRT3;
-        let xm = x.approx.abs().max_element() * SQRT3;
-        let bound = 1.01 * (em * (xm + x.err) + mm * x.err + 6.0 * U * mm * xm);
+        let (m, em) = (self.arcs[e as usize], self.arc_errs[e as usize]);
+        let (v, bound) = bounds::dot(m, em, x.approx, x.err);
         Sign::certified(v, bound).unwrap_or_else(|| self.tie_side(e, x))
     }
 
@@ -289,10 +283,7 @@ impl<'a> GaussView<'a> {
                 continue;
             }
             let (i, j) = ((c + 1) % 3, (c + 2) % 3);
-            let d = u[i] * w[j] - u[j] * w[i];
-            let (mu, mw) = (u[i].abs().max(u[j].abs()), w[i].abs().max(w[j].abs()));
-            let bound =
-                1.01 * (2.0 * (eu * (mw + ew) + mu * ew) + 8.0 * U * mu * mw) + f64::MIN_POSITIVE;
+            let (d, bound) = bounds::minor(u, eu, w, ew, i, j);
             let s = Sign::certified(d, bound)?;
             return Some(if flip { s.flip() } else { s });
         }
