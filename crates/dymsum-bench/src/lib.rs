@@ -8,6 +8,7 @@
 //! * [`random_rotation`]: one seeded, uniformly random orientation.
 //! * [`collect_results`] / [`markdown_report`]: read
 //!   `target/criterion/**/new/{benchmark,estimates}.json` and print tables.
+#![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -195,11 +195,25 @@ const NO_AXIS: u8 = u8::MAX;
 
 impl DynamicSum {
     /// Starts from a static `walk` sum at the given poses.
+    ///
+    /// # Errors
+    /// [`SumError::Inconsistent`] only if an internal invariant of the walk
+    /// fails (a bug in dymsum: please report the input). The overlay depends
+    /// on the rotations alone, so no pose is out of range here; a pose whose
+    /// posed coordinates overflow `f64` surfaces as
+    /// [`crate::sum::MeshError::OutOfRange`] from [`Self::try_to_mesh`].
     pub fn new(p: &Polytope, pose_p: Pose, q: &Polytope, pose_q: Pose) -> Result<Self, SumError> {
         Self::with_config(p, pose_p, q, pose_q, DynamicConfig::default())
     }
 
     /// [`DynamicSum::new`] with explicit tuning.
+    ///
+    /// # Errors
+    /// [`SumError::Inconsistent`] only if an internal invariant of the walk
+    /// fails (a bug in dymsum: please report the input). The overlay depends
+    /// on the rotations alone, so no pose is out of range here; a pose whose
+    /// posed coordinates overflow `f64` surfaces as
+    /// [`crate::sum::MeshError::OutOfRange`] from [`Self::try_to_mesh`].
     pub fn with_config(
         p: &Polytope,
         pose_p: Pose,
@@ -285,6 +299,9 @@ impl DynamicSum {
 
     /// Turns P further by `r` (applied after its current rotation, about the
     /// origin of the world frame; P's translation is kept).
+    ///
+    /// # Errors
+    /// The same as [`DynamicSum::set_pose`].
     pub fn rotate_p_by(&mut self, r: Rotation) -> Result<UpdateReport, SumError> {
         let mut pose = self.ops.pose_p;
         pose.rotation = pose.rotation.then(&r);
@@ -292,6 +309,9 @@ impl DynamicSum {
     }
 
     /// Moves P to `pose_p`, keeping Q where it is.
+    ///
+    /// # Errors
+    /// The same as [`DynamicSum::set_pose`].
     pub fn set_pose_p(&mut self, pose_p: Pose) -> Result<UpdateReport, SumError> {
         self.set_pose(pose_p, self.ops.pose_q)
     }
@@ -300,10 +320,14 @@ impl DynamicSum {
     /// (see the module docs for why every step is exact).
     ///
     /// # Errors
-    /// [`SumError::OutOfRange`] when a posed vertex overflows (a pose far
-    /// beyond the shapes' scale), from the recomputation that such a step
-    /// falls back to; [`SumError::Inconsistent`] would mean a bug (an arc walk
-    /// that finds no exit), never a property of the input.
+    /// [`SumError::Inconsistent`] only if an internal invariant fails while
+    /// repairing (an arc walk that finds no exit, while re-walking an arc at
+    /// risk or recomputing a large step by `walk`): a bug in dymsum, never a
+    /// property of the input; please report the poses. The state is then
+    /// unspecified; rebuild with [`DynamicSum::new`]. Poses are not range
+    /// checked here (the overlay depends on the rotations alone); posed
+    /// coordinates beyond `f64` surface as
+    /// [`crate::sum::MeshError::OutOfRange`] from [`Self::try_to_mesh`].
     pub fn set_pose(&mut self, pose_p: Pose, pose_q: Pose) -> Result<UpdateReport, SumError> {
         // Line 1: Rotate (P's normals and arcs, by the new relative rotation).
         let Some((old, theta)) = self.rotate(pose_p, pose_q) else {
@@ -381,11 +405,22 @@ impl DynamicSum {
 
     /// The merged, validated mesh of the current sum (see
     /// [`MinkowskiSum::try_to_mesh`]).
+    ///
+    /// # Errors
+    /// As [`MinkowskiSum::try_to_mesh`]:
+    /// [`crate::sum::MeshError::PrecisionLost`] when the rounded vertices
+    /// collapse (the sum is too far from the origin for its size),
+    /// [`crate::sum::MeshError::OutOfRange`] when a vertex of the sum
+    /// overflows `f64`; [`crate::sum::MeshError::Merge`] and
+    /// [`crate::sum::MeshError::Invalid`] are internal errors.
     pub fn try_to_mesh(&self) -> Result<crate::PolygonMesh, crate::sum::MeshError> {
         self.sum().try_to_mesh()
     }
     /// [`Self::try_to_mesh`] with the coordinates' rounding relative to the
     /// sum's size (see [`MinkowskiSum::mesh_with_precision`]).
+    ///
+    /// # Errors
+    /// The same as [`Self::try_to_mesh`].
     pub fn mesh_with_precision(&self) -> Result<crate::sum::SumMesh, crate::sum::MeshError> {
         self.sum().mesh_with_precision()
     }

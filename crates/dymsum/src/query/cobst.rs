@@ -54,6 +54,9 @@ pub struct CObstacle {
 
 impl CObstacle {
     /// Prepares `robot` (reflects it: one convex hull) against `obstacle`.
+    ///
+    /// # Errors
+    /// Only internal errors of the reflection, as [`ConvexPair::new`](super::ConvexPair::new).
     pub fn new(robot: &Polytope, obstacle: &Polytope) -> Result<Self, QueryError> {
         Ok(CObstacle {
             neg_robot: std::sync::Arc::new(Reflected::new(robot)?),
@@ -67,6 +70,17 @@ impl CObstacle {
     }
 
     /// The slice at one orientation, computed from scratch.
+    ///
+    /// # Errors
+    /// * [`QueryError::Sum`] wrapping [`crate::SumError::OutOfRange`] when a
+    ///   rotated robot vertex overflows `f64`;
+    /// * [`QueryError::Mesh`] when the slice's mesh cannot be produced:
+    ///   [`crate::sum::MeshError::PrecisionLost`] (the obstacle is too far
+    ///   from the origin for the shapes' size) or
+    ///   [`crate::sum::MeshError::OutOfRange`] (a vertex of the slice
+    ///   overflows `f64`); other mesh errors are internal;
+    /// * [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] only
+    ///   for an internal error.
     pub fn slice(&self, orientation: Rotation) -> Result<PolygonMesh, QueryError> {
         let sum = minkowski_sum_posed(
             &self.neg_robot.polytope,
@@ -122,6 +136,12 @@ impl CObstacle {
     /// the orientations are split into contiguous chunks (about four per
     /// thread), each chunk walked by its own dynamic sum on a rayon thread.
     /// Results are in input order and do not depend on the chunking.
+    ///
+    /// # Errors
+    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if a
+    /// dynamic update hits an internal error (a bug); `f` itself cannot fail
+    /// here (return a `Result` from it to report per-slice failures, as
+    /// [`CObstacle::slices_par`] does).
     pub fn map_par<T, F>(&self, orientations: &[Rotation], f: F) -> Result<Vec<T>, QueryError>
     where
         T: Send,
@@ -155,6 +175,15 @@ impl CObstacle {
     }
 
     /// All slices, computed in parallel (see [`CObstacle::map_par`]).
+    ///
+    /// # Errors
+    /// The first failing slice, in input order:
+    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if a
+    /// dynamic update hits an internal error (a bug);
+    /// [`QueryError::Mesh`] when a slice's mesh cannot be produced
+    /// ([`crate::sum::MeshError::PrecisionLost`] for an obstacle too far from
+    /// the origin for the shapes' size, [`crate::sum::MeshError::OutOfRange`]
+    /// for a vertex beyond `f64`).
     pub fn slices_par(&self, orientations: &[Rotation]) -> Result<Vec<PolygonMesh>, QueryError> {
         self.map_par(orientations, |_, _, s| s.try_to_mesh())?
             .into_iter()
@@ -165,6 +194,10 @@ impl CObstacle {
 
 /// The C-obstacle slices `O ⊕ (−R·A)` of `robot` among `obstacle`, one per
 /// orientation, computed sequentially by one dynamic sum.
+///
+/// # Errors
+/// Those of [`CObstacle::new`] (internal only) and of
+/// [`CObstacle::slices_par`]: the first failing slice, in order.
 pub fn cobstacle_slices(
     robot: &Polytope,
     obstacle: &Polytope,
@@ -176,6 +209,9 @@ pub fn cobstacle_slices(
 }
 
 /// [`cobstacle_slices`] spread over rayon's threads (same result).
+///
+/// # Errors
+/// The same as [`cobstacle_slices`].
 pub fn cobstacle_slices_par(
     robot: &Polytope,
     obstacle: &Polytope,

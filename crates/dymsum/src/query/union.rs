@@ -50,6 +50,12 @@ impl ConvexUnion {
     }
 
     /// Collision and distance against `other`, checking every piece pair.
+    ///
+    /// # Errors
+    /// The first error of a piece pair, as [`ConvexPair::new`] (internal
+    /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
+    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// posed vertex or an answer overflows `f64`.
     pub fn query(
         &self,
         pose: Pose,
@@ -78,6 +84,12 @@ impl ConvexUnion {
     }
 
     /// `true` when some piece pair overlaps or touches.
+    ///
+    /// # Errors
+    /// The first error of a piece pair, as [`ConvexPair::new`] (internal
+    /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
+    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// posed vertex or an answer overflows `f64`.
     pub fn collides(
         &self,
         pose: Pose,
@@ -95,6 +107,12 @@ impl ConvexUnion {
     }
 
     /// The distance between the unions (`0` when they collide).
+    ///
+    /// # Errors
+    /// As [`ConvexUnion::query`]: the first error of a piece pair, as [`ConvexPair::new`] (internal
+    /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
+    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// posed vertex or an answer overflows `f64`.
     pub fn distance(
         &self,
         pose: Pose,
@@ -109,6 +127,11 @@ impl ConvexUnion {
 
     /// The penetration depth: only for single-piece (convex) unions;
     /// otherwise [`QueryError::UnionDepthUnsupported`] (see the module docs).
+    ///
+    /// # Errors
+    /// [`QueryError::UnionDepthUnsupported`] when either union has more than
+    /// one piece; otherwise those of [`ConvexPair::penetration_depth`] for
+    /// the single pair.
     pub fn penetration_depth(
         &self,
         pose: Pose,
@@ -125,6 +148,10 @@ impl ConvexUnion {
     /// orientation, the piece-pair sums `O_j ⊕ (−R·A_i)` ordered by `(i, j)`.
     /// Their union is the slice. Each piece pair is sliced by one dynamic
     /// sum, in parallel over orientations.
+    ///
+    /// # Errors
+    /// The first error of a piece pair, as [`CObstacle::slices_par`]: an
+    /// unbuildable slice mesh ([`QueryError::Mesh`]) or an internal error.
     pub fn cobstacle_slices(
         &self,
         obstacle: &ConvexUnion,
