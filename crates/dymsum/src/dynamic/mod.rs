@@ -166,6 +166,29 @@ impl Default for DynamicConfig {
 }
 
 /// The dynamic Minkowski sum (see the module docs).
+///
+/// Each [`DynamicSum::set_pose`] (or [`DynamicSum::rotate_p_by`]) repairs
+/// the facet set; after every step it equals a fresh static `walk` sum at
+/// the same poses, and the [`UpdateReport`] is the exact difference:
+///
+/// ```
+/// use dymsum::{minkowski_sum_posed, DVec3, DynamicSum, Method, Polytope, Pose, Rotation};
+/// let corners: Vec<[f64; 3]> = (0..8)
+///     .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+///     .collect();
+/// let cube = Polytope::from_points(&corners)?;
+/// let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])?;
+/// let mut sum = DynamicSum::new(&tet, Pose::IDENTITY, &cube, Pose::IDENTITY)?;
+/// let step = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.05).ok_or("zero axis")?;
+/// for _ in 0..40 {
+///     let before = sum.facet_count();
+///     let report = sum.rotate_p_by(step)?;
+///     assert_eq!(sum.facet_count(), before - report.removed.len() + report.added.len());
+///     let fresh = minkowski_sum_posed(&tet, sum.pose_p(), &cube, sum.pose_q(), Method::Walk)?;
+///     assert_eq!(sum.facets(), fresh.facets());
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct DynamicSum {
     ops: Operands,

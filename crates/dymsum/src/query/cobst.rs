@@ -46,6 +46,31 @@ pub fn orientations_about_axis(axis: DVec3, n: usize) -> Option<Vec<Rotation>> {
 }
 
 /// A robot (reflected once) and an obstacle, ready to be sliced.
+///
+/// The slices at turns about `z`, computed by one dynamic sum moved from
+/// slice to slice, equal the slices computed from scratch, and so do the
+/// parallel ones:
+///
+/// ```
+/// use dymsum::query::orientations_about_axis;
+/// use dymsum::{CObstacle, DVec3, Polytope};
+/// let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])?;
+/// let corners: Vec<[f64; 3]> = (0..8)
+///     .map(|i| [4.0 + 2.0 * (i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+///     .collect();
+/// let obstacle = Polytope::from_points(&corners)?;
+/// let cobst = CObstacle::new(&tet, &obstacle)?;
+/// let turns = orientations_about_axis(DVec3::Z, 12).ok_or("zero axis")?;
+/// let slices = cobst.slices(&turns).collect::<Result<Vec<_>, _>>()?;
+/// assert_eq!(slices.len(), 12);
+/// for (slice, &turn) in slices.iter().zip(&turns) {
+///     assert_eq!(*slice, cobst.slice(turn)?);
+///     // A slice holds a translate of the obstacle: at least its volume 2.
+///     assert!(slice.signed_volume() > 2.0);
+/// }
+/// assert_eq!(cobst.slices_par(&turns)?, slices);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct CObstacle {
     neg_robot: std::sync::Arc<Reflected>,

@@ -346,6 +346,27 @@ impl Reflected {
 /// Two convex bodies prepared for repeated queries: `B`'s reflection is
 /// built once. Use it (or a [`ContactTracker`]) instead of the free functions
 /// when querying the same pair at many poses.
+///
+/// Two unit cubes whose centres are `0.75` apart along `x` overlap by
+/// `0.25`: that is the penetration depth, along `+x` (from A towards B).
+/// At `1.5` apart they are `0.5` apart.
+///
+/// ```
+/// use dymsum::{ConvexPair, DVec3, Polytope, Pose, Rotation};
+/// let corners: Vec<[f64; 3]> = (0..8)
+///     .map(|i| [(i & 1) as f64 - 0.5, ((i >> 1) & 1) as f64 - 0.5, ((i >> 2) & 1) as f64 - 0.5])
+///     .collect();
+/// let cube = Polytope::from_points(&corners)?;
+/// let pair = ConvexPair::new(&cube, &cube)?;
+/// let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
+/// let contact = pair.penetration_depth(Pose::IDENTITY, at(0.75))?.ok_or("apart")?;
+/// assert_eq!(contact.depth, 0.25);
+/// assert_eq!(contact.normal, DVec3::X);
+/// assert_eq!(contact.point_on_a - contact.point_on_b, contact.depth * contact.normal);
+/// assert!(!pair.intersects(Pose::IDENTITY, at(1.5))?);
+/// assert_eq!(pair.distance(Pose::IDENTITY, at(1.5))?.distance, 0.5);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ConvexPair {
     a: Polytope,

@@ -29,6 +29,31 @@ use crate::dynamic::UpdateReport;
 use crate::{DynamicSum, Pose};
 
 /// Depth or distance of two moving convex bodies, frame after frame.
+///
+/// Built by [`ConvexPair::tracker`] (or [`ContactTracker::new`]); each
+/// [`ContactTracker::update`] answers exactly what the static
+/// [`ConvexPair::query`] answers at the same poses. A box slides through
+/// a turning box:
+///
+/// ```
+/// use dymsum::{ContactTracker, ConvexPair, DVec3, Polytope, Pose, Rotation};
+/// let corners: Vec<[f64; 3]> = (0..8)
+///     .map(|i| [(i & 1) as f64 - 0.5, ((i >> 1) & 1) as f64 - 0.5, ((i >> 2) & 1) as f64 - 0.5])
+///     .collect();
+/// let cube = Polytope::from_points(&corners)?;
+/// let pair = ConvexPair::new(&cube, &cube)?;
+/// let slide = |k: usize| Pose::new(Rotation::IDENTITY, DVec3::new(2.0 - 0.05 * k as f64, 0.1, 0.0));
+/// let mut tracker: ContactTracker = pair.tracker(Pose::IDENTITY, slide(0))?;
+/// assert!(!tracker.last().intersects()); // centres 2 apart: no contact yet
+/// for k in 1..=40 {
+///     let turn = Rotation::from_axis_angle(DVec3::Z, 0.01 * k as f64).ok_or("zero axis")?;
+///     let pose_a = Pose::new(turn, DVec3::ZERO);
+///     let answer = tracker.update(pose_a, slide(k))?;
+///     assert_eq!(answer, pair.query(pose_a, slide(k))?);
+/// }
+/// assert!(tracker.last().intersects()); // centres 0.1 apart at the end
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ContactTracker {
     pair: ConvexPair,

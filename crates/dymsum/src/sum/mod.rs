@@ -351,6 +351,32 @@ impl Operands {
 }
 
 /// A Minkowski sum: the operands and their overlay.
+///
+/// Built by [`minkowski_sum`] or [`minkowski_sum_posed`]; every [`Method`]
+/// gives the identical labelled facet set. A box plus a box is a box:
+///
+/// ```
+/// use dymsum::{minkowski_sum, Method, Polytope};
+/// let cuboid = |x: f64, y: f64, z: f64| {
+///     let corners: Vec<[f64; 3]> = (0..8)
+///         .map(|i| [x * (i & 1) as f64, y * ((i >> 1) & 1) as f64, z * ((i >> 2) & 1) as f64])
+///         .collect();
+///     Polytope::from_points(&corners)
+/// };
+/// let a = cuboid(1.0, 1.0, 1.0)?;
+/// let b = cuboid(2.0, 1.0, 3.0)?;
+/// let sum = minkowski_sum(&a, &b, Method::Walk)?;
+/// // Every face of each box is translated by one vertex of the other.
+/// let (fv, vf, ee) = sum.counts();
+/// assert_eq!((fv, vf), (6, 6));
+/// assert_eq!(sum.facets().len(), fv + vf + ee);
+/// assert_eq!(minkowski_sum(&a, &b, Method::Brute)?.facets(), sum.facets());
+/// // Coplanar facets merge: the mesh is the 3 × 2 × 4 box.
+/// let mesh = sum.try_to_mesh()?;
+/// assert_eq!((mesh.vertices.len(), mesh.faces.len()), (8, 6));
+/// assert_eq!(mesh.signed_volume(), 24.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct MinkowskiSum {
     operands: Operands,
