@@ -8,6 +8,7 @@
 //! * [`random_rotation`]: one seeded, uniformly random orientation.
 //! * [`collect_results`] / [`markdown_report`]: read
 //!   `target/criterion/**/new/{benchmark,estimates}.json` and print tables.
+#![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -85,6 +86,11 @@ fn random_unit_vector(rng: &mut ChaCha8Rng) -> DVec3 {
 
 /// A uniformly random orientation (Shoemake's method), from ChaCha8 seeded
 /// with `seed`.
+///
+/// # Panics
+/// Never: Shoemake's quaternion has unit length up to rounding, so it is
+/// neither zero nor non-finite (the only inputs [`Rotation::from_wxyz`]
+/// refuses).
 pub fn random_rotation(seed: u64) -> Rotation {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let u1: f64 = rng.random();
@@ -101,6 +107,10 @@ pub fn random_rotation(seed: u64) -> Rotation {
 /// each of the `steps` steps, starting from the identity (so entry 0 is one
 /// step away from [`Rotation::IDENTITY`], and entry `i` one step from entry
 /// `i - 1`). Deterministic: ChaCha8 seeded with `seed`.
+///
+/// # Panics
+/// If `steps_per_rev` is not a finite positive number. (The random axes
+/// are unit vectors, so building each step's rotation cannot fail.)
 pub fn paper_motion(steps_per_rev: f64, steps: usize, seed: u64) -> Vec<Rotation> {
     assert!(
         steps_per_rev.is_finite() && steps_per_rev > 0.0,
@@ -165,6 +175,11 @@ fn json_str(v: &serde_json::Value, key: &str) -> Option<String> {
 }
 
 /// Reads every `new/benchmark.json` + `new/estimates.json` pair below `dir`.
+/// A `new/` directory whose JSON files are missing or malformed is skipped.
+///
+/// # Errors
+/// The [`std::io::Error`] of the first directory below `dir` (or `dir`
+/// itself) that cannot be listed: missing, not a directory, permissions.
 pub fn collect_results(dir: &Path) -> std::io::Result<Results> {
     let mut out = Results::new();
     let mut stack = vec![dir.to_path_buf()];

@@ -54,6 +54,12 @@ pub enum Command {
 
 impl Command {
     /// Runs the subcommand, writing its report to `out`.
+    ///
+    /// # Errors
+    /// The subcommand's error (see each `commands::*::run`): an operand that
+    /// cannot be loaded, an output that cannot be written, or an internal
+    /// error; [`crate::main`] turns it into exit code 1, or 3 for an
+    /// internal mesh error.
     pub fn run(self, out: &mut dyn Write) -> anyhow::Result<()> {
         match self {
             Command::Sum(a) => sum::run(&a, out),

@@ -7,6 +7,7 @@
 //! * [`motion`]: the paper's random motion of P.
 //! * [`stats`]: timing summaries.
 #![forbid(unsafe_code)]
+#![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 
 pub mod cli;
 pub mod commands;

@@ -53,6 +53,11 @@ fn parse_numbers(s: &str, n: usize, what: &str) -> Result<Vec<f64>, String> {
 }
 
 /// Parses a quaternion `W,X,Y,Z` (renormalised; zero or non-finite refused).
+///
+/// # Errors
+/// A message (shown by clap as a usage error) when there are not exactly
+/// four comma-separated values, a value is not a finite number, or the
+/// quaternion is zero.
 pub fn parse_quaternion(s: &str) -> Result<Rotation, String> {
     let v = parse_numbers(s, 4, "W,X,Y,Z")?;
     Rotation::from_wxyz(v[0], v[1], v[2], v[3])
@@ -60,6 +65,10 @@ pub fn parse_quaternion(s: &str) -> Result<Rotation, String> {
 }
 
 /// Parses a vector `X,Y,Z` of finite numbers.
+///
+/// # Errors
+/// A message when there are not exactly three comma-separated values or a
+/// value is not a finite number.
 pub fn parse_vector(s: &str) -> Result<DVec3, String> {
     let v = parse_numbers(s, 3, "X,Y,Z")?;
     Ok(DVec3::new(v[0], v[1], v[2]))
@@ -67,6 +76,11 @@ pub fn parse_vector(s: &str) -> Result<DVec3, String> {
 
 /// Parses `--steps-per-rev X`: a finite number > 0 whose step angle 2π/X is
 /// finite too (so not a subnormal like `1e-320`).
+///
+/// # Errors
+/// A message when the value is not a finite number greater than 0 (as
+/// [`parse_positive`]) or so small that `2π/X` overflows, naming the
+/// smallest accepted value.
 pub fn parse_steps_per_rev(s: &str) -> Result<f64, String> {
     let x = parse_positive(s)?;
     let angle = std::f64::consts::TAU / x;
@@ -80,6 +94,10 @@ pub fn parse_steps_per_rev(s: &str) -> Result<f64, String> {
 }
 
 /// Parses a finite number > 0.
+///
+/// # Errors
+/// A message saying whether the value is not a number, not finite, or not
+/// greater than 0.
 pub fn parse_positive(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
@@ -90,6 +108,10 @@ pub fn parse_positive(s: &str) -> Result<f64, String> {
 }
 
 /// Parses a duration in seconds: finite, 0 to 3600.
+///
+/// # Errors
+/// A message when the value is not a number or lies outside `0..=3600`
+/// (NaN and infinities included).
 pub fn parse_seconds(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(x) if x.is_finite() && (0.0..=3600.0).contains(&x) => Ok(x),
@@ -100,6 +122,10 @@ pub fn parse_seconds(s: &str) -> Result<f64, String> {
 
 /// Checks that an output path has a mesh extension (`-`: OFF on standard
 /// output).
+///
+/// # Errors
+/// A message when the path (other than `-`) does not end in `.off`,
+/// `.obj`, `.ply` or `.stl` (any case).
 pub fn parse_output_path(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
     if s == STDIO {

@@ -117,6 +117,11 @@ pub struct AtomicFile {
 impl AtomicFile {
     /// Creates the temporary file for `path` (in `path`'s directory, which
     /// must exist).
+    ///
+    /// # Errors
+    /// [`FileError::Write`] naming `path` when `path` is a directory, or the
+    /// temporary file cannot be created (missing directory, permissions, a
+    /// read-only or full file system).
     pub fn create(path: &Path) -> Result<AtomicFile, FileError> {
         let err = |source| FileError::Write {
             path: path.to_path_buf(),
@@ -159,6 +164,11 @@ impl AtomicFile {
 
     /// Flushes, syncs and renames the temporary file over the target. On
     /// error the temporary file is removed and the target is unchanged.
+    ///
+    /// # Errors
+    /// [`FileError::Write`] naming the target when flushing the buffer,
+    /// syncing the temporary file or renaming it over the target fails
+    /// (full disk, permissions, the target's directory gone).
     pub fn commit(mut self) -> Result<(), FileError> {
         let result = (|| {
             if let Some(w) = self.writer.take() {
@@ -205,6 +215,16 @@ impl Drop for AtomicFile {
 /// renamed over `path` ([`AtomicFile`]). On any error (from `produce`, the
 /// file system or the rename) the temporary file is removed, `path` is left
 /// as it was, and the error names `path`.
+///
+/// # Errors
+/// [`FileError::Write`] naming `path`, for any failure: creating the
+/// temporary file (as [`AtomicFile::create`]), an error returned by
+/// `produce` (kept as the source), or flushing, syncing and renaming (as
+/// [`AtomicFile::commit`]).
+///
+/// # Panics
+/// Never: the writer it takes out of the freshly created [`AtomicFile`] is
+/// always present (the `expect` states that invariant).
 pub fn write_atomic<F>(path: &Path, produce: F) -> Result<(), FileError>
 where
     F: FnOnce(&mut dyn Write) -> io::Result<()>,
@@ -224,12 +244,20 @@ where
 }
 
 /// [`write_atomic`] of a byte buffer.
+///
+/// # Errors
+/// The same as [`write_atomic`].
 pub fn write_atomic_bytes(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
     write_atomic(path, |w| w.write_all(bytes))
 }
 
 /// Checks that `path` (symbolic links followed) is a regular file, without
 /// opening it (opening a FIFO for reading blocks until a writer appears).
+///
+/// # Errors
+/// [`FileError::Read`] when the path cannot be inspected (missing file,
+/// permissions, a dangling link); [`FileError::NotRegular`] when it is a
+/// directory, FIFO, socket or device.
 pub fn ensure_regular_file(path: &Path) -> Result<(), FileError> {
     let meta = std::fs::metadata(path).map_err(|source| FileError::Read {
         path: path.to_path_buf(),
@@ -253,6 +281,11 @@ pub fn ensure_regular_file(path: &Path) -> Result<(), FileError> {
 /// [`FileError::NotRegular`] before it is opened. The read is also bounded
 /// by the size the file had when opened (plus one byte to notice growth), so
 /// a file that keeps growing cannot exhaust memory.
+///
+/// # Errors
+/// [`FileError::NotRegular`] when the path (or, checked again after opening,
+/// the opened file) is not a regular file; [`FileError::Read`] when it
+/// cannot be inspected, opened or read, or grew while being read.
 pub fn read_regular_file(path: &Path) -> Result<Vec<u8>, FileError> {
     ensure_regular_file(path)?;
     let read_err = |source| FileError::Read {

@@ -8,6 +8,7 @@
 //! * [`load`]: an operand from a file path or a model name, as a polytope
 //!   ([`load_polytope`]).
 #![forbid(unsafe_code)]
+#![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 #![warn(missing_docs)]
 
 pub mod atomic;

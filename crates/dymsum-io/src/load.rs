@@ -229,6 +229,19 @@ fn looks_like_file(spec: &str) -> bool {
 
 /// Loads a polytope from a file path or a built-in model name (see the
 /// module docs for the order of the look-ups). Never panics.
+///
+/// # Errors
+/// * [`LoadError::NotFound`]: `spec` is neither an existing file nor a
+///   built-in model name (with the closest model name, if one is close);
+/// * [`LoadError::Format`]: the file cannot be read ([`FormatError::Io`],
+///   [`FormatError::NotRegularFile`] for a directory or device) or parsed
+///   (the content errors of [`formats::read_mesh_bytes`]);
+/// * [`LoadError::SeveralBodies`]: an OBJ file holds more than one separate
+///   body;
+/// * [`LoadError::Model`]: a model family's parameters are wrong
+///   ([`ModelError::BadParameter`]);
+/// * [`LoadError::Polytope`]: the mesh or point cloud is not a valid convex
+///   body (as [`load_mesh`]).
 pub fn load_polytope(spec: &str, policy: MeshPolicy) -> Result<Loaded, LoadError> {
     let path = Path::new(spec);
     let is_file = path.is_file();
@@ -262,8 +275,9 @@ pub fn load_polytope(spec: &str, policy: MeshPolicy) -> Result<Loaded, LoadError
 /// point cloud, as for files. Never panics.
 ///
 /// # Errors
-/// [`LoadError::Format`] when the bytes do not parse, [`LoadError::Polytope`]
-/// (or the other build errors) when the mesh is not a valid convex body.
+/// [`LoadError::Format`] when the bytes do not parse in `format` (any
+/// content error of [`formats::read_mesh_bytes`]); [`LoadError::Polytope`]
+/// when the mesh is not a valid convex body (as [`load_mesh`]).
 ///
 /// ```
 /// use dymsum::polytope::MeshPolicy;
@@ -316,8 +330,11 @@ fn load_file(spec: &str, path: &Path, policy: MeshPolicy) -> Result<Loaded, Load
 /// [`Loaded::source`] (e.g. `"built-in ellipse"`).
 ///
 /// # Errors
-/// [`LoadError::Polytope`] (or another build error) when the mesh is not a
-/// valid convex body.
+/// [`LoadError::Polytope`], the only error, when the mesh is not a valid
+/// convex body: the [`PolytopeError`] of [`Polytope::from_points`] for a
+/// point cloud (too few points, flat, non-finite) or of
+/// [`Polytope::from_mesh`] for a mesh (open, non-manifold, not a sphere,
+/// non-convex, or under a strict policy convex only within tolerance).
 pub fn load_mesh(
     input: PolygonMesh,
     source: String,

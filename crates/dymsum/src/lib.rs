@@ -29,6 +29,7 @@
 //! assert_eq!(mesh.faces.len(), 6); // a cube plus a cube is a cube
 //! ```
 #![forbid(unsafe_code)]
+#![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 #![warn(missing_docs)]
 
 pub mod dynamic;

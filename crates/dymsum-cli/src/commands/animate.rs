@@ -78,6 +78,12 @@ pub fn frame_path(dir: &Path, step: u64) -> PathBuf {
 }
 
 /// Runs `dymsum animate`.
+///
+/// # Errors
+/// P or Q cannot be loaded; the CSV file or the frames directory cannot be
+/// created or written (an earlier CSV is kept); a DYMSUM update or a
+/// frame's mesh fails; or, as an internal error, the final dynamic facets
+/// differ from a fresh `walk` sum.
 pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let p = load(&a.p, "P", a.strict)?;
     let q = load(&a.q, "Q", a.strict)?;

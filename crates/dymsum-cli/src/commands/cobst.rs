@@ -82,6 +82,12 @@ fn parse_axis(s: &str) -> Result<DVec3, String> {
 /// Reads an orientation file: one quaternion per line (`w,x,y,z` or
 /// whitespace separated), blank lines and `#` comments ignored. Errors name
 /// the file and line.
+///
+/// # Errors
+/// The file cannot be read (missing, not a regular file); a line is not
+/// UTF-8, has an empty field, has other than 4 numbers, holds a value that
+/// is not a finite number, or a zero quaternion; or the file holds no
+/// orientation at all.
 pub fn read_orientations(path: &Path) -> anyhow::Result<Vec<Rotation>> {
     let bytes = dymsum_io::atomic::read_regular_file(path).context("orientation file")?;
     let mut out = Vec::new();
@@ -187,6 +193,14 @@ struct IndexEntry {
 }
 
 /// Runs `dymsum cobst`.
+///
+/// # Errors
+/// ROBOT or OBSTACLE cannot be loaded ([`super::query::load_body`]); the
+/// orientations are missing or invalid ([`read_orientations`], a zero
+/// axis, neither `--orientations` nor `--axis` with `--slices`); `--out`
+/// is not a directory, is not empty (without `--force`), or cannot be
+/// created, listed or cleared of earlier slices; a slice fails ([`dymsum::query::QueryError`]) or
+/// cannot be written; or `out` cannot be written.
 pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let robot = load_body(&a.robot, "ROBOT", a.strict)?;
     let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;

@@ -21,6 +21,13 @@ pub struct CompletionsArgs {
 }
 
 /// Runs `dymsum completions`.
+///
+/// # Errors
+/// None: it always returns `Ok`.
+///
+/// # Panics
+/// If writing to `out` fails: `clap_complete::generate` panics on a write
+/// error.
 pub fn run(
     a: &CompletionsArgs,
     command: &mut clap::Command,

@@ -60,6 +60,11 @@ fn time_static(
 }
 
 /// Runs `dymsum demo`.
+///
+/// # Errors
+/// Writing to `out` or to `demo_sum.off` fails; or, as internal errors, a
+/// built-in model does not load, a sum or update fails, or the dynamic
+/// facets differ from a static sum at a checked pose.
 pub fn run(a: &DemoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let p = load(DEMO_P, "P", false)?;
     let q = load(DEMO_Q, "Q", false)?;

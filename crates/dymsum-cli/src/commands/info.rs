@@ -76,6 +76,10 @@ impl Info {
 }
 
 /// Runs `dymsum info`.
+///
+/// # Errors
+/// The input cannot be loaded ([`super::load`]), or writing the report to
+/// `out` fails.
 pub fn run(a: &InfoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let loaded = load(&a.spec, "input", a.strict)?;
     let info = Info::new(&a.spec, &loaded);

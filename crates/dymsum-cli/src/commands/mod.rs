@@ -34,6 +34,13 @@ pub fn policy(strict: bool) -> MeshPolicy {
 /// name, with an error message like
 /// `P (file cube_open.off): open mesh: edge (3, 7) borders only one face`.
 /// `-` reads an OFF mesh from standard input (once per run).
+///
+/// # Errors
+/// A message prefixed with `operand` and the origin: any
+/// [`dymsum_io::LoadError`] of [`load_polytope`] (not found, unreadable,
+/// unparsable, several OBJ bodies, bad model parameters, not a convex
+/// body), or for `-` a second operand reading standard input, a read
+/// error, or OFF content that does not parse or build.
 pub fn load(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Loaded> {
     if spec == STDIO {
         let bytes = read_stdin_once(operand)?;
@@ -95,6 +102,11 @@ fn read_stdin_once(operand: &str) -> anyhow::Result<Vec<u8>> {
 
 /// Writes a mesh to `path`, atomically, in the format its extension names,
 /// or as OFF to `out` when `path` is `-`.
+///
+/// # Errors
+/// [`dymsum_io::formats::FormatError`] from encoding or writing the file
+/// (unknown extension, a mesh that cannot be encoded, an I/O failure; an
+/// earlier file at `path` is kept), or the I/O error of writing to `out`.
 pub fn write_mesh_or_stdout(
     path: &std::path::Path,
     mesh: &dymsum::PolygonMesh,
@@ -112,6 +124,10 @@ pub fn write_mesh_or_stdout(
 /// The validated mesh of a sum, with a warning on stderr when its
 /// coordinates are coarse relative to its size. Errors keep their type, so
 /// an internal one ([`dymsum::sum::MeshError::is_internal`]) exits with 3.
+///
+/// # Errors
+/// The [`dymsum::sum::MeshError`] in `mesh`, unchanged in type, with the
+/// context "the mesh of `what`".
 pub fn validated(
     mesh: Result<dymsum::sum::SumMesh, dymsum::sum::MeshError>,
     what: &str,

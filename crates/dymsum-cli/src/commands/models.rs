@@ -21,6 +21,12 @@ pub struct ModelsArgs {
 }
 
 /// Runs `dymsum models`.
+///
+/// # Errors
+/// With `--write NAME FILE`: FILE has no mesh extension, NAME is no model
+/// or has bad parameters ([`dymsum_io::models::ModelError`]), the model's
+/// mesh fails its exact check (internal), or the file cannot be written.
+/// Always: writing to `out` fails.
 pub fn run(a: &ModelsArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     match a.write.as_deref() {
         Some([name, file]) => write_model(name, file, out),

@@ -64,6 +64,10 @@ pub struct PoseArg {
 }
 
 /// Parses `X,Y,Z,W,QX,QY,QZ` (finite numbers, non-zero quaternion).
+///
+/// # Errors
+/// A message when there are not exactly 7 comma-separated values, a value
+/// is not a finite number, or the quaternion is zero.
 pub fn parse_pose(s: &str) -> Result<PoseArg, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != 7 {
@@ -90,6 +94,11 @@ pub fn parse_pose(s: &str) -> Result<PoseArg, String> {
 
 /// Loads a body: one convex polytope, or several pieces (`a+b+c`, or an OBJ
 /// file with several objects). Errors name the operand and the piece.
+///
+/// # Errors
+/// An OBJ file that cannot be read or parsed; an object or piece that is
+/// not a valid convex body ([`dymsum::PolytopeError`]); or any error of
+/// [`super::load`] for a single body or a `+`-separated piece.
 pub fn load_body(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Vec<Polytope>> {
     let path = Path::new(spec);
     if path.is_file() {
@@ -173,6 +182,11 @@ fn from_proximity(p: &Proximity) -> Answer {
 }
 
 /// Runs `dymsum query`.
+///
+/// # Errors
+/// ROBOT or OBSTACLE cannot be loaded ([`load_body`]); a query fails at a
+/// pose ([`dymsum::query::QueryError`], naming the pose: coordinates beyond
+/// `f64`, or an internal error); or `out` cannot be written.
 pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let robot = load_body(&a.robot, "ROBOT", a.strict)?;
     let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;

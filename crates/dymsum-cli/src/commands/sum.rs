@@ -42,6 +42,12 @@ pub struct SumArgs {
 }
 
 /// Runs `dymsum sum`.
+///
+/// # Errors
+/// P or Q cannot be loaded ([`super::load`]); the sum fails
+/// ([`dymsum::SumError`]: a posed vertex out of range, or a `hull`-method
+/// mismatch); its mesh cannot be produced ([`dymsum::sum::MeshError`]);
+/// or the output cannot be written.
 pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let p = load(&a.p, "P", a.strict)?;
     let q = load(&a.q, "Q", a.strict)?;

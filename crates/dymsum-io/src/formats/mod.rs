@@ -85,6 +85,10 @@ impl Format {
 
     /// The format for a path's extension (case insensitive): `.off`, `.obj`,
     /// `.ply` (ASCII PLY for writing) or `.stl` (binary STL for writing).
+    ///
+    /// # Errors
+    /// [`FormatError::UnknownExtension`] when the path has no extension or
+    /// another one.
     pub fn from_path(path: &Path) -> Result<Format, FormatError> {
         let ext = path
             .extension()
@@ -366,6 +370,14 @@ impl FormatError {
 }
 
 /// Reads a mesh, choosing the format by the path's extension.
+///
+/// # Errors
+/// * [`FormatError::UnknownExtension`]: not `.off`, `.obj`, `.ply` or
+///   `.stl`;
+/// * [`FormatError::Io`]: the file cannot be opened or read (missing,
+///   permissions); [`FormatError::NotRegularFile`]: it is a directory, FIFO,
+///   socket or device, refused before opening;
+/// * the content errors of [`read_mesh_bytes`].
 pub fn read_mesh(path: &Path) -> Result<PolygonMesh, FormatError> {
     let format = Format::from_path(path)?;
     let bytes = read_file(path)?;
@@ -375,6 +387,20 @@ pub fn read_mesh(path: &Path) -> Result<PolygonMesh, FormatError> {
 /// Reads a mesh from memory in the given format. `source_name` only labels
 /// errors. For PLY and STL the encoding (ASCII or binary) is detected from the
 /// content, so `Ply`/`PlyBinary` and `Stl`/`StlAscii` read alike.
+///
+/// # Errors
+/// Malformed content, labelled with `source_name` and the location:
+/// * [`FormatError::Parse`]: a bad token, missing value, wrong keyword or
+///   truncated data, at the line or byte offset where it occurs;
+/// * [`FormatError::CountMismatch`] (OFF, binary STL): the header's counts
+///   disagree with the data;
+/// * [`FormatError::BadIndex`] (OFF, OBJ, PLY): a face names a vertex that
+///   does not exist; [`FormatError::DegenerateFace`]: a face with fewer
+///   than 3 vertices;
+/// * [`FormatError::NonFinite`]: a coordinate is NaN or infinite (or
+///   overflows, like `1e400`); [`FormatError::Empty`]: no vertices at all;
+/// * [`FormatError::Unsupported`]: a feature the reader does not handle
+///   (binary or 4-D OFF, OBJ free-form surfaces, PLY without `x`/`y`/`z`).
 pub fn read_mesh_bytes(
     bytes: &[u8],
     format: Format,
@@ -397,12 +423,23 @@ pub fn read_mesh_bytes(
 /// faces is a point cloud body (its vertices that no face uses, no faces),
 /// never dropped. A file with vertices but no faces at all gives one point
 /// cloud holding every vertex.
+///
+/// # Errors
+/// * [`FormatError::Io`]: the file cannot be opened or read (missing,
+///   permissions); [`FormatError::NotRegularFile`]: it is a directory, FIFO,
+///   socket or device, refused before opening;
+/// * the OBJ content errors of [`read_mesh_bytes`] (parse errors, bad
+///   indices, degenerate faces, non-finite coordinates, no vertices,
+///   unsupported statements).
 pub fn read_obj_objects(path: &Path) -> Result<Vec<(String, PolygonMesh)>, FormatError> {
     let bytes = read_file(path)?;
     read_obj_objects_bytes(&bytes, &path.display().to_string())
 }
 
 /// [`read_obj_objects`] from memory; `source_name` only labels errors.
+///
+/// # Errors
+/// The OBJ content errors of [`read_mesh_bytes`].
 pub fn read_obj_objects_bytes(
     bytes: &[u8],
     source_name: &str,
@@ -412,6 +449,10 @@ pub fn read_obj_objects_bytes(
 
 /// Writes a mesh, choosing the format by the path's extension (`.ply` is
 /// written as ASCII PLY and `.stl` as binary STL; see [`write_mesh_with`]).
+///
+/// # Errors
+/// [`FormatError::UnknownExtension`] for another extension; otherwise
+/// those of [`write_mesh_with`].
 pub fn write_mesh(path: &Path, mesh: &PolygonMesh) -> Result<(), FormatError> {
     let format = Format::from_path(path)?;
     write_mesh_with(path, mesh, format)
@@ -421,6 +462,12 @@ pub fn write_mesh(path: &Path, mesh: &PolygonMesh) -> Result<(), FormatError> {
 /// file is written atomically ([`crate::atomic::write_atomic`]): on any
 /// error an earlier file at `path` is left intact and no partial file is
 /// left behind.
+///
+/// # Errors
+/// [`FormatError::InvalidMesh`] when the mesh cannot be encoded (see
+/// [`write_mesh_bytes`]; nothing is written then); [`FormatError::Io`]
+/// naming `path` when the file cannot be created, written, synced or
+/// renamed into place.
 pub fn write_mesh_with(path: &Path, mesh: &PolygonMesh, format: Format) -> Result<(), FormatError> {
     let bytes = write_mesh_bytes(mesh, format)?;
     crate::atomic::write_atomic_bytes(path, &bytes).map_err(FormatError::from)
@@ -431,6 +478,9 @@ pub fn write_mesh_with(path: &Path, mesh: &PolygonMesh, format: Format) -> Resul
 /// fewer than 3 vertices, a coordinate is not finite, (STL only) a
 /// coordinate overflows `f32`, or (PLY only) there are more than `i32::MAX`
 /// vertices.
+///
+/// # Errors
+/// [`FormatError::InvalidMesh`], saying which of the above it is.
 pub fn write_mesh_bytes(mesh: &PolygonMesh, format: Format) -> Result<Vec<u8>, FormatError> {
     validate_for_writing(mesh)?;
     if matches!(format, Format::Ply | Format::PlyBinary) && mesh.vertices.len() > i32::MAX as usize

@@ -335,6 +335,13 @@ pub const SIZE_MIN: f64 = 1e-150;
 /// Never panics: unknown names give [`ModelError::Unknown`] with the closest
 /// name as a suggestion, bad parameters give [`ModelError::BadParameter`].
 /// `random:N:SEED` returns a point cloud (a mesh with no faces).
+///
+/// # Errors
+/// [`ModelError::Unknown`] for a name that is no model (with a suggestion
+/// when one is close); [`ModelError::BadParameter`] for a missing,
+/// unparsable or out-of-range parameter, or parameters given to a fixed
+/// model; [`ModelError::Embedded`] only if an embedded reference model fails
+/// to parse (a bug in dymsum-io).
 pub fn model(name: &str) -> Result<PolygonMesh, ModelError> {
     let key = name.trim().to_lowercase();
     if let Some((_, fixed)) = FIXED_NAMES.iter().find(|(n, _)| *n == key) {

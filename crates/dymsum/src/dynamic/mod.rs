@@ -166,6 +166,29 @@ impl Default for DynamicConfig {
 }
 
 /// The dynamic Minkowski sum (see the module docs).
+///
+/// Each [`DynamicSum::set_pose`] (or [`DynamicSum::rotate_p_by`]) repairs
+/// the facet set; after every step it equals a fresh static `walk` sum at
+/// the same poses, and the [`UpdateReport`] is the exact difference:
+///
+/// ```
+/// use dymsum::{minkowski_sum_posed, DVec3, DynamicSum, Method, Polytope, Pose, Rotation};
+/// let corners: Vec<[f64; 3]> = (0..8)
+///     .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+///     .collect();
+/// let cube = Polytope::from_points(&corners)?;
+/// let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])?;
+/// let mut sum = DynamicSum::new(&tet, Pose::IDENTITY, &cube, Pose::IDENTITY)?;
+/// let step = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.05).ok_or("zero axis")?;
+/// for _ in 0..40 {
+///     let before = sum.facet_count();
+///     let report = sum.rotate_p_by(step)?;
+///     assert_eq!(sum.facet_count(), before - report.removed.len() + report.added.len());
+///     let fresh = minkowski_sum_posed(&tet, sum.pose_p(), &cube, sum.pose_q(), Method::Walk)?;
+///     assert_eq!(sum.facets(), fresh.facets());
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct DynamicSum {
     ops: Operands,
@@ -195,11 +218,25 @@ const NO_AXIS: u8 = u8::MAX;
 
 impl DynamicSum {
     /// Starts from a static `walk` sum at the given poses.
+    ///
+    /// # Errors
+    /// [`SumError::Inconsistent`] only if an internal invariant of the walk
+    /// fails (a bug in dymsum: please report the input). The overlay depends
+    /// on the rotations alone, so no pose is out of range here; a pose whose
+    /// posed coordinates overflow `f64` surfaces as
+    /// [`crate::sum::MeshError::OutOfRange`] from [`Self::try_to_mesh`].
     pub fn new(p: &Polytope, pose_p: Pose, q: &Polytope, pose_q: Pose) -> Result<Self, SumError> {
         Self::with_config(p, pose_p, q, pose_q, DynamicConfig::default())
     }
 
     /// [`DynamicSum::new`] with explicit tuning.
+    ///
+    /// # Errors
+    /// [`SumError::Inconsistent`] only if an internal invariant of the walk
+    /// fails (a bug in dymsum: please report the input). The overlay depends
+    /// on the rotations alone, so no pose is out of range here; a pose whose
+    /// posed coordinates overflow `f64` surfaces as
+    /// [`crate::sum::MeshError::OutOfRange`] from [`Self::try_to_mesh`].
     pub fn with_config(
         p: &Polytope,
         pose_p: Pose,
@@ -285,6 +322,9 @@ impl DynamicSum {
 
     /// Turns P further by `r` (applied after its current rotation, about the
     /// origin of the world frame; P's translation is kept).
+    ///
+    /// # Errors
+    /// The same as [`DynamicSum::set_pose`].
     pub fn rotate_p_by(&mut self, r: Rotation) -> Result<UpdateReport, SumError> {
         let mut pose = self.ops.pose_p;
         pose.rotation = pose.rotation.then(&r);
@@ -292,6 +332,9 @@ impl DynamicSum {
     }
 
     /// Moves P to `pose_p`, keeping Q where it is.
+    ///
+    /// # Errors
+    /// The same as [`DynamicSum::set_pose`].
     pub fn set_pose_p(&mut self, pose_p: Pose) -> Result<UpdateReport, SumError> {
         self.set_pose(pose_p, self.ops.pose_q)
     }
@@ -300,10 +343,14 @@ impl DynamicSum {
     /// (see the module docs for why every step is exact).
     ///
     /// # Errors
-    /// [`SumError::OutOfRange`] when a posed vertex overflows (a pose far
-    /// beyond the shapes' scale), from the recomputation that such a step
-    /// falls back to; [`SumError::Inconsistent`] would mean a bug (an arc walk
-    /// that finds no exit), never a property of the input.
+    /// [`SumError::Inconsistent`] only if an internal invariant fails while
+    /// repairing (an arc walk that finds no exit, while re-walking an arc at
+    /// risk or recomputing a large step by `walk`): a bug in dymsum, never a
+    /// property of the input; please report the poses. The state is then
+    /// unspecified; rebuild with [`DynamicSum::new`]. Poses are not range
+    /// checked here (the overlay depends on the rotations alone); posed
+    /// coordinates beyond `f64` surface as
+    /// [`crate::sum::MeshError::OutOfRange`] from [`Self::try_to_mesh`].
     pub fn set_pose(&mut self, pose_p: Pose, pose_q: Pose) -> Result<UpdateReport, SumError> {
         // Line 1: Rotate (P's normals and arcs, by the new relative rotation).
         let Some((old, theta)) = self.rotate(pose_p, pose_q) else {
@@ -381,11 +428,22 @@ impl DynamicSum {
 
     /// The merged, validated mesh of the current sum (see
     /// [`MinkowskiSum::try_to_mesh`]).
+    ///
+    /// # Errors
+    /// As [`MinkowskiSum::try_to_mesh`]:
+    /// [`crate::sum::MeshError::PrecisionLost`] when the rounded vertices
+    /// collapse (the sum is too far from the origin for its size),
+    /// [`crate::sum::MeshError::OutOfRange`] when a vertex of the sum
+    /// overflows `f64`; [`crate::sum::MeshError::Merge`] and
+    /// [`crate::sum::MeshError::Invalid`] are internal errors.
     pub fn try_to_mesh(&self) -> Result<crate::PolygonMesh, crate::sum::MeshError> {
         self.sum().try_to_mesh()
     }
     /// [`Self::try_to_mesh`] with the coordinates' rounding relative to the
     /// sum's size (see [`MinkowskiSum::mesh_with_precision`]).
+    ///
+    /// # Errors
+    /// The same as [`Self::try_to_mesh`].
     pub fn mesh_with_precision(&self) -> Result<crate::sum::SumMesh, crate::sum::MeshError> {
         self.sum().mesh_with_precision()
     }

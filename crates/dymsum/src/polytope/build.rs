@@ -101,6 +101,20 @@ impl Polytope {
     /// The convex hull of a point cloud (at least 4 points, not all in a
     /// plane, all finite).
     ///
+    /// # Errors
+    /// * [`PolytopeError::NonFinite`] when a coordinate is NaN or infinite
+    ///   (naming the point);
+    /// * [`PolytopeError::TooFewPoints`] for fewer than 4 points;
+    /// * [`PolytopeError::OutOfRange`] when the coordinates span more than
+    ///   960 binary orders of magnitude (say `1e300` next to `1e-300`);
+    /// * [`PolytopeError::Flat`] when all points coincide, are collinear or
+    ///   coplanar (the [`crate::hull::HullError`] says which);
+    /// * [`PolytopeError::FaceOutOfRange`] when a hull face is below about
+    ///   `2^-500` of the shape's size, and
+    ///   [`PolytopeError::DegenerateGaussMap`] when a vertex's face normals
+    ///   are not strictly convex after rounding: both only for slivers at
+    ///   the limit of `f64`.
+    ///
     /// ```
     /// # use dymsum::Polytope;
     /// let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]]).unwrap();
@@ -113,6 +127,9 @@ impl Polytope {
     }
 
     /// [`Polytope::from_points`] for `DVec3` input.
+    ///
+    /// # Errors
+    /// The same as [`Polytope::from_points`].
     pub fn from_dvec3s(points: &[DVec3]) -> Result<Polytope, PolytopeError> {
         check_finite(points)?;
         if points.len() < 4 {
@@ -142,6 +159,29 @@ impl Polytope {
 
     /// A polytope from a polygon mesh, validated (see the module docs), with
     /// the default [`MeshPolicy`]. Returns the report of what changed.
+    ///
+    /// # Errors
+    /// The mesh is checked in this order, and the first failure returned:
+    /// * [`PolytopeError::NonFinite`]: a vertex coordinate is NaN or
+    ///   infinite;
+    /// * [`PolytopeError::IndexOutOfRange`]: a face names a vertex that does
+    ///   not exist; [`PolytopeError::BadFace`]: a face has fewer than 3
+    ///   distinct vertices;
+    /// * topology: [`PolytopeError::OpenEdge`] (a hole),
+    ///   [`PolytopeError::NonManifoldEdge`] (an edge used twice in one
+    ///   direction: more than two faces, or inconsistent orientation),
+    ///   [`PolytopeError::NonManifoldVertex`] (a pinch point),
+    ///   [`PolytopeError::NotSphere`] (Euler characteristic not 2);
+    /// * [`PolytopeError::TooFewPoints`], [`PolytopeError::OutOfRange`],
+    ///   [`PolytopeError::Flat`], [`PolytopeError::FaceOutOfRange`] and
+    ///   [`PolytopeError::DegenerateGaussMap`] as for
+    ///   [`Polytope::from_points`], on the vertices the faces use;
+    /// * [`PolytopeError::NonConvex`]: a vertex lies inside the hull, a face
+    ///   off its boundary, or the volumes differ, by more than the policy's
+    ///   tolerance (a dent, or a mesh folding over itself);
+    /// * [`PolytopeError::NotExactlyConvex`]: with a strict policy
+    ///   ([`MeshPolicy::strict()`]), the mesh is convex only within tolerance or
+    ///   oriented inwards (it would otherwise be replaced by its exact hull).
     ///
     /// ```
     /// # use dymsum::{Polytope, PolygonMesh, polytope::MeshPolicy};

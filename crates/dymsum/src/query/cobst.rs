@@ -46,6 +46,31 @@ pub fn orientations_about_axis(axis: DVec3, n: usize) -> Option<Vec<Rotation>> {
 }
 
 /// A robot (reflected once) and an obstacle, ready to be sliced.
+///
+/// The slices at turns about `z`, computed by one dynamic sum moved from
+/// slice to slice, equal the slices computed from scratch, and so do the
+/// parallel ones:
+///
+/// ```
+/// use dymsum::query::orientations_about_axis;
+/// use dymsum::{CObstacle, DVec3, Polytope};
+/// let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])?;
+/// let corners: Vec<[f64; 3]> = (0..8)
+///     .map(|i| [4.0 + 2.0 * (i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+///     .collect();
+/// let obstacle = Polytope::from_points(&corners)?;
+/// let cobst = CObstacle::new(&tet, &obstacle)?;
+/// let turns = orientations_about_axis(DVec3::Z, 12).ok_or("zero axis")?;
+/// let slices = cobst.slices(&turns).collect::<Result<Vec<_>, _>>()?;
+/// assert_eq!(slices.len(), 12);
+/// for (slice, &turn) in slices.iter().zip(&turns) {
+///     assert_eq!(*slice, cobst.slice(turn)?);
+///     // A slice holds a translate of the obstacle: at least its volume 2.
+///     assert!(slice.signed_volume() > 2.0);
+/// }
+/// assert_eq!(cobst.slices_par(&turns)?, slices);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct CObstacle {
     neg_robot: std::sync::Arc<Reflected>,
@@ -54,6 +79,9 @@ pub struct CObstacle {
 
 impl CObstacle {
     /// Prepares `robot` (reflects it: one convex hull) against `obstacle`.
+    ///
+    /// # Errors
+    /// Only internal errors of the reflection, as [`ConvexPair::new`](super::ConvexPair::new).
     pub fn new(robot: &Polytope, obstacle: &Polytope) -> Result<Self, QueryError> {
         Ok(CObstacle {
             neg_robot: std::sync::Arc::new(Reflected::new(robot)?),
@@ -67,6 +95,17 @@ impl CObstacle {
     }
 
     /// The slice at one orientation, computed from scratch.
+    ///
+    /// # Errors
+    /// * [`QueryError::Sum`] wrapping [`crate::SumError::OutOfRange`] when a
+    ///   rotated robot vertex overflows `f64`;
+    /// * [`QueryError::Mesh`] when the slice's mesh cannot be produced:
+    ///   [`crate::sum::MeshError::PrecisionLost`] (the obstacle is too far
+    ///   from the origin for the shapes' size) or
+    ///   [`crate::sum::MeshError::OutOfRange`] (a vertex of the slice
+    ///   overflows `f64`); other mesh errors are internal;
+    /// * [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] only
+    ///   for an internal error.
     pub fn slice(&self, orientation: Rotation) -> Result<PolygonMesh, QueryError> {
         let sum = minkowski_sum_posed(
             &self.neg_robot.polytope,
@@ -122,6 +161,12 @@ impl CObstacle {
     /// the orientations are split into contiguous chunks (about four per
     /// thread), each chunk walked by its own dynamic sum on a rayon thread.
     /// Results are in input order and do not depend on the chunking.
+    ///
+    /// # Errors
+    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if a
+    /// dynamic update hits an internal error (a bug); `f` itself cannot fail
+    /// here (return a `Result` from it to report per-slice failures, as
+    /// [`CObstacle::slices_par`] does).
     pub fn map_par<T, F>(&self, orientations: &[Rotation], f: F) -> Result<Vec<T>, QueryError>
     where
         T: Send,
@@ -155,6 +200,15 @@ impl CObstacle {
     }
 
     /// All slices, computed in parallel (see [`CObstacle::map_par`]).
+    ///
+    /// # Errors
+    /// The first failing slice, in input order:
+    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if a
+    /// dynamic update hits an internal error (a bug);
+    /// [`QueryError::Mesh`] when a slice's mesh cannot be produced
+    /// ([`crate::sum::MeshError::PrecisionLost`] for an obstacle too far from
+    /// the origin for the shapes' size, [`crate::sum::MeshError::OutOfRange`]
+    /// for a vertex beyond `f64`).
     pub fn slices_par(&self, orientations: &[Rotation]) -> Result<Vec<PolygonMesh>, QueryError> {
         self.map_par(orientations, |_, _, s| s.try_to_mesh())?
             .into_iter()
@@ -165,6 +219,10 @@ impl CObstacle {
 
 /// The C-obstacle slices `O ⊕ (−R·A)` of `robot` among `obstacle`, one per
 /// orientation, computed sequentially by one dynamic sum.
+///
+/// # Errors
+/// Those of [`CObstacle::new`] (internal only) and of
+/// [`CObstacle::slices_par`]: the first failing slice, in order.
 pub fn cobstacle_slices(
     robot: &Polytope,
     obstacle: &Polytope,
@@ -176,6 +234,9 @@ pub fn cobstacle_slices(
 }
 
 /// [`cobstacle_slices`] spread over rayon's threads (same result).
+///
+/// # Errors
+/// The same as [`cobstacle_slices`].
 pub fn cobstacle_slices_par(
     robot: &Polytope,
     obstacle: &Polytope,

@@ -271,6 +271,12 @@ fn bits(v: DVec3) -> [u64; 3] {
 
 impl Reflected {
     /// Reflects `b` through the origin (exact: negation is exact).
+    ///
+    /// # Errors
+    /// Only internal errors, for a polytope built by this crate:
+    /// [`QueryError::Reflect`] if rebuilding the reflected body from the
+    /// negated vertices fails, [`QueryError::Inconsistent`] if its faces or
+    /// edges do not match the original's (a bug in dymsum either way).
     pub fn new(b: &Polytope) -> Result<Reflected, QueryError> {
         let neg: Vec<DVec3> = b.vertices().iter().map(|&v| -v).collect();
         let polytope = Polytope::from_dvec3s(&neg)?;
@@ -340,6 +346,27 @@ impl Reflected {
 /// Two convex bodies prepared for repeated queries: `B`'s reflection is
 /// built once. Use it (or a [`ContactTracker`]) instead of the free functions
 /// when querying the same pair at many poses.
+///
+/// Two unit cubes whose centres are `0.75` apart along `x` overlap by
+/// `0.25`: that is the penetration depth, along `+x` (from A towards B).
+/// At `1.5` apart they are `0.5` apart.
+///
+/// ```
+/// use dymsum::{ConvexPair, DVec3, Polytope, Pose, Rotation};
+/// let corners: Vec<[f64; 3]> = (0..8)
+///     .map(|i| [(i & 1) as f64 - 0.5, ((i >> 1) & 1) as f64 - 0.5, ((i >> 2) & 1) as f64 - 0.5])
+///     .collect();
+/// let cube = Polytope::from_points(&corners)?;
+/// let pair = ConvexPair::new(&cube, &cube)?;
+/// let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
+/// let contact = pair.penetration_depth(Pose::IDENTITY, at(0.75))?.ok_or("apart")?;
+/// assert_eq!(contact.depth, 0.25);
+/// assert_eq!(contact.normal, DVec3::X);
+/// assert_eq!(contact.point_on_a - contact.point_on_b, contact.depth * contact.normal);
+/// assert!(!pair.intersects(Pose::IDENTITY, at(1.5))?);
+/// assert_eq!(pair.distance(Pose::IDENTITY, at(1.5))?.distance, 0.5);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ConvexPair {
     a: Polytope,
@@ -351,6 +378,12 @@ impl ConvexPair {
     /// Prepares `a` and `b` (reflects `b`: one convex hull). The pair keeps
     /// its own handles on the bodies (cheap clones, see [`Polytope`]); a
     /// clone of the pair shares them and the reflection.
+    ///
+    /// # Errors
+    /// Only internal errors of the reflection ([`Reflected::new`]), for a polytope built by this crate:
+    /// [`QueryError::Reflect`] if rebuilding the reflected body from the
+    /// negated vertices fails, [`QueryError::Inconsistent`] if its faces or
+    /// edges do not match the original's (a bug in dymsum either way).
     pub fn new(a: &Polytope, b: &Polytope) -> Result<Self, QueryError> {
         Ok(ConvexPair {
             a: a.clone(),
@@ -372,6 +405,14 @@ impl ConvexPair {
     }
 
     /// Depth or distance at the given poses (a static `walk` sum).
+    ///
+    /// # Errors
+    /// * [`QueryError::Sum`] wrapping [`SumError::OutOfRange`] when a posed
+    ///   vertex of A or of `−B` overflows `f64` (|coordinate| > 1.8e308);
+    /// * [`QueryError::OutOfRange`] when the answer (depth, distance or a
+    ///   witness point) overflows `f64`;
+    /// * [`QueryError::Sum`] wrapping [`SumError::Inconsistent`] only for an
+    ///   internal error of the sum (a bug: please report the poses).
     pub fn query(&self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
         let sum = minkowski_sum_posed(
             &self.a,
@@ -384,6 +425,9 @@ impl ConvexPair {
     }
 
     /// The penetration depth, or `None` when apart.
+    ///
+    /// # Errors
+    /// The same as [`ConvexPair::query`].
     pub fn penetration_depth(
         &self,
         pose_a: Pose,
@@ -394,6 +438,9 @@ impl ConvexPair {
 
     /// The distance (`0` and the contact features when touching or
     /// overlapping).
+    ///
+    /// # Errors
+    /// The same as [`ConvexPair::query`].
     pub fn distance(&self, pose_a: Pose, pose_b: Pose) -> Result<Separation, QueryError> {
         Ok(match self.query(pose_a, pose_b)? {
             Proximity::Separated(s) => s,
@@ -408,11 +455,17 @@ impl ConvexPair {
     }
 
     /// `true` when the bodies overlap or touch.
+    ///
+    /// # Errors
+    /// The same as [`ConvexPair::query`].
     pub fn intersects(&self, pose_a: Pose, pose_b: Pose) -> Result<bool, QueryError> {
         Ok(self.query(pose_a, pose_b)?.intersects())
     }
 
     /// A tracker starting at the given poses.
+    ///
+    /// # Errors
+    /// The same as [`ContactTracker::new`].
     pub fn tracker(&self, pose_a: Pose, pose_b: Pose) -> Result<ContactTracker, QueryError> {
         ContactTracker::new(self, pose_a, pose_b)
     }
@@ -430,6 +483,10 @@ impl ConvexPair {
 
 /// Penetration depth of `a` and `b` at their poses, or `None` when they are
 /// apart (see the [module docs](self) for the conventions).
+///
+/// # Errors
+/// Those of [`ConvexPair::new`] (internal only) and of
+/// [`ConvexPair::query`]: an overflowing posed vertex or answer.
 pub fn penetration_depth(
     a: &Polytope,
     pose_a: Pose,
@@ -441,6 +498,10 @@ pub fn penetration_depth(
 
 /// Distance between `a` and `b` at their poses (`0` when touching or
 /// overlapping), with the closest points.
+///
+/// # Errors
+/// Those of [`ConvexPair::new`] (internal only) and of
+/// [`ConvexPair::query`]: an overflowing posed vertex or answer.
 pub fn distance(
     a: &Polytope,
     pose_a: Pose,
@@ -451,6 +512,10 @@ pub fn distance(
 }
 
 /// `true` when `a` and `b` overlap or touch at their poses.
+///
+/// # Errors
+/// Those of [`ConvexPair::new`] (internal only) and of
+/// [`ConvexPair::query`]: an overflowing posed vertex or answer.
 pub fn intersects(
     a: &Polytope,
     pose_a: Pose,
@@ -461,6 +526,10 @@ pub fn intersects(
 }
 
 /// Depth or distance of `a` and `b` at their poses.
+///
+/// # Errors
+/// Those of [`ConvexPair::new`] (internal only) and of
+/// [`ConvexPair::query`]: an overflowing posed vertex or answer.
 pub fn query(
     a: &Polytope,
     pose_a: Pose,

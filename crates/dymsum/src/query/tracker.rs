@@ -29,6 +29,31 @@ use crate::dynamic::UpdateReport;
 use crate::{DynamicSum, Pose};
 
 /// Depth or distance of two moving convex bodies, frame after frame.
+///
+/// Built by [`ConvexPair::tracker`] (or [`ContactTracker::new`]); each
+/// [`ContactTracker::update`] answers exactly what the static
+/// [`ConvexPair::query`] answers at the same poses. A box slides through
+/// a turning box:
+///
+/// ```
+/// use dymsum::{ContactTracker, ConvexPair, DVec3, Polytope, Pose, Rotation};
+/// let corners: Vec<[f64; 3]> = (0..8)
+///     .map(|i| [(i & 1) as f64 - 0.5, ((i >> 1) & 1) as f64 - 0.5, ((i >> 2) & 1) as f64 - 0.5])
+///     .collect();
+/// let cube = Polytope::from_points(&corners)?;
+/// let pair = ConvexPair::new(&cube, &cube)?;
+/// let slide = |k: usize| Pose::new(Rotation::IDENTITY, DVec3::new(2.0 - 0.05 * k as f64, 0.1, 0.0));
+/// let mut tracker: ContactTracker = pair.tracker(Pose::IDENTITY, slide(0))?;
+/// assert!(!tracker.last().intersects()); // centres 2 apart: no contact yet
+/// for k in 1..=40 {
+///     let turn = Rotation::from_axis_angle(DVec3::Z, 0.01 * k as f64).ok_or("zero axis")?;
+///     let pose_a = Pose::new(turn, DVec3::ZERO);
+///     let answer = tracker.update(pose_a, slide(k))?;
+///     assert_eq!(answer, pair.query(pose_a, slide(k))?);
+/// }
+/// assert!(tracker.last().intersects()); // centres 0.1 apart at the end
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ContactTracker {
     pair: ConvexPair,
@@ -41,6 +66,13 @@ impl ContactTracker {
     /// A tracker at the given poses (one static sum). It keeps its own
     /// handle on the pair (a cheap clone: the bodies and `B`'s reflection
     /// are shared).
+    ///
+    /// # Errors
+    /// * [`QueryError::OutOfRange`] when a posed vertex of A or B, or the
+    ///   answer, overflows `f64` (the dynamic sum itself depends only on the
+    ///   rotations, so the range is checked when the answer is evaluated);
+    /// * [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] only for an
+    ///   internal error of the dynamic sum (a bug: please report the poses).
     pub fn new(pair: &ConvexPair, pose_a: Pose, pose_b: Pose) -> Result<Self, QueryError> {
         let pair = pair.clone();
         let sum = DynamicSum::new(
@@ -59,6 +91,15 @@ impl ContactTracker {
     }
 
     /// Moves both bodies (a dynamic update) and answers the query.
+    ///
+    /// # Errors
+    /// * [`QueryError::OutOfRange`] when a posed vertex of A or B, or the
+    ///   answer, overflows `f64` (the dynamic sum itself depends only on the
+    ///   rotations, so the range is checked when the answer is evaluated);
+    /// * [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] only for an
+    ///   internal error of the dynamic sum (a bug: please report the poses).
+    ///
+    /// After an error the tracker's state is unspecified: build a new one.
     pub fn update(&mut self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
         self.report = self.sum.set_pose(pose_a, Reflected::pose(pose_b))?;
         self.last = self.pair.evaluate(pose_a, pose_b, &self.sum.overlay())?;

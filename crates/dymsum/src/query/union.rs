@@ -23,6 +23,39 @@ use crate::polytope::Polytope;
 use crate::{PolygonMesh, Pose, Rotation};
 
 /// Several convex pieces forming one (possibly non-convex) body.
+///
+/// An L of two boxes against a unit cube: collision and distance are
+/// exact, the penetration depth of a union is refused.
+///
+/// ```
+/// use dymsum::{ConvexUnion, DVec3, Polytope, Pose, QueryError, Rotation};
+/// let cuboid = |lo: [f64; 3], hi: [f64; 3]| {
+///     let corners: Vec<[f64; 3]> = (0..8)
+///         .map(|i| {
+///             let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
+///             [pick(0), pick(1), pick(2)]
+///         })
+///         .collect();
+///     Polytope::from_points(&corners)
+/// };
+/// let l_shape = ConvexUnion::new(vec![
+///     cuboid([0., 0., 0.], [3., 1., 1.])?,
+///     cuboid([0., 1., 0.], [1., 3., 1.])?,
+/// ])
+/// .ok_or("no pieces")?;
+/// let cube = ConvexUnion::new(vec![cuboid([0., 0., 0.], [1., 1., 1.])?]).ok_or("no pieces")?;
+/// let at = |x: f64, y: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, y, 0.0));
+/// // In the L's inner corner the cube touches nothing...
+/// assert!(!l_shape.collides(Pose::IDENTITY, &cube, at(1.5, 1.5))?);
+/// assert_eq!(l_shape.distance(Pose::IDENTITY, &cube, at(1.5, 1.5))?, 0.5);
+/// // ...moved onto the long arm it collides.
+/// assert!(l_shape.collides(Pose::IDENTITY, &cube, at(2.0, 0.5))?);
+/// assert_eq!(
+///     l_shape.penetration_depth(Pose::IDENTITY, &cube, at(2.0, 0.5)),
+///     Err(QueryError::UnionDepthUnsupported)
+/// );
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ConvexUnion {
     pieces: Vec<Polytope>,
@@ -50,6 +83,12 @@ impl ConvexUnion {
     }
 
     /// Collision and distance against `other`, checking every piece pair.
+    ///
+    /// # Errors
+    /// The first error of a piece pair, as [`ConvexPair::new`] (internal
+    /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
+    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// posed vertex or an answer overflows `f64`.
     pub fn query(
         &self,
         pose: Pose,
@@ -78,6 +117,12 @@ impl ConvexUnion {
     }
 
     /// `true` when some piece pair overlaps or touches.
+    ///
+    /// # Errors
+    /// The first error of a piece pair, as [`ConvexPair::new`] (internal
+    /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
+    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// posed vertex or an answer overflows `f64`.
     pub fn collides(
         &self,
         pose: Pose,
@@ -95,6 +140,12 @@ impl ConvexUnion {
     }
 
     /// The distance between the unions (`0` when they collide).
+    ///
+    /// # Errors
+    /// As [`ConvexUnion::query`]: the first error of a piece pair, as [`ConvexPair::new`] (internal
+    /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
+    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// posed vertex or an answer overflows `f64`.
     pub fn distance(
         &self,
         pose: Pose,
@@ -109,6 +160,11 @@ impl ConvexUnion {
 
     /// The penetration depth: only for single-piece (convex) unions;
     /// otherwise [`QueryError::UnionDepthUnsupported`] (see the module docs).
+    ///
+    /// # Errors
+    /// [`QueryError::UnionDepthUnsupported`] when either union has more than
+    /// one piece; otherwise those of [`ConvexPair::penetration_depth`] for
+    /// the single pair.
     pub fn penetration_depth(
         &self,
         pose: Pose,
@@ -125,6 +181,10 @@ impl ConvexUnion {
     /// orientation, the piece-pair sums `O_j ⊕ (−R·A_i)` ordered by `(i, j)`.
     /// Their union is the slice. Each piece pair is sliced by one dynamic
     /// sum, in parallel over orientations.
+    ///
+    /// # Errors
+    /// The first error of a piece pair, as [`CObstacle::slices_par`]: an
+    /// unbuildable slice mesh ([`QueryError::Mesh`]) or an internal error.
     pub fn cobstacle_slices(
         &self,
         obstacle: &ConvexUnion,

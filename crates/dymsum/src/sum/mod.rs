@@ -351,6 +351,32 @@ impl Operands {
 }
 
 /// A Minkowski sum: the operands and their overlay.
+///
+/// Built by [`minkowski_sum`] or [`minkowski_sum_posed`]; every [`Method`]
+/// gives the identical labelled facet set. A box plus a box is a box:
+///
+/// ```
+/// use dymsum::{minkowski_sum, Method, Polytope};
+/// let cuboid = |x: f64, y: f64, z: f64| {
+///     let corners: Vec<[f64; 3]> = (0..8)
+///         .map(|i| [x * (i & 1) as f64, y * ((i >> 1) & 1) as f64, z * ((i >> 2) & 1) as f64])
+///         .collect();
+///     Polytope::from_points(&corners)
+/// };
+/// let a = cuboid(1.0, 1.0, 1.0)?;
+/// let b = cuboid(2.0, 1.0, 3.0)?;
+/// let sum = minkowski_sum(&a, &b, Method::Walk)?;
+/// // Every face of each box is translated by one vertex of the other.
+/// let (fv, vf, ee) = sum.counts();
+/// assert_eq!((fv, vf), (6, 6));
+/// assert_eq!(sum.facets().len(), fv + vf + ee);
+/// assert_eq!(minkowski_sum(&a, &b, Method::Brute)?.facets(), sum.facets());
+/// // Coplanar facets merge: the mesh is the 3 × 2 × 4 box.
+/// let mesh = sum.try_to_mesh()?;
+/// assert_eq!((mesh.vertices.len(), mesh.faces.len()), (8, 6));
+/// assert_eq!(mesh.signed_volume(), 24.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct MinkowskiSum {
     operands: Operands,
@@ -387,12 +413,17 @@ impl MinkowskiSum {
     /// # Errors
     /// [`MeshError::PrecisionLost`] when the rounded vertices collapse (the
     /// sum is too far from the origin for its size);
+    /// [`MeshError::OutOfRange`] when a vertex of the sum (a posed `p + q`)
+    /// overflows `f64`;
     /// [`MeshError::Merge`] / [`MeshError::Invalid`] are internal errors.
     pub fn try_to_mesh(&self) -> Result<crate::PolygonMesh, MeshError> {
         self.mesh_with_precision().map(|m| m.mesh)
     }
     /// [`Self::try_to_mesh`] with the coordinates' rounding relative to the
     /// sum's size, and whether the hull fallback was used.
+    ///
+    /// # Errors
+    /// The same as [`Self::try_to_mesh`].
     pub fn mesh_with_precision(&self) -> Result<merge::SumMesh, MeshError> {
         merge::validated_mesh(&self.operands, &self.overlay)
     }
@@ -410,11 +441,27 @@ impl MinkowskiSum {
 }
 
 /// `P ⊕ Q` at the polytopes' own coordinates.
+///
+/// # Errors
+/// As [`minkowski_sum_posed`] at the identity poses:
+/// [`SumError::OutOfRange`] cannot occur (the vertices are finite), so
+/// [`SumError::HullMismatch`] (only with [`Method::Hull`]) and the internal
+/// [`SumError::Inconsistent`] remain.
 pub fn minkowski_sum(p: &Polytope, q: &Polytope, method: Method) -> Result<MinkowskiSum, SumError> {
     minkowski_sum_posed(p, Pose::IDENTITY, q, Pose::IDENTITY, method)
 }
 
 /// `(R_p P + t_p) ⊕ (R_q Q + t_q)`.
+///
+/// # Errors
+/// * [`SumError::OutOfRange`] when a posed vertex `R p + t` of P or Q
+///   overflows `f64` (naming the operand and the vertex);
+/// * [`SumError::HullMismatch`], only with [`Method::Hull`], when the hull
+///   of the rounded pairwise vertex sums disagrees with the exact overlay
+///   (rotation rounding bent a face of P); [`Method::Walk`] and
+///   [`Method::Brute`] never return it;
+/// * [`SumError::Inconsistent`] if an internal invariant fails (a bug in
+///   dymsum: please report the input).
 pub fn minkowski_sum_posed(
     p: &Polytope,
     pose_p: Pose,

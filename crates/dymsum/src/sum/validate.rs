@@ -230,6 +230,15 @@ impl HullPoints for ExactPoints {
 /// maximal, strictly convex faces, counter-clockwise seen from outside (see
 /// the module docs for the exact list).
 ///
+/// # Errors
+/// The first [`MeshDefect`] found, in the order of the module docs:
+/// [`MeshDefect::NonFinite`] for a NaN or infinite vertex; the combinatorial
+/// defects [`MeshDefect::BadFace`], [`MeshDefect::EdgeUsedTwice`],
+/// [`MeshDefect::OpenEdge`], [`MeshDefect::UnusedVertex`],
+/// [`MeshDefect::PinchedVertex`], [`MeshDefect::Euler`]; then the geometric
+/// ones [`MeshDefect::NonPlanarFace`], [`MeshDefect::CollinearCorner`],
+/// [`MeshDefect::NonConvexFace`] and [`MeshDefect::NonConvexEdge`].
+///
 /// ```
 /// use dymsum::sum::validate::{check_convex_mesh, MeshDefect};
 /// use dymsum::PolygonMesh;

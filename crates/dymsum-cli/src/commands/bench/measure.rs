@@ -163,6 +163,9 @@ impl Figures {
 
 /// Writes the `verified:` line over all the measurements; returns the
 /// total number of mismatches.
+///
+/// # Errors
+/// The I/O error of writing to `out`.
 pub fn write_verified<'a>(
     out: &mut dyn Write,
     figures: impl IntoIterator<Item = &'a Figures>,
@@ -178,6 +181,9 @@ pub fn write_verified<'a>(
 }
 
 /// Fails when any facet-set comparison disagreed with DYMSUM.
+///
+/// # Errors
+/// An internal error naming the count when `mismatches > 0`.
 pub fn ensure_no_mismatches(mismatches: usize) -> anyhow::Result<()> {
     if mismatches > 0 {
         anyhow::bail!("internal error: {mismatches} facet-set comparisons disagreed with DYMSUM (please report)");
@@ -225,6 +231,12 @@ pub(crate) fn time_static(
 }
 
 /// Runs the plan on P (moving) and Q (fixed at the identity).
+///
+/// # Errors
+/// The initial dynamic sum, a DYMSUM update (naming the step) or the final
+/// static `walk` sum fails, or a sampled static `walk` or `brute` sum fails
+/// (naming the method and step). A failing `hull` sum is not an error: it
+/// is counted in [`Timings::hull_errors`].
 pub fn measure(p: &Polytope, q: &Polytope, plan: &Plan) -> anyhow::Result<Timings> {
     let n = plan.steps.max(1);
     let walk_at = sample_indices(n, plan.walk_poses);

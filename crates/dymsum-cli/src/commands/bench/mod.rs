@@ -47,6 +47,10 @@ pub enum Experiment {
 }
 
 /// Runs an experiment.
+///
+/// # Errors
+/// Those of the experiment's `run` ([`table1::run`], [`rotation::run`],
+/// [`size::run`]).
 pub fn run(a: &BenchArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     match &a.experiment {
         Experiment::Table1(a) => table1::run(a, out),

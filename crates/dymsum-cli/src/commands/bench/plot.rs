@@ -125,6 +125,10 @@ pub fn method_series(
 pub const SIZE: (u32, u32) = (1000, 600);
 
 /// Writes the chart as an SVG file and a PNG file.
+///
+/// # Errors
+/// Either file cannot be created, drawn or committed (naming the file); an
+/// earlier chart at either path is kept.
 pub fn write_chart(chart: &Chart, svg: &Path, png: &Path) -> anyhow::Result<()> {
     register_fonts();
     // Drawn under temporary names and renamed into place: a failure never

@@ -70,6 +70,9 @@ pub struct RotationArgs {
 }
 
 /// Parses `P+Q` into its two operands.
+///
+/// # Errors
+/// A message when `s` has no `+` or either side is blank.
 pub fn parse_pair(s: &str) -> Result<(String, String), String> {
     match s.split_once('+') {
         Some((p, q)) if !p.trim().is_empty() && !q.trim().is_empty() => {
@@ -87,6 +90,12 @@ struct Point {
 }
 
 /// Runs `dymsum bench rotation`.
+///
+/// # Errors
+/// An operand cannot be loaded; the output directory, CSV or chart files
+/// cannot be written; a sum or a DYMSUM update fails (see
+/// [`super::measure::measure`]); or, as an internal error, any facet-set
+/// comparison disagrees with DYMSUM (reported after the files are written).
 pub fn run(a: &RotationArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let started = Instant::now();
     let mut loaded = Vec::new();

@@ -86,6 +86,12 @@ const FAMILIES: [(&str, &str); 2] = [
 ];
 
 /// Runs `dymsum bench size`.
+///
+/// # Errors
+/// An operand cannot be loaded; the output directory, CSV or chart files
+/// cannot be written; a sum or a DYMSUM update fails (see
+/// [`super::measure::measure`]); or, as an internal error, any facet-set
+/// comparison disagrees with DYMSUM (reported after the files are written).
 pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let started = Instant::now();
     let mut models: Vec<(&'static str, String)> = Vec::new();

@@ -129,6 +129,12 @@ impl Row {
 }
 
 /// Runs `dymsum bench table1`.
+///
+/// # Errors
+/// An operand cannot be loaded; the output directory, CSV or markdown files
+/// cannot be written; a sum or a DYMSUM update fails (see
+/// [`super::measure::measure`]); or, as an internal error, any facet-set
+/// comparison disagrees with DYMSUM (reported after the files are written).
 pub fn run(a: &Table1Args, out: &mut dyn Write) -> anyhow::Result<()> {
     let started = Instant::now();
     let loaded: Vec<Loaded> = MODELS

@@ -124,6 +124,9 @@ impl PictureFormat {
 }
 
 /// Checks that the output path ends in `.svg` or `.png`.
+///
+/// # Errors
+/// A message when the extension is neither (any case).
 pub fn parse_picture_path(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
     match PictureFormat::from_path(&path) {
@@ -135,6 +138,10 @@ pub fn parse_picture_path(s: &str) -> Result<PathBuf, String> {
 }
 
 /// Parses `AZIMUTH,ELEVATION` in degrees (elevation from -90 to 90).
+///
+/// # Errors
+/// A message when there are not exactly 2 comma-separated values, a value
+/// is not a finite number, or the elevation lies outside `-90..=90`.
 pub fn parse_view(s: &str) -> Result<View, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != 2 {
@@ -161,6 +168,12 @@ pub fn parse_view(s: &str) -> Result<View, String> {
 }
 
 /// Draws the picture.
+///
+/// # Errors
+/// The output is not `.svg` or `.png`; P or Q cannot be loaded; the sum,
+/// the further turn or the mesh fails ([`dymsum::SumError`],
+/// [`dymsum::sum::MeshError`]); PNG encoding fails; or the picture or `out`
+/// cannot be written (an earlier picture is kept).
 pub fn run(a: &RenderArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let format = PictureFormat::from_path(&a.output)
         .with_context(|| format!("{}: not a .svg or .png file", a.output.display()))?;
