@@ -46,10 +46,10 @@ fn dynamic_update(c: &mut Criterion) {
         // must match the static walk every 100 steps.
         {
             let mut dy = DynamicSum::new(&p, Pose::IDENTITY, &q, Pose::IDENTITY).unwrap();
-            dy.set_pose_p(poses[0]).unwrap();
+            dy.set_pose_p(poses[0]);
             let mut recomputed = 0;
             for (i, pose) in timed.iter().enumerate() {
-                recomputed += dy.set_pose_p(*pose).unwrap().recomputed as usize;
+                recomputed += dy.set_pose_p(*pose).recomputed as usize;
                 if i % 100 == 0 {
                     let walk =
                         minkowski_sum_posed(&p, *pose, &q, Pose::IDENTITY, Method::Walk).unwrap();
@@ -70,7 +70,7 @@ fn dynamic_update(c: &mut Criterion) {
         }
 
         let mut dy = DynamicSum::new(&p, Pose::IDENTITY, &q, Pose::IDENTITY).unwrap();
-        dy.set_pose_p(poses[0]).unwrap();
+        dy.set_pose_p(poses[0]);
         let mut next = 0usize;
         group.sample_size(20);
         group.bench_function(BenchmarkId::new("dymsum", &pair), |b| {
@@ -80,13 +80,13 @@ fn dynamic_update(c: &mut Criterion) {
                 while left > 0 {
                     if next == timed.len() {
                         // Wrap-around: back to pose 0, untimed.
-                        dy.set_pose_p(poses[0]).unwrap();
+                        dy.set_pose_p(poses[0]);
                         next = 0;
                     }
                     let run = left.min((timed.len() - next) as u64) as usize;
                     let start = Instant::now();
                     for pose in &timed[next..next + run] {
-                        black_box(dy.set_pose_p(*pose).unwrap());
+                        black_box(dy.set_pose_p(*pose));
                     }
                     total += start.elapsed();
                     next += run;

@@ -104,9 +104,7 @@ fn run_pair(na: &str, nb: &str) {
     .unwrap();
     let t0 = Instant::now();
     for &(pa, pb) in &poses {
-        dynamic
-            .set_pose(pa, dymsum::query::Reflected::pose(pb))
-            .unwrap();
+        dynamic.set_pose(pa, dymsum::query::Reflected::pose(pb));
     }
     let update_us = t0.elapsed().as_secs_f64() * 1e6 / frames as f64;
 

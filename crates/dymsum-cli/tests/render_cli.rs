@@ -87,7 +87,7 @@ fn expected(p: &str, q: &str, rotate_p: &str, after: &str, view: (f64, f64)) -> 
     let (p, q) = (model(p), model(q));
     let pose = Pose::new(rotation(rotate_p), DVec3::ZERO);
     let mut s = DynamicSum::new(&p, pose, &q, Pose::IDENTITY).unwrap();
-    let report = s.rotate_p_by(rotation(after)).unwrap();
+    let report = s.rotate_p_by(rotation(after));
     let (pp, pq) = (s.pose_p(), s.pose_q());
     let v = toward(view.0, view.1);
     let front = report

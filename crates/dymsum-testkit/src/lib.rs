@@ -333,10 +333,12 @@ pub mod oracle {
                 show_pose(&pose_p),
                 show_pose(&pose_q)
             );
-            let rep = self
-                .d
-                .set_pose(pose_p, pose_q)
-                .map_err(|e| format!("{ctx}: set_pose failed: {e}"))?;
+            let rep = self.d.set_pose(pose_p, pose_q);
+            if let Some(bug) = &rep.recovered {
+                return Err(format!(
+                    "{ctx}: the repair met an internal inconsistency: {bug}"
+                ));
+            }
             if rep.recomputed {
                 self.recomputed += 1;
             }
@@ -351,9 +353,8 @@ pub mod oracle {
                 let mut fresh =
                     DynamicSum::with_config(self.d.p(), old_p, self.d.q(), old_q, self.d.config())
                         .expect("new");
-                let fresh_ok = fresh
-                    .set_pose(pose_p, pose_q)
-                    .map(|_| fresh.facets() == walk);
+                fresh.set_pose(pose_p, pose_q);
+                let fresh_ok = fresh.facets() == walk;
                 let state_ok = before_state.facets() == self.prev;
                 return Err(format!(
                     "{ctx}: dynamic facets differ from walk (step angle {:e}, recomputed {}, \

@@ -57,7 +57,7 @@ fn world_without_lifetimes_is_send_sync_and_owns_its_shapes() {
             let pose = Pose::new(turn, DVec3::ZERO);
             let tracked = world.tracker.update(pose, near).unwrap();
             assert_eq!(tracked, world.pair.query(pose, near).unwrap(), "step {k}");
-            world.sum.set_pose_p(pose).unwrap();
+            world.sum.set_pose_p(pose);
             let fresh = minkowski_sum_posed(
                 world.sum.p(),
                 pose,

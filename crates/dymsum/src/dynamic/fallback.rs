@@ -28,19 +28,12 @@ impl Backoff {
 }
 
 impl DynamicSum {
-    /// Recomputes from scratch with `walk` (large steps), reporting the diff.
-    pub(super) fn recompute(&mut self, mut report: UpdateReport) -> Result<UpdateReport, SumError> {
-        // Diff whole overlays: the state before this step is the current one
-        // with the fv-corrections already made in this step undone.
-        let mut before = self.overlay();
-        for f in &report.removed {
-            match *f {
-                Facet::Fv { p_face, q_vertex } => before.fv[p_face as usize] = q_vertex,
-                Facet::Vf { p_vertex, q_face } => before.vf[q_face as usize] = p_vertex,
-                Facet::Ee { .. } => {}
-            }
-        }
-        let fresh = walk_overlay(&self.ops)?;
+    /// Recomputes from scratch (large steps, too many arcs at risk, or the
+    /// recovery from a failed repair), reporting the diff against the
+    /// overlay before this step.
+    pub(super) fn recompute(&mut self, mut report: UpdateReport) -> UpdateReport {
+        let before = self.overlay_before(&report);
+        let fresh = self.fresh_overlay(&mut report);
         let (removed, added) = overlay_diff(&before, &fresh);
         report.removed = removed;
         report.added = added;
@@ -53,7 +46,48 @@ impl DynamicSum {
         report.rewalked_arcs = self.p.ee.len();
         report.recomputed = true;
         self.load_overlay(fresh);
-        Ok(report)
+        report
+    }
+
+    /// The overlay before this step: the current one with the changes this
+    /// step already made (listed in the report) undone.
+    fn overlay_before(&self, report: &UpdateReport) -> Overlay {
+        let mut before = self.overlay();
+        let mut ee: std::collections::BTreeSet<(u32, u32)> = before.ee.drain(..).collect();
+        for f in &report.removed {
+            match *f {
+                Facet::Fv { p_face, q_vertex } => before.fv[p_face as usize] = q_vertex,
+                Facet::Vf { p_vertex, q_face } => before.vf[q_face as usize] = p_vertex,
+                Facet::Ee { p_edge, q_edge } => {
+                    ee.insert((p_edge, q_edge));
+                }
+            }
+        }
+        for f in &report.added {
+            if let Facet::Ee { p_edge, q_edge } = *f {
+                ee.remove(&(p_edge, q_edge));
+            }
+        }
+        before.ee = ee.into_iter().collect();
+        before
+    }
+
+    /// The overlay at the current poses from scratch, by `walk`; should that
+    /// report an internal inconsistency (a bug), by the independent
+    /// brute-force method, noting it in the report.
+    fn fresh_overlay(&self, report: &mut UpdateReport) -> Overlay {
+        match walk_overlay(&self.ops) {
+            Ok(fresh) => fresh,
+            Err(walk) => {
+                report.recovered = Some(walk.to_string());
+                crate::sum::brute_overlay(&self.ops).unwrap_or_else(|brute| {
+                    panic!(
+                        "dymsum internal error: walk ({walk}) and brute force ({brute}) \
+                         both failed at the same poses; please report them"
+                    )
+                })
+            }
+        }
     }
 
     /// Too large a step, or a step within the backoff after a step as large

@@ -112,7 +112,7 @@
 //! let mut dynamic = DynamicSum::new(&tet, Pose::IDENTITY, &cube, Pose::IDENTITY).unwrap();
 //! let step = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.01).unwrap();
 //! for _ in 0..100 {
-//!     let report = dynamic.rotate_p_by(step).unwrap();
+//!     let report = dynamic.rotate_p_by(step);
 //!     assert!(report.fv_errors <= tet.face_count() + cube.face_count());
 //! }
 //! let fresh = minkowski_sum_posed(&tet, dynamic.pose_p(), &cube, dynamic.pose_q(), Method::Walk).unwrap();
@@ -182,7 +182,7 @@ impl Default for DynamicConfig {
 /// let step = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.05).ok_or("zero axis")?;
 /// for _ in 0..40 {
 ///     let before = sum.facet_count();
-///     let report = sum.rotate_p_by(step)?;
+///     let report = sum.rotate_p_by(step);
 ///     assert_eq!(sum.facet_count(), before - report.removed.len() + report.added.len());
 ///     let fresh = minkowski_sum_posed(&tet, sum.pose_p(), &cube, sum.pose_q(), Method::Walk)?;
 ///     assert_eq!(sum.facets(), fresh.facets());
@@ -321,40 +321,40 @@ impl DynamicSum {
     }
 
     /// Turns P further by `r` (applied after its current rotation, about the
-    /// origin of the world frame; P's translation is kept).
-    ///
-    /// # Errors
-    /// The same as [`DynamicSum::set_pose`].
-    pub fn rotate_p_by(&mut self, r: Rotation) -> Result<UpdateReport, SumError> {
+    /// origin of the world frame; P's translation is kept). See
+    /// [`DynamicSum::set_pose`].
+    pub fn rotate_p_by(&mut self, r: Rotation) -> UpdateReport {
         let mut pose = self.ops.pose_p;
         pose.rotation = pose.rotation.then(&r);
         self.set_pose(pose, self.ops.pose_q)
     }
 
-    /// Moves P to `pose_p`, keeping Q where it is.
-    ///
-    /// # Errors
-    /// The same as [`DynamicSum::set_pose`].
-    pub fn set_pose_p(&mut self, pose_p: Pose) -> Result<UpdateReport, SumError> {
+    /// Moves P to `pose_p`, keeping Q where it is. See
+    /// [`DynamicSum::set_pose`].
+    pub fn set_pose_p(&mut self, pose_p: Pose) -> UpdateReport {
         self.set_pose(pose_p, self.ops.pose_q)
     }
 
     /// Moves both bodies and repairs the overlay: the paper's Algorithm 4.1
     /// (see the module docs for why every step is exact).
     ///
-    /// # Errors
-    /// [`SumError::Inconsistent`] only if an internal invariant fails while
-    /// repairing (an arc walk that finds no exit, while re-walking an arc at
-    /// risk or recomputing a large step by `walk`): a bug in dymsum, never a
-    /// property of the input; please report the poses. The state is then
-    /// unspecified; rebuild with [`DynamicSum::new`]. Poses are not range
+    /// Infallible: no input makes an update fail. Poses are not range
     /// checked here (the overlay depends on the rotations alone); posed
     /// coordinates beyond `f64` surface as
-    /// [`crate::sum::MeshError::OutOfRange`] from [`Self::try_to_mesh`].
-    pub fn set_pose(&mut self, pose_p: Pose, pose_q: Pose) -> Result<UpdateReport, SumError> {
+    /// [`crate::sum::MeshError::OutOfRange`] from [`Self::try_to_mesh`]. If
+    /// an internal invariant failed while repairing (an arc walk finding no
+    /// exit: a bug, never a property of the input), the step is recomputed
+    /// from scratch instead, still exactly, and the report says so in
+    /// [`UpdateReport::recovered`].
+    ///
+    /// # Panics
+    /// Only if the static `walk` and the brute-force method both fail on the
+    /// same poses as well, which would be a bug in dymsum (please report the
+    /// poses); no input is known to do this.
+    pub fn set_pose(&mut self, pose_p: Pose, pose_q: Pose) -> UpdateReport {
         // Line 1: Rotate (P's normals and arcs, by the new relative rotation).
         let Some((old, theta)) = self.rotate(pose_p, pose_q) else {
-            return Ok(UpdateReport::default());
+            return UpdateReport::default();
         };
         let mut report = UpdateReport {
             step_angle: theta,
@@ -374,8 +374,11 @@ impl DynamicSum {
             return self.recompute(report);
         }
         self.backoff = Backoff::default();
-        self.correct_ee_errors(&scans, &at_risk, &mut report)?;
-        Ok(report)
+        if let Err(bug) = self.correct_ee_errors(&scans, &at_risk, &mut report) {
+            report.recovered = Some(bug.to_string());
+            return self.recompute(report);
+        }
+        report
     }
 
     /// Algorithm 4.1, line 1: stores the poses and turns P's normals and arcs

@@ -30,6 +30,11 @@ pub struct UpdateReport {
     /// The step was recomputed from scratch (large step or too many arcs at
     /// risk).
     pub recomputed: bool,
+    /// `Some(reason)` when the incremental repair met an internal
+    /// inconsistency (a bug, never a property of the input) and the step was
+    /// recomputed from scratch instead; the result is exact either way. The
+    /// test suites check that this never happens.
+    pub recovered: Option<String>,
 }
 
 /// The facets of `before` missing from `after`, and those of `after`

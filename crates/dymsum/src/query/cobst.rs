@@ -145,7 +145,7 @@ impl CObstacle {
         let pose = Pose::new(r, DVec3::ZERO);
         Ok(match sum {
             Some(s) => {
-                s.set_pose(pose, Pose::IDENTITY)?;
+                s.set_pose(pose, Pose::IDENTITY);
                 s
             }
             None => sum.insert(DynamicSum::new(
@@ -163,8 +163,9 @@ impl CObstacle {
     /// Results are in input order and do not depend on the chunking.
     ///
     /// # Errors
-    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if a
-    /// dynamic update hits an internal error (a bug); `f` itself cannot fail
+    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if
+    /// building a chunk's first dynamic sum hits an internal error (a bug;
+    /// the updates themselves cannot fail); `f` itself cannot fail
     /// here (return a `Result` from it to report per-slice failures, as
     /// [`CObstacle::slices_par`] does).
     pub fn map_par<T, F>(&self, orientations: &[Rotation], f: F) -> Result<Vec<T>, QueryError>
@@ -203,8 +204,8 @@ impl CObstacle {
     ///
     /// # Errors
     /// The first failing slice, in input order:
-    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if a
-    /// dynamic update hits an internal error (a bug);
+    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if
+    /// building a chunk's first dynamic sum hits an internal error (a bug);
     /// [`QueryError::Mesh`] when a slice's mesh cannot be produced
     /// ([`crate::sum::MeshError::PrecisionLost`] for an obstacle too far from
     /// the origin for the shapes' size, [`crate::sum::MeshError::OutOfRange`]

@@ -93,15 +93,13 @@ impl ContactTracker {
     /// Moves both bodies (a dynamic update) and answers the query.
     ///
     /// # Errors
-    /// * [`QueryError::OutOfRange`] when a posed vertex of A or B, or the
-    ///   answer, overflows `f64` (the dynamic sum itself depends only on the
-    ///   rotations, so the range is checked when the answer is evaluated);
-    /// * [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] only for an
-    ///   internal error of the dynamic sum (a bug: please report the poses).
-    ///
-    /// After an error the tracker's state is unspecified: build a new one.
+    /// [`QueryError::OutOfRange`] when a posed vertex of A or B, or the
+    /// answer, overflows `f64` (the dynamic update itself depends only on the
+    /// rotations and cannot fail, so the range is checked when the answer is
+    /// evaluated). The dynamic sum has moved to the new poses even then;
+    /// [`ContactTracker::last`] keeps the previous answer.
     pub fn update(&mut self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
-        self.report = self.sum.set_pose(pose_a, Reflected::pose(pose_b))?;
+        self.report = self.sum.set_pose(pose_a, Reflected::pose(pose_b));
         self.last = self.pair.evaluate(pose_a, pose_b, &self.sum.overlay())?;
         Ok(self.last)
     }

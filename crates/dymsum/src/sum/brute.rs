@@ -28,7 +28,7 @@ fn containing_vertex(cells: &GaussView<'_>, x: &FaceNormal<'_>) -> Result<u32, S
     found.ok_or_else(|| SumError::Inconsistent(format!("normal {} lies in no cell", x.idx)))
 }
 
-pub(super) fn overlay(ops: &Operands) -> Result<Overlay, SumError> {
+pub(crate) fn overlay(ops: &Operands) -> Result<Overlay, SumError> {
     let (vp, vq) = (ops.view_p(), ops.view_q());
     let fv = (0..ops.p.face_count() as u32)
         .map(|f| containing_vertex(&vq, &vp.normal(f)))

@@ -479,4 +479,5 @@ pub fn minkowski_sum_posed(
     Ok(MinkowskiSum::from_overlay(ops, overlay))
 }
 
+pub(crate) use brute::overlay as brute_overlay;
 pub(crate) use walk::overlay as walk_overlay;

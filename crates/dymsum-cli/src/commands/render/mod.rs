@@ -188,9 +188,7 @@ pub fn run(a: &RenderArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         .with_context(|| format!("{} ⊕ {}", a.p, a.q))?;
     let added = match a.highlight_after {
         Some(turn) => {
-            let report = dynamic
-                .rotate_p_by(turn)
-                .with_context(|| format!("{name}: turning P further"))?;
+            let report = dynamic.rotate_p_by(turn);
             Some(report.added)
         }
         None => None,
