@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use dymsum::polytope::MeshPolicy;
-use dymsum::{DVec3, Polytope, Rotation};
+use dymsum::{Polytope, Rotation};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -69,21 +69,6 @@ pub fn sample_size_for(one_call: std::time::Duration) -> usize {
     }
 }
 
-/// A direction drawn uniformly on the unit sphere.
-fn random_unit_vector(rng: &mut ChaCha8Rng) -> DVec3 {
-    loop {
-        let v = DVec3::new(
-            rng.random_range(-1.0..=1.0),
-            rng.random_range(-1.0..=1.0),
-            rng.random_range(-1.0..=1.0),
-        );
-        let len2 = v.length_squared();
-        if len2 > 1e-6 && len2 <= 1.0 {
-            return v / len2.sqrt();
-        }
-    }
-}
-
 /// A uniformly random orientation (Shoemake's method), from ChaCha8 seeded
 /// with `seed`.
 ///
@@ -106,7 +91,9 @@ pub fn random_rotation(seed: u64) -> Rotation {
 /// turns by `2π / steps_per_rev`. Returns P's absolute orientation after
 /// each of the `steps` steps, starting from the identity (so entry 0 is one
 /// step away from [`Rotation::IDENTITY`], and entry `i` one step from entry
-/// `i - 1`). Deterministic: ChaCha8 seeded with `seed`.
+/// `i - 1`). Deterministic: ChaCha8 seeded with `seed`. The steps are
+/// those of the CLI's [`dymsum_cli::motion::PaperMotion`] (one definition
+/// of the motion for the CLI's experiments and the benchmarks).
 ///
 /// # Panics
 /// If `steps_per_rev` is not a finite positive number. (The random axes
@@ -116,23 +103,14 @@ pub fn paper_motion(steps_per_rev: f64, steps: usize, seed: u64) -> Vec<Rotation
         steps_per_rev.is_finite() && steps_per_rev > 0.0,
         "steps_per_rev must be positive"
     );
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let angle = std::f64::consts::TAU / steps_per_rev;
-    let mut out = Vec::with_capacity(steps);
+    let mut motion = dymsum_cli::motion::PaperMotion::new(steps_per_rev, seed);
     let mut current = Rotation::IDENTITY;
-    let mut step_rot = Rotation::IDENTITY;
-    let mut hold = 0usize;
-    for _ in 0..steps {
-        if hold == 0 {
-            let axis = random_unit_vector(&mut rng);
-            step_rot = Rotation::from_axis_angle(axis, angle).expect("a unit axis");
-            hold = rng.random_range(1..=50);
-        }
-        current = current.then(&step_rot);
-        out.push(current);
-        hold -= 1;
-    }
-    out
+    (0..steps)
+        .map(|_| {
+            current = current.then(&motion.next_step());
+            current
+        })
+        .collect()
 }
 
 // ---------------------------------------------------------------------------
