@@ -33,6 +33,7 @@
 #![warn(missing_docs)]
 
 pub mod dynamic;
+pub(crate) mod gauss;
 pub mod hull;
 pub mod interop;
 pub mod kernel;

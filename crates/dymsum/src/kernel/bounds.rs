@@ -11,7 +11,7 @@
 //! is returned as an infinite bound, so it never decides.
 //!
 //! Used by the kernel's tie-breaking stage (`predicates`), the overlay's arc
-//! tests and structural ties (`sum::overlay`) and the certification of
+//! tests and structural ties (`gauss`) and the certification of
 //! persistent ties in DYMSUM (`dynamic::ties`). The determinant filter of
 //! three directions lives beside the predicate it guards
 //! (`predicates::det3`).

@@ -9,8 +9,8 @@
 //! normal; finding zero or two is reported as an internal inconsistency.
 
 use super::{Operands, Overlay, SumError};
+use crate::gauss::{edges_cross, GaussView};
 use crate::polytope::FaceNormal;
-use crate::sum::overlay::{edges_cross, GaussView};
 
 fn containing_vertex(cells: &GaussView<'_>, x: &FaceNormal<'_>) -> Result<u32, SumError> {
     let mut found = None;

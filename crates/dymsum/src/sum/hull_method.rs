@@ -22,9 +22,9 @@
 //! [`SumError::HullMismatch`], never returned as a wrong answer.
 
 use super::{Operands, Overlay, SumError};
+use crate::gauss::edges_cross;
 use crate::hull::{convex_hull, PairwiseSums};
 use crate::polytope::Polytope;
-use crate::sum::overlay::edges_cross;
 use std::collections::BTreeSet;
 
 /// Faces and edges of `poly` incident to a vertex of `set`: the candidate

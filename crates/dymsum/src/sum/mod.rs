@@ -37,16 +37,15 @@
 mod brute;
 mod hull_method;
 pub(crate) mod merge;
-pub(crate) mod overlay;
 pub mod validate;
 mod walk;
 
 pub use merge::{MeshError, Precision, SumMesh};
 
+pub(crate) use crate::gauss::GaussView;
 use crate::polytope::Polytope;
 use crate::Pose;
 use glam::DVec3;
-pub(crate) use overlay::GaussView;
 
 /// Which static algorithm computes the sum.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -206,7 +205,7 @@ pub(crate) struct Operands {
     /// Error bounds of `arc_p`.
     pub arc_p_err: Vec<f64>,
     /// Exact ties met at this relative rotation.
-    pub(crate) ties: overlay::TieCache,
+    pub(crate) ties: crate::gauss::TieCache,
 }
 
 /// P's arc normals under a rotation, and their error bounds. Exact normals
@@ -270,7 +269,7 @@ impl Operands {
             rot_p: (relative != crate::Rotation::IDENTITY).then(|| relative.matrix()),
             arc_p: Vec::new(),
             arc_p_err: Vec::new(),
-            ties: overlay::TieCache::new(),
+            ties: crate::gauss::TieCache::new(),
             pose_p,
             pose_q,
             relative,

@@ -17,7 +17,7 @@
 //! scan if rounding-level degeneracies ever made it cycle.
 
 use super::{Operands, Overlay, SumError};
-use crate::sum::overlay::GaussView;
+use crate::gauss::GaussView;
 use std::collections::VecDeque;
 
 /// Locates every face normal of `faces` in the cells of `cells`, seeding each
