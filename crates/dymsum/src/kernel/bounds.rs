@@ -12,9 +12,11 @@
 //!
 //! Used by the kernel's tie-breaking stage (`predicates`), the overlay's arc
 //! tests and structural ties (`gauss`) and the certification of
-//! persistent ties in DYMSUM (`dynamic::ties`). The determinant filter of
-//! three directions lives beside the predicate it guards
-//! (`predicates::det3`).
+//! persistent ties in DYMSUM (`dynamic::ties`), the determinant filter of
+//! the predicates (`det3`) and the bound of a rotated normal (`rotated`).
+//! The double-double second stage keeps its own bound beside its
+//! arithmetic (`predicates::det3_refined`); DYMSUM's margins add a fixed
+//! slack to float distances instead (`dynamic::margins`).
 
 use glam::DVec3;
 
@@ -43,6 +45,35 @@ pub(crate) fn dot(m: DVec3, em: f64, x: DVec3, ex: f64) -> (f64, f64) {
     let mm = m.abs().max_element() * SQRT3;
     let xm = x.abs().max_element() * SQRT3;
     finite(v, 1.01 * (em * (xm + ex) + mm * ex + 6.0 * U * mm * xm))
+}
+
+/// The determinant `det[x, y, z] = x · (y × z)` of three approximate
+/// vectors (errors `e`) and a bound on its error: from the inputs,
+/// `e_x |y| |z|  +  |x'| e_y |z|  +  |x'| |y'| e_z` (with
+/// `|x'| ≤ |x| + e_x`), plus the rounding of the products and the sums. Not passed through the
+/// non-finite guard: the determinant of normals in `[0.5, 1)` never
+/// overflows, and the exact stage takes over whenever this does not decide.
+#[inline]
+pub(crate) fn det3([x, y, z]: [DVec3; 3], [ex, ey, ez]: [f64; 3]) -> (f64, f64) {
+    let det = x.dot(y.cross(z));
+    let (mx, my, mz) = (
+        x.abs().max_element(),
+        y.abs().max_element(),
+        z.abs().max_element(),
+    );
+    let (nx, ny, nz) = (SQRT3 * mx + ex, SQRT3 * my + ey, SQRT3 * mz + ez);
+    let input = ex * ny * nz + nx * ey * nz + nx * ny * ez;
+    let rounding = 8.0 * U * 6.0 * mx * my * mz;
+    (det, 1.01 * (input + rounding))
+}
+
+/// Error bound of a float vector rotated by a (nearly orthogonal) float
+/// matrix taken as exact, relative to the exact product of that matrix and
+/// the exact vector: the input's bound (scaled by the matrix's norm, at
+/// most `1.01`) plus the rounding of three products and two sums per row.
+#[inline]
+pub(crate) fn rotated(err: f64, approx: DVec3) -> f64 {
+    1.01 * err + 8.0 * f64::EPSILON * approx.abs().max_element() * SQRT3
 }
 
 #[inline]

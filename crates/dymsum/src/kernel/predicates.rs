@@ -306,23 +306,14 @@ impl ExactVector for Plain {
 
 const U: f64 = f64::EPSILON / 2.0;
 
-/// Float determinant and a bound on its distance from the exact one.
+/// Float determinant and a bound on its distance from the exact one
+/// ([`super::bounds::det3`]).
 #[inline]
 fn det3_filter<V: ExactVector>(a: &V, b: &V, c: &V) -> (f64, f64) {
-    let (x, y, z) = (a.approx(), b.approx(), c.approx());
-    let det = x.dot(y.cross(z));
-    let (mx, my, mz) = (
-        x.abs().max_element(),
-        y.abs().max_element(),
-        z.abs().max_element(),
-    );
-    let (ex, ey, ez) = (a.error(), b.error(), c.error());
-    // |x|₂ ≤ √3 |x|∞; perturbation ≤ e_x|y||z| + |x'|e_y|z| + |x'||y'|e_z.
-    let s3 = 1.7320508075688774;
-    let (nx, ny, nz) = (s3 * mx + ex, s3 * my + ey, s3 * mz + ez);
-    let input = ex * ny * nz + nx * ey * nz + nx * ny * ez;
-    let rounding = 8.0 * U * 6.0 * mx * my * mz;
-    (det, 1.01 * (input + rounding))
+    super::bounds::det3(
+        [a.approx(), b.approx(), c.approx()],
+        [a.error(), b.error(), c.error()],
+    )
 }
 
 /// Exact sign of `det[a, b, c] = (a × b) · c` (no perturbation: `Zero` on

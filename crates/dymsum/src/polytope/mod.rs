@@ -745,7 +745,7 @@ pub(crate) fn check_span(points: &[DVec3]) -> Result<(), PolytopeError> {
 /// matrix, relative to the exact product of that matrix and the exact normal.
 #[inline]
 pub fn rotated_error(err: f64, approx: DVec3) -> f64 {
-    1.01 * err + 8.0 * f64::EPSILON * approx.abs().max_element() * 1.7320508075688774
+    crate::kernel::bounds::rotated(err, approx)
 }
 
 /// The normal of a planar polygon as the cross product of the two edges of
