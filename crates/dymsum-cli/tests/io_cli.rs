@@ -314,29 +314,7 @@ fn orientation_lines_with_empty_fields_are_errors_with_the_line() {
     ]);
 }
 
-const CUBE_FACES: [&str; 6] = [
-    "1 4 3 2", "5 6 7 8", "1 2 6 5", "2 3 7 6", "3 4 8 7", "4 1 5 8",
-];
-
-fn cube_obj(offset: f64, first: usize, grouped: bool) -> String {
-    let mut s = String::new();
-    for z in [-1.0, 1.0] {
-        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-            s += &format!("v {} {} {}\n", x + offset, y, z);
-        }
-    }
-    for (i, f) in CUBE_FACES.iter().enumerate() {
-        if grouped {
-            s += &format!("g side{i}\n");
-        }
-        let idx: Vec<String> = f
-            .split(' ')
-            .map(|i| (i.parse::<usize>().unwrap() + first).to_string())
-            .collect();
-        s += &format!("f {}\n", idx.join(" "));
-    }
-    s
-}
+use dymsum_testkit::cube_obj;
 
 #[test]
 fn obj_point_cloud_object_is_a_body_in_query() {

@@ -146,26 +146,11 @@ fn fifo_and_device_are_refused_without_blocking() {
     assert_eq!(read_mesh(&link).unwrap(), cube());
 }
 
-const CUBE_FACES: [&str; 6] = [
-    "1 4 3 2", "5 6 7 8", "1 2 6 5", "2 3 7 6", "3 4 8 7", "4 1 5 8",
-];
-
-fn cube_obj_vertices(offset: f64) -> String {
-    let mut s = String::new();
-    for z in [-1.0, 1.0] {
-        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-            s += &format!("v {} {} {}\n", x + offset, y, z);
-        }
-    }
-    s
-}
+use dymsum_testkit::cube_obj;
 
 #[test]
 fn obj_groups_of_one_closed_mesh_are_one_body() {
-    let mut text = cube_obj_vertices(0.0);
-    for (i, f) in CUBE_FACES.iter().enumerate() {
-        text += &format!("g side{i}\nf {f}\n");
-    }
+    let text = cube_obj(0.0, 0, true);
     let bodies = read_obj_objects_bytes(text.as_bytes(), "groups.obj").unwrap();
     assert_eq!(bodies.len(), 1);
     assert_eq!(bodies[0].0, "side0");
@@ -182,10 +167,7 @@ fn obj_groups_of_one_closed_mesh_are_one_body() {
 
 #[test]
 fn obj_object_with_vertices_only_is_a_point_cloud_body() {
-    let mut text = "o box\n".to_string() + &cube_obj_vertices(0.0);
-    for f in CUBE_FACES {
-        text += &format!("f {f}\n");
-    }
+    let mut text = "o box\n".to_string() + &cube_obj(0.0, 0, false);
     text += "o pts\nv 10 10 10\nv 11 10 10\nv 10 11 10\nv 10 10 11\n";
     let bodies = read_obj_objects_bytes(text.as_bytes(), "two.obj").unwrap();
     let got: Vec<(&str, usize, usize)> = bodies
@@ -202,19 +184,7 @@ fn obj_object_with_vertices_only_is_a_point_cloud_body() {
     assert!(matches!(err, LoadError::SeveralBodies { .. }), "{err:?}");
     assert!(err.to_string().contains("`box`, `pts`"), "{err}");
     // Two separate closed meshes (no shared vertices) stay two bodies.
-    let mut two = "o a\n".to_string() + &cube_obj_vertices(0.0);
-    for f in CUBE_FACES {
-        two += &format!("f {f}\n");
-    }
-    two += "o b\n";
-    two += &cube_obj_vertices(5.0);
-    for f in CUBE_FACES {
-        let shifted: Vec<String> = f
-            .split(' ')
-            .map(|i| (i.parse::<usize>().unwrap() + 8).to_string())
-            .collect();
-        two += &format!("f {}\n", shifted.join(" "));
-    }
+    let two = "o a\n".to_string() + &cube_obj(0.0, 0, false) + "o b\n" + &cube_obj(5.0, 8, false);
     let bodies = read_obj_objects_bytes(two.as_bytes(), "ab.obj").unwrap();
     let got: Vec<(&str, usize, usize)> = bodies
         .iter()

@@ -547,22 +547,56 @@ pub fn sphere_mesh(n: usize) -> dymsum::PolygonMesh {
     dymsum::PolygonMesh::new(m.vertices, faces)
 }
 
-/// The unit cube `[0, 1]³` as a polygon mesh: 8 vertices (`i` at
-/// `(i & 1, i >> 1 & 1, i >> 2 & 1)`), 6 outward quads. The literal fixture
-/// of the format and I/O tests.
+/// The 6 outward quads of a cube whose vertex `i` is the corner
+/// `(i & 1, i >> 1 & 1, i >> 2 & 1)` (the order of [`cube_points`]).
+pub const CUBE_QUADS: [[usize; 4]; 6] = [
+    [0, 2, 3, 1],
+    [4, 5, 7, 6],
+    [0, 1, 5, 4],
+    [2, 6, 7, 3],
+    [0, 4, 6, 2],
+    [1, 3, 7, 5],
+];
+
+/// The cube `[lo, hi]³` as a quad mesh ([`cube_points`], [`CUBE_QUADS`]).
+pub fn cube_mesh_between(lo: f64, hi: f64) -> dymsum::PolygonMesh {
+    let faces = CUBE_QUADS.iter().map(|q| q.to_vec()).collect();
+    dymsum::PolygonMesh::new(cube_points(lo, hi), faces)
+}
+
+/// The unit cube `[0, 1]³` as a polygon mesh: the literal fixture of the
+/// format and I/O tests.
 pub fn cube_mesh() -> dymsum::PolygonMesh {
-    let vertices = (0..8)
-        .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
-        .collect();
-    let faces = vec![
-        vec![0, 2, 3, 1],
-        vec![4, 5, 7, 6],
-        vec![0, 1, 5, 4],
-        vec![2, 6, 7, 3],
-        vec![0, 4, 6, 2],
-        vec![1, 3, 7, 5],
+    cube_mesh_between(0.0, 1.0)
+}
+
+/// The cube `[-1, 1]³` shifted by `offset` along x, as OBJ text: 8 `v`
+/// lines (bottom then top, counter-clockwise), then 6 outward `f` lines
+/// whose 1-based indices start after `first` earlier vertices, each in its
+/// own `g sideK` group if `grouped`.
+pub fn cube_obj(offset: f64, first: usize, grouped: bool) -> String {
+    const FACES: [[usize; 4]; 6] = [
+        [1, 4, 3, 2],
+        [5, 6, 7, 8],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 4, 8, 7],
+        [4, 1, 5, 8],
     ];
-    dymsum::PolygonMesh::new(vertices, faces)
+    let mut s = String::new();
+    for z in [-1.0, 1.0] {
+        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            s += &format!("v {} {} {}\n", x + offset, y, z);
+        }
+    }
+    for (i, f) in FACES.iter().enumerate() {
+        if grouped {
+            s += &format!("g side{i}\n");
+        }
+        let idx: Vec<String> = f.iter().map(|v| (v + first).to_string()).collect();
+        s += &format!("f {}\n", idx.join(" "));
+    }
+    s
 }
 
 /// Scratch directories and listings for the tests that write files.

@@ -6,14 +6,7 @@ use dymsum::{PolygonMesh, Polytope};
 use dymsum_testkit::sphere_mesh;
 use proptest::prelude::*;
 
-const QUADS: [[usize; 4]; 6] = [
-    [0, 2, 3, 1],
-    [4, 5, 7, 6],
-    [0, 1, 5, 4],
-    [2, 6, 7, 3],
-    [0, 4, 6, 2],
-    [1, 3, 7, 5],
-];
+use dymsum_testkit::CUBE_QUADS as QUADS;
 
 /// An axis-aligned box with corner `at` and edge `size`, as quads or triangles.
 fn box_mesh(at: [f64; 3], size: f64, triangulated: bool) -> PolygonMesh {

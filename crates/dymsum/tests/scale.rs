@@ -255,15 +255,7 @@ fn cube_mesh(size: f64, at: f64) -> PolygonMesh {
         .iter()
         .map(|p| [p[0] + at, p[1] + at, p[2] + at])
         .collect();
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    PolygonMesh::new(v, quads.iter().map(|q| q.to_vec()).collect())
+    PolygonMesh::new(v, CUBE_QUADS.iter().map(|q| q.to_vec()).collect())
 }
 
 /// A `1e-8` box at `1e6` and a unit box at `1e8` load (mesh and points) and
