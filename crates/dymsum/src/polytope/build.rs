@@ -29,6 +29,7 @@
 //! every hull plane, O(F_mesh · F_hull)).
 
 use super::convexity::{compare_with_hull, Frame};
+use super::topology::{DirectedEdges, Unused};
 use super::{Polytope, PolytopeError};
 use crate::hull::{convex_hull, ConvexHull, FloatPoints};
 use crate::kernel::exact;
@@ -200,7 +201,8 @@ impl Polytope {
         let all: Vec<DVec3> = mesh.vertices.iter().map(|p| DVec3::from(*p)).collect();
         check_finite(&all)?;
         check_faces(mesh)?;
-        let adjacency = check_topology(mesh)?;
+        let adjacency = DirectedEdges::new(mesh.vertices.len(), &mesh.faces);
+        adjacency.check_sphere(Unused::Skip)?;
         // Only referenced vertices take part.
         let mut used = vec![false; all.len()];
         for f in &mesh.faces {
@@ -308,107 +310,4 @@ fn check_faces(mesh: &PolygonMesh) -> Result<(), PolytopeError> {
         }
     }
     Ok(())
-}
-
-/// The mesh's directed edges grouped by their first vertex (CSR), sorted by
-/// target: `target[start[v]..start[v + 1]]` are the vertices after `v` in
-/// its faces, `prev[...]` the vertex before `v` in the same face.
-struct Adjacency {
-    start: Vec<usize>,
-    target: Vec<usize>,
-    prev: Vec<usize>,
-}
-
-impl Adjacency {
-    /// Position of the directed edge `a → b`, if present.
-    fn find(&self, a: usize, b: usize) -> Option<usize> {
-        let s = self.start[a];
-        self.target[s..self.start[a + 1]]
-            .binary_search(&b)
-            .ok()
-            .map(|k| s + k)
-    }
-}
-
-/// Closed, manifold, consistently oriented, genus 0. O(n log n): flat
-/// arrays sorted per vertex, no hashing.
-fn check_topology(mesh: &PolygonMesh) -> Result<Adjacency, PolytopeError> {
-    let n = mesh.vertices.len();
-    let mut start = vec![0usize; n + 1];
-    for f in &mesh.faces {
-        for &i in f {
-            start[i + 1] += 1;
-        }
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
-    let total = start[n];
-    let mut fill = start.clone();
-    let mut pairs = vec![(0usize, 0usize); total];
-    for f in &mesh.faces {
-        let k = f.len();
-        for i in 0..k {
-            pairs[fill[f[i]]] = (f[(i + 1) % k], f[(i + k - 1) % k]);
-            fill[f[i]] += 1;
-        }
-    }
-    for v in 0..n {
-        pairs[start[v]..start[v + 1]].sort_unstable();
-    }
-    let (target, prev): (Vec<usize>, Vec<usize>) = pairs.into_iter().unzip();
-    let adj = Adjacency {
-        start,
-        target,
-        prev,
-    };
-    for v in 0..n {
-        let t = &adj.target[adj.start[v]..adj.start[v + 1]];
-        if let Some(w) = t.windows(2).find(|w| w[0] == w[1]) {
-            return Err(PolytopeError::NonManifoldEdge { a: v, b: w[0] });
-        }
-    }
-    for v in 0..n {
-        for &b in &adj.target[adj.start[v]..adj.start[v + 1]] {
-            if adj.find(b, v).is_none() {
-                return Err(PolytopeError::OpenEdge { a: v, b });
-            }
-        }
-    }
-    // One fan per vertex: following "next outgoing edge around the vertex"
-    // from any outgoing edge must visit all of them.
-    let mut used_vertices = 0i64;
-    for v in 0..n {
-        let deg = adj.start[v + 1] - adj.start[v];
-        if deg == 0 {
-            continue;
-        }
-        used_vertices += 1;
-        let first = adj.start[v];
-        let mut cur = first;
-        let mut seen = 0;
-        loop {
-            // Outgoing v→t in face F; the edge into v in F is p→v; the next
-            // outgoing edge around v is v→p (in the neighbouring face).
-            let p = adj.prev[cur];
-            cur = adj
-                .find(v, p)
-                .ok_or(PolytopeError::OpenEdge { a: p, b: v })?;
-            seen += 1;
-            if cur == first || seen > deg {
-                break;
-            }
-        }
-        if seen != deg {
-            return Err(PolytopeError::NonManifoldVertex { vertex: v });
-        }
-    }
-    let e = (total / 2) as i64;
-    let f = mesh.faces.len() as i64;
-    if used_vertices - e + f != 2 {
-        return Err(PolytopeError::NotSphere {
-            euler: used_vertices - e + f,
-        });
-    }
-    Ok(adj)
 }

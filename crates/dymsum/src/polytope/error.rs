@@ -150,3 +150,16 @@ impl From<HullError> for PolytopeError {
         }
     }
 }
+
+impl From<super::topology::TopologyDefect> for PolytopeError {
+    fn from(d: super::topology::TopologyDefect) -> Self {
+        use super::topology::TopologyDefect as T;
+        match d {
+            T::EdgeUsedTwice(a, b) => PolytopeError::NonManifoldEdge { a, b },
+            T::OpenEdge(a, b) => PolytopeError::OpenEdge { a, b },
+            T::UnusedVertex(vertex) => PolytopeError::UnusedVertex { vertex },
+            T::PinchedVertex(vertex) => PolytopeError::NonManifoldVertex { vertex },
+            T::Euler(euler) => PolytopeError::NotSphere { euler },
+        }
+    }
+}

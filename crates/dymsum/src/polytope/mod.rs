@@ -41,6 +41,7 @@ pub mod build;
 mod convexity;
 mod error;
 mod sanity;
+pub(crate) mod topology;
 
 pub use build::{ConvexityReport, MeshPolicy};
 pub use error::PolytopeError;
@@ -49,6 +50,7 @@ use crate::kernel::dd::{self, DDVec, DD};
 use crate::kernel::exact::{self, ExactVec};
 use crate::kernel::predicates::ExactVector;
 use glam::{DMat3, DVec3};
+use topology::HalfEdges;
 
 /// One undirected edge: its endpoints and the faces on its left and right.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -310,7 +312,6 @@ impl Polytope {
         vertices: Vec<DVec3>,
         faces: &[Vec<u32>],
     ) -> Result<Polytope, PolytopeError> {
-        use std::collections::HashMap;
         let mut face_start = Vec::with_capacity(faces.len() + 1);
         let mut face_verts = Vec::new();
         face_start.push(0u32);
@@ -318,105 +319,12 @@ impl Polytope {
             face_verts.extend_from_slice(f);
             face_start.push(face_verts.len() as u32);
         }
-        let nhe = face_verts.len();
-        let mut he_face = vec![0u32; nhe];
-        for (f, w) in face_start.windows(2).enumerate() {
-            for h in w[0]..w[1] {
-                he_face[h as usize] = f as u32;
-            }
-        }
-        let he_next = |h: usize| -> usize {
-            let f = he_face[h] as usize;
-            if h + 1 == face_start[f + 1] as usize {
-                face_start[f] as usize
-            } else {
-                h + 1
-            }
-        };
-        let he_prev = |h: usize| -> usize {
-            let f = he_face[h] as usize;
-            if h == face_start[f] as usize {
-                face_start[f + 1] as usize - 1
-            } else {
-                h - 1
-            }
-        };
-        let origin = |h: usize| face_verts[h];
-        let mut by_dir: HashMap<(u32, u32), usize> = HashMap::with_capacity(nhe);
-        for h in 0..nhe {
-            let key = (origin(h), origin(he_next(h)));
-            if by_dir.insert(key, h).is_some() {
-                return Err(PolytopeError::NonManifoldEdge {
-                    a: key.0 as usize,
-                    b: key.1 as usize,
-                });
-            }
-        }
-        let mut he_twin = vec![u32::MAX; nhe];
-        let mut he_edge = vec![u32::MAX; nhe];
-        let mut edges = Vec::with_capacity(nhe / 2);
-        for h in 0..nhe {
-            let (a, b) = (origin(h), origin(he_next(h)));
-            let Some(&t) = by_dir.get(&(b, a)) else {
-                return Err(PolytopeError::OpenEdge {
-                    a: a as usize,
-                    b: b as usize,
-                });
-            };
-            he_twin[h] = t as u32;
-            if he_edge[h] == u32::MAX {
-                let e = edges.len() as u32;
-                he_edge[h] = e;
-                he_edge[t] = e;
-                edges.push(Edge {
-                    vertices: [a, b],
-                    faces: [he_face[h], he_face[t]],
-                });
-            }
-        }
-        // Vertex rings: from an outgoing half-edge h, the next face ccw is
-        // the face of twin(prev(h)).
-        let nv = vertices.len();
-        let mut out_he = vec![usize::MAX; nv];
-        for h in 0..nhe {
-            out_he[origin(h) as usize] = h;
-        }
-        let mut ring_start = Vec::with_capacity(nv + 1);
-        let mut ring = Vec::with_capacity(nhe);
-        ring_start.push(0u32);
-        for (v, &h0) in out_he.iter().enumerate() {
-            if h0 == usize::MAX {
-                return Err(PolytopeError::UnusedVertex { vertex: v });
-            }
-            let mut h = h0;
-            loop {
-                let p = he_prev(h);
-                ring.push(RingEntry {
-                    face: he_face[h],
-                    edge: he_edge[p],
-                    neighbor: origin(p),
-                });
-                h = he_twin[p] as usize;
-                if h == h0 {
-                    break;
-                }
-                if ring.len() - ring_start[v] as usize > nhe {
-                    return Err(PolytopeError::NonManifoldVertex { vertex: v });
-                }
-            }
-            ring_start.push(ring.len() as u32);
-        }
-        // A vertex whose ring does not cover all its outgoing half-edges is a
-        // pinch point (non-manifold vertex).
-        let mut outdeg = vec![0u32; nv];
-        for h in 0..nhe {
-            outdeg[origin(h) as usize] += 1;
-        }
-        for v in 0..nv {
-            if outdeg[v] != ring_start[v + 1] - ring_start[v] {
-                return Err(PolytopeError::NonManifoldVertex { vertex: v });
-            }
-        }
+        let HalfEdges {
+            he_edge,
+            edges,
+            ring_start,
+            ring,
+        } = HalfEdges::new(vertices.len(), faces)?;
         check_span(&vertices)?;
         let frame = exact::frame_exponent(vertices.iter().flat_map(|v| v.to_array()));
         let framed: Vec<DVec3> = vertices.iter().map(|&v| scale_vec(v, frame)).collect();

@@ -26,14 +26,15 @@
 //! far from the underflow range, and exact dyadic arithmetic otherwise. So
 //! every sign is exact for all finite input, from `1e-300` to `1e308`.
 //!
-//! Cost: `O(Σ face sizes)` predicates and hash-map operations.
+//! Cost: `O(Σ face sizes)` predicates; the combinatorial checks are the
+//! shared ones of `polytope::topology` (`O(H log d)`, no hashing).
 
 use crate::hull::HullPoints;
 use crate::kernel::exact;
 use crate::kernel::Sign;
+use crate::polytope::topology::{DirectedEdges, TopologyDefect, Unused};
 use crate::PolygonMesh;
 use glam::DVec3;
-use std::collections::HashMap;
 
 /// Why a mesh is not the boundary of a convex polytope with maximal faces.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -93,6 +94,18 @@ pub enum MeshDefect {
     /// Two faces meet at an edge that is flat, reflex or inward.
     #[error("edge ({0}, {1}) is not strictly convex and outward")]
     NonConvexEdge(usize, usize),
+}
+
+impl From<TopologyDefect> for MeshDefect {
+    fn from(d: TopologyDefect) -> Self {
+        match d {
+            TopologyDefect::EdgeUsedTwice(a, b) => MeshDefect::EdgeUsedTwice(a, b),
+            TopologyDefect::OpenEdge(a, b) => MeshDefect::OpenEdge(a, b),
+            TopologyDefect::UnusedVertex(v) => MeshDefect::UnusedVertex(v),
+            TopologyDefect::PinchedVertex(v) => MeshDefect::PinchedVertex(v),
+            TopologyDefect::Euler(e) => MeshDefect::Euler(e),
+        }
+    }
 }
 
 /// Float points with exact orientation predicates at any finite scale (see
@@ -255,8 +268,6 @@ pub fn check_convex_mesh(mesh: &PolygonMesh) -> Result<(), MeshDefect> {
         return Err(MeshDefect::NonFinite { vertex: v });
     }
     // Combinatorics.
-    let mut directed: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
-    let mut used = vec![false; n];
     for (fi, f) in mesh.faces.iter().enumerate() {
         let mut sorted = f.clone();
         sorted.sort_unstable();
@@ -264,52 +275,9 @@ pub fn check_convex_mesh(mesh: &PolygonMesh) -> Result<(), MeshDefect> {
         if f.len() < 3 || sorted.len() != f.len() || sorted.last().is_some_and(|&v| v >= n) {
             return Err(MeshDefect::BadFace { face: fi });
         }
-        for k in 0..f.len() {
-            used[f[k]] = true;
-            let e = (f[k], f[(k + 1) % f.len()]);
-            if directed.insert(e, (fi, k)).is_some() {
-                return Err(MeshDefect::EdgeUsedTwice(e.0, e.1));
-            }
-        }
     }
-    let mut edges: Vec<(usize, usize)> = directed.keys().copied().collect();
-    edges.sort_unstable();
-    for &(a, b) in &edges {
-        if !directed.contains_key(&(b, a)) {
-            return Err(MeshDefect::OpenEdge(a, b));
-        }
-    }
-    if let Some(v) = used.iter().position(|&u| !u) {
-        return Err(MeshDefect::UnusedVertex(v));
-    }
-    // One fan per vertex: from an outgoing edge v→x in face F, the next
-    // outgoing edge about v is v→y where y→v precedes v in F.
-    let mut degree = vec![0usize; n];
-    let mut first: Vec<Option<usize>> = vec![None; n];
-    for &(a, b) in &edges {
-        degree[a] += 1;
-        first[a].get_or_insert(b);
-    }
-    for v in 0..n {
-        let Some(x0) = first[v] else { continue };
-        let (mut x, mut steps) = (x0, 0);
-        loop {
-            let (fi, k) = directed[&(v, x)];
-            let f = &mesh.faces[fi];
-            x = f[(k + f.len() - 1) % f.len()];
-            steps += 1;
-            if x == x0 || steps > degree[v] {
-                break;
-            }
-        }
-        if steps != degree[v] {
-            return Err(MeshDefect::PinchedVertex(v));
-        }
-    }
-    let euler = n as i64 - edges.len() as i64 / 2 + mesh.faces.len() as i64;
-    if euler != 2 {
-        return Err(MeshDefect::Euler(euler));
-    }
+    let directed = DirectedEdges::new(n, &mesh.faces);
+    directed.check_sphere(Unused::Refuse)?;
     // Geometry, exactly.
     let ep = ExactPoints::new(&pts);
     for (fi, f) in mesh.faces.iter().enumerate() {
@@ -381,15 +349,20 @@ pub fn check_convex_mesh(mesh: &PolygonMesh) -> Result<(), MeshDefect> {
             return Err(MeshDefect::NonConvexFace { face: fi });
         }
     }
-    for &(a, b) in &edges {
-        let (fi, _) = directed[&(a, b)];
-        let (gi, kg) = directed[&(b, a)];
-        let g = &mesh.faces[gi];
-        // g runs b → a → c.
-        let c = g[(kg + 2) % g.len()];
-        let f = &mesh.faces[fi];
-        if ep.orient3(f[0], f[1], f[2], c) != Sign::Negative {
-            return Err(MeshDefect::NonConvexEdge(a, b));
+    for a in 0..n {
+        for pos in directed.start[a]..directed.start[a + 1] {
+            let b = directed.target[pos];
+            let (fi, _) = directed.face_corner(pos);
+            // Checked above: every edge has its reverse.
+            let reverse = directed.find(b, a).ok_or(MeshDefect::OpenEdge(a, b))?;
+            let (gi, kg) = directed.face_corner(reverse);
+            let g = &mesh.faces[gi];
+            // g runs b → a → c.
+            let c = g[(kg + 2) % g.len()];
+            let f = &mesh.faces[fi];
+            if ep.orient3(f[0], f[1], f[2], c) != Sign::Negative {
+                return Err(MeshDefect::NonConvexEdge(a, b));
+            }
         }
     }
     Ok(())
