@@ -8,6 +8,11 @@ a lower bound of the toolchain the member really needs. The declared
 toolchain than its dependencies accept. (Use of newer standard-library APIs
 in our own code is checked by clippy's `incompatible_msrv` lint, which reads
 the same field.) Prints the table; exits 1 on a violation.
+
+The optional features of `dymsum` may need a newer toolchain than the crate
+(their dependencies do); FEATURE_MSRV states what the README and the
+manifest say each needs, and the check fails when that claim is lower than
+what the feature's locked dependencies declare.
 """
 import json
 import subprocess
@@ -19,12 +24,51 @@ def version(v):
     return tuple(parts + [0] * (3 - len(parts)))
 
 
-def main():
-    meta = json.loads(
-        subprocess.check_output(
-            ["cargo", "metadata", "--format-version", "1", "--locked"]
-        )
+# The toolchain each optional feature of `dymsum` needs, as documented in
+# README.md ("The minimum supported Rust is ...") and crates/dymsum/Cargo.toml.
+FEATURE_MSRV = {"parry": "1.90", "nalgebra": "1.89", "mint": "1.85", "serde": "1.85"}
+
+
+def metadata(features=None):
+    cmd = ["cargo", "metadata", "--format-version", "1", "--locked"]
+    if features:
+        cmd += ["--features", features]
+    return json.loads(subprocess.check_output(cmd))
+
+
+def need_of(meta, name):
+    """The largest rust-version in the normal dependencies of crate `name`."""
+    pkgs = {p["id"]: p for p in meta["packages"]}
+    nodes = {n["id"]: n for n in meta["resolve"]["nodes"]}
+    root = next(i for i in meta["workspace_members"] if pkgs[i]["name"] == name)
+    seen, stack = set(), [root]
+    while stack:
+        for dep in nodes[stack.pop()]["deps"]:
+            kinds = {k["kind"] for k in dep["dep_kinds"]} - {"dev"}
+            if kinds and dep["pkg"] not in seen:
+                seen.add(dep["pkg"])
+                stack.append(dep["pkg"])
+    return max(
+        ((version(pkgs[d].get("rust_version")), pkgs[d]["name"]) for d in seen),
+        default=((0,), "none"),
     )
+
+
+def check_features():
+    bad = 0
+    for feature, claimed in FEATURE_MSRV.items():
+        need, who = need_of(metadata(f"dymsum/{feature}"), "dymsum")
+        ok = version(claimed) >= need
+        bad += not ok
+        print(
+            f"dymsum feature {feature:9} documented {claimed:6} "
+            f"need {'.'.join(map(str, need)):6} ({who}){'' if ok else '  <-- documented too old'}"
+        )
+    return bad
+
+
+def main():
+    meta = metadata()
     pkgs = {p["id"]: p for p in meta["packages"]}
     nodes = {n["id"]: n for n in meta["resolve"]["nodes"]}
 
@@ -61,8 +105,9 @@ def main():
                 f"{member['name']:14} declares {declared or 'nothing':6} "
                 f"{what:24} need {need_s:6} ({who}){'' if ok or with_dev else '  <-- too old'}"
             )
+    bad += check_features()
     if bad:
-        print(f"{bad} crate(s) declare a rust-version older than their dependencies need")
+        print(f"{bad} crate(s) or feature(s) declare a rust-version older than their dependencies need")
         return 1
     return 0
 

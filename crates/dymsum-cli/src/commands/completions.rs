@@ -22,17 +22,48 @@ pub struct CompletionsArgs {
 
 /// Runs `dymsum completions`.
 ///
-/// # Errors
-/// None: it always returns `Ok`.
+/// The script is generated in memory first (`clap_complete::generate`
+/// panics on a write error), then written.
 ///
-/// # Panics
-/// If writing to `out` fails: `clap_complete::generate` panics on a write
-/// error.
+/// # Errors
+/// If writing to `out` fails (e.g. a closed pipe or a full disk).
 pub fn run(
     a: &CompletionsArgs,
     command: &mut clap::Command,
     out: &mut dyn Write,
 ) -> anyhow::Result<()> {
-    clap_complete::generate(a.shell, command, "dymsum", out);
+    let mut script = Vec::new();
+    clap_complete::generate(a.shell, command, "dymsum", &mut script);
+    out.write_all(&script)?;
+    out.flush()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    /// A writer whose every write fails, like a closed pipe.
+    struct Closed;
+
+    impl Write for Closed {
+        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+            Err(std::io::ErrorKind::BrokenPipe.into())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Err(std::io::ErrorKind::BrokenPipe.into())
+        }
+    }
+
+    #[test]
+    fn a_failed_write_is_an_error_not_a_panic() {
+        let a = CompletionsArgs { shell: Shell::Bash };
+        let err = run(&a, &mut crate::cli::Cli::command(), &mut Closed).unwrap_err();
+        let io = err.downcast_ref::<std::io::Error>().expect("an I/O error");
+        assert_eq!(io.kind(), std::io::ErrorKind::BrokenPipe);
+        let mut script = Vec::new();
+        run(&a, &mut crate::cli::Cli::command(), &mut script).unwrap();
+        assert!(String::from_utf8(script).unwrap().contains("dymsum"));
+    }
 }
