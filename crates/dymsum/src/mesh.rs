@@ -2,7 +2,31 @@
 //!
 //! No validation happens here; [`crate::Polytope::from_mesh`] validates.
 
+use crate::polytope::topology::VertexIndex;
 use glam::DVec3;
+
+/// Six times the signed volume enclosed by polygons (positive for an
+/// outward-oriented closed mesh), by the divergence theorem over their fan
+/// triangulations, each corner read through `point`. A float construction;
+/// callers translate and scale the points first (to a frame) when the
+/// result must not depend on position. Polygons of fewer than three
+/// corners add nothing. The one volume formula of the crate.
+pub(crate) fn six_signed_volume<'a, I: VertexIndex + 'a>(
+    faces: impl IntoIterator<Item = &'a [I]>,
+    point: impl Fn(usize) -> DVec3,
+) -> f64 {
+    let mut vol = 0.0;
+    for f in faces {
+        let Some((&first, rest)) = f.split_first() else {
+            continue;
+        };
+        let a = point(first.index());
+        for w in rest.windows(2) {
+            vol += a.dot(point(w[0].index()).cross(point(w[1].index())));
+        }
+    }
+    vol
+}
 
 /// Vertices and polygonal faces (each a list of vertex indices, counter-clockwise
 /// seen from outside for a well-formed closed mesh).
@@ -28,19 +52,8 @@ impl PolygonMesh {
     /// Signed volume (positive for an outward-oriented closed mesh), by the
     /// divergence theorem over fan-triangulated faces.
     pub fn signed_volume(&self) -> f64 {
-        let mut vol = 0.0;
-        for f in &self.faces {
-            if f.len() < 3 {
-                continue;
-            }
-            let a = DVec3::from(self.vertices[f[0]]);
-            for w in f[1..].windows(2) {
-                let b = DVec3::from(self.vertices[w[0]]);
-                let c = DVec3::from(self.vertices[w[1]]);
-                vol += a.dot(b.cross(c));
-            }
-        }
-        vol / 6.0
+        let faces = self.faces.iter().map(Vec::as_slice);
+        six_signed_volume(faces, |i| DVec3::from(self.vertices[i])) / 6.0
     }
 
     /// Number of undirected edges (pairs of consecutive face vertices).

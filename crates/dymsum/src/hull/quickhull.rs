@@ -588,13 +588,8 @@ mod tests {
         // Outward orientation: positive signed volume (float, from centroid).
         let c: DVec3 =
             h.vertices.iter().map(|&i| pts.coords(i)).sum::<DVec3>() / h.vertices.len() as f64;
-        let mut vol = 0.0;
-        for f in &h.faces {
-            for i in 1..f.len() - 1 {
-                let (a, b, d) = (pts.coords(f[0]), pts.coords(f[i]), pts.coords(f[i + 1]));
-                vol += (a - c).dot((b - c).cross(d - c));
-            }
-        }
+        let faces = h.faces.iter().map(|f| &f[..]);
+        let vol = crate::mesh::six_signed_volume(faces, |i| pts.coords(i) - c);
         assert!(vol > 0.0, "faces must be ccw seen from outside");
     }
 

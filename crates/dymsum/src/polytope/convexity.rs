@@ -132,14 +132,7 @@ impl Frame {
     }
     /// Six times the signed volume of a mesh, in frame units.
     pub(crate) fn signed_volume6(&self, vertices: &[DVec3], faces: &[Vec<usize>]) -> f64 {
-        let mut s = 0.0;
-        for f in faces {
-            let a = vertices[f[0]];
-            for w in f[1..].windows(2) {
-                s += a.dot(vertices[w[0]].cross(vertices[w[1]]));
-            }
-        }
-        s
+        crate::mesh::six_signed_volume(faces.iter().map(Vec::as_slice), |i| vertices[i])
     }
 }
 

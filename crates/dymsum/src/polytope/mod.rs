@@ -272,15 +272,7 @@ impl Polytope {
             .map(|&v| self.to_frame(v))
             .collect();
         let c = vs.iter().copied().sum::<DVec3>() / vs.len() as f64;
-        let mut vol = 0.0;
-        for f in self.faces() {
-            let a = vs[f[0] as usize] - c;
-            for w in f[1..].windows(2) {
-                let b = vs[w[0] as usize] - c;
-                let d = vs[w[1] as usize] - c;
-                vol += a.dot(b.cross(d));
-            }
-        }
+        let vol = crate::mesh::six_signed_volume(self.faces(), |i| vs[i] - c);
         exact::mul_pow2(vol / 6.0, -3 * self.data.frame)
     }
     /// The frame exponent `k`: the largest coordinate magnitude times `2^k`
