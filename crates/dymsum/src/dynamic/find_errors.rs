@@ -1,7 +1,9 @@
 //! FindErrors (paper §4.1) and the fv-corrections (§4.2), one map's face
 //! normals at a time (`scan_side`).
 //!
-//! For each face normal of the moving map: skip it if its lazy margin
+//! For each face normal of the moving map that the kinetic schedule
+//! ([`super::schedule`]) says is due (the others are certified by their
+//! lazy margins without being looked at): skip it if its lazy margin
 //! certifies it stays in its cell; else certify its persistent exact ties
 //! (steps about a coordinate axis, [`super::ties`]); else decide its cell
 //! exactly and, if it left, correct the fv-pair at once by hill climbing
@@ -9,8 +11,8 @@
 //! certified single crossing or as at risk (its arcs are re-walked, §4.3).
 //! The scan does not touch the ee-pairs.
 //!
-//! Complexity: O(m + n) for the pass, less the normals skipped by their lazy
-//! margins, plus the hill climbs of the normals that moved.
+//! Complexity: O((k + 1) log(m + n)) for the `k` due normals, plus the hill
+//! climbs of the normals that moved.
 
 use super::*;
 
@@ -62,101 +64,158 @@ pub(super) struct SideScan {
 /// docs. `to_cells` maps a unit normal of `faces` into the reference frame
 /// of `cells` at the new and at the old orientation.
 pub(super) fn scan_side(
-    (faces, cells): (&GaussView<'_>, &GaussView<'_>),
+    views: (&GaussView<'_>, &GaussView<'_>),
     cell_arcs: &[DVec3],
     to_cells: (DMat3, DMat3),
-    rotated: Option<&[DVec3]>,
     tied: Option<Tied<'_>>,
     state: &mut Side,
     step: &StepBounds,
 ) -> SideScan {
     let mut out = SideScan::default();
+    let n = state.assign.len();
+    let visit = |f: usize, state: &mut Side, out: &mut SideScan| {
+        visit_normal(
+            f,
+            views,
+            cell_arcs,
+            to_cells,
+            tied.as_ref(),
+            state,
+            step,
+            out,
+        );
+    };
+    if state.scanning {
+        // Many normals are due each step (large steps, or small cells): a
+        // pass over all of them is cheaper than a schedule.
+        for f in 0..n {
+            visit(f, state, &mut out);
+        }
+        if out.checked * SCHEDULE_BELOW < n {
+            state.start_schedule(step);
+        }
+        return out;
+    }
+    // The kinetic schedule: only the normals whose deadline falls inside
+    // this step (the others would pass the lazy-margin test unseen).
+    if step.run_start == step.tick {
+        state.end_tie_keys();
+    }
+    let mut due = std::mem::take(&mut state.due);
+    due.clear();
+    state
+        .schedule
+        .pop_due(step.after + step.drift, step.theta, &mut due);
+    due.sort_unstable();
+    for &f in &due {
+        visit(f as usize, state, &mut out);
+    }
+    for &f in &due {
+        state.rekey(f as usize, step);
+    }
+    if due.len() * SCAN_ABOVE > n {
+        state.scanning = true;
+    }
+    state.due = due;
+    out
+}
+
+/// Below `1/SCHEDULE_BELOW` of the normals checked in a pass, the side
+/// switches to the kinetic schedule; above `1/SCAN_ABOVE` due in a step, back
+/// to passes (hysteresis: `SCAN_ABOVE < SCHEDULE_BELOW`).
+const SCHEDULE_BELOW: usize = 8;
+const SCAN_ABOVE: usize = 4;
+
+/// FindErrors and the fv-correction for face `f` (module docs).
+#[allow(clippy::too_many_arguments)]
+fn visit_normal(
+    f: usize,
+    (faces, cells): (&GaussView<'_>, &GaussView<'_>),
+    cell_arcs: &[DVec3],
+    to_cells: (DMat3, DMat3),
+    tied: Option<&Tied<'_>>,
+    state: &mut Side,
+    step: &StepBounds,
+    out: &mut SideScan,
+) {
     let cpoly = cells.poly;
-    for f in 0..state.assign.len() {
-        let delta = state.dir_err[f];
-        // Lazy margins: a normal whose margin, less the rotation since it was
-        // computed, still exceeds this step's needs cannot have had an event.
-        let lower = state.margin[f] - (step.before - state.margin_at[f]);
-        if lower - step.theta > step.drift + delta {
-            continue;
-        }
-        // The same for a normal certified through its persistent ties, as
-        // long as every step since was about the same coordinate axis.
-        if let Some(k) = step.axis {
-            if state.tie_axis[f] == k as u8 && state.tie_tick[f] >= step.run_start {
-                let tie_lower = state.tie_margin[f] - (step.before - state.margin_at[f]);
-                if tie_lower - step.theta > step.drift + delta {
-                    continue;
-                }
+    let delta = state.dir_err[f];
+    // Lazy margins: a normal whose margin, less the rotation since it was
+    // computed, still exceeds this step's needs cannot have had an event.
+    let lower = state.margin[f] - (step.before - state.margin_at[f]);
+    if lower - step.theta > step.drift + delta {
+        return;
+    }
+    // The same for a normal certified through its persistent ties, as
+    // long as every step since was about the same coordinate axis.
+    if let Some(k) = step.axis {
+        if state.tie_axis[f] == k as u8 && state.tie_tick[f] >= step.run_start {
+            let tie_lower = state.tie_margin[f] - (step.before - state.margin_at[f]);
+            if tie_lower - step.theta > step.drift + delta {
+                return;
             }
         }
-        state.tie_axis[f] = NO_AXIS;
-        out.checked += 1;
-        let unit = faces.poly.unit_normal(f);
-        // The moving normals are already rotated into the cells' frame (P's
-        // in `set_pose`); a fixed map's normals are rotated here.
-        let x_new = match rotated {
-            Some(n) => n[f] * faces.poly.inverse_normal_length(f),
-            None => to_cells.0 * unit,
-        };
-        let v = state.assign[f];
-        let mut m1 = margin(cpoly, cell_arcs, v, x_new);
-        // Exact ties that persist along a step about a coordinate axis: the
-        // normal is certified to stay in its cell without exact predicates.
-        if let (Some(k), Some(tied)) = (step.axis, &tied) {
-            if m1 <= EXACT_BELOW + delta || lower.min(m1) <= step.drift + delta {
-                if let Some(tm) = stays_in_cell_tied(
-                    (faces, cells),
-                    cell_arcs,
-                    (f as u32, v),
-                    (to_cells.1 * unit, x_new),
-                    step.drift + delta,
-                    (k, step.theta),
-                    tied,
-                ) {
-                    state.margin[f] = m1;
-                    state.margin_at[f] = step.after;
-                    state.tie_margin[f] = tm;
-                    state.tie_axis[f] = k as u8;
-                    state.tie_tick[f] = step.tick;
-                    continue;
-                }
+    }
+    state.tie_axis[f] = NO_AXIS;
+    out.checked += 1;
+    let unit = faces.poly.unit_normal(f);
+    let x_new = to_cells.0 * unit;
+    let v = state.assign[f];
+    let mut m1 = margin(cpoly, cell_arcs, v, x_new);
+    // Exact ties that persist along a step about a coordinate axis: the
+    // normal is certified to stay in its cell without exact predicates.
+    if let (Some(k), Some(tied)) = (step.axis, &tied) {
+        if m1 <= EXACT_BELOW + delta || lower.min(m1) <= step.drift + delta {
+            if let Some(tm) = stays_in_cell_tied(
+                (faces, cells),
+                cell_arcs,
+                (f as u32, v),
+                (to_cells.1 * unit, x_new),
+                step.drift + delta,
+                (k, step.theta),
+                tied,
+            ) {
+                state.margin[f] = m1;
+                state.margin_at[f] = step.after;
+                state.tie_margin[f] = tm;
+                state.tie_axis[f] = k as u8;
+                state.tie_tick[f] = step.tick;
+                return;
             }
         }
-        if m1 <= EXACT_BELOW + delta {
-            let x = faces.normal(f as u32);
-            // A margin clearly below zero is certainly outside.
-            if m1 < -(EXACT_BELOW + delta) || !cells.in_cell(v, &x) {
-                let v2 = locate_certified(cpoly, cell_arcs, x_new, EXACT_BELOW + delta, v)
-                    .unwrap_or_else(|| cells.locate(&x, v).0);
-                state.assign[f] = v2;
-                m1 = margin(cpoly, cell_arcs, v2, x_new);
-                out.changed.push(Change {
-                    face: f as u32,
-                    old: v,
-                    new: v2,
-                });
-                let x_old = to_cells.1 * unit;
-                match single_crossing(
-                    cpoly,
-                    cell_arcs,
-                    (v, x_old),
-                    (v2, x_new),
-                    step.theta + delta,
-                ) {
-                    Some(arc) => out.certified.push((f as u32, arc)),
-                    None => out.uncertain.push(f as u32),
-                }
-            } else if lower.min(m1) <= step.drift + delta {
-                out.uncertain.push(f as u32);
+    }
+    if m1 <= EXACT_BELOW + delta {
+        let x = faces.normal(f as u32);
+        // A margin clearly below zero is certainly outside.
+        if m1 < -(EXACT_BELOW + delta) || !cells.in_cell(v, &x) {
+            let v2 = locate_certified(cpoly, cell_arcs, x_new, EXACT_BELOW + delta, v)
+                .unwrap_or_else(|| cells.locate(&x, v).0);
+            state.assign[f] = v2;
+            m1 = margin(cpoly, cell_arcs, v2, x_new);
+            out.changed.push(Change {
+                face: f as u32,
+                old: v,
+                new: v2,
+            });
+            let x_old = to_cells.1 * unit;
+            match single_crossing(
+                cpoly,
+                cell_arcs,
+                (v, x_old),
+                (v2, x_new),
+                step.theta + delta,
+            ) {
+                Some(arc) => out.certified.push((f as u32, arc)),
+                None => out.uncertain.push(f as u32),
             }
         } else if lower.min(m1) <= step.drift + delta {
             out.uncertain.push(f as u32);
         }
-        state.margin[f] = m1;
-        state.margin_at[f] = step.after;
+    } else if lower.min(m1) <= step.drift + delta {
+        out.uncertain.push(f as u32);
     }
-    out
+    state.margin[f] = m1;
+    state.margin_at[f] = step.after;
 }
 
 impl DynamicSum {
@@ -167,6 +226,12 @@ impl DynamicSum {
     pub(super) fn step_bounds(&mut self, old: Rotation, theta: f64) -> StepBounds {
         self.step = self.step.wrapping_add(1).max(1);
         let (rot, rot_old) = (self.ops.relative.matrix(), old.matrix());
+        if self.theta_acc > REBASE_AFTER {
+            let shift = self.theta_acc;
+            self.theta_acc = 0.0;
+            self.p.rebase(shift);
+            self.q.rebase(shift);
+        }
         let before = self.theta_acc;
         self.theta_acc += theta;
         let axis = coordinate_axis(&rot_old, &rot);
@@ -200,7 +265,6 @@ impl DynamicSum {
             (&self.ops.view_p(), &self.ops.view_q()),
             &self.q.arcs,
             (step.rot, step.rot_old),
-            Some(&self.ops.np),
             zeros.map(|[zp, zq]| Tied {
                 moving: zp,
                 fixed: zq,
@@ -213,7 +277,6 @@ impl DynamicSum {
             (&self.ops.view_q(), &self.ops.view_p()),
             &self.p.arcs,
             (step.rot.transpose(), step.rot_old.transpose()),
-            None,
             zeros.map(|[zp, zq]| Tied {
                 moving: zq,
                 fixed: zp,

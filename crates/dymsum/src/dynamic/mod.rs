@@ -134,6 +134,7 @@ mod fallback;
 mod find_errors;
 mod margins;
 mod report;
+mod schedule;
 mod ties;
 
 use fallback::Backoff;
@@ -143,6 +144,7 @@ use margins::{
 };
 use report::overlay_diff;
 pub use report::UpdateReport;
+use schedule::{Deadlines, REBASE_AFTER};
 use ties::{coordinate_axis, stays_in_cell_tied, ExactZeros, Tied};
 
 /// Tuning of the dynamic update. The defaults are right for almost all uses.
@@ -244,8 +246,10 @@ impl DynamicSum {
         pose_q: Pose,
         config: DynamicConfig,
     ) -> Result<Self, SumError> {
-        let ops = Operands::new(p, pose_p, q, pose_q);
+        let mut ops = Operands::new(p, pose_p, q, pose_q);
         let overlay = walk_overlay(&ops)?;
+        // From here on P's normals and arcs are rotated when visited.
+        ops.make_lazy();
         let mut s = DynamicSum {
             p: Side::new(p),
             q: Side::new(q),
@@ -285,6 +289,8 @@ impl DynamicSum {
             self.q.margin[g] = self.margin_of_q_face(inv, g);
             self.q.margin_at[g] = self.theta_acc;
         }
+        self.p.reschedule();
+        self.q.reschedule();
     }
 
     #[inline]
@@ -508,6 +514,18 @@ struct Side {
     tie_margin: Vec<f64>,
     tie_axis: Vec<u8>,
     tie_tick: Vec<u64>,
+    /// The kinetic schedule: per face, the accumulated rotation by which it
+    /// must be visited ([`schedule`]).
+    schedule: Deadlines,
+    /// Faces keyed by a persistent-tie deadline (valid for the current run
+    /// of steps about one coordinate axis only), and a flag per face.
+    tie_keyed: Vec<u32>,
+    in_tie_keyed: Vec<bool>,
+    /// Reused buffer of the faces due in a step.
+    due: Vec<u32>,
+    /// `true`: FindErrors passes over all normals and `schedule` is not
+    /// kept; `false`: it visits the normals `schedule` says are due.
+    scanning: bool,
 }
 
 impl Side {
@@ -524,6 +542,97 @@ impl Side {
             tie_margin: vec![0.0; faces],
             tie_axis: vec![NO_AXIS; faces],
             tie_tick: vec![0; faces],
+            schedule: Deadlines::default(),
+            tie_keyed: Vec::new(),
+            in_tie_keyed: vec![false; faces],
+            due: Vec::new(),
+            scanning: true,
+        }
+    }
+
+    /// The deadline of face `f` from its lazy margin alone: the accumulated
+    /// rotation at which it may first be at risk.
+    fn margin_deadline(&self, f: usize) -> f64 {
+        self.margin_at[f] + self.margin[f] - self.dir_err[f]
+    }
+
+    /// After all margins were recomputed: back to passes over all normals
+    /// (no tie certificate survives); the schedule starts again when few
+    /// normals are due.
+    fn reschedule(&mut self) {
+        self.scanning = true;
+        self.forget_tie_keys();
+    }
+
+    fn forget_tie_keys(&mut self) {
+        for &f in &self.tie_keyed {
+            self.in_tie_keyed[f as usize] = false;
+        }
+        self.tie_keyed.clear();
+    }
+
+    /// Leaves passes for the kinetic schedule after a pass in `step`: every
+    /// face keyed by its deadline, in O(n).
+    fn start_schedule(&mut self, step: &find_errors::StepBounds) {
+        self.scanning = false;
+        self.forget_tie_keys();
+        let n = self.assign.len();
+        for f in 0..n {
+            if self.key_of(f, step) > self.margin_deadline(f) {
+                self.in_tie_keyed[f] = true;
+                self.tie_keyed.push(f as u32);
+            }
+        }
+        let mut schedule = std::mem::take(&mut self.schedule);
+        schedule.rebuild(n, step.theta, |f| self.key_of(f, step));
+        self.schedule = schedule;
+    }
+
+    /// The deadline of face `f` after `step`: its margin's, or the later
+    /// one of its persistent-tie certificate while that is valid (this run
+    /// of steps about one coordinate axis).
+    fn key_of(&self, f: usize, step: &find_errors::StepBounds) -> f64 {
+        let key = self.margin_deadline(f);
+        let tie_valid = step.axis.is_some_and(|k| self.tie_axis[f] == k as u8)
+            && self.tie_tick[f] >= step.run_start;
+        if tie_valid {
+            key.max(self.margin_at[f] + self.tie_margin[f] - self.dir_err[f])
+        } else {
+            key
+        }
+    }
+
+    /// Re-keys face `f` after its visit in `step`.
+    fn rekey(&mut self, f: usize, step: &find_errors::StepBounds) {
+        let key = self.key_of(f, step);
+        if key > self.margin_deadline(f) && !self.in_tie_keyed[f] {
+            self.in_tie_keyed[f] = true;
+            self.tie_keyed.push(f as u32);
+        }
+        self.schedule.set(f as u32, key);
+    }
+
+    /// The run of steps about one coordinate axis ended: keys taken from
+    /// tie certificates fall back to the margins' deadlines.
+    fn end_tie_keys(&mut self) {
+        let mut keyed = std::mem::take(&mut self.tie_keyed);
+        for &f in &keyed {
+            self.in_tie_keyed[f as usize] = false;
+            let key = self.margin_deadline(f as usize);
+            self.schedule.set(f, key);
+        }
+        keyed.clear();
+        self.tie_keyed = keyed;
+    }
+
+    /// Subtracts `shift` from the accumulated rotation of every margin and
+    /// deadline (see [`schedule::REBASE_AFTER`]).
+    fn rebase(&mut self, shift: f64) {
+        for at in &mut self.margin_at {
+            *at -= shift;
+        }
+        if !self.scanning {
+            self.schedule.shift(shift);
         }
     }
 }

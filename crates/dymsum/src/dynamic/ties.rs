@@ -27,6 +27,7 @@ impl ExactZeros {
             poly,
             normals: poly.normals(),
             arcs: poly.arc_normals(),
+            turn: None,
             arc_errs: poly.arc_errors(),
             base: 0,
             rotation: None,

@@ -21,7 +21,7 @@ impl GaussView<'_> {
             let mut best: Option<(f64, u32)> = None;
             for i in 0..ring.len() {
                 if !self.ring_side(ring, i, x).is_positive() {
-                    let m = self.arcs[ring[i].edge as usize];
+                    let m = self.arc(ring[i].edge);
                     let depth = (m.dot(x.approx) / m.length()).abs();
                     if best.is_none_or(|(d, _)| depth > d) {
                         best = Some((depth, ring[i].neighbor));

@@ -54,10 +54,15 @@ use glam::{DMat3, DVec3};
 pub(crate) struct GaussView<'a> {
     /// The polytope.
     pub poly: &'a Polytope,
-    /// Rotated exact-input normals, one per face.
+    /// Rotated exact-input normals, one per face; with `turn`, the
+    /// polytope's own normals, rotated on access.
     pub normals: &'a [DVec3],
-    /// Rotated great-circle normals of the edge arcs, one per edge.
+    /// Rotated great-circle normals of the edge arcs, one per edge; with
+    /// `turn`, the polytope's own arc normals, rotated on access.
     pub arcs: &'a [DVec3],
+    /// `Some` when `normals` and `arcs` are unrotated and rotated on access
+    /// (lazily: a dynamic sum turns only what it visits).
+    pub turn: Option<&'a Turn>,
     /// Error bounds of `arcs`.
     pub arc_errs: &'a [f64],
     /// Global SoS index of face 0.
@@ -71,11 +76,22 @@ pub(crate) struct GaussView<'a> {
     pub ties: Option<&'a TieCache>,
 }
 
+/// A rotation `R` applied on access: normals map by `R`, arc normals (cross
+/// products of normals) by its cofactor matrix, exactly as
+/// [`crate::sum::rotate_arcs`] maps them when it stores them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Turn {
+    /// `R`.
+    pub rot: DMat3,
+    /// `cof(R)`, with `cof(R) (a × b) = (R a) × (R b)`.
+    pub cof: DMat3,
+}
+
 impl<'a> GaussView<'a> {
     /// Normal of face `f` as an exact predicate argument.
     #[inline]
     pub fn normal(&self, f: u32) -> FaceNormal<'a> {
-        let approx = self.normals[f as usize];
+        let approx = self.n(f);
         let err = self.poly.normal_error(f as usize);
         // Unrotated views hold the polytope's own normals, bit for bit
         // (`FaceNormal::zero_mask` reads exactness off them).
@@ -97,14 +113,29 @@ impl<'a> GaussView<'a> {
     /// Float approximation of the normal of face `f`.
     #[inline]
     pub fn n(&self, f: u32) -> DVec3 {
-        self.normals[f as usize]
+        let n = self.normals[f as usize];
+        match self.turn {
+            Some(t) => t.rot * n,
+            None => n,
+        }
+    }
+
+    /// Float approximation of the (rotated) great-circle normal of the arc
+    /// of edge `e`; its error bound is `arc_errs[e]`.
+    #[inline]
+    pub fn arc(&self, e: u32) -> DVec3 {
+        let a = self.arcs[e as usize];
+        match self.turn {
+            Some(t) => t.cof * a,
+            None => a,
+        }
     }
 
     /// The side of `x` relative to the arc of edge `e` (from its left face's
     /// normal to its right face's): the SoS sign of `det[n_left, n_right, x]`.
     #[inline]
     pub fn arc_side(&self, e: u32, x: &FaceNormal<'_>) -> Sign {
-        let (m, em) = (self.arcs[e as usize], self.arc_errs[e as usize]);
+        let (m, em) = (self.arc(e), self.arc_errs[e as usize]);
         let (v, bound) = bounds::dot(m, em, x.approx, x.err);
         Sign::certified(v, bound).unwrap_or_else(|| self.tie_side(e, x))
     }
@@ -172,7 +203,7 @@ impl<'a> GaussView<'a> {
             return None;
         }
         if x.idx < a.idx.min(b.idx) {
-            let (m, em) = (self.arcs[e as usize], self.arc_errs[e as usize]);
+            let (m, em) = (self.arc(e), self.arc_errs[e as usize]);
             let known_zero = cross_zero(za, zb);
             return [2, 1, 0]
                 .into_iter()

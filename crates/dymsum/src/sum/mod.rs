@@ -206,6 +206,12 @@ pub(crate) struct Operands {
     pub arc_p_err: Vec<f64>,
     /// Exact ties met at this relative rotation.
     pub(crate) ties: crate::gauss::TieCache,
+    /// When set (a dynamic sum, [`Operands::make_lazy`]), `np` and `arc_p`
+    /// are not kept: P's view rotates its own normals and arcs by `turn` on
+    /// access, so a new rotation costs O(1) instead of O(m).
+    lazy: bool,
+    /// The relative rotation's matrix and cofactor matrix (for `lazy`).
+    turn: crate::gauss::Turn,
 }
 
 /// P's arc normals under a rotation, and their error bounds. Exact normals
@@ -237,6 +243,15 @@ pub(crate) fn rotate_arcs(
             let c = cofactor(m);
             arcs.extend(p.arc_normals().iter().map(|a| c * *a));
         }
+    }
+}
+
+/// The matrix and cofactor matrix of a rotation, for lazy views.
+fn turn_of(r: crate::Rotation) -> crate::gauss::Turn {
+    let rot = r.matrix();
+    crate::gauss::Turn {
+        rot,
+        cof: cofactor(&rot),
     }
 }
 
@@ -273,6 +288,8 @@ impl Operands {
             pose_p,
             pose_q,
             relative,
+            lazy: false,
+            turn: turn_of(relative),
         };
         rotate_arcs(p, ops.rot_p.as_ref(), &mut ops.arc_p, &mut ops.arc_p_err);
         ops
@@ -282,6 +299,11 @@ impl Operands {
     pub(crate) fn set_relative(&mut self, new: crate::Rotation) {
         self.relative = new;
         self.rot_p = (new != crate::Rotation::IDENTITY).then(|| new.matrix());
+        self.ties.clear();
+        if self.lazy {
+            self.turn = turn_of(new);
+            return;
+        }
         rotate_arcs(
             &self.p,
             self.rot_p.as_ref(),
@@ -291,16 +313,33 @@ impl Operands {
         for (n, r) in self.np.iter_mut().zip(self.p.normals()) {
             *n = new.apply(*r);
         }
-        self.ties.clear();
+    }
+
+    /// Stops storing P's rotated normals and arcs: from now on P's view
+    /// rotates them on access ([`crate::gauss::Turn`]), so
+    /// [`Operands::set_relative`] is O(1). For a dynamic sum, which visits
+    /// few of them per step; a static sum reads every one several times
+    /// and keeps them stored.
+    pub(crate) fn make_lazy(&mut self) {
+        self.lazy = true;
+        self.turn = turn_of(self.relative);
+        self.np = Vec::new();
+        self.arc_p = Vec::new();
     }
 
     /// P's Gaussian map (global indices `0..m`).
     #[inline]
     pub fn view_p(&self) -> GaussView<'_> {
+        let (normals, arcs, turn) = match (self.lazy, self.rot_p.is_some()) {
+            (false, _) => (&self.np[..], &self.arc_p[..], None),
+            (true, false) => (self.p.normals(), self.p.arc_normals(), None),
+            (true, true) => (self.p.normals(), self.p.arc_normals(), Some(&self.turn)),
+        };
         GaussView {
             poly: &self.p,
-            normals: &self.np,
-            arcs: &self.arc_p,
+            normals,
+            arcs,
+            turn,
             arc_errs: &self.arc_p_err,
             base: 0,
             rotation: self.rot_p.as_ref(),
@@ -314,6 +353,7 @@ impl Operands {
             poly: &self.q,
             normals: &self.nq,
             arcs: self.q.arc_normals(),
+            turn: None,
             arc_errs: self.q.arc_errors(),
             base: self.p.face_count() as u32,
             rotation: None,

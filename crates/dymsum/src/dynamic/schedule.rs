@@ -1,0 +1,250 @@
+//! The kinetic schedule of FindErrors (issue 10 §1): which face normals a
+//! step must visit, without looking at the others.
+//!
+//! Every face normal carries a lazy margin (see [`super::margins`]): at the
+//! accumulated rotation `margin_at` it was at least `margin` (less its
+//! direction error `δ`) from the boundary of its cell. Since a normal moves
+//! by at most the accumulated step angle, it cannot have left its cell, nor
+//! crossed an arc, while the accumulated rotation (plus the current step's
+//! drift off the great arc, `θ²/4 + slack`) stays below its *deadline*
+//! `margin_at + margin − δ`. FindErrors used to test that inequality for
+//! every normal (`O(m + n)` per step); the schedule keeps the deadlines in
+//! a calendar queue instead ([`Deadlines`]: buckets about one step wide),
+//! so a step pops exactly the normals
+//! whose deadline falls inside it (`after + drift ≥ deadline`, the same test
+//! as before, evaluated on fewer normals) and re-keys them after their
+//! visit. Normals certified through persistent exact ties about a
+//! coordinate axis ([`super::ties`]) are keyed by the later of their two
+//! deadlines while the run of steps about that axis lasts; when the run
+//! ends, those keys fall back to the plain margin deadline before anything
+//! is popped.
+//!
+//! # Correctness
+//! A normal that is not popped has `deadline > after + drift`, which is the
+//! old skip test: its margin certifies it stayed in its cell and crossed no
+//! arc during the step. Every normal the old scan would visit is popped, and
+//! each popped normal goes through the unchanged per-normal decision, so the
+//! facets found are the same (the oracle suites check every step against a
+//! fresh `walk`). Deadlines are compared in floats like the old test; the
+//! accumulated rotation is rebased to 0 now and then ([`REBASE_AFTER`]) so
+//! rounding stays far below the slack that covers it.
+//!
+//! # Complexity
+//! `O(k + 1)` per step for `k` popped normals (plus the visits themselves),
+//! and `O(n)` for the normals beyond the calendar's ring once per half turn
+//! of the ring (256 steps); a rebuild after a from-scratch recomputation,
+//! a change of the step size by more than 16× or a rebase is `O(n)`. No
+//! allocation once the buckets have grown: the due list and the buckets
+//! are reused buffers.
+
+/// When the accumulated rotation exceeds this (radians), it is rebased to 0
+/// (every deadline shifted by the same amount), so a long motion keeps the
+/// deadlines' rounding at about `1e-13`.
+pub(super) const REBASE_AFTER: f64 = 1024.0;
+
+/// Number of buckets of the calendar (a power of two).
+const BUCKETS: usize = 512;
+
+/// Deadlines of `n` items in a calendar queue: buckets of width `width`
+/// (about one step's angle) in a ring of [`BUCKETS`], the deadlines beyond
+/// the ring in a `far` list redistributed when the ring has turned half way.
+/// Entries are deleted lazily: each carries its item's generation, and an
+/// entry whose generation is not current is dropped when met. Popping and
+/// re-keying are O(1); the far list costs O(n) per half turn of the ring.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Deadlines {
+    /// Key of each item (`+∞` while popped and not re-keyed).
+    key: Vec<f64>,
+    /// Generation of each item's current entry.
+    generation: Vec<u32>,
+    /// The ring: bucket `b` (an absolute index `floor(key / width)`) is
+    /// `ring[b % BUCKETS]`, for `b` below `ring_end`.
+    ring: Vec<Vec<(u32, u32)>>,
+    /// Entries at bucket indices `≥ ring_end` when they were placed.
+    far: Vec<(u32, u32)>,
+    /// A second buffer for `far` while the ring turns (no allocation).
+    spare: Vec<(u32, u32)>,
+    /// Bucket width (radians of accumulated rotation).
+    width: f64,
+    /// First bucket not yet fully popped.
+    cur: i64,
+    /// Bucket indices `≥ ring_end` live in `far`.
+    ring_end: i64,
+}
+
+impl Deadlines {
+    /// All `n` items with the keys `key(i)`, with buckets about `width`
+    /// wide (the step angle expected), in O(n).
+    pub(super) fn rebuild(&mut self, n: usize, width: f64, key: impl Fn(usize) -> f64) {
+        self.key.clear();
+        self.key.extend((0..n).map(key));
+        self.generation.clear();
+        self.generation.resize(n, 0);
+        self.width = width.clamp(1e-12, 1.0);
+        self.ring.resize_with(BUCKETS, Vec::new);
+        self.ring.iter_mut().for_each(Vec::clear);
+        self.far.clear();
+        let least = self.key.iter().copied().fold(f64::INFINITY, f64::min);
+        self.cur = if least.is_finite() {
+            self.index(least)
+        } else {
+            0
+        };
+        self.ring_end = self.cur.saturating_add(BUCKETS as i64);
+        for i in 0..n as u32 {
+            self.place(i);
+        }
+    }
+
+    /// The absolute bucket index of a key (saturating; NaN goes first).
+    fn index(&self, key: f64) -> i64 {
+        let q = key / self.width;
+        if q.is_nan() {
+            return i64::MIN;
+        }
+        // `floor` without the libm call: truncate (saturating), then step
+        // down for negative non-integers.
+        let b = q as i64;
+        if (b as f64) > q {
+            b - 1
+        } else {
+            b
+        }
+    }
+
+    /// Files item `i` under its current key and generation.
+    fn place(&mut self, i: u32) {
+        let entry = (i, self.generation[i as usize]);
+        let b = self.index(self.key[i as usize]).max(self.cur);
+        if b < self.ring_end {
+            self.ring[(b as u64 % BUCKETS as u64) as usize].push(entry);
+        } else {
+            self.far.push(entry);
+        }
+    }
+
+    /// Sets the key of item `i`.
+    pub(super) fn set(&mut self, i: u32, key: f64) {
+        self.key[i as usize] = key;
+        self.generation[i as usize] = self.generation[i as usize].wrapping_add(1);
+        self.place(i);
+    }
+
+    /// Appends to `out` every item whose key is at most `limit` (in no
+    /// particular order) and gives each the key `+∞` until the caller
+    /// re-keys it. `step` is the step's angle: when it differs from the
+    /// bucket width by more than 16× the calendar is rebuilt to it first.
+    ///
+    /// Every valid entry whose key is at most `limit` is found: an entry
+    /// sits in the slot of `max(index(key), cur)` at the time it was filed
+    /// (or in `far`, beyond the ring, until the ring turns past it), so it
+    /// is in one of the slots from `cur` to `index(limit)`, which are all
+    /// visited (each slot at most once: a slot pops every due entry in it,
+    /// whatever bucket of the ring's turns it belongs to).
+    pub(super) fn pop_due(&mut self, limit: f64, step: f64, out: &mut Vec<u32>) {
+        if step > 16.0 * self.width || step < self.width / 16.0 {
+            let keys = std::mem::take(&mut self.key);
+            self.rebuild(keys.len(), step, |i| keys[i]);
+        }
+        let last = self.index(limit);
+        if last >= self.ring_end - BUCKETS as i64 / 2 {
+            self.turn_ring(last);
+        }
+        let slots = last.saturating_sub(self.cur).clamp(0, BUCKETS as i64 - 1) + 1;
+        for b in self.cur..self.cur + slots {
+            let slot = (b as u64 % BUCKETS as u64) as usize;
+            let mut bucket = std::mem::take(&mut self.ring[slot]);
+            bucket.retain(|&(i, g)| {
+                if g != self.generation[i as usize] {
+                    return false;
+                }
+                if self.key[i as usize] > limit {
+                    return true;
+                }
+                out.push(i);
+                self.key[i as usize] = f64::INFINITY;
+                self.generation[i as usize] = g.wrapping_add(1);
+                false
+            });
+            self.ring[slot] = bucket;
+        }
+        self.cur = self.cur.max(last);
+    }
+
+    /// Moves the ring's end to `last + BUCKETS`: the far entries now inside
+    /// it go to their slots (due ones to slots that this pop visits).
+    /// Slots of the new window alias older buckets only where those are
+    /// visited by this pop, which keeps every entry that is not due.
+    fn turn_ring(&mut self, last: i64) {
+        self.ring_end = last.saturating_add(BUCKETS as i64);
+        std::mem::swap(&mut self.far, &mut self.spare);
+        let mut old = std::mem::take(&mut self.spare);
+        for &(i, g) in &old {
+            if g == self.generation[i as usize] {
+                self.place(i);
+            }
+        }
+        old.clear();
+        self.spare = old;
+    }
+
+    /// Subtracts `s` from every key (and re-files them).
+    pub(super) fn shift(&mut self, s: f64) {
+        let keys: Vec<f64> = self.key.iter().map(|k| k - s).collect();
+        let width = self.width;
+        self.rebuild(keys.len(), width, |i| keys[i]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Against a plain scan of the keys: random keys, random re-keying up
+    /// and down, limits that advance by random steps of several sizes (so
+    /// the ring turns and the calendar is rebuilt), and a rebase.
+    #[test]
+    fn pops_exactly_the_due_items() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let n = 300;
+        let mut keys: Vec<f64> = (0..n).map(|_| next() * 10.0).collect();
+        let mut d = Deadlines::default();
+        d.rebuild(n, 0.01, |i| keys[i]);
+        let mut due = Vec::new();
+        let mut limit = 0.0;
+        for round in 0..3000 {
+            let step = [0.01, 0.01, 0.002, 0.3][round / 700 % 4] * (0.5 + next());
+            // The limit mostly advances, sometimes falls back a little (the
+            // drift term of a step is not monotone).
+            limit += if next() < 0.1 { -step / 2.0 } else { step };
+            due.clear();
+            d.pop_due(limit, step, &mut due);
+            let mut got = due.clone();
+            got.sort_unstable();
+            let want: Vec<u32> = (0..n as u32)
+                .filter(|&i| keys[i as usize] <= limit)
+                .collect();
+            assert_eq!(got, want, "round {round}");
+            for &i in &due {
+                keys[i as usize] = limit + next() * next() * 20.0 - 0.001;
+                d.set(i, keys[i as usize]);
+            }
+            for _ in 0..3 {
+                let i = (next() * n as f64) as usize;
+                keys[i] = limit + next() * 3.0;
+                d.set(i as u32, keys[i]);
+            }
+            if round % 1000 == 999 {
+                d.shift(limit);
+                keys.iter_mut().for_each(|k| *k -= limit);
+                limit = 0.0;
+            }
+        }
+    }
+}
