@@ -1206,3 +1206,73 @@ fn regression_sliver_faces_arc_walk_finds_no_exit() {
     let mut c = Checked::start(p, pose(old), q, Pose::IDENTITY, 1, "arc walk no exit");
     c.rotate_p_by(step);
 }
+
+/// The kinetic schedule (issue 10 §1) engages when few normals are due:
+/// larger random shapes (boxes and grids among them), by phases of 50
+/// steps of 5,000 to 100,000 per turn: both bodies turning about random
+/// axes; or P jumping to an exact k·90° orientation about a coordinate axis
+/// (a from-scratch step that sends the schedule back to passes) and then
+/// turning about that axis (exact ties that persist, keyed by their tie
+/// deadlines until the run ends). Every step must equal a fresh `walk`, and
+/// most steps must check under an eighth of the normals (the schedule ran).
+#[test]
+fn kinetic_schedule_under_small_steps() {
+    let cases = proptest_cases(6);
+    for seed in 0..cases as u64 {
+        let mut r = rng(seed);
+        let kinds = [
+            Kind::Sphere,
+            Kind::Grid,
+            Kind::Ball,
+            Kind::Cube,
+            Kind::Coplanar,
+        ];
+        let p = random_polytope(kinds[seed as usize % 5], 150, &mut r);
+        let q = random_polytope(kinds[(seed as usize + 1) % 5], 120, &mut r);
+        let normals = p.face_count() + q.face_count();
+        let label = format!("kinetic schedule seed={seed}");
+        let start = Pose::new(random_rotation(&mut r), DVec3::ZERO);
+        let mut c = checked(
+            &p,
+            start,
+            &q,
+            Pose::IDENTITY,
+            DynamicConfig::default(),
+            50,
+            label,
+        );
+        let spt = [5_000.0, 20_000.0, 100_000.0][seed as usize % 3];
+        let mut mp = PaperMotion::new(seed, Some(spt), 0.0);
+        let mut mq = PaperMotion::new(seed + 100, Some(spt), 0.0);
+        let (mut steps, mut sparse) = (0usize, 0usize);
+        for phase in 0..12 {
+            let axis = [DVec3::X, DVec3::Y, DVec3::Z][phase % 3];
+            for i in 0..50 {
+                let mut pp = c.d.pose_p();
+                let mut pq = c.d.pose_q();
+                let by = |m: &mut PaperMotion, r: Rotation| match m.next_move() {
+                    Move::By(rr) => r.then(&rr),
+                    Move::To(rr) => rr,
+                };
+                if phase % 2 == 0 {
+                    pp.rotation = by(&mut mp, pp.rotation);
+                    if i % 3 == 0 {
+                        pq.rotation = by(&mut mq, pq.rotation);
+                    }
+                } else if i == 0 {
+                    pp.rotation = rot(axis, FRAC_PI_2 * (phase % 4) as f64);
+                } else {
+                    pp.rotation = pp.rotation.then(&rot(axis, TAU / spt));
+                }
+                let report = c.try_set_pose(pp, pq).unwrap_or_else(|e| panic!("{e}"));
+                steps += 1;
+                sparse += usize::from(report.checked_normals * 8 < normals);
+            }
+        }
+        c.deep_check().unwrap_or_else(|e| panic!("{e}"));
+        assert!(
+            sparse * 2 > steps,
+            "seed {seed}: only {sparse} of {steps} steps checked under 1/8 of {normals} normals"
+        );
+    }
+}
