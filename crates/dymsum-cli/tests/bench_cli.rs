@@ -174,6 +174,8 @@ fn size_writes_csv_plots_and_exponents() {
             "20",
             "--static-poses",
             "2",
+            "--brute-max-faces",
+            "100",
         ],
     );
     let (header, rows) = read_csv(&dir.join("size.csv"));
@@ -181,12 +183,23 @@ fn size_writes_csv_plots_and_exponents() {
     assert_eq!(rows.len(), 6);
     let triangles: Vec<&str> = rows.iter().map(|r| r[2].as_str()).collect();
     assert_eq!(triangles, ["12", "48", "108", "20", "80", "180"]);
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
     for r in &rows {
-        for c in &r[5..8] {
+        for c in &r[5..7] {
             assert!(c.parse::<f64>().unwrap() > 0.0, "{r:?}");
         }
+        // brute only up to 100 faces: sphere:3 has 180.
+        let brute = r[col("brute_us")].parse::<f64>().unwrap_or(f64::NAN);
+        assert_eq!(brute > 0.0, r[3].parse::<usize>().unwrap() <= 100, "{r:?}");
+        assert!(
+            r[col("changes_per_step")].parse::<f64>().unwrap() >= 0.0,
+            "{r:?}"
+        );
     }
-    for name in ["size_vs_brute", "size_dymsum"] {
+    // The spheres change facets at every step of 2π/500.
+    let sphere3 = &rows[5];
+    assert!(sphere3[col("dymsum_ns_per_change")].parse::<f64>().unwrap() > 0.0);
+    for name in ["size_vs_brute", "size_dymsum", "size_per_change"] {
         assert_svg(&dir.join(format!("{name}.svg")));
         assert_png(&dir.join(format!("{name}.png")));
     }

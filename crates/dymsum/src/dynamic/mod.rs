@@ -11,16 +11,21 @@
 //! # Steps of one update (Algorithm 4.1)
 //! [`DynamicSum::set_pose`] reads as the paper's algorithm; each step lives
 //! in its own file:
-//! 1. **Rotate** (`DynamicSum::rotate`, here): P's reference normals and arc
-//!    normals by the new relative rotation `R = R_q⁻¹ R_p` (always from the
-//!    reference data: no drift).
+//! 1. **Rotate** (`DynamicSum::rotate`, here): the new relative rotation
+//!    `R = R_q⁻¹ R_p`. P's reference normals and arc normals are rotated by
+//!    it when they are read (`gauss::Turn`: always from the reference data,
+//!    so no drift, and O(1) per step instead of O(m)).
 //! 2. **FindErrors** (§4.1, `find_errors.rs`, with the float bounds of
 //!    `margins.rs` and the persistent ties of `ties.rs`): check the fv-pairs
 //!    of both maps. A float margin (the sine of the distance from the normal
 //!    to the nearest great circle of its cell's arcs, computed from accurate
 //!    arc normals) decides clear cases; the rest use the exact predicate. A
 //!    normal whose last margin, less the rotation accumulated since, still
-//!    exceeds this step's reach is not checked at all (lazy margins).
+//!    exceeds this step's reach is not checked at all (lazy margins). When
+//!    few normals are checked, the kinetic schedule (`schedule.rs`) keeps
+//!    every normal's deadline (the accumulated rotation at which its lazy
+//!    margin runs out) in a calendar queue, and a step visits only the
+//!    normals whose deadline it reaches instead of passing over all of them.
 //! 3. **Correct fv-errors** (§4.2) by hill climbing from the old vertex, in
 //!    the same pass, where each error is found (`find_errors.rs`).
 //! 4. **Correct ee-errors** (§4.3, `correct_ee.rs`): a normal that certainly
@@ -53,6 +58,11 @@
 //!   if the margin (a sine, hence at most the chordal distance) exceeds `θ`
 //!   the normal cannot reach the boundary. Margins decay by at most the
 //!   rotation since they were computed, which makes the lazy skip sound.
+//!   The kinetic schedule skips exactly the same normals without reading
+//!   them: a normal is left in the queue only while its deadline
+//!   `margin_at + margin − δ` exceeds `after + drift`, which is the lazy
+//!   skip test rearranged (see `schedule.rs`; a tie-certified normal is
+//!   keyed by its tie deadline only while its run about one axis lasts).
 //!   For a normal that ends in its old cell the bound is sharper: its path
 //!   lies within chordal distance `δ = θ²/4` of the great arc joining its end
 //!   positions, which lies in the convex cell, and along that great arc each
@@ -98,10 +108,14 @@
 //! a quarter turn), and the update's report is the diff of the two overlays.
 //!
 //! # Complexity
-//! O(m + n) to scan the normals near their cells' boundaries (the others are
-//! skipped by their margins), O(deg) per certified crossing, plus the walks
-//! along the arcs at uncertain normals; for small steps the work is
-//! proportional to the number of changes.
+//! With passes, O(m + n) per step to test every normal's lazy margin; with
+//! the kinetic schedule (used while under 1/8 of the normals are checked
+//! per pass, left above 1/4 due per step) O(k + 1) for the `k` due normals.
+//! Plus O(deg) per visited normal and per certified crossing, and the walks
+//! along the arcs at uncertain normals. The due normals are those within a
+//! step of their cell's boundary, so for small steps the work follows the
+//! number of changes, up to the factor by which normals near a boundary
+//! outnumber those crossing it (docs/BENCHMARKS.md measures both).
 //!
 //! ```
 //! use dymsum::{DynamicSum, Polytope, Pose, Rotation, DVec3};

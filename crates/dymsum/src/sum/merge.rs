@@ -25,7 +25,7 @@ use crate::kernel::Sign;
 use crate::sanity::SanityError;
 use crate::PolygonMesh;
 use glam::DVec3;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 /// A vertex of the sum as `(vertex of P, vertex of Q)`.
 type SumVertex = (u32, u32);
@@ -159,7 +159,8 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
     }
     let corners = facet_corners(ops, overlay);
     // The facet on the other side of each directed facet edge.
-    let mut twin: HashMap<(SumVertex, SumVertex), u32> = HashMap::with_capacity(total * 4);
+    let mut twin: HashMap<(SumVertex, SumVertex), u32> =
+        HashMap::with_capacity_and_hasher(total * 4, Default::default());
     for (i, cyc) in corners.iter().enumerate() {
         for k in 0..cyc.len() {
             if twin
@@ -208,7 +209,7 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
     }
     incidence.sort_unstable();
     incidence.dedup();
-    let mut kept: HashMap<SumVertex, u32> = HashMap::new();
+    let mut kept: HashMap<SumVertex, u32> = HashMap::default();
     let mut vertices = Vec::new();
     let mut exact = true;
     let mut i = 0;
@@ -237,7 +238,11 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
     }
     // Each face: the boundary of the union of its facets, walked edge by
     // edge (a simple cycle for a disk), with non-corner vertices dropped.
-    let mut boundary: HashMap<u32, HashMap<SumVertex, SumVertex>> = HashMap::new();
+    // One map for all faces, keyed by (face, vertex); per face its smallest
+    // boundary vertex (the walk's start) and its number of boundary edges.
+    let mut boundary: HashMap<(u32, SumVertex), SumVertex> =
+        HashMap::with_capacity_and_hasher(total * 2, Default::default());
+    let mut start: HashMap<u32, (SumVertex, usize)> = HashMap::default();
     let mut order: Vec<u32> = Vec::new();
     for i in 0..total {
         if !in_face[i] {
@@ -249,37 +254,40 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
             if in_face[j] && root[j] == root[i] {
                 continue;
             }
-            let map = boundary.entry(root[i]).or_insert_with(|| {
-                order.push(root[i]);
-                HashMap::new()
-            });
-            if map.insert(cyc[k], cyc[(k + 1) % cyc.len()]).is_some() {
-                return Err(format!("the facets of face {} pinch at a vertex", root[i]));
+            let r = root[i];
+            if boundary
+                .insert((r, cyc[k]), cyc[(k + 1) % cyc.len()])
+                .is_some()
+            {
+                return Err(format!("the facets of face {r} pinch at a vertex"));
             }
+            let first = start.entry(r).or_insert_with(|| {
+                order.push(r);
+                (cyc[k], 0)
+            });
+            first.0 = first.0.min(cyc[k]);
+            first.1 += 1;
         }
     }
     let mut faces = Vec::with_capacity(order.len());
     for r in order {
-        let map = &boundary[&r];
-        let Some(&start) = map.keys().min() else {
-            continue;
-        };
+        let (first, edges) = start[&r];
         let mut face = Vec::new();
-        let mut at = start;
+        let mut at = first;
         let mut steps = 0;
         loop {
             if let Some(&v) = kept.get(&at) {
                 face.push(v as usize);
             }
-            at = *map
-                .get(&at)
+            at = *boundary
+                .get(&(r, at))
                 .ok_or_else(|| format!("the boundary of face {r} is open"))?;
             steps += 1;
-            if at == start {
+            if at == first || steps > edges {
                 break;
             }
         }
-        if steps != map.len() {
+        if steps != edges {
             return Err(format!("the facets of face {r} do not form a disk"));
         }
         if face.len() < 3 {
@@ -301,7 +309,7 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
 /// characteristic 2.
 pub(crate) fn check_facet_complex(ops: &Operands, overlay: &Overlay) -> Result<(), SanityError> {
     let corners = facet_corners(ops, overlay);
-    let mut directed: HashMap<(SumVertex, SumVertex), u32> = HashMap::new();
+    let mut directed: HashMap<(SumVertex, SumVertex), u32> = HashMap::default();
     let mut verts = std::collections::HashSet::new();
     for (i, cyc) in corners.iter().enumerate() {
         for k in 0..cyc.len() {
@@ -451,19 +459,29 @@ pub(crate) fn validated_mesh(ops: &Operands, overlay: &Overlay) -> Result<SumMes
     if !max.is_finite() {
         return Err(MeshError::OutOfRange);
     }
-    match check_convex_mesh(&merged.mesh) {
-        Ok(()) => {
-            return Ok(SumMesh {
-                mesh: merged.mesh,
-                precision,
-                hull_fallback: false,
-            })
-        }
-        Err(defect) if merged.exact => return Err(MeshError::Invalid(defect)),
-        Err(_) => {}
-    }
     let pts: Vec<DVec3> = merged.mesh.vertices.iter().map(|&v| v.into()).collect();
     let points = ExactPoints::new(&pts);
+    // Rounded sums usually bend the faces of four or more corners (the
+    // parallelograms of edge pairs): such a mesh cannot pass the full
+    // check, so go straight to the hull of the rounded vertices.
+    let bent = |f: &Vec<usize>| {
+        f[3..]
+            .iter()
+            .any(|&d| points.orient3(f[0], f[1], f[2], d) != Sign::Zero)
+    };
+    if merged.exact || !merged.mesh.faces.iter().any(bent) {
+        match check_convex_mesh(&merged.mesh) {
+            Ok(()) => {
+                return Ok(SumMesh {
+                    mesh: merged.mesh,
+                    precision,
+                    hull_fallback: false,
+                })
+            }
+            Err(defect) if merged.exact => return Err(MeshError::Invalid(defect)),
+            Err(_) => {}
+        }
+    }
     let hull = crate::hull::convex_hull(&points).map_err(|e| MeshError::PrecisionLost {
         ulp: precision.ulp,
         size: precision.size,

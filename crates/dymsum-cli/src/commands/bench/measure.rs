@@ -87,6 +87,9 @@ pub struct Timings {
     pub hull_calls: usize,
     /// Updates of the first repeat that fell back to a from-scratch sum.
     pub recomputed: usize,
+    /// Facet changes per update in the first repeat: `(removed + added) / 2`
+    /// facets, averaged over the updates.
+    pub changes: f64,
     /// Facet-set comparisons made (sampled poses and the final pose).
     pub checks: usize,
     /// Comparisons where a method disagreed with DYMSUM (must be 0).
@@ -119,6 +122,7 @@ impl Timings {
             walk: self.walk_us(),
             brute: self.brute_us(),
             recomputed: self.recomputed,
+            changes: self.changes,
             checks: self.checks,
             mismatches: self.mismatches,
         }
@@ -139,6 +143,9 @@ pub struct Figures {
     pub brute: f64,
     /// Updates of the first repeat that fell back to a from-scratch sum.
     pub recomputed: usize,
+    /// Facet changes per update, `(removed + added) / 2` (see
+    /// [`Timings::changes`]).
+    pub changes: f64,
     /// Facet-set comparisons made.
     pub checks: usize,
     /// Comparisons where a method disagreed with DYMSUM.
@@ -147,8 +154,9 @@ pub struct Figures {
 
 impl Figures {
     /// The CSV fields `steps, dymsum_us, walk_us, brute_us,
-    /// recomputed_steps, checks, mismatches`.
-    pub fn csv_fields(&self) -> [String; 7] {
+    /// recomputed_steps, checks, mismatches, changes_per_step,
+    /// dymsum_ns_per_change`.
+    pub fn csv_fields(&self) -> [String; 9] {
         [
             self.steps.to_string(),
             num(self.dymsum, 3),
@@ -157,7 +165,19 @@ impl Figures {
             self.recomputed.to_string(),
             self.checks.to_string(),
             self.mismatches.to_string(),
+            num(self.changes, 2),
+            num(self.ns_per_change(), 1),
         ]
+    }
+
+    /// DYMSUM's mean update time per facet change (ns; NaN without
+    /// changes).
+    pub fn ns_per_change(&self) -> f64 {
+        if self.changes > 0.0 {
+            1000.0 * self.dymsum / self.changes
+        } else {
+            f64::NAN
+        }
     }
 }
 
@@ -258,6 +278,7 @@ pub fn measure(p: &Polytope, q: &Polytope, plan: &Plan) -> anyhow::Result<Timing
     let first_run = run_dynamic(p, q, plan, &check_at, true)?;
     t.dymsum.push(mean(&first_run.times));
     t.recomputed = first_run.recomputed;
+    t.changes = first_run.changes as f64 / n as f64;
     if let Some(agrees) = first_run.final_agrees {
         t.checks += 1;
         t.mismatches += usize::from(!agrees);
@@ -300,6 +321,9 @@ struct DynamicRun {
     saved: Vec<Option<Vec<Facet>>>,
     /// Updates that fell back to a from-scratch sum (recorded runs only).
     recomputed: usize,
+    /// Facet changes, `(removed + added) / 2` summed over the updates
+    /// (recorded runs only).
+    changes: usize,
     /// Whether the final dynamic facets equal a fresh `walk` sum's
     /// (recorded runs only).
     final_agrees: Option<bool>,
@@ -327,6 +351,7 @@ fn run_dynamic(
         poses: Vec::with_capacity(n),
         saved: vec![None; n],
         recomputed: 0,
+        changes: 0,
         final_agrees: None,
     };
     for (i, save) in check_at.iter().enumerate() {
@@ -336,6 +361,7 @@ fn run_dynamic(
         run.times.push(micros(start.elapsed()));
         if record {
             run.recomputed += usize::from(report.recomputed);
+            run.changes += (report.removed.len() + report.added.len()) / 2;
             run.poses.push(rot);
             if *save {
                 run.saved[i] = Some(dynamic.facets());

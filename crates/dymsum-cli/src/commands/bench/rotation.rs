@@ -26,7 +26,7 @@ pub const DEFAULT_STEPS_PER_REV: &str = "10,30,100,300,500,1000,3000,10000,30000
 pub const DEFAULT_PAIRS: &str = "ellipse+ellipse,gs4+gs4,cube+cube";
 
 /// The CSV header.
-pub const CSV_HEADER: [&str; 10] = [
+pub const CSV_HEADER: [&str; 12] = [
     "p",
     "q",
     "steps_per_rev",
@@ -37,6 +37,8 @@ pub const CSV_HEADER: [&str; 10] = [
     "recomputed_steps",
     "checks",
     "mismatches",
+    "changes_per_step",
+    "dymsum_ns_per_change",
 ];
 
 /// `dymsum bench rotation`.

@@ -8,7 +8,11 @@
 //! `--static-poses` evenly spaced poses. Prints the fitted growth exponent
 //! (least-squares slope of log time against log input triangles) of every
 //! method and family; writes `size.csv`, `size_vs_brute.svg/.png` (Fig.
-//! 5a: DYMSUM and brute) and `size_dymsum.svg/.png` (Fig. 5b: DYMSUM alone).
+//! 5a: DYMSUM and brute), `size_dymsum.svg/.png` (Fig. 5b: DYMSUM alone)
+//! and `size_per_change.svg/.png` (DYMSUM's time per facet change against
+//! faces: flat when the update costs in proportion to the changes; issue
+//! 10 §1). `--steps-per-turn` changes the resolution, `--brute-max-faces`
+//! skips the quadratic brute force on large models.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -17,7 +21,7 @@ use std::time::Instant;
 use clap::Args;
 
 use super::measure::{ensure_no_mismatches, measure, write_verified, Figures, Plan};
-use super::plot::{method_series, write_chart, Chart, MethodTime, Series, COLORS, METHODS};
+use super::plot::{method_series, write_chart, Chart, Marker, MethodTime, Series, COLORS, METHODS};
 use super::{loglog_slope, measure_each, num, out_file, write_csv, write_repeats_line};
 use crate::commands::load;
 use crate::stats::human_us;
@@ -26,7 +30,7 @@ use crate::stats::human_us;
 pub const STEPS_PER_REV: f64 = 500.0;
 
 /// The CSV header.
-pub const CSV_HEADER: [&str; 11] = [
+pub const CSV_HEADER: [&str; 13] = [
     "family",
     "model",
     "input_triangles",
@@ -38,6 +42,8 @@ pub const CSV_HEADER: [&str; 11] = [
     "recomputed_steps",
     "checks",
     "mismatches",
+    "changes_per_step",
+    "dymsum_ns_per_change",
 ];
 
 /// `dymsum bench size`.
@@ -65,6 +71,16 @@ pub struct SizeArgs {
     /// Seed of the motion.
     #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
+    /// Steps per full turn of the motion (the paper's 500; larger means
+    /// smaller steps and fewer facet changes per step).
+    #[arg(long, value_name = "X", default_value_t = STEPS_PER_REV,
+          value_parser = crate::values::parse_steps_per_rev)]
+    pub steps_per_turn: f64,
+    /// `brute` is timed only on models with at most this many faces (it
+    /// is quadratic: about a second per sum at 5,000 faces); larger models
+    /// show no brute figure.
+    #[arg(long, value_name = "F", default_value_t = 2000)]
+    pub brute_max_faces: usize,
     /// Output directory for size.csv and the plots.
     #[arg(long, value_name = "DIR", default_value = ".")]
     pub out: PathBuf,
@@ -97,14 +113,17 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let mut models: Vec<(&'static str, String)> = Vec::new();
     models.extend(a.tcube.iter().map(|k| ("tcube", format!("tcube:{k}"))));
     models.extend(a.sphere.iter().map(|n| ("sphere", format!("sphere:{n}"))));
-    let plan = Plan::walk_and_brute(STEPS_PER_REV, a.seed, a.steps, a.static_poses, a.repeats);
+    let plan = Plan::walk_and_brute(a.steps_per_turn, a.seed, a.steps, a.static_poses, a.repeats);
     writeln!(
         out,
-        "dymsum bench size: two identical operands P = Q of growing size; P turns {} steps at {STEPS_PER_REV} \
-         steps per turn (seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses;",
+        "dymsum bench size: two identical operands P = Q of growing size; P turns {} steps at {} \
+         steps per turn (seed {}); DYMSUM and walk timed at every step, brute at {} evenly spaced poses \
+         (models of at most {} faces);",
         a.steps,
+        a.steps_per_turn,
         a.seed,
         a.static_poses.min(a.steps),
+        a.brute_max_faces,
     )?;
     write_repeats_line(out, a.repeats)?;
     out.flush()?;
@@ -112,7 +131,7 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let points = measure_each(
         &models,
         |(_, name)| format!("{name} + {name}"),
-        |(family, name)| measure_model(family, name, &plan),
+        |(family, name)| measure_model(family, name, &plan, a.brute_max_faces),
     )?;
     let mut written = vec![write_size_csv(&a.out, &points)?.display().to_string()];
     written.extend(write_size_charts(&a.out, &points)?);
@@ -132,9 +151,18 @@ pub fn run(a: &SizeArgs, out: &mut dyn Write) -> anyhow::Result<()> {
 }
 
 /// Measures the model `name` of `family` summed with itself.
-fn measure_model(family: &'static str, name: &str, plan: &Plan) -> anyhow::Result<Point> {
+fn measure_model(
+    family: &'static str,
+    name: &str,
+    plan: &Plan,
+    brute_max_faces: usize,
+) -> anyhow::Result<Point> {
     let m = load(name, "P", false)?;
-    let t = measure(&m.polytope, &m.polytope, plan)?;
+    let mut plan = *plan;
+    if m.polytope.face_count() > brute_max_faces {
+        plan.brute_poses = 0;
+    }
+    let t = measure(&m.polytope, &m.polytope, &plan)?;
     Ok(Point {
         family,
         model: name.to_string(),
@@ -204,9 +232,18 @@ fn write_size_charts(dir: &Path, points: &[Point]) -> anyhow::Result<Vec<String>
         y_log: false,
         series: family_series(points, &["DYMSUM"]),
     };
+    let chart_c = Chart {
+        title: "DYMSUM time per facet change vs input size".into(),
+        x_label: "faces per operand (P = Q)".into(),
+        y_label: "mean update time per facet change (ns)".into(),
+        x_log: true,
+        y_log: false,
+        series: per_change_series(points),
+    };
     let files = [
         ("size_vs_brute.svg", "size_vs_brute.png", &chart_a),
         ("size_dymsum.svg", "size_dymsum.png", &chart_b),
+        ("size_per_change.svg", "size_per_change.png", &chart_c),
     ];
     let mut written = Vec::new();
     for (svg, png, chart) in files {
@@ -218,17 +255,46 @@ fn write_size_charts(dir: &Path, points: &[Point]) -> anyhow::Result<Vec<String>
     Ok(written)
 }
 
+/// DYMSUM's time per facet change against faces, one series per family.
+fn per_change_series(points: &[Point]) -> Vec<Series> {
+    FAMILIES
+        .iter()
+        .enumerate()
+        .map(|(fi, (fam, desc))| Series {
+            label: format!("DYMSUM, {desc}"),
+            color: COLORS[fi],
+            marker: Marker::Circle,
+            dashed: false,
+            points: points
+                .iter()
+                .filter(|p| p.family == *fam)
+                .map(|p| (p.faces as f64, p.f.ns_per_change()))
+                .collect(),
+        })
+        .filter(|s| s.points.iter().any(|(_, y)| y.is_finite()))
+        .collect()
+}
+
 /// The per-model table of the report.
 fn write_size_table(out: &mut dyn Write, points: &[Point]) -> std::io::Result<()> {
     writeln!(
         out,
-        "{:<11} {:>9} {:>6} {:>12} {:>12} {:>12} {:>9} {:>11}",
-        "model", "triangles", "faces", "DYMSUM", "walk", "brute", "÷brute", "recomputed"
+        "{:<11} {:>9} {:>6} {:>12} {:>12} {:>12} {:>9} {:>9} {:>9} {:>11}",
+        "model",
+        "triangles",
+        "faces",
+        "DYMSUM",
+        "walk",
+        "brute",
+        "÷brute",
+        "changes",
+        "ns/change",
+        "recomputed"
     )?;
     for p in points {
         writeln!(
             out,
-            "{:<11} {:>9} {:>6} {:>12} {:>12} {:>12} {:>8.1}x {:>11}",
+            "{:<11} {:>9} {:>6} {:>12} {:>12} {:>12} {:>8.1}x {:>9.1} {:>9.0} {:>11}",
             p.model,
             p.triangles,
             p.faces,
@@ -236,6 +302,8 @@ fn write_size_table(out: &mut dyn Write, points: &[Point]) -> std::io::Result<()
             human_us(p.f.walk),
             human_us(p.f.brute),
             p.f.brute / p.f.dymsum,
+            p.f.changes,
+            p.f.ns_per_change(),
             format!("{}/{}", p.f.recomputed, p.f.steps),
         )?;
     }
