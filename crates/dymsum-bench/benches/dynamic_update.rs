@@ -22,8 +22,8 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DVec3, DynamicSum, Pose};
 use dymsum_bench::{
-    load, pair_label, paper_motion, sample_size_for, DYNAMIC_GROUP, MOTION_SEED, MOTION_STEPS,
-    PAIRS, STEPS_PER_REV,
+    load, pair_label, paper_motion, sample_size_for, time_cyclic_updates, DYNAMIC_GROUP,
+    MOTION_SEED, MOTION_STEPS, PAIRS, STEPS_PER_REV,
 };
 
 fn dynamic_update(c: &mut Criterion) {
@@ -74,26 +74,7 @@ fn dynamic_update(c: &mut Criterion) {
         let mut next = 0usize;
         group.sample_size(20);
         group.bench_function(BenchmarkId::new("dymsum", &pair), |b| {
-            b.iter_custom(|iters| {
-                let mut total = Duration::ZERO;
-                let mut left = iters;
-                while left > 0 {
-                    if next == timed.len() {
-                        // Wrap-around: back to pose 0, untimed.
-                        dy.set_pose_p(poses[0]);
-                        next = 0;
-                    }
-                    let run = left.min((timed.len() - next) as u64) as usize;
-                    let start = Instant::now();
-                    for pose in &timed[next..next + run] {
-                        black_box(dy.set_pose_p(*pose));
-                    }
-                    total += start.elapsed();
-                    next += run;
-                    left -= run as u64;
-                }
-                total
-            })
+            b.iter_custom(|iters| time_cyclic_updates(&mut dy, poses[0], timed, &mut next, iters))
         });
 
         for m in [Method::Walk, Method::Brute] {

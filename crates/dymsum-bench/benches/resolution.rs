@@ -14,12 +14,12 @@
 //! `cargo bench -p dymsum-bench --bench resolution`
 
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DVec3, DynamicSum, Pose};
-use dymsum_bench::{load, paper_motion, MOTION_SEED};
+use dymsum_bench::{load, paper_motion, time_cyclic_updates, MOTION_SEED};
 
 /// Steps per turn measured.
 const RESOLUTIONS: [f64; 3] = [500.0, 5_000.0, 100_000.0];
@@ -62,25 +62,7 @@ fn resolution(c: &mut Criterion) {
         dy.set_pose_p(poses[0]);
         let mut next = 0usize;
         group.bench_function(BenchmarkId::new("dymsum", spr), |b| {
-            b.iter_custom(|iters| {
-                let mut total = Duration::ZERO;
-                let mut left = iters;
-                while left > 0 {
-                    if next == timed.len() {
-                        dy.set_pose_p(poses[0]);
-                        next = 0;
-                    }
-                    let run = left.min((timed.len() - next) as u64) as usize;
-                    let start = Instant::now();
-                    for pose in &timed[next..next + run] {
-                        black_box(dy.set_pose_p(*pose));
-                    }
-                    total += start.elapsed();
-                    next += run;
-                    left -= run as u64;
-                }
-                total
-            })
+            b.iter_custom(|iters| time_cyclic_updates(&mut dy, poses[0], timed, &mut next, iters))
         });
         if spr == RESOLUTIONS[0] {
             let mut next = 0usize;

@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use dymsum::polytope::MeshPolicy;
-use dymsum::{Polytope, Rotation};
+use dymsum::{DynamicSum, Polytope, Pose, Rotation};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -111,6 +111,37 @@ pub fn paper_motion(steps_per_rev: f64, steps: usize, seed: u64) -> Vec<Rotation
             current
         })
         .collect()
+}
+
+/// Times `iters` DYMSUM updates of `dy` along `timed` (P's poses, Q kept),
+/// cyclically from `*next`: when the sequence is exhausted, P jumps back to
+/// `start` (a large step, recomputed) *outside* the timed region, so every
+/// timed update is one genuine step of the motion. For criterion's
+/// `iter_custom`.
+pub fn time_cyclic_updates(
+    dy: &mut DynamicSum,
+    start: Pose,
+    timed: &[Pose],
+    next: &mut usize,
+    iters: u64,
+) -> std::time::Duration {
+    let mut total = std::time::Duration::ZERO;
+    let mut left = iters;
+    while left > 0 {
+        if *next == timed.len() {
+            dy.set_pose_p(start);
+            *next = 0;
+        }
+        let run = left.min((timed.len() - *next) as u64) as usize;
+        let clock = std::time::Instant::now();
+        for pose in &timed[*next..*next + run] {
+            std::hint::black_box(dy.set_pose_p(*pose));
+        }
+        total += clock.elapsed();
+        *next += run;
+        left -= run as u64;
+    }
+    total
 }
 
 // ---------------------------------------------------------------------------
