@@ -237,3 +237,55 @@ fn the_counter_sees_this_threads_allocations_only() {
     });
     assert_eq!(allocs, spawn_only);
 }
+
+/// Issue 10 §2: an incremental DYMSUM update makes no heap allocation once
+/// its buffers have grown, when the caller keeps one report
+/// (`set_pose_into`). Two random polytopes (Gaussian maps in general
+/// position and a box with exact ties), the paper's motion at 5,000 steps
+/// per turn with P and Q both turning; after a warm-up, 2,000 further
+/// steps must allocate (almost) nothing: growth of a reused buffer past its
+/// largest size so far is the only allowance, at most one per 100 steps.
+#[test]
+fn incremental_updates_do_not_allocate() {
+    use dymsum::{DynamicSum, Pose, UpdateReport};
+    use dymsum_testkit::oracle::{Move, PaperMotion};
+    use dymsum_testkit::{random_polytope, rng, Kind};
+    for (kp, kq) in [(Kind::Sphere, Kind::Ball), (Kind::Cube, Kind::Sphere)] {
+        let mut r = rng(7);
+        let p = random_polytope(kp, 120, &mut r);
+        let q = random_polytope(kq, 90, &mut r);
+        let mut sum = DynamicSum::new(&p, Pose::IDENTITY, &q, Pose::IDENTITY).unwrap();
+        let mut report = UpdateReport::default();
+        let mut motion_p = PaperMotion::new(3, Some(5000.0), 0.0);
+        let mut motion_q = PaperMotion::new(4, Some(5000.0), 0.0);
+        let mut step = |sum: &mut DynamicSum, report: &mut UpdateReport| {
+            let (mut pp, mut pq) = (sum.pose_p(), sum.pose_q());
+            for (m, pose) in [(&mut motion_p, &mut pp), (&mut motion_q, &mut pq)] {
+                if let Move::By(rr) = m.next_move() {
+                    pose.rotation = pose.rotation.then(&rr);
+                }
+            }
+            sum.set_pose_into(pp, pq, report);
+            assert!(!report.recomputed && report.recovered.is_none());
+        };
+        for _ in 0..3000 {
+            step(&mut sum, &mut report);
+        }
+        let (changes, allocations) = counted(|| {
+            let mut changes = 0;
+            for _ in 0..2000 {
+                step(&mut sum, &mut report);
+                changes += report.removed.len();
+            }
+            changes
+        });
+        assert!(
+            changes > 100,
+            "{kp:?}+{kq:?}: the motion changed only {changes} facets"
+        );
+        assert!(
+            allocations <= 20,
+            "{kp:?}+{kq:?}: {allocations} allocations in 2,000 incremental steps ({changes} facets removed)"
+        );
+    }
+}

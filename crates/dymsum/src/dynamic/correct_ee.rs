@@ -127,16 +127,26 @@ impl DynamicSum {
                 report.added.push(facet(x));
             }
         }
-        own[e as usize] = fresh.clone();
+        // The arc keeps its own buffer (it grows only past its largest
+        // list so far) and `fresh` keeps the re-walks' one: no allocation
+        // once both have grown.
+        let mut list = old;
+        list.clear();
+        list.extend_from_slice(fresh);
+        own[e as usize] = list;
         Ok(())
     }
 
     /// The arcs at the normals at risk (the edges of their faces), each once
     /// per step, P's then Q's.
-    pub(super) fn arcs_at_risk(&mut self, [scan_p, scan_q]: &[SideScan; 2]) -> [Vec<u32>; 2] {
+    pub(super) fn arcs_at_risk(
+        &mut self,
+        [scan_p, scan_q]: &[SideScan; 2],
+        [arcs_p, arcs_q]: &mut [Vec<u32>; 2],
+    ) {
         let step = self.step;
-        let collect = |side: &mut Side, poly: &Polytope, uncertain: &[u32]| {
-            let mut arcs = Vec::new();
+        let collect = |side: &mut Side, poly: &Polytope, uncertain: &[u32], arcs: &mut Vec<u32>| {
+            arcs.clear();
             for &f in uncertain {
                 for &e in poly.face_edges(f as usize) {
                     if side.stamp[e as usize] != step {
@@ -145,31 +155,35 @@ impl DynamicSum {
                     }
                 }
             }
-            arcs
         };
-        [
-            collect(&mut self.p, &self.ops.p, &scan_p.uncertain),
-            collect(&mut self.q, &self.ops.q, &scan_q.uncertain),
-        ]
+        collect(&mut self.p, &self.ops.p, &scan_p.uncertain, arcs_p);
+        collect(&mut self.q, &self.ops.q, &scan_q.uncertain, arcs_q);
     }
 
     /// Algorithm 4.1, line 3 for the ee-pairs (§4.3): toggles the pairs of
     /// the certified single crossings, then re-walks every arc at risk.
     pub(super) fn correct_ee_errors(
         &mut self,
-        [scan_p, scan_q]: &[SideScan; 2],
-        [arcs_p, arcs_q]: &[Vec<u32>; 2],
+        scratch: &Scratch,
         report: &mut UpdateReport,
     ) -> Result<(), SumError> {
+        let ([scan_p, scan_q], [arcs_p, arcs_q]) = (&scratch.scans, &scratch.at_risk);
         report.rewalked_arcs = arcs_p.len() + arcs_q.len();
         self.apply_certified_crossings(&scan_p.certified, &scan_q.certified, report);
-        let mut fresh = Vec::new();
-        for &e in arcs_p {
-            self.rewalk(Which::P, e, &mut fresh, report)?;
+        let mut fresh = std::mem::take(&mut self.fresh);
+        let mut result = Ok(());
+        for (side, arcs) in [(Which::P, arcs_p), (Which::Q, arcs_q)] {
+            for &e in arcs {
+                result = self.rewalk(side, e, &mut fresh, report);
+                if result.is_err() {
+                    break;
+                }
+            }
+            if result.is_err() {
+                break;
+            }
         }
-        for &e in arcs_q {
-            self.rewalk(Which::Q, e, &mut fresh, report)?;
-        }
-        Ok(())
+        self.fresh = fresh;
+        result
     }
 }

@@ -31,9 +31,9 @@ impl DynamicSum {
     /// Recomputes from scratch (large steps, too many arcs at risk, or the
     /// recovery from a failed repair), reporting the diff against the
     /// overlay before this step.
-    pub(super) fn recompute(&mut self, mut report: UpdateReport) -> UpdateReport {
-        let before = self.overlay_before(&report);
-        let fresh = self.fresh_overlay(&mut report);
+    pub(super) fn recompute(&mut self, report: &mut UpdateReport) {
+        let before = self.overlay_before(report);
+        let fresh = self.fresh_overlay(report);
         let (removed, added) = overlay_diff(&before, &fresh);
         report.removed = removed;
         report.added = added;
@@ -46,7 +46,6 @@ impl DynamicSum {
         report.rewalked_arcs = self.p.ee.len();
         report.recomputed = true;
         self.load_overlay(fresh);
-        report
     }
 
     /// The overlay before this step: the current one with the changes this

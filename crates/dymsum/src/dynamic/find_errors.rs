@@ -41,6 +41,7 @@ pub(super) struct StepBounds {
 }
 
 /// A face whose cell changed.
+#[derive(Clone, Copy, Debug)]
 pub(super) struct Change {
     pub(super) face: u32,
     pub(super) old: u32,
@@ -48,7 +49,7 @@ pub(super) struct Change {
 }
 
 /// What a side's FindErrors pass found.
-#[derive(Default)]
+#[derive(Clone, Debug, Default)]
 pub(super) struct SideScan {
     pub(super) changed: Vec<Change>,
     pub(super) checked: usize,
@@ -70,8 +71,12 @@ pub(super) fn scan_side(
     tied: Option<Tied<'_>>,
     state: &mut Side,
     step: &StepBounds,
-) -> SideScan {
-    let mut out = SideScan::default();
+    out: &mut SideScan,
+) {
+    out.changed.clear();
+    out.uncertain.clear();
+    out.certified.clear();
+    out.checked = 0;
     let n = state.assign.len();
     let visit = |f: usize, state: &mut Side, out: &mut SideScan| {
         visit_normal(
@@ -89,12 +94,12 @@ pub(super) fn scan_side(
         // Many normals are due each step (large steps, or small cells): a
         // pass over all of them is cheaper than a schedule.
         for f in 0..n {
-            visit(f, state, &mut out);
+            visit(f, state, out);
         }
         if out.checked * SCHEDULE_BELOW < n {
             state.start_schedule(step);
         }
-        return out;
+        return;
     }
     // The kinetic schedule: only the normals whose deadline falls inside
     // this step (the others would pass the lazy-margin test unseen).
@@ -108,7 +113,7 @@ pub(super) fn scan_side(
         .pop_due(step.after + step.drift, step.theta, &mut due);
     due.sort_unstable();
     for &f in &due {
-        visit(f as usize, state, &mut out);
+        visit(f as usize, state, out);
     }
     for &f in &due {
         state.rekey(f as usize, step);
@@ -117,7 +122,6 @@ pub(super) fn scan_side(
         state.scanning = true;
     }
     state.due = due;
-    out
 }
 
 /// Below `1/SCHEDULE_BELOW` of the normals checked in a pass, the side
@@ -259,9 +263,9 @@ impl DynamicSum {
 
     /// FindErrors on both maps: P's normals in Q's cells, then Q's in P's,
     /// each fv-error corrected where it is found.
-    pub(super) fn find_errors(&mut self, step: &StepBounds) -> [SideScan; 2] {
+    pub(super) fn find_errors(&mut self, step: &StepBounds, [scan_p, scan_q]: &mut [SideScan; 2]) {
         let zeros = self.zeros.as_deref();
-        let scan_p = scan_side(
+        scan_side(
             (&self.ops.view_p(), &self.ops.view_q()),
             &self.q.arcs,
             (step.rot, step.rot_old),
@@ -272,8 +276,9 @@ impl DynamicSum {
             }),
             &mut self.p,
             step,
+            scan_p,
         );
-        let scan_q = scan_side(
+        scan_side(
             (&self.ops.view_q(), &self.ops.view_p()),
             &self.p.arcs,
             (step.rot.transpose(), step.rot_old.transpose()),
@@ -284,7 +289,7 @@ impl DynamicSum {
             }),
             &mut self.q,
             step,
+            scan_q,
         );
-        [scan_p, scan_q]
     }
 }

@@ -214,6 +214,10 @@ pub struct DynamicSum {
     q: Side,
     theta_acc: f64,
     scratch_toggled: Vec<(u32, u32)>,
+    /// Buffers of one step, reused (no allocation per step), and the
+    /// crossings of the arc being re-walked.
+    scratch: Scratch,
+    fresh: Vec<u32>,
     /// Exact zero structure of P's and Q's maps, computed at the first step
     /// about a coordinate axis (see [`stays_in_cell_tied`]).
     zeros: Option<Box<[ExactZeros; 2]>>,
@@ -269,6 +273,8 @@ impl DynamicSum {
             q: Side::new(q),
             theta_acc: 0.0,
             scratch_toggled: Vec::new(),
+            scratch: Scratch::default(),
+            fresh: Vec::new(),
             zeros: None,
             tick: 0,
             axis_run: None,
@@ -288,6 +294,11 @@ impl DynamicSum {
         for &(e, e2) in &overlay.ee {
             self.p.ee[e as usize].push(e2);
             self.q.ee[e2 as usize].push(e);
+        }
+        // Room for crossings to come, so that later toggles rarely grow a
+        // list (an allocation in the update path).
+        for list in self.p.ee.iter_mut().chain(self.q.ee.iter_mut()) {
+            list.reserve(8);
         }
         self.p.assign = overlay.fv;
         self.q.assign = overlay.vf;
@@ -372,33 +383,65 @@ impl DynamicSum {
     /// same poses as well, which would be a bug in dymsum (please report the
     /// poses); no input is known to do this.
     pub fn set_pose(&mut self, pose_p: Pose, pose_q: Pose) -> UpdateReport {
-        // Line 1: Rotate (P's normals and arcs, by the new relative rotation).
+        let mut report = UpdateReport::default();
+        self.set_pose_into(pose_p, pose_q, &mut report);
+        report
+    }
+
+    /// [`DynamicSum::set_pose`], writing the report into `report` (cleared
+    /// first) and reusing its vectors' capacity: with a report kept from
+    /// step to step, an incremental update makes no heap allocation once
+    /// its buffers have grown (a step recomputed from scratch does
+    /// allocate).
+    ///
+    /// ```
+    /// use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation, UpdateReport};
+    /// let pts: Vec<[f64; 3]> = (0..8).map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64]).collect();
+    /// let cube = Polytope::from_points(&pts)?;
+    /// let mut sum = DynamicSum::new(&cube, Pose::IDENTITY, &cube, Pose::IDENTITY)?;
+    /// let mut report = UpdateReport::default();
+    /// let step = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.01).expect("a unit axis");
+    /// let mut pose = Pose::IDENTITY;
+    /// for _ in 0..10 {
+    ///     pose.rotation = pose.rotation.then(&step);
+    ///     sum.set_pose_into(pose, Pose::IDENTITY, &mut report);
+    ///     assert!(report.fv_errors <= report.removed.len());
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Panics
+    /// As [`DynamicSum::set_pose`].
+    pub fn set_pose_into(&mut self, pose_p: Pose, pose_q: Pose, report: &mut UpdateReport) {
+        report.clear();
+        // Line 1: Rotate (the new relative rotation; P's normals and arcs are
+        // turned when read).
         let Some((old, theta)) = self.rotate(pose_p, pose_q) else {
-            return UpdateReport::default();
+            return;
         };
-        let mut report = UpdateReport {
-            step_angle: theta,
-            ..UpdateReport::default()
-        };
+        report.step_angle = theta;
         if self.must_recompute(theta) {
             return self.recompute(report);
         }
         // Line 2: FindErrors (§4.1), each fv-error corrected where found (§4.2).
         let step = self.step_bounds(old, theta);
-        let scans = self.find_errors(&step);
-        report.record_fv_errors(&scans);
+        let mut scratch = std::mem::take(&mut self.scratch);
+        self.find_errors(&step, &mut scratch.scans);
+        report.record_fv_errors(&scratch.scans);
         // Line 3: CorrectErrors for the ee-pairs (§4.3), or fall back.
-        let at_risk = self.arcs_at_risk(&scans);
-        if self.too_many_at_risk(&at_risk) {
+        self.arcs_at_risk(&scratch.scans, &mut scratch.at_risk);
+        let outcome = if self.too_many_at_risk(&scratch.at_risk) {
             self.note_fallback(step.axis, theta);
-            return self.recompute(report);
+            Err(None)
+        } else {
+            self.backoff = Backoff::default();
+            self.correct_ee_errors(&scratch, report).map_err(Some)
+        };
+        self.scratch = scratch;
+        if let Err(bug) = outcome {
+            report.recovered = bug.map(|b| b.to_string());
+            self.recompute(report);
         }
-        self.backoff = Backoff::default();
-        if let Err(bug) = self.correct_ee_errors(&scans, &at_risk, &mut report) {
-            report.recovered = Some(bug.to_string());
-            return self.recompute(report);
-        }
-        report
     }
 
     /// Algorithm 4.1, line 1: stores the poses and turns P's normals and arcs
@@ -492,6 +535,13 @@ impl DynamicSum {
         }
         self.sum().sanity_check()
     }
+}
+
+/// The buffers of one step: both FindErrors passes and the arcs at risk.
+#[derive(Clone, Debug, Default)]
+struct Scratch {
+    scans: [SideScan; 2],
+    at_risk: [Vec<u32>; 2],
 }
 
 /// Which polytope's arc is re-walked.
@@ -600,6 +650,8 @@ impl Side {
         let mut schedule = std::mem::take(&mut self.schedule);
         schedule.rebuild(n, step.theta, |f| self.key_of(f, step));
         self.schedule = schedule;
+        // At most every normal is due in a step: no growth later.
+        self.due.reserve(n);
     }
 
     /// The deadline of face `f` after `step`: its margin's, or the later

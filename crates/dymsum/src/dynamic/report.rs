@@ -94,6 +94,21 @@ pub(super) fn overlay_diff(before: &Overlay, after: &Overlay) -> (Vec<Facet>, Ve
 }
 
 impl UpdateReport {
+    /// Empties the report, keeping its vectors' capacity.
+    pub fn clear(&mut self) {
+        let (mut removed, mut added) = (
+            std::mem::take(&mut self.removed),
+            std::mem::take(&mut self.added),
+        );
+        removed.clear();
+        added.clear();
+        *self = UpdateReport {
+            removed,
+            added,
+            ..UpdateReport::default()
+        };
+    }
+
     /// Records the fv- and vf-errors FindErrors found (and corrected), and
     /// what it checked.
     pub(super) fn record_fv_errors(&mut self, [scan_p, scan_q]: &[SideScan; 2]) {

@@ -34,8 +34,8 @@
 //! and `O(n)` for the normals beyond the calendar's ring once per half turn
 //! of the ring (256 steps); a rebuild after a from-scratch recomputation,
 //! a change of the step size by more than 16× or a rebase is `O(n)`. No
-//! allocation once the buckets have grown: the due list and the buckets
-//! are reused buffers.
+//! allocation after the rebuild: the lists are intrusive (per-normal
+//! arrays) and the due list is a reused buffer of capacity `n`.
 
 /// When the accumulated rotation exceeds this (radians), it is rebased to 0
 /// (every deadline shifted by the same amount), so a long motion keeps the
@@ -44,31 +44,34 @@ pub(super) const REBASE_AFTER: f64 = 1024.0;
 
 /// Number of buckets of the calendar (a power of two).
 const BUCKETS: usize = 512;
+/// The list of the deadlines beyond the ring (after the ring's buckets).
+const FAR: u32 = BUCKETS as u32;
+/// No item / in no list.
+const NIL: u32 = u32::MAX;
 
 /// Deadlines of `n` items in a calendar queue: buckets of width `width`
 /// (about one step's angle) in a ring of [`BUCKETS`], the deadlines beyond
-/// the ring in a `far` list redistributed when the ring has turned half way.
-/// Entries are deleted lazily: each carries its item's generation, and an
-/// entry whose generation is not current is dropped when met. Popping and
-/// re-keying are O(1); the far list costs O(n) per half turn of the ring.
+/// the ring in a `far` list re-filed when the ring has turned half way.
+/// Every list is intrusive and doubly linked through per-item arrays, so an
+/// item is in exactly one list (or none while popped), re-keying moves it
+/// in O(1), and nothing is allocated after [`Deadlines::rebuild`].
 #[derive(Clone, Debug, Default)]
 pub(super) struct Deadlines {
     /// Key of each item (`+∞` while popped and not re-keyed).
     key: Vec<f64>,
-    /// Generation of each item's current entry.
-    generation: Vec<u32>,
-    /// The ring: bucket `b` (an absolute index `floor(key / width)`) is
-    /// `ring[b % BUCKETS]`, for `b` below `ring_end`.
-    ring: Vec<Vec<(u32, u32)>>,
-    /// Entries at bucket indices `≥ ring_end` when they were placed.
-    far: Vec<(u32, u32)>,
-    /// A second buffer for `far` while the ring turns (no allocation).
-    spare: Vec<(u32, u32)>,
+    /// Neighbours of each item in its list.
+    next: Vec<u32>,
+    prev: Vec<u32>,
+    /// The list each item is in: a ring slot, [`FAR`], or [`NIL`].
+    list: Vec<u32>,
+    /// First item of each list: the ring's slots, then the far list.
+    head: Vec<u32>,
     /// Bucket width (radians of accumulated rotation).
     width: f64,
-    /// First bucket not yet fully popped.
+    /// First bucket not yet fully popped; bucket `b` (an absolute index
+    /// `floor(key / width)`) lives in slot `b % BUCKETS` for `b` below
+    /// `ring_end`, in the far list beyond.
     cur: i64,
-    /// Bucket indices `≥ ring_end` live in `far`.
     ring_end: i64,
 }
 
@@ -78,12 +81,20 @@ impl Deadlines {
     pub(super) fn rebuild(&mut self, n: usize, width: f64, key: impl Fn(usize) -> f64) {
         self.key.clear();
         self.key.extend((0..n).map(key));
-        self.generation.clear();
-        self.generation.resize(n, 0);
         self.width = width.clamp(1e-12, 1.0);
-        self.ring.resize_with(BUCKETS, Vec::new);
-        self.ring.iter_mut().for_each(Vec::clear);
-        self.far.clear();
+        self.refile();
+    }
+
+    /// Files every item anew under its key (O(n), no allocation once the
+    /// arrays have their size).
+    fn refile(&mut self) {
+        let n = self.key.len();
+        for v in [&mut self.next, &mut self.prev, &mut self.list] {
+            v.clear();
+            v.resize(n, NIL);
+        }
+        self.head.clear();
+        self.head.resize(BUCKETS + 1, NIL);
         let least = self.key.iter().copied().fold(f64::INFINITY, f64::min);
         self.cur = if least.is_finite() {
             self.index(least)
@@ -112,39 +123,68 @@ impl Deadlines {
         }
     }
 
-    /// Files item `i` under its current key and generation.
-    fn place(&mut self, i: u32) {
-        let entry = (i, self.generation[i as usize]);
-        let b = self.index(self.key[i as usize]).max(self.cur);
-        if b < self.ring_end {
-            self.ring[(b as u64 % BUCKETS as u64) as usize].push(entry);
-        } else {
-            self.far.push(entry);
+    fn link(&mut self, i: u32, list: u32) {
+        let h = self.head[list as usize];
+        self.next[i as usize] = h;
+        self.prev[i as usize] = NIL;
+        if h != NIL {
+            self.prev[h as usize] = i;
         }
+        self.head[list as usize] = i;
+        self.list[i as usize] = list;
+    }
+
+    fn unlink(&mut self, i: u32) {
+        let list = self.list[i as usize];
+        if list == NIL {
+            return;
+        }
+        let (p, n) = (self.prev[i as usize], self.next[i as usize]);
+        if p != NIL {
+            self.next[p as usize] = n;
+        } else {
+            self.head[list as usize] = n;
+        }
+        if n != NIL {
+            self.prev[n as usize] = p;
+        }
+        self.list[i as usize] = NIL;
+    }
+
+    /// Files item `i` under its current key: the slot of bucket
+    /// `max(index(key), cur)`, or the far list beyond the ring.
+    fn place(&mut self, i: u32) {
+        let b = self.index(self.key[i as usize]).max(self.cur);
+        let list = if b < self.ring_end {
+            (b as u64 % BUCKETS as u64) as u32
+        } else {
+            FAR
+        };
+        self.link(i, list);
     }
 
     /// Sets the key of item `i`.
     pub(super) fn set(&mut self, i: u32, key: f64) {
+        self.unlink(i);
         self.key[i as usize] = key;
-        self.generation[i as usize] = self.generation[i as usize].wrapping_add(1);
         self.place(i);
     }
 
     /// Appends to `out` every item whose key is at most `limit` (in no
     /// particular order) and gives each the key `+∞` until the caller
     /// re-keys it. `step` is the step's angle: when it differs from the
-    /// bucket width by more than 16× the calendar is rebuilt to it first.
+    /// bucket width by more than 16× the calendar is re-filed to it first.
     ///
-    /// Every valid entry whose key is at most `limit` is found: an entry
-    /// sits in the slot of `max(index(key), cur)` at the time it was filed
-    /// (or in `far`, beyond the ring, until the ring turns past it), so it
-    /// is in one of the slots from `cur` to `index(limit)`, which are all
-    /// visited (each slot at most once: a slot pops every due entry in it,
-    /// whatever bucket of the ring's turns it belongs to).
+    /// Every item whose key is at most `limit` is found: an item sits in the
+    /// slot of `max(index(key), cur)` at the time it was filed (or in the
+    /// far list, beyond the ring, until the ring turns past it), so it is in
+    /// one of the slots from `cur` to `index(limit)`, which are all visited
+    /// (each slot at most once: a slot pops every due item in it, whatever
+    /// turn of the ring its bucket belongs to).
     pub(super) fn pop_due(&mut self, limit: f64, step: f64, out: &mut Vec<u32>) {
         if step > 16.0 * self.width || step < self.width / 16.0 {
-            let keys = std::mem::take(&mut self.key);
-            self.rebuild(keys.len(), step, |i| keys[i]);
+            self.width = step.clamp(1e-12, 1.0);
+            self.refile();
         }
         let last = self.index(limit);
         if last >= self.ring_end - BUCKETS as i64 / 2 {
@@ -152,47 +192,46 @@ impl Deadlines {
         }
         let slots = last.saturating_sub(self.cur).clamp(0, BUCKETS as i64 - 1) + 1;
         for b in self.cur..self.cur + slots {
-            let slot = (b as u64 % BUCKETS as u64) as usize;
-            let mut bucket = std::mem::take(&mut self.ring[slot]);
-            bucket.retain(|&(i, g)| {
-                if g != self.generation[i as usize] {
-                    return false;
+            let mut i = self.head[(b as u64 % BUCKETS as u64) as usize];
+            while i != NIL {
+                let next = self.next[i as usize];
+                // A NaN key is due (never skipped).
+                let key = self.key[i as usize];
+                if key <= limit || key.is_nan() {
+                    self.unlink(i);
+                    self.key[i as usize] = f64::INFINITY;
+                    out.push(i);
                 }
-                if self.key[i as usize] > limit {
-                    return true;
-                }
-                out.push(i);
-                self.key[i as usize] = f64::INFINITY;
-                self.generation[i as usize] = g.wrapping_add(1);
-                false
-            });
-            self.ring[slot] = bucket;
+                i = next;
+            }
         }
         self.cur = self.cur.max(last);
     }
 
-    /// Moves the ring's end to `last + BUCKETS`: the far entries now inside
+    /// Moves the ring's end to `last + BUCKETS`: the far items now inside
     /// it go to their slots (due ones to slots that this pop visits).
     /// Slots of the new window alias older buckets only where those are
-    /// visited by this pop, which keeps every entry that is not due.
+    /// visited by this pop, which keeps every item that is not due.
     fn turn_ring(&mut self, last: i64) {
         self.ring_end = last.saturating_add(BUCKETS as i64);
-        std::mem::swap(&mut self.far, &mut self.spare);
-        let mut old = std::mem::take(&mut self.spare);
-        for &(i, g) in &old {
-            if g == self.generation[i as usize] {
-                self.place(i);
+        let mut i = self.head[FAR as usize];
+        while i != NIL {
+            let next = self.next[i as usize];
+            let b = self.index(self.key[i as usize]).max(self.cur);
+            if b < self.ring_end {
+                self.unlink(i);
+                self.link(i, (b as u64 % BUCKETS as u64) as u32);
             }
+            i = next;
         }
-        old.clear();
-        self.spare = old;
     }
 
-    /// Subtracts `s` from every key (and re-files them).
+    /// Subtracts `s` from every key and re-files them (no allocation).
     pub(super) fn shift(&mut self, s: f64) {
-        let keys: Vec<f64> = self.key.iter().map(|k| k - s).collect();
-        let width = self.width;
-        self.rebuild(keys.len(), width, |i| keys[i]);
+        for k in &mut self.key {
+            *k -= s;
+        }
+        self.refile();
     }
 }
 
