@@ -99,7 +99,8 @@ impl ContactTracker {
     /// evaluated). The dynamic sum has moved to the new poses even then;
     /// [`ContactTracker::last`] keeps the previous answer.
     pub fn update(&mut self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
-        self.report = self.sum.set_pose(pose_a, Reflected::pose(pose_b));
+        self.sum
+            .set_pose_into(pose_a, Reflected::pose(pose_b), &mut self.report);
         self.last = self.pair.evaluate(pose_a, pose_b, &self.sum.overlay())?;
         Ok(self.last)
     }
