@@ -397,10 +397,16 @@ pub(crate) fn rotations(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rota
             2,
             &[4],
             what,
-            "a (K, 4) array of (x, y, z, w) quaternions",
+            "a (K, 3, 3) or (K, 4) array (rotation matrices or (x, y, z, w) quaternions)",
         )?
     } else {
-        float_array(&probe, 3, &[3, 3], what, "a (K, 3, 3) or (K, 4) array")?
+        float_array(
+            &probe,
+            3,
+            &[3, 3],
+            what,
+            "a (K, 3, 3) or (K, 4) array (rotation matrices or (x, y, z, w) quaternions)",
+        )?
     };
     let flat: Vec<f64> = arr
         .call_method0("ravel")?
