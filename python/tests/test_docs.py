@@ -27,3 +27,19 @@ def test_class_and_package_docstrings():
         assert r.failed == 0, obj
         attempted += r.attempted
     assert attempted >= 15
+
+
+def test_example_tour_runs(tmp_path):
+    import importlib.util
+    import pathlib
+    import subprocess
+    import sys
+
+    script = pathlib.Path(__file__).parent.parent / "examples" / "tour.py"
+    done = subprocess.run([sys.executable, str(script), str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "C-obstacle slices" in done.stdout
+    saved = dymsum.load(tmp_path / "sum.off")
+    assert saved.volume > dymsum.load("ellipse").volume
+    has_matplotlib = importlib.util.find_spec("matplotlib") is not None
+    assert (tmp_path / "depth.png").exists() == has_matplotlib
