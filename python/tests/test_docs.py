@@ -43,3 +43,17 @@ def test_example_tour_runs(tmp_path):
     assert saved.volume > dymsum.load("ellipse").volume
     has_matplotlib = importlib.util.find_spec("matplotlib") is not None
     assert (tmp_path / "depth.png").exists() == has_matplotlib
+
+
+def test_readme_python_blocks_run(tmp_path, monkeypatch):
+    import pathlib
+    import re
+
+    root = pathlib.Path(__file__).resolve().parent.parent.parent
+    monkeypatch.chdir(tmp_path)  # they write sum.off
+    ran = 0
+    for readme in (root / "README.md", root / "python" / "README.md"):
+        for block in re.findall(r"```python\n(.*?)```", readme.read_text(), re.S):
+            exec(compile(block, str(readme), "exec"), {})
+            ran += 1
+    assert ran >= 2 and (tmp_path / "sum.off").exists()
