@@ -349,6 +349,14 @@ pub(crate) fn pose(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Pose>
     Pose::from_mat4(m).ok_or_else(|| err_for(what, not_rigid_reason(&rows4)))
 }
 
+/// [`pose`], with `None` meaning `current` (for updates: the body stays).
+pub(crate) fn pose_or(obj: Option<&Bound<'_, PyAny>>, what: &str, current: Pose) -> PyResult<Pose> {
+    match obj {
+        Some(o) if !o.is_none() => pose(Some(o), what),
+        _ => Ok(current),
+    }
+}
+
 fn not_rigid_reason(rows: &[[f64; 4]; 4]) -> String {
     if rows.iter().flatten().any(|x| !x.is_finite()) {
         return "not a rigid transform: an entry is NaN or infinite".into();

@@ -340,7 +340,7 @@ impl PyDynamicSum {
     }
 
     /// Moves A to ``pose_a`` and B to ``pose_b`` (4×4 homogeneous rigid
-    /// transforms; ``pose_b=None`` keeps B where it is) and repairs the sum.
+    /// transforms; ``None`` keeps that body where it is) and repairs the sum.
     /// Returns the report, a dict: ``fv_errors`` and ``ee_errors`` (the
     /// errors found and repaired), ``errors`` (their sum), ``removed`` and
     /// ``added`` (facets), ``facets`` (the count after the update),
@@ -348,18 +348,15 @@ impl PyDynamicSum {
     /// scratch: large step or many changes), ``recovered`` (``None``, or the
     /// internal inconsistency that made the step recompute: a bug to
     /// report). The GIL is released while updating.
-    #[pyo3(signature = (pose_a, pose_b = None))]
+    #[pyo3(signature = (pose_a = None, pose_b = None))]
     fn update<'py>(
         &mut self,
         py: Python<'py>,
         pose_a: Option<&Bound<'py, PyAny>>,
         pose_b: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let pa = convert::pose(pose_a, "pose_a")?;
-        let pb = match pose_b {
-            Some(p) if !p.is_none() => convert::pose(Some(p), "pose_b")?,
-            _ => self.inner.pose_q(),
-        };
+        let pa = convert::pose_or(pose_a, "pose_a", self.inner.pose_p())?;
+        let pb = convert::pose_or(pose_b, "pose_b", self.inner.pose_q())?;
         let inner = &mut self.inner;
         let (report, facets) = py.detach(|| {
             let r = inner.set_pose(pa, pb);
@@ -569,8 +566,8 @@ impl PyContactTracker {
     }
 
     /// Moves A to ``pose_a`` and B to ``pose_b`` (4×4 homogeneous rigid
-    /// transforms; ``None`` is the identity) and returns the ``Contact``.
-    /// The GIL is released while updating.
+    /// transforms; ``None`` keeps that body where it is) and returns the
+    /// ``Contact``. The GIL is released while updating.
     #[pyo3(signature = (pose_a = None, pose_b = None))]
     fn update(
         &mut self,
@@ -578,8 +575,9 @@ impl PyContactTracker {
         pose_a: Option<&Bound<'_, PyAny>>,
         pose_b: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PyContact> {
-        let pa = convert::pose(pose_a, "pose_a")?;
-        let pb = convert::pose(pose_b, "pose_b")?;
+        let (now_a, now_b) = self.inner.poses();
+        let pa = convert::pose_or(pose_a, "pose_a", now_a)?;
+        let pb = convert::pose_or(pose_b, "pose_b", now_b)?;
         let inner = &mut self.inner;
         let p = py
             .detach(|| inner.update(pa, pb))

@@ -90,6 +90,20 @@ def test_contact_both_ways_and_both_states():
     assert touching.collides and touching.depth == 0.0
 
 
+def test_tracker_update_keeps_a_body_whose_pose_is_none(rng):
+    a, b = sphere_points(15, rng), sphere_points(15, rng)
+    pa, pb = random_pose(rng, shift=0.5), random_pose(rng, shift=0.5)
+    t = dymsum.ContactTracker(a, b, pa, pb)
+    pa2 = random_pose(rng, angle=0.05) @ pa
+    c = t.update(pa2)  # B stays at pb
+    assert c.depth == dymsum.contact(a, b, pa2, pb).depth
+    pb2 = random_pose(rng, angle=0.05) @ pb
+    c = t.update(None, pb2)  # A stays at pa2
+    fresh = dymsum.contact(a, b, pa2, pb2)
+    assert (c.depth, c.distance) == (fresh.depth, fresh.distance)
+    assert np.array_equal(c.normal, fresh.normal)
+
+
 def test_tracker_equals_contact_every_frame(rng):
     a, b = dymsum.load("gs2"), dymsum.load("ellipse")
     tracker = dymsum.ContactTracker(a, b)

@@ -210,22 +210,23 @@ def test_long_calls_release_the_gil():
     # thread keeps running Python: impossible if the GIL were held.
     a, b = dymsum.load("ellipse"), dymsum.load("gs4")
     quats = np.array([[0, 0, np.sin(t), np.cos(t)] for t in np.linspace(0, 0.5, 40)])
-    done = threading.Event()
-    timing = {}
+    span = {}
 
     def work():
-        t0 = time.perf_counter()
+        span["start"] = time.perf_counter()
         dymsum.cobstacle_slices(a, b, quats)
-        timing["rust"] = time.perf_counter() - t0
-        done.set()
+        span["end"] = time.perf_counter()
 
     worker = threading.Thread(target=work)
-    ticks = 0
+    ticks = []
     worker.start()
-    while not done.is_set():
-        ticks += 1
+    while worker.is_alive():
+        ticks.append(time.perf_counter())
         time.sleep(0.001)
     worker.join()
-    # Each tick sleeps 1 ms: a held GIL would allow at most a handful.
-    assert timing["rust"] > 0.05
-    assert ticks >= 0.3 * timing["rust"] / 0.0011
+    # Python ran in this thread while the worker was inside the Rust call
+    # (with the GIL held, no tick could fall strictly inside it, whatever
+    # the load on the machine).
+    inside = [t for t in ticks if span["start"] < t < span["end"]]
+    assert span["end"] - span["start"] > 0.05
+    assert len(inside) >= 10

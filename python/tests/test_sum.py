@@ -151,13 +151,16 @@ def test_dynamic_sum_after_many_small_rotations_equals_fresh_sum(case, rng):
     assert np.allclose(s.pose_a, pa, atol=1e-12) and np.allclose(s.pose_b, pb, atol=1e-12)
 
 
-def test_dynamic_sum_update_keeps_b_when_not_given(rng):
+def test_dynamic_sum_update_keeps_a_body_whose_pose_is_none(rng):
     a, b = sphere_points(20, rng), sphere_points(20, rng)
-    pb = random_pose(rng)
-    s = dymsum.DynamicSum(a, b, None, pb)
-    pa = random_pose(rng, angle=0.1)
-    s.update(pa)
-    assert np.allclose(s.pose_b, pb, atol=1e-12)
+    pa, pb = random_pose(rng), random_pose(rng)
+    s = dymsum.DynamicSum(a, b, pa, pb)
+    pa = random_pose(rng, angle=0.1) @ pa
+    s.update(pa)  # B stays
+    assert np.allclose(s.pose_b, pb, atol=1e-12) and np.allclose(s.pose_a, pa, atol=1e-12)
+    pb = random_pose(rng, angle=0.1) @ pb
+    s.update(None, pb)  # A stays
+    assert np.allclose(s.pose_b, pb, atol=1e-12) and np.allclose(s.pose_a, pa, atol=1e-12)
     v, f = s.mesh()
     v2, f2 = dymsum.minkowski_sum(a, b, pa, pb)
     assert np.array_equal(v, v2) and np.array_equal(f, f2)

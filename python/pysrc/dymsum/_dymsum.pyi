@@ -143,8 +143,8 @@ class DynamicSum:
     """
 
     def __new__(cls, a: _ShapeLike, b: _ShapeLike, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> DynamicSum: ...
-    def update(self, pose_a: _PoseLike, pose_b: _PoseLike = None) -> dict[str, Any]:
-        """Moves A (and B; ``None`` keeps B) and repairs the sum. The report:
+    def update(self, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> dict[str, Any]:
+        """Moves A and B (``None`` keeps that body where it is) and repairs the sum. The report:
         fv_errors, ee_errors, errors, removed, added, facets, step_angle,
         recomputed, recovered."""
     @overload
@@ -198,7 +198,7 @@ class ContactTracker:
 
     def __new__(cls, a: _ShapeLike, b: _ShapeLike, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> ContactTracker: ...
     def update(self, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> Contact:
-        """Moves A and B to these 4×4 poses (``None``: identity) and answers."""
+        """Moves A and B to these 4×4 poses (``None`` keeps that body where it is) and answers."""
     @property
     def last(self) -> Contact: ...
     @property
