@@ -8,7 +8,8 @@
 //!   (polygons of any size).
 //! * Shapes: a `Polytope`, a `(vertices, faces)` pair, any object with
 //!   `.vertices` and `.faces` (a trimesh.Trimesh, without importing trimesh),
-//!   or an (N, 3) point cloud (its exact convex hull).
+//!   or an (N, 3) point cloud (its exact convex hull), also as an object
+//!   with `.vertices` only (a trimesh.PointCloud).
 //! * Poses: `None` (the identity) or a 4×4 homogeneous rigid transform;
 //!   rotations: (K, 3, 3) matrices or (K, 4) quaternions `(x, y, z, w)`.
 //! * Errors: invalid input is `ValueError` with dymsum's message prefixed
@@ -314,7 +315,14 @@ pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> P
             source: "mesh".into(),
         });
     }
-    let arr = points(obj, what)?;
+    // An object with `.vertices` but no `.faces` (a trimesh.PointCloud) is a
+    // point cloud; anything else must be an (N, 3) array-like.
+    let cloud = if obj.hasattr("vertices")? && !obj.is_instance(&numpy(py)?.getattr("ndarray")?)? {
+        obj.getattr("vertices")?
+    } else {
+        obj.clone()
+    };
+    let arr = points(&cloud, what)?;
     let pts = rows(&arr, what)?;
     let count = pts.len();
     let polytope = py
@@ -329,17 +337,34 @@ pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> P
 
 /// A pose: `None` is the identity, else a 4×4 homogeneous rigid transform
 /// (rotation block orthonormal with determinant +1 within 1e-6, last row
-/// exactly `0, 0, 0, 1`, all finite).
+/// exactly `0, 0, 0, 1`, all finite), or a (4,) quaternion `(x, y, z, w)`
+/// (scalar last) for a rotation about the origin.
 pub(crate) fn pose(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Pose> {
     let Some(obj) = obj.filter(|o| !o.is_none()) else {
         return Ok(Pose::IDENTITY);
     };
-    let arr = float_array(obj, 2, &[4, 4], what, "a 4×4 homogeneous matrix")?;
-    let arr = arr.cast_into::<PyArray2<f64>>()?;
-    let ro = arr.readonly();
-    let flat = ro
-        .as_slice()
-        .map_err(|e| err_for(what, format!("array not contiguous: {e}")))?;
+    const EXPECTED: &str =
+        "a 4×4 homogeneous matrix, or an (x, y, z, w) quaternion for a pure rotation";
+    let py = obj.py();
+    let probe = numpy(py)?
+        .call_method1("asarray", (obj,))
+        .map_err(|e| err_for(what, format!("expected {EXPECTED}: {}", e.value(py))))?;
+    if shape_of(&probe)? == [4] {
+        let arr = float_array(&probe, 1, &[4], what, EXPECTED)?;
+        let [x, y, z, w]: [f64; 4] = arr.call_method0("tolist")?.extract()?;
+        let rotation = Rotation::from_xyzw(x, y, z, w).ok_or_else(|| {
+            err_for(
+                what,
+                format!("quaternion (x, y, z, w) = ({x}, {y}, {z}, {w}) is zero or not finite"),
+            )
+        })?;
+        return Ok(Pose::new(rotation, dymsum::DVec3::ZERO));
+    }
+    let arr = float_array(&probe, 2, &[4, 4], what, EXPECTED)?;
+    let flat: Vec<f64> = arr
+        .call_method0("ravel")?
+        .call_method0("tolist")?
+        .extract()?;
     let mut rows4 = [[0.0; 4]; 4];
     for (r, row) in rows4.iter_mut().enumerate() {
         row.copy_from_slice(&flat[4 * r..4 * r + 4]);

@@ -233,8 +233,9 @@ fn shape_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Shape> {
 /// ``a`` and ``b`` are shapes (an (N, 3) point cloud, a ``(vertices,
 /// faces)`` pair, an object with ``.vertices``/``.faces`` such as a
 /// trimesh, or a ``Polytope``). ``pose_a``/``pose_b`` are 4×4 homogeneous
-/// rigid transforms (``None``: identity); build one from a quaternion in
-/// the order ``(x, y, z, w)`` with ``dymsum.pose``. ``method`` is ``"walk"``
+/// rigid transforms (``None``: identity) or (4,) quaternions ``(x, y, z,
+/// w)`` (scalar last, as scipy) for a rotation about the origin;
+/// ``dymsum.pose(quaternion, translation)`` builds a 4×4 pose. ``method`` is ``"walk"``
 /// (output-sensitive, fastest), ``"brute"`` or ``"hull"``; all give the same
 /// exact facets. Returns vertices (n, 3) ``float64`` and faces (m, 3)
 /// ``int64`` (fan triangles of the merged faces, counter-clockwise seen from
@@ -297,8 +298,9 @@ fn report_dict<'py>(
 /// each ``update`` repairs only the facets the rotation changed.
 ///
 /// ``DynamicSum(a, b, pose_a=None, pose_b=None)``: shapes as for
-/// ``minkowski_sum``; poses 4×4 homogeneous rigid transforms (quaternions
-/// ``(x, y, z, w)`` via ``dymsum.pose``). Updates are exact: after any
+/// ``minkowski_sum``; poses 4×4 homogeneous rigid transforms, or (4,)
+/// quaternions ``(x, y, z, w)`` (scalar last, as scipy) for a rotation about
+/// the origin (``dymsum.pose`` adds a translation). Updates are exact: after any
 /// sequence of updates the facets equal a fresh ``minkowski_sum`` at the
 /// same poses. Small steps are fastest; large ones fall back to a fresh
 /// static sum automatically.
@@ -496,9 +498,9 @@ impl PyContact {
 ///
 /// Computed exactly from the Minkowski difference ``A ⊕ (−B)`` (every
 /// candidate direction is checked; no GJK/EPA tolerance). ``pose_a`` and
-/// ``pose_b`` are 4×4 homogeneous rigid transforms (``None``: identity;
-/// quaternions ``(x, y, z, w)`` via ``dymsum.pose``). The GIL is released
-/// while computing.
+/// ``pose_b`` are 4×4 homogeneous rigid transforms (``None``: identity), or
+/// (4,) quaternions ``(x, y, z, w)`` (scalar last, as scipy) for a rotation
+/// about the origin. The GIL is released while computing.
 ///
 /// >>> import numpy as np, dymsum
 /// >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
@@ -531,8 +533,8 @@ fn contact(
 /// every frame for small steps; the same answers).
 ///
 /// ``ContactTracker(a, b, pose_a=None, pose_b=None)``; poses 4×4
-/// homogeneous rigid transforms (quaternions ``(x, y, z, w)`` via
-/// ``dymsum.pose``).
+/// homogeneous rigid transforms, or (4,) quaternions ``(x, y, z, w)``
+/// (scalar last, as scipy) for a rotation about the origin.
 ///
 /// >>> import numpy as np, dymsum
 /// >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) - 0.5

@@ -6,7 +6,7 @@ import time
 
 import numpy as np
 import pytest
-from conftest import CUBE, random_pose, sphere_points
+from conftest import CUBE, check_sum_against_qhull, pairwise_sums, random_pose, sphere_points
 
 import dymsum
 
@@ -49,6 +49,29 @@ def test_every_input_form_gives_the_same_sum(rng):
     pts32 = pts.astype(np.float32)
     assert same_sum(dymsum.minkowski_sum(pts32, CUBE), dymsum.minkowski_sum(pts32.astype(np.float64), CUBE))
     assert same_sum(dymsum.minkowski_sum(CUBE.astype(np.int64), CUBE), dymsum.minkowski_sum(CUBE, CUBE))
+
+
+def test_point_cloud_objects_and_quaternion_poses(rng):
+    class FakePointCloud:  # like trimesh.PointCloud: .vertices only
+        def __init__(self, vertices):
+            self.vertices = vertices
+
+    pts = sphere_points(20, rng)
+    assert same_sum(dymsum.minkowski_sum(FakePointCloud(pts), CUBE), dymsum.minkowski_sum(pts, CUBE))
+    # A (4,) pose is a quaternion (x, y, z, w): the same as its 4×4 pose (up
+    # to rounding: the matrix is turned back into a quaternion).
+    q = np.array([0.1, -0.4, 0.3, 0.8])
+    (v1, f1), (v2, f2) = (dymsum.minkowski_sum(pts, CUBE, pose_a=p) for p in (q, dymsum.pose(q)))
+    assert np.allclose(v1, v2, rtol=0, atol=1e-14) and np.array_equal(f1, f2)
+    c1, c2 = dymsum.contact(pts, CUBE, None, q), dymsum.contact(pts, CUBE, None, dymsum.pose(q))
+    assert c1.collides == c2.collides and abs(c1.depth - c2.depth) + abs(c1.distance - c2.distance) < 1e-14
+    # ... and rotates about the origin as scipy's Rotation.from_quat does.
+    from scipy.spatial.transform import Rotation
+
+    _, polys = dymsum.minkowski_sum(pts, CUBE, pose_a=q, polygons=True)
+    check_sum_against_qhull(v1, polys, pairwise_sums(Rotation.from_quat(q).apply(pts), CUBE))
+    with pytest.raises(ValueError, match="quaternion .* is zero"):
+        dymsum.minkowski_sum(pts, CUBE, pose_a=[0, 0, 0, 0])
 
 
 def test_inputs_are_not_modified_and_not_kept(rng):

@@ -43,7 +43,9 @@ an object with ``.vertices`` and ``.faces`` (a trimesh.Trimesh), or a Polytope."
 
 _PoseLike = Optional[npt.ArrayLike]
 """A 4×4 homogeneous rigid transform (rotation block, translation in the last
-column, last row ``0 0 0 1``), or ``None`` for the identity."""
+column, last row ``0 0 0 1``), a (4,) quaternion ``(x, y, z, w)`` (scalar
+last, as scipy) for a rotation about the origin, or ``None`` (the identity;
+in ``update`` methods: the body stays)."""
 
 _Vertices = npt.NDArray[np.float64]
 _Triangles = npt.NDArray[np.int64]
