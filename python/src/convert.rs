@@ -486,12 +486,22 @@ pub(crate) fn rotations(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rota
     }
 }
 
+/// An (rows, cols) array taking over `flat` (no copy; `flat.len()` is
+/// `rows · cols` at every call site, and a mismatch is an error, not a panic).
+fn matrix<'py, T: numpy::Element>(
+    py: Python<'py>,
+    flat: Vec<T>,
+    shape: (usize, usize),
+) -> PyResult<Bound<'py, PyArray2<T>>> {
+    Array2::from_shape_vec(shape, flat)
+        .map(|a| a.into_pyarray(py))
+        .map_err(|e| value_error(format!("internal error: output shape {shape:?}: {e}")))
+}
+
 /// A 4×4 row-major `float64` array of a pose.
-pub(crate) fn pose_array<'py>(py: Python<'py>, pose: Pose) -> Bound<'py, PyArray2<f64>> {
+pub(crate) fn pose_array<'py>(py: Python<'py>, pose: Pose) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let cols = pose.to_mat4().transpose().to_cols_array();
-    Array2::from_shape_vec((4, 4), cols.to_vec())
-        .expect("16 entries")
-        .into_pyarray(py)
+    matrix(py, cols.to_vec(), (4, 4))
 }
 
 /// A (3,) `float64` array.
@@ -504,18 +514,16 @@ pub(crate) fn vec3<'py>(py: Python<'py>, v: [f64; 3]) -> Bound<'py, PyArray1<f64
 pub(crate) fn vertices_array<'py>(
     py: Python<'py>,
     vertices: Vec<[f64; 3]>,
-) -> Bound<'py, PyArray2<f64>> {
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let n = vertices.len();
-    Array2::from_shape_vec((n, 3), vertices.into_flattened())
-        .expect("n × 3 entries")
-        .into_pyarray(py)
+    matrix(py, vertices.into_flattened(), (n, 3))
 }
 
 /// Fan triangles of convex polygon faces, as an (m, 3) `int64` array.
 pub(crate) fn triangles_array<'py>(
     py: Python<'py>,
     faces: &[Vec<usize>],
-) -> Bound<'py, PyArray2<i64>> {
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
     let mut flat = Vec::new();
     for f in faces {
         for i in 1..f.len().saturating_sub(1) {
@@ -523,9 +531,7 @@ pub(crate) fn triangles_array<'py>(
         }
     }
     let m = flat.len() / 3;
-    Array2::from_shape_vec((m, 3), flat)
-        .expect("m × 3 entries")
-        .into_pyarray(py)
+    matrix(py, flat, (m, 3))
 }
 
 /// Polygon faces as a list of (k,) `int64` arrays.
@@ -550,8 +556,8 @@ pub(crate) fn mesh_tuple<'py>(
     let faces: Bound<'py, PyAny> = if polygons {
         polygons_list(py, &mesh.faces)?.into_any()
     } else {
-        triangles_array(py, &mesh.faces).into_any()
+        triangles_array(py, &mesh.faces)?.into_any()
     };
-    let vertices = vertices_array(py, mesh.vertices).into_any();
+    let vertices = vertices_array(py, mesh.vertices)?.into_any();
     PyTuple::new(py, [vertices, faces])
 }

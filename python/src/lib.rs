@@ -77,8 +77,8 @@ pub struct PyPolytope {
 impl PyPolytope {
     fn from_shape(py: Python<'_>, s: Shape) -> PyResult<Self> {
         let mesh = s.polytope.to_mesh();
-        let vertices = convert::vertices_array(py, mesh.vertices);
-        let faces = convert::triangles_array(py, &mesh.faces);
+        let vertices = convert::vertices_array(py, mesh.vertices)?;
+        let faces = convert::triangles_array(py, &mesh.faces)?;
         for a in [vertices.as_any(), faces.as_any()] {
             let kwargs = PyDict::new(py);
             kwargs.set_item("write", false)?;
@@ -387,13 +387,13 @@ impl PyDynamicSum {
 
     /// A's current pose, a 4×4 ``float64`` array.
     #[getter]
-    fn pose_a<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn pose_a<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         convert::pose_array(py, self.inner.pose_p())
     }
 
     /// B's current pose, a 4×4 ``float64`` array.
     #[getter]
-    fn pose_b<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+    fn pose_b<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         convert::pose_array(py, self.inner.pose_q())
     }
 
@@ -675,7 +675,7 @@ fn pose<'py>(
     if t.iter().any(|x| !x.is_finite()) {
         return Err(value_error(format!("translation: {t:?} is not finite")));
     }
-    Ok(convert::pose_array(py, Pose::new(rotation, t.into())))
+    convert::pose_array(py, Pose::new(rotation, t.into()))
 }
 
 fn load_error(e: LoadError) -> PyErr {

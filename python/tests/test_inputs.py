@@ -3,6 +3,7 @@
 import os
 import threading
 import time
+import tracemalloc
 
 import numpy as np
 import pytest
@@ -81,6 +82,32 @@ def test_inputs_are_not_modified_and_not_kept(rng):
     assert np.array_equal(pts, keep)
     pts[:] = 0.0  # the polytope does not alias its input
     assert p.vertex_count == 20 and p.volume > 1.0
+
+
+def numpy_peak_bytes(f):
+    """Peak bytes allocated through Python and NumPy while f runs (NumPy
+    reports its data buffers to tracemalloc; Rust's own allocations are not
+    traced)."""
+    tracemalloc.start()
+    try:
+        tracemalloc.reset_peak()
+        f()
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_float64_c_contiguous_input_is_read_in_place(rng):
+    pts = rng.uniform(-1, 1, size=(100_000, 3))  # 2.4 MB
+    # float64 C-contiguous: read in place, no NumPy copy.
+    assert numpy_peak_bytes(lambda: dymsum.Polytope(pts)) < 0.05 * pts.nbytes
+    ball = dymsum.Polytope(sphere_points(20_000, rng))
+    v, f = ball.vertices, ball.faces  # float64 and int64, C-contiguous
+    assert numpy_peak_bytes(lambda: dymsum.Polytope((v, f))) < 0.05 * v.nbytes
+    # Other layouts and dtypes are converted once (a copy the size of the array).
+    for other in (np.asfortranarray(pts), pts.astype(np.float32), pts[::-1]):
+        peak = numpy_peak_bytes(lambda: dymsum.Polytope(other))
+        assert pts.nbytes <= peak < 3 * pts.nbytes
 
 
 def test_outputs_are_not_copied():

@@ -10,8 +10,9 @@ Conventions, everywhere:
 * shapes: an (N, 3) array of points (its exact convex hull), a
   ``(vertices, faces)`` pair, any object with ``.vertices`` and ``.faces``
   (a ``trimesh.Trimesh``), or a :class:`Polytope` (parse and hull once);
-* poses: 4×4 homogeneous rigid transforms (``None`` is the identity);
-  quaternions are ``(x, y, z, w)``, scalar last, as scipy (see :func:`pose`);
+* poses: 4×4 homogeneous rigid transforms (``None`` is the identity), or
+  (4,) quaternions for a rotation about the origin; quaternions are always
+  ``(x, y, z, w)``, scalar last, as scipy (:func:`pose` adds a translation);
 * outputs: vertices ``float64`` (n, 3) and faces ``int64`` (m, 3) fan
   triangles, or with ``polygons=True`` the merged convex faces as a list of
   ``int64`` arrays;
