@@ -608,8 +608,8 @@ impl PyContactTracker {
 /// ``rotations`` is a (K, 3, 3) array of rotation matrices or a (K, 4)
 /// array of unit quaternions in the order ``(x, y, z, w)`` (scalar last, as
 /// ``scipy.spatial.transform.Rotation.as_quat()``). Computed with DYMSUM,
-/// one dynamic sum moved from slice to slice (so consecutive orientations
-/// should be close); ``parallel=True`` splits the orientations into chunks
+/// one dynamic sum moved from slice to slice (fastest when consecutive
+/// orientations are close; exact in any order); ``parallel=True`` splits the orientations into chunks
 /// over threads (same result). The GIL is released while computing.
 ///
 /// >>> import numpy as np, dymsum
