@@ -1,0 +1,53 @@
+"""dymsum: exact static and dynamic Minkowski sums of convex polytopes.
+
+Exact ``A ⊕ B`` of convex polytopes (every combinatorial decision an exact
+predicate), kept up to date while the bodies rotate (the DYMSUM algorithm),
+penetration depth and distance, contact tracking and configuration-space
+obstacle slices, from NumPy arrays.
+
+Conventions, everywhere:
+
+* shapes: an (N, 3) array of points (its exact convex hull), a
+  ``(vertices, faces)`` pair, any object with ``.vertices`` and ``.faces``
+  (a ``trimesh.Trimesh``), or a :class:`Polytope` (parse and hull once);
+* poses: 4×4 homogeneous rigid transforms (``None`` is the identity), or
+  (4,) quaternions for a rotation about the origin; quaternions are always
+  ``(x, y, z, w)``, scalar last, as scipy (:func:`pose` adds a translation);
+* outputs: vertices ``float64`` (n, 3) and faces ``int64`` (m, 3) fan
+  triangles, or with ``polygons=True`` the merged convex faces as a list of
+  ``int64`` arrays;
+* invalid input raises ``ValueError`` with dymsum's message.
+
+>>> import numpy as np, dymsum
+>>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+>>> vertices, faces = dymsum.minkowski_sum(cube, dymsum.load("tcube:4"))
+"""
+
+from ._dymsum import (
+    Contact as Contact,
+    ContactTracker as ContactTracker,
+    DynamicSum as DynamicSum,
+    Polytope as Polytope,
+    __version__ as __version__,
+    cobstacle_slices as cobstacle_slices,
+    contact as contact,
+    load as load,
+    minkowski_sum as minkowski_sum,
+    models as models,
+    pose as pose,
+    save as save,
+)
+
+__all__ = [
+    "Contact",
+    "ContactTracker",
+    "DynamicSum",
+    "Polytope",
+    "cobstacle_slices",
+    "contact",
+    "load",
+    "minkowski_sum",
+    "models",
+    "pose",
+    "save",
+]

@@ -1,0 +1,250 @@
+"""Type stubs of dymsum's extension module (re-exported by ``dymsum``).
+
+Conventions: shapes are (N, 3) point clouds (their exact hull), ``(vertices,
+faces)`` pairs, objects with ``.vertices``/``.faces`` (trimesh), or
+:class:`Polytope`; poses are 4×4 homogeneous rigid transforms (``None`` is
+the identity); quaternions are ``(x, y, z, w)``, scalar last, as scipy.
+"""
+
+import os
+from typing import Any, Literal, Optional, Protocol, Sequence, Tuple, Union, final, overload
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+__all__ = [
+    "Polytope",
+    "DynamicSum",
+    "Contact",
+    "ContactTracker",
+    "minkowski_sum",
+    "contact",
+    "cobstacle_slices",
+    "pose",
+    "load",
+    "save",
+    "models",
+    "__version__",
+]
+
+class _MeshLike(Protocol):
+    @property
+    def vertices(self) -> Any: ...
+    @property
+    def faces(self) -> Any: ...
+
+_Faces = Union[npt.ArrayLike, Sequence[Sequence[int]]]
+"""An (M, k) integer array, or a list of index lists (polygons of any size)."""
+
+_ShapeLike = Union["Polytope", npt.ArrayLike, Tuple[npt.ArrayLike, _Faces], _MeshLike]
+"""An (N, 3) point array (its exact convex hull), a ``(vertices, faces)`` pair,
+an object with ``.vertices`` and ``.faces`` (a trimesh.Trimesh), or a Polytope."""
+
+_PoseLike = Optional[npt.ArrayLike]
+"""A 4×4 homogeneous rigid transform (rotation block, translation in the last
+column, last row ``0 0 0 1``), a (4,) quaternion ``(x, y, z, w)`` (scalar
+last, as scipy) for a rotation about the origin, or ``None`` (the identity;
+in ``update`` methods: the body stays)."""
+
+_Vertices = npt.NDArray[np.float64]
+_Triangles = npt.NDArray[np.int64]
+_Polygons = list[npt.NDArray[np.int64]]
+_Method = Literal["walk", "brute", "hull"]
+
+@final
+class Polytope:
+    """A convex polytope: the exact hull of a point cloud, or a validated convex mesh.
+
+    ``strict=True`` refuses meshes that are convex only within tolerance
+    (otherwise replaced by the exact hull of their vertices). Raises
+    ``ValueError`` for bad input.
+
+    >>> cube = Polytope([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
+    >>> cube.volume, cube.face_count
+    (1.0, 6)
+    """
+
+    def __new__(cls, a: _ShapeLike, strict: bool = False) -> Polytope: ...
+    @property
+    def vertices(self) -> _Vertices:
+        """Read-only (n, 3) float64 array (the same array on every access)."""
+    @property
+    def faces(self) -> _Triangles:
+        """Read-only (m, 3) int64 fan triangles, counter-clockwise from outside."""
+    @property
+    def polygons(self) -> _Polygons:
+        """The maximal convex polygon faces."""
+    def mesh(self, polygons: bool = False) -> Tuple[_Vertices, Union[_Triangles, _Polygons]]:
+        """``(vertices, faces)``: triangles, or polygons with ``polygons=True``."""
+    @property
+    def volume(self) -> float: ...
+    @property
+    def vertex_count(self) -> int: ...
+    @property
+    def edge_count(self) -> int: ...
+    @property
+    def face_count(self) -> int:
+        """Number of maximal (polygon) faces."""
+    @property
+    def source(self) -> str:
+        """``"points"``, ``"mesh"``, ``"built-in NAME"`` or ``"file PATH"``."""
+    @property
+    def convexity_report(self) -> dict[str, Any]:
+        """source, point_cloud, input_vertices, input_faces, input_triangles,
+        vertices, faces, exactly_convex, replaced_by_hull, max_deviation,
+        tolerance, dropped_vertices, inward_oriented (mesh-only entries are
+        None for a point cloud)."""
+
+@overload
+def minkowski_sum(
+    a: _ShapeLike,
+    b: _ShapeLike,
+    pose_a: _PoseLike = None,
+    pose_b: _PoseLike = None,
+    method: _Method = "walk",
+    polygons: Literal[False] = False,
+) -> Tuple[_Vertices, _Triangles]:
+    """``(R_a A + t_a) ⊕ (R_b B + t_b)``, exactly, as ``(vertices, faces)``.
+
+    Poses are 4×4 homogeneous rigid transforms (quaternions ``(x, y, z, w)``
+    via :func:`pose`).
+
+    >>> v, f = minkowski_sum(load("cube"), load("gs1"), pose_a=pose([0, 0, 0.38268343, 0.92387953]))
+    """
+@overload
+def minkowski_sum(
+    a: _ShapeLike,
+    b: _ShapeLike,
+    pose_a: _PoseLike = None,
+    pose_b: _PoseLike = None,
+    method: _Method = "walk",
+    *,
+    polygons: Literal[True],
+) -> Tuple[_Vertices, _Polygons]: ...
+@overload
+def minkowski_sum(
+    a: _ShapeLike,
+    b: _ShapeLike,
+    pose_a: _PoseLike = None,
+    pose_b: _PoseLike = None,
+    method: _Method = "walk",
+    polygons: bool = False,
+) -> Tuple[_Vertices, Union[_Triangles, _Polygons]]: ...
+
+@final
+class DynamicSum:
+    """``A ⊕ B`` kept up to date while the bodies move (DYMSUM).
+
+    Poses are 4×4 homogeneous rigid transforms; quaternions ``(x, y, z, w)``
+    via :func:`pose`.
+
+    >>> s = DynamicSum(load("ellipse"), load("gs4"))
+    >>> report = s.update(pose([0, 0, 0.0087265, 0.9999619]))
+    >>> vertices, faces = s.mesh()
+    """
+
+    def __new__(cls, a: _ShapeLike, b: _ShapeLike, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> DynamicSum: ...
+    def update(self, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> dict[str, Any]:
+        """Moves A and B (``None`` keeps that body where it is) and repairs the sum. The report:
+        fv_errors, ee_errors, errors, removed, added, facets, step_angle,
+        recomputed, recovered."""
+    @overload
+    def mesh(self, polygons: Literal[False] = False) -> Tuple[_Vertices, _Triangles]: ...
+    @overload
+    def mesh(self, polygons: Literal[True]) -> Tuple[_Vertices, _Polygons]: ...
+    @overload
+    def mesh(self, polygons: bool = False) -> Tuple[_Vertices, Union[_Triangles, _Polygons]]: ...
+    @property
+    def facet_count(self) -> int: ...
+    @property
+    def pose_a(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def pose_b(self) -> npt.NDArray[np.float64]: ...
+
+@final
+class Contact:
+    """Depth or distance of A and B.
+
+    ``normal`` is the unit vector from A towards B: when colliding, moving A
+    by ``-depth * normal`` separates the bodies, and ``point_a - point_b ==
+    depth * normal``; when apart, ``point_a``/``point_b`` are the closest
+    points and ``normal`` points from ``point_a`` to ``point_b``.
+    """
+
+    @property
+    def collides(self) -> bool: ...
+    @property
+    def depth(self) -> float:
+        """Penetration depth (0.0 when apart or touching)."""
+    @property
+    def distance(self) -> float:
+        """Distance (0.0 when colliding)."""
+    @property
+    def normal(self) -> npt.NDArray[np.float64]:
+        """(3,) unit normal from A towards B."""
+    @property
+    def point_a(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def point_b(self) -> npt.NDArray[np.float64]: ...
+
+def contact(a: _ShapeLike, b: _ShapeLike, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> Contact:
+    """Exact penetration depth or distance of A and B at 4×4 poses.
+
+    >>> contact(load("cube"), load("cube"), None, pose(translation=[1.0, 0, 0])).depth
+    """
+
+@final
+class ContactTracker:
+    """Contact of A and B over a motion: one dynamic sum ``A ⊕ (−B)`` repaired per update."""
+
+    def __new__(cls, a: _ShapeLike, b: _ShapeLike, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> ContactTracker: ...
+    def update(self, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> Contact:
+        """Moves A and B to these 4×4 poses (``None`` keeps that body where it is) and answers."""
+    @property
+    def last(self) -> Contact: ...
+    @property
+    def last_update(self) -> dict[str, Any]: ...
+
+@overload
+def cobstacle_slices(
+    robot: _ShapeLike,
+    obstacle: _ShapeLike,
+    rotations: npt.ArrayLike,
+    polygons: Literal[False] = False,
+    parallel: bool = False,
+) -> list[Tuple[_Vertices, _Triangles]]:
+    """C-obstacle slices ``obstacle ⊕ (−R·robot)``, one per rotation.
+
+    ``rotations``: (K, 3, 3) rotation matrices or (K, 4) quaternions in the
+    order ``(x, y, z, w)`` (scalar last, as scipy's ``as_quat()``).
+    """
+@overload
+def cobstacle_slices(
+    robot: _ShapeLike,
+    obstacle: _ShapeLike,
+    rotations: npt.ArrayLike,
+    polygons: Literal[True],
+    parallel: bool = False,
+) -> list[Tuple[_Vertices, _Polygons]]: ...
+@overload
+def cobstacle_slices(
+    robot: _ShapeLike,
+    obstacle: _ShapeLike,
+    rotations: npt.ArrayLike,
+    polygons: bool = False,
+    parallel: bool = False,
+) -> list[Tuple[_Vertices, Union[_Triangles, _Polygons]]]: ...
+
+def pose(quaternion: Optional[Sequence[float]] = None, translation: Optional[Sequence[float]] = None) -> npt.NDArray[np.float64]:
+    """A 4×4 pose from a quaternion ``(x, y, z, w)`` (scalar last, as scipy) and a translation."""
+
+def load(path_or_model_name: Union[str, os.PathLike[str]], strict: bool = False) -> Polytope:
+    """A polytope from a mesh file (.off, .obj, .ply, .stl) or a built-in model name."""
+
+@overload
+def save(path: Union[str, os.PathLike[str]], vertices: npt.ArrayLike, faces: _Faces) -> None: ...
+@overload
+def save(path: Union[str, os.PathLike[str]], vertices: _ShapeLike, faces: None = None) -> None: ...
+def models() -> list[str]:
+    """Names of the built-in models and model families."""

@@ -1,0 +1,563 @@
+//! Conversions between Python objects and dymsum's types, and the mapping of
+//! dymsum's errors to Python exceptions.
+//!
+//! * Point arrays: an (N, 3) `float64` C-contiguous array is read in place
+//!   (a borrowed view, no copy); any other numeric array-like is converted
+//!   once by `numpy.ascontiguousarray(x, dtype=float64)`.
+//! * Faces: an (M, k) integer array, or a sequence of index sequences
+//!   (polygons of any size).
+//! * Shapes: a `Polytope`, a `(vertices, faces)` pair, any object with
+//!   `.vertices` and `.faces` (a trimesh.Trimesh, without importing trimesh),
+//!   or an (N, 3) point cloud (its exact convex hull), also as an object
+//!   with `.vertices` only (a trimesh.PointCloud).
+//! * Poses: `None` (the identity) or a 4×4 homogeneous rigid transform;
+//!   rotations: (K, 3, 3) matrices or (K, 4) quaternions `(x, y, z, w)`.
+//! * Errors: invalid input is `ValueError` with dymsum's message prefixed
+//!   by the argument's name; a missing file is `FileNotFoundError`, other
+//!   I/O failures `OSError`.
+
+use dymsum::glam::{DMat3, DMat4};
+use dymsum::polytope::{ConvexityReport, MeshPolicy};
+use dymsum::{PolygonMesh, Polytope, Pose, Rotation};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2};
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyPermissionError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyTuple};
+
+/// `ValueError(msg)`.
+pub(crate) fn value_error(msg: impl Into<String>) -> PyErr {
+    PyValueError::new_err(msg.into())
+}
+
+/// `ValueError("{what}: {err}")`.
+pub(crate) fn err_for(what: &str, err: impl std::fmt::Display) -> PyErr {
+    value_error(format!("{what}: {err}"))
+}
+
+/// An I/O error as the matching `OSError` subclass, with dymsum's message.
+pub(crate) fn io_error(kind: std::io::ErrorKind, msg: String) -> PyErr {
+    match kind {
+        std::io::ErrorKind::NotFound => PyFileNotFoundError::new_err(msg),
+        std::io::ErrorKind::PermissionDenied => PyPermissionError::new_err(msg),
+        _ => PyOSError::new_err(msg),
+    }
+}
+
+fn numpy(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
+    py.import("numpy")
+}
+
+fn dtype_kind(arr: &Bound<'_, PyAny>) -> PyResult<(char, String)> {
+    let dtype = arr.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    Ok((kind.chars().next().unwrap_or('?'), dtype.str()?.to_string()))
+}
+
+fn shape_of(arr: &Bound<'_, PyAny>) -> PyResult<Vec<usize>> {
+    arr.getattr("shape")?.extract()
+}
+
+fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// `obj` as a C-contiguous `float64` array of the given trailing shape
+/// (`tail`) and `rank` dimensions: borrowed in place when it already is one,
+/// else converted once. Rejects non-numeric dtypes (complex, bool, strings,
+/// objects) and wrong shapes with a `ValueError` naming `what`.
+pub(crate) fn float_array<'py>(
+    obj: &Bound<'py, PyAny>,
+    rank: usize,
+    tail: &[usize],
+    what: &str,
+    expected: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let py = obj.py();
+    let np = numpy(py)?;
+    let arr = if obj.is_instance(&np.getattr("ndarray")?)? {
+        obj.clone()
+    } else {
+        np.call_method1("asarray", (obj,))
+            .map_err(|e| err_for(what, format!("expected {expected}: {}", e.value(py))))?
+    };
+    let (kind, dtype) = dtype_kind(&arr)?;
+    if !matches!(kind, 'f' | 'i' | 'u') {
+        return Err(err_for(
+            what,
+            format!("expected {expected} of real numbers, got dtype {dtype}"),
+        ));
+    }
+    let shape = shape_of(&arr)?;
+    if shape.len() != rank || !shape.ends_with(tail) {
+        return Err(err_for(
+            what,
+            format!("expected {expected}, got shape {}", shape_text(&shape)),
+        ));
+    }
+    let contiguous: bool = arr.getattr("flags")?.getattr("c_contiguous")?.extract()?;
+    if dtype == "float64" && contiguous {
+        // Already what dymsum reads: used in place.
+        return Ok(arr);
+    }
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("dtype", np.getattr("float64")?)?;
+    np.call_method("ascontiguousarray", (arr,), Some(&kwargs))
+}
+
+/// An (N, 3) point array, borrowed read-only in place (see [`float_array`]).
+pub(crate) fn points<'py>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<PyReadonlyArray2<'py, f64>> {
+    let arr = float_array(obj, 2, &[3], what, "an (N, 3) array")?;
+    let arr = arr.cast_into::<PyArray2<f64>>()?;
+    arr.try_readonly()
+        .map_err(|e| err_for(what, format!("cannot borrow the array: {e}")))
+}
+
+/// The rows of a C-contiguous (N, 3) array, in place.
+pub(crate) fn rows<'a>(arr: &'a PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<&'a [[f64; 3]]> {
+    let flat = arr
+        .as_slice()
+        .map_err(|e| err_for(what, format!("array not contiguous: {e}")))?;
+    Ok(flat.as_chunks::<3>().0)
+}
+
+/// Face index lists: an (M, k) integer array or a sequence of index
+/// sequences. Indices must be in `0..vertex_count`.
+pub(crate) fn faces(
+    obj: &Bound<'_, PyAny>,
+    vertex_count: usize,
+    what: &str,
+) -> PyResult<Vec<Vec<usize>>> {
+    let py = obj.py();
+    let raw: Vec<Vec<i64>> = if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        let mut out = Vec::new();
+        for (i, item) in obj.try_iter()?.enumerate() {
+            let item = item?;
+            let face: PyResult<Vec<i64>> = if item.hasattr("dtype")? {
+                let (kind, dtype) = dtype_kind(&item)?;
+                if !matches!(kind, 'i' | 'u') {
+                    return Err(err_for(
+                        what,
+                        format!("face {i}: expected integer indices, got dtype {dtype}"),
+                    ));
+                }
+                item.call_method0("tolist")?.extract()
+            } else {
+                item.extract()
+            };
+            let face = face.map_err(|e| {
+                err_for(
+                    what,
+                    format!(
+                        "face {i}: expected a sequence of integer indices ({})",
+                        e.value(py)
+                    ),
+                )
+            })?;
+            out.push(face);
+        }
+        out
+    } else {
+        let np = numpy(py)?;
+        let arr = np.call_method1("asarray", (obj,)).map_err(|e| {
+            err_for(
+                what,
+                format!("expected an (M, k) integer array: {}", e.value(py)),
+            )
+        })?;
+        let (kind, dtype) = dtype_kind(&arr)?;
+        let shape = shape_of(&arr)?;
+        let empty = shape.contains(&0);
+        if !matches!(kind, 'i' | 'u') && !empty {
+            return Err(err_for(
+                what,
+                format!("expected an (M, k) integer array, got dtype {dtype}"),
+            ));
+        }
+        if shape.len() != 2 {
+            return Err(err_for(
+                what,
+                format!(
+                    "expected an (M, k) integer array, got shape {}",
+                    shape_text(&shape)
+                ),
+            ));
+        }
+        if empty {
+            return Ok(Vec::new());
+        }
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("dtype", np.getattr("int64")?)?;
+        let arr = np.call_method("ascontiguousarray", (arr,), Some(&kwargs))?;
+        let arr = arr.cast_into::<PyArray2<i64>>()?;
+        let ro = arr.readonly();
+        let flat = ro
+            .as_slice()
+            .map_err(|e| err_for(what, format!("array not contiguous: {e}")))?;
+        flat.chunks(shape[1]).map(<[i64]>::to_vec).collect()
+    };
+    raw.into_iter()
+        .enumerate()
+        .map(|(i, f)| {
+            f.into_iter()
+                .map(|v| {
+                    usize::try_from(v)
+                        .ok()
+                        .filter(|&u| u < vertex_count)
+                        .ok_or_else(|| {
+                            err_for(
+                                what,
+                                format!(
+                                    "face {i}: vertex index {v} out of range (there are {vertex_count} vertices)"
+                                ),
+                            )
+                        })
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Where a shape came from and what building it changed.
+#[derive(Clone, Debug)]
+pub(crate) enum Origin {
+    /// The exact hull of a point cloud of this many points.
+    Points { count: usize },
+    /// A mesh, validated.
+    Mesh(ConvexityReport),
+}
+
+/// A polytope converted from a Python object.
+pub(crate) struct Shape {
+    pub(crate) polytope: Polytope,
+    pub(crate) origin: Origin,
+    pub(crate) source: String,
+}
+
+/// A `(vertices, faces)` pair, an object with `.vertices` and `.faces`, or
+/// `None` when `obj` is neither.
+pub(crate) fn mesh_parts<'py>(
+    obj: &Bound<'py, PyAny>,
+) -> PyResult<Option<(Bound<'py, PyAny>, Bound<'py, PyAny>)>> {
+    if (obj.is_instance_of::<PyTuple>() || obj.is_instance_of::<PyList>()) && obj.len()? == 2 {
+        let first = obj.get_item(0)?;
+        let np = numpy(obj.py())?;
+        let two_d = np
+            .call_method1("ndim", (&first,))
+            .and_then(|d| d.extract::<usize>())
+            .is_ok_and(|d| d == 2);
+        if two_d {
+            return Ok(Some((first, obj.get_item(1)?)));
+        }
+    }
+    if obj.hasattr("vertices")? && obj.hasattr("faces")? {
+        return Ok(Some((obj.getattr("vertices")?, obj.getattr("faces")?)));
+    }
+    Ok(None)
+}
+
+/// A mesh from its Python parts (vertices copied into the mesh).
+pub(crate) fn mesh_from_parts(
+    vertices: &Bound<'_, PyAny>,
+    faces_obj: &Bound<'_, PyAny>,
+    what: &str,
+) -> PyResult<PolygonMesh> {
+    let v = points(vertices, &format!("{what} vertices"))?;
+    let verts = rows(&v, what)?.to_vec();
+    let f = faces(faces_obj, verts.len(), &format!("{what} faces"))?;
+    Ok(PolygonMesh::new(verts, f))
+}
+
+/// Any accepted shape as a polytope (see the module docs). The hull is
+/// built with the GIL released.
+pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> PyResult<Shape> {
+    let py = obj.py();
+    if let Ok(p) = obj.cast::<crate::PyPolytope>() {
+        let p = p.get();
+        return Ok(Shape {
+            polytope: p.inner.clone(),
+            origin: p.origin.clone(),
+            source: p.source.clone(),
+        });
+    }
+    if let Some((v, f)) = mesh_parts(obj)? {
+        let mesh = mesh_from_parts(&v, &f, what)?;
+        if mesh.faces.is_empty() {
+            let count = mesh.vertices.len();
+            let polytope = py
+                .detach(|| Polytope::from_points(&mesh.vertices))
+                .map_err(|e| err_for(what, e))?;
+            return Ok(Shape {
+                polytope,
+                origin: Origin::Points { count },
+                source: "points".into(),
+            });
+        }
+        let (polytope, report) = py
+            .detach(|| Polytope::from_mesh(&mesh, policy))
+            .map_err(|e| err_for(what, e))?;
+        return Ok(Shape {
+            polytope,
+            origin: Origin::Mesh(report),
+            source: "mesh".into(),
+        });
+    }
+    // An object with `.vertices` but no `.faces` (a trimesh.PointCloud) is a
+    // point cloud; anything else must be an (N, 3) array-like.
+    let cloud = if obj.hasattr("vertices")? && !obj.is_instance(&numpy(py)?.getattr("ndarray")?)? {
+        obj.getattr("vertices")?
+    } else {
+        obj.clone()
+    };
+    let arr = points(&cloud, what)?;
+    let pts = rows(&arr, what)?;
+    let count = pts.len();
+    let polytope = py
+        .detach(|| Polytope::from_points(pts))
+        .map_err(|e| err_for(what, e))?;
+    Ok(Shape {
+        polytope,
+        origin: Origin::Points { count },
+        source: "points".into(),
+    })
+}
+
+/// A pose: `None` is the identity, else a 4×4 homogeneous rigid transform
+/// (rotation block orthonormal with determinant +1 within 1e-6, last row
+/// exactly `0, 0, 0, 1`, all finite), or a (4,) quaternion `(x, y, z, w)`
+/// (scalar last) for a rotation about the origin.
+pub(crate) fn pose(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Pose> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else {
+        return Ok(Pose::IDENTITY);
+    };
+    const EXPECTED: &str =
+        "a 4×4 homogeneous matrix, or an (x, y, z, w) quaternion for a pure rotation";
+    let py = obj.py();
+    let probe = numpy(py)?
+        .call_method1("asarray", (obj,))
+        .map_err(|e| err_for(what, format!("expected {EXPECTED}: {}", e.value(py))))?;
+    if shape_of(&probe)? == [4] {
+        let arr = float_array(&probe, 1, &[4], what, EXPECTED)?;
+        let [x, y, z, w]: [f64; 4] = arr.call_method0("tolist")?.extract()?;
+        let rotation = Rotation::from_xyzw(x, y, z, w).ok_or_else(|| {
+            err_for(
+                what,
+                format!("quaternion (x, y, z, w) = ({x}, {y}, {z}, {w}) is zero or not finite"),
+            )
+        })?;
+        return Ok(Pose::new(rotation, dymsum::DVec3::ZERO));
+    }
+    let arr = float_array(&probe, 2, &[4, 4], what, EXPECTED)?;
+    let flat: Vec<f64> = arr
+        .call_method0("ravel")?
+        .call_method0("tolist")?
+        .extract()?;
+    let mut rows4 = [[0.0; 4]; 4];
+    for (r, row) in rows4.iter_mut().enumerate() {
+        row.copy_from_slice(&flat[4 * r..4 * r + 4]);
+    }
+    // glam is column-major: the transpose of the row-major rows.
+    let m = DMat4::from_cols_array_2d(&rows4).transpose();
+    Pose::from_mat4(m).ok_or_else(|| err_for(what, not_rigid_reason(&rows4)))
+}
+
+/// [`pose`], with `None` meaning `current` (for updates: the body stays).
+pub(crate) fn pose_or(obj: Option<&Bound<'_, PyAny>>, what: &str, current: Pose) -> PyResult<Pose> {
+    match obj {
+        Some(o) if !o.is_none() => pose(Some(o), what),
+        _ => Ok(current),
+    }
+}
+
+fn not_rigid_reason(rows: &[[f64; 4]; 4]) -> String {
+    if rows.iter().flatten().any(|x| !x.is_finite()) {
+        return "not a rigid transform: an entry is NaN or infinite".into();
+    }
+    if rows[3] != [0.0, 0.0, 0.0, 1.0] {
+        return format!(
+            "not a rigid transform: the last row is {:?}, expected exactly [0, 0, 0, 1]",
+            rows[3]
+        );
+    }
+    let r = DMat3::from_cols_array_2d(&[
+        [rows[0][0], rows[1][0], rows[2][0]],
+        [rows[0][1], rows[1][1], rows[2][1]],
+        [rows[0][2], rows[1][2], rows[2][2]],
+    ]);
+    rotation_reason(r)
+}
+
+fn rotation_reason(r: DMat3) -> String {
+    let g = r.transpose() * r - DMat3::IDENTITY;
+    let off = g.to_cols_array().iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    format!(
+        "not a rigid transform: the 3×3 rotation block must be orthonormal with determinant +1 \
+         (within 1e-6), but max |RᵀR − I| = {off:.3e} and det R = {:.6} (scaling, shear and \
+         reflections are not supported)",
+        r.determinant()
+    )
+}
+
+/// Rotations: a (K, 3, 3) array of rotation matrices or a (K, 4) array of
+/// quaternions in the order `(x, y, z, w)` (scalar last, as scipy).
+pub(crate) fn rotations(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rotation>> {
+    let py = obj.py();
+    let np = numpy(py)?;
+    let probe = np.call_method1("asarray", (obj,)).map_err(|e| {
+        err_for(
+            what,
+            format!("expected a (K, 3, 3) or (K, 4) array: {}", e.value(py)),
+        )
+    })?;
+    let shape = shape_of(&probe)?;
+    let quats = shape.len() == 2;
+    let arr = if quats {
+        float_array(
+            &probe,
+            2,
+            &[4],
+            what,
+            "a (K, 3, 3) or (K, 4) array (rotation matrices or (x, y, z, w) quaternions)",
+        )?
+    } else {
+        float_array(
+            &probe,
+            3,
+            &[3, 3],
+            what,
+            "a (K, 3, 3) or (K, 4) array (rotation matrices or (x, y, z, w) quaternions)",
+        )?
+    };
+    let flat: Vec<f64> = arr
+        .call_method0("ravel")?
+        .call_method0("tolist")?
+        .extract()?;
+    if quats {
+        flat.as_chunks::<4>()
+            .0
+            .iter()
+            .enumerate()
+            .map(|(k, &[x, y, z, w])| {
+                Rotation::from_xyzw(x, y, z, w).ok_or_else(|| {
+                    err_for(
+                        what,
+                        format!(
+                            "quaternion {k} (x, y, z, w) = ({x}, {y}, {z}, {w}) is zero or not finite"
+                        ),
+                    )
+                })
+            })
+            .collect()
+    } else {
+        flat.as_chunks::<9>()
+            .0
+            .iter()
+            .enumerate()
+            .map(|(k, m)| {
+                let r = DMat3::from_cols_array(m).transpose();
+                Rotation::from_matrix(r).ok_or_else(|| {
+                    err_for(
+                        what,
+                        format!(
+                            "matrix {k} is {}",
+                            rotation_reason(r).replacen(
+                                "not a rigid transform: the 3×3 rotation block must be",
+                                "not a rotation: it must be",
+                                1
+                            )
+                        ),
+                    )
+                })
+            })
+            .collect()
+    }
+}
+
+/// An (rows, cols) array taking over `flat` (no copy; `flat.len()` is
+/// `rows · cols` at every call site, and a mismatch is an error, not a panic).
+fn matrix<'py, T: numpy::Element>(
+    py: Python<'py>,
+    flat: Vec<T>,
+    shape: (usize, usize),
+) -> PyResult<Bound<'py, PyArray2<T>>> {
+    Array2::from_shape_vec(shape, flat)
+        .map(|a| a.into_pyarray(py))
+        .map_err(|e| value_error(format!("internal error: output shape {shape:?}: {e}")))
+}
+
+/// A 4×4 row-major `float64` array of a pose.
+pub(crate) fn pose_array<'py>(py: Python<'py>, pose: Pose) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let cols = pose.to_mat4().transpose().to_cols_array();
+    matrix(py, cols.to_vec(), (4, 4))
+}
+
+/// A (3,) `float64` array.
+pub(crate) fn vec3<'py>(py: Python<'py>, v: [f64; 3]) -> Bound<'py, PyArray1<f64>> {
+    PyArray1::from_vec(py, v.to_vec())
+}
+
+/// An (n, 3) `float64` array that takes over the mesh's vertex buffer (no
+/// copy).
+pub(crate) fn vertices_array<'py>(
+    py: Python<'py>,
+    vertices: Vec<[f64; 3]>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let n = vertices.len();
+    matrix(py, vertices.into_flattened(), (n, 3))
+}
+
+/// Fan triangles of convex polygon faces, as an (m, 3) `int64` array.
+pub(crate) fn triangles_array<'py>(
+    py: Python<'py>,
+    faces: &[Vec<usize>],
+) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let mut flat = Vec::new();
+    for f in faces {
+        for i in 1..f.len().saturating_sub(1) {
+            flat.extend([f[0] as i64, f[i] as i64, f[i + 1] as i64]);
+        }
+    }
+    let m = flat.len() / 3;
+    matrix(py, flat, (m, 3))
+}
+
+/// Polygon faces as a list of (k,) `int64` arrays.
+pub(crate) fn polygons_list<'py>(
+    py: Python<'py>,
+    faces: &[Vec<usize>],
+) -> PyResult<Bound<'py, PyList>> {
+    PyList::new(
+        py,
+        faces
+            .iter()
+            .map(|f| PyArray1::from_vec(py, f.iter().map(|&i| i as i64).collect())),
+    )
+}
+
+/// `(vertices, faces)` of a mesh: triangles by default, polygons on request.
+pub(crate) fn mesh_tuple<'py>(
+    py: Python<'py>,
+    mesh: PolygonMesh,
+    polygons: bool,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let faces: Bound<'py, PyAny> = if polygons {
+        polygons_list(py, &mesh.faces)?.into_any()
+    } else {
+        triangles_array(py, &mesh.faces)?.into_any()
+    };
+    let vertices = vertices_array(py, mesh.vertices)?.into_any();
+    PyTuple::new(py, [vertices, faces])
+}

@@ -1,0 +1,815 @@
+//! `dymsum._dymsum`: the Python bindings of dymsum (re-exported by the
+//! `dymsum` package).
+//!
+//! Exact static and dynamic Minkowski sums of convex polytopes, penetration
+//! depth and distance, contact tracking and C-obstacle slices, from NumPy
+//! arrays. Every long computation (hulls, sums, updates, queries, slices,
+//! file I/O) runs with the GIL released; the core types are `Send + Sync`.
+//!
+//! Conventions (see `convert` for the input rules):
+//! * shapes: an (N, 3) point cloud (its exact hull), a `(vertices, faces)`
+//!   pair, an object with `.vertices` and `.faces` (trimesh), or a
+//!   [`PyPolytope`];
+//! * poses: 4×4 homogeneous rigid transforms (`None` = identity);
+//!   quaternions are `(x, y, z, w)`, scalar last, as scipy;
+//! * outputs: vertices `float64` (n, 3), faces `int64` (m, 3) fan
+//!   triangles, or with `polygons=True` the merged faces as a list of
+//!   `int64` arrays;
+//! * invalid input raises `ValueError` with dymsum's message.
+#![forbid(unsafe_code)]
+
+mod convert;
+
+use convert::{err_for, io_error, value_error, Origin, Shape};
+use dymsum::polytope::MeshPolicy;
+use dymsum::query::{ConvexPair, Proximity};
+use dymsum::sum::{minkowski_sum_posed, Method};
+use dymsum::{CObstacle, ContactTracker, DynamicSum, Polytope, Pose, UpdateReport};
+use dymsum_io::formats::FormatError;
+use dymsum_io::load::LoadError;
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyTuple};
+
+fn policy(strict: bool) -> MeshPolicy {
+    if strict {
+        MeshPolicy::strict()
+    } else {
+        MeshPolicy::default()
+    }
+}
+
+fn parse_method(method: &str) -> PyResult<Method> {
+    method.parse::<Method>().map_err(|e| err_for("method", e))
+}
+
+/// A convex polytope: the exact convex hull of a point cloud, or a validated
+/// convex mesh. Build it once and pass it to every function (parsing and
+/// the hull are then done once).
+///
+/// ``Polytope(a, strict=False)`` where ``a`` is an (N, 3) array of points
+/// (their exact convex hull), a ``(vertices, faces)`` pair (faces an (M, k)
+/// integer array or a list of index lists), or any object with
+/// ``.vertices`` and ``.faces`` (a ``trimesh.Trimesh``). A mesh must be
+/// convex; one convex only within a small tolerance is replaced by the exact
+/// hull of its vertices (``strict=True`` refuses it instead), and
+/// ``convexity_report`` says what happened.
+///
+/// Raises ``ValueError`` for a wrong shape or dtype, NaN or infinite
+/// coordinates, fewer than 4 points, flat input, or a non-convex or open
+/// mesh, with dymsum's message.
+///
+/// >>> import numpy as np, dymsum
+/// >>> cube = dymsum.Polytope(np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float))
+/// >>> cube.vertices.shape, cube.faces.shape, cube.volume
+/// ((8, 3), (12, 3), 1.0)
+/// >>> len(cube.polygons)
+/// 6
+#[pyclass(module = "dymsum", name = "Polytope", frozen)]
+pub struct PyPolytope {
+    pub(crate) inner: Polytope,
+    pub(crate) origin: Origin,
+    pub(crate) source: String,
+    vertices: Py<PyArray2<f64>>,
+    faces: Py<PyArray2<i64>>,
+}
+
+impl PyPolytope {
+    fn from_shape(py: Python<'_>, s: Shape) -> PyResult<Self> {
+        let mesh = s.polytope.to_mesh();
+        let vertices = convert::vertices_array(py, mesh.vertices)?;
+        let faces = convert::triangles_array(py, &mesh.faces)?;
+        for a in [vertices.as_any(), faces.as_any()] {
+            let kwargs = PyDict::new(py);
+            kwargs.set_item("write", false)?;
+            a.call_method("setflags", (), Some(&kwargs))?;
+        }
+        Ok(PyPolytope {
+            inner: s.polytope,
+            origin: s.origin,
+            source: s.source,
+            vertices: vertices.unbind(),
+            faces: faces.unbind(),
+        })
+    }
+}
+
+#[pymethods]
+impl PyPolytope {
+    #[new]
+    #[pyo3(signature = (a, strict = false))]
+    fn new(py: Python<'_>, a: &Bound<'_, PyAny>, strict: bool) -> PyResult<Self> {
+        let s = convert::shape(a, "a", policy(strict))?;
+        Self::from_shape(py, s)
+    }
+
+    /// The vertices, a read-only (n, 3) ``float64`` array (the same array on
+    /// every access: no copy).
+    #[getter]
+    fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.vertices.bind(py).clone()
+    }
+
+    /// The faces fan-triangulated, a read-only (m, 3) ``int64`` array of
+    /// indices into ``vertices``, counter-clockwise seen from outside (the
+    /// same array on every access).
+    #[getter]
+    fn faces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        self.faces.bind(py).clone()
+    }
+
+    /// The maximal (merged, convex) polygon faces, a list of ``int64``
+    /// arrays, counter-clockwise seen from outside.
+    #[getter]
+    fn polygons<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let faces: Vec<Vec<usize>> = self
+            .inner
+            .faces()
+            .map(|f| f.iter().map(|&i| i as usize).collect())
+            .collect();
+        convert::polygons_list(py, &faces)
+    }
+
+    /// ``(vertices, faces)``: fan triangles, or with ``polygons=True`` the
+    /// maximal polygon faces as a list of ``int64`` arrays.
+    #[pyo3(signature = (polygons = false))]
+    fn mesh<'py>(&self, py: Python<'py>, polygons: bool) -> PyResult<Bound<'py, PyTuple>> {
+        convert::mesh_tuple(py, self.inner.to_mesh(), polygons)
+    }
+
+    /// The volume.
+    #[getter]
+    fn volume(&self) -> f64 {
+        self.inner.volume()
+    }
+
+    /// Number of vertices.
+    #[getter]
+    fn vertex_count(&self) -> usize {
+        self.inner.vertex_count()
+    }
+
+    /// Number of edges.
+    #[getter]
+    fn edge_count(&self) -> usize {
+        self.inner.edge_count()
+    }
+
+    /// Number of maximal faces (polygons).
+    #[getter]
+    fn face_count(&self) -> usize {
+        self.inner.face_count()
+    }
+
+    /// Where the polytope came from: ``"points"``, ``"mesh"``,
+    /// ``"built-in NAME"`` or ``"file PATH"``.
+    #[getter]
+    fn source(&self) -> &str {
+        &self.source
+    }
+
+    /// What building the polytope found and changed, as a dict:
+    /// ``point_cloud`` (the input had no faces: its exact hull was taken),
+    /// ``input_vertices``, ``input_faces``, ``input_triangles``,
+    /// ``vertices``, ``faces``, ``exactly_convex``, ``replaced_by_hull``,
+    /// ``max_deviation``, ``tolerance``, ``dropped_vertices``,
+    /// ``inward_oriented`` (the mesh-only entries are ``None`` for a point
+    /// cloud).
+    #[getter]
+    fn convexity_report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        d.set_item("source", &self.source)?;
+        match &self.origin {
+            Origin::Points { count } => {
+                d.set_item("point_cloud", true)?;
+                d.set_item("input_vertices", count)?;
+                d.set_item("input_faces", 0)?;
+                d.set_item("input_triangles", 0)?;
+                d.set_item("vertices", self.inner.vertex_count())?;
+                d.set_item("faces", self.inner.face_count())?;
+                d.set_item("exactly_convex", py.None())?;
+                d.set_item("replaced_by_hull", true)?;
+                d.set_item("max_deviation", py.None())?;
+                d.set_item("tolerance", py.None())?;
+                d.set_item("dropped_vertices", count - self.inner.vertex_count())?;
+                d.set_item("inward_oriented", py.None())?;
+            }
+            Origin::Mesh(r) => {
+                d.set_item("point_cloud", false)?;
+                d.set_item("input_vertices", r.input_vertices)?;
+                d.set_item("input_faces", r.input_faces)?;
+                d.set_item("input_triangles", r.input_triangles)?;
+                d.set_item("vertices", r.vertices)?;
+                d.set_item("faces", r.faces)?;
+                d.set_item("exactly_convex", r.exactly_convex)?;
+                d.set_item("replaced_by_hull", r.replaced_by_hull)?;
+                d.set_item("max_deviation", r.max_deviation)?;
+                d.set_item("tolerance", r.tolerance)?;
+                d.set_item("dropped_vertices", r.dropped_vertices)?;
+                d.set_item("inward_oriented", r.inward_oriented)?;
+            }
+        }
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Polytope({} vertices, {} edges, {} faces, volume {}, from {})",
+            self.inner.vertex_count(),
+            self.inner.edge_count(),
+            self.inner.face_count(),
+            self.inner.volume(),
+            self.source
+        )
+    }
+}
+
+fn shape_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Shape> {
+    convert::shape(obj, what, MeshPolicy::default())
+}
+
+/// ``(R_a A + t_a) ⊕ (R_b B + t_b)``, exactly: ``(vertices, faces)``.
+///
+/// ``a`` and ``b`` are shapes (an (N, 3) point cloud, a ``(vertices,
+/// faces)`` pair, an object with ``.vertices``/``.faces`` such as a
+/// trimesh, or a ``Polytope``). ``pose_a``/``pose_b`` are 4×4 homogeneous
+/// rigid transforms (``None``: identity) or (4,) quaternions ``(x, y, z,
+/// w)`` (scalar last, as scipy) for a rotation about the origin;
+/// ``dymsum.pose(quaternion, translation)`` builds a 4×4 pose. ``method`` is ``"walk"``
+/// (output-sensitive, fastest), ``"brute"`` or ``"hull"``; all give the same
+/// exact facets. Returns vertices (n, 3) ``float64`` and faces (m, 3)
+/// ``int64`` (fan triangles of the merged faces, counter-clockwise seen from
+/// outside), or with ``polygons=True`` the merged convex polygon faces as a
+/// list of ``int64`` arrays. The GIL is released while computing.
+///
+/// >>> import numpy as np, dymsum
+/// >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+/// >>> v, f = dymsum.minkowski_sum(cube, 2 * cube)
+/// >>> v.shape, f.shape, v.min(axis=0).tolist(), v.max(axis=0).tolist()
+/// ((8, 3), (12, 3), [0.0, 0.0, 0.0], [3.0, 3.0, 3.0])
+/// >>> v, polys = dymsum.minkowski_sum(cube, cube, polygons=True)
+/// >>> sorted(len(p) for p in polys)
+/// [4, 4, 4, 4, 4, 4]
+#[pyfunction]
+#[pyo3(signature = (a, b, pose_a = None, pose_b = None, method = "walk", polygons = false))]
+fn minkowski_sum<'py>(
+    py: Python<'py>,
+    a: &Bound<'py, PyAny>,
+    b: &Bound<'py, PyAny>,
+    pose_a: Option<&Bound<'py, PyAny>>,
+    pose_b: Option<&Bound<'py, PyAny>>,
+    method: &str,
+    polygons: bool,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let method = parse_method(method)?;
+    let pa = convert::pose(pose_a, "pose_a")?;
+    let pb = convert::pose(pose_b, "pose_b")?;
+    let sa = shape_of(a, "a")?;
+    let sb = shape_of(b, "b")?;
+    let mesh = py
+        .detach(|| {
+            let sum = minkowski_sum_posed(&sa.polytope, pa, &sb.polytope, pb, method)
+                .map_err(|e| e.to_string())?;
+            sum.try_to_mesh().map_err(|e| e.to_string())
+        })
+        .map_err(|e| err_for("minkowski_sum", e))?;
+    convert::mesh_tuple(py, mesh, polygons)
+}
+
+fn report_dict<'py>(
+    py: Python<'py>,
+    r: &UpdateReport,
+    facets: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("fv_errors", r.fv_errors)?;
+    d.set_item("ee_errors", r.ee_errors)?;
+    d.set_item("errors", r.fv_errors + r.ee_errors)?;
+    d.set_item("removed", r.removed.len())?;
+    d.set_item("added", r.added.len())?;
+    d.set_item("facets", facets)?;
+    d.set_item("step_angle", r.step_angle)?;
+    d.set_item("recomputed", r.recomputed)?;
+    d.set_item("recovered", r.recovered.clone())?;
+    Ok(d)
+}
+
+/// ``A ⊕ B`` kept up to date while the bodies move (the DYMSUM algorithm):
+/// each ``update`` repairs only the facets the rotation changed.
+///
+/// ``DynamicSum(a, b, pose_a=None, pose_b=None)``: shapes as for
+/// ``minkowski_sum``; poses 4×4 homogeneous rigid transforms, or (4,)
+/// quaternions ``(x, y, z, w)`` (scalar last, as scipy) for a rotation about
+/// the origin (``dymsum.pose`` adds a translation). Updates are exact: after any
+/// sequence of updates the facets equal a fresh ``minkowski_sum`` at the
+/// same poses. Small steps are fastest; large ones fall back to a fresh
+/// static sum automatically.
+///
+/// >>> import numpy as np, dymsum
+/// >>> from scipy.spatial.transform import Rotation
+/// >>> rng = np.random.default_rng(1)
+/// >>> a, b = rng.normal(size=(50, 3)), rng.normal(size=(40, 3))
+/// >>> s = dymsum.DynamicSum(a, b)
+/// >>> for k in range(1, 11):
+/// ...     report = s.update(dymsum.pose(Rotation.from_rotvec([0, 0, 0.01 * k]).as_quat()))
+/// >>> sorted(report)[:3]
+/// ['added', 'ee_errors', 'errors']
+/// >>> v, f = s.mesh()
+#[pyclass(module = "dymsum", name = "DynamicSum")]
+pub struct PyDynamicSum {
+    inner: DynamicSum,
+}
+
+#[pymethods]
+impl PyDynamicSum {
+    #[new]
+    #[pyo3(signature = (a, b, pose_a = None, pose_b = None))]
+    fn new(
+        py: Python<'_>,
+        a: &Bound<'_, PyAny>,
+        b: &Bound<'_, PyAny>,
+        pose_a: Option<&Bound<'_, PyAny>>,
+        pose_b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let pa = convert::pose(pose_a, "pose_a")?;
+        let pb = convert::pose(pose_b, "pose_b")?;
+        let sa = shape_of(a, "a")?;
+        let sb = shape_of(b, "b")?;
+        let inner = py
+            .detach(|| DynamicSum::new(&sa.polytope, pa, &sb.polytope, pb))
+            .map_err(|e| err_for("DynamicSum", e))?;
+        Ok(PyDynamicSum { inner })
+    }
+
+    /// Moves A to ``pose_a`` and B to ``pose_b`` (4×4 homogeneous rigid
+    /// transforms; ``None`` keeps that body where it is) and repairs the sum.
+    /// Returns the report, a dict: ``fv_errors`` and ``ee_errors`` (the
+    /// errors found and repaired), ``errors`` (their sum), ``removed`` and
+    /// ``added`` (facets), ``facets`` (the count after the update),
+    /// ``step_angle`` (radians), ``recomputed`` (the step was recomputed from
+    /// scratch: large step or many changes), ``recovered`` (``None``, or the
+    /// internal inconsistency that made the step recompute: a bug to
+    /// report). The GIL is released while updating.
+    #[pyo3(signature = (pose_a = None, pose_b = None))]
+    fn update<'py>(
+        &mut self,
+        py: Python<'py>,
+        pose_a: Option<&Bound<'py, PyAny>>,
+        pose_b: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let pa = convert::pose_or(pose_a, "pose_a", self.inner.pose_p())?;
+        let pb = convert::pose_or(pose_b, "pose_b", self.inner.pose_q())?;
+        let inner = &mut self.inner;
+        let (report, facets) = py.detach(|| {
+            let r = inner.set_pose(pa, pb);
+            (r, inner.facet_count())
+        });
+        report_dict(py, &report, facets)
+    }
+
+    /// The current sum: ``(vertices, faces)`` as ``minkowski_sum`` returns
+    /// it (fan triangles, or polygons with ``polygons=True``).
+    #[pyo3(signature = (polygons = false))]
+    fn mesh<'py>(&self, py: Python<'py>, polygons: bool) -> PyResult<Bound<'py, PyTuple>> {
+        let inner = &self.inner;
+        let mesh = py
+            .detach(|| inner.try_to_mesh())
+            .map_err(|e| err_for("DynamicSum.mesh", e))?;
+        convert::mesh_tuple(py, mesh, polygons)
+    }
+
+    /// The number of facets (fv + vf + ee pairs; coplanar facets are counted
+    /// separately, before merging).
+    #[getter]
+    fn facet_count(&self) -> usize {
+        self.inner.facet_count()
+    }
+
+    /// A's current pose, a 4×4 ``float64`` array.
+    #[getter]
+    fn pose_a<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        convert::pose_array(py, self.inner.pose_p())
+    }
+
+    /// B's current pose, a 4×4 ``float64`` array.
+    #[getter]
+    fn pose_b<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        convert::pose_array(py, self.inner.pose_q())
+    }
+
+    fn __repr__(&self) -> String {
+        format!("DynamicSum({} facets)", self.inner.facet_count())
+    }
+}
+
+/// The answer of a proximity query between A and B.
+///
+/// * ``collides``: the bodies overlap or touch;
+/// * ``depth``: the penetration depth, the length of the shortest
+///   translation separating them (``0.0`` when apart or touching);
+/// * ``distance``: the distance between them (``0.0`` when colliding);
+/// * ``normal``: unit (3,) ``float64`` vector from A towards B: when
+///   colliding, translating A by ``-depth * normal`` separates the bodies;
+///   when apart, the direction from ``point_a`` to ``point_b``;
+/// * ``point_a``, ``point_b``: (3,) witness points. Colliding: A's deepest
+///   point inside B and B's deepest point inside A, with
+///   ``point_a - point_b == depth * normal``; apart: the closest points.
+#[pyclass(module = "dymsum", name = "Contact", frozen)]
+pub struct PyContact {
+    collides: bool,
+    depth: f64,
+    distance: f64,
+    normal: [f64; 3],
+    point_a: [f64; 3],
+    point_b: [f64; 3],
+}
+
+impl PyContact {
+    fn from_proximity(p: &Proximity) -> Self {
+        match p {
+            Proximity::Penetrating(c) => PyContact {
+                collides: true,
+                depth: c.depth,
+                distance: 0.0,
+                normal: c.normal.to_array(),
+                point_a: c.point_on_a.to_array(),
+                point_b: c.point_on_b.to_array(),
+            },
+            Proximity::Separated(s) => PyContact {
+                collides: false,
+                depth: 0.0,
+                distance: s.distance,
+                normal: s.direction.to_array(),
+                point_a: s.point_on_a.to_array(),
+                point_b: s.point_on_b.to_array(),
+            },
+        }
+    }
+}
+
+#[pymethods]
+impl PyContact {
+    /// The bodies overlap or touch.
+    #[getter]
+    fn collides(&self) -> bool {
+        self.collides
+    }
+    /// Penetration depth (``0.0`` when apart or touching).
+    #[getter]
+    fn depth(&self) -> f64 {
+        self.depth
+    }
+    /// Distance (``0.0`` when colliding).
+    #[getter]
+    fn distance(&self) -> f64 {
+        self.distance
+    }
+    /// Unit (3,) ``float64`` normal from A towards B.
+    #[getter]
+    fn normal<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        convert::vec3(py, self.normal)
+    }
+    /// Witness point on A, (3,) ``float64``.
+    #[getter]
+    fn point_a<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        convert::vec3(py, self.point_a)
+    }
+    /// Witness point on B, (3,) ``float64``.
+    #[getter]
+    fn point_b<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        convert::vec3(py, self.point_b)
+    }
+    fn __repr__(&self) -> String {
+        if self.collides {
+            format!(
+                "Contact(collides=True, depth={}, normal={:?})",
+                self.depth, self.normal
+            )
+        } else {
+            format!(
+                "Contact(collides=False, distance={}, normal={:?})",
+                self.distance, self.normal
+            )
+        }
+    }
+}
+
+/// Penetration depth or distance of A and B at their poses: a ``Contact``.
+///
+/// Computed exactly from the Minkowski difference ``A ⊕ (−B)`` (every
+/// candidate direction is checked; no GJK/EPA tolerance). ``pose_a`` and
+/// ``pose_b`` are 4×4 homogeneous rigid transforms (``None``: identity), or
+/// (4,) quaternions ``(x, y, z, w)`` (scalar last, as scipy) for a rotation
+/// about the origin. The GIL is released while computing.
+///
+/// >>> import numpy as np, dymsum
+/// >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+/// >>> c = dymsum.contact(cube, cube, None, dymsum.pose(translation=[0.75, 0, 0]))
+/// >>> c.collides, c.depth, c.normal.tolist()
+/// (True, 0.25, [1.0, 0.0, 0.0])
+/// >>> dymsum.contact(cube, cube, None, dymsum.pose(translation=[1.5, 0, 0])).distance
+/// 0.5
+#[pyfunction]
+#[pyo3(signature = (a, b, pose_a = None, pose_b = None))]
+fn contact(
+    py: Python<'_>,
+    a: &Bound<'_, PyAny>,
+    b: &Bound<'_, PyAny>,
+    pose_a: Option<&Bound<'_, PyAny>>,
+    pose_b: Option<&Bound<'_, PyAny>>,
+) -> PyResult<PyContact> {
+    let pa = convert::pose(pose_a, "pose_a")?;
+    let pb = convert::pose(pose_b, "pose_b")?;
+    let sa = shape_of(a, "a")?;
+    let sb = shape_of(b, "b")?;
+    let p = py
+        .detach(|| ConvexPair::new(&sa.polytope, &sb.polytope)?.query(pa, pb))
+        .map_err(|e| err_for("contact", e))?;
+    Ok(PyContact::from_proximity(&p))
+}
+
+/// Tracks the contact of A and B over a motion: one dynamic sum
+/// ``A ⊕ (−B)`` repaired at each ``update`` (much faster than ``contact`` at
+/// every frame for small steps; the same answers).
+///
+/// ``ContactTracker(a, b, pose_a=None, pose_b=None)``; poses 4×4
+/// homogeneous rigid transforms, or (4,) quaternions ``(x, y, z, w)``
+/// (scalar last, as scipy) for a rotation about the origin.
+///
+/// >>> import numpy as np, dymsum
+/// >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) - 0.5
+/// >>> t = dymsum.ContactTracker(cube, cube)
+/// >>> [round(t.update(None, dymsum.pose(translation=[x, 0, 0])).depth, 3) for x in (0.5, 0.8, 1.2)]
+/// [0.5, 0.2, 0.0]
+#[pyclass(module = "dymsum", name = "ContactTracker")]
+pub struct PyContactTracker {
+    inner: ContactTracker,
+}
+
+#[pymethods]
+impl PyContactTracker {
+    #[new]
+    #[pyo3(signature = (a, b, pose_a = None, pose_b = None))]
+    fn new(
+        py: Python<'_>,
+        a: &Bound<'_, PyAny>,
+        b: &Bound<'_, PyAny>,
+        pose_a: Option<&Bound<'_, PyAny>>,
+        pose_b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let pa = convert::pose(pose_a, "pose_a")?;
+        let pb = convert::pose(pose_b, "pose_b")?;
+        let sa = shape_of(a, "a")?;
+        let sb = shape_of(b, "b")?;
+        let inner = py
+            .detach(|| ConvexPair::new(&sa.polytope, &sb.polytope)?.tracker(pa, pb))
+            .map_err(|e| err_for("ContactTracker", e))?;
+        Ok(PyContactTracker { inner })
+    }
+
+    /// Moves A to ``pose_a`` and B to ``pose_b`` (4×4 homogeneous rigid
+    /// transforms; ``None`` keeps that body where it is) and returns the
+    /// ``Contact``. The GIL is released while updating.
+    #[pyo3(signature = (pose_a = None, pose_b = None))]
+    fn update(
+        &mut self,
+        py: Python<'_>,
+        pose_a: Option<&Bound<'_, PyAny>>,
+        pose_b: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<PyContact> {
+        let (now_a, now_b) = self.inner.poses();
+        let pa = convert::pose_or(pose_a, "pose_a", now_a)?;
+        let pb = convert::pose_or(pose_b, "pose_b", now_b)?;
+        let inner = &mut self.inner;
+        let p = py
+            .detach(|| inner.update(pa, pb))
+            .map_err(|e| err_for("ContactTracker.update", e))?;
+        Ok(PyContact::from_proximity(&p))
+    }
+
+    /// The answer of the last update (or of construction).
+    #[getter]
+    fn last(&self) -> PyContact {
+        PyContact::from_proximity(self.inner.last())
+    }
+
+    /// What the last update's dynamic sum repair did (the dict of
+    /// ``DynamicSum.update``).
+    #[getter]
+    fn last_update<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        report_dict(py, self.inner.last_update(), self.inner.sum().facet_count())
+    }
+}
+
+/// C-obstacle slices: for each orientation ``R`` of the robot, the set of
+/// translations ``t`` at which ``R·robot + t`` meets the obstacle, i.e. the
+/// convex polytope ``obstacle ⊕ (−R·robot)``, as ``(vertices, faces)``.
+///
+/// ``rotations`` is a (K, 3, 3) array of rotation matrices or a (K, 4)
+/// array of unit quaternions in the order ``(x, y, z, w)`` (scalar last, as
+/// ``scipy.spatial.transform.Rotation.as_quat()``). Computed with DYMSUM,
+/// one dynamic sum moved from slice to slice (fastest when consecutive
+/// orientations are close; exact in any order); ``parallel=True`` splits the orientations into chunks
+/// over threads (same result). The GIL is released while computing.
+///
+/// >>> import numpy as np, dymsum
+/// >>> from scipy.spatial.transform import Rotation
+/// >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
+/// >>> quats = Rotation.from_rotvec(np.outer(np.linspace(0, np.pi / 2, 8), [0, 0, 1])).as_quat()
+/// >>> slices = dymsum.cobstacle_slices(cube, 2 * cube, quats)
+/// >>> len(slices), slices[0][0].shape
+/// (8, (8, 3))
+#[pyfunction]
+#[pyo3(signature = (robot, obstacle, rotations, polygons = false, parallel = false))]
+fn cobstacle_slices<'py>(
+    py: Python<'py>,
+    robot: &Bound<'py, PyAny>,
+    obstacle: &Bound<'py, PyAny>,
+    rotations: &Bound<'py, PyAny>,
+    polygons: bool,
+    parallel: bool,
+) -> PyResult<Bound<'py, PyList>> {
+    let rots = convert::rotations(rotations, "rotations")?;
+    let sr = shape_of(robot, "robot")?;
+    let so = shape_of(obstacle, "obstacle")?;
+    let meshes = py
+        .detach(|| {
+            let c = CObstacle::new(&sr.polytope, &so.polytope)?;
+            if parallel {
+                c.slices_par(&rots)
+            } else {
+                c.slices(&rots).collect()
+            }
+        })
+        .map_err(|e| err_for("cobstacle_slices", e))?;
+    let out = PyList::empty(py);
+    for m in meshes {
+        out.append(convert::mesh_tuple(py, m, polygons)?)?;
+    }
+    Ok(out)
+}
+
+/// A 4×4 homogeneous rigid transform (``float64``) from a unit quaternion in
+/// the order ``(x, y, z, w)`` (scalar last, as scipy; renormalised) and a
+/// translation. ``pose()`` is the identity.
+///
+/// >>> import dymsum
+/// >>> dymsum.pose([0, 0, 0, 1], [1, 2, 3])[:3, 3].tolist()
+/// [1.0, 2.0, 3.0]
+#[pyfunction]
+#[pyo3(signature = (quaternion = None, translation = None))]
+fn pose<'py>(
+    py: Python<'py>,
+    quaternion: Option<[f64; 4]>,
+    translation: Option<[f64; 3]>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let rotation = match quaternion {
+        None => dymsum::Rotation::IDENTITY,
+        Some([x, y, z, w]) => dymsum::Rotation::from_xyzw(x, y, z, w).ok_or_else(|| {
+            value_error(format!(
+                "quaternion: (x, y, z, w) = ({x}, {y}, {z}, {w}) is zero or not finite"
+            ))
+        })?,
+    };
+    let t = translation.unwrap_or([0.0; 3]);
+    if t.iter().any(|x| !x.is_finite()) {
+        return Err(value_error(format!("translation: {t:?} is not finite")));
+    }
+    convert::pose_array(py, Pose::new(rotation, t.into()))
+}
+
+fn load_error(e: LoadError) -> PyErr {
+    let msg = e.to_string();
+    match &e {
+        LoadError::NotFound {
+            looks_like_file: true,
+            ..
+        } => io_error(std::io::ErrorKind::NotFound, msg),
+        LoadError::Format {
+            source: FormatError::Io { source, .. },
+            ..
+        } => io_error(source.kind(), msg),
+        _ => value_error(msg),
+    }
+}
+
+fn path_string(path: &Bound<'_, PyAny>) -> PyResult<String> {
+    let os = path.py().import("os")?;
+    os.call_method1("fspath", (path,))?.extract()
+}
+
+/// Loads a polytope from a mesh file (``.off``, ``.obj``, ``.ply``,
+/// ``.stl``; a file without faces is a point cloud, whose hull is taken) or
+/// a built-in model name (``"cube"``, ``"ellipse"``, ``"sphere:200"``,
+/// ``"tcube:10"``, ... see ``dymsum.models()``).
+///
+/// Raises ``FileNotFoundError`` for a path that does not exist, ``OSError``
+/// when a file cannot be read, and ``ValueError`` for an unknown model name
+/// (with the closest name), a file that does not parse, or a non-convex
+/// mesh (``strict=True`` also refuses meshes convex only within tolerance).
+///
+/// >>> import dymsum
+/// >>> gs1 = dymsum.load("gs1")
+/// >>> gs1.source, gs1.convexity_report["input_triangles"]
+/// ('built-in gs1', 80)
+#[pyfunction]
+#[pyo3(signature = (path_or_model_name, strict = false))]
+fn load(
+    py: Python<'_>,
+    path_or_model_name: &Bound<'_, PyAny>,
+    strict: bool,
+) -> PyResult<PyPolytope> {
+    let spec = path_string(path_or_model_name)?;
+    let loaded = py
+        .detach(|| dymsum_io::load_polytope(&spec, policy(strict)))
+        .map_err(load_error)?;
+    let origin = match loaded.report {
+        Some(r) => Origin::Mesh(r),
+        None => Origin::Points {
+            count: loaded.input.vertices.len(),
+        },
+    };
+    PyPolytope::from_shape(
+        py,
+        Shape {
+            polytope: loaded.polytope,
+            origin,
+            source: loaded.source,
+        },
+    )
+}
+
+/// Writes a mesh to ``path`` in the format its extension names (``.off``,
+/// ``.obj``, ``.ply`` ASCII, ``.stl`` binary), atomically.
+///
+/// ``save(path, vertices, faces)`` with vertices (N, 3) and faces an (M, k)
+/// integer array or a list of index lists; or ``save(path, shape)`` with a
+/// ``Polytope`` (written with its merged polygon faces), a ``(vertices,
+/// faces)`` pair or an object with ``.vertices`` and ``.faces``. The mesh is
+/// written as given (not checked for convexity). Raises ``ValueError`` for
+/// an unknown extension or an invalid mesh (index out of range, NaN), and
+/// ``OSError`` when the file cannot be written.
+///
+/// >>> import numpy as np, dymsum, tempfile, os
+/// >>> v, f = dymsum.minkowski_sum(dymsum.load("cube"), dymsum.load("cube"))
+/// >>> path = os.path.join(tempfile.mkdtemp(), "sum.off")
+/// >>> dymsum.save(path, v, f)
+/// >>> dymsum.load(path).vertices.shape
+/// (8, 3)
+#[pyfunction]
+#[pyo3(signature = (path, vertices, faces = None))]
+fn save(
+    py: Python<'_>,
+    path: &Bound<'_, PyAny>,
+    vertices: &Bound<'_, PyAny>,
+    faces: Option<&Bound<'_, PyAny>>,
+) -> PyResult<()> {
+    let path = path_string(path)?;
+    let mesh = match faces.filter(|f| !f.is_none()) {
+        Some(f) => convert::mesh_from_parts(vertices, f, "mesh")?,
+        None => {
+            if let Ok(p) = vertices.cast::<PyPolytope>() {
+                p.get().inner.to_mesh()
+            } else if let Some((v, f)) = convert::mesh_parts(vertices)? {
+                convert::mesh_from_parts(&v, &f, "mesh")?
+            } else {
+                return Err(value_error(
+                    "save: faces are missing (give save(path, vertices, faces) or save(path, shape))",
+                ));
+            }
+        }
+    };
+    py.detach(|| dymsum_io::formats::write_mesh(std::path::Path::new(&path), &mesh))
+        .map_err(|e| match &e {
+            FormatError::Io { source, .. } => io_error(source.kind(), e.to_string()),
+            _ => value_error(e.to_string()),
+        })
+}
+
+/// The names of the built-in models and model families (``"cube"``,
+/// ``"tcube:K"``, ``"sphere:N"``, ...), for ``dymsum.load``.
+#[pyfunction]
+fn models() -> Vec<&'static str> {
+    dymsum_io::models::catalogue()
+        .iter()
+        .map(|m| m.name)
+        .collect()
+}
+
+/// The extension module; the `dymsum` package re-exports it.
+#[pymodule]
+fn _dymsum(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyPolytope>()?;
+    m.add_class::<PyDynamicSum>()?;
+    m.add_class::<PyContact>()?;
+    m.add_class::<PyContactTracker>()?;
+    m.add_function(wrap_pyfunction!(minkowski_sum, m)?)?;
+    m.add_function(wrap_pyfunction!(contact, m)?)?;
+    m.add_function(wrap_pyfunction!(cobstacle_slices, m)?)?;
+    m.add_function(wrap_pyfunction!(pose, m)?)?;
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(save, m)?)?;
+    m.add_function(wrap_pyfunction!(models, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,59 @@
+"""The docstring examples are run: every one must pass."""
+
+import doctest
+
+import dymsum
+import dymsum._dymsum as ext
+
+
+def run(obj, name):
+    finder = doctest.DocTestFinder()
+    runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE)
+    tests = finder.find(obj, name, module=False, globs={})
+    for t in tests:
+        runner.run(t)
+    return runner.summarize(verbose=False)
+
+
+def test_function_docstrings():
+    r = doctest.testmod(ext, optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert r.failed == 0 and r.attempted >= 25
+
+
+def test_class_and_package_docstrings():
+    attempted = 0
+    for obj in (dymsum, dymsum.Polytope, dymsum.DynamicSum, dymsum.ContactTracker):
+        r = run(obj, getattr(obj, "__name__", "dymsum"))
+        assert r.failed == 0, obj
+        attempted += r.attempted
+    assert attempted >= 15
+
+
+def test_example_tour_runs(tmp_path):
+    import importlib.util
+    import pathlib
+    import subprocess
+    import sys
+
+    script = pathlib.Path(__file__).parent.parent / "examples" / "tour.py"
+    done = subprocess.run([sys.executable, str(script), str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "C-obstacle slices" in done.stdout
+    saved = dymsum.load(tmp_path / "sum.off")
+    assert saved.volume > dymsum.load("ellipse").volume
+    has_matplotlib = importlib.util.find_spec("matplotlib") is not None
+    assert (tmp_path / "depth.png").exists() == has_matplotlib
+
+
+def test_readme_python_blocks_run(tmp_path, monkeypatch):
+    import pathlib
+    import re
+
+    root = pathlib.Path(__file__).resolve().parent.parent.parent
+    monkeypatch.chdir(tmp_path)  # they write sum.off
+    ran = 0
+    for readme in (root / "README.md", root / "python" / "README.md"):
+        for block in re.findall(r"```python\n(.*?)```", readme.read_text(), re.S):
+            exec(compile(block, str(readme), "exec"), {})
+            ran += 1
+    assert ran >= 2 and (tmp_path / "sum.off").exists()

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# All tests in one command: the Rust workspace's tests, then the Python
+# package's. The package is built from source and installed with
+# `pip install ./python` into a virtual environment (target/pyenv, or
+# $DYMSUM_PYENV) together with the test dependencies (pytest, numpy, scipy,
+# and mypy for checking the type stubs against the module), then pytest runs
+# python/tests. Needs the Rust toolchain and python3 with venv and pip
+# (PyPI and crates.io reachable on the first run).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+printf '\n=== cargo test --workspace --release\n'
+cargo test --workspace --release
+
+# maturin builds the extension with cargo: share the workspace's target dir
+# (the dependencies the two workspaces have in common are built once).
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"
+venv="${DYMSUM_PYENV:-target/pyenv}"
+python="${PYTHON:-python3}"
+
+printf '\n=== Python: pip install ./python pytest numpy scipy mypy (into %s)\n' "$venv"
+if [ ! -x "$venv/bin/python" ]; then
+    "$python" -m venv "$venv" || {
+        echo "creating a virtual environment failed: install python3's venv module (e.g. apt-get install python3-venv)" >&2
+        exit 1
+    }
+fi
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy
+
+printf '\n=== Python: stubtest (the type stubs match the module)\n'
+(cd "$venv" && bin/python -m mypy.stubtest dymsum._dymsum)
+
+printf '\n=== Python: pytest python/tests\n'
+"$venv/bin/python" -m pytest -q python/tests -p no:cacheprovider
