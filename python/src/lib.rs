@@ -228,6 +228,19 @@ fn shape_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Shape> {
     convert::shape(obj, what, MeshPolicy::default())
 }
 
+/// The shapes `a`, `b` and their poses, read in the order of the messages
+/// a user sees first: `pose_a`, `pose_b`, then the shapes.
+fn two_bodies(
+    a: &Bound<'_, PyAny>,
+    b: &Bound<'_, PyAny>,
+    pose_a: Option<&Bound<'_, PyAny>>,
+    pose_b: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(Shape, Pose, Shape, Pose)> {
+    let pa = convert::pose(pose_a, "pose_a")?;
+    let pb = convert::pose(pose_b, "pose_b")?;
+    Ok((shape_of(a, "a")?, pa, shape_of(b, "b")?, pb))
+}
+
 /// ``(R_a A + t_a) ⊕ (R_b B + t_b)``, exactly: ``(vertices, faces)``.
 ///
 /// ``a`` and ``b`` are shapes (an (N, 3) point cloud, a ``(vertices,
@@ -262,10 +275,7 @@ fn minkowski_sum<'py>(
     polygons: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let method = parse_method(method)?;
-    let pa = convert::pose(pose_a, "pose_a")?;
-    let pb = convert::pose(pose_b, "pose_b")?;
-    let sa = shape_of(a, "a")?;
-    let sb = shape_of(b, "b")?;
+    let (sa, pa, sb, pb) = two_bodies(a, b, pose_a, pose_b)?;
     let mesh = py
         .detach(|| {
             let sum = minkowski_sum_posed(&sa.polytope, pa, &sb.polytope, pb, method)
@@ -331,10 +341,7 @@ impl PyDynamicSum {
         pose_a: Option<&Bound<'_, PyAny>>,
         pose_b: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let pa = convert::pose(pose_a, "pose_a")?;
-        let pb = convert::pose(pose_b, "pose_b")?;
-        let sa = shape_of(a, "a")?;
-        let sb = shape_of(b, "b")?;
+        let (sa, pa, sb, pb) = two_bodies(a, b, pose_a, pose_b)?;
         let inner = py
             .detach(|| DynamicSum::new(&sa.polytope, pa, &sb.polytope, pb))
             .map_err(|e| err_for("DynamicSum", e))?;
@@ -518,10 +525,7 @@ fn contact(
     pose_a: Option<&Bound<'_, PyAny>>,
     pose_b: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<PyContact> {
-    let pa = convert::pose(pose_a, "pose_a")?;
-    let pb = convert::pose(pose_b, "pose_b")?;
-    let sa = shape_of(a, "a")?;
-    let sb = shape_of(b, "b")?;
+    let (sa, pa, sb, pb) = two_bodies(a, b, pose_a, pose_b)?;
     let p = py
         .detach(|| ConvexPair::new(&sa.polytope, &sb.polytope)?.query(pa, pb))
         .map_err(|e| err_for("contact", e))?;
@@ -557,10 +561,7 @@ impl PyContactTracker {
         pose_a: Option<&Bound<'_, PyAny>>,
         pose_b: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let pa = convert::pose(pose_a, "pose_a")?;
-        let pb = convert::pose(pose_b, "pose_b")?;
-        let sa = shape_of(a, "a")?;
-        let sb = shape_of(b, "b")?;
+        let (sa, pa, sb, pb) = two_bodies(a, b, pose_a, pose_b)?;
         let inner = py
             .detach(|| ConvexPair::new(&sa.polytope, &sb.polytope)?.tracker(pa, pb))
             .map_err(|e| err_for("ContactTracker", e))?;
