@@ -117,7 +117,10 @@ impl Deadlines {
         // down for negative non-integers.
         let b = q as i64;
         if (b as f64) > q {
-            b - 1
+            // Saturating: below the range (`-∞` included) `b` is already
+            // `i64::MIN`, and `i64::MIN - 1` would wrap to `i64::MAX` (an
+            // overdue item filed beyond the ring, never popped).
+            b.saturating_sub(1)
         } else {
             b
         }
@@ -284,6 +287,27 @@ mod tests {
                 keys.iter_mut().for_each(|k| *k -= limit);
                 limit = 0.0;
             }
+        }
+    }
+
+    /// A key below `i64::MIN` buckets (here `-inf` and `-1e30`; e.g. a face
+    /// whose direction error is infinite or huge) is due at once; `index`
+    /// must not overflow (`i64::MIN - 1` wraps to `i64::MAX` in release,
+    /// which filed such an item beyond the ring for ever).
+    #[test]
+    fn keys_below_the_bucket_range_are_due() {
+        for bad in [f64::NEG_INFINITY, -1e30] {
+            let keys = [1.0, bad, 2.0, 0.5];
+            let mut d = Deadlines::default();
+            d.rebuild(keys.len(), 1e-3, |i| keys[i]);
+            let mut due = Vec::new();
+            d.pop_due(0.1, 1e-3, &mut due);
+            assert_eq!(due, vec![1], "key {bad} at rebuild");
+            // Re-keyed to such a key after a pop: due at the next step.
+            d.set(1, bad);
+            due.clear();
+            d.pop_due(0.101, 1e-3, &mut due);
+            assert_eq!(due, vec![1], "key {bad} after set");
         }
     }
 }
