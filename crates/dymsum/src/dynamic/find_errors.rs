@@ -112,6 +112,8 @@ pub(super) fn scan_side(
         .schedule
         .pop_due(step.after + step.drift, step.theta, &mut due);
     due.sort_unstable();
+    #[cfg(test)]
+    check_schedule_against_scan(state, step, &due);
     for &f in &due {
         visit(f as usize, state, out);
     }
@@ -290,6 +292,55 @@ impl DynamicSum {
             &mut self.q,
             step,
             scan_q,
+        );
+    }
+}
+
+/// Review check: every normal the schedule did not pop passes the old
+/// lazy-skip test (plain margin or a valid tie certificate).
+#[cfg(test)]
+pub(super) static SCHEDULED_STEPS: std::sync::atomic::AtomicUsize =
+    std::sync::atomic::AtomicUsize::new(0);
+#[cfg(test)]
+pub(super) static TIE_SKIPS: std::sync::atomic::AtomicUsize =
+    std::sync::atomic::AtomicUsize::new(0);
+#[cfg(test)]
+fn check_schedule_against_scan(state: &Side, step: &StepBounds, due: &[u32]) {
+    SCHEDULED_STEPS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let n = state.assign.len();
+    let mut popped = vec![false; n];
+    for &f in due {
+        popped[f as usize] = true;
+    }
+    for f in 0..n {
+        if popped[f] {
+            continue;
+        }
+        let delta = state.dir_err[f];
+        let lower = state.margin[f] - (step.before - state.margin_at[f]);
+        let plain = lower - step.theta > step.drift + delta;
+        let tied = step.axis.is_some_and(|k| {
+            state.tie_axis[f] == k as u8
+                && state.tie_tick[f] >= step.run_start
+                && state.tie_margin[f] - (step.before - state.margin_at[f]) - step.theta
+                    > step.drift + delta
+        });
+        if tied && !plain {
+            TIE_SKIPS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        }
+        assert!(
+            plain || tied,
+            "face {f} not popped but the old test visits it: margin {} at {} tie {} axis {} tick {} run {} step {:?} {} {} {}",
+            state.margin[f],
+            state.margin_at[f],
+            state.tie_margin[f],
+            state.tie_axis[f],
+            state.tie_tick[f],
+            step.run_start,
+            step.axis,
+            step.before,
+            step.after,
+            step.theta
         );
     }
 }

@@ -310,4 +310,324 @@ mod tests {
             assert_eq!(due, vec![1], "key {bad} after set");
         }
     }
+
+    /// Adversarial calendar: steps jumping by 1000x every round, keys far
+    /// below the cursor, infinite keys, limits falling back by more than a
+    /// bucket, rebases; against a plain scan.
+    #[test]
+    fn review_adversarial_calendar() {
+        let mut state = 0x1234_5678_9abc_def1_u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for n in [1usize, 2, 7, 100, 1000] {
+            let mut keys: Vec<f64> = (0..n).map(|_| next() * 3.0).collect();
+            let mut d = Deadlines::default();
+            d.rebuild(n, 1e-3, |i| keys[i]);
+            let mut due = Vec::new();
+            let mut limit = 0.0;
+            for round in 0..20000 {
+                let step = [1e-7, 1e-4, 1e-1, 0.9, 1e-12, 0.0][(next() * 6.0) as usize % 6]
+                    * (0.5 + next());
+                let r = next();
+                limit += if r < 0.05 {
+                    -50.0 * step - 1e-3 * next()
+                } else {
+                    step
+                };
+                due.clear();
+                d.pop_due(limit, step, &mut due);
+                let mut got = due.clone();
+                got.sort_unstable();
+                let want: Vec<u32> = (0..n as u32)
+                    .filter(|&i| keys[i as usize] <= limit)
+                    .collect();
+                assert_eq!(got, want, "n {n} round {round} limit {limit} step {step}");
+                for &i in &due {
+                    let r = next();
+                    keys[i as usize] = if r < 0.02 {
+                        f64::INFINITY
+                    } else if r < 0.1 {
+                        limit - next() * 10.0
+                    } else {
+                        limit
+                            + next()
+                                * next()
+                                * [1e-6, 1e-2, 1.0, 100.0][(next() * 4.0) as usize % 4]
+                    };
+                    d.set(i, keys[i as usize]);
+                }
+                if n > 1 && next() < 0.3 {
+                    let i = (next() * n as f64) as usize % n;
+                    keys[i] = limit + next() * 5.0;
+                    d.set(i as u32, keys[i]);
+                }
+                if round % 997 == 996 {
+                    d.shift(limit);
+                    keys.iter_mut().for_each(|k| *k -= limit);
+                    limit = 0.0;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod review_motion_tests {
+    use crate::dynamic::{DynamicConfig, DynamicSum};
+    use crate::sum::{minkowski_sum_posed, Method};
+    use crate::{DVec3, Polytope, Pose, Rotation};
+
+    struct R(u64);
+    impl R {
+        fn f(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn i(&mut self, n: usize) -> usize {
+            (self.f() * n as f64) as usize % n
+        }
+        fn axis(&mut self) -> DVec3 {
+            DVec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5).normalize()
+        }
+    }
+
+    fn poly(r: &mut R, grid: bool, n: usize) -> Polytope {
+        loop {
+            let pts: Vec<[f64; 3]> = (0..n)
+                .map(|_| {
+                    if grid {
+                        [r.i(4) as f64, r.i(4) as f64, r.i(4) as f64]
+                    } else {
+                        let v = r.axis();
+                        [v.x, v.y, v.z]
+                    }
+                })
+                .collect();
+            if let Ok(p) = Polytope::from_points(&pts) {
+                return p;
+            }
+        }
+    }
+
+    fn check(d: &DynamicSum, ctx: &str) {
+        let want = minkowski_sum_posed(d.p(), d.pose_p(), d.q(), d.pose_q(), Method::Walk)
+            .unwrap()
+            .facets();
+        assert_eq!(d.facets(), want, "{ctx}");
+    }
+
+    /// The schedule pops every normal the old scan would visit, on motions
+    /// mixing step sizes (>16x jumps), coordinate-axis runs, both bodies
+    /// moving, and long runs past the rebase.
+    #[test]
+    fn schedule_pops_what_the_scan_visits() {
+        let inc = DynamicConfig {
+            max_step_angle: f64::INFINITY,
+            fallback_fraction: f64::INFINITY,
+        };
+        for seed in 1..25u64 {
+            let mut r = R(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+            let (gp, gq) = (seed % 2 == 0, seed % 3 == 0);
+            let p = poly(&mut r, gp, 40);
+            let q = poly(&mut r, gq, 40);
+            let cfg = if seed % 4 == 0 {
+                DynamicConfig::default()
+            } else {
+                inc
+            };
+            let mut d =
+                DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, cfg).unwrap();
+            let sizes = [1e-6, 1e-4, 3e-3, 0.05, 0.5];
+            let axes = [DVec3::X, DVec3::Y, DVec3::Z];
+            for block in 0..120 {
+                let s = sizes[r.i(sizes.len())];
+                let axis = if r.f() < 0.5 { axes[r.i(3)] } else { r.axis() };
+                let both = r.f() < 0.2;
+                let len = if s >= 0.5 && seed % 5 == 0 {
+                    2200
+                } else {
+                    1 + r.i(60)
+                };
+                for k in 0..len {
+                    let a = if r.f() < 0.1 { s } else { s * (0.5 + r.f()) };
+                    let step = Rotation::from_axis_angle(axis, a).unwrap();
+                    let mut pp = d.pose_p();
+                    pp.rotation = pp.rotation.then(&step);
+                    let mut pq = d.pose_q();
+                    if both {
+                        pq.rotation = pq
+                            .rotation
+                            .then(&Rotation::from_axis_angle(DVec3::Z, -0.3 * a).unwrap());
+                    }
+                    d.set_pose(pp, pq);
+                    if len < 100 || k % 97 == 0 {
+                        check(&d, &format!("seed {seed} block {block} k {k}"));
+                    }
+                }
+            }
+        }
+        let sched =
+            crate::dynamic::find_errors::SCHEDULED_STEPS.load(std::sync::atomic::Ordering::Relaxed);
+        let ties =
+            crate::dynamic::find_errors::TIE_SKIPS.load(std::sync::atomic::Ordering::Relaxed);
+        eprintln!("scheduled side-steps {sched}, tie-only skips {ties}");
+        assert!(sched > 0);
+    }
+
+    /// Runs about coordinate axes from exact poses (persistent ties),
+    /// interrupted by generic jumps and resumed on the same axis.
+    #[test]
+    fn schedule_with_tie_runs() {
+        let inc = DynamicConfig {
+            max_step_angle: f64::INFINITY,
+            fallback_fraction: f64::INFINITY,
+        };
+        for seed in 1..40u64 {
+            let mut r = R(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+            let np = 12 + r.i(40);
+            let p = poly(&mut r, true, np);
+            let q = if seed % 3 == 0 {
+                Polytope::from_points(&[
+                    [0., 0., 0.],
+                    [1., 0., 0.],
+                    [0., 1., 0.],
+                    [1., 1., 0.],
+                    [0., 0., 1.],
+                    [1., 0., 1.],
+                    [0., 1., 1.],
+                    [1., 1., 1.],
+                ])
+                .unwrap()
+            } else {
+                let nq = 12 + r.i(40);
+                poly(&mut r, true, nq)
+            };
+            let cfg = if seed % 2 == 0 {
+                DynamicConfig::default()
+            } else {
+                inc
+            };
+            let mut d =
+                DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, cfg).unwrap();
+            let axes = [DVec3::X, DVec3::Y, DVec3::Z];
+            let mut ang = [0.0f64; 3];
+            for block in 0..150 {
+                let k = r.i(3);
+                let s = [1e-4, 1e-3, 0.01, std::f64::consts::FRAC_PI_2 / 32.0][r.i(4)];
+                let len = 1 + r.i(80);
+                for j in 0..len {
+                    ang[k] += s * if r.f() < 0.3 { 1.0 } else { 0.5 + r.f() };
+                    let rot = Rotation::from_axis_angle(axes[k], ang[k]).unwrap();
+                    let mut pose = Pose::IDENTITY;
+                    pose.rotation = rot;
+                    d.set_pose(pose, Pose::IDENTITY);
+                    check(
+                        &d,
+                        &format!(
+                            "ties seed {seed} block {block} j {j} axis {k} ang {}",
+                            ang[k]
+                        ),
+                    );
+                }
+            }
+        }
+        let ties =
+            crate::dynamic::find_errors::TIE_SKIPS.load(std::sync::atomic::Ordering::Relaxed);
+        eprintln!("tie-only skips {ties}");
+    }
+
+    /// A run about z long enough to cross the rebase with big steps, then
+    /// small steps about z in the same run (tie keys across the shift).
+    #[test]
+    fn tie_run_across_rebase() {
+        let inc = DynamicConfig {
+            max_step_angle: f64::INFINITY,
+            fallback_fraction: f64::INFINITY,
+        };
+        for seed in 1..6u64 {
+            let mut r = R(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+            let np = 12 + r.i(40);
+            let p = poly(&mut r, true, np);
+            let nq = 12 + r.i(40);
+            let q = poly(&mut r, true, nq);
+            let mut d =
+                DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, inc).unwrap();
+            let mut ang = 0.0f64;
+            for round in 0..3 {
+                for j in 0..2200 {
+                    ang += 0.5 * (0.9 + 0.1 * r.f());
+                    let mut pose = Pose::IDENTITY;
+                    pose.rotation = Rotation::from_axis_angle(DVec3::Z, ang).unwrap();
+                    d.set_pose(pose, Pose::IDENTITY);
+                    if j % 50 == 0 {
+                        check(&d, &format!("rebase seed {seed} round {round} big {j}"));
+                    }
+                }
+                for j in 0..3000 {
+                    ang += [1e-4, 1e-3, 0.02][j / 1000] * (0.5 + r.f());
+                    let mut pose = Pose::IDENTITY;
+                    pose.rotation = Rotation::from_axis_angle(DVec3::Z, ang).unwrap();
+                    d.set_pose(pose, Pose::IDENTITY);
+                    check(&d, &format!("rebase seed {seed} round {round} small {j}"));
+                }
+            }
+        }
+    }
+
+    /// Steps below the drift slack (theta < 1e-10) alternating with large
+    /// ones every step (the calendar re-files every step), and exact
+    /// quarter-turn landings about z.
+    #[test]
+    fn tiny_and_alternating_steps() {
+        let inc = DynamicConfig {
+            max_step_angle: f64::INFINITY,
+            fallback_fraction: f64::INFINITY,
+        };
+        for seed in 1..30u64 {
+            let mut r = R(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+            let np = 8 + r.i(50);
+            let p = poly(&mut r, seed % 2 == 0, np);
+            let nq = 8 + r.i(50);
+            let q = poly(&mut r, seed % 3 != 0, nq);
+            let cfg = if seed % 2 == 0 {
+                DynamicConfig::default()
+            } else {
+                inc
+            };
+            let mut d =
+                DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, cfg).unwrap();
+            let axis = r.axis();
+            for j in 0..3000 {
+                let a = match (j / 300) % 4 {
+                    0 => 1e-13 * (1.0 + r.f()),
+                    1 => {
+                        if j % 2 == 0 {
+                            1e-11
+                        } else {
+                            0.3
+                        }
+                    }
+                    2 => [1e-12, 1e-9, 1e-6, 1e-3][j % 4],
+                    _ => 1e-10 * r.f(),
+                };
+                let step = if (j / 300) % 4 == 3 && j % 7 == 0 {
+                    Rotation::from_axis_angle(DVec3::Z, std::f64::consts::FRAC_PI_2).unwrap()
+                } else {
+                    Rotation::from_axis_angle(axis, a).unwrap()
+                };
+                let mut pp = d.pose_p();
+                pp.rotation = pp.rotation.then(&step);
+                d.set_pose(pp, d.pose_q());
+                if j % 3 == 0 {
+                    check(&d, &format!("tiny seed {seed} j {j}"));
+                }
+            }
+        }
+    }
 }
