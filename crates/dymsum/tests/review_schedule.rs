@@ -128,3 +128,47 @@ fn tie_runs_alternating_on_grids() {
         }
     }
 }
+
+/// Both bodies turning about z (the relative rotation stays about z: tie
+/// runs with Q moving), interrupted by generic turns of Q.
+#[test]
+fn both_bodies_about_z() {
+    for seed in 0..20u64 {
+        let mut r = rng(seed + 5000);
+        let p = random_polytope(Kind::Grid, r.random_range(8..40), &mut r);
+        let q = random_polytope(
+            if seed % 2 == 0 {
+                Kind::Grid
+            } else {
+                Kind::Cube
+            },
+            r.random_range(8..40),
+            &mut r,
+        );
+        let cfg = if seed % 3 == 0 {
+            INCREMENTAL
+        } else {
+            DynamicConfig::default()
+        };
+        let d = DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, cfg).unwrap();
+        let mut c = Checked::new(d, 0, format!("both z seed {seed}"));
+        let (mut a, mut b) = (0.0f64, 0.0f64);
+        for block in 0..60 {
+            let generic = block % 7 == 6;
+            for _ in 0..r.random_range(1..50) {
+                a += 1e-3 * r.random_range(0.5..1.5);
+                b -= 7e-4 * r.random_range(0.5..1.5);
+                let pp = Pose::new(rot(DVec3::Z, a), DVec3::ZERO);
+                let qr = if generic {
+                    rot(DVec3::Z, b).then(&rot(
+                        DVec3::new(1.0, 2.0, 3.0).normalize(),
+                        1e-3 * block as f64,
+                    ))
+                } else {
+                    rot(DVec3::Z, b)
+                };
+                c.set_pose(pp, Pose::new(qr, DVec3::ZERO));
+            }
+        }
+    }
+}
