@@ -296,8 +296,10 @@ impl DynamicSum {
     }
 }
 
-/// Review check: every normal the schedule did not pop passes the old
-/// lazy-skip test (plain margin or a valid tie certificate).
+/// The schedule's invariant, checked on every scheduled step of the unit
+/// tests: every normal it did not pop passes the old lazy-skip test (plain
+/// margin or a valid tie certificate), i.e. a pass over all normals would
+/// have skipped it too.
 #[cfg(test)]
 pub(super) static SCHEDULED_STEPS: std::sync::atomic::AtomicUsize =
     std::sync::atomic::AtomicUsize::new(0);
@@ -312,10 +314,7 @@ fn check_schedule_against_scan(state: &Side, step: &StepBounds, due: &[u32]) {
     for &f in due {
         popped[f as usize] = true;
     }
-    for f in 0..n {
-        if popped[f] {
-            continue;
-        }
+    for (f, _) in popped.iter().enumerate().filter(|(_, &p)| !p) {
         let delta = state.dir_err[f];
         let lower = state.margin[f] - (step.before - state.margin_at[f]);
         let plain = lower - step.theta > step.drift + delta;

@@ -194,7 +194,7 @@ impl Deadlines {
             self.turn_ring(last);
         }
         let slots = last.saturating_sub(self.cur).clamp(0, BUCKETS as i64 - 1) + 1;
-        for b in self.cur..self.cur + slots {
+        for b in self.cur..self.cur.saturating_add(slots) {
             let mut i = self.head[(b as u64 % BUCKETS as u64) as usize];
             while i != NIL {
                 let next = self.next[i as usize];

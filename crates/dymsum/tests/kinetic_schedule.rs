@@ -1,4 +1,12 @@
-//! Adversarial motions for the kinetic schedule (review).
+//! Adversarial motions for DYMSUM's kinetic schedule (issue 10 §1,
+//! `dynamic/schedule.rs`), every step checked against a fresh `walk` by
+//! `oracle::Checked`: step sizes jumping by more than 16× in random blocks
+//! (the calendar re-files), runs about coordinate axes on grids and cubes
+//! (tie deadlines, ended by generic turns), runs long enough to cross the
+//! 1024-rad rebase of the accumulated rotation, and both bodies turning about
+//! z with generic interruptions. (The crate's own unit tests add, on every
+//! scheduled step, the check that each normal left in the queue passes the
+//! old lazy-skip test.)
 use dymsum::dynamic::DynamicConfig;
 use dymsum::{DVec3, DynamicSum, Pose, Rotation};
 use dymsum_testkit::oracle::*;
