@@ -397,6 +397,12 @@ mod review_motion_tests {
         }
     }
 
+    /// Never falls back to a from-scratch sum.
+    const INC: DynamicConfig = DynamicConfig {
+        max_step_angle: f64::INFINITY,
+        fallback_fraction: f64::INFINITY,
+    };
+
     fn poly(r: &mut R, grid: bool, n: usize) -> Polytope {
         loop {
             let pts: Vec<[f64; 3]> = (0..n)
@@ -427,10 +433,6 @@ mod review_motion_tests {
     /// moving, and long runs past the rebase.
     #[test]
     fn schedule_pops_what_the_scan_visits() {
-        let inc = DynamicConfig {
-            max_step_angle: f64::INFINITY,
-            fallback_fraction: f64::INFINITY,
-        };
         for seed in 1..25u64 {
             let mut r = R(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
             let (gp, gq) = (seed % 2 == 0, seed % 3 == 0);
@@ -439,7 +441,7 @@ mod review_motion_tests {
             let cfg = if seed % 4 == 0 {
                 DynamicConfig::default()
             } else {
-                inc
+                INC
             };
             let mut d =
                 DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, cfg).unwrap();
@@ -484,10 +486,6 @@ mod review_motion_tests {
     /// interrupted by generic jumps and resumed on the same axis.
     #[test]
     fn schedule_with_tie_runs() {
-        let inc = DynamicConfig {
-            max_step_angle: f64::INFINITY,
-            fallback_fraction: f64::INFINITY,
-        };
         for seed in 1..40u64 {
             let mut r = R(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
             let np = 12 + r.i(40);
@@ -511,7 +509,7 @@ mod review_motion_tests {
             let cfg = if seed % 2 == 0 {
                 DynamicConfig::default()
             } else {
-                inc
+                INC
             };
             let mut d =
                 DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, cfg).unwrap();
@@ -546,10 +544,6 @@ mod review_motion_tests {
     /// small steps about z in the same run (tie keys across the shift).
     #[test]
     fn tie_run_across_rebase() {
-        let inc = DynamicConfig {
-            max_step_angle: f64::INFINITY,
-            fallback_fraction: f64::INFINITY,
-        };
         for seed in 1..6u64 {
             let mut r = R(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
             let np = 12 + r.i(40);
@@ -557,7 +551,7 @@ mod review_motion_tests {
             let nq = 12 + r.i(40);
             let q = poly(&mut r, true, nq);
             let mut d =
-                DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, inc).unwrap();
+                DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, INC).unwrap();
             let mut ang = 0.0f64;
             for round in 0..3 {
                 for j in 0..2200 {
@@ -585,10 +579,6 @@ mod review_motion_tests {
     /// quarter-turn landings about z.
     #[test]
     fn tiny_and_alternating_steps() {
-        let inc = DynamicConfig {
-            max_step_angle: f64::INFINITY,
-            fallback_fraction: f64::INFINITY,
-        };
         for seed in 1..30u64 {
             let mut r = R(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
             let np = 8 + r.i(50);
@@ -598,7 +588,7 @@ mod review_motion_tests {
             let cfg = if seed % 2 == 0 {
                 DynamicConfig::default()
             } else {
-                inc
+                INC
             };
             let mut d =
                 DynamicSum::with_config(&p, Pose::IDENTITY, &q, Pose::IDENTITY, cfg).unwrap();
