@@ -241,19 +241,53 @@ impl Deadlines {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::DVec3;
+
+    /// The tests' random numbers (xorshift64; reproducible).
+    pub(super) struct R(pub(super) u64);
+
+    impl R {
+        pub(super) fn f(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        pub(super) fn i(&mut self, n: usize) -> usize {
+            (self.f() * n as f64) as usize % n
+        }
+        pub(super) fn axis(&mut self) -> DVec3 {
+            DVec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5).normalize()
+        }
+    }
+
+    /// Pops the items due at `limit` into `due` and checks them against a
+    /// plain scan of `keys`.
+    fn pop_checked(
+        d: &mut Deadlines,
+        keys: &[f64],
+        limit: f64,
+        step: f64,
+        due: &mut Vec<u32>,
+        ctx: &str,
+    ) {
+        due.clear();
+        d.pop_due(limit, step, due);
+        let mut got = due.clone();
+        got.sort_unstable();
+        let want: Vec<u32> = (0..keys.len() as u32)
+            .filter(|&i| keys[i as usize] <= limit)
+            .collect();
+        assert_eq!(got, want, "{ctx}");
+    }
 
     /// Against a plain scan of the keys: random keys, random re-keying up
     /// and down, limits that advance by random steps of several sizes (so
     /// the ring turns and the calendar is rebuilt), and a rebase.
     #[test]
     fn pops_exactly_the_due_items() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut r = R(0x9e37_79b9_7f4a_7c15);
+        let mut next = || r.f();
         let n = 300;
         let mut keys: Vec<f64> = (0..n).map(|_| next() * 10.0).collect();
         let mut d = Deadlines::default();
@@ -265,14 +299,14 @@ mod tests {
             // The limit mostly advances, sometimes falls back a little (the
             // drift term of a step is not monotone).
             limit += if next() < 0.1 { -step / 2.0 } else { step };
-            due.clear();
-            d.pop_due(limit, step, &mut due);
-            let mut got = due.clone();
-            got.sort_unstable();
-            let want: Vec<u32> = (0..n as u32)
-                .filter(|&i| keys[i as usize] <= limit)
-                .collect();
-            assert_eq!(got, want, "round {round}");
+            pop_checked(
+                &mut d,
+                &keys,
+                limit,
+                step,
+                &mut due,
+                &format!("round {round}"),
+            );
             for &i in &due {
                 keys[i as usize] = limit + next() * next() * 20.0 - 0.001;
                 d.set(i, keys[i as usize]);
@@ -316,13 +350,8 @@ mod tests {
     /// bucket, rebases; against a plain scan.
     #[test]
     fn review_adversarial_calendar() {
-        let mut state = 0x1234_5678_9abc_def1_u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut r = R(0x1234_5678_9abc_def1);
+        let mut next = || r.f();
         for n in [1usize, 2, 7, 100, 1000] {
             let mut keys: Vec<f64> = (0..n).map(|_| next() * 3.0).collect();
             let mut d = Deadlines::default();
@@ -338,14 +367,8 @@ mod tests {
                 } else {
                     step
                 };
-                due.clear();
-                d.pop_due(limit, step, &mut due);
-                let mut got = due.clone();
-                got.sort_unstable();
-                let want: Vec<u32> = (0..n as u32)
-                    .filter(|&i| keys[i as usize] <= limit)
-                    .collect();
-                assert_eq!(got, want, "n {n} round {round} limit {limit} step {step}");
+                let ctx = format!("n {n} round {round} limit {limit} step {step}");
+                pop_checked(&mut d, &keys, limit, step, &mut due, &ctx);
                 for &i in &due {
                     let r = next();
                     keys[i as usize] = if r < 0.02 {
@@ -381,21 +404,7 @@ mod review_motion_tests {
     use crate::sum::{minkowski_sum_posed, Method};
     use crate::{DVec3, Polytope, Pose, Rotation};
 
-    struct R(u64);
-    impl R {
-        fn f(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn i(&mut self, n: usize) -> usize {
-            (self.f() * n as f64) as usize % n
-        }
-        fn axis(&mut self) -> DVec3 {
-            DVec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5).normalize()
-        }
-    }
+    use super::tests::R;
 
     /// Never falls back to a from-scratch sum.
     const INC: DynamicConfig = DynamicConfig {
