@@ -114,6 +114,13 @@ pub enum SanityError {
         /// Its second sum vertex.
         to: (u32, u32),
     },
+    /// The facets around a sum vertex form more than one fan (the facet
+    /// complex is pinched there).
+    #[error("facets pinch at sum vertex {vertex:?}")]
+    FacetVertexPinched {
+        /// The sum vertex.
+        vertex: (u32, u32),
+    },
     /// The facet complex of a sum is closed but not a sphere.
     #[error("facet complex Euler characteristic {chi} != 2")]
     FacetComplexEuler {
@@ -167,6 +174,7 @@ mod tests {
                 err,
                 SanityError::FacetEdgeTwice { .. }
                     | SanityError::FacetEdgeUnmatched { .. }
+                    | SanityError::FacetVertexPinched { .. }
                     | SanityError::FacetComplexEuler { .. }
             ),
             "{err:?}"

@@ -164,6 +164,20 @@ fn check_query(
     Ok(())
 }
 
+/// Pinned proptest case: the fold of a bent face of the sum computed its
+/// float normals in input units, which underflowed at `2^-270` and lost the
+/// fold (a different mesh than at scale 1); they are now taken in the
+/// scaled frame.
+#[test]
+fn regression_bent_face_fold_at_tiny_scale() {
+    let mut r = rng(901126);
+    let kinds = [Kind::Ball, Kind::Grid, Kind::Coplanar, Kind::Sphere];
+    let pa = points(kinds[1], 10, &mut r);
+    let pb = points(kinds[2], 12, &mut r);
+    let pose = Pose::new(random_rotation(&mut r), DVec3::new(0.25, -0.5, 0.125));
+    assert_eq!(check_sums(&pa, &pb, pose, -270), Ok(()));
+}
+
 fn exponent() -> impl Strategy<Value = i32> {
     prop_oneof![
         -300..=300i32,

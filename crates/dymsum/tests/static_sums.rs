@@ -3,6 +3,7 @@
 //! support function of the sum against the sum of support functions.
 
 use dymsum::hull::{convex_hull, PairwiseSums};
+use dymsum::sum::validate::ExactPoints;
 use dymsum::sum::{minkowski_sum_posed, Method, MinkowskiSum};
 use dymsum::{DVec3, Polytope, Pose, Rotation};
 use dymsum_testkit::*;
@@ -65,8 +66,18 @@ fn check_pair(
             "vertex count vs hull of pairwise sums"
         );
     }
-    // Support function of the sum = sum of support functions.
     let mv: Vec<DVec3> = mesh.vertices.iter().map(|v| DVec3::from(*v)).collect();
+    // Where rounding bent the exact faces, the output must be the exact hull
+    // of its own rounded vertices (an independent hull, compared face by
+    // face): the merged mesh with its bent faces folded, or the hull itself.
+    if written.hull_fallback {
+        assert_eq!(
+            canonical(&mesh),
+            canonical(&own_hull(&mv)),
+            "not the hull of its own vertices"
+        );
+    }
+    // Support function of the sum = sum of support functions.
     let scale = support(&pp, DVec3::ONE).abs() + support(&qq, DVec3::ONE).abs() + 1.0;
     let mut r = rng(7);
     for _ in 0..32 {
@@ -78,6 +89,29 @@ fn check_pair(
         );
     }
     walk
+}
+
+/// The exact hull of float points, as a mesh.
+fn own_hull(points: &[DVec3]) -> dymsum::PolygonMesh {
+    let exact = ExactPoints::new(points);
+    convex_hull(&exact).expect("a 3-D hull").to_mesh(&exact)
+}
+
+/// A mesh as its set of faces, each over vertex coordinates and rotated to
+/// start at its smallest one (independent of vertex numbering).
+fn canonical(mesh: &dymsum::PolygonMesh) -> Vec<Vec<[u64; 3]>> {
+    let key = |v: usize| mesh.vertices[v].map(f64::to_bits);
+    let mut faces: Vec<Vec<[u64; 3]>> = mesh
+        .faces
+        .iter()
+        .map(|f| {
+            let ring: Vec<[u64; 3]> = f.iter().map(|&v| key(v)).collect();
+            let k = (0..ring.len()).min_by_key(|&i| ring[i]).unwrap();
+            ring[k..].iter().chain(&ring[..k]).copied().collect()
+        })
+        .collect();
+    faces.sort();
+    faces
 }
 
 fn poly(points: &[[f64; 3]]) -> Polytope {
@@ -109,6 +143,32 @@ fn box_plus_box_turned_exactly_90_degrees() {
             true,
         );
         assert_eq!(s.try_to_mesh().unwrap().faces.len(), 6);
+    }
+}
+
+/// Prisms over regular n-gons at random rotations: the n-gon faces of the
+/// sum (fv-facets of the caps) are bent by rounding and folded into the
+/// outer side of their corners' hull, not just split like parallelograms.
+#[test]
+fn turned_prisms_fold_their_polygon_faces() {
+    let prism = |n: usize, h: f64| {
+        let mut pts = Vec::new();
+        for i in 0..n {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            pts.push([a.cos(), a.sin(), 0.0]);
+            pts.push([a.cos(), a.sin(), h]);
+        }
+        poly(&pts)
+    };
+    let mut r = rng(11);
+    for n in [5, 6, 8, 12] {
+        let p = prism(n, 0.5);
+        let q = random_polytope(Kind::Ball, 12, &mut r);
+        for _ in 0..8 {
+            let pose = Pose::new(random_rotation(&mut r), DVec3::new(0.3, -0.2, 0.1));
+            check_pair(&p, pose, &q, Pose::IDENTITY, false);
+            check_pair(&p, pose, &prism(n + 1, 2.0), Pose::IDENTITY, false);
+        }
     }
 }
 

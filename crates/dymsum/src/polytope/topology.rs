@@ -97,10 +97,20 @@ impl DirectedEdges {
     /// Indexes the directed edges of `faces` over `vertex_count` vertices.
     /// Every index must be below `vertex_count`.
     pub(crate) fn new<I: VertexIndex>(vertex_count: usize, faces: &[Vec<I>]) -> Self {
+        Self::from_faces(vertex_count, faces.len(), |f| &faces[f][..])
+    }
+
+    /// [`Self::new`] for `count` faces given by `face(f)` (e.g. slices of
+    /// one flat corner array).
+    pub(crate) fn from_faces<'a, I: VertexIndex + 'a>(
+        vertex_count: usize,
+        count: usize,
+        face: impl Fn(usize) -> &'a [I],
+    ) -> Self {
         let n = vertex_count;
         let mut start = vec![0usize; n + 1];
-        for f in faces {
-            for &i in f {
+        for f in 0..count {
+            for &i in face(f) {
                 start[i.index() + 1] += 1;
             }
         }
@@ -111,7 +121,8 @@ impl DirectedEdges {
         let mut fill = start.clone();
         let mut rows = vec![(0usize, 0usize, 0usize); total];
         let mut corner = Vec::with_capacity(total);
-        for (fi, f) in faces.iter().enumerate() {
+        for fi in 0..count {
+            let f = face(fi);
             let k = f.len();
             for i in 0..k {
                 let a = f[i].index();
@@ -138,12 +149,12 @@ impl DirectedEdges {
             prev,
             half_edge,
             corner,
-            faces: faces.len(),
+            faces: count,
         }
     }
 
     /// Number of vertices indexed.
-    fn vertex_count(&self) -> usize {
+    pub(crate) fn vertex_count(&self) -> usize {
         self.start.len() - 1
     }
 

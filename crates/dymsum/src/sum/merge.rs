@@ -16,16 +16,53 @@
 //! Groups are the connected components of "coplanar" (union–find). A sum
 //! vertex `u + w` is kept iff at least three groups meet at it (otherwise it
 //! lies in the middle of an edge or face). Each group becomes one convex
-//! polygon: its kept corners sorted counter-clockwise about its normal
-//! (a float construction). Cost: O(number of facets).
+//! polygon: the boundary of the union of its facets, walked edge by edge,
+//! with the kept corners only.
+//!
+//! # Steps and data structures (no hashing)
+//!
+//! 1. Sum vertices `(u, w)` get dense ids in lexicographic order, bucketed
+//!    by `u` (a bucket holds the few `w` paired with `u`); facets become
+//!    slices of one flat corner array.
+//! 2. General position (no coplanar or degenerate facet, every vertex on at
+//!    least three facets): the facets *are* the faces; step 3 is skipped.
+//!    This shortcut is trusted only after the exact check of step 4; if the
+//!    check fails, the full merge runs (and names a broken facet complex).
+//! 3. Otherwise the directed-edge index of `polytope::topology` gives the
+//!    facet across each facet edge (binary search in a vertex's row); the
+//!    union–find, the corner test and each face's boundary walk use it.
+//! 4. Validation (`validated_mesh`): the vertices are the float sums, so a
+//!    face of four or more corners may be bent by rounding. Each bent face
+//!    is folded along the outer side of its corners' hull (a parallelogram:
+//!    the diagonal that folds outward, from the one `orient3d` that found it
+//!    bent), and the result must pass the exact convexity check
+//!    ([`super::validate::check_convex_mesh`]). It then *is* the exact hull
+//!    of the rounded vertices (every vertex a strict corner, every edge
+//!    strictly convex), found in linear time. Only if the check fails
+//!    (rounding moved a vertex inside, or made neighbouring faces coplanar)
+//!    is the hull built from scratch, `O(V log V)`.
+//!
+//! # Complexity
+//!
+//! `O(F log d)` for `F` facets and vertex degree `d`, plus the exact check
+//! (`O(F)` predicates, adaptive only near flat folds) and, rarely, the hull.
+//!
+//! # Degeneracies
+//!
+//! Parallel faces, normals on arcs and parallel edges (the three cases
+//! above), exactly planar rounded faces (no fold), faces bent by rounding,
+//! sums whose rounded vertices are no longer in convex position (hull),
+//! and every scale (float normals of the fold are taken in the check's
+//! power-of-two scaled frame, so they neither underflow nor depend on the
+//! scale).
 
 use super::{Operands, Overlay};
 use crate::kernel::predicates::{det3, same_direction, sos_det3};
 use crate::kernel::Sign;
+use crate::polytope::topology::DirectedEdges;
 use crate::sanity::SanityError;
 use crate::PolygonMesh;
 use glam::DVec3;
-use rustc_hash::FxHashMap as HashMap;
 
 /// A vertex of the sum as `(vertex of P, vertex of Q)`.
 type SumVertex = (u32, u32);
@@ -52,34 +89,6 @@ impl UnionFind {
     }
 }
 
-/// The corners of every facet as `(vertex of P, vertex of Q)` keys, in
-/// counter-clockwise order about the facet's outward normal.
-pub(crate) fn facet_corners(ops: &Operands, overlay: &Overlay) -> Vec<Vec<(u32, u32)>> {
-    let mut out = Vec::with_capacity(overlay.len());
-    for (f, &w) in overlay.fv.iter().enumerate() {
-        out.push(ops.p.face(f).iter().map(|&u| (u, w)).collect());
-    }
-    for (g, &u) in overlay.vf.iter().enumerate() {
-        out.push(ops.q.face(g).iter().map(|&w| (u, w)).collect());
-    }
-    let (vp, vq) = (ops.view_p(), ops.view_q());
-    for &(e, e2) in &overlay.ee {
-        let [u1, u2] = ops.p.edge(e as usize).vertices;
-        let [w1, w2] = ops.q.edge(e2 as usize).vertices;
-        let (a, b) = vp.edge_arc(e);
-        let (c, _) = vq.edge_arc(e2);
-        // Edge directions are a×b and c×d; the cycle below turns about their
-        // cross product, which is the outward normal iff det[a,b,c] < 0.
-        let ccw = sos_det3(&a, &b, &c).is_negative();
-        let mut cyc = vec![(u1, w1), (u2, w1), (u2, w2), (u1, w2)];
-        if !ccw {
-            cyc.reverse();
-        }
-        out.push(cyc);
-    }
-    out
-}
-
 /// The merged mesh of `P ⊕ Q` over the float sums of its vertices, and
 /// whether every coordinate is the exact sum (no rounding anywhere).
 pub(crate) struct Merged {
@@ -88,24 +97,152 @@ pub(crate) struct Merged {
     /// `true` when every vertex coordinate is exact, so the mesh must pass
     /// [`super::validate::check_convex_mesh`] as is.
     pub exact: bool,
+    /// `true` when the faces are the facets (`facets_as_faces`), not merged.
+    pub shortcut: bool,
 }
 
-/// `pose.apply(v)` if that is computed without rounding (signed-permutation
-/// rotation, exact translation), else `None`.
-fn exact_posed(pose: &crate::Pose, v: DVec3) -> Option<DVec3> {
-    let m = pose.rotation.matrix();
-    let rows = [m.row(0), m.row(1), m.row(2)];
-    let mut r = DVec3::ZERO;
-    for (k, row) in rows.iter().enumerate() {
-        let nz: Vec<usize> = (0..3).filter(|&i| row[i] != 0.0).collect();
-        if nz.len() != 1 || row[nz[0]].abs() != 1.0 {
-            return None;
+/// The sum vertices `(u, w)` used by the facets, numbered densely in
+/// lexicographic order: per vertex `u` of P (a bucket), the sorted vertices
+/// `w` of Q it is paired with. No hashing: a lookup is a binary search in a
+/// bucket of a few entries.
+struct SumVertexIndex {
+    /// `start[u]..start[u + 1]`: the ids of the vertices `(u, ·)`.
+    start: Vec<u32>,
+    /// The `w` of each id.
+    w: Vec<u32>,
+}
+
+impl SumVertexIndex {
+    fn new(p_vertices: usize, keys: &[SumVertex]) -> Self {
+        let mut start = vec![0u32; p_vertices + 1];
+        for &(u, _) in keys {
+            start[u as usize + 1] += 1;
         }
-        r[k] = row[nz[0]] * v[nz[0]];
+        for u in 0..p_vertices {
+            start[u + 1] += start[u];
+        }
+        let mut fill = start.clone();
+        let mut w = vec![0u32; keys.len()];
+        for &(u, wq) in keys {
+            w[fill[u as usize] as usize] = wq;
+            fill[u as usize] += 1;
+        }
+        // Sort and deduplicate each bucket, compacting in place.
+        let mut out = 0usize;
+        let mut lo = 0usize;
+        for u in 0..p_vertices {
+            let hi = start[u + 1] as usize;
+            let bucket = &mut w[lo..hi];
+            bucket.sort_unstable();
+            let begin = out;
+            for k in lo..hi {
+                if out == begin || w[out - 1] != w[k] {
+                    w[out] = w[k];
+                    out += 1;
+                }
+            }
+            start[u] = begin as u32;
+            lo = hi;
+        }
+        start[p_vertices] = out as u32;
+        w.truncate(out);
+        SumVertexIndex { start, w }
     }
-    let t = pose.translation;
-    let out = r + t;
-    (0..3).all(|k| exact_sum(r[k], t[k], out[k])).then_some(out)
+    fn len(&self) -> usize {
+        self.w.len()
+    }
+    fn id(&self, (u, w): SumVertex) -> u32 {
+        let (lo, hi) = (self.start[u as usize], self.start[u as usize + 1]);
+        let k = self.w[lo as usize..hi as usize]
+            .binary_search(&w)
+            .expect("every corner was indexed");
+        lo + k as u32
+    }
+    /// The `(u, w)` of an id (`u` by binary search over the buckets).
+    fn key(&self, id: u32) -> SumVertex {
+        let u = self.start.partition_point(|&s| s <= id) - 1;
+        (u as u32, self.w[id as usize])
+    }
+}
+
+/// The corners of every facet as dense sum-vertex ids, in one flat array
+/// (`corners[first[i]..first[i + 1]]` for facet `i`), counter-clockwise
+/// about the facet's outward normal.
+struct FlatFacets {
+    first: Vec<u32>,
+    corners: Vec<u32>,
+    index: SumVertexIndex,
+}
+
+impl FlatFacets {
+    fn new(ops: &Operands, overlay: &Overlay) -> Self {
+        let mut first = Vec::with_capacity(overlay.len() + 1);
+        let mut keys: Vec<SumVertex> = Vec::with_capacity(overlay.len() * 4);
+        first.push(0);
+        for (f, &w) in overlay.fv.iter().enumerate() {
+            keys.extend(ops.p.face(f).iter().map(|&u| (u, w)));
+            first.push(keys.len() as u32);
+        }
+        for (g, &u) in overlay.vf.iter().enumerate() {
+            keys.extend(ops.q.face(g).iter().map(|&w| (u, w)));
+            first.push(keys.len() as u32);
+        }
+        let (vp, vq) = (ops.view_p(), ops.view_q());
+        for &(e, e2) in &overlay.ee {
+            let [u1, u2] = ops.p.edge(e as usize).vertices;
+            let [w1, w2] = ops.q.edge(e2 as usize).vertices;
+            let (a, b) = vp.edge_arc(e);
+            let (c, _) = vq.edge_arc(e2);
+            // Edge directions are a×b and c×d; the cycle below turns about
+            // their cross product, the outward normal iff det[a,b,c] < 0.
+            let cyc = [(u1, w1), (u2, w1), (u2, w2), (u1, w2)];
+            if sos_det3(&a, &b, &c).is_negative() {
+                keys.extend(cyc);
+            } else {
+                keys.extend(cyc.iter().rev());
+            }
+            first.push(keys.len() as u32);
+        }
+        let index = SumVertexIndex::new(ops.p.vertex_count(), &keys);
+        let corners = keys.iter().map(|&k| index.id(k)).collect();
+        FlatFacets {
+            first,
+            corners,
+            index,
+        }
+    }
+    fn facet(&self, i: usize) -> &[u32] {
+        &self.corners[self.first[i] as usize..self.first[i + 1] as usize]
+    }
+}
+
+/// A rotation that maps coordinates without rounding: each output
+/// coordinate is `±` one input coordinate.
+#[derive(Clone, Copy)]
+struct SignedPermutation([(usize, f64); 3]);
+
+impl SignedPermutation {
+    fn of(pose: &crate::Pose) -> Option<Self> {
+        let m = pose.rotation.matrix();
+        let mut out = [(0, 0.0); 3];
+        for (k, slot) in out.iter_mut().enumerate() {
+            let row = m.row(k);
+            let mut nz = (0..3).filter(|&i| row[i] != 0.0);
+            let i = nz.next()?;
+            if nz.next().is_some() || row[i].abs() != 1.0 {
+                return None;
+            }
+            *slot = (i, row[i]);
+        }
+        Some(SignedPermutation(out))
+    }
+    /// `pose.apply(v)` when it is computed without rounding, else `None`.
+    fn exact_posed(self, pose: &crate::Pose, v: DVec3) -> Option<DVec3> {
+        let r = DVec3::from_array(self.0.map(|(i, s)| s * v[i]));
+        let t = pose.translation;
+        let out = r + t;
+        (0..3).all(|k| exact_sum(r[k], t[k], out[k])).then_some(out)
+    }
 }
 
 /// Knuth's TwoSum: whether `s = fl(a + b)` is exact.
@@ -114,19 +251,22 @@ fn exact_sum(a: f64, b: f64, s: f64) -> bool {
     (a - (s - bb)) + (b - bb) == 0.0 && s.is_finite()
 }
 
-/// The merged mesh of `P ⊕ Q` (see the module docs), or why the facet
-/// complex could not be merged (an internal inconsistency).
-pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, String> {
+/// Union of the coplanar facets (module docs): returns the union-find,
+/// which ee-facets are degenerate (zero area), and whether any facet is
+/// coplanar with another or degenerate.
+fn coplanar_groups(ops: &Operands, overlay: &Overlay) -> (UnionFind, Vec<bool>, bool) {
     let m = overlay.fv.len();
     let n = overlay.vf.len();
     let total = overlay.len();
     let mut uf = UnionFind::new(total);
     let mut degenerate = vec![false; total];
+    let mut any = false;
     let (vp, vq) = (ops.view_p(), ops.view_q());
     for (f, &w) in overlay.fv.iter().enumerate() {
         for r in ops.q.ring(w as usize) {
             if same_direction(&vp.normal(f as u32), &vq.normal(r.face)) {
                 uf.union(f as u32, (m + r.face as usize) as u32);
+                any = true;
             }
         }
     }
@@ -142,12 +282,18 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
         );
         if abc && abd {
             degenerate[id as usize] = true;
+            any = true;
             continue;
         }
-        if det3(&c, &d, &a) == Sign::Zero {
+        let (cda, cdb) = (
+            det3(&c, &d, &a) == Sign::Zero,
+            det3(&c, &d, &b) == Sign::Zero,
+        );
+        any |= cda || cdb || abc || abd;
+        if cda {
             uf.union(id, f0);
         }
-        if det3(&c, &d, &b) == Sign::Zero {
+        if cdb {
             uf.union(id, f1);
         }
         if abc {
@@ -157,25 +303,121 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
             uf.union(id, (m + g1 as usize) as u32);
         }
     }
-    let corners = facet_corners(ops, overlay);
-    // The facet on the other side of each directed facet edge.
-    let mut twin: HashMap<(SumVertex, SumVertex), u32> =
-        HashMap::with_capacity_and_hasher(total * 4, Default::default());
-    for (i, cyc) in corners.iter().enumerate() {
-        for k in 0..cyc.len() {
-            if twin
-                .insert((cyc[k], cyc[(k + 1) % cyc.len()]), i as u32)
-                .is_some()
-            {
-                return Err("facet edge used twice in one direction".into());
-            }
+    (uf, degenerate, any)
+}
+
+/// The float sums of the sum vertices with these ids, and whether every
+/// coordinate is exact (no rounding anywhere).
+fn vertex_sums(
+    ops: &Operands,
+    index: &SumVertexIndex,
+    ids: impl Iterator<Item = u32>,
+) -> (Vec<[f64; 3]>, bool) {
+    let mut exact = true;
+    let perm = (
+        SignedPermutation::of(&ops.pose_p),
+        SignedPermutation::of(&ops.pose_q),
+    );
+    let vertices = ids
+        .map(|id| {
+            let (u, w) = index.key(id);
+            let (pu, qw) = (ops.p_vertex(u), ops.q_vertex(w));
+            let s = pu + qw;
+            exact &= match perm {
+                (Some(a), Some(b)) => match (
+                    a.exact_posed(&ops.pose_p, ops.p.vertex(u as usize)),
+                    b.exact_posed(&ops.pose_q, ops.q.vertex(w as usize)),
+                ) {
+                    (Some(a), Some(b)) => {
+                        a == pu && b == qw && (0..3).all(|k| exact_sum(a[k], b[k], s[k]))
+                    }
+                    _ => false,
+                },
+                _ => false,
+            };
+            s.to_array()
+        })
+        .collect();
+    (vertices, exact)
+}
+
+/// The merged mesh when no two facets are coplanar and none is degenerate
+/// (the general position case): every facet is a face and every vertex a
+/// corner, so the faces are the facets, each started at its smallest
+/// corner, which is what [`merged_mesh`] gives too. `None` when a vertex is
+/// on fewer than three facets (left to the general merge).
+fn facets_as_faces(ops: &Operands, facets: &FlatFacets) -> Option<Merged> {
+    let nv = facets.index.len();
+    let mut degree = vec![0u32; nv];
+    for &c in &facets.corners {
+        degree[c as usize] += 1;
+    }
+    if degree.iter().any(|&d| d < 3) {
+        return None;
+    }
+    let faces = (0..facets.first.len() - 1)
+        .map(|i| {
+            let f = facets.facet(i);
+            let k = (0..f.len()).min_by_key(|&k| f[k]).unwrap_or(0);
+            f[k..].iter().chain(&f[..k]).map(|&v| v as usize).collect()
+        })
+        .collect();
+    let (vertices, exact) = vertex_sums(ops, &facets.index, 0..nv as u32);
+    Some(Merged {
+        mesh: PolygonMesh { vertices, faces },
+        exact,
+        shortcut: true,
+    })
+}
+
+/// The merged mesh of `P ⊕ Q` (see the module docs), or why the facet
+/// complex could not be merged (an internal inconsistency).
+///
+/// Flat arrays throughout: the facets' corners are dense sum-vertex ids
+/// (`SumVertexIndex`), the facet across each facet edge is found in the
+/// directed-edge index of `polytope::topology`, and each face's boundary
+/// is walked through the same index. Vertices are numbered in `(u, w)`
+/// order and each face starts at its smallest corner.
+///
+/// With `shortcut`, the general position case skips the merge (see
+/// `facets_as_faces`); its result is only trusted after the full exact check
+/// of the mesh, and a mesh that fails it is merged again without shortcut.
+pub(crate) fn merged_mesh(
+    ops: &Operands,
+    overlay: &Overlay,
+    shortcut: bool,
+) -> Result<Merged, String> {
+    let total = overlay.len();
+    let (mut uf, degenerate, any_coplanar) = coplanar_groups(ops, overlay);
+    let facets = FlatFacets::new(ops, overlay);
+    if shortcut && !any_coplanar {
+        if let Some(merged) = facets_as_faces(ops, &facets) {
+            return Ok(merged);
         }
     }
-    let across = |i: usize, k: usize| -> Result<usize, String> {
-        let cyc = &corners[i];
-        twin.get(&(cyc[(k + 1) % cyc.len()], cyc[k]))
-            .map(|&j| j as usize)
+    let nv = facets.index.len();
+    let edges = DirectedEdges::from_faces(nv, total, |i| facets.facet(i));
+    // The facet across the directed edge at `pos` (its reverse's facet).
+    let across = |pos: usize| -> Result<usize, String> {
+        let a = edges.target[pos];
+        let (f, k) = edges.face_corner(pos);
+        let b = facets.facet(f)[k] as usize;
+        edges
+            .find(a, b)
+            .map(|r| edges.face_corner(r).0)
             .ok_or_else(|| "facet edge without an opposite facet".to_string())
+    };
+    for v in 0..nv {
+        let t = &edges.target[edges.start[v]..edges.start[v + 1]];
+        if t.windows(2).any(|w| w[0] == w[1]) {
+            return Err("facet edge used twice in one direction".into());
+        }
+    }
+    // The position of the edge leaving corner `k` of facet `i`.
+    let edge_at = |i: usize, k: usize| -> usize {
+        let f = facets.facet(i);
+        let (a, b) = (f[k] as usize, f[(k + 1) % f.len()] as usize);
+        edges.find(a, b).expect("indexed")
     };
     // A degenerate (zero-area) ee-facet lies on a segment. When all its
     // neighbours lie in one face (the segment is inside that face, e.g. the
@@ -186,108 +428,99 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
         if !degenerate[i] {
             continue;
         }
-        let mut roots = Vec::with_capacity(4);
-        for k in 0..corners[i].len() {
-            let j = across(i, k)?;
+        let mut roots = [0u32; 4];
+        let k_len = facets.facet(i).len();
+        for (k, root) in roots.iter_mut().enumerate().take(k_len) {
+            let j = across(edge_at(i, k))?;
             if degenerate[j] {
                 return Err("two degenerate facets share an edge".into());
             }
-            roots.push(uf.find(j as u32));
+            *root = uf.find(j as u32);
         }
-        if roots.iter().all(|&r| r == roots[0]) {
+        if roots[..k_len].iter().all(|&r| r == roots[0]) {
             uf.union(i as u32, roots[0]);
             in_face[i] = true;
         }
     }
     let root: Vec<u32> = (0..total).map(|i| uf.find(i as u32)).collect();
-    // A sum vertex `u + w` is a corner iff at least three faces meet there.
-    let mut incidence: Vec<(SumVertex, u32)> = Vec::with_capacity(total * 4);
-    for i in 0..total {
-        if in_face[i] {
-            incidence.extend(corners[i].iter().map(|&c| (c, root[i])));
+    // A sum vertex is a corner iff at least three faces meet there: the
+    // facets around `v` are those of the edges leaving it.
+    let mut kept = vec![u32::MAX; nv];
+    let mut corners = Vec::new();
+    let mut around: Vec<u32> = Vec::new();
+    for (v, slot) in kept.iter_mut().enumerate() {
+        around.clear();
+        for pos in edges.start[v]..edges.start[v + 1] {
+            let f = edges.face_corner(pos).0;
+            if in_face[f] && !around.contains(&root[f]) {
+                around.push(root[f]);
+            }
+        }
+        if around.len() >= 3 {
+            *slot = corners.len() as u32;
+            corners.push(v as u32);
         }
     }
-    incidence.sort_unstable();
-    incidence.dedup();
-    let mut kept: HashMap<SumVertex, u32> = HashMap::default();
-    let mut vertices = Vec::new();
-    let mut exact = true;
-    let mut i = 0;
-    while i < incidence.len() {
-        let mut j = i;
-        while j < incidence.len() && incidence[j].0 == incidence[i].0 {
-            j += 1;
-        }
-        if j - i >= 3 {
-            let (u, w) = incidence[i].0;
-            kept.insert((u, w), vertices.len() as u32);
-            let (pu, qw) = (ops.p_vertex(u), ops.q_vertex(w));
-            let s = pu + qw;
-            exact &= match (
-                exact_posed(&ops.pose_p, ops.p.vertex(u as usize)),
-                exact_posed(&ops.pose_q, ops.q.vertex(w as usize)),
-            ) {
-                (Some(a), Some(b)) => {
-                    a == pu && b == qw && (0..3).all(|k| exact_sum(a[k], b[k], s[k]))
-                }
-                _ => false,
-            };
-            vertices.push(s);
-        }
-        i = j;
-    }
-    // Each face: the boundary of the union of its facets, walked edge by
-    // edge (a simple cycle for a disk), with non-corner vertices dropped.
-    // One map for all faces, keyed by (face, vertex); per face its smallest
-    // boundary vertex (the walk's start) and its number of boundary edges.
-    let mut boundary: HashMap<(u32, SumVertex), SumVertex> =
-        HashMap::with_capacity_and_hasher(total * 2, Default::default());
-    let mut start: HashMap<u32, (SumVertex, usize)> = HashMap::default();
-    let mut order: Vec<u32> = Vec::new();
-    for i in 0..total {
-        if !in_face[i] {
-            continue;
-        }
-        let cyc = &corners[i];
-        for k in 0..cyc.len() {
-            let j = across(i, k)?;
+    let (vertices, exact) = vertex_sums(ops, &facets.index, corners.into_iter());
+    // Boundary edges of each face: edges whose facet is in a face and whose
+    // opposite facet is not in the same one. Per face its smallest boundary
+    // vertex (the walk's start), its number of boundary edges and the
+    // first facet (in facet order) with a boundary edge.
+    let mut boundary = vec![false; edges.target.len()];
+    let mut face_start = vec![(u32::MAX, 0usize, u32::MAX); total];
+    for v in 0..nv {
+        let row = edges.start[v]..edges.start[v + 1];
+        for (pos, is_boundary) in row.clone().zip(&mut boundary[row]) {
+            let i = edges.face_corner(pos).0;
+            if !in_face[i] {
+                continue;
+            }
+            let j = across(pos)?;
             if in_face[j] && root[j] == root[i] {
                 continue;
             }
-            let r = root[i];
-            if boundary
-                .insert((r, cyc[k]), cyc[(k + 1) % cyc.len()])
-                .is_some()
-            {
-                return Err(format!("the facets of face {r} pinch at a vertex"));
-            }
-            let first = start.entry(r).or_insert_with(|| {
-                order.push(r);
-                (cyc[k], 0)
-            });
-            first.0 = first.0.min(cyc[k]);
-            first.1 += 1;
+            *is_boundary = true;
+            let s = &mut face_start[root[i] as usize];
+            s.0 = s.0.min(v as u32);
+            s.1 += 1;
+            s.2 = s.2.min(i as u32);
         }
     }
+    let mut order: Vec<u32> = (0..total as u32)
+        .filter(|&r| face_start[r as usize].1 > 0)
+        .collect();
+    order.sort_unstable_by_key(|&r| face_start[r as usize].2);
+    // The boundary edge of face `r` leaving `v`: exactly one for a disk.
+    let next = |r: u32, v: usize| -> Result<usize, String> {
+        let mut found = None;
+        for pos in edges.start[v]..edges.start[v + 1] {
+            if boundary[pos] && root[edges.face_corner(pos).0] == r {
+                if found.is_some() {
+                    return Err(format!("the facets of face {r} pinch at a vertex"));
+                }
+                found = Some(edges.target[pos]);
+            }
+        }
+        found.ok_or_else(|| format!("the boundary of face {r} is open"))
+    };
     let mut faces = Vec::with_capacity(order.len());
     for r in order {
-        let (first, edges) = start[&r];
+        let (first, count, _) = face_start[r as usize];
+        let first = first as usize;
         let mut face = Vec::new();
         let mut at = first;
         let mut steps = 0;
         loop {
-            if let Some(&v) = kept.get(&at) {
-                face.push(v as usize);
+            if kept[at] != u32::MAX {
+                face.push(kept[at] as usize);
             }
-            at = *boundary
-                .get(&(r, at))
-                .ok_or_else(|| format!("the boundary of face {r} is open"))?;
+            at = next(r, at)?;
             steps += 1;
-            if at == first || steps > edges {
+            if at == first || steps > count {
                 break;
             }
         }
-        if steps != edges {
+        if steps != count {
             return Err(format!("the facets of face {r} do not form a disk"));
         }
         if face.len() < 3 {
@@ -296,47 +529,35 @@ pub(crate) fn merged_mesh(ops: &Operands, overlay: &Overlay) -> Result<Merged, S
         faces.push(face);
     }
     Ok(Merged {
-        mesh: PolygonMesh {
-            vertices: vertices.iter().map(|v| v.to_array()).collect(),
-            faces,
-        },
+        mesh: PolygonMesh { vertices, faces },
         exact,
+        shortcut: false,
     })
 }
 
 /// Checks the facet complex of an overlay: closed, 2-manifold, consistently
-/// oriented (each directed facet edge once, with its reverse once), Euler
-/// characteristic 2.
+/// oriented (each directed facet edge once, with its reverse once), no
+/// pinched sum vertex, Euler characteristic 2 (the shared checks of
+/// `polytope::topology` on the flat facets).
 pub(crate) fn check_facet_complex(ops: &Operands, overlay: &Overlay) -> Result<(), SanityError> {
-    let corners = facet_corners(ops, overlay);
-    let mut directed: HashMap<(SumVertex, SumVertex), u32> = HashMap::default();
-    let mut verts = std::collections::HashSet::new();
-    for (i, cyc) in corners.iter().enumerate() {
-        for k in 0..cyc.len() {
-            verts.insert(cyc[k]);
-            let key = (cyc[k], cyc[(k + 1) % cyc.len()]);
-            if directed.insert(key, i as u32).is_some() {
-                return Err(SanityError::FacetEdgeTwice {
-                    from: key.0,
-                    to: key.1,
-                });
-            }
+    use crate::polytope::topology::{TopologyDefect, Unused};
+    let facets = FlatFacets::new(ops, overlay);
+    let edges = DirectedEdges::from_faces(facets.index.len(), overlay.len(), |i| facets.facet(i));
+    let key = |v: usize| facets.index.key(v as u32);
+    edges.check_sphere(Unused::Skip).map_err(|d| match d {
+        TopologyDefect::EdgeUsedTwice(a, b) => SanityError::FacetEdgeTwice {
+            from: key(a),
+            to: key(b),
+        },
+        TopologyDefect::OpenEdge(a, b) => SanityError::FacetEdgeUnmatched {
+            from: key(a),
+            to: key(b),
+        },
+        TopologyDefect::PinchedVertex(v) | TopologyDefect::UnusedVertex(v) => {
+            SanityError::FacetVertexPinched { vertex: key(v) }
         }
-    }
-    for &(a, b) in directed.keys() {
-        if !directed.contains_key(&(b, a)) {
-            return Err(SanityError::FacetEdgeUnmatched { from: a, to: b });
-        }
-    }
-    let (v, e, f) = (
-        verts.len() as i64,
-        directed.len() as i64 / 2,
-        corners.len() as i64,
-    );
-    if v - e + f != 2 {
-        return Err(SanityError::FacetComplexEuler { chi: v - e + f });
-    }
-    Ok(())
+        TopologyDefect::Euler(chi) => SanityError::FacetComplexEuler { chi },
+    })
 }
 
 /// Why the mesh of a sum could not be produced.
@@ -442,8 +663,25 @@ fn ulp(x: f64) -> f64 {
 /// combinatorial merge when its float coordinates are exactly convex, else
 /// the exact hull of the rounded vertices.
 pub(crate) fn validated_mesh(ops: &Operands, overlay: &Overlay) -> Result<SumMesh, MeshError> {
-    use super::validate::{check_convex_mesh, ExactPoints};
-    let merged = merged_mesh(ops, overlay).map_err(MeshError::Merge)?;
+    let merged = merged_mesh(ops, overlay, true).map_err(MeshError::Merge)?;
+    let merged = if merged.shortcut {
+        match mesh_or_hull(ops, merged, false)? {
+            Some(mesh) => return Ok(mesh),
+            // The facets as faces failed the check: merge in full, which
+            // also names a broken facet complex.
+            None => merged_mesh(ops, overlay, false).map_err(MeshError::Merge)?,
+        }
+    } else {
+        merged
+    };
+    mesh_or_hull(ops, merged, true)?.ok_or_else(|| MeshError::Merge("no mesh and no hull".into()))
+}
+
+/// The merged mesh if it passes the exact check (with its bent faces
+/// folded), else (with `hull`) the exact hull of its rounded vertices, else
+/// `None`.
+fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<SumMesh>, MeshError> {
+    use super::validate::{check_convex_faces, check_convex_mesh, ExactPoints};
     let max = merged
         .mesh
         .vertices
@@ -462,25 +700,39 @@ pub(crate) fn validated_mesh(ops: &Operands, overlay: &Overlay) -> Result<SumMes
     let pts: Vec<DVec3> = merged.mesh.vertices.iter().map(|&v| v.into()).collect();
     let points = ExactPoints::new(&pts);
     // Rounded sums usually bend the faces of four or more corners (the
-    // parallelograms of edge pairs): such a mesh cannot pass the full
-    // check, so go straight to the hull of the rounded vertices.
-    let bent = |f: &Vec<usize>| {
-        f[3..]
-            .iter()
-            .any(|&d| points.orient3(f[0], f[1], f[2], d) != Sign::Zero)
+    // parallelograms of edge pairs). Rounding moves each vertex by at most
+    // half an ulp, so the exact hull of the rounded vertices is almost
+    // always the merged mesh with its bent faces folded: try that first
+    // (O(size)), keep it only if it passes the full exact check, else build
+    // the hull from scratch.
+    let folded = if merged.exact {
+        Folded::Flat
+    } else {
+        fold_bent_faces(&merged.mesh.faces, &points)
     };
-    if merged.exact || !merged.mesh.faces.iter().any(bent) {
-        match check_convex_mesh(&merged.mesh) {
+    let candidate = match folded {
+        Folded::Flat => Some((merged.mesh.faces, false)),
+        Folded::Split(faces) => Some((faces, true)),
+        Folded::NoHull => None,
+    };
+    if let Some((faces, bent)) = candidate {
+        match check_convex_faces(&faces, &points) {
             Ok(()) => {
-                return Ok(SumMesh {
-                    mesh: merged.mesh,
+                return Ok(Some(SumMesh {
+                    mesh: PolygonMesh {
+                        vertices: merged.mesh.vertices,
+                        faces,
+                    },
                     precision,
-                    hull_fallback: false,
-                })
+                    hull_fallback: bent,
+                }))
             }
-            Err(defect) if merged.exact => return Err(MeshError::Invalid(defect)),
+            Err(defect) if merged.exact && hull => return Err(MeshError::Invalid(defect)),
             Err(_) => {}
         }
+    }
+    if !hull {
+        return Ok(None);
     }
     let hull = crate::hull::convex_hull(&points).map_err(|e| MeshError::PrecisionLost {
         ulp: precision.ulp,
@@ -494,9 +746,103 @@ pub(crate) fn validated_mesh(ops: &Operands, overlay: &Overlay) -> Result<SumMes
     })?;
     let mesh = hull.to_mesh(&points);
     check_convex_mesh(&mesh)?;
-    Ok(SumMesh {
+    Ok(Some(SumMesh {
         mesh,
         precision,
         hull_fallback: true,
-    })
+    }))
+}
+
+/// What folding the bent faces of a merged mesh gave.
+enum Folded {
+    /// No face is bent: the mesh is a candidate as it is.
+    Flat,
+    /// The faces with each bent face folded (a candidate).
+    Split(Vec<Vec<usize>>),
+    /// A bent face's corners have no usable hull.
+    NoHull,
+}
+
+/// The merged faces with each face whose rounded corners are not coplanar
+/// replaced by the outer side of their hull: a quadrilateral is split along
+/// the diagonal that folds outward (the same exact `orient3d` that found it
+/// bent), a larger face by the faces of its corners' hull that face the
+/// same way as the polygon. The result is a candidate only:
+/// [`super::validate::check_convex_faces`] decides.
+fn fold_bent_faces(faces: &[Vec<usize>], points: &super::validate::ExactPoints) -> Folded {
+    // The sign of the first off-plane corner, if any.
+    let bend = |f: &[usize]| {
+        f[3..]
+            .iter()
+            .map(|&d| points.orient3(f[0], f[1], f[2], d))
+            .find(|&s| s != Sign::Zero)
+    };
+    let Some(first) = faces.iter().position(|f| bend(f).is_some()) else {
+        return Folded::Flat;
+    };
+    let mut out = Vec::with_capacity(faces.len() + faces.len() / 2);
+    out.extend_from_slice(&faces[..first]);
+    for f in &faces[first..] {
+        let Some(sign) = bend(f) else {
+            out.push(f.clone());
+            continue;
+        };
+        if let [a, b, c, d] = f[..] {
+            // `d` below the plane of `a, b, c`: the fold along `a c` is
+            // convex; above: the fold along `b d` is.
+            if sign == Sign::Negative {
+                out.push(vec![a, b, c]);
+                out.push(vec![a, c, d]);
+            } else {
+                out.push(vec![a, b, d]);
+                out.push(vec![b, c, d]);
+            }
+            continue;
+        }
+        match outer_side(f, points) {
+            Some(side) => out.extend(side),
+            None => return Folded::NoHull,
+        }
+    }
+    Folded::Split(out)
+}
+
+/// The faces of the hull of the polygon `face`'s corners whose normals point
+/// the polygon's way (float normals: a wrong pick fails the exact check).
+fn outer_side(face: &[usize], points: &super::validate::ExactPoints) -> Option<Vec<Vec<usize>>> {
+    struct Corners<'a>(&'a [usize], &'a super::validate::ExactPoints);
+    impl crate::hull::HullPoints for Corners<'_> {
+        fn len(&self) -> usize {
+            self.0.len()
+        }
+        fn coords(&self, i: usize) -> DVec3 {
+            self.1.points()[self.0[i]]
+        }
+        fn orient(&self, a: usize, b: usize, c: usize, d: usize) -> Sign {
+            self.1.orient3(self.0[a], self.0[b], self.0[c], self.0[d])
+        }
+        fn collinear(&self, a: usize, b: usize, c: usize) -> bool {
+            (0..3).all(|axis| self.1.orient2(axis, self.0[a], self.0[b], self.0[c]) == Sign::Zero)
+        }
+    }
+    // Scaled coordinates: the normals neither underflow nor depend on the
+    // scale.
+    let pts = points.scaled_points();
+    let newell = |f: &mut dyn Iterator<Item = usize>| {
+        let ring: Vec<DVec3> = f.map(|i| pts[i]).collect();
+        let o = ring[0];
+        (1..ring.len())
+            .map(|k| (ring[k] - o).cross(ring[(k + 1) % ring.len()] - o))
+            .sum::<DVec3>()
+    };
+    let normal = newell(&mut face.iter().copied());
+    let corners = Corners(face, points);
+    let hull = crate::hull::convex_hull(&corners).ok()?;
+    let outer: Vec<Vec<usize>> = hull
+        .faces
+        .iter()
+        .filter(|h| newell(&mut h.iter().map(|&i| face[i])).dot(normal) > 0.0)
+        .map(|h| h.iter().map(|&i| face[i]).collect())
+        .collect();
+    (!outer.is_empty()).then_some(outer)
 }

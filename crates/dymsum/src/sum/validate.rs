@@ -15,7 +15,8 @@
 //!    (its edge directions change sign twice along one projected axis);
 //! 3. every edge is strictly convex and outward: the next corner of the
 //!    neighbouring face lies strictly below the face's counter-clockwise
-//!    plane.
+//!    plane (tested once per edge: for two planar faces the test from
+//!    either side has the same answer).
 //!
 //! Together these make the Gauss map a local homeomorphism of degree
 //! `χ/2 = 1`, so the mesh bounds a convex body (no vertex can wind twice).
@@ -117,6 +118,10 @@ pub struct ExactPoints {
     scaled: Vec<DVec3>,
     /// `scaled` is an exact power-of-two multiple of `orig`.
     scaled_exact: bool,
+    /// Every scaled coordinate is zero or at least `2^-200` in magnitude:
+    /// no product or error term in Shewchuk's predicates can underflow,
+    /// so their signs (zero included) are exact as computed.
+    tame: bool,
 }
 
 /// `x · 2^k`, in steps that cannot overflow the scale factor itself.
@@ -144,6 +149,12 @@ fn exponent(x: f64) -> i32 {
 /// Results below this magnitude may be affected by underflow.
 const UNDERFLOW_GUARD: f64 = 1e-250;
 
+/// Scaled coordinates (largest in `[1, 2)`) that are zero or at least this
+/// large keep every term of `orient3d` above `2^-1000`: differences are
+/// multiples of `2^-252`, triple products and their error terms at least
+/// `2^-915`.
+const TAME: f64 = 6.223015277861142e-61; // 2^-200
+
 impl ExactPoints {
     /// Wraps finite points (callers check finiteness).
     pub fn new(points: &[DVec3]) -> Self {
@@ -163,10 +174,15 @@ impl ExactPoints {
         let scaled_exact = points.iter().zip(&scaled).all(|(p, s)| {
             DVec3::new(mul_pow2(s.x, -k), mul_pow2(s.y, -k), mul_pow2(s.z, -k)) == *p
         });
+        let tame = scaled
+            .iter()
+            .flat_map(|p| p.to_array())
+            .all(|x| x == 0.0 || x.abs() >= TAME);
         ExactPoints {
             orig: points.to_vec(),
             scaled,
             scaled_exact,
+            tame,
         }
     }
 
@@ -175,13 +191,20 @@ impl ExactPoints {
         &self.orig
     }
 
+    /// The points scaled by one power of two so the largest coordinate is
+    /// in `[1, 2)`: for float constructions that must not underflow or
+    /// overflow, and that give the same result at every scale.
+    pub(crate) fn scaled_points(&self) -> &[DVec3] {
+        &self.scaled
+    }
+
     /// Exact sign of `det[b − a, c − a, d − a]` (`Positive`: `d` above the
     /// counter-clockwise plane of `a, b, c`).
     pub fn orient3(&self, a: usize, b: usize, c: usize, d: usize) -> Sign {
         if self.scaled_exact {
             let s = &self.scaled;
             let r = -robust::orient3d(c3(s[a]), c3(s[b]), c3(s[c]), c3(s[d]));
-            if r.is_finite() && r.abs() > UNDERFLOW_GUARD {
+            if self.tame || (r.is_finite() && r.abs() > UNDERFLOW_GUARD) {
                 return Sign::of(r);
             }
         }
@@ -205,7 +228,7 @@ impl ExactPoints {
                 y: s[k][j],
             };
             let r = robust::orient2d(p(a), p(b), p(c));
-            if r.is_finite() && r.abs() > UNDERFLOW_GUARD {
+            if self.tame || (r.is_finite() && r.abs() > UNDERFLOW_GUARD) {
                 return Sign::of(r);
             }
         }
@@ -262,25 +285,40 @@ impl HullPoints for ExactPoints {
 /// assert!(matches!(check_convex_mesh(&inside_out), Err(MeshDefect::NonConvexEdge(..))));
 /// ```
 pub fn check_convex_mesh(mesh: &PolygonMesh) -> Result<(), MeshDefect> {
-    let n = mesh.vertices.len();
     let pts: Vec<DVec3> = mesh.vertices.iter().map(|p| DVec3::from(*p)).collect();
     if let Some(v) = pts.iter().position(|p| !p.is_finite()) {
         return Err(MeshDefect::NonFinite { vertex: v });
     }
-    // Combinatorics.
-    for (fi, f) in mesh.faces.iter().enumerate() {
-        let mut sorted = f.clone();
+    check_convex_faces(&mesh.faces, &ExactPoints::new(&pts))
+}
+
+/// `true` when the face repeats a vertex (quadratic for small faces, a
+/// sorted copy for large ones).
+fn repeats_a_vertex(f: &[usize]) -> bool {
+    if f.len() <= 16 {
+        (1..f.len()).any(|i| f[..i].contains(&f[i]))
+    } else {
+        let mut sorted = f.to_vec();
         sorted.sort_unstable();
-        sorted.dedup();
-        if f.len() < 3 || sorted.len() != f.len() || sorted.last().is_some_and(|&v| v >= n) {
+        sorted.windows(2).any(|w| w[0] == w[1])
+    }
+}
+
+/// [`check_convex_mesh`] of `faces` over finite points already wrapped for
+/// exact predicates.
+pub(crate) fn check_convex_faces(faces: &[Vec<usize>], ep: &ExactPoints) -> Result<(), MeshDefect> {
+    let n = ep.points().len();
+    let pts = ep.points();
+    // Combinatorics.
+    for (fi, f) in faces.iter().enumerate() {
+        if f.len() < 3 || f.iter().any(|&v| v >= n) || repeats_a_vertex(f) {
             return Err(MeshDefect::BadFace { face: fi });
         }
     }
-    let directed = DirectedEdges::new(n, &mesh.faces);
+    let directed = DirectedEdges::new(n, faces);
     directed.check_sphere(Unused::Refuse)?;
     // Geometry, exactly.
-    let ep = ExactPoints::new(&pts);
-    for (fi, f) in mesh.faces.iter().enumerate() {
+    for (fi, f) in faces.iter().enumerate() {
         let (a, b, c) = (f[0], f[1], f[2]);
         let Some(axis) = (0..3).find(|&ax| ep.orient2(ax, a, b, c) != Sign::Zero) else {
             return Err(MeshDefect::CollinearCorner {
@@ -288,6 +326,11 @@ pub fn check_convex_mesh(mesh: &PolygonMesh) -> Result<(), MeshDefect> {
                 vertex: b,
             });
         };
+        if f.len() == 3 {
+            // Three corners not on one line: a strictly convex polygon that
+            // winds once.
+            continue;
+        }
         let turn = ep.orient2(axis, a, b, c);
         for &d in &f[3..] {
             if ep.orient3(a, b, c, d) != Sign::Zero {
@@ -349,17 +392,22 @@ pub fn check_convex_mesh(mesh: &PolygonMesh) -> Result<(), MeshDefect> {
             return Err(MeshDefect::NonConvexFace { face: fi });
         }
     }
+    // Each edge once: for planar faces meeting at an edge, the far corner of
+    // either lies below the other's plane iff the same holds the other way.
     for a in 0..n {
         for pos in directed.start[a]..directed.start[a + 1] {
             let b = directed.target[pos];
+            if b < a {
+                continue;
+            }
             let (fi, _) = directed.face_corner(pos);
             // Checked above: every edge has its reverse.
             let reverse = directed.find(b, a).ok_or(MeshDefect::OpenEdge(a, b))?;
             let (gi, kg) = directed.face_corner(reverse);
-            let g = &mesh.faces[gi];
+            let g = &faces[gi];
             // g runs b → a → c.
             let c = g[(kg + 2) % g.len()];
-            let f = &mesh.faces[fi];
+            let f = &faces[fi];
             if ep.orient3(f[0], f[1], f[2], c) != Sign::Negative {
                 return Err(MeshDefect::NonConvexEdge(a, b));
             }
