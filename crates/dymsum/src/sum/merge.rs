@@ -705,16 +705,13 @@ fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<Sum
     // always the merged mesh with its bent faces folded: try that first
     // (O(size)), keep it only if it passes the full exact check, else build
     // the hull from scratch.
+    let mut faces = merged.mesh.faces;
     let folded = if merged.exact {
-        Folded::Flat
+        Some(false)
     } else {
-        fold_bent_faces(&merged.mesh.faces, &points)
+        fold_bent_faces(&mut faces, &points)
     };
-    let candidate = match folded {
-        Folded::Flat => Some((merged.mesh.faces, false)),
-        Folded::Split(faces) => Some((faces, true)),
-        Folded::NoHull => None,
-    };
+    let candidate = folded.map(|bent| (faces, bent));
     if let Some((faces, bent)) = candidate {
         match check_convex_faces(&faces, &points) {
             Ok(()) => {
@@ -753,58 +750,49 @@ fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<Sum
     }))
 }
 
-/// What folding the bent faces of a merged mesh gave.
-enum Folded {
-    /// No face is bent: the mesh is a candidate as it is.
-    Flat,
-    /// The faces with each bent face folded (a candidate).
-    Split(Vec<Vec<usize>>),
-    /// A bent face's corners have no usable hull.
-    NoHull,
-}
-
-/// The merged faces with each face whose rounded corners are not coplanar
-/// replaced by the outer side of their hull: a quadrilateral is split along
-/// the diagonal that folds outward (the same exact `orient3d` that found it
+/// Replaces, in place, each face whose rounded corners are not coplanar by
+/// the outer side of their hull: a quadrilateral is split along the
+/// diagonal that folds outward (the same exact `orient3d` that found it
 /// bent), a larger face by the faces of its corners' hull that face the
-/// same way as the polygon. The result is a candidate only:
+/// same way as the polygon. Extra pieces go to the end of the list.
+/// Returns whether any face was bent, or `None` when a bent face's corners
+/// have no usable hull. The result is a candidate only:
 /// [`super::validate::check_convex_faces`] decides.
-fn fold_bent_faces(faces: &[Vec<usize>], points: &super::validate::ExactPoints) -> Folded {
-    // The sign of the first off-plane corner, if any.
-    let bend = |f: &[usize]| {
-        f[3..]
+fn fold_bent_faces(
+    faces: &mut Vec<Vec<usize>>,
+    points: &super::validate::ExactPoints,
+) -> Option<bool> {
+    let mut bent = false;
+    for i in 0..faces.len() {
+        let f = &mut faces[i];
+        // The sign of the first off-plane corner, if any.
+        let Some(sign) = f[3..]
             .iter()
             .map(|&d| points.orient3(f[0], f[1], f[2], d))
             .find(|&s| s != Sign::Zero)
-    };
-    let Some(first) = faces.iter().position(|f| bend(f).is_some()) else {
-        return Folded::Flat;
-    };
-    let mut out = Vec::with_capacity(faces.len() + faces.len() / 2);
-    out.extend_from_slice(&faces[..first]);
-    for f in &faces[first..] {
-        let Some(sign) = bend(f) else {
-            out.push(f.clone());
+        else {
             continue;
         };
+        bent = true;
         if let [a, b, c, d] = f[..] {
             // `d` below the plane of `a, b, c`: the fold along `a c` is
             // convex; above: the fold along `b d` is.
-            if sign == Sign::Negative {
-                out.push(vec![a, b, c]);
-                out.push(vec![a, c, d]);
+            let other = if sign == Sign::Negative {
+                f.truncate(3);
+                vec![a, c, d]
             } else {
-                out.push(vec![a, b, d]);
-                out.push(vec![b, c, d]);
-            }
+                f.remove(2);
+                f[0..3].copy_from_slice(&[b, c, d]);
+                vec![a, b, d]
+            };
+            faces.push(other);
             continue;
         }
-        match outer_side(f, points) {
-            Some(side) => out.extend(side),
-            None => return Folded::NoHull,
-        }
+        let mut side = outer_side(f, points)?.into_iter();
+        faces[i] = side.next()?;
+        faces.extend(side);
     }
-    Folded::Split(out)
+    Some(bent)
 }
 
 /// The faces of the hull of the polygon `face`'s corners whose normals point
