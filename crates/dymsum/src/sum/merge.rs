@@ -38,9 +38,14 @@
 //!    bent), and the result must pass the exact convexity check
 //!    ([`super::validate::check_convex_mesh`]). It then *is* the exact hull
 //!    of the rounded vertices (every vertex a strict corner, every edge
-//!    strictly convex), found in linear time. Only if the check fails
-//!    (rounding moved a vertex inside, or made neighbouring faces coplanar)
-//!    is the hull built from scratch, `O(V log V)`.
+//!    strictly convex), found in linear time. Where the check fails, the
+//!    defects are repaired locally: reflex edges between triangles are
+//!    flipped to the other diagonal (on flat models such as the paper's
+//!    ellipse, rounding makes a few dozen of them), and what flips leave
+//!    (flat edges, a vertex pushed inside) is replaced by the outer side of
+//!    the hull of the faces around it; a vertex left out must lie inside
+//!    the checked result. Only if that fails too is the hull built from
+//!    scratch, `O(V log V)`.
 //!
 //! # Complexity
 //!
@@ -56,6 +61,9 @@
 //! power-of-two scaled frame, so they neither underflow nor depend on the
 //! scale).
 
+use super::validate::{
+    check_convex_faces, check_sphere_faces, edge_is_convex, face_defect, ExactPoints,
+};
 use super::{Operands, Overlay};
 use crate::kernel::predicates::{det3, same_direction, sos_det3};
 use crate::kernel::Sign;
@@ -646,7 +654,8 @@ pub struct SumMesh {
     /// The rounding of its coordinates relative to the sum's size.
     pub precision: Precision,
     /// `true` when rounding broke the exact faces and the mesh is the exact
-    /// hull of the rounded vertices instead.
+    /// hull of the rounded vertices instead (the merged mesh with its bent
+    /// faces folded, or, if that fails the check, a hull from scratch).
     pub hull_fallback: bool,
 }
 
@@ -681,7 +690,7 @@ pub(crate) fn validated_mesh(ops: &Operands, overlay: &Overlay) -> Result<SumMes
 /// folded), else (with `hull`) the exact hull of its rounded vertices, else
 /// `None`.
 fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<SumMesh>, MeshError> {
-    use super::validate::{check_convex_faces, check_convex_mesh, ExactPoints};
+    use super::validate::check_convex_mesh;
     let max = merged
         .mesh
         .vertices
@@ -725,7 +734,26 @@ fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<Sum
                 }))
             }
             Err(defect) if merged.exact && hull => return Err(MeshError::Invalid(defect)),
-            Err(_) => {}
+            Err(_) => {
+                // Rounding made some neighbouring faces reflex or coplanar,
+                // or pushed a vertex inside: rebuild only around those.
+                // Flips first (cheap, local); what they leave, a local hull.
+                let vertices = &merged.mesh.vertices;
+                let flipped = flip_reflex_edges(faces, &points);
+                let repaired = flipped.and_then(|faces| {
+                    compact_checked(vertices, &faces, &points).or_else(|| {
+                        repair_defects(&faces, &points)
+                            .and_then(|faces| compact_checked(vertices, &faces, &points))
+                    })
+                });
+                if let Some(mesh) = repaired {
+                    return Ok(Some(SumMesh {
+                        mesh,
+                        precision,
+                        hull_fallback: true,
+                    }));
+                }
+            }
         }
     }
     if !hull {
@@ -758,10 +786,7 @@ fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<Sum
 /// Returns whether any face was bent, or `None` when a bent face's corners
 /// have no usable hull. The result is a candidate only:
 /// [`super::validate::check_convex_faces`] decides.
-fn fold_bent_faces(
-    faces: &mut Vec<Vec<usize>>,
-    points: &super::validate::ExactPoints,
-) -> Option<bool> {
+fn fold_bent_faces(faces: &mut Vec<Vec<usize>>, points: &ExactPoints) -> Option<bool> {
     let mut bent = false;
     for i in 0..faces.len() {
         let f = &mut faces[i];
@@ -795,24 +820,27 @@ fn fold_bent_faces(
     Some(bent)
 }
 
+/// A subset of exact points (by index), for local hulls.
+struct Corners<'a>(&'a [usize], &'a ExactPoints);
+
+impl crate::hull::HullPoints for Corners<'_> {
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+    fn coords(&self, i: usize) -> DVec3 {
+        self.1.points()[self.0[i]]
+    }
+    fn orient(&self, a: usize, b: usize, c: usize, d: usize) -> Sign {
+        self.1.orient3(self.0[a], self.0[b], self.0[c], self.0[d])
+    }
+    fn collinear(&self, a: usize, b: usize, c: usize) -> bool {
+        (0..3).all(|axis| self.1.orient2(axis, self.0[a], self.0[b], self.0[c]) == Sign::Zero)
+    }
+}
+
 /// The faces of the hull of the polygon `face`'s corners whose normals point
 /// the polygon's way (float normals: a wrong pick fails the exact check).
-fn outer_side(face: &[usize], points: &super::validate::ExactPoints) -> Option<Vec<Vec<usize>>> {
-    struct Corners<'a>(&'a [usize], &'a super::validate::ExactPoints);
-    impl crate::hull::HullPoints for Corners<'_> {
-        fn len(&self) -> usize {
-            self.0.len()
-        }
-        fn coords(&self, i: usize) -> DVec3 {
-            self.1.points()[self.0[i]]
-        }
-        fn orient(&self, a: usize, b: usize, c: usize, d: usize) -> Sign {
-            self.1.orient3(self.0[a], self.0[b], self.0[c], self.0[d])
-        }
-        fn collinear(&self, a: usize, b: usize, c: usize) -> bool {
-            (0..3).all(|axis| self.1.orient2(axis, self.0[a], self.0[b], self.0[c]) == Sign::Zero)
-        }
-    }
+fn outer_side(face: &[usize], points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
     // Scaled coordinates: the normals neither underflow nor depend on the
     // scale.
     let pts = points.scaled_points();
@@ -833,4 +861,318 @@ fn outer_side(face: &[usize], points: &super::validate::ExactPoints) -> Option<V
         .map(|h| h.iter().map(|&i| face[i]).collect())
         .collect();
     (!outer.is_empty()).then_some(outer)
+}
+
+/// The faces with the region around every defect replaced by the outer side
+/// of the hull of the region's corners. A defect is a face that is not a
+/// strictly convex planar polygon or an edge that is not strictly convex;
+/// the region is the faces at the defects grown by one ring of faces
+/// around their corners. The outer side is found from the region's
+/// boundary: the hull faces holding its edges (same direction) and all hull
+/// faces reached from them without crossing it. `None` when the faces are
+/// not a closed sphere or the boundary is not on the hull. The result is a
+/// candidate only (its corners may have lost vertices pushed inside):
+/// [`compact_checked`] decides.
+fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
+    let n = points.points().len();
+    let directed = check_sphere_faces(faces, n).ok()?;
+    let across = |pos: usize| -> Option<usize> {
+        let (f, k) = directed.face_corner(pos);
+        let (a, b) = (faces[f][k], faces[f][(k + 1) % faces[f].len()]);
+        directed.find(b, a).map(|r| directed.face_corner(r).0)
+    };
+    let mut in_region: Vec<bool> = faces
+        .iter()
+        .enumerate()
+        .map(|(fi, f)| face_defect(fi, f, points).is_err())
+        .collect();
+    for a in 0..n {
+        for pos in directed.start[a]..directed.start[a + 1] {
+            if directed.target[pos] > a && !edge_is_convex(faces, &directed, pos, points) {
+                in_region[directed.face_corner(pos).0] = true;
+                in_region[across(pos)?] = true;
+            }
+        }
+    }
+    // Grow by the faces around the region's corners.
+    let mut corner = vec![false; n];
+    for (f, _) in faces.iter().zip(&in_region).filter(|(_, &r)| r) {
+        for &v in f {
+            corner[v] = true;
+        }
+    }
+    for v in (0..n).filter(|&v| corner[v]) {
+        for pos in directed.start[v]..directed.start[v + 1] {
+            in_region[directed.face_corner(pos).0] = true;
+        }
+    }
+    let mut sub = Vec::new();
+    corner.iter_mut().for_each(|c| *c = false);
+    for (f, _) in faces.iter().zip(&in_region).filter(|(_, &r)| r) {
+        for &v in f {
+            if !corner[v] {
+                corner[v] = true;
+                sub.push(v);
+            }
+        }
+    }
+    let hull = crate::hull::convex_hull(&Corners(&sub, points)).ok()?;
+    let hull_faces: Vec<Vec<usize>> = hull
+        .faces
+        .iter()
+        .map(|h| h.iter().map(|&i| sub[i]).collect())
+        .collect();
+    // The region's boundary, directed as in its faces.
+    let mut boundary = Vec::new();
+    for a in 0..n {
+        for pos in directed.start[a]..directed.start[a + 1] {
+            if in_region[directed.face_corner(pos).0] && !in_region[across(pos)?] {
+                boundary.push((a, directed.target[pos]));
+            }
+        }
+    }
+    boundary.sort_unstable();
+    let hull_edges = DirectedEdges::new(n, &hull_faces);
+    let mut top = vec![false; hull_faces.len()];
+    let mut stack = Vec::new();
+    for &(a, b) in &boundary {
+        let h = hull_edges.face_corner(hull_edges.find(a, b)?).0;
+        if !top[h] {
+            top[h] = true;
+            stack.push(h);
+        }
+    }
+    while let Some(h) = stack.pop() {
+        let f = &hull_faces[h];
+        for k in 0..f.len() {
+            let (a, b) = (f[k], f[(k + 1) % f.len()]);
+            if boundary.binary_search(&(a, b)).is_ok() {
+                continue;
+            }
+            let g = hull_edges.face_corner(hull_edges.find(b, a)?).0;
+            if !top[g] {
+                top[g] = true;
+                stack.push(g);
+            }
+        }
+    }
+    let kept = faces
+        .iter()
+        .zip(&in_region)
+        .filter(|(_, &r)| !r)
+        .map(|(f, _)| f.clone());
+    let outer = hull_faces
+        .into_iter()
+        .zip(top)
+        .filter(|(_, t)| *t)
+        .map(|(f, _)| f);
+    Some(kept.chain(outer).collect())
+}
+
+/// The mesh of `faces` over the vertices they use (renumbered in order),
+/// if it passes the exact check and every vertex it leaves out lies inside
+/// or on it (so it is the exact hull of all of `vertices`).
+fn compact_checked(
+    vertices: &[[f64; 3]],
+    faces: &[Vec<usize>],
+    points: &ExactPoints,
+) -> Option<PolygonMesh> {
+    let n = vertices.len();
+    let mut new_id = vec![usize::MAX; n];
+    for &v in faces.iter().flatten() {
+        new_id[v] = 0;
+    }
+    let mut kept = Vec::with_capacity(n);
+    for (v, id) in new_id.iter_mut().enumerate() {
+        if *id == 0 {
+            *id = kept.len();
+            kept.push(v);
+        }
+    }
+    let renumbered: Vec<Vec<usize>> = faces
+        .iter()
+        .map(|f| f.iter().map(|&v| new_id[v]).collect())
+        .collect();
+    let compact;
+    let ep = if kept.len() == n {
+        points
+    } else {
+        let pts: Vec<DVec3> = kept.iter().map(|&v| points.points()[v]).collect();
+        compact = ExactPoints::new(&pts);
+        &compact
+    };
+    check_convex_faces(&renumbered, ep).ok()?;
+    for v in (0..n).filter(|&v| new_id[v] == usize::MAX) {
+        if faces
+            .iter()
+            .any(|f| points.orient3(f[0], f[1], f[2], v) == Sign::Positive)
+        {
+            return None;
+        }
+    }
+    Some(PolygonMesh {
+        vertices: kept.iter().map(|&v| vertices[v]).collect(),
+        faces: renumbered,
+    })
+}
+
+/// The faces with every reflex edge between two triangles flipped to the
+/// other diagonal of their quadrilateral (which is then convex), and the
+/// edges around each flip re-tested, until no such edge is left: the local
+/// convexification of a mesh whose vertices rounding moved by an ulp.
+/// Other defects (a reflex edge at a polygon, a flat edge, a flip that
+/// would duplicate an edge) are left for [`repair_defects`]. `None` when
+/// the faces are not a closed sphere or flips do not settle. The result is
+/// a candidate only: [`compact_checked`] decides.
+fn flip_reflex_edges(mut faces: Vec<Vec<usize>>, points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
+    use std::collections::HashMap;
+    let n = points.points().len();
+    let directed = check_sphere_faces(&faces, n).ok()?;
+    let mut queue = Vec::new();
+    for a in 0..n {
+        for pos in directed.start[a]..directed.start[a + 1] {
+            let b = directed.target[pos];
+            if b > a && !edge_is_convex(&faces, &directed, pos, points) {
+                queue.push((a, b));
+            }
+        }
+    }
+    // Directed edges changed by flips (`None`: removed), over the index.
+    let mut changed: HashMap<(usize, usize), Option<usize>> = HashMap::new();
+    let face_of =
+        |changed: &HashMap<(usize, usize), Option<usize>>, a: usize, b: usize| match changed
+            .get(&(a, b))
+        {
+            Some(&f) => f,
+            None => directed.find(a, b).map(|p| directed.face_corner(p).0),
+        };
+    let mut budget = 8 * queue.len() + 64;
+    while let Some((a, b)) = queue.pop() {
+        budget = budget.checked_sub(1)?;
+        let (fi, gi) = (face_of(&changed, a, b)?, face_of(&changed, b, a)?);
+        let (f, g) = (&faces[fi], &faces[gi]);
+        if f.len() != 3 || g.len() != 3 {
+            continue;
+        }
+        // f runs a → b → c, g runs b → a → d.
+        let c = f[(f.iter().position(|&v| v == b)? + 1) % 3];
+        let d = g[(g.iter().position(|&v| v == a)? + 1) % 3];
+        if points.orient3(a, b, c, d) != Sign::Positive
+            || c == d
+            || face_of(&changed, c, d).is_some()
+            || face_of(&changed, d, c).is_some()
+        {
+            continue;
+        }
+        faces[fi] = vec![a, d, c];
+        faces[gi] = vec![d, b, c];
+        changed.insert((a, b), None);
+        changed.insert((b, a), None);
+        for (e, face) in [
+            ((a, d), fi),
+            ((d, c), fi),
+            ((c, a), fi),
+            ((d, b), gi),
+            ((b, c), gi),
+            ((c, d), gi),
+        ] {
+            changed.insert(e, Some(face));
+        }
+        queue.extend([(a, d), (d, b), (b, c), (c, a)]);
+    }
+    Some(faces)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hull::{convex_hull, FloatPoints};
+
+    /// A triangulated convex mesh: the hull of points on the unit sphere
+    /// (generic, so every face is a triangle).
+    fn sphere_mesh(n: usize) -> (Vec<DVec3>, Vec<Vec<usize>>) {
+        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        let pts: Vec<DVec3> = (0..n)
+            .map(|i| {
+                let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+                let r = (1.0 - y * y).sqrt();
+                let t = golden * i as f64;
+                DVec3::new(r * t.cos(), y, r * t.sin())
+            })
+            .collect();
+        let hull = convex_hull(&FloatPoints(&pts)).unwrap();
+        assert!(hull.faces.iter().all(|f| f.len() == 3));
+        (pts, hull.faces)
+    }
+
+    /// Flips the edge `a → b` of `faces` to the other diagonal.
+    fn flip(faces: &mut [Vec<usize>], a: usize, b: usize) {
+        let at =
+            |f: &Vec<usize>, x: usize, y: usize| (0..3).any(|k| f[k] == x && f[(k + 1) % 3] == y);
+        let fi = faces.iter().position(|f| at(f, a, b)).unwrap();
+        let gi = faces.iter().position(|f| at(f, b, a)).unwrap();
+        let c = *faces[fi].iter().find(|&&v| v != a && v != b).unwrap();
+        let d = *faces[gi].iter().find(|&&v| v != a && v != b).unwrap();
+        faces[fi] = vec![a, d, c];
+        faces[gi] = vec![d, b, c];
+    }
+
+    fn as_mesh(pts: &[DVec3]) -> Vec<[f64; 3]> {
+        pts.iter().map(|p| p.to_array()).collect()
+    }
+
+    #[test]
+    fn flips_undo_reflex_edges() {
+        let (pts, good) = sphere_mesh(60);
+        let ep = ExactPoints::new(&pts);
+        let mut bad = good.clone();
+        let (a, b) = (bad[0][0], bad[0][1]);
+        flip(&mut bad, a, b);
+        let (c, d) = (bad[7][0], bad[7][1]);
+        flip(&mut bad, c, d);
+        assert!(check_convex_faces(&bad, &ep).is_err());
+        let fixed = flip_reflex_edges(bad, &ep).unwrap();
+        let mesh = compact_checked(&as_mesh(&pts), &fixed, &ep).expect("flips repair it");
+        assert_eq!(mesh.faces.len(), good.len());
+    }
+
+    #[test]
+    fn a_local_hull_drops_a_vertex_pushed_inside() {
+        let (mut pts, mut faces) = sphere_mesh(60);
+        // A new vertex just inside face 0, which is split into three.
+        let f = faces[0].clone();
+        let centre = (pts[f[0]] + pts[f[1]] + pts[f[2]]) / 3.0;
+        let v = pts.len();
+        pts.push(centre * (1.0 - 1e-9));
+        faces[0] = vec![f[0], f[1], v];
+        faces.push(vec![f[1], f[2], v]);
+        faces.push(vec![f[2], f[0], v]);
+        let ep = ExactPoints::new(&pts);
+        assert!(check_convex_faces(&faces, &ep).is_err());
+        let region = repair_defects(&faces, &ep).unwrap();
+        let mesh = compact_checked(&as_mesh(&pts), &region, &ep).expect("a local hull repairs it");
+        assert_eq!(mesh.vertices.len(), pts.len() - 1);
+        // A vertex pushed *outside* is kept, never dropped.
+        pts[v] = centre * (1.0 + 1e-9);
+        let ep = ExactPoints::new(&pts);
+        let mesh = compact_checked(&as_mesh(&pts), &faces, &ep).expect("convex as is");
+        assert_eq!(mesh.vertices.len(), pts.len());
+    }
+
+    #[test]
+    fn a_dropped_vertex_outside_is_refused() {
+        let (pts, faces) = sphere_mesh(40);
+        let ep = ExactPoints::new(&pts);
+        // The hull of every vertex but 0 is closed and convex, but vertex 0
+        // lies outside it: not the hull of all the vertices.
+        let rest: Vec<usize> = (1..pts.len()).collect();
+        let hull = convex_hull(&Corners(&rest, &ep)).unwrap();
+        let without: Vec<Vec<usize>> = hull
+            .faces
+            .iter()
+            .map(|f| f.iter().map(|&i| rest[i]).collect())
+            .collect();
+        assert!(compact_checked(&as_mesh(&pts), &without, &ep).is_none());
+        assert!(compact_checked(&as_mesh(&pts), &faces, &ep).is_some());
+    }
 }

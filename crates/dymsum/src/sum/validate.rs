@@ -307,9 +307,32 @@ fn repeats_a_vertex(f: &[usize]) -> bool {
 /// [`check_convex_mesh`] of `faces` over finite points already wrapped for
 /// exact predicates.
 pub(crate) fn check_convex_faces(faces: &[Vec<usize>], ep: &ExactPoints) -> Result<(), MeshDefect> {
-    let n = ep.points().len();
-    let pts = ep.points();
-    // Combinatorics.
+    let directed = check_sphere_faces(faces, ep.points().len())?;
+    // Geometry, exactly.
+    for (fi, f) in faces.iter().enumerate() {
+        face_defect(fi, f, ep)?;
+    }
+    for a in 0..ep.points().len() {
+        for pos in directed.start[a]..directed.start[a + 1] {
+            let b = directed.target[pos];
+            // Each edge once: for planar faces meeting at an edge, the far
+            // corner of either lies below the other's plane iff the same
+            // holds the other way.
+            if b > a && !edge_is_convex(faces, &directed, pos, ep) {
+                return Err(MeshDefect::NonConvexEdge(a, b));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The combinatorial part of [`check_convex_faces`]: proper faces over `n`
+/// vertices forming a closed, oriented 2-manifold sphere using every
+/// vertex; returns its directed-edge index.
+pub(crate) fn check_sphere_faces(
+    faces: &[Vec<usize>],
+    n: usize,
+) -> Result<DirectedEdges, MeshDefect> {
     for (fi, f) in faces.iter().enumerate() {
         if f.len() < 3 || f.iter().any(|&v| v >= n) || repeats_a_vertex(f) {
             return Err(MeshDefect::BadFace { face: fi });
@@ -317,101 +340,107 @@ pub(crate) fn check_convex_faces(faces: &[Vec<usize>], ep: &ExactPoints) -> Resu
     }
     let directed = DirectedEdges::new(n, faces);
     directed.check_sphere(Unused::Refuse)?;
-    // Geometry, exactly.
-    for (fi, f) in faces.iter().enumerate() {
-        let (a, b, c) = (f[0], f[1], f[2]);
-        let Some(axis) = (0..3).find(|&ax| ep.orient2(ax, a, b, c) != Sign::Zero) else {
-            return Err(MeshDefect::CollinearCorner {
+    Ok(directed)
+}
+
+/// Whether the edge at `pos` of `directed` (an index of `faces`, every edge
+/// with its reverse) is strictly convex and outward: the corner after it in
+/// the face across lies strictly below the plane of the first three
+/// corners of its own face. Meaningful for planar faces.
+pub(crate) fn edge_is_convex(
+    faces: &[Vec<usize>],
+    directed: &DirectedEdges,
+    pos: usize,
+    ep: &ExactPoints,
+) -> bool {
+    let (fi, k) = directed.face_corner(pos);
+    let f = &faces[fi];
+    let (a, b) = (f[k], f[(k + 1) % f.len()]);
+    let Some(reverse) = directed.find(b, a) else {
+        return false;
+    };
+    let (gi, kg) = directed.face_corner(reverse);
+    let g = &faces[gi];
+    // g runs b → a → c.
+    let c = g[(kg + 2) % g.len()];
+    ep.orient3(f[0], f[1], f[2], c) == Sign::Negative
+}
+
+/// The geometric defect of face `fi` (corners `f`, at least three), if any:
+/// not planar, a straight corner, or not a convex polygon that winds once.
+pub(crate) fn face_defect(fi: usize, f: &[usize], ep: &ExactPoints) -> Result<(), MeshDefect> {
+    let pts = ep.points();
+    let (a, b, c) = (f[0], f[1], f[2]);
+    let Some(axis) = (0..3).find(|&ax| ep.orient2(ax, a, b, c) != Sign::Zero) else {
+        return Err(MeshDefect::CollinearCorner {
+            face: fi,
+            vertex: b,
+        });
+    };
+    if f.len() == 3 {
+        // Three corners not on one line: a strictly convex polygon that
+        // winds once.
+        return Ok(());
+    }
+    let turn = ep.orient2(axis, a, b, c);
+    for &d in &f[3..] {
+        if ep.orient3(a, b, c, d) != Sign::Zero {
+            return Err(MeshDefect::NonPlanarFace {
                 face: fi,
-                vertex: b,
+                vertex: d,
             });
-        };
-        if f.len() == 3 {
-            // Three corners not on one line: a strictly convex polygon that
-            // winds once.
-            continue;
-        }
-        let turn = ep.orient2(axis, a, b, c);
-        for &d in &f[3..] {
-            if ep.orient3(a, b, c, d) != Sign::Zero {
-                return Err(MeshDefect::NonPlanarFace {
-                    face: fi,
-                    vertex: d,
-                });
-            }
-        }
-        let k = f.len();
-        let i = (axis + 1) % 3;
-        let mut changes = 0;
-        let mut last = Sign::Zero;
-        for s in 0..k {
-            let (p, q, r) = (f[s], f[(s + 1) % k], f[(s + 2) % k]);
-            match ep.orient2(axis, p, q, r) {
-                Sign::Zero => {
-                    return Err(MeshDefect::CollinearCorner {
-                        face: fi,
-                        vertex: q,
-                    })
-                }
-                t if t != turn => return Err(MeshDefect::NonConvexFace { face: fi }),
-                _ => {}
-            }
-            let dir = Sign::of(pts[q][i] - pts[p][i]);
-            // Exact: the float difference of two floats is zero, positive or
-            // negative exactly when the values compare so.
-            let dir = if pts[q][i] == pts[p][i] {
-                Sign::Zero
-            } else {
-                dir
-            };
-            if dir != Sign::Zero {
-                if last != Sign::Zero && dir != last {
-                    changes += 1;
-                }
-                last = dir;
-            }
-        }
-        // Close the cycle: compare the last non-zero direction with the first.
-        let first_dir = (0..k)
-            .map(|s| {
-                let (p, q) = (f[s], f[(s + 1) % k]);
-                if pts[q][i] == pts[p][i] {
-                    Sign::Zero
-                } else if pts[q][i] > pts[p][i] {
-                    Sign::Positive
-                } else {
-                    Sign::Negative
-                }
-            })
-            .find(|&d| d != Sign::Zero)
-            .unwrap_or(Sign::Zero);
-        if first_dir != Sign::Zero && last != first_dir {
-            changes += 1;
-        }
-        if changes != 2 {
-            return Err(MeshDefect::NonConvexFace { face: fi });
         }
     }
-    // Each edge once: for planar faces meeting at an edge, the far corner of
-    // either lies below the other's plane iff the same holds the other way.
-    for a in 0..n {
-        for pos in directed.start[a]..directed.start[a + 1] {
-            let b = directed.target[pos];
-            if b < a {
-                continue;
+    let k = f.len();
+    let i = (axis + 1) % 3;
+    let mut changes = 0;
+    let mut last = Sign::Zero;
+    for s in 0..k {
+        let (p, q, r) = (f[s], f[(s + 1) % k], f[(s + 2) % k]);
+        match ep.orient2(axis, p, q, r) {
+            Sign::Zero => {
+                return Err(MeshDefect::CollinearCorner {
+                    face: fi,
+                    vertex: q,
+                })
             }
-            let (fi, _) = directed.face_corner(pos);
-            // Checked above: every edge has its reverse.
-            let reverse = directed.find(b, a).ok_or(MeshDefect::OpenEdge(a, b))?;
-            let (gi, kg) = directed.face_corner(reverse);
-            let g = &faces[gi];
-            // g runs b → a → c.
-            let c = g[(kg + 2) % g.len()];
-            let f = &faces[fi];
-            if ep.orient3(f[0], f[1], f[2], c) != Sign::Negative {
-                return Err(MeshDefect::NonConvexEdge(a, b));
-            }
+            t if t != turn => return Err(MeshDefect::NonConvexFace { face: fi }),
+            _ => {}
         }
+        let dir = Sign::of(pts[q][i] - pts[p][i]);
+        // Exact: the float difference of two floats is zero, positive or
+        // negative exactly when the values compare so.
+        let dir = if pts[q][i] == pts[p][i] {
+            Sign::Zero
+        } else {
+            dir
+        };
+        if dir != Sign::Zero {
+            if last != Sign::Zero && dir != last {
+                changes += 1;
+            }
+            last = dir;
+        }
+    }
+    // Close the cycle: compare the last non-zero direction with the first.
+    let first_dir = (0..k)
+        .map(|s| {
+            let (p, q) = (f[s], f[(s + 1) % k]);
+            if pts[q][i] == pts[p][i] {
+                Sign::Zero
+            } else if pts[q][i] > pts[p][i] {
+                Sign::Positive
+            } else {
+                Sign::Negative
+            }
+        })
+        .find(|&d| d != Sign::Zero)
+        .unwrap_or(Sign::Zero);
+    if first_dir != Sign::Zero && last != first_dir {
+        changes += 1;
+    }
+    if changes != 2 {
+        return Err(MeshDefect::NonConvexFace { face: fi });
     }
     Ok(())
 }
