@@ -7,7 +7,8 @@
 
 use dymsum::polytope::MeshPolicy;
 use dymsum::query::ConvexPair;
-use dymsum::{DVec3, Polytope, Pose, Rotation};
+use dymsum::{DVec3, Polytope, Pose};
+use dymsum_bench::contact::{contact_motion, parry_pose, parry_shape};
 use std::time::Instant;
 
 fn load(name: &str) -> Polytope {
@@ -53,35 +54,14 @@ fn brute_depth(a: &Polytope, pa: Pose, b: &Polytope, pb: Pose) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-fn radius(p: &Polytope) -> f64 {
-    p.vertices().iter().map(|v| v.length()).fold(0.0, f64::max)
-}
-
 /// Times one pair: A turns about a fixed axis at 500 steps per turn while it
-/// slides in and out of contact with B, which turns slowly the other way.
+/// slides in and out of contact with B, which turns slowly the other way
+/// (`dymsum_bench::contact::contact_motion`).
 fn run_pair(na: &str, nb: &str) {
     let a = load(na);
     let b = load(nb);
-    let reach = 1.1 * (radius(&a) + radius(&b));
     let frames = 1000; // two turns at 500 steps per turn
-    let step = std::f64::consts::TAU / 500.0;
-    let axis_a = DVec3::new(1.0, 2.0, 3.0);
-    let axis_b = DVec3::new(-2.0, 0.5, 1.0);
-    let poses: Vec<(Pose, Pose)> = (0..frames)
-        .map(|k| {
-            let s = k as f64 * step;
-            (
-                Pose::new(
-                    Rotation::from_axis_angle(axis_a, s).unwrap(),
-                    DVec3::new(reach * (0.5 * s).cos(), 0.3, 0.1),
-                ),
-                Pose::new(
-                    Rotation::from_axis_angle(axis_b, -0.7 * s).unwrap(),
-                    DVec3::ZERO,
-                ),
-            )
-        })
-        .collect();
+    let poses = contact_motion(&a, &b, 500.0, frames);
     let pair = ConvexPair::new(&a, &b).unwrap();
 
     // DYMSUM tracker.
@@ -117,26 +97,11 @@ fn run_pair(na: &str, nb: &str) {
     let static_us = t0.elapsed().as_secs_f64() * 1e6 / (frames / 5) as f64;
 
     // parry3d-f64 GJK/EPA.
-    use parry3d_f64::math::{Pose as PPose, Rotation as PRot, Vector};
-    use parry3d_f64::shape::ConvexPolyhedron;
-    let conv = |p: &Polytope| {
-        let v: Vec<Vector> = p
-            .vertices()
-            .iter()
-            .map(|v| Vector::new(v.x, v.y, v.z))
-            .collect();
-        ConvexPolyhedron::from_convex_hull(&v).unwrap()
-    };
-    let (sa, sb) = (conv(&a), conv(&b));
-    let ppose = |p: Pose| {
-        let q = p.rotation.quat();
-        let t = p.translation;
-        PPose::from_parts(
-            Vector::new(t.x, t.y, t.z),
-            PRot::from_xyzw(q.x, q.y, q.z, q.w),
-        )
-    };
-    let pp: Vec<(PPose, PPose)> = poses.iter().map(|&(x, y)| (ppose(x), ppose(y))).collect();
+    let (sa, sb) = (parry_shape(&a), parry_shape(&b));
+    let pp: Vec<_> = poses
+        .iter()
+        .map(|&(x, y)| (parry_pose(x), parry_pose(y)))
+        .collect();
     let t0 = Instant::now();
     let mut theirs = Vec::with_capacity(frames);
     for (pa, pb) in &pp {

@@ -6,9 +6,12 @@
 //! * [`paper_motion`]: the paper's motion (§5) for P, seeded, so every run
 //!   sees the same poses.
 //! * [`random_rotation`]: one seeded, uniformly random orientation.
+//! * [`contact`]: the contact-tracking workload and its parry3d-f64 twin.
 //! * [`collect_results`] / [`markdown_report`]: read
 //!   `target/criterion/**/new/{benchmark,estimates}.json` and print tables.
 #![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
+
+pub mod contact;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
