@@ -289,3 +289,67 @@ fn incremental_updates_do_not_allocate() {
         );
     }
 }
+
+/// A `ContactTracker` frame (DYMSUM update of `A ⊕ (−B)`, the overlay
+/// rebuilt in place, the depth or distance evaluated in reused buffers)
+/// allocates nothing once its buffers have grown: boxes and random hulls
+/// sliding in and out of contact while turning.
+#[test]
+fn tracker_frames_do_not_allocate() {
+    use dymsum::query::ConvexPair;
+    use dymsum::Pose;
+    use dymsum_testkit::{random_polytope, rng, Kind};
+    let mut r = rng(9);
+    let pairs = [
+        (
+            boxed(1.0, 2.0, 3.0, 0.5),
+            random_polytope(Kind::Sphere, 40, &mut r),
+        ),
+        (
+            random_polytope(Kind::Ball, 60, &mut r),
+            boxed(2.0, 1.0, 1.0, 0.5),
+        ),
+    ];
+    for (a, b) in pairs {
+        let pair = ConvexPair::new(&a, &b).unwrap();
+        let pose = |k: usize| {
+            let s = k as f64 * std::f64::consts::TAU / 500.0;
+            (
+                Pose::new(
+                    Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), s).unwrap(),
+                    DVec3::new(3.0 * (s / 2.0).cos(), 0.3, 0.1),
+                ),
+                Pose::new(
+                    Rotation::from_axis_angle(DVec3::new(-2.0, 0.5, 1.0), -0.7 * s).unwrap(),
+                    DVec3::ZERO,
+                ),
+            )
+        };
+        let (pa, pb) = pose(0);
+        let mut tracker = pair.tracker(pa, pb).unwrap();
+        for k in 0..1000 {
+            let (pa, pb) = pose(k);
+            tracker.update(pa, pb).unwrap();
+        }
+        let ((hits, misses), allocations) = counted(|| {
+            let (mut hits, mut misses) = (0, 0);
+            for k in 1000..2000 {
+                let (pa, pb) = pose(k);
+                if tracker.update(pa, pb).unwrap().intersects() {
+                    hits += 1;
+                } else {
+                    misses += 1;
+                }
+            }
+            (hits, misses)
+        });
+        assert!(
+            hits > 100 && misses > 100,
+            "{hits} frames in contact, {misses} apart"
+        );
+        assert!(
+            allocations <= 10,
+            "{allocations} allocations in 1,000 tracker frames"
+        );
+    }
+}

@@ -462,18 +462,24 @@ impl DynamicSum {
 
     /// The current overlay, with ee-pairs sorted.
     pub fn overlay(&self) -> Overlay {
-        let mut ee: Vec<(u32, u32)> = self
-            .p
-            .ee
-            .iter()
-            .enumerate()
-            .flat_map(|(e, l)| l.iter().map(move |&e2| (e as u32, e2)))
-            .collect();
-        ee.sort_unstable();
-        Overlay {
-            fv: self.p.assign.clone(),
-            vf: self.q.assign.clone(),
-            ee,
+        let mut out = Overlay::default();
+        self.overlay_into(&mut out);
+        out
+    }
+
+    /// [`Self::overlay`] into `out`, reusing its buffers (no allocation
+    /// once they are large enough). The pairs come out sorted by edge of P
+    /// already, so only each edge's few pairs are sorted.
+    pub(crate) fn overlay_into(&self, out: &mut Overlay) {
+        out.fv.clear();
+        out.fv.extend_from_slice(&self.p.assign);
+        out.vf.clear();
+        out.vf.extend_from_slice(&self.q.assign);
+        out.ee.clear();
+        for (e, l) in self.p.ee.iter().enumerate() {
+            let from = out.ee.len();
+            out.ee.extend(l.iter().map(|&e2| (e as u32, e2)));
+            out.ee[from..].sort_unstable();
         }
     }
 

@@ -28,11 +28,14 @@ pub(super) struct Candidate {
     pub features: FeaturePair,
     /// Unit direction, from A towards B.
     pub n: DVec3,
-    /// `h_A(n) + h_B(−n)`.
+    /// `h_A(n) + h_B(−n)` once refined, else the lower bound `h₀`.
     pub h: f64,
+    /// Whether `h` is the refined support value.
+    pub refined: bool,
 }
 
-/// The posed vertices of both bodies.
+/// The posed vertices of both bodies (buffers reused from query to query).
+#[derive(Clone, Debug, Default)]
 pub(super) struct Posed {
     pub a: Vec<DVec3>,
     pub b: Vec<DVec3>,
@@ -73,56 +76,53 @@ pub(super) fn support(poly: &Polytope, posed: &[DVec3], dir: DVec3, starts: &[u3
 }
 
 /// Replaces the lower bounds `h₀` by true support values where they matter
-/// (see the module docs) and returns those candidates.
-pub(super) fn refine(
-    pair: &ConvexPair,
-    posed: &Posed,
-    mut cands: Vec<Candidate>,
-    tol: f64,
-) -> Vec<Candidate> {
+/// (see the module docs) and keeps only those candidates, in order.
+pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate>, tol: f64) {
     let (a, b) = (&pair.a, &pair.b);
     let climb = |c: &Candidate| -> f64 {
-        let (sa, sb): (Vec<u32>, Vec<u32>) = match c.features {
-            FeaturePair::FaceVertex { a_face, b_vertex } => {
-                (a.face(a_face as usize).to_vec(), vec![b_vertex])
-            }
-            FeaturePair::VertexFace { a_vertex, b_face } => {
-                (vec![a_vertex], b.face(b_face as usize).to_vec())
-            }
+        let (ha, hb) = match c.features {
+            FeaturePair::FaceVertex { a_face, b_vertex } => (
+                support(a, &posed.a, c.n, a.face(a_face as usize)),
+                support(b, &posed.b, -c.n, &[b_vertex]),
+            ),
+            FeaturePair::VertexFace { a_vertex, b_face } => (
+                support(a, &posed.a, c.n, &[a_vertex]),
+                support(b, &posed.b, -c.n, b.face(b_face as usize)),
+            ),
             FeaturePair::EdgeEdge { a_edge, b_edge } => (
-                a.edge(a_edge as usize).vertices.to_vec(),
-                b.edge(b_edge as usize).vertices.to_vec(),
+                support(a, &posed.a, c.n, &a.edge(a_edge as usize).vertices),
+                support(b, &posed.b, -c.n, &b.edge(b_edge as usize).vertices),
             ),
         };
-        support(a, &posed.a, c.n, &sa) + support(b, &posed.b, -c.n, &sb)
+        ha + hb
     };
     let Some(first) = (0..cands.len()).min_by(|&i, &j| cands[i].h.total_cmp(&cands[j].h)) else {
-        return cands;
+        return;
     };
-    let mut refined = vec![false; cands.len()];
     cands[first].h = climb(&cands[first]);
-    refined[first] = true;
+    cands[first].refined = true;
     let mut best = cands[first].h;
-    for i in 0..cands.len() {
-        if !refined[i] && cands[i].h <= (best + tol).max(tol) {
-            cands[i].h = climb(&cands[i]);
-            refined[i] = true;
-            best = best.min(cands[i].h);
+    for c in cands.iter_mut() {
+        if !c.refined && c.h <= (best + tol).max(tol) {
+            c.h = climb(c);
+            c.refined = true;
+            best = best.min(c.h);
         }
     }
-    cands
-        .into_iter()
-        .zip(refined)
-        .filter_map(|(c, r)| r.then_some(c))
-        .collect()
+    cands.retain(|c| c.refined);
 }
 
 /// The candidates of all facets of the overlay (P = A, Q = −B), with the
-/// lower bounds `h₀` as values.
-pub(super) fn candidates(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) -> Vec<Candidate> {
+/// lower bounds `h₀` as values, into `out` (cleared first).
+pub(super) fn candidates(
+    pair: &ConvexPair,
+    posed: &Posed,
+    overlay: &Overlay,
+    out: &mut Vec<Candidate>,
+) {
     let (a, b, r) = (&pair.a, &pair.b, &pair.neg_b);
     let (na, nb) = (&posed.na, &posed.nb);
-    let mut out = Vec::with_capacity(overlay.len() + 4);
+    out.clear();
     // The lower bound h₀ at the facet's own features (refined later).
     let value = |n: DVec3, sa: &[u32], sb: &[u32]| {
         n.dot(posed.a[sa[0] as usize]) - n.dot(posed.b[sb[0] as usize])
@@ -137,6 +137,8 @@ pub(super) fn candidates(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) ->
             },
             n,
             h: value(n, a.face(f), &[w]),
+
+            refined: false,
         });
     }
     for (g, &u) in overlay.vf.iter().enumerate() {
@@ -149,6 +151,8 @@ pub(super) fn candidates(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) ->
             },
             n,
             h: value(n, &[u], b.face(g)),
+
+            refined: false,
         });
     }
     for &(e, e2) in &overlay.ee {
@@ -183,6 +187,8 @@ pub(super) fn candidates(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) ->
                     features,
                     n,
                     h: value(n, &sa, &sb),
+
+                    refined: false,
                 });
             }
         } else {
@@ -191,10 +197,11 @@ pub(super) fn candidates(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) ->
                 features,
                 n,
                 h: value(n, &sa, &sb),
+
+                refined: false,
             });
         }
     }
-    out
 }
 
 /// `n` or `−n`, whichever is lexicographically larger (a key invariant under

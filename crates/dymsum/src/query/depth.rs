@@ -8,7 +8,7 @@
 //! come from the winning facet's features ([`super::closest`] for an
 //! edge–edge pair). Everything is computed in one power-of-two frame of the
 //! posed vertices (see [`evaluate`]).
-use super::candidates::{candidates, refine, tie_tolerance, winner, Posed};
+use super::candidates::{candidates, refine, tie_tolerance, winner, Candidate, Posed};
 use super::closest::line_line;
 use super::distance::separation;
 use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Separation};
@@ -32,15 +32,23 @@ pub(super) fn evaluate(
     pose_a: Pose,
     pose_b: Pose,
     overlay: &Overlay,
+    scratch: &mut Scratch,
 ) -> Result<Proximity, QueryError> {
-    let mut a: Vec<DVec3> = pair.a.vertices().iter().map(|&v| pose_a.apply(v)).collect();
-    let mut b: Vec<DVec3> = pair.b.vertices().iter().map(|&v| pose_b.apply(v)).collect();
-    if !a.iter().chain(&b).all(|v| v.is_finite()) {
+    let posed = &mut scratch.posed;
+    posed.a.clear();
+    posed
+        .a
+        .extend(pair.a.vertices().iter().map(|&v| pose_a.apply(v)));
+    posed.b.clear();
+    posed
+        .b
+        .extend(pair.b.vertices().iter().map(|&v| pose_b.apply(v)));
+    if !posed.a.iter().chain(&posed.b).all(|v| v.is_finite()) {
         return Err(QueryError::OutOfRange(
             "the posed coordinates overflow f64 (|x| > 1.8e308)".into(),
         ));
     }
-    let k = exact::frame_exponent(a.iter().chain(&b).flat_map(|v| v.to_array()));
+    let k = exact::frame_exponent(posed.a.iter().chain(&posed.b).flat_map(|v| v.to_array()));
     let to_frame = |v: &mut DVec3| {
         *v = DVec3::new(
             exact::mul_pow2(v.x, k),
@@ -48,23 +56,27 @@ pub(super) fn evaluate(
             exact::mul_pow2(v.z, k),
         )
     };
-    a.iter_mut().for_each(to_frame);
-    b.iter_mut().for_each(to_frame);
+    posed.a.iter_mut().for_each(to_frame);
+    posed.b.iter_mut().for_each(to_frame);
+    posed.na.clear();
+    posed
+        .na
+        .extend((0..pair.a.face_count()).map(|f| pose_a.rotation.apply(pair.a.unit_normal(f))));
+    posed.nb.clear();
+    posed
+        .nb
+        .extend((0..pair.b.face_count()).map(|g| pose_b.rotation.apply(pair.b.unit_normal(g))));
+    posed.pose_a = pose_a;
+    posed.pose_b = pose_b;
     let back = |x: f64| exact::mul_pow2(x, -k);
     let back_v = |v: DVec3| DVec3::new(back(v.x), back(v.y), back(v.z));
-    let posed = Posed {
-        a,
-        b,
-        na: (0..pair.a.face_count())
-            .map(|f| pose_a.rotation.apply(pair.a.unit_normal(f)))
-            .collect(),
-        nb: (0..pair.b.face_count())
-            .map(|g| pose_b.rotation.apply(pair.b.unit_normal(g)))
-            .collect(),
-        pose_a,
-        pose_b,
-    };
-    let answer = evaluate_in_frame(pair, &posed, overlay);
+    let answer = evaluate_in_frame(
+        pair,
+        &scratch.posed,
+        overlay,
+        &mut scratch.cands,
+        &mut scratch.poly,
+    );
     let out = match answer {
         Proximity::Penetrating(c) => Proximity::Penetrating(Contact {
             depth: back(c.depth),
@@ -95,13 +107,31 @@ pub(super) fn evaluate(
     Ok(out)
 }
 
+/// The buffers of one evaluation, kept by a [`super::ContactTracker`] from
+/// frame to frame so that a frame allocates nothing once they are large
+/// enough.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    posed: Posed,
+    cands: Vec<Candidate>,
+    /// A face's posed corners (the separation).
+    poly: Vec<DVec3>,
+}
+
 /// [`evaluate`] on frame coordinates.
-fn evaluate_in_frame(pair: &ConvexPair, posed: &Posed, overlay: &Overlay) -> Proximity {
+fn evaluate_in_frame(
+    pair: &ConvexPair,
+    posed: &Posed,
+    overlay: &Overlay,
+    cands: &mut Vec<Candidate>,
+    poly: &mut Vec<DVec3>,
+) -> Proximity {
     let tol = tie_tolerance(posed);
-    let cands = refine(pair, posed, candidates(pair, posed, overlay), tol);
-    let (w, hmin) = winner(&cands, tol);
+    candidates(pair, posed, overlay, cands);
+    refine(pair, posed, cands, tol);
+    let (w, hmin) = winner(cands, tol);
     if hmin < 0.0 {
-        return Proximity::Separated(separation(pair, posed, &cands, tol, cands[w]));
+        return Proximity::Separated(separation(pair, posed, cands, tol, cands[w], poly));
     }
     let c = cands[w];
     let depth = hmin;

@@ -14,17 +14,18 @@ use super::{ConvexPair, FeaturePair, Separation};
 use glam::DVec3;
 
 /// The separation: minimum feature distance over the facets on whose outer
-/// side the origin lies (support value below `tol`).
+/// side the origin lies (support value below `tol`). `poly` is a reused
+/// buffer for a face's posed corners.
 pub(super) fn separation(
     pair: &ConvexPair,
     posed: &Posed,
     cands: &[Candidate],
     tol: f64,
     fallback: Candidate,
+    poly: &mut Vec<DVec3>,
 ) -> Separation {
     let (a, b) = (&pair.a, &pair.b);
     let mut best: Option<(f64, DVec3, DVec3, FeaturePair)> = None;
-    let mut poly = Vec::new();
     for c in cands.iter().filter(|c| c.h <= tol) {
         let (pa, pb) = match c.features {
             FeaturePair::FaceVertex { a_face, b_vertex } => {
@@ -32,14 +33,14 @@ pub(super) fn separation(
                 poly.extend(a.face(a_face as usize).iter().map(|&v| posed.a[v as usize]));
                 let q = posed.b[b_vertex as usize];
                 let normal = posed.pose_a.rotation.apply(a.normal(a_face as usize));
-                (closest_on_polygon(&poly, normal, q), q)
+                (closest_on_polygon(poly, normal, q), q)
             }
             FeaturePair::VertexFace { a_vertex, b_face } => {
                 poly.clear();
                 poly.extend(b.face(b_face as usize).iter().map(|&v| posed.b[v as usize]));
                 let q = posed.a[a_vertex as usize];
                 let normal = posed.pose_b.rotation.apply(b.normal(b_face as usize));
-                (q, closest_on_polygon(&poly, normal, q))
+                (q, closest_on_polygon(poly, normal, q))
             }
             FeaturePair::EdgeEdge { a_edge, b_edge } => {
                 let [u1, u2] = a.edge(a_edge as usize).vertices;

@@ -477,7 +477,13 @@ impl ConvexPair {
         pose_b: Pose,
         overlay: &crate::sum::Overlay,
     ) -> Result<Proximity, QueryError> {
-        depth::evaluate(self, pose_a, pose_b, overlay)
+        depth::evaluate(
+            self,
+            pose_a,
+            pose_b,
+            overlay,
+            &mut depth::Scratch::default(),
+        )
     }
 }
 

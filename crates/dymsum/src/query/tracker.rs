@@ -3,7 +3,9 @@
 //!
 //! Each frame costs one dynamic update (proportional to the changes of the
 //! overlay for small steps; translations alone change nothing) plus one O(F)
-//! pass over the facets for the depth or the distance. The answer is
+//! pass over the facets for the depth or the distance, and allocates nothing
+//! once its buffers have grown (the overlay is rebuilt in place, the
+//! evaluation reuses its buffers; `tests/no_alloc.rs`). The answer is
 //! identical to the static query at the same poses, because the dynamic
 //! overlay is identical to the static `walk` overlay.
 //!
@@ -26,6 +28,7 @@
 
 use super::{ConvexPair, Proximity, QueryError, Reflected};
 use crate::dynamic::UpdateReport;
+use crate::sum::Overlay;
 use crate::{DynamicSum, Pose};
 
 /// Depth or distance of two moving convex bodies, frame after frame.
@@ -60,6 +63,10 @@ pub struct ContactTracker {
     sum: DynamicSum,
     last: Proximity,
     report: UpdateReport,
+    /// The overlay of `sum`, rebuilt in place every frame.
+    overlay: Overlay,
+    /// Evaluation buffers, reused every frame.
+    scratch: super::depth::Scratch,
 }
 
 impl ContactTracker {
@@ -81,12 +88,16 @@ impl ContactTracker {
             &pair.neg_b.polytope,
             Reflected::pose(pose_b),
         )?;
-        let last = pair.evaluate(pose_a, pose_b, &sum.overlay())?;
+        let mut scratch = super::depth::Scratch::default();
+        let overlay = sum.overlay();
+        let last = super::depth::evaluate(&pair, pose_a, pose_b, &overlay, &mut scratch)?;
         Ok(ContactTracker {
             pair,
             sum,
             last,
             report: UpdateReport::default(),
+            overlay,
+            scratch,
         })
     }
 
@@ -101,7 +112,9 @@ impl ContactTracker {
     pub fn update(&mut self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
         self.sum
             .set_pose_into(pose_a, Reflected::pose(pose_b), &mut self.report);
-        self.last = self.pair.evaluate(pose_a, pose_b, &self.sum.overlay())?;
+        self.sum.overlay_into(&mut self.overlay);
+        self.last =
+            super::depth::evaluate(&self.pair, pose_a, pose_b, &self.overlay, &mut self.scratch)?;
         Ok(self.last)
     }
 
