@@ -170,3 +170,18 @@ pub enum HullError {
         count: usize,
     },
 }
+
+/// `n` points on the unit sphere in a Fibonacci spiral (generic: no four on
+/// a circle), for tests.
+#[cfg(test)]
+pub(crate) fn fibonacci_sphere(n: usize) -> Vec<DVec3> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n)
+        .map(|i| {
+            let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+            let r = (1.0 - y * y).sqrt();
+            let t = golden * i as f64;
+            DVec3::new(r * t.cos(), y, r * t.sin())
+        })
+        .collect()
+}

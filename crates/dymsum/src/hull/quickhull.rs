@@ -690,15 +690,7 @@ mod tests {
     #[test]
     fn sphere_200() {
         let n = 200;
-        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-        let p: Vec<DVec3> = (0..n)
-            .map(|i| {
-                let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-                let r = (1.0 - y * y).sqrt();
-                let t = golden * i as f64;
-                DVec3::new(r * t.cos(), y, r * t.sin())
-            })
-            .collect();
+        let p = crate::hull::fibonacci_sphere(n);
         let h = hull_of(&p);
         assert_eq!(h.vertices.len(), n);
     }

@@ -1091,15 +1091,7 @@ mod tests {
     /// A triangulated convex mesh: the hull of points on the unit sphere
     /// (generic, so every face is a triangle).
     fn sphere_mesh(n: usize) -> (Vec<DVec3>, Vec<Vec<usize>>) {
-        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-        let pts: Vec<DVec3> = (0..n)
-            .map(|i| {
-                let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-                let r = (1.0 - y * y).sqrt();
-                let t = golden * i as f64;
-                DVec3::new(r * t.cos(), y, r * t.sin())
-            })
-            .collect();
+        let pts = crate::hull::fibonacci_sphere(n);
         let hull = convex_hull(&FloatPoints(&pts)).unwrap();
         assert!(hull.faces.iter().all(|f| f.len() == 3));
         (pts, hull.faces)
