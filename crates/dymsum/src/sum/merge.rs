@@ -733,19 +733,29 @@ fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<Sum
                     hull_fallback: bent,
                 }))
             }
-            Err(defect) if merged.exact && hull => return Err(MeshError::Invalid(defect)),
+            // Exact coordinates cannot bend anything: a failure is a broken
+            // overlay, reported (after the full merge, which names it)
+            // and never repaired into a plausible mesh.
+            Err(defect) if merged.exact => {
+                return match hull {
+                    true => Err(MeshError::Invalid(defect)),
+                    false => Ok(None),
+                }
+            }
             Err(_) => {
                 // Rounding made some neighbouring faces reflex or coplanar,
                 // or pushed a vertex inside: rebuild only around those.
                 // Flips first (cheap, local); what they leave, a local hull.
                 let vertices = &merged.mesh.vertices;
-                let flipped = flip_reflex_edges(faces, &points);
-                let repaired = flipped.and_then(|faces| {
-                    compact_checked(vertices, &faces, &points).or_else(|| {
-                        repair_defects(&faces, &points)
-                            .and_then(|faces| compact_checked(vertices, &faces, &points))
-                    })
-                });
+                let local_hull = |faces: &[Vec<usize>]| {
+                    repair_defects(faces, &points)
+                        .and_then(|faces| compact_checked(vertices, &faces, &points))
+                };
+                let repaired = match flip_reflex_edges(faces.clone(), &points) {
+                    Some(flipped) => compact_checked(vertices, &flipped, &points)
+                        .or_else(|| local_hull(&flipped)),
+                    None => local_hull(&faces),
+                };
                 if let Some(mesh) = repaired {
                     return Ok(Some(SumMesh {
                         mesh,
@@ -870,7 +880,8 @@ fn outer_side(face: &[usize], points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
 /// around their corners. The outer side is found from the region's
 /// boundary: the hull faces holding its edges (same direction) and all hull
 /// faces reached from them without crossing it. `None` when the faces are
-/// not a closed sphere or the boundary is not on the hull. The result is a
+/// not a closed sphere, the region is the whole mesh (then the caller's
+/// hull from scratch is the same work), or the boundary is not on the hull. The result is a
 /// candidate only (its corners may have lost vertices pushed inside):
 /// [`compact_checked`] decides.
 fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
@@ -930,6 +941,10 @@ fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<
                 boundary.push((a, directed.target[pos]));
             }
         }
+    }
+    if boundary.is_empty() {
+        // The region is the whole mesh: that is the hull from scratch.
+        return None;
     }
     boundary.sort_unstable();
     let hull_edges = DirectedEdges::new(n, &hull_faces);
@@ -1049,7 +1064,10 @@ fn flip_reflex_edges(mut faces: Vec<Vec<usize>>, points: &ExactPoints) -> Option
     let mut budget = 8 * queue.len() + 64;
     while let Some((a, b)) = queue.pop() {
         budget = budget.checked_sub(1)?;
-        let (fi, gi) = (face_of(&changed, a, b)?, face_of(&changed, b, a)?);
+        // An edge queued twice may have been flipped away meanwhile.
+        let (Some(fi), Some(gi)) = (face_of(&changed, a, b), face_of(&changed, b, a)) else {
+            continue;
+        };
         let (f, g) = (&faces[fi], &faces[gi]);
         if f.len() != 3 || g.len() != 3 {
             continue;
@@ -1126,6 +1144,78 @@ mod tests {
         let fixed = flip_reflex_edges(bad, &ep).unwrap();
         let mesh = compact_checked(&as_mesh(&pts), &fixed, &ep).expect("flips repair it");
         assert_eq!(mesh.faces.len(), good.len());
+    }
+
+    /// Review finding: a queued edge flipped away by a neighbouring flip
+    /// must be skipped, not end the flips (two edges of one triangle).
+    #[test]
+    fn flips_skip_edges_already_flipped_away() {
+        let (pts, good) = sphere_mesh(60);
+        let ep = ExactPoints::new(&pts);
+        let mut repaired = 0;
+        for t in 0..good.len() {
+            let mut bad = good.clone();
+            let f = good[t].clone();
+            flip(&mut bad, f[0], f[1]);
+            flip(&mut bad, f[1], f[2]);
+            if check_convex_faces(&bad, &ep).is_ok() {
+                continue;
+            }
+            let fixed = flip_reflex_edges(bad, &ep).expect("flips settle");
+            assert!(
+                compact_checked(&as_mesh(&pts), &fixed, &ep).is_some(),
+                "triangle {t}"
+            );
+            repaired += 1;
+        }
+        assert!(repaired > 50, "{repaired}");
+    }
+
+    /// Review finding: exact coordinates that fail the check are a broken
+    /// overlay; the mesh must be refused, never repaired.
+    #[test]
+    fn an_exact_mesh_that_fails_is_refused_not_repaired() {
+        let (pts, mut faces) = sphere_mesh(40);
+        let (a, b) = (faces[0][0], faces[0][1]);
+        flip(&mut faces, a, b);
+        let cube =
+            crate::Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])
+                .unwrap();
+        let ops = Operands::new(&cube, crate::Pose::IDENTITY, &cube, crate::Pose::IDENTITY);
+        let merged = |shortcut| Merged {
+            mesh: PolygonMesh {
+                vertices: as_mesh(&pts),
+                faces: faces.clone(),
+            },
+            exact: true,
+            shortcut,
+        };
+        assert!(matches!(mesh_or_hull(&ops, merged(true), false), Ok(None)));
+        assert!(matches!(
+            mesh_or_hull(&ops, merged(false), true),
+            Err(MeshError::Invalid(_))
+        ));
+    }
+
+    /// Review finding: a region that covers the whole mesh has no boundary;
+    /// the repair declines (the hull from scratch is the same work).
+    #[test]
+    fn a_region_over_the_whole_mesh_is_declined() {
+        let mut pts = vec![
+            DVec3::X,
+            -DVec3::X,
+            DVec3::Y,
+            -DVec3::Y,
+            DVec3::Z,
+            -DVec3::Z,
+        ];
+        let hull = convex_hull(&FloatPoints(&pts)).unwrap();
+        // The top vertex pushed through to below the equator: every face
+        // meets a reflex edge.
+        pts[4] = DVec3::new(0.0, 0.0, -0.25);
+        let ep = ExactPoints::new(&pts);
+        assert!(check_convex_faces(&hull.faces, &ep).is_err());
+        assert!(repair_defects(&hull.faces, &ep).is_none());
     }
 
     #[test]
