@@ -17,8 +17,9 @@ pub struct DD {
     pub lo: f64,
 }
 
+/// Knuth's TwoSum: `(fl(a + b), error)` with `a + b = s + error` exactly.
 #[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
     (s, (a - (s - bb)) + (b - bb))

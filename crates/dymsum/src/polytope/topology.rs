@@ -167,6 +167,20 @@ impl DirectedEdges {
             .map(|k| s + k)
     }
 
+    /// The face holding the directed edge `a → b`, if present.
+    pub(crate) fn face_of(&self, a: usize, b: usize) -> Option<usize> {
+        self.find(a, b).map(|pos| self.face_corner(pos).0)
+    }
+
+    /// A directed edge that occurs twice (in two faces or twice in one), if
+    /// any.
+    pub(crate) fn repeated_edge(&self) -> Option<(usize, usize)> {
+        (0..self.vertex_count()).find_map(|v| {
+            let t = &self.target[self.start[v]..self.start[v + 1]];
+            t.windows(2).find(|w| w[0] == w[1]).map(|w| (v, w[0]))
+        })
+    }
+
     /// The face and corner index of the edge at position `pos` (the edge
     /// runs from corner `k` of that face to corner `k + 1`).
     pub(crate) fn face_corner(&self, pos: usize) -> (usize, usize) {
@@ -184,11 +198,8 @@ impl DirectedEdges {
     /// docs, step 2).
     pub(crate) fn check_sphere(&self, unused: Unused) -> Result<(), TopologyDefect> {
         let n = self.vertex_count();
-        for v in 0..n {
-            let t = &self.target[self.start[v]..self.start[v + 1]];
-            if let Some(w) = t.windows(2).find(|w| w[0] == w[1]) {
-                return Err(TopologyDefect::EdgeUsedTwice(v, w[0]));
-            }
+        if let Some((a, b)) = self.repeated_edge() {
+            return Err(TopologyDefect::EdgeUsedTwice(a, b));
         }
         for v in 0..n {
             for &b in &self.target[self.start[v]..self.start[v + 1]] {

@@ -249,14 +249,14 @@ impl SignedPermutation {
         let r = DVec3::from_array(self.0.map(|(i, s)| s * v[i]));
         let t = pose.translation;
         let out = r + t;
-        (0..3).all(|k| exact_sum(r[k], t[k], out[k])).then_some(out)
+        (0..3).all(|k| exact_sum(r[k], t[k])).then_some(out)
     }
 }
 
-/// Knuth's TwoSum: whether `s = fl(a + b)` is exact.
-fn exact_sum(a: f64, b: f64, s: f64) -> bool {
-    let bb = s - a;
-    (a - (s - bb)) + (b - bb) == 0.0 && s.is_finite()
+/// Whether `fl(a + b)` is exact (and finite), by Knuth's TwoSum.
+fn exact_sum(a: f64, b: f64) -> bool {
+    let (s, error) = crate::kernel::dd::two_sum(a, b);
+    error == 0.0 && s.is_finite()
 }
 
 /// Union of the coplanar facets (module docs): returns the union-find,
@@ -330,20 +330,15 @@ fn vertex_sums(
         .map(|id| {
             let (u, w) = index.key(id);
             let (pu, qw) = (ops.p_vertex(u), ops.q_vertex(w));
-            let s = pu + qw;
-            exact &= match perm {
-                (Some(a), Some(b)) => match (
-                    a.exact_posed(&ops.pose_p, ops.p.vertex(u as usize)),
-                    b.exact_posed(&ops.pose_q, ops.q.vertex(w as usize)),
-                ) {
-                    (Some(a), Some(b)) => {
-                        a == pu && b == qw && (0..3).all(|k| exact_sum(a[k], b[k], s[k]))
-                    }
-                    _ => false,
-                },
-                _ => false,
+            // Exact when both posed vertices are (and are the ones used) and
+            // so is their sum.
+            let exact_vertex = || -> Option<bool> {
+                let a = perm.0?.exact_posed(&ops.pose_p, ops.p.vertex(u as usize))?;
+                let b = perm.1?.exact_posed(&ops.pose_q, ops.q.vertex(w as usize))?;
+                Some(a == pu && b == qw && (0..3).all(|k| exact_sum(a[k], b[k])))
             };
-            s.to_array()
+            exact = exact && exact_vertex().unwrap_or(false);
+            (pu + qw).to_array()
         })
         .collect();
     (vertices, exact)
@@ -405,28 +400,15 @@ pub(crate) fn merged_mesh(
     }
     let nv = facets.index.len();
     let edges = DirectedEdges::from_faces(nv, total, |i| facets.facet(i));
-    // The facet across the directed edge at `pos` (its reverse's facet).
-    let across = |pos: usize| -> Result<usize, String> {
-        let a = edges.target[pos];
-        let (f, k) = edges.face_corner(pos);
-        let b = facets.facet(f)[k] as usize;
+    // The facet across the facet edge `a → b` (the one holding `b → a`).
+    let across = |a: usize, b: usize| -> Result<usize, String> {
         edges
-            .find(a, b)
-            .map(|r| edges.face_corner(r).0)
+            .face_of(b, a)
             .ok_or_else(|| "facet edge without an opposite facet".to_string())
     };
-    for v in 0..nv {
-        let t = &edges.target[edges.start[v]..edges.start[v + 1]];
-        if t.windows(2).any(|w| w[0] == w[1]) {
-            return Err("facet edge used twice in one direction".into());
-        }
+    if edges.repeated_edge().is_some() {
+        return Err("facet edge used twice in one direction".into());
     }
-    // The position of the edge leaving corner `k` of facet `i`.
-    let edge_at = |i: usize, k: usize| -> usize {
-        let f = facets.facet(i);
-        let (a, b) = (f[k] as usize, f[(k + 1) % f.len()] as usize);
-        edges.find(a, b).expect("indexed")
-    };
     // A degenerate (zero-area) ee-facet lies on a segment. When all its
     // neighbours lie in one face (the segment is inside that face, e.g. the
     // edges of parallel faces that meet end to end) it joins that face;
@@ -437,9 +419,10 @@ pub(crate) fn merged_mesh(
             continue;
         }
         let mut roots = [0u32; 4];
-        let k_len = facets.facet(i).len();
+        let f = facets.facet(i);
+        let k_len = f.len();
         for (k, root) in roots.iter_mut().enumerate().take(k_len) {
-            let j = across(edge_at(i, k))?;
+            let j = across(f[k] as usize, f[(k + 1) % k_len] as usize)?;
             if degenerate[j] {
                 return Err("two degenerate facets share an edge".into());
             }
@@ -483,7 +466,7 @@ pub(crate) fn merged_mesh(
             if !in_face[i] {
                 continue;
             }
-            let j = across(pos)?;
+            let j = across(v, edges.target[pos])?;
             if in_face[j] && root[j] == root[i] {
                 continue;
             }
@@ -720,8 +703,7 @@ fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<Sum
     } else {
         fold_bent_faces(&mut faces, &points)
     };
-    let candidate = folded.map(|bent| (faces, bent));
-    if let Some((faces, bent)) = candidate {
+    if let Some(bent) = folded {
         match check_convex_faces(&faces, &points) {
             Ok(()) => {
                 return Ok(Some(SumMesh {
@@ -887,11 +869,8 @@ fn outer_side(face: &[usize], points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
 fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
     let n = points.points().len();
     let directed = check_sphere_faces(faces, n).ok()?;
-    let across = |pos: usize| -> Option<usize> {
-        let (f, k) = directed.face_corner(pos);
-        let (a, b) = (faces[f][k], faces[f][(k + 1) % faces[f].len()]);
-        directed.find(b, a).map(|r| directed.face_corner(r).0)
-    };
+    // The face across the edge at `pos`, leaving `a`.
+    let across = |a: usize, pos: usize| directed.face_of(directed.target[pos], a);
     let mut in_region: Vec<bool> = faces
         .iter()
         .enumerate()
@@ -901,7 +880,7 @@ fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<
         for pos in directed.start[a]..directed.start[a + 1] {
             if directed.target[pos] > a && !edge_is_convex(faces, &directed, pos, points) {
                 in_region[directed.face_corner(pos).0] = true;
-                in_region[across(pos)?] = true;
+                in_region[across(a, pos)?] = true;
             }
         }
     }
@@ -937,7 +916,7 @@ fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<
     let mut boundary = Vec::new();
     for a in 0..n {
         for pos in directed.start[a]..directed.start[a + 1] {
-            if in_region[directed.face_corner(pos).0] && !in_region[across(pos)?] {
+            if in_region[directed.face_corner(pos).0] && !in_region[across(a, pos)?] {
                 boundary.push((a, directed.target[pos]));
             }
         }
@@ -951,7 +930,7 @@ fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<
     let mut top = vec![false; hull_faces.len()];
     let mut stack = Vec::new();
     for &(a, b) in &boundary {
-        let h = hull_edges.face_corner(hull_edges.find(a, b)?).0;
+        let h = hull_edges.face_of(a, b)?;
         if !top[h] {
             top[h] = true;
             stack.push(h);
@@ -964,7 +943,7 @@ fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<
             if boundary.binary_search(&(a, b)).is_ok() {
                 continue;
             }
-            let g = hull_edges.face_corner(hull_edges.find(b, a)?).0;
+            let g = hull_edges.face_of(b, a)?;
             if !top[g] {
                 top[g] = true;
                 stack.push(g);
@@ -1059,7 +1038,7 @@ fn flip_reflex_edges(mut faces: Vec<Vec<usize>>, points: &ExactPoints) -> Option
             .get(&(a, b))
         {
             Some(&f) => f,
-            None => directed.find(a, b).map(|p| directed.face_corner(p).0),
+            None => directed.face_of(a, b),
         };
     let mut budget = 8 * queue.len() + 64;
     while let Some((a, b)) = queue.pop() {
