@@ -25,7 +25,9 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use dymsum::query::ConvexPair;
 use dymsum::Polytope;
-use dymsum_bench::contact::{contact_motion, parry_pose, parry_shape, radius};
+use dymsum_bench::contact::{
+    agreement, contact_motion, parry_pose, parry_shape, radius, Agreement,
+};
 use dymsum_bench::load;
 use dymsum_testkit::{random_polytope, rng, Kind};
 
@@ -86,17 +88,15 @@ fn tracker_vs_parry(c: &mut Criterion) {
                 let ours = tracker.update(pa, pb).expect("a tracker update");
                 let theirs =
                     parry3d_f64::query::contact(qa, &sa, qb, &sb, 0.0).expect("parry's contact");
-                match theirs {
-                    Some(t) if ours.intersects() => {
-                        worst = worst.max((-t.dist - ours.depth()).abs())
-                    }
-                    Some(t) if t.dist < 0.0 => {
+                match agreement(&ours, theirs.as_ref()) {
+                    Agreement::Depths(d) => worst = worst.max(d),
+                    Agreement::OnlyParry => {
                         eprintln!("note {label}: parry reports a depth where dymsum finds none")
                     }
-                    None if ours.intersects() => {
+                    Agreement::OnlyOurs => {
                         eprintln!("note {label}: dymsum reports a depth where parry finds none")
                     }
-                    _ => {}
+                    Agreement::Apart => {}
                 }
                 hits += ours.intersects() as usize;
             }

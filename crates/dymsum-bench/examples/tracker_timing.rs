@@ -8,7 +8,7 @@
 use dymsum::polytope::MeshPolicy;
 use dymsum::query::ConvexPair;
 use dymsum::{DVec3, Polytope, Pose};
-use dymsum_bench::contact::{contact_motion, parry_pose, parry_shape};
+use dymsum_bench::contact::{agreement, contact_motion, parry_pose, parry_shape, Agreement};
 use std::time::Instant;
 
 fn load(name: &str) -> Polytope {
@@ -114,16 +114,12 @@ fn run_pair(na: &str, nb: &str) {
         if o.intersects() {
             hits += 1;
         }
-        match t {
-            Some(c) if o.intersects() => {
-                let d = (-c.dist - o.depth()).abs();
-                if d > worst {
-                    worst = d;
-                    worst_frame = k;
-                }
+        match agreement(o, t.as_ref()) {
+            Agreement::Depths(d) if d > worst => {
+                worst = d;
+                worst_frame = k;
             }
-            Some(_) | None if o.intersects() => disagree += 1,
-            Some(c) if c.dist < 0.0 => disagree += 1,
+            Agreement::OnlyOurs | Agreement::OnlyParry => disagree += 1,
             _ => {}
         }
     }

@@ -4,8 +4,10 @@
 //! which turns slowly the other way; and the same poses and shapes for
 //! parry3d-f64's GJK/EPA `contact`.
 
+use dymsum::query::Proximity;
 use dymsum::{DVec3, Polytope, Pose, Rotation};
 use parry3d_f64::math::{Pose as ParryPose, Rotation as ParryRotation, Vector};
+use parry3d_f64::query::Contact;
 use parry3d_f64::shape::ConvexPolyhedron;
 
 /// Largest distance of a vertex from the shape's origin.
@@ -69,4 +71,28 @@ pub fn parry_pose(p: Pose) -> ParryPose {
         Vector::new(t.x, t.y, t.z),
         ParryRotation::from_xyzw(q.x, q.y, q.z, q.w),
     )
+}
+
+/// How our answer for one frame compares with parry's `contact` (with
+/// prediction 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Agreement {
+    /// Both in contact: `|parry's depth − ours|`.
+    Depths(f64),
+    /// Both apart.
+    Apart,
+    /// Only we report a contact.
+    OnlyOurs,
+    /// Only parry reports a contact.
+    OnlyParry,
+}
+
+/// Compares our answer with parry's for one frame.
+pub fn agreement(ours: &Proximity, theirs: Option<&Contact>) -> Agreement {
+    match theirs {
+        Some(t) if ours.intersects() => Agreement::Depths((-t.dist - ours.depth()).abs()),
+        None if ours.intersects() => Agreement::OnlyOurs,
+        Some(t) if t.dist < 0.0 => Agreement::OnlyParry,
+        _ => Agreement::Apart,
+    }
 }
