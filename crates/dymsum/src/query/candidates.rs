@@ -44,6 +44,8 @@ pub(super) struct Posed {
     pub nb: Vec<DVec3>,
     pub pose_a: Pose,
     pub pose_b: Pose,
+    /// The frame's exponent: frame coordinates are world ones times `2^k`.
+    pub k: i32,
 }
 
 /// `max dir · v` over the posed vertices of `poly`, by a hill climb from the
@@ -75,36 +77,51 @@ pub(super) fn support(poly: &Polytope, posed: &[DVec3], dir: DVec3, starts: &[u3
     }
 }
 
+/// The refined value of a candidate: `h_A(n) + h_B(−n)`, each support
+/// found by a hill climb from the candidate's own features (so the value
+/// is at least the lower bound `h₀`, exactly: the climbs start at the
+/// features `h₀` is taken at and only move up).
+pub(super) fn climb(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
+    let (a, b) = (&pair.a, &pair.b);
+    let (ha, hb) = match c.features {
+        FeaturePair::FaceVertex { a_face, b_vertex } => (
+            support(a, &posed.a, c.n, a.face(a_face as usize)),
+            support(b, &posed.b, -c.n, &[b_vertex]),
+        ),
+        FeaturePair::VertexFace { a_vertex, b_face } => (
+            support(a, &posed.a, c.n, &[a_vertex]),
+            support(b, &posed.b, -c.n, b.face(b_face as usize)),
+        ),
+        FeaturePair::EdgeEdge { a_edge, b_edge } => (
+            support(a, &posed.a, c.n, &a.edge(a_edge as usize).vertices),
+            support(b, &posed.b, -c.n, &b.edge(b_edge as usize).vertices),
+        ),
+    };
+    ha + hb
+}
+
+/// The bound below which a candidate is refined, given the best refined
+/// value so far: within the tie tolerance of it, or of zero (a candidate
+/// facing the origin matters to the separation).
+#[inline]
+pub(super) fn refine_below(best: f64, tol: f64) -> f64 {
+    (best + tol).max(tol)
+}
+
 /// Replaces the lower bounds `h₀` by true support values where they matter
 /// (see the module docs) and keeps only those candidates, in order.
 pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate>, tol: f64) {
-    let (a, b) = (&pair.a, &pair.b);
-    let climb = |c: &Candidate| -> f64 {
-        let (ha, hb) = match c.features {
-            FeaturePair::FaceVertex { a_face, b_vertex } => (
-                support(a, &posed.a, c.n, a.face(a_face as usize)),
-                support(b, &posed.b, -c.n, &[b_vertex]),
-            ),
-            FeaturePair::VertexFace { a_vertex, b_face } => (
-                support(a, &posed.a, c.n, &[a_vertex]),
-                support(b, &posed.b, -c.n, b.face(b_face as usize)),
-            ),
-            FeaturePair::EdgeEdge { a_edge, b_edge } => (
-                support(a, &posed.a, c.n, &a.edge(a_edge as usize).vertices),
-                support(b, &posed.b, -c.n, &b.edge(b_edge as usize).vertices),
-            ),
-        };
-        ha + hb
-    };
     let Some(first) = (0..cands.len()).min_by(|&i, &j| cands[i].h.total_cmp(&cands[j].h)) else {
         return;
     };
-    cands[first].h = climb(&cands[first]);
-    cands[first].refined = true;
+    if !cands[first].refined {
+        cands[first].h = climb(pair, posed, &cands[first]);
+        cands[first].refined = true;
+    }
     let mut best = cands[first].h;
     for c in cands.iter_mut() {
-        if !c.refined && c.h <= (best + tol).max(tol) {
-            c.h = climb(c);
+        if !c.refined && c.h <= refine_below(best, tol) {
+            c.h = climb(pair, posed, c);
             c.refined = true;
             best = best.min(c.h);
         }
@@ -113,96 +130,181 @@ pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate
 }
 
 /// The candidates of all facets of the overlay (P = A, Q = −B), with the
-/// lower bounds `h₀` as values, into `out` (cleared first).
+/// lower bounds `h₀` as values, into `out` (cleared first), in the
+/// overlay's order.
+///
+/// The ee-candidates come last and most cost a square root and a division
+/// each, so the least fv- or vf-candidate is refined first, and an
+/// ee-candidate whose value `h₀` is certainly above the refine bound
+/// (by a full tolerance, so that rounding cannot matter) is left out: it
+/// would be dropped by [`refine`] anyway.
 pub(super) fn candidates(
+    pair: &ConvexPair,
+    posed: &Posed,
+    overlay: &Overlay,
+    tol: f64,
+    out: &mut Vec<Candidate>,
+) {
+    out.clear();
+    for (f, &w) in overlay.fv.iter().enumerate() {
+        out.push(fv_candidate(pair, posed, f, w));
+    }
+    for (g, &u) in overlay.vf.iter().enumerate() {
+        out.push(vf_candidate(pair, posed, g, u));
+    }
+    let mut skip_above = f64::INFINITY;
+    if let Some(first) = (0..out.len()).min_by(|&i, &j| out[i].h.total_cmp(&out[j].h)) {
+        let c = &mut out[first];
+        c.h = climb(pair, posed, c);
+        c.refined = true;
+        skip_above = refine_below(c.h, tol) + tol;
+    }
+    for &(e, e2) in &overlay.ee {
+        push_ee_candidates(pair, posed, e, e2, skip_above, out);
+    }
+}
+
+/// [`candidates`] without leaving any out, for the tests' reference.
+#[cfg(test)]
+pub(super) fn candidates_unpruned(
     pair: &ConvexPair,
     posed: &Posed,
     overlay: &Overlay,
     out: &mut Vec<Candidate>,
 ) {
-    let (a, b, r) = (&pair.a, &pair.b, &pair.neg_b);
-    let (na, nb) = (&posed.na, &posed.nb);
     out.clear();
-    // The lower bound h₀ at the facet's own features (refined later).
-    let value = |n: DVec3, sa: &[u32], sb: &[u32]| {
-        n.dot(posed.a[sa[0] as usize]) - n.dot(posed.b[sb[0] as usize])
-    };
     for (f, &w) in overlay.fv.iter().enumerate() {
-        let w = r.vertex_map[w as usize];
-        let n = na[f];
-        out.push(Candidate {
-            features: FeaturePair::FaceVertex {
-                a_face: f as u32,
-                b_vertex: w,
-            },
-            n,
-            h: value(n, a.face(f), &[w]),
-
-            refined: false,
-        });
+        out.push(fv_candidate(pair, posed, f, w));
     }
     for (g, &u) in overlay.vf.iter().enumerate() {
-        let g = r.face_map[g] as usize;
-        let n = -nb[g];
-        out.push(Candidate {
-            features: FeaturePair::VertexFace {
-                a_vertex: u,
-                b_face: g as u32,
-            },
-            n,
-            h: value(n, &[u], b.face(g)),
-
-            refined: false,
-        });
+        out.push(vf_candidate(pair, posed, g, u));
     }
     for &(e, e2) in &overlay.ee {
-        let e2 = r.edge_map[e2 as usize];
-        let (ea, eb) = (a.edge(e as usize), b.edge(e2 as usize));
-        let ordered = |[x, y]: [u32; 2]| if x < y { [x, y] } else { [y, x] };
-        let [u1, u2] = ordered(ea.vertices);
-        let [w1, w2] = ordered(eb.vertices);
-        let da = posed.a[u2 as usize] - posed.a[u1 as usize];
-        let db = posed.b[w2 as usize] - posed.b[w1 as usize];
-        let c = da.cross(db);
-        let len = c.length();
-        if len == 0.0 || !len.is_finite() {
-            continue; // parallel edges: a degenerate facet of zero area
-        }
-        let n = c / len;
-        // Outward: n lies on A's arc (between its faces' normals) and −n on
-        // B's arc. Exactly antisymmetric under swapping A and B.
-        let sa_n = na[ea.faces[0] as usize] + na[ea.faces[1] as usize];
-        let sb_n = nb[eb.faces[0] as usize] + nb[eb.faces[1] as usize];
-        let s = n.dot(sa_n - sb_n);
-        let features = FeaturePair::EdgeEdge {
-            a_edge: e,
-            b_edge: e2,
-        };
-        let (sa, sb) = ([u1, u2], [w1, w2]);
-        if s.abs() < 1e-9 {
-            // Nearly antipodal arcs: the sign is uncertain, take both (every
-            // candidate is a true support value, so extra ones are harmless).
-            for n in [n, -n] {
-                out.push(Candidate {
-                    features,
-                    n,
-                    h: value(n, &sa, &sb),
-
-                    refined: false,
-                });
-            }
-        } else {
-            let n = if s > 0.0 { n } else { -n };
-            out.push(Candidate {
-                features,
-                n,
-                h: value(n, &sa, &sb),
-
-                refined: false,
-            });
-        }
+        push_ee_candidates(pair, posed, e, e2, f64::INFINITY, out);
     }
 }
+
+/// The lower bound `h₀` at a candidate's own features.
+#[inline]
+fn lower_bound(posed: &Posed, n: DVec3, a_vertex: u32, b_vertex: u32) -> f64 {
+    n.dot(posed.a[a_vertex as usize]) - n.dot(posed.b[b_vertex as usize])
+}
+
+/// The candidate of the fv-facet of face `f` of A and vertex `w` of `−B`.
+#[inline]
+pub(super) fn fv_candidate(pair: &ConvexPair, posed: &Posed, f: usize, w: u32) -> Candidate {
+    let w = pair.neg_b.vertex_map[w as usize];
+    let n = posed.na[f];
+    Candidate {
+        features: FeaturePair::FaceVertex {
+            a_face: f as u32,
+            b_vertex: w,
+        },
+        n,
+        h: lower_bound(posed, n, pair.a.face(f)[0], w),
+        refined: false,
+    }
+}
+
+/// The candidate of the vf-facet of vertex `u` of A and face `g` of `−B`.
+#[inline]
+pub(super) fn vf_candidate(pair: &ConvexPair, posed: &Posed, g: usize, u: u32) -> Candidate {
+    let g = pair.neg_b.face_map[g] as usize;
+    let n = -posed.nb[g];
+    Candidate {
+        features: FeaturePair::VertexFace {
+            a_vertex: u,
+            b_face: g as u32,
+        },
+        n,
+        h: lower_bound(posed, n, u, pair.b.face(g)[0]),
+        refined: false,
+    }
+}
+
+/// The candidates of the ee-facet of edge `e` of A and edge `e2` of `−B`
+/// pushed onto `out`: none for parallel edges, two (both signs) when the
+/// orientation is uncertain, else one; none either when the orientation is
+/// certain and the value is certainly above `skip_above` (tested without
+/// normalising the direction).
+pub(super) fn push_ee_candidates(
+    pair: &ConvexPair,
+    posed: &Posed,
+    e: u32,
+    e2: u32,
+    skip_above: f64,
+    out: &mut Vec<Candidate>,
+) {
+    let (a, b) = (&pair.a, &pair.b);
+    let (na, nb) = (&posed.na, &posed.nb);
+    let e2 = pair.neg_b.edge_map[e2 as usize];
+    let (ea, eb) = (a.edge(e as usize), b.edge(e2 as usize));
+    let ordered = |[x, y]: [u32; 2]| if x < y { [x, y] } else { [y, x] };
+    let [u1, u2] = ordered(ea.vertices);
+    let [w1, w2] = ordered(eb.vertices);
+    let da = posed.a[u2 as usize] - posed.a[u1 as usize];
+    let db = posed.b[w2 as usize] - posed.b[w1 as usize];
+    let c = da.cross(db);
+    // Outward: n lies on A's arc (between its faces' normals) and −n on
+    // B's arc. Exactly antisymmetric under swapping A and B.
+    let sa_n = na[ea.faces[0] as usize] + na[ea.faces[1] as usize];
+    let sb_n = nb[eb.faces[0] as usize] + nb[eb.faces[1] as usize];
+    let x = posed.a[u1 as usize] - posed.b[w1 as usize];
+    if certainly_above(c, c.dot(sa_n - sb_n), x, skip_above) {
+        return;
+    }
+    let len = c.length();
+    if len == 0.0 || !len.is_finite() {
+        return; // parallel edges: a degenerate facet of zero area
+    }
+    let n = c / len;
+    let s = n.dot(sa_n - sb_n);
+    let features = FeaturePair::EdgeEdge {
+        a_edge: e,
+        b_edge: e2,
+    };
+    let mut push = |n: DVec3| {
+        out.push(Candidate {
+            features,
+            n,
+            h: lower_bound(posed, n, u1, w1),
+            refined: false,
+        })
+    };
+    if s.abs() < AMBIGUOUS_ORIENTATION {
+        // Nearly antipodal arcs: the sign is uncertain, take both (every
+        // candidate is a true support value, so extra ones are harmless).
+        push(n);
+        push(-n);
+    } else {
+        push(if s > 0.0 { n } else { -n });
+    }
+}
+
+/// Whether the ee-candidate of direction `c / |c|` (oriented by the sign
+/// of `sc = c · (ΣA − ΣB)`), at the facet point `x`, certainly has
+/// `h₀ > skip_above`, tested without the square root: only when the
+/// orientation is clear (`|sc|` at least twice [`AMBIGUOUS_ORIENTATION`]
+/// `|c|`) and no square overflows or underflows. The caller's
+/// `skip_above` carries a full tie tolerance of margin for the rounding
+/// between `c · x / |c|` and `h₀ = n · a − n · b`.
+#[inline]
+fn certainly_above(c: DVec3, sc: f64, x: DVec3, skip_above: f64) -> bool {
+    let len2 = c.length_squared();
+    let clear = 4.0 * AMBIGUOUS_ORIENTATION * AMBIGUOUS_ORIENTATION * len2;
+    if !(len2 > 1e-200 && len2 < 1e200) || sc * sc <= clear {
+        return false;
+    }
+    let hv = if sc > 0.0 { c.dot(x) } else { -c.dot(x) };
+    if !(hv > 0.0 && hv < 1e100) {
+        return false;
+    }
+    skip_above <= 0.0 || (skip_above > 1e-100 && hv * hv > skip_above * skip_above * len2)
+}
+
+/// Below this `|n · (ΣA − ΣB)|` an ee-candidate's orientation is taken
+/// both ways (see [`push_ee_candidates`]).
+pub(super) const AMBIGUOUS_ORIENTATION: f64 = 1e-9;
 
 /// `n` or `−n`, whichever is lexicographically larger (a key invariant under
 /// negation), and whether `n` itself is that one.

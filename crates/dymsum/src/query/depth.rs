@@ -68,6 +68,7 @@ pub(super) fn evaluate(
         .extend((0..pair.b.face_count()).map(|g| pose_b.rotation.apply(pair.b.unit_normal(g))));
     posed.pose_a = pose_a;
     posed.pose_b = pose_b;
+    posed.k = k;
     let back = |x: f64| exact::mul_pow2(x, -k);
     let back_v = |v: DVec3| DVec3::new(back(v.x), back(v.y), back(v.z));
     let answer = evaluate_in_frame(
@@ -75,7 +76,7 @@ pub(super) fn evaluate(
         &scratch.posed,
         overlay,
         &mut scratch.cands,
-        &mut scratch.poly,
+        (&mut scratch.poly, &mut scratch.bounds),
     );
     let out = match answer {
         Proximity::Penetrating(c) => Proximity::Penetrating(Contact {
@@ -116,6 +117,8 @@ pub(crate) struct Scratch {
     cands: Vec<Candidate>,
     /// A face's posed corners (the separation).
     poly: Vec<DVec3>,
+    /// The facing facets' distance bounds (the separation).
+    bounds: Vec<f64>,
 }
 
 /// [`evaluate`] on frame coordinates.
@@ -124,14 +127,40 @@ fn evaluate_in_frame(
     posed: &Posed,
     overlay: &Overlay,
     cands: &mut Vec<Candidate>,
-    poly: &mut Vec<DVec3>,
+    (poly, bounds): (&mut Vec<DVec3>, &mut Vec<f64>),
 ) -> Proximity {
     let tol = tie_tolerance(posed);
-    candidates(pair, posed, overlay, cands);
+    candidates(pair, posed, overlay, tol, cands);
     refine(pair, posed, cands, tol);
+    let answer = answer_from(pair, posed, tol, cands, (poly, bounds));
+    #[cfg(test)]
+    {
+        // The pruning (ee-candidates left out, separation by branch and
+        // bound) must not change the answer: every candidate, refined.
+        let mut all = Vec::new();
+        super::candidates::candidates_unpruned(pair, posed, overlay, &mut all);
+        all.iter_mut().for_each(|c| {
+            c.h = super::candidates::climb(pair, posed, c);
+            c.refined = true;
+        });
+        let reference = answer_from(pair, posed, tol, &all, (poly, bounds));
+        assert_eq!(answer, reference, "the pruning changed the answer");
+    }
+    answer
+}
+
+/// The answer from refined candidates (every one within the tie tolerance
+/// of the least value or of zero among them, in the overlay's order).
+fn answer_from(
+    pair: &ConvexPair,
+    posed: &Posed,
+    tol: f64,
+    cands: &[Candidate],
+    (poly, bounds): (&mut Vec<DVec3>, &mut Vec<f64>),
+) -> Proximity {
     let (w, hmin) = winner(cands, tol);
     if hmin < 0.0 {
-        return Proximity::Separated(separation(pair, posed, cands, tol, cands[w], poly));
+        return Proximity::Separated(separation(pair, posed, cands, tol, cands[w], poly, bounds));
     }
     let c = cands[w];
     let depth = hmin;

@@ -372,6 +372,9 @@ pub struct ConvexPair {
     a: Polytope,
     b: Polytope,
     neg_b: std::sync::Arc<Reflected>,
+    /// Balls around the faces and edges of A and B (the separation's
+    /// branch and bound).
+    balls: std::sync::Arc<(distance::FeatureBalls, distance::FeatureBalls)>,
 }
 
 impl ConvexPair {
@@ -389,6 +392,10 @@ impl ConvexPair {
             a: a.clone(),
             b: b.clone(),
             neg_b: std::sync::Arc::new(Reflected::new(b)?),
+            balls: std::sync::Arc::new((
+                distance::FeatureBalls::of(a),
+                distance::FeatureBalls::of(b),
+            )),
         })
     }
     /// Body A.
