@@ -62,7 +62,8 @@
 //! scale).
 
 use super::validate::{
-    check_convex_faces, check_sphere_faces, edge_is_convex, face_defect, ExactPoints,
+    check_convex_faces, check_convex_geometry, check_sphere_faces, edge_is_convex, face_defect,
+    ExactPoints,
 };
 use super::{Operands, Overlay};
 use crate::kernel::predicates::{det3, same_direction, sos_det3};
@@ -704,7 +705,13 @@ fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<Sum
         fold_bent_faces(&mut faces, &points)
     };
     if let Some(bent) = folded {
-        match check_convex_faces(&faces, &points) {
+        // The directed-edge index is built once here and reused by the
+        // repairs of the same faces.
+        let (checked, directed) = match check_sphere_faces(&faces, points.points().len()) {
+            Ok(d) => (check_convex_geometry(&faces, &d, &points), Some(d)),
+            Err(defect) => (Err(defect), None),
+        };
+        match checked {
             Ok(()) => {
                 return Ok(Some(SumMesh {
                     mesh: PolygonMesh {
@@ -729,15 +736,23 @@ fn mesh_or_hull(ops: &Operands, merged: Merged, hull: bool) -> Result<Option<Sum
                 // or pushed a vertex inside: rebuild only around those.
                 // Flips first (cheap, local); what they leave, a local hull.
                 let vertices = &merged.mesh.vertices;
-                let local_hull = |faces: &[Vec<usize>]| {
-                    repair_defects(faces, &points)
+                let local_hull = |faces: &[Vec<usize>], directed: &DirectedEdges| {
+                    repair_defects(faces, directed, &points)
                         .and_then(|faces| compact_checked(vertices, &faces, &points))
                 };
-                let repaired = match flip_reflex_edges(faces.clone(), &points) {
-                    Some(flipped) => compact_checked(vertices, &flipped, &points)
-                        .or_else(|| local_hull(&flipped)),
-                    None => local_hull(&faces),
-                };
+                // Not a closed sphere (no index): nothing local to repair.
+                let repaired = directed.and_then(|directed| {
+                    match flip_reflex_edges(faces.clone(), &directed, &points) {
+                        Some(flipped) => {
+                            compact_checked(vertices, &flipped, &points).or_else(|| {
+                                let n = points.points().len();
+                                let d = check_sphere_faces(&flipped, n).ok()?;
+                                local_hull(&flipped, &d)
+                            })
+                        }
+                        None => local_hull(&faces, &directed),
+                    }
+                });
                 if let Some(mesh) = repaired {
                     return Ok(Some(SumMesh {
                         mesh,
@@ -861,14 +876,18 @@ fn outer_side(face: &[usize], points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
 /// the region is the faces at the defects grown by one ring of faces
 /// around their corners. The outer side is found from the region's
 /// boundary: the hull faces holding its edges (same direction) and all hull
-/// faces reached from them without crossing it. `None` when the faces are
-/// not a closed sphere, the region is the whole mesh (then the caller's
-/// hull from scratch is the same work), or the boundary is not on the hull. The result is a
-/// candidate only (its corners may have lost vertices pushed inside):
-/// [`compact_checked`] decides.
-fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
+/// faces reached from them without crossing it. `faces` must be a closed
+/// sphere with the directed-edge index `directed` ([`check_sphere_faces`]).
+/// `None` when the region is the whole mesh (then the caller's hull from
+/// scratch is the same work) or the boundary is not on the hull. The
+/// result is a candidate only (its corners may have lost vertices pushed
+/// inside): [`compact_checked`] decides.
+fn repair_defects(
+    faces: &[Vec<usize>],
+    directed: &DirectedEdges,
+    points: &ExactPoints,
+) -> Option<Vec<Vec<usize>>> {
     let n = points.points().len();
-    let directed = check_sphere_faces(faces, n).ok()?;
     // The face across the edge at `pos`, leaving `a`.
     let across = |a: usize, pos: usize| directed.face_of(directed.target[pos], a);
     let mut in_region: Vec<bool> = faces
@@ -878,7 +897,7 @@ fn repair_defects(faces: &[Vec<usize>], points: &ExactPoints) -> Option<Vec<Vec<
         .collect();
     for a in 0..n {
         for pos in directed.start[a]..directed.start[a + 1] {
-            if directed.target[pos] > a && !edge_is_convex(faces, &directed, pos, points) {
+            if directed.target[pos] > a && !edge_is_convex(faces, directed, pos, points) {
                 in_region[directed.face_corner(pos).0] = true;
                 in_region[across(a, pos)?] = true;
             }
@@ -1015,18 +1034,22 @@ fn compact_checked(
 /// edges around each flip re-tested, until no such edge is left: the local
 /// convexification of a mesh whose vertices rounding moved by an ulp.
 /// Other defects (a reflex edge at a polygon, a flat edge, a flip that
-/// would duplicate an edge) are left for [`repair_defects`]. `None` when
-/// the faces are not a closed sphere or flips do not settle. The result is
-/// a candidate only: [`compact_checked`] decides.
-fn flip_reflex_edges(mut faces: Vec<Vec<usize>>, points: &ExactPoints) -> Option<Vec<Vec<usize>>> {
+/// would duplicate an edge) are left for [`repair_defects`]. `faces` must
+/// be a closed sphere with the directed-edge index `directed`
+/// ([`check_sphere_faces`]). `None` when flips do not settle. The result
+/// is a candidate only: [`compact_checked`] decides.
+fn flip_reflex_edges(
+    mut faces: Vec<Vec<usize>>,
+    directed: &DirectedEdges,
+    points: &ExactPoints,
+) -> Option<Vec<Vec<usize>>> {
     use std::collections::HashMap;
     let n = points.points().len();
-    let directed = check_sphere_faces(&faces, n).ok()?;
     let mut queue = Vec::new();
     for a in 0..n {
         for pos in directed.start[a]..directed.start[a + 1] {
             let b = directed.target[pos];
-            if b > a && !edge_is_convex(&faces, &directed, pos, points) {
+            if b > a && !edge_is_convex(&faces, directed, pos, points) {
                 queue.push((a, b));
             }
         }
@@ -1120,7 +1143,8 @@ mod tests {
         let (c, d) = (bad[7][0], bad[7][1]);
         flip(&mut bad, c, d);
         assert!(check_convex_faces(&bad, &ep).is_err());
-        let fixed = flip_reflex_edges(bad, &ep).unwrap();
+        let d = check_sphere_faces(&bad, pts.len()).unwrap();
+        let fixed = flip_reflex_edges(bad, &d, &ep).unwrap();
         let mesh = compact_checked(&as_mesh(&pts), &fixed, &ep).expect("flips repair it");
         assert_eq!(mesh.faces.len(), good.len());
     }
@@ -1140,7 +1164,8 @@ mod tests {
             if check_convex_faces(&bad, &ep).is_ok() {
                 continue;
             }
-            let fixed = flip_reflex_edges(bad, &ep).expect("flips settle");
+            let d = check_sphere_faces(&bad, pts.len()).unwrap();
+            let fixed = flip_reflex_edges(bad, &d, &ep).expect("flips settle");
             assert!(
                 compact_checked(&as_mesh(&pts), &fixed, &ep).is_some(),
                 "triangle {t}"
@@ -1194,7 +1219,8 @@ mod tests {
         pts[4] = DVec3::new(0.0, 0.0, -0.25);
         let ep = ExactPoints::new(&pts);
         assert!(check_convex_faces(&hull.faces, &ep).is_err());
-        assert!(repair_defects(&hull.faces, &ep).is_none());
+        let d = check_sphere_faces(&hull.faces, pts.len()).unwrap();
+        assert!(repair_defects(&hull.faces, &d, &ep).is_none());
     }
 
     #[test]
@@ -1210,7 +1236,8 @@ mod tests {
         faces.push(vec![f[2], f[0], v]);
         let ep = ExactPoints::new(&pts);
         assert!(check_convex_faces(&faces, &ep).is_err());
-        let region = repair_defects(&faces, &ep).unwrap();
+        let d = check_sphere_faces(&faces, pts.len()).unwrap();
+        let region = repair_defects(&faces, &d, &ep).unwrap();
         let mesh = compact_checked(&as_mesh(&pts), &region, &ep).expect("a local hull repairs it");
         assert_eq!(mesh.vertices.len(), pts.len() - 1);
         // A vertex pushed *outside* is kept, never dropped.

@@ -308,6 +308,17 @@ fn repeats_a_vertex(f: &[usize]) -> bool {
 /// exact predicates.
 pub(crate) fn check_convex_faces(faces: &[Vec<usize>], ep: &ExactPoints) -> Result<(), MeshDefect> {
     let directed = check_sphere_faces(faces, ep.points().len())?;
+    check_convex_geometry(faces, &directed, ep)
+}
+
+/// The geometric part of [`check_convex_faces`], on faces that passed
+/// [`check_sphere_faces`] (whose index is `directed`): every face a
+/// strictly convex planar polygon, every edge strictly convex.
+pub(crate) fn check_convex_geometry(
+    faces: &[Vec<usize>],
+    directed: &DirectedEdges,
+    ep: &ExactPoints,
+) -> Result<(), MeshDefect> {
     // Geometry, exactly.
     for (fi, f) in faces.iter().enumerate() {
         face_defect(fi, f, ep)?;
@@ -318,7 +329,7 @@ pub(crate) fn check_convex_faces(faces: &[Vec<usize>], ep: &ExactPoints) -> Resu
             // Each edge once: for planar faces meeting at an edge, the far
             // corner of either lies below the other's plane iff the same
             // holds the other way.
-            if b > a && !edge_is_convex(faces, &directed, pos, ep) {
+            if b > a && !edge_is_convex(faces, directed, pos, ep) {
                 return Err(MeshDefect::NonConvexEdge(a, b));
             }
         }
