@@ -7,10 +7,13 @@
 //!
 //! Branch and bound: the value at the facet's own features, `h₀ ≤ h`, costs
 //! two dot products. Only candidates with `h₀` within the tie tolerance of
-//! the best refined value (or of zero, for the separation) are refined by
-//! the hill climbs; every other candidate has `h > best + tol`, so it can
-//! neither win nor tie nor face the origin, and the answer is the same as
-//! refining all of them. The winner is chosen by a rule that does not depend
+//! the best refined value are refined by the hill climbs; every other
+//! candidate has `h > best + tol`, so it can neither win nor tie. Those
+//! that may still face the origin (`h₀ ≤ tol`) are kept unrefined for the
+//! separation, which refines one only when its distance bound can win; the
+//! rest are dropped, and the ee-candidates among them before their square
+//! root. The answer is the same as refining all of them (the crate's unit
+//! tests compare). The winner is chosen by a rule that does not depend
 //! on the order of the candidates (so answers never differ between runs).
 //!
 //! Complexity: O(facets) for the lower bounds, plus a hill climb per refined
@@ -108,8 +111,11 @@ pub(super) fn refine_below(best: f64, tol: f64) -> f64 {
     (best + tol).max(tol)
 }
 
-/// Replaces the lower bounds `h₀` by true support values where they matter
-/// (see the module docs) and keeps only those candidates, in order.
+/// Replaces the lower bounds `h₀` by true support values where they can
+/// matter to the depth (within the tie tolerance of the best value) and
+/// keeps those candidates, in order, together with the unrefined ones that
+/// may face the origin (`h₀ ≤ tol`), which the separation refines only
+/// when their distance bound can win ([`super::distance::separation`]).
 pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate>, tol: f64) {
     let Some(first) = (0..cands.len()).min_by(|&i, &j| cands[i].h.total_cmp(&cands[j].h)) else {
         return;
@@ -120,13 +126,16 @@ pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate
     }
     let mut best = cands[first].h;
     for c in cands.iter_mut() {
-        if !c.refined && c.h <= refine_below(best, tol) {
+        if !c.refined && c.h <= best + tol {
             c.h = climb(pair, posed, c);
             c.refined = true;
             best = best.min(c.h);
         }
     }
-    cands.retain(|c| c.refined);
+    // A candidate left unrefined with `h₀ ≤ tol` may face the origin; the
+    // separation refines it if its distance bound can win
+    // ([`super::distance::separation`]). The others cannot matter.
+    cands.retain(|c| c.refined || c.h <= tol);
 }
 
 /// The candidates of all facets of the overlay (P = A, Q = −B), with the
@@ -336,10 +345,14 @@ pub(super) fn tie_tolerance(posed: &Posed) -> f64 {
 /// one with the smallest sign-free key, then the "positive" one, then the
 /// smaller `h`.
 pub(super) fn winner(cands: &[Candidate], tol: f64) -> (usize, f64) {
-    let hmin = cands.iter().map(|c| c.h).fold(f64::INFINITY, f64::min);
+    let hmin = cands
+        .iter()
+        .filter(|c| c.refined)
+        .map(|c| c.h)
+        .fold(f64::INFINITY, f64::min);
     let mut best: Option<(usize, ([f64; 3], bool))> = None;
     for (i, c) in cands.iter().enumerate() {
-        if c.h > hmin + tol {
+        if !c.refined || c.h > hmin + tol {
             continue;
         }
         let key = sign_free_key(c.n);

@@ -22,7 +22,7 @@
 //! Complexity: O(facets) for the bounds, plus one feature distance per
 //! facet near the answer.
 
-use super::candidates::{Candidate, Posed};
+use super::candidates::{climb, Candidate, Posed};
 use super::closest::{closest_on_polygon, segment_segment};
 use super::{ConvexPair, FeaturePair, Separation};
 use crate::kernel::exact::mul_pow2;
@@ -70,7 +70,8 @@ fn mean(points: impl Iterator<Item = DVec3>, n: usize) -> DVec3 {
 }
 
 /// A lower bound on the distance from the origin to the facet of `c`
-/// (frame units), before the rounding safety.
+/// (frame units), before the rounding safety: the ball bound, and the
+/// plane's `−h` once `h` is refined (the unrefined `h₀ ≤ h` is no bound).
 fn distance_bound(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     let (a, b) = (&pair.a, &pair.b);
     let (balls_a, balls_b) = (&pair.balls.0, &pair.balls.1);
@@ -97,7 +98,11 @@ fn distance_bound(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
                 - frame(balls_a.half_edge[a_edge as usize] + balls_b.half_edge[b_edge as usize])
         }
     };
-    ball.max(-c.h)
+    if c.refined {
+        ball.max(-c.h)
+    } else {
+        ball
+    }
 }
 
 /// The closest points of the features of `c` (on A, on B).
@@ -160,8 +165,11 @@ pub(super) fn separation(
             f64::INFINITY
         }
     }));
+    // Whether a candidate faces the origin: its refined value is at most
+    // `tol` (refined here, once, when [`refine`] left it for later).
+    let facing = |c: &Candidate| c.h <= tol && (c.refined || climb(pair, posed, c) <= tol);
     let seed = (0..cands.len())
-        .filter(|&i| bounds[i].is_finite())
+        .filter(|&i| cands[i].refined && bounds[i].is_finite())
         .min_by(|&i, &j| bounds[i].total_cmp(&bounds[j]));
     let mut limit = seed.map_or(f64::INFINITY, |i| {
         let (pa, pb) = feature_points(pair, posed, &cands[i], poly);
@@ -169,7 +177,7 @@ pub(super) fn separation(
     });
     let mut best: Option<(f64, DVec3, DVec3, FeaturePair)> = None;
     for (c, &bound) in cands.iter().zip(bounds.iter()) {
-        if c.h > tol || bound - safety > limit {
+        if c.h > tol || bound - safety > limit || !facing(c) {
             continue;
         }
         let (pa, pb) = feature_points(pair, posed, c, poly);
@@ -184,7 +192,7 @@ pub(super) fn separation(
         // The bound may skip only facets that cannot win: measuring every
         // facing facet must give the same best, ties included.
         let mut all: Option<(f64, DVec3, DVec3, FeaturePair)> = None;
-        for c in cands.iter().filter(|c| c.h <= tol) {
+        for c in cands.iter().filter(|c| facing(c)) {
             let (pa, pb) = feature_points(pair, posed, c, poly);
             let d = (pb - pa).length();
             if !all.as_ref().is_some_and(|bst| d >= bst.0) {
