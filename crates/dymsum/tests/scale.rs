@@ -186,7 +186,15 @@ fn exponent() -> impl Strategy<Value = i32> {
         Just(270),
         Just(-270),
         Just(300),
-        Just(-300)
+        Just(-300),
+        // Beyond 1e±154, where squares of body coordinates underflow or
+        // overflow (review finding: the separation's ball radii did).
+        Just(600),
+        Just(-600),
+        Just(900),
+        Just(-900),
+        Just(1000),
+        Just(-1000)
     ]
 }
 

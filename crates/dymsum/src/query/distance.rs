@@ -25,41 +25,78 @@
 use super::candidates::{climb, Candidate, Posed};
 use super::closest::{closest_on_polygon, segment_segment};
 use super::{ConvexPair, FeaturePair, Separation};
-use crate::kernel::exact::mul_pow2;
+use crate::kernel::exact::{frame_exponent, mul_pow2};
 use crate::polytope::Polytope;
 use glam::DVec3;
 
 /// For each face of a body, the largest distance from the mean of its
-/// corners to a corner; for each edge, half its length (body frame).
+/// corners to a corner; for each edge, half its length; and the body's
+/// reach (largest `|v|`). All in the body's own power-of-two frame
+/// (coordinates times `2^exp`, the largest magnitude in `[1, 2)`), so
+/// nothing underflows or overflows at any scale, and rounded up.
 #[derive(Clone, Debug, Default)]
 pub(super) struct FeatureBalls {
+    exp: i32,
+    reach: f64,
     face_radius: Vec<f64>,
     half_edge: Vec<f64>,
+}
+
+/// Rounds a computed length up past its rounding error (a few ulps).
+#[inline]
+fn up(x: f64) -> f64 {
+    x * (1.0 + 8.0 * f64::EPSILON)
 }
 
 impl FeatureBalls {
     /// The balls of `p`'s faces and edges.
     pub(super) fn of(p: &Polytope) -> FeatureBalls {
-        let v = p.vertices();
+        let exp = frame_exponent(p.vertices().iter().flat_map(|v| v.to_array()));
+        let factor = mul_pow2(1.0, exp);
+        let v: Vec<DVec3> = if exp.abs() <= 1000 {
+            p.vertices().iter().map(|&x| x * factor).collect()
+        } else {
+            let s = |x: f64| mul_pow2(x, exp);
+            p.vertices()
+                .iter()
+                .map(|x| DVec3::new(s(x.x), s(x.y), s(x.z)))
+                .collect()
+        };
+        let reach = up(v.iter().map(|x| x.length()).fold(0.0, f64::max));
         let face_radius = (0..p.face_count())
             .map(|f| {
                 let face = p.face(f);
                 let c = mean(face.iter().map(|&i| v[i as usize]), face.len());
-                face.iter()
+                up(face
+                    .iter()
                     .map(|&i| (v[i as usize] - c).length())
-                    .fold(0.0, f64::max)
+                    .fold(0.0, f64::max))
             })
             .collect();
         let half_edge = (0..p.edge_count())
             .map(|e| {
                 let [x, y] = p.edge(e).vertices;
-                0.5 * (v[x as usize] - v[y as usize]).length()
+                up(0.5 * (v[x as usize] - v[y as usize]).length())
             })
             .collect();
         FeatureBalls {
+            exp,
+            reach,
             face_radius,
             half_edge,
         }
+    }
+
+    /// A length of these balls in the query's frame (`2^k` world).
+    #[inline]
+    fn in_frame(&self, r: f64, k: i32) -> f64 {
+        mul_pow2(r, k - self.exp)
+    }
+
+    /// A bound on the rounding of one posed vertex of this body,
+    /// `R v + t`, in the query's frame.
+    fn pose_error(&self, t: DVec3, k: i32) -> f64 {
+        16.0 * f64::EPSILON * (self.in_frame(self.reach, k) + mul_pow2(t.abs().max_element(), k))
     }
 }
 
@@ -75,19 +112,22 @@ fn mean(points: impl Iterator<Item = DVec3>, n: usize) -> DVec3 {
 fn distance_bound(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     let (a, b) = (&pair.a, &pair.b);
     let (balls_a, balls_b) = (&pair.balls.0, &pair.balls.1);
-    let frame = |r: f64| mul_pow2(r, posed.k);
+    let (frame_a, frame_b) = (
+        |r: f64| balls_a.in_frame(r, posed.k),
+        |r: f64| balls_b.in_frame(r, posed.k),
+    );
     let ball = match c.features {
         FeaturePair::FaceVertex { a_face, b_vertex } => {
             let face = a.face(a_face as usize);
             let centre = mean(face.iter().map(|&v| posed.a[v as usize]), face.len());
             (centre - posed.b[b_vertex as usize]).length()
-                - frame(balls_a.face_radius[a_face as usize])
+                - frame_a(balls_a.face_radius[a_face as usize])
         }
         FeaturePair::VertexFace { a_vertex, b_face } => {
             let face = b.face(b_face as usize);
             let centre = mean(face.iter().map(|&v| posed.b[v as usize]), face.len());
             (posed.a[a_vertex as usize] - centre).length()
-                - frame(balls_b.face_radius[b_face as usize])
+                - frame_b(balls_b.face_radius[b_face as usize])
         }
         FeaturePair::EdgeEdge { a_edge, b_edge } => {
             let [u1, u2] = a.edge(a_edge as usize).vertices;
@@ -95,7 +135,8 @@ fn distance_bound(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
             let mid_a = 0.5 * (posed.a[u1 as usize] + posed.a[u2 as usize]);
             let mid_b = 0.5 * (posed.b[w1 as usize] + posed.b[w2 as usize]);
             (mid_a - mid_b).length()
-                - frame(balls_a.half_edge[a_edge as usize] + balls_b.half_edge[b_edge as usize])
+                - (frame_a(balls_a.half_edge[a_edge as usize])
+                    + frame_b(balls_b.half_edge[b_edge as usize]))
         }
     };
     if c.refined {
@@ -155,8 +196,13 @@ pub(super) fn separation(
     bounds: &mut Vec<f64>,
 ) -> Separation {
     // Rounding of the bounds and of the measured distances: a few ulps of
-    // the coordinates' scale (`tol` is 16 of them).
-    let safety = 4.0 * tol;
+    // the coordinates' scale (`tol` is 16 of them); the posed corners,
+    // mean and points are each off the exact pose by at most the pose
+    // error, which can exceed `tol` when a body's vertices lie far from its
+    // own origin; and an absolute term for radii that reach subnormals.
+    let pose_error = pair.balls.0.pose_error(posed.pose_a.translation, posed.k)
+        + pair.balls.1.pose_error(posed.pose_b.translation, posed.k);
+    let safety = 4.0 * tol + 2.0 * pose_error + 1e-290;
     bounds.clear();
     bounds.extend(cands.iter().map(|c| {
         if c.h <= tol {
@@ -311,5 +357,115 @@ mod tests {
             separated > 300 && penetrating > 300,
             "{separated} separated, {penetrating} penetrating poses"
         );
+    }
+
+    /// The vertices scaled by `s` and moved by `off` (in the body frame).
+    fn scaled(p: &Polytope, s: f64, off: DVec3) -> Polytope {
+        let pts: Vec<DVec3> = p.vertices().iter().map(|&v| v * s + off).collect();
+        Polytope::from_dvec3s(&pts).unwrap()
+    }
+
+    /// Review finding: the balls' radii used to be computed in body units,
+    /// whose squares underflow below about 1e-154, so at 2^-600 the bound
+    /// skipped every facet and the separation returned zero witness
+    /// points. Every scale the crate supports, with boxes, a thin plate, a
+    /// rod, a many-cornered prism and a random hull, apart and overlapping,
+    /// through the all-candidates checks.
+    #[test]
+    fn regression_pruning_at_every_scale() {
+        let mut r = Lcg(99);
+        let mut prism = Vec::new();
+        for i in 0..48 {
+            let t = i as f64 / 48.0 * std::f64::consts::TAU;
+            prism.push(DVec3::new(t.cos(), t.sin(), -0.3));
+            prism.push(DVec3::new(t.cos(), t.sin(), 0.3));
+        }
+        let random: Vec<DVec3> = (0..20).map(|_| r.unit()).collect();
+        let shapes = [
+            boxed(0.5, 1.0, 1.5),
+            boxed(2.0, 2.0, 1e-3),
+            boxed(3.0, 0.01, 0.01),
+            Polytope::from_dvec3s(&prism).unwrap(),
+            Polytope::from_dvec3s(&random).unwrap(),
+        ];
+        let mut separated = 0;
+        for s in [1.0, 2f64.powi(-600), 2f64.powi(-900), 1e-250, 1e250, 1e300] {
+            for a0 in &shapes {
+                for b0 in &shapes {
+                    let (a, b) = (scaled(a0, s, DVec3::ZERO), scaled(b0, s, DVec3::ZERO));
+                    let pair = ConvexPair::new(&a, &b).unwrap();
+                    for k in 0..12 {
+                        let rot = if k % 3 == 0 {
+                            let axis = [DVec3::X, DVec3::Y, DVec3::Z][(k / 3) % 3];
+                            Rotation::from_axis_angle(axis, std::f64::consts::FRAC_PI_2)
+                        } else {
+                            Rotation::from_axis_angle(r.unit(), 3.0 * r.next())
+                        }
+                        .unwrap();
+                        let offset = r.unit() * (6.0 * r.next().abs()) * s;
+                        let answer = pair
+                            .query(
+                                Pose::new(rot, DVec3::ZERO),
+                                Pose::new(Rotation::IDENTITY, offset),
+                            )
+                            .unwrap();
+                        if let Proximity::Separated(sep) = answer {
+                            assert!(sep.point_on_a != sep.point_on_b, "scale {s:e}");
+                            separated += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(separated > 300, "{separated} separated poses");
+    }
+
+    /// Review finding: a body whose vertices lie far from its own origin,
+    /// posed back near the world origin, rounds its posed vertices by far
+    /// more than the tie tolerance; the ball bound must allow for that. B
+    /// is a small tetrahedron just beyond a corner of one of A's faces, in
+    /// the face's plane (a tie between the facets at that corner), which
+    /// used to pick a different facet in about 1% of the poses.
+    #[test]
+    fn regression_pruning_with_bodies_far_from_their_origin() {
+        let mut r = Lcg(17);
+        let mut separated = 0;
+        for far in [0.0, 1e4, 1e8, 1e12] {
+            let off = DVec3::new(far, -0.7 * far, 0.3 * far);
+            let random: Vec<DVec3> = (0..20).map(|_| r.unit()).collect();
+            let shapes = [
+                boxed(0.5, 1.0, 1.5),
+                Polytope::from_dvec3s(&random).unwrap(),
+            ];
+            for a0 in &shapes {
+                let a = scaled(a0, 1.0, off);
+                for k in 0..300 {
+                    let rot = Rotation::from_axis_angle(r.unit(), 3.0 * r.next()).unwrap();
+                    let pose_a = Pose::new(rot, -rot.apply(off));
+                    let posed: Vec<DVec3> = a.vertices().iter().map(|&v| pose_a.apply(v)).collect();
+                    let f = k % a.face_count();
+                    let face = a.face(f);
+                    let centre = face.iter().fold(DVec3::ZERO, |s, &v| s + posed[v as usize])
+                        / face.len() as f64;
+                    let corner = posed[face[(k / 7) % face.len()] as usize];
+                    let u = (corner - centre).normalize();
+                    let n = rot.apply(a.unit_normal(f));
+                    let d = 0.05 + 0.5 * r.next().abs();
+                    let q = corner + u * d + n * (d * 1e-3 * (k % 3) as f64);
+                    let w = (u + n * 0.5).normalize();
+                    let tip = |r: &mut Lcg| (w + r.unit() * 0.3) * 0.2;
+                    let tetra = [DVec3::ZERO, tip(&mut r), tip(&mut r), tip(&mut r)];
+                    let Ok(b) = Polytope::from_dvec3s(&tetra) else {
+                        continue;
+                    };
+                    let pair = ConvexPair::new(&a, &b).unwrap();
+                    let pose_b = Pose::new(Rotation::IDENTITY, q);
+                    if !pair.query(pose_a, pose_b).unwrap().intersects() {
+                        separated += 1;
+                    }
+                }
+            }
+        }
+        assert!(separated > 1000, "{separated} separated poses");
     }
 }
