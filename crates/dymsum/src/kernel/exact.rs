@@ -502,6 +502,17 @@ pub fn mul_pow2(mut x: f64, mut k: i32) -> f64 {
     x
 }
 
+/// `v · 2^k` componentwise, exact as [`mul_pow2`]: one multiplication by
+/// `2^k` when that is a normal float (`|k| ≤ 1000`), steps beyond.
+#[inline]
+pub fn mul_pow2_vec(v: DVec3, k: i32) -> DVec3 {
+    if (-1000..=1000).contains(&k) {
+        v * f64::from_bits(((k + 1023) as u64) << 52)
+    } else {
+        DVec3::new(mul_pow2(v.x, k), mul_pow2(v.y, k), mul_pow2(v.z, k))
+    }
+}
+
 /// The largest top exponent and the smallest low exponent (see
 /// [`top_exponent`], [`low_exponent`]) over the non-zero finite values,
 /// `None` when there are none.

@@ -616,14 +616,7 @@ const TINY: f64 = 5e-324;
 /// `v · 2^k`, exact when representable.
 #[inline]
 fn scale_vec(v: DVec3, k: i32) -> DVec3 {
-    if k == 0 {
-        return v;
-    }
-    DVec3::new(
-        exact::mul_pow2(v.x, k),
-        exact::mul_pow2(v.y, k),
-        exact::mul_pow2(v.z, k),
-    )
+    exact::mul_pow2_vec(v, k)
 }
 
 /// [`PolytopeError::OutOfRange`] when the coordinates span more than

@@ -154,13 +154,7 @@ pub(super) fn candidates(
     tol: f64,
     out: &mut Vec<Candidate>,
 ) {
-    out.clear();
-    for (f, &w) in overlay.fv.iter().enumerate() {
-        out.push(fv_candidate(pair, posed, f, w));
-    }
-    for (g, &u) in overlay.vf.iter().enumerate() {
-        out.push(vf_candidate(pair, posed, g, u));
-    }
+    push_face_candidates(pair, posed, overlay, out);
     let mut skip_above = f64::INFINITY;
     if let Some(first) = (0..out.len()).min_by(|&i, &j| out[i].h.total_cmp(&out[j].h)) {
         let c = &mut out[first];
@@ -181,15 +175,25 @@ pub(super) fn candidates_unpruned(
     overlay: &Overlay,
     out: &mut Vec<Candidate>,
 ) {
+    push_face_candidates(pair, posed, overlay, out);
+    for &(e, e2) in &overlay.ee {
+        push_ee_candidates(pair, posed, e, e2, f64::INFINITY, out);
+    }
+}
+
+/// `out` cleared, then the fv- and vf-candidates of the overlay, in order.
+fn push_face_candidates(
+    pair: &ConvexPair,
+    posed: &Posed,
+    overlay: &Overlay,
+    out: &mut Vec<Candidate>,
+) {
     out.clear();
     for (f, &w) in overlay.fv.iter().enumerate() {
         out.push(fv_candidate(pair, posed, f, w));
     }
     for (g, &u) in overlay.vf.iter().enumerate() {
         out.push(vf_candidate(pair, posed, g, u));
-    }
-    for &(e, e2) in &overlay.ee {
-        push_ee_candidates(pair, posed, e, e2, f64::INFINITY, out);
     }
 }
 

@@ -49,19 +49,7 @@ pub(super) fn evaluate(
         ));
     }
     let k = exact::frame_exponent(posed.a.iter().chain(&posed.b).flat_map(|v| v.to_array()));
-    // One multiplication by 2^k (exact, as `mul_pow2`) unless 2^k itself
-    // is out of range.
-    let factor = (k.abs() <= 1000).then(|| exact::mul_pow2(1.0, k));
-    let to_frame = |v: &mut DVec3| {
-        *v = match factor {
-            Some(f) => *v * f,
-            None => DVec3::new(
-                exact::mul_pow2(v.x, k),
-                exact::mul_pow2(v.y, k),
-                exact::mul_pow2(v.z, k),
-            ),
-        }
-    };
+    let to_frame = |v: &mut DVec3| *v = exact::mul_pow2_vec(*v, k);
     posed.a.iter_mut().for_each(to_frame);
     posed.b.iter_mut().for_each(to_frame);
     posed.na.clear();

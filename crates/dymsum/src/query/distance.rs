@@ -25,7 +25,7 @@
 use super::candidates::{climb, Candidate, Posed};
 use super::closest::{closest_on_polygon, segment_segment};
 use super::{ConvexPair, FeaturePair, Separation};
-use crate::kernel::exact::{frame_exponent, mul_pow2};
+use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
 use crate::polytope::Polytope;
 use glam::DVec3;
 
@@ -52,16 +52,7 @@ impl FeatureBalls {
     /// The balls of `p`'s faces and edges.
     pub(super) fn of(p: &Polytope) -> FeatureBalls {
         let exp = frame_exponent(p.vertices().iter().flat_map(|v| v.to_array()));
-        let factor = mul_pow2(1.0, exp);
-        let v: Vec<DVec3> = if exp.abs() <= 1000 {
-            p.vertices().iter().map(|&x| x * factor).collect()
-        } else {
-            let s = |x: f64| mul_pow2(x, exp);
-            p.vertices()
-                .iter()
-                .map(|x| DVec3::new(s(x.x), s(x.y), s(x.z)))
-                .collect()
-        };
+        let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
         let reach = up(v.iter().map(|x| x.length()).fold(0.0, f64::max));
         let face_radius = (0..p.face_count())
             .map(|f| {
@@ -146,6 +137,25 @@ fn distance_bound(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     }
 }
 
+/// A measured facet: the distance, the closest points on A and on B, the
+/// features.
+type Measured = (f64, DVec3, DVec3, FeaturePair);
+
+/// The distance between the features of `c` and their closest points.
+fn measure(pair: &ConvexPair, posed: &Posed, c: &Candidate, poly: &mut Vec<DVec3>) -> Measured {
+    let (pa, pb) = feature_points(pair, posed, c, poly);
+    ((pb - pa).length(), pa, pb, c.features)
+}
+
+/// Keeps the first measured facet of least distance (in the candidates'
+/// order: a later tie does not replace it).
+#[inline]
+fn keep_first_least(best: &mut Option<Measured>, m: Measured) {
+    if !best.as_ref().is_some_and(|b| m.0 >= b.0) {
+        *best = Some(m);
+    }
+}
+
 /// The closest points of the features of `c` (on A, on B).
 fn feature_points(
     pair: &ConvexPair,
@@ -217,33 +227,22 @@ pub(super) fn separation(
     let seed = (0..cands.len())
         .filter(|&i| cands[i].refined && bounds[i].is_finite())
         .min_by(|&i, &j| bounds[i].total_cmp(&bounds[j]));
-    let mut limit = seed.map_or(f64::INFINITY, |i| {
-        let (pa, pb) = feature_points(pair, posed, &cands[i], poly);
-        (pb - pa).length()
-    });
-    let mut best: Option<(f64, DVec3, DVec3, FeaturePair)> = None;
+    let mut limit = seed.map_or(f64::INFINITY, |i| measure(pair, posed, &cands[i], poly).0);
+    let mut best: Option<Measured> = None;
     for (c, &bound) in cands.iter().zip(bounds.iter()) {
         if c.h > tol || bound - safety > limit || !facing(c) {
             continue;
         }
-        let (pa, pb) = feature_points(pair, posed, c, poly);
-        let d = (pb - pa).length();
-        if !best.as_ref().is_some_and(|bst| d >= bst.0) {
-            best = Some((d, pa, pb, c.features));
-            limit = limit.min(d);
-        }
+        keep_first_least(&mut best, measure(pair, posed, c, poly));
+        limit = limit.min(best.map_or(f64::INFINITY, |b| b.0));
     }
     #[cfg(test)]
     {
         // The bound may skip only facets that cannot win: measuring every
         // facing facet must give the same best, ties included.
-        let mut all: Option<(f64, DVec3, DVec3, FeaturePair)> = None;
+        let mut all = None;
         for c in cands.iter().filter(|c| facing(c)) {
-            let (pa, pb) = feature_points(pair, posed, c, poly);
-            let d = (pb - pa).length();
-            if !all.as_ref().is_some_and(|bst| d >= bst.0) {
-                all = Some((d, pa, pb, c.features));
-            }
+            keep_first_least(&mut all, measure(pair, posed, c, poly));
         }
         assert_eq!(best, all, "the branch and bound changed the separation");
     }

@@ -49,7 +49,7 @@ fn features_near(poly: &Polytope, set: &[u32]) -> (Vec<u32>, Vec<u32>) {
 /// heuristics then see bit-identical input for the same pair at any scale
 /// `2^k`, and pairwise sums cannot overflow.
 fn to_common_frame(pp: &mut [glam::DVec3], qq: &mut [glam::DVec3]) {
-    use crate::kernel::exact::{frame_exponent, mul_pow2};
+    use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
     let k = frame_exponent(pp.iter().chain(qq.iter()).flat_map(|v| v.to_array()));
     let exact = pp
         .iter()
@@ -60,7 +60,7 @@ fn to_common_frame(pp: &mut [glam::DVec3], qq: &mut [glam::DVec3]) {
         return;
     }
     for v in pp.iter_mut().chain(qq.iter_mut()) {
-        *v = glam::DVec3::new(mul_pow2(v.x, k), mul_pow2(v.y, k), mul_pow2(v.z, k));
+        *v = mul_pow2_vec(*v, k);
     }
 }
 

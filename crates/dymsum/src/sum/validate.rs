@@ -124,16 +124,6 @@ pub struct ExactPoints {
     tame: bool,
 }
 
-/// `x · 2^k`, in steps that cannot overflow the scale factor itself.
-fn mul_pow2(mut x: f64, mut k: i32) -> f64 {
-    while k != 0 {
-        let s = k.clamp(-1000, 1000);
-        x *= 2f64.powi(s);
-        k -= s;
-    }
-    x
-}
-
 /// Unbiased binary exponent of a finite non-zero float (subnormals too).
 fn exponent(x: f64) -> i32 {
     let bits = x.abs().to_bits();
@@ -167,13 +157,11 @@ impl ExactPoints {
         } else {
             0
         };
-        let scaled: Vec<DVec3> = points
+        let scaled: Vec<DVec3> = points.iter().map(|&p| exact::mul_pow2_vec(p, k)).collect();
+        let scaled_exact = points
             .iter()
-            .map(|p| DVec3::new(mul_pow2(p.x, k), mul_pow2(p.y, k), mul_pow2(p.z, k)))
-            .collect();
-        let scaled_exact = points.iter().zip(&scaled).all(|(p, s)| {
-            DVec3::new(mul_pow2(s.x, -k), mul_pow2(s.y, -k), mul_pow2(s.z, -k)) == *p
-        });
+            .zip(&scaled)
+            .all(|(p, s)| exact::mul_pow2_vec(*s, -k) == *p);
         let tame = scaled
             .iter()
             .flat_map(|p| p.to_array())
