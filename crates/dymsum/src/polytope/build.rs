@@ -272,16 +272,7 @@ impl Polytope {
 fn framed(points: &[DVec3]) -> Result<Vec<DVec3>, PolytopeError> {
     super::check_span(points)?;
     let k = exact::frame_exponent(points.iter().flat_map(|p| p.to_array()));
-    Ok(points
-        .iter()
-        .map(|p| {
-            DVec3::new(
-                exact::mul_pow2(p.x, k),
-                exact::mul_pow2(p.y, k),
-                exact::mul_pow2(p.z, k),
-            )
-        })
-        .collect())
+    Ok(points.iter().map(|&p| exact::mul_pow2_vec(p, k)).collect())
 }
 
 fn check_finite(points: &[DVec3]) -> Result<(), PolytopeError> {

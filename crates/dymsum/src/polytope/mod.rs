@@ -285,7 +285,7 @@ impl Polytope {
     /// `v · 2^frame` (exact for the polytope's vertices).
     #[inline]
     pub fn to_frame(&self, v: DVec3) -> DVec3 {
-        scale_vec(v, self.data.frame)
+        exact::mul_pow2_vec(v, self.data.frame)
     }
     /// Mean of the vertices.
     pub fn centroid_of_vertices(&self) -> DVec3 {
@@ -319,7 +319,10 @@ impl Polytope {
         } = HalfEdges::new(vertices.len(), faces)?;
         check_span(&vertices)?;
         let frame = exact::frame_exponent(vertices.iter().flat_map(|v| v.to_array()));
-        let framed: Vec<DVec3> = vertices.iter().map(|&v| scale_vec(v, frame)).collect();
+        let framed: Vec<DVec3> = vertices
+            .iter()
+            .map(|&v| exact::mul_pow2_vec(v, frame))
+            .collect();
         let mut normals = Vec::with_capacity(faces.len());
         let mut normal_triple = Vec::with_capacity(faces.len());
         let mut normal_err = Vec::with_capacity(faces.len());
@@ -612,12 +615,6 @@ fn rotated_component(row: DVec3, n: DVec3) -> Option<f64> {
 const U: f64 = f64::EPSILON / 2.0;
 /// The smallest positive subnormal, `2^-1074`.
 const TINY: f64 = 5e-324;
-
-/// `v · 2^k`, exact when representable.
-#[inline]
-fn scale_vec(v: DVec3, k: i32) -> DVec3 {
-    exact::mul_pow2_vec(v, k)
-}
 
 /// [`PolytopeError::OutOfRange`] when the coordinates span more than
 /// [`exact::MAX_COORD_SPAN`] bits, naming their largest and smallest

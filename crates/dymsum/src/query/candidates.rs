@@ -103,14 +103,6 @@ pub(super) fn climb(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     ha + hb
 }
 
-/// The bound below which a candidate is refined, given the best refined
-/// value so far: within the tie tolerance of it, or of zero (a candidate
-/// facing the origin matters to the separation).
-#[inline]
-pub(super) fn refine_below(best: f64, tol: f64) -> f64 {
-    (best + tol).max(tol)
-}
-
 /// Replaces the lower bounds `h₀` by true support values where they can
 /// matter to the depth (within the tie tolerance of the best value) and
 /// keeps those candidates, in order, together with the unrefined ones that
@@ -160,7 +152,9 @@ pub(super) fn candidates(
         let c = &mut out[first];
         c.h = climb(pair, posed, c);
         c.refined = true;
-        skip_above = refine_below(c.h, tol) + tol;
+        // Above `max(best + tol, tol)` a candidate can neither win, nor
+        // tie, nor face the origin; one more `tol` of margin for rounding.
+        skip_above = (c.h + tol).max(tol) + tol;
     }
     for &(e, e2) in &overlay.ee {
         push_ee_candidates(pair, posed, e, e2, skip_above, out);

@@ -64,7 +64,7 @@ pub(super) fn evaluate(
     posed.pose_b = pose_b;
     posed.k = k;
     let back = |x: f64| exact::mul_pow2(x, -k);
-    let back_v = |v: DVec3| DVec3::new(back(v.x), back(v.y), back(v.z));
+    let back_v = |v: DVec3| exact::mul_pow2_vec(v, -k);
     let answer = evaluate_in_frame(
         pair,
         &scratch.posed,
