@@ -1,9 +1,16 @@
 //! The candidate directions of a proximity query: every facet label of the
-//! overlay of `D = A ⊕ (−B)` gives a direction `n` (computed from the
-//! original bodies' features, see the module docs of [`crate::query`] for
-//! why) and its support value `h(n) = h_A(n) + h_B(−n)`, each support found
-//! by a hill climb from the facet's feature, so `h(n)` is a true support
-//! value of `D` up to rounding even where the float direction is inaccurate.
+//! overlay of `D = A ⊕ (−B)` gives a direction `n` and its support value
+//! `h(n) = h_A(n) + h_B(−n)`, each support found by a hill climb from the
+//! facet's feature, so `h(n)` is a true support value of `D` up to
+//! rounding.
+//!
+//! Directions: an fv- or vf-facet's is its face's rotated unit normal; an
+//! ee-facet's is the crossing point of the two edges' Gaussian arcs, on the
+//! side the exact (perturbed) predicate of the overlay chose, computed in
+//! double-double from the exact edge vectors and exactly when that is not
+//! enough ([`ee_direction`]). Every direction is therefore within a few
+//! ulps of the facet's place on the overlay, however nearly parallel the
+//! edges: the certificates of [`super::certify`] rely on it.
 //!
 //! Branch and bound: the value at the facet's own features, `h₀ ≤ h`, costs
 //! two dot products. Only candidates with `h₀` within the tie tolerance of
@@ -19,10 +26,11 @@
 //! Complexity: O(facets) for the lower bounds, plus a hill climb per refined
 //! candidate.
 
+use super::frame::Posed;
 use super::{ConvexPair, FeaturePair};
+use crate::gauss::GaussView;
 use crate::polytope::Polytope;
 use crate::sum::Overlay;
-use crate::Pose;
 use glam::DVec3;
 
 /// One candidate direction.
@@ -37,28 +45,19 @@ pub(super) struct Candidate {
     pub refined: bool,
 }
 
-/// The posed vertices of both bodies (buffers reused from query to query).
-#[derive(Clone, Debug, Default)]
-pub(super) struct Posed {
-    pub a: Vec<DVec3>,
-    pub b: Vec<DVec3>,
-    /// Rotated unit face normals of A and B.
-    pub na: Vec<DVec3>,
-    pub nb: Vec<DVec3>,
-    pub pose_a: Pose,
-    pub pose_b: Pose,
-    /// The frame's exponent: frame coordinates are world ones times `2^k`.
-    pub k: i32,
-}
-
 /// `max dir · v` over the posed vertices of `poly`, by a hill climb from the
 /// best of `starts` (first one wins ties), moving to the first strictly
 /// better neighbour until none is better.
-pub(super) fn support(poly: &Polytope, posed: &[DVec3], dir: DVec3, starts: &[u32]) -> f64 {
+pub(super) fn support(
+    poly: &Polytope,
+    posed: impl Fn(u32) -> DVec3,
+    dir: DVec3,
+    starts: &[u32],
+) -> f64 {
     let mut v = starts[0];
-    let mut best = dir.dot(posed[v as usize]);
+    let mut best = dir.dot(posed(v));
     for &s in &starts[1..] {
-        let d = dir.dot(posed[s as usize]);
+        let d = dir.dot(posed(s));
         if d > best {
             best = d;
             v = s;
@@ -67,7 +66,7 @@ pub(super) fn support(poly: &Polytope, posed: &[DVec3], dir: DVec3, starts: &[u3
     loop {
         let mut moved = false;
         for r in poly.ring(v as usize) {
-            let d = dir.dot(posed[r.neighbor as usize]);
+            let d = dir.dot(posed(r.neighbor));
             if d > best {
                 best = d;
                 v = r.neighbor;
@@ -86,18 +85,19 @@ pub(super) fn support(poly: &Polytope, posed: &[DVec3], dir: DVec3, starts: &[u3
 /// features `h₀` is taken at and only move up).
 pub(super) fn climb(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     let (a, b) = (&pair.a, &pair.b);
+    let (pa, pb) = (|v| posed.a(v), |w| posed.b(w));
     let (ha, hb) = match c.features {
         FeaturePair::FaceVertex { a_face, b_vertex } => (
-            support(a, &posed.a, c.n, a.face(a_face as usize)),
-            support(b, &posed.b, -c.n, &[b_vertex]),
+            support(a, pa, c.n, a.face(a_face as usize)),
+            support(b, pb, -c.n, &[b_vertex]),
         ),
         FeaturePair::VertexFace { a_vertex, b_face } => (
-            support(a, &posed.a, c.n, &[a_vertex]),
-            support(b, &posed.b, -c.n, b.face(b_face as usize)),
+            support(a, pa, c.n, &[a_vertex]),
+            support(b, pb, -c.n, b.face(b_face as usize)),
         ),
         FeaturePair::EdgeEdge { a_edge, b_edge } => (
-            support(a, &posed.a, c.n, &a.edge(a_edge as usize).vertices),
-            support(b, &posed.b, -c.n, &b.edge(b_edge as usize).vertices),
+            support(a, pa, c.n, &a.edge(a_edge as usize).vertices),
+            support(b, pb, -c.n, &b.edge(b_edge as usize).vertices),
         ),
     };
     ha + hb
@@ -130,23 +130,57 @@ pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate
     cands.retain(|c| c.refined || c.h <= tol);
 }
 
-/// The candidates of all facets of the overlay (P = A, Q = −B), with the
-/// lower bounds `h₀` as values, into `out` (cleared first), in the
-/// overlay's order.
+/// The facets of `A ⊕ (−B)` whose candidates a query evaluates: the whole
+/// overlay (the exhaustive reference, or a tracker's dynamic sum), or the
+/// facets a certificate found near the answer ([`super::certify`]).
+/// Indices as in [`Overlay`]: `fv` pairs a face of A with a vertex of `−B`,
+/// `vf` a face of `−B` with a vertex of A, `ee` an edge of A with an edge
+/// of `−B`.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(super) struct FacetSet {
+    /// `(face of A, vertex of −B)`.
+    pub fv: Vec<(u32, u32)>,
+    /// `(face of −B, vertex of A)`.
+    pub vf: Vec<(u32, u32)>,
+    /// `(edge of A, edge of −B)`.
+    pub ee: Vec<(u32, u32)>,
+}
+
+impl FacetSet {
+    /// Empties the set, keeping its buffers.
+    pub(super) fn clear(&mut self) {
+        self.fv.clear();
+        self.vf.clear();
+        self.ee.clear();
+    }
+
+    /// Every facet of an overlay.
+    pub(super) fn fill_from(&mut self, overlay: &Overlay) {
+        self.clear();
+        self.fv
+            .extend(overlay.fv.iter().enumerate().map(|(f, &w)| (f as u32, w)));
+        self.vf
+            .extend(overlay.vf.iter().enumerate().map(|(g, &u)| (g as u32, u)));
+        self.ee.extend_from_slice(&overlay.ee);
+    }
+}
+
+/// The candidates of the facets in `facets`, with the lower bounds `h₀` as
+/// values, into `out` (cleared first).
 ///
-/// The ee-candidates come last and most cost a square root and a division
-/// each, so the least fv- or vf-candidate is refined first, and an
-/// ee-candidate whose value `h₀` is certainly above the refine bound
-/// (by a full tolerance, so that rounding cannot matter) is left out: it
-/// would be dropped by [`refine`] anyway.
+/// The ee-candidates come last and cost an exact side test and a
+/// double-double direction each, so the least fv- or vf-candidate is
+/// refined first, and an ee-candidate whose value `h₀` is certainly above
+/// the refine bound (by a full tolerance, so that rounding cannot matter)
+/// is left out: it would be dropped by [`refine`] anyway.
 pub(super) fn candidates(
     pair: &ConvexPair,
     posed: &Posed,
-    overlay: &Overlay,
+    facets: &FacetSet,
     tol: f64,
     out: &mut Vec<Candidate>,
 ) {
-    push_face_candidates(pair, posed, overlay, out);
+    push_face_candidates(pair, posed, facets, out);
     let mut skip_above = f64::INFINITY;
     if let Some(first) = (0..out.len()).min_by(|&i, &j| out[i].h.total_cmp(&out[j].h)) {
         let c = &mut out[first];
@@ -156,8 +190,9 @@ pub(super) fn candidates(
         // tie, nor face the origin; one more `tol` of margin for rounding.
         skip_above = (c.h + tol).max(tol) + tol;
     }
-    for &(e, e2) in &overlay.ee {
-        push_ee_candidates(pair, posed, e, e2, skip_above, out);
+    let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
+    for &(e, e2) in &facets.ee {
+        push_ee_candidate(pair, posed, (&vp, &vq), e, e2, skip_above, out);
     }
 }
 
@@ -166,27 +201,28 @@ pub(super) fn candidates(
 pub(super) fn candidates_unpruned(
     pair: &ConvexPair,
     posed: &Posed,
-    overlay: &Overlay,
+    facets: &FacetSet,
     out: &mut Vec<Candidate>,
 ) {
-    push_face_candidates(pair, posed, overlay, out);
-    for &(e, e2) in &overlay.ee {
-        push_ee_candidates(pair, posed, e, e2, f64::INFINITY, out);
+    push_face_candidates(pair, posed, facets, out);
+    let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
+    for &(e, e2) in &facets.ee {
+        push_ee_candidate(pair, posed, (&vp, &vq), e, e2, f64::INFINITY, out);
     }
 }
 
-/// `out` cleared, then the fv- and vf-candidates of the overlay, in order.
+/// `out` cleared, then the fv- and vf-candidates of `facets`, in order.
 fn push_face_candidates(
     pair: &ConvexPair,
     posed: &Posed,
-    overlay: &Overlay,
+    facets: &FacetSet,
     out: &mut Vec<Candidate>,
 ) {
     out.clear();
-    for (f, &w) in overlay.fv.iter().enumerate() {
+    for &(f, w) in &facets.fv {
         out.push(fv_candidate(pair, posed, f, w));
     }
-    for (g, &u) in overlay.vf.iter().enumerate() {
+    for &(g, u) in &facets.vf {
         out.push(vf_candidate(pair, posed, g, u));
     }
 }
@@ -194,124 +230,234 @@ fn push_face_candidates(
 /// The lower bound `h₀` at a candidate's own features.
 #[inline]
 fn lower_bound(posed: &Posed, n: DVec3, a_vertex: u32, b_vertex: u32) -> f64 {
-    n.dot(posed.a[a_vertex as usize]) - n.dot(posed.b[b_vertex as usize])
+    n.dot(posed.a(a_vertex)) - n.dot(posed.b(b_vertex))
 }
 
 /// The candidate of the fv-facet of face `f` of A and vertex `w` of `−B`.
 #[inline]
-pub(super) fn fv_candidate(pair: &ConvexPair, posed: &Posed, f: usize, w: u32) -> Candidate {
+pub(super) fn fv_candidate(pair: &ConvexPair, posed: &Posed, f: u32, w: u32) -> Candidate {
     let w = pair.neg_b.vertex_map[w as usize];
-    let n = posed.na[f];
+    let n = posed.na(f);
     Candidate {
         features: FeaturePair::FaceVertex {
-            a_face: f as u32,
+            a_face: f,
             b_vertex: w,
         },
         n,
-        h: lower_bound(posed, n, pair.a.face(f)[0], w),
+        h: lower_bound(posed, n, pair.a.face(f as usize)[0], w),
         refined: false,
     }
 }
 
 /// The candidate of the vf-facet of vertex `u` of A and face `g` of `−B`.
 #[inline]
-pub(super) fn vf_candidate(pair: &ConvexPair, posed: &Posed, g: usize, u: u32) -> Candidate {
-    let g = pair.neg_b.face_map[g] as usize;
-    let n = -posed.nb[g];
+pub(super) fn vf_candidate(pair: &ConvexPair, posed: &Posed, g: u32, u: u32) -> Candidate {
+    let g = pair.neg_b.face_map[g as usize];
+    let n = -posed.nb(g);
     Candidate {
         features: FeaturePair::VertexFace {
             a_vertex: u,
-            b_face: g as u32,
+            b_face: g,
         },
         n,
-        h: lower_bound(posed, n, u, pair.b.face(g)[0]),
+        h: lower_bound(posed, n, u, pair.b.face(g as usize)[0]),
         refined: false,
     }
 }
 
-/// The candidates of the ee-facet of edge `e` of A and edge `e2` of `−B`
-/// pushed onto `out`: none for parallel edges, two (both signs) when the
-/// orientation is uncertain, else one; none either when the orientation is
-/// certain and the value is certainly above `skip_above` (tested without
-/// normalising the direction).
-pub(super) fn push_ee_candidates(
+/// A bound on the angle between a candidate's direction and the place of
+/// its facet on the overlay (turned to the world by B's rotation), for
+/// every candidate: fv- and vf-directions are rotated unit normals (a few
+/// ulps, plus [`OVERLAY_MISMATCH`]); ee-directions are chosen below to be
+/// within this bound.
+pub(super) const DIRECTION_ERROR: f64 = 1.0 / (1u64 << 39) as f64;
+
+/// A bound on how far the overlay's Gaussian maps (A's normals turned by
+/// the snapped matrix of the relative rotation `R_b⁻¹ R_a`, then by B's
+/// snapped matrix) lie from the Gaussian maps of the bodies posed by their
+/// own snapped matrices: each snap moves a matrix entry by less than
+/// `2^-47`, the quaternion products and matrices round by a few ulps.
+pub(super) const OVERLAY_MISMATCH: f64 = 1.0 / (1u64 << 44) as f64;
+
+/// Pushes onto `out` the candidate of the ee-facet of edge `e` of A and
+/// edge `e2` of `−B` (whose Gaussian arcs cross); none when the arcs are
+/// exactly parallel (a facet of zero area), and none when its value is
+/// certainly above `skip_above`.
+///
+/// The direction is the crossing point of the two arcs, on the side the
+/// overlay's exact (perturbed) predicate chose: `X = s · (a × b) × (c × d)`
+/// for the arcs `a → b` of `e` and `c → d` of `e2`, `s` the side of `d`
+/// relative to `a → b` (then `X` is a positive combination of `c` and `d`).
+/// When the edges are far from parallel, the normalised cross product of
+/// the posed edge vectors, oriented like `X`, is within [`DIRECTION_ERROR`]
+/// of it (its error bound is computed, from the rounding of the posed
+/// vertices and [`OVERLAY_MISMATCH`], divided by the sine of the edges'
+/// angle), and is exactly negated when A and B are swapped; otherwise `X`
+/// itself is computed accurately ([`ee_direction`]).
+pub(super) fn push_ee_candidate(
     pair: &ConvexPair,
     posed: &Posed,
+    (vp, vq): (&GaussView<'_>, &GaussView<'_>),
     e: u32,
     e2: u32,
     skip_above: f64,
     out: &mut Vec<Candidate>,
 ) {
     let (a, b) = (&pair.a, &pair.b);
-    let (na, nb) = (&posed.na, &posed.nb);
-    let e2 = pair.neg_b.edge_map[e2 as usize];
-    let (ea, eb) = (a.edge(e as usize), b.edge(e2 as usize));
+    let e2b = pair.neg_b.edge_map[e2 as usize];
     let ordered = |[x, y]: [u32; 2]| if x < y { [x, y] } else { [y, x] };
-    let [u1, u2] = ordered(ea.vertices);
-    let [w1, w2] = ordered(eb.vertices);
-    let da = posed.a[u2 as usize] - posed.a[u1 as usize];
-    let db = posed.b[w2 as usize] - posed.b[w1 as usize];
-    let c = da.cross(db);
-    // Outward: n lies on A's arc (between its faces' normals) and −n on
-    // B's arc. Exactly antisymmetric under swapping A and B.
-    let sa_n = na[ea.faces[0] as usize] + na[ea.faces[1] as usize];
-    let sb_n = nb[eb.faces[0] as usize] + nb[eb.faces[1] as usize];
-    let x = posed.a[u1 as usize] - posed.b[w1 as usize];
-    if certainly_above(c, c.dot(sa_n - sb_n), x, skip_above) {
-        return;
-    }
-    let len = c.length();
-    if len == 0.0 || !len.is_finite() {
-        return; // parallel edges: a degenerate facet of zero area
-    }
-    let n = c / len;
-    let s = n.dot(sa_n - sb_n);
-    let features = FeaturePair::EdgeEdge {
-        a_edge: e,
-        b_edge: e2,
-    };
-    let mut push = |n: DVec3| {
-        out.push(Candidate {
-            features,
-            n,
-            h: lower_bound(posed, n, u1, w1),
-            refined: false,
-        })
-    };
-    if s.abs() < AMBIGUOUS_ORIENTATION {
-        // Nearly antipodal arcs: the sign is uncertain, take both (every
-        // candidate is a true support value, so extra ones are harmless).
-        push(n);
-        push(-n);
+    let [u1, u2] = ordered(a.edge(e as usize).vertices);
+    let [w1, w2] = ordered(b.edge(e2b as usize).vertices);
+    let (_, d) = vq.edge_arc(e2);
+    let s = if vp.arc_side(e, &d).is_negative() {
+        -1.0
     } else {
-        push(if s > 0.0 { n } else { -n });
+        1.0
+    };
+    // X in floats, with a bound on its error.
+    let (m, q) = (vp.arc(e), vq.arc(e2));
+    let (em, eq) = (vp.arc_errs[e as usize], vq.arc_errs[e2 as usize]);
+    let xq = m.cross(q) * s;
+    let (lm, lq, lx) = (m.length(), q.length(), xq.length());
+    let x_err = em * (lq + eq) + lm * eq + 4.0 * f64::EPSILON * lm * lq;
+    let x_world = posed.rot_b * xq;
+    let p = posed.a(u1) - posed.b(w1);
+    if skip_above.is_finite() && lx > 0.0 && lx.is_finite() && x_err <= 1e-6 * lx {
+        // h₀ ≥ its value at the float direction less the direction's error
+        // (angle `delta`) times |p| and the rounding.
+        let delta = 2.0 * x_err / lx + 16.0 * f64::EPSILON + 2.0 * OVERLAY_MISMATCH;
+        let pl = p.length();
+        if x_world.dot(p) / x_world.length() - (delta + 4.0 * f64::EPSILON) * pl > skip_above {
+            return;
+        }
     }
+    let da = posed.a(u2) - posed.a(u1);
+    let db = posed.b(w2) - posed.b(w1);
+    let c = da.cross(db);
+    let (la, lb, lc) = (da.length(), db.length(), c.length());
+    let sin = lc / (la * lb);
+    let delta = 2.0
+        * (2.0 * posed.eta_a / la + 2.0 * posed.eta_b / lb + 4.0 * f64::EPSILON + OVERLAY_MISMATCH)
+        / sin;
+    let oriented = c.dot(x_world);
+    let n = if lc > 0.0
+        && lc.is_finite()
+        && delta <= DIRECTION_ERROR
+        && x_err <= 0.1 * lx
+        && oriented.abs() > 0.5 * lc * x_world.length()
+    {
+        c * (oriented.signum() / lc)
+    } else {
+        let Some(n) = ee_direction(pair, posed, e, e2, s) else {
+            return; // exactly parallel edges: a facet of zero area
+        };
+        n
+    };
+    out.push(Candidate {
+        features: FeaturePair::EdgeEdge {
+            a_edge: e,
+            b_edge: e2b,
+        },
+        n,
+        h: lower_bound(posed, n, u1, w1),
+        refined: false,
+    });
 }
 
-/// Whether the ee-candidate of direction `c / |c|` (oriented by the sign
-/// of `sc = c · (ΣA − ΣB)`), at the facet point `x`, certainly has
-/// `h₀ > skip_above`, tested without the square root: only when the
-/// orientation is clear (`|sc|` at least twice [`AMBIGUOUS_ORIENTATION`]
-/// `|c|`) and no square overflows or underflows. The caller's
-/// `skip_above` carries a full tie tolerance of margin for the rounding
-/// between `c · x / |c|` and `h₀ = n · a − n · b`.
-#[inline]
-fn certainly_above(c: DVec3, sc: f64, x: DVec3, skip_above: f64) -> bool {
-    let len2 = c.length_squared();
-    let clear = 4.0 * AMBIGUOUS_ORIENTATION * AMBIGUOUS_ORIENTATION * len2;
-    if !(len2 > 1e-200 && len2 < 1e200) || sc * sc <= clear {
-        return false;
-    }
-    let hv = if sc > 0.0 { c.dot(x) } else { -c.dot(x) };
-    if !(hv > 0.0 && hv < 1e100) {
-        return false;
-    }
-    skip_above <= 0.0 || (skip_above > 1e-100 && hv * hv > skip_above * skip_above * len2)
+/// The world direction of the ee-facet of edge `e` of A and edge `e2` of
+/// `−B`, oriented by `s` (the exact side of the crossing, see
+/// [`push_ee_candidate`]): the crossing point of their Gaussian arcs,
+/// `s · (cof(M) d_A) × d_B` in `−B`'s frame, turned by B's rotation and
+/// normalised, where `d_A` and `d_B` are the exact edge vectors (each
+/// arc's great circle is spanned by the exact normals of the edge's two
+/// faces, whose cross product is a positive multiple of the edge vector
+/// taken from its left face) and `M` is the relative rotation, whose
+/// cofactor matrix maps cross products of normals as the overlay does.
+///
+/// Evaluated in double-double (a relative error of order `u² / sin φ` for
+/// edges at angle `φ`), and exactly when the cross product is so small that
+/// this could matter, so the direction is within a few ulps of the exact
+/// crossing point whatever the angle between the edges: what the
+/// certificates of [`super::certify`] rely on. `None` for exactly parallel
+/// edges.
+pub(super) fn ee_direction(
+    pair: &ConvexPair,
+    posed: &Posed,
+    e: u32,
+    e2: u32,
+    s: f64,
+) -> Option<DVec3> {
+    use crate::kernel::dd::{self, DD};
+    let (a, q) = (&pair.a, &pair.neg_b.polytope);
+    let edge_vec = |p: &Polytope, e: u32| {
+        let [u, v] = p.edge(e as usize).vertices;
+        (
+            p.to_frame(p.vertex(u as usize)),
+            p.to_frame(p.vertex(v as usize)),
+        )
+    };
+    let (a0, a1) = edge_vec(a, e);
+    let (b0, b1) = edge_vec(q, e2);
+    let da = [
+        DD::diff(a1.x, a0.x),
+        DD::diff(a1.y, a0.y),
+        DD::diff(a1.z, a0.z),
+    ];
+    let db = [
+        DD::diff(b1.x, b0.x),
+        DD::diff(b1.y, b0.y),
+        DD::diff(b1.z, b0.z),
+    ];
+    let wa = match &posed.turn {
+        None => da,
+        Some(_) => {
+            let c = posed.cof_dd();
+            let row = |r: usize| c[r][0] * da[0] + c[r][1] * da[1] + c[r][2] * da[2];
+            [row(0), row(1), row(2)]
+        }
+    };
+    let x = dd::cross(&wa, &db);
+    let approx = DVec3::new(x[0].hi + x[0].lo, x[1].hi + x[1].lo, x[2].hi + x[2].lo);
+    let mag = |v: &[DD; 3]| v.iter().map(|d| d.abs_hi()).fold(0.0, f64::max);
+    let size = mag(&wa) * mag(&db);
+    let dir = if approx.abs().max_element() > 2f64.powi(-40) * size {
+        approx
+    } else {
+        exact_crossing(posed, a0, a1, b0, b1)?
+    };
+    let n = posed.rot_b * (dir * s);
+    let len = n.length();
+    (len > 0.0 && len.is_finite()).then(|| n / len)
 }
 
-/// Below this `|n · (ΣA − ΣB)|` an ee-candidate's orientation is taken
-/// both ways (see [`push_ee_candidates`]).
-pub(super) const AMBIGUOUS_ORIENTATION: f64 = 1e-9;
+/// [`ee_direction`]'s cross product `(cof(M) d_A) × d_B`, exactly, rounded
+/// to floats scaled by one power of two; `None` when it is exactly zero.
+#[cold]
+fn exact_crossing(posed: &Posed, a0: DVec3, a1: DVec3, b0: DVec3, b1: DVec3) -> Option<DVec3> {
+    use crate::kernel::exact::{self, Dyadic};
+    let da = exact::sub(a1, a0);
+    let db = exact::sub(b1, b0);
+    let wa = match &posed.turn {
+        None => da,
+        Some(t) => {
+            let m = t.rot;
+            let cols = [
+                exact::cross(&exact::exact(m.y_axis), &exact::exact(m.z_axis)),
+                exact::cross(&exact::exact(m.z_axis), &exact::exact(m.x_axis)),
+                exact::cross(&exact::exact(m.x_axis), &exact::exact(m.y_axis)),
+            ];
+            let row = |r: usize| (0..3).fold(Dyadic::zero(), |s, j| s.add(&cols[j][r].mul(&da[j])));
+            [row(0), row(1), row(2)]
+        }
+    };
+    let x = exact::cross(&wa, &db);
+    let top = x.iter().filter_map(|d| d.top_exponent()).max()?;
+    Some(DVec3::new(
+        x[0].to_f64_shifted(-top),
+        x[1].to_f64_shifted(-top),
+        x[2].to_f64_shifted(-top),
+    ))
+}
 
 /// `n` or `−n`, whichever is lexicographically larger (a key invariant under
 /// negation), and whether `n` itself is that one.
@@ -328,20 +474,10 @@ pub(super) fn sign_free_key(n: DVec3) -> ([f64; 3], bool) {
     ([k.x + 0.0, k.y + 0.0, k.z + 0.0], pos)
 }
 
-/// The tie tolerance: `16 ε` times the largest absolute posed coordinate.
-pub(super) fn tie_tolerance(posed: &Posed) -> f64 {
-    let scale = posed
-        .a
-        .iter()
-        .chain(&posed.b)
-        .map(|v| v.abs().max_element())
-        .fold(0.0f64, f64::max);
-    16.0 * f64::EPSILON * scale.max(f64::MIN_POSITIVE)
-}
-
 /// The winning candidate: minimum `h`; among those within `tol` of it the
 /// one with the smallest sign-free key, then the "positive" one, then the
-/// smaller `h`.
+/// smaller `h`, then the first features in [`FeaturePair`]'s order (so the
+/// choice depends on the set of candidates only, never on their order).
 pub(super) fn winner(cands: &[Candidate], tol: f64) -> (usize, f64) {
     let hmin = cands
         .iter()
@@ -362,7 +498,8 @@ pub(super) fn winner(cands: &[Candidate], tol: f64) -> (usize, f64) {
                     .then(key.0[1].total_cmp(&bk.0[1]))
                     .then(key.0[2].total_cmp(&bk.0[2]))
                     .then(bk.1.cmp(&key.1)) // positive first
-                    .then(c.h.total_cmp(&cands[*j].h));
+                    .then(c.h.total_cmp(&cands[*j].h))
+                    .then(c.features.cmp(&cands[*j].features));
                 ord.is_lt()
             }
         };

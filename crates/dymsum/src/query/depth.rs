@@ -8,81 +8,58 @@
 //! come from the winning facet's features ([`super::closest`] for an
 //! edge–edge pair). Everything is computed in one power-of-two frame of the
 //! posed vertices (see [`evaluate`]).
-use super::candidates::{candidates, refine, tie_tolerance, winner, Candidate, Posed};
+use super::candidates::{candidates, refine, winner, Candidate, FacetSet};
 use super::closest::line_line;
 use super::distance::separation;
+use super::frame::Posed;
 use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Separation};
-use crate::kernel::exact;
-use crate::sum::Overlay;
 use crate::Pose;
 use glam::DVec3;
 
-/// Depth or distance from an overlay of `A ⊕ (−B)`.
+/// Depth or distance from the facets `facets` of `A ⊕ (−B)` (all of them
+/// for the exhaustive reference).
 ///
-/// Scale: the posed vertices of both bodies are first scaled by one power
-/// of two `2^k` (their common frame: the largest magnitude in `[1, 2)`),
-/// every construction is made there, and lengths and points are scaled
-/// back by `2^-k`. Scaling is exact, so the same pair at poses scaled by
-/// `2^j` gives bit-identical frame coordinates and answers scaled by
-/// exactly `2^j`; nothing overflows or underflows at any scale (squared
-/// lengths of `1e200` or `1e-200` would). Posed coordinates that overflow
-/// `f64`, or an answer that does, is [`QueryError::OutOfRange`].
+/// Scale: every construction is made in the query's power-of-two frame
+/// ([`super::frame`]) and lengths and points are scaled back by `2^-k`.
+/// Scaling is exact, so the same pair at poses scaled by `2^j` gives
+/// bit-identical frame coordinates and answers scaled by exactly `2^j`;
+/// nothing overflows or underflows at any scale (squared lengths of
+/// `1e200` or `1e-200` would). Posed coordinates that overflow `f64`, or
+/// an answer that does, is [`QueryError::OutOfRange`].
 pub(super) fn evaluate(
     pair: &ConvexPair,
     pose_a: Pose,
     pose_b: Pose,
-    overlay: &Overlay,
+    facets: &FacetSet,
     scratch: &mut Scratch,
 ) -> Result<Proximity, QueryError> {
-    let posed = &mut scratch.posed;
-    posed.a.clear();
-    posed
-        .a
-        .extend(pair.a.vertices().iter().map(|&v| pose_a.apply(v)));
-    posed.b.clear();
-    posed
-        .b
-        .extend(pair.b.vertices().iter().map(|&v| pose_b.apply(v)));
-    if !posed.a.iter().chain(&posed.b).all(|v| v.is_finite()) {
-        return Err(QueryError::OutOfRange(
-            "the posed coordinates overflow f64 (|x| > 1.8e308)".into(),
-        ));
-    }
-    let k = exact::frame_exponent(posed.a.iter().chain(&posed.b).flat_map(|v| v.to_array()));
-    let to_frame = |v: &mut DVec3| *v = exact::mul_pow2_vec(*v, k);
-    posed.a.iter_mut().for_each(to_frame);
-    posed.b.iter_mut().for_each(to_frame);
-    posed.na.clear();
-    posed
-        .na
-        .extend((0..pair.a.face_count()).map(|f| pose_a.rotation.apply(pair.a.unit_normal(f))));
-    posed.nb.clear();
-    posed
-        .nb
-        .extend((0..pair.b.face_count()).map(|g| pose_b.rotation.apply(pair.b.unit_normal(g))));
-    posed.pose_a = pose_a;
-    posed.pose_b = pose_b;
-    posed.k = k;
-    let back = |x: f64| exact::mul_pow2(x, -k);
-    let back_v = |v: DVec3| exact::mul_pow2_vec(v, -k);
+    scratch.posed.reset(pair, pose_a, pose_b)?;
     let answer = evaluate_in_frame(
         pair,
         &scratch.posed,
-        overlay,
+        facets,
         &mut scratch.cands,
         (&mut scratch.poly, &mut scratch.bounds),
     );
+    to_world(&scratch.posed, answer)
+}
+
+/// An answer in frame units scaled back to the world.
+///
+/// # Errors
+/// [`QueryError::OutOfRange`] when it overflows.
+pub(super) fn to_world(posed: &Posed, answer: Proximity) -> Result<Proximity, QueryError> {
     let out = match answer {
         Proximity::Penetrating(c) => Proximity::Penetrating(Contact {
-            depth: back(c.depth),
-            point_on_a: back_v(c.point_on_a),
-            point_on_b: back_v(c.point_on_b),
+            depth: posed.back(c.depth),
+            point_on_a: posed.back_vec(c.point_on_a),
+            point_on_b: posed.back_vec(c.point_on_b),
             ..c
         }),
         Proximity::Separated(s) => Proximity::Separated(Separation {
-            distance: back(s.distance),
-            point_on_a: back_v(s.point_on_a),
-            point_on_b: back_v(s.point_on_b),
+            distance: posed.back(s.distance),
+            point_on_a: posed.back_vec(s.point_on_a),
+            point_on_b: posed.back_vec(s.point_on_b),
             ..s
         }),
     };
@@ -107,7 +84,7 @@ pub(super) fn evaluate(
 /// enough.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scratch {
-    posed: Posed,
+    pub(super) posed: Posed,
     cands: Vec<Candidate>,
     /// A face's posed corners (the separation).
     poly: Vec<DVec3>,
@@ -119,12 +96,12 @@ pub(crate) struct Scratch {
 fn evaluate_in_frame(
     pair: &ConvexPair,
     posed: &Posed,
-    overlay: &Overlay,
+    facets: &FacetSet,
     cands: &mut Vec<Candidate>,
     (poly, bounds): (&mut Vec<DVec3>, &mut Vec<f64>),
 ) -> Proximity {
-    let tol = tie_tolerance(posed);
-    candidates(pair, posed, overlay, tol, cands);
+    let tol = posed.tol;
+    candidates(pair, posed, facets, tol, cands);
     refine(pair, posed, cands, tol);
     let answer = answer_from(pair, posed, tol, cands, (poly, bounds));
     #[cfg(test)]
@@ -132,7 +109,7 @@ fn evaluate_in_frame(
         // The pruning (ee-candidates left out, separation by branch and
         // bound) must not change the answer: every candidate, refined.
         let mut all = Vec::new();
-        super::candidates::candidates_unpruned(pair, posed, overlay, &mut all);
+        super::candidates::candidates_unpruned(pair, posed, facets, &mut all);
         all.iter_mut().for_each(|c| {
             c.h = super::candidates::climb(pair, posed, c);
             c.refined = true;
@@ -160,22 +137,17 @@ fn answer_from(
     let depth = hmin;
     let (point_on_a, point_on_b) = match c.features {
         FeaturePair::FaceVertex { b_vertex, .. } => {
-            let b = posed.b[b_vertex as usize];
+            let b = posed.b(b_vertex);
             (b + depth * c.n, b)
         }
         FeaturePair::VertexFace { a_vertex, .. } => {
-            let a = posed.a[a_vertex as usize];
+            let a = posed.a(a_vertex);
             (a, a - depth * c.n)
         }
         FeaturePair::EdgeEdge { a_edge, b_edge } => {
             let [u1, u2] = pair.a.edge(a_edge as usize).vertices;
             let [w1, w2] = pair.b.edge(b_edge as usize).vertices;
-            line_line(
-                posed.a[u1 as usize],
-                posed.a[u2 as usize],
-                posed.b[w1 as usize],
-                posed.b[w2 as usize],
-            )
+            line_line(posed.a(u1), posed.a(u2), posed.b(w1), posed.b(w2))
         }
     };
     Proximity::Penetrating(Contact {

@@ -13,39 +13,33 @@
 //! parallelogram of two edges within half their lengths' sum of the
 //! midpoints' difference), so its distance is at least the distance to the
 //! ball's centre less the radius, and at least `−h`. The facet of least
-//! bound is measured first; then, in the candidates' order, only facets
-//! whose bound (less a rounding safety) does not exceed the best distance
-//! so far are measured. Every facet passed over is farther than the answer,
-//! so the answer, ties included (the first of the least in the candidates'
-//! order), is the one measuring all of them gives.
+//! bound is measured first; then only facets whose bound (less a rounding
+//! safety) does not exceed the best distance so far are measured. Every
+//! facet passed over is farther than the answer, so the answer, ties
+//! included (the least distance, then the first features in
+//! [`FeaturePair`]'s order), is the one measuring all of them gives.
 //!
 //! Complexity: O(facets) for the bounds, plus one feature distance per
 //! facet near the answer.
 
-use super::candidates::{climb, Candidate, Posed};
+use super::candidates::{climb, Candidate};
 use super::closest::{closest_on_polygon, segment_segment};
+use super::frame::{up, Posed};
 use super::{ConvexPair, FeaturePair, Separation};
 use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
 use crate::polytope::Polytope;
 use glam::DVec3;
 
 /// For each face of a body, the largest distance from the mean of its
-/// corners to a corner; for each edge, half its length; and the body's
-/// reach (largest `|v|`). All in the body's own power-of-two frame
+/// corners to a corner; and for each edge, half its length. All in the
+/// body's own power-of-two frame
 /// (coordinates times `2^exp`, the largest magnitude in `[1, 2)`), so
 /// nothing underflows or overflows at any scale, and rounded up.
 #[derive(Clone, Debug, Default)]
 pub(super) struct FeatureBalls {
     exp: i32,
-    reach: f64,
     face_radius: Vec<f64>,
     half_edge: Vec<f64>,
-}
-
-/// Rounds a computed length up past its rounding error (a few ulps).
-#[inline]
-fn up(x: f64) -> f64 {
-    x * (1.0 + 8.0 * f64::EPSILON)
 }
 
 impl FeatureBalls {
@@ -53,7 +47,6 @@ impl FeatureBalls {
     pub(super) fn of(p: &Polytope) -> FeatureBalls {
         let exp = frame_exponent(p.vertices().iter().flat_map(|v| v.to_array()));
         let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
-        let reach = up(v.iter().map(|x| x.length()).fold(0.0, f64::max));
         let face_radius = (0..p.face_count())
             .map(|f| {
                 let face = p.face(f);
@@ -72,7 +65,6 @@ impl FeatureBalls {
             .collect();
         FeatureBalls {
             exp,
-            reach,
             face_radius,
             half_edge,
         }
@@ -82,12 +74,6 @@ impl FeatureBalls {
     #[inline]
     fn in_frame(&self, r: f64, k: i32) -> f64 {
         mul_pow2(r, k - self.exp)
-    }
-
-    /// A bound on the rounding of one posed vertex of this body,
-    /// `R v + t`, in the query's frame.
-    fn pose_error(&self, t: DVec3, k: i32) -> f64 {
-        16.0 * f64::EPSILON * (self.in_frame(self.reach, k) + mul_pow2(t.abs().max_element(), k))
     }
 }
 
@@ -102,7 +88,7 @@ fn mean(points: impl Iterator<Item = DVec3>, n: usize) -> DVec3 {
 /// plane's `−h` once `h` is refined (the unrefined `h₀ ≤ h` is no bound).
 fn distance_bound(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     let (a, b) = (&pair.a, &pair.b);
-    let (balls_a, balls_b) = (&pair.balls.0, &pair.balls.1);
+    let (balls_a, balls_b) = (&pair.prepared.balls_a, &pair.prepared.balls_b);
     let (frame_a, frame_b) = (
         |r: f64| balls_a.in_frame(r, posed.k),
         |r: f64| balls_b.in_frame(r, posed.k),
@@ -110,21 +96,19 @@ fn distance_bound(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     let ball = match c.features {
         FeaturePair::FaceVertex { a_face, b_vertex } => {
             let face = a.face(a_face as usize);
-            let centre = mean(face.iter().map(|&v| posed.a[v as usize]), face.len());
-            (centre - posed.b[b_vertex as usize]).length()
-                - frame_a(balls_a.face_radius[a_face as usize])
+            let centre = mean(face.iter().map(|&v| posed.a(v)), face.len());
+            (centre - posed.b(b_vertex)).length() - frame_a(balls_a.face_radius[a_face as usize])
         }
         FeaturePair::VertexFace { a_vertex, b_face } => {
             let face = b.face(b_face as usize);
-            let centre = mean(face.iter().map(|&v| posed.b[v as usize]), face.len());
-            (posed.a[a_vertex as usize] - centre).length()
-                - frame_b(balls_b.face_radius[b_face as usize])
+            let centre = mean(face.iter().map(|&v| posed.b(v)), face.len());
+            (posed.a(a_vertex) - centre).length() - frame_b(balls_b.face_radius[b_face as usize])
         }
         FeaturePair::EdgeEdge { a_edge, b_edge } => {
             let [u1, u2] = a.edge(a_edge as usize).vertices;
             let [w1, w2] = b.edge(b_edge as usize).vertices;
-            let mid_a = 0.5 * (posed.a[u1 as usize] + posed.a[u2 as usize]);
-            let mid_b = 0.5 * (posed.b[w1 as usize] + posed.b[w2 as usize]);
+            let mid_a = 0.5 * (posed.a(u1) + posed.a(u2));
+            let mid_b = 0.5 * (posed.b(w1) + posed.b(w2));
             (mid_a - mid_b).length()
                 - (frame_a(balls_a.half_edge[a_edge as usize])
                     + frame_b(balls_b.half_edge[b_edge as usize]))
@@ -147,11 +131,15 @@ fn measure(pair: &ConvexPair, posed: &Posed, c: &Candidate, poly: &mut Vec<DVec3
     ((pb - pa).length(), pa, pb, c.features)
 }
 
-/// Keeps the first measured facet of least distance (in the candidates'
-/// order: a later tie does not replace it).
+/// Keeps the measured facet of least distance, and of the first features
+/// in [`FeaturePair`]'s order among equal distances (so the answer depends
+/// on the set of candidates, never on their order).
 #[inline]
-fn keep_first_least(best: &mut Option<Measured>, m: Measured) {
-    if !best.as_ref().is_some_and(|b| m.0 >= b.0) {
+fn keep_least(best: &mut Option<Measured>, m: Measured) {
+    if !best
+        .as_ref()
+        .is_some_and(|b| m.0 > b.0 || (m.0 == b.0 && m.3 >= b.3))
+    {
         *best = Some(m);
     }
 }
@@ -167,27 +155,22 @@ fn feature_points(
     match c.features {
         FeaturePair::FaceVertex { a_face, b_vertex } => {
             poly.clear();
-            poly.extend(a.face(a_face as usize).iter().map(|&v| posed.a[v as usize]));
-            let q = posed.b[b_vertex as usize];
+            poly.extend(a.face(a_face as usize).iter().map(|&v| posed.a(v)));
+            let q = posed.b(b_vertex);
             let normal = posed.pose_a.rotation.apply(a.normal(a_face as usize));
             (closest_on_polygon(poly, normal, q), q)
         }
         FeaturePair::VertexFace { a_vertex, b_face } => {
             poly.clear();
-            poly.extend(b.face(b_face as usize).iter().map(|&v| posed.b[v as usize]));
-            let q = posed.a[a_vertex as usize];
+            poly.extend(b.face(b_face as usize).iter().map(|&v| posed.b(v)));
+            let q = posed.a(a_vertex);
             let normal = posed.pose_b.rotation.apply(b.normal(b_face as usize));
             (q, closest_on_polygon(poly, normal, q))
         }
         FeaturePair::EdgeEdge { a_edge, b_edge } => {
             let [u1, u2] = a.edge(a_edge as usize).vertices;
             let [w1, w2] = b.edge(b_edge as usize).vertices;
-            segment_segment(
-                posed.a[u1 as usize],
-                posed.a[u2 as usize],
-                posed.b[w1 as usize],
-                posed.b[w2 as usize],
-            )
+            segment_segment(posed.a(u1), posed.a(u2), posed.b(w1), posed.b(w2))
         }
     }
 }
@@ -210,8 +193,7 @@ pub(super) fn separation(
     // mean and points are each off the exact pose by at most the pose
     // error, which can exceed `tol` when a body's vertices lie far from its
     // own origin; and an absolute term for radii that reach subnormals.
-    let pose_error = pair.balls.0.pose_error(posed.pose_a.translation, posed.k)
-        + pair.balls.1.pose_error(posed.pose_b.translation, posed.k);
+    let pose_error = posed.eta_a + posed.eta_b;
     let safety = 4.0 * tol + 2.0 * pose_error + 1e-290;
     bounds.clear();
     bounds.extend(cands.iter().map(|c| {
@@ -233,7 +215,7 @@ pub(super) fn separation(
         if c.h > tol || bound - safety > limit || !facing(c) {
             continue;
         }
-        keep_first_least(&mut best, measure(pair, posed, c, poly));
+        keep_least(&mut best, measure(pair, posed, c, poly));
         limit = limit.min(best.map_or(f64::INFINITY, |b| b.0));
     }
     #[cfg(test)]
@@ -242,7 +224,7 @@ pub(super) fn separation(
         // facing facet must give the same best, ties included.
         let mut all = None;
         for c in cands.iter().filter(|c| facing(c)) {
-            keep_first_least(&mut all, measure(pair, posed, c, poly));
+            keep_least(&mut all, measure(pair, posed, c, poly));
         }
         assert_eq!(best, all, "the branch and bound changed the separation");
     }

@@ -91,6 +91,7 @@ mod closest;
 mod cobst;
 mod depth;
 mod distance;
+mod frame;
 mod tracker;
 mod union;
 
@@ -138,8 +139,9 @@ pub enum QueryError {
 }
 
 /// The features of `A` and `B` generating a facet of `A ⊕ (−B)` (indices
-/// into the original bodies).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// into the original bodies). The order (face–vertex, vertex–face,
+/// edge–edge, then by indices) settles the last ties between candidates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum FeaturePair {
     /// Face `a_face` of A against vertex `b_vertex` of B.
     FaceVertex {
@@ -372,9 +374,36 @@ pub struct ConvexPair {
     a: Polytope,
     b: Polytope,
     neg_b: std::sync::Arc<Reflected>,
+    prepared: std::sync::Arc<Prepared>,
+}
+
+/// What a pair's queries need beyond the bodies, computed once.
+#[derive(Debug)]
+struct Prepared {
     /// Balls around the faces and edges of A and B (the separation's
     /// branch and bound).
-    balls: std::sync::Arc<(distance::FeatureBalls, distance::FeatureBalls)>,
+    balls_a: distance::FeatureBalls,
+    balls_b: distance::FeatureBalls,
+    /// Reach and radius of each body (the query frame's bounds).
+    bounds_a: frame::BodyBounds,
+    bounds_b: frame::BodyBounds,
+    /// Error bounds of A's arc normals under any rotation, exactly as the
+    /// overlay's operands compute them.
+    arc_err_a: Vec<f64>,
+}
+
+impl Prepared {
+    fn of(a: &Polytope, b: &Polytope) -> Prepared {
+        let (mut arcs, mut arc_err_a) = (Vec::new(), Vec::new());
+        crate::sum::rotate_arcs(a, None, &mut arcs, &mut arc_err_a);
+        Prepared {
+            balls_a: distance::FeatureBalls::of(a),
+            balls_b: distance::FeatureBalls::of(b),
+            bounds_a: frame::BodyBounds::of(a),
+            bounds_b: frame::BodyBounds::of(b),
+            arc_err_a,
+        }
+    }
 }
 
 impl ConvexPair {
@@ -392,10 +421,7 @@ impl ConvexPair {
             a: a.clone(),
             b: b.clone(),
             neg_b: std::sync::Arc::new(Reflected::new(b)?),
-            balls: std::sync::Arc::new((
-                distance::FeatureBalls::of(a),
-                distance::FeatureBalls::of(b),
-            )),
+            prepared: std::sync::Arc::new(Prepared::of(a, b)),
         })
     }
     /// Body A.
@@ -484,11 +510,13 @@ impl ConvexPair {
         pose_b: Pose,
         overlay: &crate::sum::Overlay,
     ) -> Result<Proximity, QueryError> {
+        let mut facets = candidates::FacetSet::default();
+        facets.fill_from(overlay);
         depth::evaluate(
             self,
             pose_a,
             pose_b,
-            overlay,
+            &facets,
             &mut depth::Scratch::default(),
         )
     }

@@ -65,6 +65,8 @@ pub struct ContactTracker {
     report: UpdateReport,
     /// The overlay of `sum`, rebuilt in place every frame.
     overlay: Overlay,
+    /// Its facets, as the evaluation takes them.
+    facets: super::candidates::FacetSet,
     /// Evaluation buffers, reused every frame.
     scratch: super::depth::Scratch,
 }
@@ -90,13 +92,16 @@ impl ContactTracker {
         )?;
         let mut scratch = super::depth::Scratch::default();
         let overlay = sum.overlay();
-        let last = super::depth::evaluate(&pair, pose_a, pose_b, &overlay, &mut scratch)?;
+        let mut facets = super::candidates::FacetSet::default();
+        facets.fill_from(&overlay);
+        let last = super::depth::evaluate(&pair, pose_a, pose_b, &facets, &mut scratch)?;
         Ok(ContactTracker {
             pair,
             sum,
             last,
             report: UpdateReport::default(),
             overlay,
+            facets,
             scratch,
         })
     }
@@ -113,8 +118,9 @@ impl ContactTracker {
         self.sum
             .set_pose_into(pose_a, Reflected::pose(pose_b), &mut self.report);
         self.sum.overlay_into(&mut self.overlay);
+        self.facets.fill_from(&self.overlay);
         self.last =
-            super::depth::evaluate(&self.pair, pose_a, pose_b, &self.overlay, &mut self.scratch)?;
+            super::depth::evaluate(&self.pair, pose_a, pose_b, &self.facets, &mut self.scratch)?;
         Ok(self.last)
     }
 

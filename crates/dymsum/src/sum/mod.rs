@@ -247,7 +247,7 @@ pub(crate) fn rotate_arcs(
 }
 
 /// The matrix and cofactor matrix of a rotation, for lazy views.
-fn turn_of(r: crate::Rotation) -> crate::gauss::Turn {
+pub(crate) fn turn_of(r: crate::Rotation) -> crate::gauss::Turn {
     let rot = r.matrix();
     crate::gauss::Turn {
         rot,

@@ -1,0 +1,376 @@
+//! The query frame: the two bodies at their poses, their vertices posed on
+//! demand in one power-of-two frame, and the error bounds every certificate
+//! of the query uses.
+//!
+//! # The frame
+//! Posed vertices are `2^k (R v + t)`, rounded once per component; `k` is
+//! chosen from a bound on every posed coordinate, `B = max(reach + |t|∞)`
+//! over the two bodies (`reach` the largest `|v|` in the body's own frame),
+//! so that `B · 2^k` lies in `[1, 2)`. Scaling both bodies and their
+//! translations by `2^j` scales `B` by exactly `2^j`, so frame coordinates,
+//! and every answer scaled back, are bit-identical at every scale. Nothing
+//! is posed until it is read: a query that visits a few dozen vertices of
+//! two large hulls poses a few dozen, not all of them.
+//!
+//! # The bounds
+//! * `tol`, the tie tolerance: `16 ε B` in frame units. Candidates whose
+//!   support values lie within `tol` of each other are tied
+//!   ([`super::candidates::winner`]).
+//! * `eta_a`, `eta_b`: the Euclidean distance between a rounded posed
+//!   vertex and its exact value `R v + t` (with the float matrix `R` taken
+//!   as exact) is at most `16 ε (reach + |t|∞)` (three products and three
+//!   sums per component, each off by at most half an ulp of the component's
+//!   magnitude, `√3` for the norm), in frame units.
+//! * `rho_a`, `rho_b`: every vertex lies within `rho` of the body's vertex
+//!   mean (rounded up; rotation preserves it up to the matrix's rounding,
+//!   covered by a factor `1 + 2^-40`).
+//!
+//! These are the only quantities the certificates of [`super::certify`]
+//! need about the rounding; they are rigorous upper bounds.
+
+use super::{ConvexPair, QueryError, Reflected};
+use crate::gauss::{GaussView, Turn};
+use crate::kernel::dd::DD;
+use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
+use crate::sum::{relative_rotation, turn_of};
+use crate::{Polytope, Pose, Rotation};
+use glam::{DMat3, DVec3};
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
+
+/// Rounds a computed non-negative length up past its rounding error.
+#[inline]
+pub(super) fn up(x: f64) -> f64 {
+    x * (1.0 + 8.0 * f64::EPSILON)
+}
+
+/// What a query needs to know about one body, computed once per pair (body
+/// frame units): the largest `|v|`, the vertex mean and the largest
+/// distance of a vertex from it.
+#[derive(Clone, Debug)]
+pub(super) struct BodyBounds {
+    /// Largest `|v|` (rounded up; may be infinite for coordinates near
+    /// `f64::MAX`).
+    pub reach: f64,
+    /// Largest `|v − mean|` (rounded up).
+    pub radius: f64,
+}
+
+impl BodyBounds {
+    /// The bounds of `p`, computed in its own power-of-two frame (so that
+    /// no square underflows or overflows) and scaled back.
+    pub(super) fn of(p: &Polytope) -> BodyBounds {
+        let exp = p.frame_exponent();
+        let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
+        let n = v.len() as f64;
+        let mean = v.iter().fold(DVec3::ZERO, |s, &x| s + x) / n;
+        let reach = up(v.iter().map(|x| x.length()).fold(0.0, f64::max));
+        let radius = up(v.iter().map(|x| (*x - mean).length()).fold(0.0, f64::max))
+            + 4.0 * f64::EPSILON * reach;
+        BodyBounds {
+            reach: up(mul_pow2(reach, -exp)),
+            radius: up(mul_pow2(radius, -exp)),
+        }
+    }
+}
+
+/// Values computed on first read in a query and kept for the rest of it:
+/// a value is current when its stamp equals the query's generation.
+/// Relaxed atomics rather than `Cell`s, so that the structures holding a
+/// query's scratch stay `Sync`; they compile to plain loads and stores.
+#[derive(Debug, Default)]
+struct Lazy {
+    vals: Vec<[AtomicU64; 3]>,
+    stamp: Vec<AtomicU32>,
+}
+
+impl Clone for Lazy {
+    fn clone(&self) -> Self {
+        Lazy {
+            vals: self
+                .vals
+                .iter()
+                .map(|v| v.each_ref().map(|x| AtomicU64::new(x.load(Relaxed))))
+                .collect(),
+            stamp: self
+                .stamp
+                .iter()
+                .map(|s| AtomicU32::new(s.load(Relaxed)))
+                .collect(),
+        }
+    }
+}
+
+impl Lazy {
+    fn reset(&mut self, n: usize, fresh: bool) {
+        if self.vals.len() != n {
+            self.vals = (0..n).map(|_| Default::default()).collect();
+            self.stamp = (0..n).map(|_| AtomicU32::new(0)).collect();
+        } else if fresh {
+            self.stamp.iter_mut().for_each(|s| *s.get_mut() = 0);
+        }
+    }
+
+    #[inline]
+    fn get(&self, i: usize, gen: u32, f: impl FnOnce() -> DVec3) -> DVec3 {
+        let v = &self.vals[i];
+        if self.stamp[i].load(Relaxed) == gen {
+            DVec3::new(
+                f64::from_bits(v[0].load(Relaxed)),
+                f64::from_bits(v[1].load(Relaxed)),
+                f64::from_bits(v[2].load(Relaxed)),
+            )
+        } else {
+            let x = f();
+            v[0].store(x.x.to_bits(), Relaxed);
+            v[1].store(x.y.to_bits(), Relaxed);
+            v[2].store(x.z.to_bits(), Relaxed);
+            self.stamp[i].store(gen, Relaxed);
+            x
+        }
+    }
+}
+
+/// The two bodies at their poses, in the query's frame (module docs).
+/// Reused from query to query (a [`super::ContactTracker`] keeps one), so a
+/// query allocates nothing once the buffers have their size.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Posed {
+    a_body: Option<Polytope>,
+    b_body: Option<Polytope>,
+    /// A's pose.
+    pub pose_a: Pose,
+    /// B's pose.
+    pub pose_b: Pose,
+    /// The frame's exponent: frame coordinates are world ones times `2^k`.
+    pub k: i32,
+    /// The tie tolerance, `16 ε B` (frame units).
+    pub tol: f64,
+    /// Bound on `|posed coordinate|` (frame units, `< 2` unless the bound
+    /// overflowed and the frame was taken from the coordinates).
+    pub scale: f64,
+    /// Bounds on the rounding of one posed vertex of A and of B (Euclidean,
+    /// frame units).
+    pub eta_a: f64,
+    /// See `eta_a`.
+    pub eta_b: f64,
+    /// Every vertex of A (of B) lies within `rho_a` (`rho_b`) of one point
+    /// (frame units).
+    pub rho_a: f64,
+    /// See `rho_a`.
+    pub rho_b: f64,
+    /// The relative rotation of A in the combinatorial frame of `−B`
+    /// (`R_b⁻¹ R_a`), as the overlay sees it; `None` for the identity.
+    pub turn: Option<Turn>,
+    /// B's rotation matrix (the combinatorial frame to the world).
+    pub rot_b: DMat3,
+    /// `cof(M)` of the relative rotation's matrix `M`, row by row, in
+    /// double-double (each entry a difference of two exact products).
+    cof_dd: [[DD; 3]; 3],
+    gen: u32,
+    a: Lazy,
+    b: Lazy,
+    na: Lazy,
+    nb: Lazy,
+}
+
+impl Posed {
+    /// Sets the bodies and poses for a new query.
+    ///
+    /// # Errors
+    /// [`QueryError::OutOfRange`] when a posed coordinate overflows `f64`.
+    pub(super) fn reset(
+        &mut self,
+        pair: &ConvexPair,
+        pose_a: Pose,
+        pose_b: Pose,
+    ) -> Result<(), QueryError> {
+        let fresh = !(self.a_body.as_ref().is_some_and(|p| p.same_data(&pair.a))
+            && self.b_body.as_ref().is_some_and(|p| p.same_data(&pair.b)));
+        if fresh {
+            self.a_body = Some(pair.a.clone());
+            self.b_body = Some(pair.b.clone());
+        }
+        self.gen = self.gen.wrapping_add(1);
+        let wrapped = self.gen == 0;
+        if wrapped {
+            self.gen = 1;
+        }
+        self.a.reset(pair.a.vertex_count(), fresh || wrapped);
+        self.b.reset(pair.b.vertex_count(), fresh || wrapped);
+        self.na.reset(pair.a.face_count(), fresh || wrapped);
+        self.nb.reset(pair.b.face_count(), fresh || wrapped);
+        self.pose_a = pose_a;
+        self.pose_b = pose_b;
+        let relative = relative_rotation(&pose_a, &Reflected::pose(pose_b));
+        self.turn = (relative != Rotation::IDENTITY).then(|| turn_of(relative));
+        if let Some(t) = &self.turn {
+            self.cof_dd = cofactor_dd(&t.rot);
+        }
+        self.rot_b = pose_b.rotation.matrix();
+        let (ba, bb) = (&pair.prepared.bounds_a, &pair.prepared.bounds_b);
+        let (ta, tb) = (
+            pose_a.translation.abs().max_element(),
+            pose_b.translation.abs().max_element(),
+        );
+        let bound_a = up(ba.reach + ta);
+        let bound_b = up(bb.reach + tb);
+        let bound = bound_a.max(bound_b);
+        if !pose_a.translation.is_finite() || !pose_b.translation.is_finite() {
+            return Err(out_of_range());
+        }
+        let (k, bound) = if bound.is_finite() && bound < 1e300 {
+            (frame_exponent(std::iter::once(bound)), bound)
+        } else {
+            // The bound overflows: take the frame from the coordinates
+            // themselves (posing every vertex once).
+            let mut m = 0.0f64;
+            for (p, pose) in [(&pair.a, pose_a), (&pair.b, pose_b)] {
+                for &v in p.vertices() {
+                    let x = pose.apply(v);
+                    if !x.is_finite() {
+                        return Err(out_of_range());
+                    }
+                    m = m.max(x.abs().max_element());
+                }
+            }
+            (frame_exponent(std::iter::once(m)), m)
+        };
+        self.k = k;
+        self.scale = mul_pow2(bound, k);
+        self.tol = 16.0 * f64::EPSILON * self.scale.max(f64::MIN_POSITIVE);
+        self.eta_a = mul_pow2(16.0 * f64::EPSILON * bound_a, k);
+        self.eta_b = mul_pow2(16.0 * f64::EPSILON * bound_b, k);
+        let turned = 1.0 + 2f64.powi(-40);
+        self.rho_a = mul_pow2(ba.radius * turned, k);
+        self.rho_b = mul_pow2(bb.radius * turned, k);
+        Ok(())
+    }
+
+    /// A's Gaussian map at its relative rotation, exactly as the static
+    /// and dynamic overlays of `A ⊕ (−B)` see it (the same rotated normals,
+    /// arc normals, error bounds and SoS indices, so every predicate
+    /// answers the same), without a tie memo.
+    pub(super) fn view_a<'a>(&'a self, pair: &'a ConvexPair) -> GaussView<'a> {
+        let a = &pair.a;
+        GaussView {
+            poly: a,
+            normals: a.normals(),
+            arcs: a.arc_normals(),
+            turn: self.turn.as_ref(),
+            arc_errs: &pair.prepared.arc_err_a,
+            base: 0,
+            rotation: self.turn.as_ref().map(|t| &t.rot),
+            ties: None,
+        }
+    }
+
+    /// `−B`'s Gaussian map (its own frame; SoS indices after A's faces).
+    pub(super) fn view_neg_b<'a>(&self, pair: &'a ConvexPair) -> GaussView<'a> {
+        let q = &pair.neg_b.polytope;
+        GaussView {
+            poly: q,
+            normals: q.normals(),
+            arcs: q.arc_normals(),
+            turn: None,
+            arc_errs: q.arc_errors(),
+            base: pair.a.face_count() as u32,
+            rotation: None,
+            ties: None,
+        }
+    }
+
+    /// `cof(M)` in double-double (`[row][column]`), for a query with a
+    /// relative rotation.
+    #[inline]
+    pub(super) fn cof_dd(&self) -> &[[DD; 3]; 3] {
+        &self.cof_dd
+    }
+
+    /// Body A.
+    #[inline]
+    fn body_a(&self) -> &Polytope {
+        self.a_body.as_ref().expect("reset before use")
+    }
+
+    /// Body B.
+    #[inline]
+    fn body_b(&self) -> &Polytope {
+        self.b_body.as_ref().expect("reset before use")
+    }
+
+    /// Posed vertex `v` of A (frame units).
+    #[inline]
+    pub(super) fn a(&self, v: u32) -> DVec3 {
+        self.a.get(v as usize, self.gen, || {
+            mul_pow2_vec(self.pose_a.apply(self.body_a().vertex(v as usize)), self.k)
+        })
+    }
+
+    /// Posed vertex `w` of B (frame units).
+    #[inline]
+    pub(super) fn b(&self, w: u32) -> DVec3 {
+        self.b.get(w as usize, self.gen, || {
+            mul_pow2_vec(self.pose_b.apply(self.body_b().vertex(w as usize)), self.k)
+        })
+    }
+
+    /// A's rotated unit normal of face `f`.
+    #[inline]
+    pub(super) fn na(&self, f: u32) -> DVec3 {
+        self.na.get(f as usize, self.gen, || {
+            self.pose_a
+                .rotation
+                .apply(self.body_a().unit_normal(f as usize))
+        })
+    }
+
+    /// B's rotated unit normal of face `g`.
+    #[inline]
+    pub(super) fn nb(&self, g: u32) -> DVec3 {
+        self.nb.get(g as usize, self.gen, || {
+            self.pose_b
+                .rotation
+                .apply(self.body_b().unit_normal(g as usize))
+        })
+    }
+
+    /// A world length or point back from frame units.
+    #[inline]
+    pub(super) fn back(&self, x: f64) -> f64 {
+        mul_pow2(x, -self.k)
+    }
+
+    /// A world point back from frame units.
+    #[inline]
+    pub(super) fn back_vec(&self, v: DVec3) -> DVec3 {
+        mul_pow2_vec(v, -self.k)
+    }
+}
+
+/// `cof(M)` with `cof(M)(a × b) = (M a) × (M b)`: its columns are
+/// `c1 × c2`, `c2 × c0`, `c0 × c1` for the columns `c_i` of `M`; each entry
+/// a difference of two products, exact to double-double rounding.
+fn cofactor_dd(m: &DMat3) -> [[DD; 3]; 3] {
+    let (c0, c1, c2) = (m.x_axis, m.y_axis, m.z_axis);
+    let cross = |a: DVec3, b: DVec3| {
+        let d =
+            |p: f64, q: f64, r: f64, s: f64| DD::from(p) * DD::from(q) - DD::from(r) * DD::from(s);
+        [
+            d(a.y, b.z, a.z, b.y),
+            d(a.z, b.x, a.x, b.z),
+            d(a.x, b.y, a.y, b.x),
+        ]
+    };
+    let cols = [cross(c1, c2), cross(c2, c0), cross(c0, c1)];
+    let mut out = [[DD::default(); 3]; 3];
+    for (j, col) in cols.iter().enumerate() {
+        for (r, &x) in col.iter().enumerate() {
+            out[r][j] = x;
+        }
+    }
+    out
+}
+
+fn out_of_range() -> QueryError {
+    QueryError::OutOfRange("the posed coordinates overflow f64 (|x| > 1.8e308)".into())
+}
