@@ -52,7 +52,8 @@ pub use kernel::rotation::{Pose, Rotation};
 pub use mesh::PolygonMesh;
 pub use polytope::{Polytope, PolytopeError};
 pub use query::{
-    CObstacle, Contact, ContactTracker, ConvexPair, ConvexUnion, Proximity, QueryError, Separation,
+    CObstacle, Contact, ContactTracker, ConvexPair, ConvexUnion, Proximity, QueryError, QueryStats,
+    Separation,
 };
 pub use sanity::SanityError;
 pub use sum::{minkowski_sum, minkowski_sum_posed, Facet, Method, MinkowskiSum, SumError};

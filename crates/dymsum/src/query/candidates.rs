@@ -163,6 +163,14 @@ impl FacetSet {
             .extend(overlay.vf.iter().enumerate().map(|(g, &u)| (g as u32, u)));
         self.ee.extend_from_slice(&overlay.ee);
     }
+
+    /// Sorts each list and removes repeats (a facet found by two searches).
+    pub(super) fn dedup(&mut self) {
+        for l in [&mut self.fv, &mut self.vf, &mut self.ee] {
+            l.sort_unstable();
+            l.dedup();
+        }
+    }
 }
 
 /// The candidates of the facets in `facets`, with the lower bounds `h₀` as
@@ -410,8 +418,8 @@ pub(super) fn ee_direction(
     ];
     let wa = match &posed.turn {
         None => da,
-        Some(_) => {
-            let c = posed.cof_dd();
+        Some(t) => {
+            let c = super::frame::cofactor_dd(&t.rot);
             let row = |r: usize| c[r][0] * da[0] + c[r][1] * da[1] + c[r][2] * da[2];
             [row(0), row(1), row(2)]
         }

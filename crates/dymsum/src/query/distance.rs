@@ -177,8 +177,10 @@ fn feature_points(
 
 /// The separation: minimum feature distance over the facets on whose outer
 /// side the origin lies (support value below `tol`), by branch and bound
-/// (module docs). `poly` is a reused buffer for a face's posed corners,
-/// `bounds` one for the facets' distance bounds.
+/// (module docs), and whether any facet was measured (else the answer is
+/// `fallback`'s value with zero witness points). `poly` is a reused buffer
+/// for a face's posed corners, `bounds` one for the facets' distance
+/// bounds.
 pub(super) fn separation(
     pair: &ConvexPair,
     posed: &Posed,
@@ -187,7 +189,7 @@ pub(super) fn separation(
     fallback: Candidate,
     poly: &mut Vec<DVec3>,
     bounds: &mut Vec<f64>,
-) -> Separation {
+) -> (Separation, bool) {
     // Rounding of the bounds and of the measured distances: a few ulps of
     // the coordinates' scale (`tol` is 16 of them); the posed corners,
     // mean and points are each off the exact pose by at most the pose
@@ -228,6 +230,7 @@ pub(super) fn separation(
         }
         assert_eq!(best, all, "the branch and bound changed the separation");
     }
+    let measured = best.is_some();
     let (distance, point_on_a, point_on_b, features) =
         best.unwrap_or((-fallback.h, DVec3::ZERO, DVec3::ZERO, fallback.features));
     let dir = point_on_b - point_on_a;
@@ -236,13 +239,16 @@ pub(super) fn separation(
     } else {
         fallback.n
     };
-    Separation {
-        distance,
-        point_on_a,
-        point_on_b,
-        direction,
-        features,
-    }
+    (
+        Separation {
+            distance,
+            point_on_a,
+            point_on_b,
+            direction,
+            features,
+        },
+        measured,
+    )
 }
 
 #[cfg(test)]

@@ -101,11 +101,14 @@ impl Clone for Lazy {
 }
 
 impl Lazy {
-    fn reset(&mut self, n: usize, fresh: bool) {
+    /// Sizes the buffers for `n` values; `clear` forgets every value (the
+    /// generation counter wrapped). Values of an earlier query, of this
+    /// pair or another, carry older stamps and are recomputed.
+    fn reset(&mut self, n: usize, clear: bool) {
         if self.vals.len() != n {
             self.vals = (0..n).map(|_| Default::default()).collect();
             self.stamp = (0..n).map(|_| AtomicU32::new(0)).collect();
-        } else if fresh {
+        } else if clear {
             self.stamp.iter_mut().for_each(|s| *s.get_mut() = 0);
         }
     }
@@ -163,9 +166,7 @@ pub(super) struct Posed {
     pub turn: Option<Turn>,
     /// B's rotation matrix (the combinatorial frame to the world).
     pub rot_b: DMat3,
-    /// `cof(M)` of the relative rotation's matrix `M`, row by row, in
-    /// double-double (each entry a difference of two exact products).
-    cof_dd: [[DD; 3]; 3],
+
     gen: u32,
     a: Lazy,
     b: Lazy,
@@ -184,10 +185,10 @@ impl Posed {
         pose_a: Pose,
         pose_b: Pose,
     ) -> Result<(), QueryError> {
-        let fresh = !(self.a_body.as_ref().is_some_and(|p| p.same_data(&pair.a))
-            && self.b_body.as_ref().is_some_and(|p| p.same_data(&pair.b)));
-        if fresh {
+        if !self.a_body.as_ref().is_some_and(|p| p.same_data(&pair.a)) {
             self.a_body = Some(pair.a.clone());
+        }
+        if !self.b_body.as_ref().is_some_and(|p| p.same_data(&pair.b)) {
             self.b_body = Some(pair.b.clone());
         }
         self.gen = self.gen.wrapping_add(1);
@@ -195,17 +196,15 @@ impl Posed {
         if wrapped {
             self.gen = 1;
         }
-        self.a.reset(pair.a.vertex_count(), fresh || wrapped);
-        self.b.reset(pair.b.vertex_count(), fresh || wrapped);
-        self.na.reset(pair.a.face_count(), fresh || wrapped);
-        self.nb.reset(pair.b.face_count(), fresh || wrapped);
+        self.a.reset(pair.a.vertex_count(), wrapped);
+        self.b.reset(pair.b.vertex_count(), wrapped);
+        self.na.reset(pair.a.face_count(), wrapped);
+        self.nb.reset(pair.b.face_count(), wrapped);
         self.pose_a = pose_a;
         self.pose_b = pose_b;
         let relative = relative_rotation(&pose_a, &Reflected::pose(pose_b));
         self.turn = (relative != Rotation::IDENTITY).then(|| turn_of(relative));
-        if let Some(t) = &self.turn {
-            self.cof_dd = cofactor_dd(&t.rot);
-        }
+
         self.rot_b = pose_b.rotation.matrix();
         let (ba, bb) = (&pair.prepared.bounds_a, &pair.prepared.bounds_b);
         let (ta, tb) = (
@@ -279,13 +278,6 @@ impl Posed {
         }
     }
 
-    /// `cof(M)` in double-double (`[row][column]`), for a query with a
-    /// relative rotation.
-    #[inline]
-    pub(super) fn cof_dd(&self) -> &[[DD; 3]; 3] {
-        &self.cof_dd
-    }
-
     /// Body A.
     #[inline]
     fn body_a(&self) -> &Polytope {
@@ -347,10 +339,11 @@ impl Posed {
     }
 }
 
-/// `cof(M)` with `cof(M)(a × b) = (M a) × (M b)`: its columns are
+/// `cof(M)` with `cof(M)(a × b) = (M a) × (M b)`, row by row
+/// (`[row][column]`), in double-double: its columns are
 /// `c1 × c2`, `c2 × c0`, `c0 × c1` for the columns `c_i` of `M`; each entry
 /// a difference of two products, exact to double-double rounding.
-fn cofactor_dd(m: &DMat3) -> [[DD; 3]; 3] {
+pub(super) fn cofactor_dd(m: &DMat3) -> [[DD; 3]; 3] {
     let (c0, c1, c2) = (m.x_axis, m.y_axis, m.z_axis);
     let cross = |a: DVec3, b: DVec3| {
         let d =

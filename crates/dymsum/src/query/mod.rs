@@ -87,20 +87,25 @@
 //! ```
 
 mod candidates;
+mod certify;
 mod closest;
 mod cobst;
 mod depth;
 mod distance;
+mod epa;
 mod frame;
+mod gjk;
+
+mod support;
 mod tracker;
 mod union;
 
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
-pub use tracker::ContactTracker;
+pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};
 
 use crate::polytope::{Polytope, PolytopeError};
-use crate::sum::{minkowski_sum_posed, Method, SumError};
+use crate::sum::SumError;
 use crate::Pose;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -375,6 +380,59 @@ pub struct ConvexPair {
     b: Polytope,
     neg_b: std::sync::Arc<Reflected>,
     prepared: std::sync::Arc<Prepared>,
+    stats: std::sync::Arc<Counters>,
+    /// Query buffers kept between the static queries of this pair and its
+    /// clones (one per query running at a time), so that a query
+    /// allocates nothing once they have grown.
+    pool: std::sync::Arc<std::sync::Mutex<Vec<depth::Scratch>>>,
+}
+
+/// How a pair's queries were answered: how many, and how many needed an
+/// exhaustive exact method because a certificate could not decide (see
+/// [`ConvexPair::stats`]). Counted over every clone of the pair and every
+/// tracker made from it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct QueryStats {
+    /// Queries answered (every method, trackers' frames included).
+    pub queries: u64,
+    /// Yes/no answers GJK's certificates could not decide, answered by the
+    /// exact hull of all vertex differences instead (the origin within
+    /// rounding of the boundary of `A ⊕ (−B)`).
+    pub exhaustive_decisions: u64,
+    /// Depths or distances the local certificates could not settle,
+    /// answered from the whole sum instead.
+    pub exhaustive_answers: u64,
+}
+
+/// The counters behind [`QueryStats`].
+#[derive(Debug, Default)]
+struct Counters {
+    queries: std::sync::atomic::AtomicU64,
+    exhaustive_decisions: std::sync::atomic::AtomicU64,
+    exhaustive_answers: std::sync::atomic::AtomicU64,
+}
+
+impl Counters {
+    fn bump(c: &std::sync::atomic::AtomicU64) {
+        c.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    }
+    fn count_query(&self) {
+        Self::bump(&self.queries);
+    }
+    fn count_exhaustive_decision(&self) {
+        Self::bump(&self.exhaustive_decisions);
+    }
+    fn count_exhaustive_answer(&self) {
+        Self::bump(&self.exhaustive_answers);
+    }
+    fn snapshot(&self) -> QueryStats {
+        let get = |c: &std::sync::atomic::AtomicU64| c.load(std::sync::atomic::Ordering::Relaxed);
+        QueryStats {
+            queries: get(&self.queries),
+            exhaustive_decisions: get(&self.exhaustive_decisions),
+            exhaustive_answers: get(&self.exhaustive_answers),
+        }
+    }
 }
 
 /// What a pair's queries need beyond the bodies, computed once.
@@ -390,18 +448,33 @@ struct Prepared {
     /// Error bounds of A's arc normals under any rotation, exactly as the
     /// overlay's operands compute them.
     arc_err_a: Vec<f64>,
+    /// B's vertex, face and edge → the same of `−B` (the inverses of
+    /// [`Reflected`]'s maps).
+    neg_b_vertex: Vec<u32>,
+    neg_b_face: Vec<u32>,
+    neg_b_edge: Vec<u32>,
 }
 
 impl Prepared {
-    fn of(a: &Polytope, b: &Polytope) -> Prepared {
+    fn of(a: &Polytope, b: &Polytope, neg_b: &Reflected) -> Prepared {
         let (mut arcs, mut arc_err_a) = (Vec::new(), Vec::new());
         crate::sum::rotate_arcs(a, None, &mut arcs, &mut arc_err_a);
+        let inverse = |map: &[u32]| {
+            let mut inv = vec![0; map.len()];
+            for (i, &j) in map.iter().enumerate() {
+                inv[j as usize] = i as u32;
+            }
+            inv
+        };
         Prepared {
             balls_a: distance::FeatureBalls::of(a),
             balls_b: distance::FeatureBalls::of(b),
             bounds_a: frame::BodyBounds::of(a),
             bounds_b: frame::BodyBounds::of(b),
             arc_err_a,
+            neg_b_vertex: inverse(&neg_b.vertex_map),
+            neg_b_face: inverse(&neg_b.face_map),
+            neg_b_edge: inverse(&neg_b.edge_map),
         }
     }
 }
@@ -417,11 +490,14 @@ impl ConvexPair {
     /// negated vertices fails, [`QueryError::Inconsistent`] if its faces or
     /// edges do not match the original's (a bug in dymsum either way).
     pub fn new(a: &Polytope, b: &Polytope) -> Result<Self, QueryError> {
+        let neg_b = Reflected::new(b)?;
         Ok(ConvexPair {
             a: a.clone(),
             b: b.clone(),
-            neg_b: std::sync::Arc::new(Reflected::new(b)?),
-            prepared: std::sync::Arc::new(Prepared::of(a, b)),
+            prepared: std::sync::Arc::new(Prepared::of(a, b, &neg_b)),
+            neg_b: std::sync::Arc::new(neg_b),
+            stats: std::sync::Arc::new(Counters::default()),
+            pool: Default::default(),
         })
     }
     /// Body A.
@@ -447,14 +523,38 @@ impl ConvexPair {
     /// * [`QueryError::Sum`] wrapping [`SumError::Inconsistent`] only for an
     ///   internal error of the sum (a bug: please report the poses).
     pub fn query(&self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
-        let sum = minkowski_sum_posed(
-            &self.a,
-            pose_a,
-            &self.neg_b.polytope,
-            Reflected::pose(pose_b),
-            Method::Walk,
-        )?;
-        self.evaluate(pose_a, pose_b, sum.overlay())
+        self.stats.count_query();
+        self.with_scratch(|s| depth::evaluate(self, pose_a, pose_b, depth::Facets::Certified, s))
+    }
+
+    /// Runs `f` with buffers from the pool, reset to a cold start (no warm
+    /// start from an earlier query: a static query's cost does not depend
+    /// on the queries before it).
+    fn with_scratch<T>(&self, f: impl FnOnce(&mut depth::Scratch) -> T) -> T {
+        let taken = self.pool.lock().ok().and_then(|mut p| p.pop());
+        let mut scratch = taken.unwrap_or_default();
+        scratch.cold();
+        let out = f(&mut scratch);
+        if let Ok(mut p) = self.pool.lock() {
+            p.push(scratch);
+        }
+        out
+    }
+
+    /// [`ConvexPair::query`] by evaluating every facet of `A ⊕ (−B)` (a
+    /// static `walk` sum): the exhaustive reference the certified query is
+    /// tested against. Always the same answer, at O(mn) cost.
+    ///
+    /// # Errors
+    /// The same as [`ConvexPair::query`].
+    pub fn query_exhaustive(&self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
+        self.with_scratch(|s| depth::evaluate(self, pose_a, pose_b, depth::Facets::Exhaustive, s))
+    }
+
+    /// How this pair's queries (and its clones' and trackers') were
+    /// answered so far: see [`QueryStats`].
+    pub fn stats(&self) -> QueryStats {
+        self.stats.snapshot()
     }
 
     /// The penetration depth, or `None` when apart.
@@ -487,12 +587,18 @@ impl ConvexPair {
         })
     }
 
-    /// `true` when the bodies overlap or touch.
+    /// `true` when the bodies overlap or touch, decided exactly on the
+    /// posed bodies by GJK and its certificates alone (no depth or
+    /// distance is computed).
     ///
     /// # Errors
-    /// The same as [`ConvexPair::query`].
+    /// [`QueryError::OutOfRange`] when a posed vertex overflows `f64`.
     pub fn intersects(&self, pose_a: Pose, pose_b: Pose) -> Result<bool, QueryError> {
-        Ok(self.query(pose_a, pose_b)?.intersects())
+        self.stats.count_query();
+        self.with_scratch(|s| {
+            s.posed.reset(self, pose_a, pose_b)?;
+            Ok(depth::decide(self, s, true))
+        })
     }
 
     /// A tracker starting at the given poses.
@@ -501,24 +607,6 @@ impl ConvexPair {
     /// The same as [`ContactTracker::new`].
     pub fn tracker(&self, pose_a: Pose, pose_b: Pose) -> Result<ContactTracker, QueryError> {
         ContactTracker::new(self, pose_a, pose_b)
-    }
-
-    /// Evaluates an overlay of `A ⊕ (−B)` at these poses.
-    pub(crate) fn evaluate(
-        &self,
-        pose_a: Pose,
-        pose_b: Pose,
-        overlay: &crate::sum::Overlay,
-    ) -> Result<Proximity, QueryError> {
-        let mut facets = candidates::FacetSet::default();
-        facets.fill_from(overlay);
-        depth::evaluate(
-            self,
-            pose_a,
-            pose_b,
-            &facets,
-            &mut depth::Scratch::default(),
-        )
     }
 }
 

@@ -1,13 +1,21 @@
-//! Contact tracking over time: a [`DynamicSum`] of `A ⊕ (−B)` repaired from
-//! frame to frame (DYMSUM updates, not recomputation), queried each frame.
+//! Contact tracking over time, frame after frame, with the answer of the
+//! static query at every frame.
 //!
-//! Each frame costs one dynamic update (proportional to the changes of the
-//! overlay for small steps; translations alone change nothing) plus one O(F)
-//! pass over the facets for the depth or the distance, and allocates nothing
-//! once its buffers have grown (the overlay is rebuilt in place, the
-//! evaluation reuses its buffers; `tests/no_alloc.rs`). The answer is
-//! identical to the static query at the same poses, because the dynamic
-//! overlay is identical to the static `walk` overlay.
+//! Two strategies ([`TrackerStrategy`]):
+//! * **certified** (the default): the certified query of
+//!   [`super::ConvexPair::query`], warm-started from the last frame (GJK
+//!   from the last support vertices and direction; the searches from
+//!   there), so a frame of coherent motion costs a few support-function
+//!   steps plus the certificates;
+//! * **dynamic sum**: a [`DynamicSum`] of `A ⊕ (−B)` repaired from frame to
+//!   frame (DYMSUM updates, not recomputation) and every facet evaluated:
+//!   O(F) per frame, for callers who also want the sum itself
+//!   ([`ContactTracker::sum`]) or for tiny shapes.
+//!
+//! A frame allocates nothing once its buffers have grown
+//! (`tests/no_alloc.rs`). Both strategies give the static query's answer
+//! exactly: the certified one by its certificates, the dynamic one because
+//! the dynamic overlay is identical to the static `walk` overlay.
 //!
 //! ```
 //! use dymsum::{Polytope, Pose, Rotation, DVec3};
@@ -26,17 +34,33 @@
 //! }
 //! ```
 
+use super::candidates::FacetSet;
+use super::depth::{evaluate, Facets, Scratch};
 use super::{ConvexPair, Proximity, QueryError, Reflected};
 use crate::dynamic::UpdateReport;
 use crate::sum::Overlay;
 use crate::{DynamicSum, Pose};
 
+/// How a [`ContactTracker`] answers each frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TrackerStrategy {
+    /// The certified query, warm-started from the last frame: support
+    /// functions, GJK, EPA and exact certificates over the facets near the
+    /// answer (every facet when a certificate cannot be made, counted in
+    /// [`super::QueryStats`]).
+    #[default]
+    Certified,
+    /// A [`DynamicSum`] of `A ⊕ (−B)` repaired by DYMSUM each frame, every
+    /// facet evaluated (the sum is available from [`ContactTracker::sum`]).
+    DynamicSum,
+}
+
 /// Depth or distance of two moving convex bodies, frame after frame.
 ///
-/// Built by [`ConvexPair::tracker`] (or [`ContactTracker::new`]); each
-/// [`ContactTracker::update`] answers exactly what the static
-/// [`ConvexPair::query`] answers at the same poses. A box slides through
-/// a turning box:
+/// Built by [`ConvexPair::tracker`] (or [`ContactTracker::new`],
+/// [`ContactTracker::with_strategy`]); each [`ContactTracker::update`]
+/// answers exactly what the static [`ConvexPair::query`] answers at the
+/// same poses. A box slides through a turning box:
 ///
 /// ```
 /// use dymsum::{ContactTracker, ConvexPair, DVec3, Polytope, Pose, Rotation};
@@ -60,68 +84,113 @@ use crate::{DynamicSum, Pose};
 #[derive(Clone, Debug)]
 pub struct ContactTracker {
     pair: ConvexPair,
-    sum: DynamicSum,
+    strategy: TrackerStrategy,
+    /// The dynamic sum (the [`TrackerStrategy::DynamicSum`] strategy).
+    sum: Option<DynamicSum>,
+    poses: (Pose, Pose),
     last: Proximity,
     report: UpdateReport,
     /// The overlay of `sum`, rebuilt in place every frame.
     overlay: Overlay,
     /// Its facets, as the evaluation takes them.
-    facets: super::candidates::FacetSet,
-    /// Evaluation buffers, reused every frame.
-    scratch: super::depth::Scratch,
+    facets: FacetSet,
+    /// Evaluation buffers and the warm start, reused every frame.
+    scratch: Scratch,
 }
 
 impl ContactTracker {
-    /// A tracker at the given poses (one static sum). It keeps its own
-    /// handle on the pair (a cheap clone: the bodies and `B`'s reflection
-    /// are shared).
+    /// A tracker at the given poses with the certified strategy. It keeps
+    /// its own handle on the pair (a cheap clone: the bodies and `B`'s
+    /// reflection are shared).
     ///
     /// # Errors
-    /// * [`QueryError::OutOfRange`] when a posed vertex of A or B, or the
-    ///   answer, overflows `f64` (the dynamic sum itself depends only on the
-    ///   rotations, so the range is checked when the answer is evaluated);
-    /// * [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] only for an
-    ///   internal error of the dynamic sum (a bug: please report the poses).
+    /// Those of [`ConvexPair::query`]: [`QueryError::OutOfRange`] when a
+    /// posed vertex of A or B, or the answer, overflows `f64`.
     pub fn new(pair: &ConvexPair, pose_a: Pose, pose_b: Pose) -> Result<Self, QueryError> {
-        let pair = pair.clone();
-        let sum = DynamicSum::new(
-            &pair.a,
-            pose_a,
-            &pair.neg_b.polytope,
-            Reflected::pose(pose_b),
-        )?;
-        let mut scratch = super::depth::Scratch::default();
-        let overlay = sum.overlay();
-        let mut facets = super::candidates::FacetSet::default();
-        facets.fill_from(&overlay);
-        let last = super::depth::evaluate(&pair, pose_a, pose_b, &facets, &mut scratch)?;
-        Ok(ContactTracker {
-            pair,
-            sum,
-            last,
-            report: UpdateReport::default(),
-            overlay,
-            facets,
-            scratch,
-        })
+        Self::with_strategy(pair, pose_a, pose_b, TrackerStrategy::Certified)
     }
 
-    /// Moves both bodies (a dynamic update) and answers the query.
+    /// A tracker at the given poses with the given strategy.
+    ///
+    /// # Errors
+    /// Those of [`ConvexPair::query`]; with
+    /// [`TrackerStrategy::DynamicSum`], also [`QueryError::Sum`] wrapping
+    /// [`crate::SumError::Inconsistent`] for an internal error of the
+    /// dynamic sum (a bug: please report the poses).
+    pub fn with_strategy(
+        pair: &ConvexPair,
+        pose_a: Pose,
+        pose_b: Pose,
+        strategy: TrackerStrategy,
+    ) -> Result<Self, QueryError> {
+        let pair = pair.clone();
+        let sum = match strategy {
+            TrackerStrategy::Certified => None,
+            TrackerStrategy::DynamicSum => Some(DynamicSum::new(
+                &pair.a,
+                pose_a,
+                &pair.neg_b.polytope,
+                Reflected::pose(pose_b),
+            )?),
+        };
+        let mut tracker = ContactTracker {
+            pair,
+            strategy,
+            sum,
+            poses: (pose_a, pose_b),
+            last: Proximity::Penetrating(super::Contact {
+                depth: 0.0,
+                normal: crate::DVec3::X,
+                point_on_a: crate::DVec3::ZERO,
+                point_on_b: crate::DVec3::ZERO,
+                features: super::FeaturePair::FaceVertex {
+                    a_face: 0,
+                    b_vertex: 0,
+                },
+            }),
+            report: UpdateReport::default(),
+            overlay: Overlay::default(),
+            facets: FacetSet::default(),
+            scratch: Scratch::default(),
+        };
+        if let Some(sum) = &tracker.sum {
+            tracker.overlay = sum.overlay();
+        }
+        tracker.answer()?;
+        Ok(tracker)
+    }
+
+    /// Moves both bodies and answers the query.
     ///
     /// # Errors
     /// [`QueryError::OutOfRange`] when a posed vertex of A or B, or the
-    /// answer, overflows `f64` (the dynamic update itself depends only on the
-    /// rotations and cannot fail, so the range is checked when the answer is
-    /// evaluated). The dynamic sum has moved to the new poses even then;
+    /// answer, overflows `f64`. The tracker has moved to the new poses even
+    /// then (with the dynamic strategy, so has its sum, whose update itself
+    /// depends only on the rotations and cannot fail);
     /// [`ContactTracker::last`] keeps the previous answer.
     pub fn update(&mut self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
-        self.sum
-            .set_pose_into(pose_a, Reflected::pose(pose_b), &mut self.report);
-        self.sum.overlay_into(&mut self.overlay);
-        self.facets.fill_from(&self.overlay);
-        self.last =
-            super::depth::evaluate(&self.pair, pose_a, pose_b, &self.facets, &mut self.scratch)?;
+        self.poses = (pose_a, pose_b);
+        if let Some(sum) = &mut self.sum {
+            sum.set_pose_into(pose_a, Reflected::pose(pose_b), &mut self.report);
+            sum.overlay_into(&mut self.overlay);
+        }
+        self.answer()?;
         Ok(self.last)
+    }
+
+    /// Answers at the current poses.
+    fn answer(&mut self) -> Result<(), QueryError> {
+        let (pose_a, pose_b) = self.poses;
+        self.pair.stats.count_query();
+        let facets = match self.strategy {
+            TrackerStrategy::Certified => Facets::Certified,
+            TrackerStrategy::DynamicSum => {
+                self.facets.fill_from(&self.overlay);
+                Facets::Overlay(&self.facets)
+            }
+        };
+        self.last = evaluate(&self.pair, pose_a, pose_b, facets, &mut self.scratch)?;
+        Ok(())
     }
 
     /// The answer of the last update (or of construction).
@@ -129,19 +198,30 @@ impl ContactTracker {
         &self.last
     }
 
-    /// What the last dynamic update changed.
+    /// What the last dynamic update changed (empty with the certified
+    /// strategy, which keeps no sum).
     pub fn last_update(&self) -> &UpdateReport {
         &self.report
     }
 
     /// The current poses of A and B.
     pub fn poses(&self) -> (Pose, Pose) {
-        let pb = self.sum.pose_q();
-        (self.sum.pose_p(), Reflected::pose(pb))
+        self.poses
     }
 
-    /// The dynamic sum `A ⊕ (−B)`.
-    pub fn sum(&self) -> &DynamicSum {
-        &self.sum
+    /// The strategy.
+    pub fn strategy(&self) -> TrackerStrategy {
+        self.strategy
+    }
+
+    /// The dynamic sum `A ⊕ (−B)` (with [`TrackerStrategy::DynamicSum`]).
+    pub fn sum(&self) -> Option<&DynamicSum> {
+        self.sum.as_ref()
+    }
+
+    /// How the pair's queries were answered so far (this tracker's frames
+    /// included): see [`super::QueryStats`].
+    pub fn stats(&self) -> super::QueryStats {
+        self.pair.stats()
     }
 }

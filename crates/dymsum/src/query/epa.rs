@@ -1,0 +1,242 @@
+//! EPA: a polytope `K` inside `D' = A' ⊕ (−B')` around the origin, grown
+//! towards the boundary of `D'` nearest the origin (van den Bergen's
+//! expanding polytope algorithm), for the penetration-depth certificate of
+//! [`super::certify`].
+//!
+//! `K` starts as GJK's final tetrahedron, which encloses the origin. Each
+//! step takes the face of `K` nearest the origin, finds the support point
+//! `w` of `D'` in its normal (a vertex of A less a vertex of B, by hill
+//! climbing from that face's own vertices), and, unless `w` lies on the
+//! face's plane to within the tie tolerance, replaces the faces `w` sees by
+//! a cone from their horizon to `w`. Every vertex of `K` is a point of
+//! `D'` (rounded to floats), so `K` has finitely many possible vertices and
+//! the expansion ends; a budget of [`MAX_STEPS`] guards the rare slow
+//! cases, after which the certificate simply works with a coarser `K`.
+//!
+//! Floats only build `K`. What the certificate needs of it is checked
+//! exactly afterwards ([`Epa::encloses_origin`]): every face has the origin
+//! strictly on its inner side (exact `orient3d` on the float vertices), and
+//! the faces close up (each edge in two faces, in opposite directions, by
+//! construction). A step that would break the surface (a horizon that is
+//! not one loop) ends the expansion with the `K` built so far.
+
+use super::frame::Posed;
+use super::gjk::Point;
+use super::support::climb;
+use super::ConvexPair;
+use crate::kernel::predicates::orient;
+use crate::kernel::Sign;
+use glam::DVec3;
+
+/// The most expansion steps.
+pub(super) const MAX_STEPS: usize = 256;
+
+/// A triangle of `K`, counter-clockwise seen from outside.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Tri {
+    /// Its corners (indices into [`Epa::pts`]).
+    pub v: [u32; 3],
+    /// `adj[i]`: the triangle across the edge from `v[i]` to `v[i + 1]`.
+    adj: [u32; 3],
+    /// Unit outward normal (float).
+    pub n: DVec3,
+    /// Offset `n · v[0]` (float).
+    pub d: f64,
+    /// Still a face of `K`.
+    pub alive: bool,
+}
+
+/// The expanding polytope and its buffers (kept from query to query).
+#[derive(Clone, Debug, Default)]
+pub(super) struct Epa {
+    /// The points of `D'` that are vertices of `K`.
+    pub pts: Vec<Point>,
+    /// The triangles (dead ones stay, marked).
+    pub tris: Vec<Tri>,
+    /// Horizon edges of one step: (triangle beyond, its edge index).
+    horizon: Vec<(u32, u8)>,
+    /// Depth-first stack of one step.
+    stack: Vec<(u32, u8, u8)>,
+}
+
+impl Epa {
+    /// Grows `K` from a tetrahedron of `D'` points enclosing the origin.
+    /// Returns `false` when `K` cannot be used: the tetrahedron is flat, or
+    /// a step broke the surface (a horizon that is not one loop, a
+    /// degenerate new face).
+    pub(super) fn run(&mut self, pair: &ConvexPair, posed: &Posed, tetra: [Point; 4]) -> bool {
+        self.pts.clear();
+        self.tris.clear();
+        let mut t = tetra;
+        let det = (t[1].w - t[0].w).dot((t[2].w - t[0].w).cross(t[3].w - t[0].w));
+        if det == 0.0 || !det.is_finite() {
+            return false;
+        }
+        if det > 0.0 {
+            t.swap(1, 2);
+        }
+        self.pts.extend_from_slice(&t);
+        // (0, 1, 2) is outward with 3 below; the other faces follow.
+        for f in [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]] {
+            if !self.add_tri(f) {
+                return false;
+            }
+        }
+        // Adjacency of the tetrahedron: match each directed edge with its
+        // reverse.
+        for i in 0..4 {
+            for k in 0..3 {
+                let (p, q) = (self.tris[i].v[k], self.tris[i].v[(k + 1) % 3]);
+                let j = (0..4)
+                    .find(|&j| {
+                        j != i
+                            && (0..3)
+                                .any(|m| self.tris[j].v[m] == q && self.tris[j].v[(m + 1) % 3] == p)
+                    })
+                    .expect("a tetrahedron's faces meet along every edge");
+                self.tris[i].adj[k] = j as u32;
+            }
+        }
+        let tol = posed.tol;
+        for _ in 0..MAX_STEPS {
+            let Some(f) = self.nearest() else {
+                return true;
+            };
+            let tri = self.tris[f];
+            let start = self.pts[tri.v[0] as usize];
+            let (a, _) = climb(&pair.a, |v| posed.a(v), tri.n, start.a);
+            let (b, _) = climb(&pair.b, |w| posed.b(w), -tri.n, start.b);
+            let w = posed.a(a) - posed.b(b);
+            if tri.v.iter().any(|&i| {
+                let p = self.pts[i as usize];
+                p.a == a && p.b == b
+            }) || tri.n.dot(w) - tri.d <= tol
+            {
+                return true;
+            }
+            if !self.expand(f, Point { w, a, b }) {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// The live face nearest the origin.
+    pub(super) fn nearest(&self) -> Option<usize> {
+        (0..self.tris.len())
+            .filter(|&i| self.tris[i].alive)
+            .min_by(|&i, &j| self.tris[i].d.total_cmp(&self.tris[j].d))
+    }
+
+    /// Adds the triangle `v` (outward normal from its corners); `false`
+    /// when it is degenerate.
+    fn add_tri(&mut self, v: [u32; 3]) -> bool {
+        let [a, b, c] = v.map(|i| self.pts[i as usize].w);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        if !(len > 0.0 && len.is_finite()) {
+            return false;
+        }
+        let n = n / len;
+        self.tris.push(Tri {
+            v,
+            adj: [u32::MAX; 3],
+            n,
+            d: n.dot(a),
+            alive: true,
+        });
+        true
+    }
+
+    /// Replaces the faces the new point `p` sees (starting from face `f`,
+    /// which it sees) by a cone from their horizon to `p`. `false` when the
+    /// horizon is not a single loop or a new face is degenerate: `K` is
+    /// then broken and must not be used.
+    fn expand(&mut self, f: usize, p: Point) -> bool {
+        let wi = self.pts.len() as u32;
+        self.pts.push(p);
+        self.horizon.clear();
+        self.tris[f].alive = false;
+        // Depth-first over the visible faces, leaving by each edge in turn,
+        // so the horizon comes out as one counter-clockwise loop.
+        self.stack.clear();
+        for k in (0..3u8).rev() {
+            let Some(b) = back_edge(self, f, k) else {
+                return false;
+            };
+            self.stack.push((self.tris[f].adj[k as usize], b, 0));
+        }
+        while let Some((t, from, step)) = self.stack.pop() {
+            let t_us = t as usize;
+            if step == 0 {
+                if !self.tris[t_us].alive {
+                    continue;
+                }
+                let tri = self.tris[t_us];
+                let a = self.pts[tri.v[0] as usize].w;
+                if tri.n.dot(p.w - a) <= 0.0 {
+                    self.horizon.push((t, from));
+                    continue;
+                }
+                self.tris[t_us].alive = false;
+            }
+            if step < 2 {
+                // Visit the next edge after `from` (then the one after it).
+                self.stack.push((t, from, step + 1));
+                let k = (from + 1 + step) % 3;
+                let n = self.tris[t_us].adj[k as usize];
+                let Some(b) = back_edge(self, t_us, k) else {
+                    return false;
+                };
+                self.stack.push((n, b, 0));
+            }
+        }
+        let h = self.horizon.len();
+        if h < 3 {
+            return false;
+        }
+        let first = self.tris.len() as u32;
+        for i in 0..h {
+            let (t, e) = self.horizon[i];
+            let tri = self.tris[t as usize];
+            // The horizon edge as seen from the removed side: reversed.
+            let (s, q) = (tri.v[(e as usize + 1) % 3], tri.v[e as usize]);
+            let next = self.horizon[(i + 1) % h];
+            let nt = self.tris[next.0 as usize];
+            if nt.v[(next.1 as usize + 1) % 3] != q {
+                return false; // not one loop
+            }
+            if !self.add_tri([s, q, wi]) {
+                return false;
+            }
+            let new = first + i as u32;
+            self.tris[new as usize].adj = [
+                t,
+                first + ((i + 1) % h) as u32,
+                first + ((i + h - 1) % h) as u32,
+            ];
+            self.tris[t as usize].adj[e as usize] = new;
+        }
+        true
+    }
+
+    /// Exactly whether every face of `K` has the origin strictly on its
+    /// inner side (with the faces closing up by construction, the faces
+    /// then cover every direction from the origin: see
+    /// [`super::certify`]).
+    pub(super) fn encloses_origin(&self) -> bool {
+        self.tris.iter().filter(|t| t.alive).all(|t| {
+            let [a, b, c] = t.v.map(|i| self.pts[i as usize].w);
+            orient(a, b, c, DVec3::ZERO) == Sign::Negative
+        })
+    }
+}
+
+/// The index, in the triangle across edge `k` of triangle `t`, of the same
+/// edge (`None` if the adjacency is inconsistent).
+fn back_edge(epa: &Epa, t: usize, k: u8) -> Option<u8> {
+    let tri = &epa.tris[t];
+    let (p, q) = (tri.v[k as usize], tri.v[(k as usize + 1) % 3]);
+    let n = epa.tris.get(tri.adj[k as usize] as usize)?;
+    (0..3u8).find(|&m| n.v[m as usize] == q && n.v[(m as usize + 1) % 3] == p)
+}

@@ -1,0 +1,538 @@
+//! GJK on the Minkowski difference `D' = A' ⊕ (−B')` of the rounded posed
+//! bodies, with an exact certificate for its yes/no answer.
+//!
+//! # The iteration (floats)
+//! Gilbert–Johnson–Keerthi with the signed-volume subalgorithm (Montanari,
+//! Petrinic and Barbieri, ACM TOG 2017): a simplex of points `w = a − b` of
+//! `D'` (each a vertex of A less a vertex of B, found by hill climbing from
+//! the last support vertices, so a step costs O(1) under coherent motion)
+//! and the point `v` of the simplex nearest the origin. It stops when the
+//! simplex encloses the origin, when `v` no longer improves (`|v|² − v · w`
+//! below `2^-44 |v|²`), when a support point repeats, or after
+//! [`MAX_ITERATIONS`] steps; in a yes/no query also as soon as a support
+//! plane separates (`v · w > 0`).
+//!
+//! # The certificate (exact)
+//! Floats only propose; the answer is decided exactly on `D'`, whose points
+//! `a' − b'` are held exactly (as differences of floats):
+//! * **apart**: a direction `d` (GJK's `v`) with `min_A' d · a > max_B' d · b`.
+//!   Both extremes come from the near-extreme searches of
+//!   [`super::support::near_max`], which bound them rigorously; when the
+//!   float bounds cannot separate them, the exact values of the vertices in
+//!   the two near-extreme sets (which contain the rounded extremes) are
+//!   compared exactly.
+//! * **overlapping or touching**: the origin lies in the closed convex hull
+//!   of GJK's final simplex, decided exactly ([`origin_in_hull`]: signs of
+//!   3×3 determinants of the exact points, and for a flat simplex of the
+//!   lower-dimensional tests), so touching (the origin on the boundary of
+//!   `D'`) is decided without a tolerance.
+//!
+//! When neither certificate holds (the origin within rounding of the
+//! boundary, where float directions cannot exhibit a separation), the
+//! answer comes from the exhaustive exact method: the exact hull of all
+//! `a' − b'` and the exact side of the origin for each of its faces
+//! ([`origin_in_difference_hull`]); [`super::QueryStats`] counts how often.
+
+use super::frame::Posed;
+use super::support::{climb, near_max, Marks};
+use super::ConvexPair;
+use crate::hull::{convex_hull, PairwiseSums};
+use crate::kernel::exact::{self, Dyadic, ExactVec};
+use crate::kernel::Sign;
+use glam::DVec3;
+
+/// The most GJK steps before it stops with what it has (never reached in
+/// the tests: on a polytope GJK ends in finitely many steps).
+pub(super) const MAX_ITERATIONS: usize = 128;
+
+/// A point of `D'`: `w = a − b` (frame units, rounded) for vertex `a` of A
+/// and vertex `b` of B.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Point {
+    /// `a' − b'`, rounded.
+    pub w: DVec3,
+    /// Vertex of A.
+    pub a: u32,
+    /// Vertex of B.
+    pub b: u32,
+}
+
+/// GJK's simplex: up to four points of `D'`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Simplex {
+    /// The points; the first `len` are used.
+    pub pts: [Point; 4],
+    /// How many.
+    pub len: usize,
+}
+
+impl Simplex {
+    fn push(&mut self, p: Point) {
+        self.pts[self.len] = p;
+        self.len += 1;
+    }
+
+    fn has(&self, a: u32, b: u32) -> bool {
+        self.pts[..self.len].iter().any(|p| p.a == a && p.b == b)
+    }
+
+    /// The points of `self` selected by `mask` (bit `i`: point `i`).
+    fn keep(&self, mask: u8) -> Simplex {
+        let mut s = Simplex::default();
+        for i in 0..self.len {
+            if mask >> i & 1 != 0 {
+                s.push(self.pts[i]);
+            }
+        }
+        s
+    }
+}
+
+/// What GJK ended with.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Gjk {
+    /// The final simplex.
+    pub simplex: Simplex,
+    /// Its point nearest the origin (frame units; zero when it encloses the
+    /// origin).
+    pub v: DVec3,
+    /// The simplex is a tetrahedron that (in floats) encloses the origin.
+    pub enclosed: bool,
+    /// In a yes/no query: a support plane separated (in floats).
+    pub separating: bool,
+    /// The last support vertices of A and B (a warm start for the next
+    /// query).
+    pub warm: (u32, u32),
+}
+
+/// Runs GJK from the support vertices `warm` and the direction `dir`
+/// (towards `D'` from the origin; any non-zero vector). With `yes_no`, it
+/// stops at the first separating support plane.
+pub(super) fn gjk(
+    pair: &ConvexPair,
+    posed: &Posed,
+    warm: (u32, u32),
+    dir: DVec3,
+    yes_no: bool,
+) -> Gjk {
+    let (a_body, b_body) = (&pair.a, &pair.b);
+    let (at_a, at_b) = (|v| posed.a(v), |w| posed.b(w));
+    let (mut wa, mut wb) = warm;
+    let mut v = if dir.length_squared() > 0.0 && dir.is_finite() {
+        dir
+    } else {
+        posed.a(wa) - posed.b(wb)
+    };
+    if v.length_squared() == 0.0 {
+        v = DVec3::X;
+    }
+    let mut simplex = Simplex::default();
+    let mut enclosed = false;
+    let mut separating = false;
+    for _ in 0..MAX_ITERATIONS {
+        let (a, _) = climb(a_body, at_a, -v, wa);
+        let (b, _) = climb(b_body, at_b, v, wb);
+        (wa, wb) = (a, b);
+        let w = posed.a(a) - posed.b(b);
+        let vw = v.dot(w);
+        if yes_no && vw > 0.0 {
+            separating = true;
+            break;
+        }
+        let vv = v.dot(v);
+        if simplex.len > 0 && (simplex.has(a, b) || vv - vw <= vv * 2f64.powi(-44)) {
+            break;
+        }
+        let before = simplex;
+        simplex.push(Point { w, a, b });
+        let (next, nv) = closest(&simplex);
+        if before.len > 0 && next.len < 4 && nv.length_squared() >= vv {
+            // No progress (rounding in the subalgorithm): keep the best.
+            simplex = before;
+            break;
+        }
+        simplex = next;
+        v = nv;
+        if simplex.len == 4 {
+            enclosed = true;
+            break;
+        }
+        let scale = simplex.pts[..simplex.len]
+            .iter()
+            .map(|p| p.w.length_squared())
+            .fold(0.0, f64::max);
+        if v.length_squared() <= scale * 2f64.powi(-100) {
+            break;
+        }
+    }
+    Gjk {
+        simplex,
+        v,
+        enclosed,
+        separating,
+        warm: (wa, wb),
+    }
+}
+
+#[inline]
+fn same_sign(a: f64, b: f64) -> bool {
+    (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0)
+}
+
+/// The sub-simplex of `s` whose hull holds the point of `hull(s)` nearest
+/// the origin, and that point (signed volumes).
+fn closest(s: &Simplex) -> (Simplex, DVec3) {
+    let (mask, lambda) = match s.len {
+        1 => (1, [1.0, 0.0, 0.0, 0.0]),
+        2 => segment([s.pts[0].w, s.pts[1].w]),
+        3 => triangle([s.pts[0].w, s.pts[1].w, s.pts[2].w]),
+        _ => tetrahedron([s.pts[0].w, s.pts[1].w, s.pts[2].w, s.pts[3].w]),
+    };
+    let v = (0..s.len)
+        .filter(|&i| mask >> i & 1 != 0)
+        .fold(DVec3::ZERO, |v, i| v + lambda[i] * s.pts[i].w);
+    (s.keep(mask), v)
+}
+
+/// Nearest point of a segment: mask and barycentric weights.
+fn segment(s: [DVec3; 2]) -> (u8, [f64; 4]) {
+    let t = s[1] - s[0];
+    let l2 = t.length_squared();
+    if l2 == 0.0 {
+        return (0b01, [1.0, 0.0, 0.0, 0.0]);
+    }
+    let mu = -s[0].dot(t) / l2;
+    if mu <= 0.0 {
+        (0b01, [1.0, 0.0, 0.0, 0.0])
+    } else if mu >= 1.0 {
+        (0b10, [0.0, 1.0, 0.0, 0.0])
+    } else {
+        (0b11, [1.0 - mu, mu, 0.0, 0.0])
+    }
+}
+
+/// Nearest point of a triangle: mask and barycentric weights.
+fn triangle(s: [DVec3; 3]) -> (u8, [f64; 4]) {
+    let n = (s[1] - s[0]).cross(s[2] - s[0]);
+    let nn = n.length_squared();
+    let mut best: Option<(f64, u8, [f64; 4])> = None;
+    if nn > 0.0 {
+        let p0 = n * (s[0].dot(n) / nn);
+        let k = if n.x.abs() >= n.y.abs() && n.x.abs() >= n.z.abs() {
+            0
+        } else if n.y.abs() >= n.z.abs() {
+            1
+        } else {
+            2
+        };
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let area = |a: DVec3, b: DVec3, c: DVec3| {
+            (b[i] - a[i]) * (c[j] - a[j]) - (b[j] - a[j]) * (c[i] - a[i])
+        };
+        let mu = area(s[0], s[1], s[2]);
+        let c = [
+            area(p0, s[1], s[2]),
+            area(s[0], p0, s[2]),
+            area(s[0], s[1], p0),
+        ];
+        if c.iter().all(|&x| same_sign(mu, x)) {
+            return (0b111, [c[0] / mu, c[1] / mu, c[2] / mu, 0.0]);
+        }
+        for (drop, &cj) in c.iter().enumerate() {
+            if !same_sign(mu, cj) {
+                consider_face(&s, drop, &mut best);
+            }
+        }
+    } else {
+        for drop in 0..3 {
+            consider_face(&s, drop, &mut best);
+        }
+    }
+    let (_, mask, l) = best.expect("a triangle has edges");
+    (mask, l)
+}
+
+/// Offers the segment of `s` without point `drop` as the nearest feature.
+fn consider_face(s: &[DVec3; 3], drop: usize, best: &mut Option<(f64, u8, [f64; 4])>) {
+    let idx: [usize; 2] = match drop {
+        0 => [1, 2],
+        1 => [0, 2],
+        _ => [0, 1],
+    };
+    let (m, l) = segment([s[idx[0]], s[idx[1]]]);
+    offer(&idx, m, l, |i| s[i], best);
+}
+
+/// Records a sub-simplex's nearest point if it is nearer than `best`.
+fn offer(
+    idx: &[usize],
+    mask: u8,
+    l: [f64; 4],
+    at: impl Fn(usize) -> DVec3,
+    best: &mut Option<(f64, u8, [f64; 4])>,
+) {
+    let (mut full, mut weights, mut v) = (0u8, [0.0; 4], DVec3::ZERO);
+    for (k, &i) in idx.iter().enumerate() {
+        if mask >> k & 1 != 0 {
+            full |= 1 << i;
+            weights[i] = l[k];
+            v += l[k] * at(i);
+        }
+    }
+    let d = v.length_squared();
+    if best.is_none_or(|(bd, _, _)| d < bd) {
+        *best = Some((d, full, weights));
+    }
+}
+
+/// Nearest point of a tetrahedron: mask and barycentric weights.
+fn tetrahedron(s: [DVec3; 4]) -> (u8, [f64; 4]) {
+    let det = |a: DVec3, b: DVec3, c: DVec3| a.dot(b.cross(c));
+    let c = [
+        -det(s[1], s[2], s[3]),
+        det(s[0], s[2], s[3]),
+        -det(s[0], s[1], s[3]),
+        det(s[0], s[1], s[2]),
+    ];
+    let m = c[0] + c[1] + c[2] + c[3];
+    if c.iter().all(|&x| same_sign(m, x)) {
+        return (0b1111, [c[0] / m, c[1] / m, c[2] / m, c[3] / m]);
+    }
+    let mut best: Option<(f64, u8, [f64; 4])> = None;
+    for (drop, &cj) in c.iter().enumerate() {
+        if same_sign(m, cj) {
+            continue;
+        }
+        let idx: [usize; 3] = match drop {
+            0 => [1, 2, 3],
+            1 => [0, 2, 3],
+            2 => [0, 1, 3],
+            _ => [0, 1, 2],
+        };
+        let (mask, l) = triangle([s[idx[0]], s[idx[1]], s[idx[2]]]);
+        offer(&idx, mask, l, |i| s[i], &mut best);
+    }
+    let (_, mask, l) = best.expect("a tetrahedron not enclosing the origin has a face towards it");
+    (mask, l)
+}
+
+// ------------------------------------------------------------ certificates
+
+/// The buffers of the certificates.
+#[derive(Clone, Debug, Default)]
+pub(super) struct CertScratch {
+    pub marks_a: Marks,
+    pub marks_b: Marks,
+    pub set_a: Vec<u32>,
+    pub set_b: Vec<u32>,
+}
+
+/// The exact answer to "do A' and B' meet?" that GJK's end certifies, or
+/// `None` when neither certificate holds (module docs).
+pub(super) fn certify(
+    pair: &ConvexPair,
+    posed: &Posed,
+    g: &Gjk,
+    cs: &mut CertScratch,
+) -> Option<bool> {
+    let tiny = g.v.length_squared() <= (posed.scale * 2f64.powi(-30)).powi(2);
+    if !g.separating && g.simplex.len > 0 && (g.enclosed || tiny) {
+        let mut buf = [(DVec3::ZERO, DVec3::ZERO); 4];
+        for (i, p) in g.simplex.pts[..g.simplex.len].iter().enumerate() {
+            buf[i] = (posed.a(p.a), posed.b(p.b));
+        }
+        if origin_in_hull(&buf[..g.simplex.len]) {
+            return Some(true);
+        }
+    }
+    if g.v.length_squared() > 0.0 && separated_along(pair, posed, g.v, g.warm, cs) {
+        return Some(false);
+    }
+    None
+}
+
+/// Exactly whether `min_A' d · a > max_B' d · b` (a separating direction),
+/// from the near-extreme sets of both bodies (module docs).
+pub(super) fn separated_along(
+    pair: &ConvexPair,
+    posed: &Posed,
+    d: DVec3,
+    warm: (u32, u32),
+    cs: &mut CertScratch,
+) -> bool {
+    let na = near_max(
+        &pair.a,
+        |v| posed.a(v),
+        -d,
+        warm.0,
+        0.0,
+        posed.eta_a,
+        posed.scale,
+        &mut cs.marks_a,
+        &mut cs.set_a,
+    );
+    let nb = near_max(
+        &pair.b,
+        |w| posed.b(w),
+        d,
+        warm.1,
+        0.0,
+        posed.eta_b,
+        posed.scale,
+        &mut cs.marks_b,
+        &mut cs.set_b,
+    );
+    // max(−d · a) + max(d · b) < 0 ⟺ min d · a > max d · b.
+    if na.upper + nb.upper < 0.0 {
+        return true;
+    }
+    let lower = |x: f64, e: f64| x - 2.0 * e;
+    if lower(na.value, na.upper - na.value) + lower(nb.value, nb.upper - nb.value) > 0.0 {
+        return false; // certainly not separated along d
+    }
+    // Exactly: the rounded extremes are in the sets.
+    let exact_max = |set: &[u32], at: &dyn Fn(u32) -> DVec3, dir: DVec3| {
+        let mut best: Option<Dyadic> = None;
+        for &u in set {
+            let x = exact_dot(dir, at(u));
+            if best
+                .as_ref()
+                .is_none_or(|b| x.sub(b).sign() == Sign::Positive)
+            {
+                best = Some(x);
+            }
+        }
+        best.expect("a near-extreme set is never empty")
+    };
+    let ma = exact_max(&cs.set_a, &|v| posed.a(v), -d);
+    let mb = exact_max(&cs.set_b, &|w| posed.b(w), d);
+    ma.add(&mb).sign() == Sign::Negative
+}
+
+/// `d · x`, exactly.
+fn exact_dot(d: DVec3, x: DVec3) -> Dyadic {
+    exact::dot(&exact::exact(d), &exact::exact(x))
+}
+
+/// The exact point `a − b`.
+fn exact_diff((a, b): (DVec3, DVec3)) -> ExactVec {
+    exact::sub(a, b)
+}
+
+/// Sign of `det[x1, x2, x3]` for the exact points `x_i = a_i − b_i`: a
+/// float filter (the rounded points and a rigorous bound), exact dyadic
+/// arithmetic when it cannot decide.
+fn det3_of_diffs(p: [(DVec3, DVec3); 3]) -> Sign {
+    let x = p.map(|(a, b)| a - b);
+    let det = x[0].dot(x[1].cross(x[2]));
+    let ax = x.map(|v| v.abs());
+    let perm = ax[0].x * (ax[1].y * ax[2].z + ax[1].z * ax[2].y)
+        + ax[0].y * (ax[1].z * ax[2].x + ax[1].x * ax[2].z)
+        + ax[0].z * (ax[1].x * ax[2].y + ax[1].y * ax[2].x);
+    // Each rounded point is off by at most half an ulp per component; the
+    // determinant's own rounding is below 6u of the permanent.
+    let bound = 16.0 * f64::EPSILON * perm + 1e-300;
+    if det > bound {
+        Sign::Positive
+    } else if det < -bound {
+        Sign::Negative
+    } else {
+        let e = p.map(exact_diff);
+        exact::det3(&e[0], &e[1], &e[2]).sign()
+    }
+}
+
+/// Exactly whether the origin lies in the closed convex hull of the one to
+/// four exact points `a_i − b_i`.
+pub(super) fn origin_in_hull(p: &[(DVec3, DVec3)]) -> bool {
+    match p.len() {
+        4 => {
+            let s = |i: usize, j: usize, k: usize| det3_of_diffs([p[i], p[j], p[k]]);
+            // Cramer's rule on [x; 1] λ = [0; 1]: λ_j has the sign of
+            // C_j / det with C = (−[1,2,3], [0,2,3], −[0,1,3], [0,1,2]).
+            // det[[x; 1]] = Σ C_j: when the non-zero C_j share one sign the
+            // sum has it and the origin is inside; opposite signs put it
+            // outside whatever the sum; all zero means a flat simplex.
+            let c = [s(1, 2, 3).flip(), s(0, 2, 3), s(0, 1, 3).flip(), s(0, 1, 2)];
+            let pos = c.contains(&Sign::Positive);
+            let neg = c.contains(&Sign::Negative);
+            if pos || neg {
+                return !(pos && neg);
+            }
+            // Flat: the origin is in the hull iff it is in one of the
+            // triangles (Carathéodory in the plane).
+            (0..4).any(|drop| origin_in_hull(&without(p, drop)[..3]))
+        }
+        3 => {
+            let e = [exact_diff(p[0]), exact_diff(p[1]), exact_diff(p[2])];
+            if exact::det3(&e[0], &e[1], &e[2]).sign() != Sign::Zero {
+                return false; // the origin is off the triangle's plane
+            }
+            let sub =
+                |u: &ExactVec, v: &ExactVec| [u[0].sub(&v[0]), u[1].sub(&v[1]), u[2].sub(&v[2])];
+            let n = exact::cross(&sub(&e[1], &e[0]), &sub(&e[2], &e[0]));
+            if n.iter().all(|c| c.is_zero()) {
+                // Collinear: the origin is in the hull iff it is on a side.
+                return (0..3).any(|drop| origin_in_hull(&without(p, drop)[..2]));
+            }
+            (0..3).all(|i| {
+                let (u, v) = (&e[(i + 1) % 3], &e[(i + 2) % 3]);
+                exact::dot(&n, &exact::cross(u, v)).sign() != Sign::Negative
+            })
+        }
+        2 => {
+            let (u, v) = (exact_diff(p[0]), exact_diff(p[1]));
+            exact::cross(&u, &v).iter().all(|c| c.is_zero())
+                && exact::dot(&u, &v).sign() != Sign::Positive
+        }
+        1 => p[0].0 == p[0].1,
+        _ => false,
+    }
+}
+
+/// The points of `p` but the one at `drop`, in order (the first
+/// `p.len() − 1` entries).
+fn without(p: &[(DVec3, DVec3)], drop: usize) -> [(DVec3, DVec3); 4] {
+    let mut out = [(DVec3::ZERO, DVec3::ZERO); 4];
+    for (k, &x) in p
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i != drop)
+        .map(|(_, x)| x)
+        .enumerate()
+    {
+        out[k] = x;
+    }
+    out
+}
+
+/// The exhaustive exact answer: whether the origin lies in the hull of all
+/// `a' − b'` (the exact hull of the pairwise sums of A' and `−B'`, then the
+/// exact side of the origin for each face).
+pub(super) fn origin_in_difference_hull(pair: &ConvexPair, posed: &Posed) -> bool {
+    let p: Vec<DVec3> = (0..pair.a.vertex_count() as u32)
+        .map(|v| posed.a(v))
+        .collect();
+    let q: Vec<DVec3> = (0..pair.b.vertex_count() as u32)
+        .map(|w| -posed.b(w))
+        .collect();
+    let sums = PairwiseSums::new(&p, &q);
+    let Ok(hull) = convex_hull(&sums) else {
+        // Flat or degenerate difference (not for two polytopes): test the
+        // origin against every point triple's plane is not needed, as a
+        // polytope difference always has volume.
+        return false;
+    };
+    let point = |k: usize| {
+        let (i, j) = sums.split(k);
+        (p[i], -q[j])
+    };
+    hull.faces.iter().all(|f| {
+        let (x0, x1, x2) = (point(f[0]), point(f[1]), point(f[2]));
+        // Faces are counter-clockwise from outside: the origin is inside
+        // or on the face's plane iff det[x1 − x0, x2 − x0, 0 − x0] ≤ 0,
+        // i.e. det[x0, x1, x2] ≥ 0... computed on the exact points.
+        let e = [exact_diff(x0), exact_diff(x1), exact_diff(x2)];
+        exact::det3(&e[0], &e[1], &e[2]).sign() != Sign::Negative
+    })
+}

@@ -1,0 +1,182 @@
+//! Support functions of the posed bodies: the vertex of a body farthest in
+//! a direction, by hill climbing over the vertex adjacency from a warm
+//! start ([`climb`]), and the *near-extreme set*, every vertex within a
+//! margin of the farthest, with a rigorous bound on the farthest value
+//! ([`near_max`]).
+//!
+//! # Why the near-extreme set is complete
+//! Let `A` be the body posed exactly (`R v + t` with the float matrix `R`
+//! taken as exact: an affine image of the body, with its face lattice) and
+//! `A'` the rounded posed vertices, each within `η` of its exact value. For
+//! a direction `d`, let `M` be the exact maximum of `d · v` over `A`, and
+//! `err` bound the rounding of one float dot product `d · v'`.
+//!
+//! 1. From every vertex `w` that is not a maximum there is an edge path to a
+//!    maximum along which `d · v` (exact) strictly increases (a linear
+//!    function on a polytope has no other local maxima). Every vertex on it
+//!    has a float value at least `fl(d · w') − 2(η|d| + err)`.
+//! 2. For any `τ ≥ 0` the vertices with exact value `≥ M − τ` form a
+//!    connected subgraph (an upper level set of a linear function on a
+//!    convex polytope) that contains the maximum.
+//!
+//! [`near_max`] climbs to a local maximum, then searches breadth-first over
+//! the vertices whose float value is at least the best float value seen so
+//! far less `τ₀ = τ + 2(η|d| + err)`, raising the best as it goes. A vertex
+//! never admitted was below a threshold that only rises, so the search ends
+//! with every vertex of the final threshold's component containing the
+//! best vertex, which by (1) contains an exact maximum, and by (2) every
+//! vertex with exact value `≥ M − τ` (whose float value is at least
+//! `M − τ − η|d| − err`, while the best float value is at most
+//! `M + η|d| + err`). With `τ ≥ 2η|d|` the set also holds the maximiser of
+//! the *rounded* vertices, so the best float value plus `err` bounds
+//! `max d · v'` from above.
+
+use crate::polytope::Polytope;
+use glam::DVec3;
+
+/// Marks over a body's vertices with a generation stamp, so that a search
+/// clears nothing between uses.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Marks {
+    stamp: Vec<u32>,
+    gen: u32,
+}
+
+impl Marks {
+    /// Starts a new search over `n` vertices.
+    pub(super) fn start(&mut self, n: usize) {
+        if self.stamp.len() != n {
+            self.stamp = vec![0; n];
+            self.gen = 0;
+        }
+        self.gen = self.gen.wrapping_add(1);
+        if self.gen == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.gen = 1;
+        }
+    }
+
+    /// Whether `v` is marked.
+    #[inline]
+    pub(super) fn is_marked(&self, v: u32) -> bool {
+        self.stamp[v as usize] == self.gen
+    }
+
+    /// Marks `v`; `false` if it was marked already.
+    #[inline]
+    pub(super) fn mark(&mut self, v: u32) -> bool {
+        let s = &mut self.stamp[v as usize];
+        if *s == self.gen {
+            false
+        } else {
+            *s = self.gen;
+            true
+        }
+    }
+}
+
+/// The vertex maximising `dir · v` found by climbing from `start`: move to
+/// the first strictly better neighbour until none is better. Returns the
+/// vertex and its value.
+#[inline]
+pub(super) fn climb(
+    poly: &Polytope,
+    at: impl Fn(u32) -> DVec3,
+    dir: DVec3,
+    start: u32,
+) -> (u32, f64) {
+    let mut v = start;
+    let mut best = dir.dot(at(v));
+    loop {
+        let mut moved = false;
+        for r in poly.ring(v as usize) {
+            let d = dir.dot(at(r.neighbor));
+            if d > best {
+                best = d;
+                v = r.neighbor;
+                moved = true;
+            }
+        }
+        if !moved {
+            return (v, best);
+        }
+    }
+}
+
+/// A bound on the rounding of one float dot product `d · v'` with
+/// `|v'_i| ≤ scale` (three products and two sums).
+#[inline]
+pub(super) fn dot_error(d: DVec3, scale: f64) -> f64 {
+    4.0 * f64::EPSILON * (d.x.abs() + d.y.abs() + d.z.abs()) * scale + 1e-300
+}
+
+/// The result of [`near_max`].
+#[derive(Clone, Copy, Debug)]
+pub(super) struct NearMax {
+    /// A vertex of the largest float value.
+    pub vertex: u32,
+    /// Its float value.
+    pub value: f64,
+    /// A rigorous upper bound on `max d · v'` over the rounded posed
+    /// vertices.
+    pub upper: f64,
+    /// The threshold below the best value that the set covers: every vertex
+    /// whose exact value is within `τ` of the exact maximum is in the set.
+    #[allow(dead_code)]
+    pub tau: f64,
+}
+
+/// The near-extreme set of `poly` in direction `dir` (module docs): every
+/// vertex whose exact posed value is within `tau` of the maximum, pushed
+/// onto `set` (cleared first) with possibly a few more, found from `start`.
+/// `eta` bounds the rounding of a posed vertex and `scale` its coordinates
+/// (frame units).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn near_max(
+    poly: &Polytope,
+    at: impl Fn(u32) -> DVec3,
+    dir: DVec3,
+    start: u32,
+    tau: f64,
+    eta: f64,
+    scale: f64,
+    marks: &mut Marks,
+    set: &mut Vec<u32>,
+) -> NearMax {
+    let err = dot_error(dir, scale);
+    let slack = 2.0 * (eta * dir.length() + err);
+    let tau0 = tau.max(slack) + slack;
+    let (mut best_v, mut best) = climb(poly, &at, dir, start);
+    marks.start(poly.vertex_count());
+    set.clear();
+    marks.mark(best_v);
+    set.push(best_v);
+    let mut i = 0;
+    while i < set.len() {
+        let v = set[i];
+        i += 1;
+        for r in poly.ring(v as usize) {
+            let u = r.neighbor;
+            if !marks.mark(u) {
+                continue;
+            }
+            let x = dir.dot(at(u));
+            if x >= best - tau0 {
+                set.push(u);
+                if x > best {
+                    best = x;
+                    best_v = u;
+                }
+            }
+        }
+    }
+    // Keep only the final threshold's members (the others were admitted
+    // under a lower one).
+    set.retain(|&u| dir.dot(at(u)) >= best - tau0);
+    NearMax {
+        vertex: best_v,
+        value: best,
+        upper: best + err,
+        tau: tau0 - slack,
+    }
+}
