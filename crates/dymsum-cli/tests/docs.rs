@@ -261,3 +261,67 @@ fn every_quoted_bench_and_example_exists() {
     }
     assert!(checked >= 5, "only {checked} benches and examples found");
 }
+
+/// GitHub's anchor of a heading: lower case, spaces as hyphens, other
+/// punctuation dropped.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn every_relative_link_resolves() {
+    let mut checked = 0;
+    for file in markdown() {
+        let text = std::fs::read_to_string(&file).unwrap();
+        let prose = split(&text).1;
+        for link in prose.split("](").skip(1) {
+            let target = link.split(')').next().unwrap_or("");
+            if target.starts_with("http") || target.contains(' ') {
+                continue;
+            }
+            let (path, frag) = target.split_once('#').unwrap_or((target, ""));
+            let dest = if path.is_empty() {
+                file.clone()
+            } else {
+                file.parent().unwrap().join(path)
+            };
+            assert!(dest.exists(), "{}: link to missing `{target}`", file.display());
+            if !frag.is_empty() {
+                let headings: Vec<String> = split(&std::fs::read_to_string(&dest).unwrap())
+                    .1
+                    .lines()
+                    .filter_map(|l| l.strip_prefix('#'))
+                    .map(|h| anchor(h.trim_start_matches('#')))
+                    .collect();
+                assert!(
+                    headings.iter().any(|h| h == frag),
+                    "{}: no heading `#{frag}` in {}",
+                    file.display(),
+                    dest.display()
+                );
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 20, "only {checked} links found");
+}
+
+#[test]
+fn the_benchmark_summary_is_on_the_first_screen() {
+    let text = std::fs::read_to_string(root().join("docs/BENCHMARKS.md")).unwrap();
+    let first_table = text.lines().position(|l| l.starts_with("| ")).unwrap();
+    assert!(first_table < 25, "the summary table starts on line {first_table}");
+    let header = text.lines().nth(first_table).unwrap();
+    for column in ["figure", "compared with", "ratio", "command", "date", "machine"] {
+        assert!(header.contains(column), "summary column `{column}`: {header}");
+    }
+}
