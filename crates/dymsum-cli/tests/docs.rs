@@ -78,7 +78,7 @@ fn split(text: &str) -> (Vec<Block>, String) {
 fn console_examples_in_the_docs_run() {
     let dir = dymsum_testkit::files::temp_dir(env!("CARGO_CRATE_NAME"), "console");
     let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/docs.in");
-    let mut cases = trycmd::TestCases::new();
+    let cases = trycmd::TestCases::new();
     cases.register_bin("dymsum", Path::new(env!("CARGO_BIN_EXE_dymsum")));
     let mut ran = 0;
     for file in docs() {
@@ -294,7 +294,11 @@ fn every_relative_link_resolves() {
             } else {
                 file.parent().unwrap().join(path)
             };
-            assert!(dest.exists(), "{}: link to missing `{target}`", file.display());
+            assert!(
+                dest.exists(),
+                "{}: link to missing `{target}`",
+                file.display()
+            );
             if !frag.is_empty() {
                 let headings: Vec<String> = split(&std::fs::read_to_string(&dest).unwrap())
                     .1
@@ -319,9 +323,22 @@ fn every_relative_link_resolves() {
 fn the_benchmark_summary_is_on_the_first_screen() {
     let text = std::fs::read_to_string(root().join("docs/BENCHMARKS.md")).unwrap();
     let first_table = text.lines().position(|l| l.starts_with("| ")).unwrap();
-    assert!(first_table < 25, "the summary table starts on line {first_table}");
+    assert!(
+        first_table < 25,
+        "the summary table starts on line {first_table}"
+    );
     let header = text.lines().nth(first_table).unwrap();
-    for column in ["figure", "compared with", "ratio", "command", "date", "machine"] {
-        assert!(header.contains(column), "summary column `{column}`: {header}");
+    for column in [
+        "figure",
+        "compared with",
+        "ratio",
+        "command",
+        "date",
+        "machine",
+    ] {
+        assert!(
+            header.contains(column),
+            "summary column `{column}`: {header}"
+        );
     }
 }

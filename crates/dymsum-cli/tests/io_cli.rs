@@ -16,6 +16,16 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// The arguments `cobst cube gs1 --axis 0,0,1 --slices N --out OUT EXTRA...`.
+fn cobst_about_z<'a>(slices: &'a str, out: &'a Path, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        "cobst", "cube", "gs1", "--axis", "0,0,1", "--slices", slices,
+    ];
+    args.extend(["--out", s(out)]);
+    args.extend_from_slice(extra);
+    args
+}
+
 #[test]
 fn failed_sum_keeps_the_earlier_output_and_leaves_no_temp() {
     let dir = temp_dir("keep");
@@ -70,17 +80,7 @@ fn every_writer_creates_missing_output_folders() {
         "--frames-dir",
         &frames,
     ]);
-    ok(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "2",
-        "--out",
-        s(&at("cobst")),
-    ]);
+    ok(&cobst_about_z("2", &at("cobst"), &[]));
     for (name, f) in [
         ("sum", "x.off"),
         ("render", "x.svg"),
@@ -178,17 +178,7 @@ fn failed_animate_keeps_the_earlier_csv() {
 fn cobst_refuses_a_non_empty_directory_and_force_clears_only_its_own_files() {
     let dir = temp_dir("cobst");
     let out = dir.join("slices");
-    ok(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "3",
-        "--out",
-        s(&out),
-    ]);
+    ok(&cobst_about_z("3", &out, &[]));
     assert_eq!(
         names(&out),
         [
@@ -199,49 +189,18 @@ fn cobst_refuses_a_non_empty_directory_and_force_clears_only_its_own_files() {
         ]
     );
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
-    let o = run(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "1",
-        "--out",
-        s(&out),
-    ]);
+    let o = run(&cobst_about_z("1", &out, &[]));
     assert_fails(&o, 1, "not empty");
     assert!(stderr(&o).contains("--force"), "{}", stderr(&o));
     assert_eq!(names(&out).len(), 5);
-    ok(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "1",
-        "--out",
-        s(&out),
-        "--force",
-    ]);
+    ok(&cobst_about_z("1", &out, &["--force"]));
     assert_eq!(names(&out), ["index.json", "notes.txt", "slice_00000.off"]);
     let index = std::fs::read_to_string(out.join("index.json")).unwrap();
     assert_eq!(index.matches("\"slice\"").count(), 1);
     // An empty existing directory is fine without --force.
     let empty = dir.join("empty");
     std::fs::create_dir(&empty).unwrap();
-    ok(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "2",
-        "--out",
-        s(&empty),
-    ]);
+    ok(&cobst_about_z("2", &empty, &[]));
 }
 
 /// Runs the binary with a deadline: a hang is a failure, not a stuck test.
