@@ -3,7 +3,7 @@
 //! value parsers they share in [`crate::values`].
 //!
 //! Every flag value is checked by a clap value parser, so a malformed or
-//! meaningless value (`--rotate-p 1,2`, a NaN, a zero quaternion, an output
+//! meaningless value (`--rotate-p-wxyz 1,2`, a NaN, a zero quaternion, an output
 //! file with an unknown extension) is a usage error: clap prints it with the
 //! usage line and the process exits with code 2. Bad *inputs* (missing
 //! files, unknown models, non-convex meshes) are found later and exit 1.
