@@ -10,7 +10,7 @@ in our own code is checked by clippy's `incompatible_msrv` lint, which reads
 the same field.) Prints the table; exits 1 on a violation.
 
 The optional features of `dymsum` may need a newer toolchain than the crate
-(their dependencies do); FEATURE_MSRV states what the README and the
+(their dependencies do); FEATURE_MSRV states what docs/RUST.md and the
 manifest say each needs, and the check fails when that claim is lower than
 what the feature's locked dependencies declare.
 """
@@ -25,7 +25,7 @@ def version(v):
 
 
 # The toolchain each optional feature of `dymsum` needs, as documented in
-# README.md ("The minimum supported Rust is ...") and crates/dymsum/Cargo.toml.
+# docs/RUST.md ("The minimum supported Rust is ...") and crates/dymsum/Cargo.toml.
 FEATURE_MSRV = {"parry": "1.90", "nalgebra": "1.89", "mint": "1.85", "serde": "1.85"}
 
 

@@ -3,20 +3,22 @@
     pip install ./python          # from the repository root
     python python/examples/tour.py [OUTPUT_DIR]
 
-Writes sum.off (and depth.png if matplotlib is installed) to OUTPUT_DIR
-(default: the current directory).
+Writes sum.off (and depth.png if matplotlib is installed) to OUTPUT_DIR,
+created if missing (default: a fresh temporary folder, printed at the end);
+nothing is written anywhere else.
 """
 
 # %% Setup
 import os
 import sys
+import tempfile
 import time
 
 import numpy as np
 
 import dymsum
 
-out = sys.argv[1] if len(sys.argv) > 1 else "."
+out = sys.argv[1] if len(sys.argv) > 1 else tempfile.mkdtemp(prefix="dymsum-tour-")
 os.makedirs(out, exist_ok=True)
 rng = np.random.default_rng(7)
 
@@ -92,3 +94,5 @@ else:
 quats = np.array([[0.0, 0.0, np.sin(a / 2), np.cos(a / 2)] for a in np.linspace(0, np.pi, 32)])
 slices = dymsum.cobstacle_slices(rock, dymsum.load("box:4,1,1"), quats)
 print(f"{len(slices)} C-obstacle slices, {min(len(v) for v, _ in slices)}–{max(len(v) for v, _ in slices)} vertices")
+
+print("all outputs are in", out)

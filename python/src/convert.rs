@@ -6,12 +6,18 @@
 //!   once by `numpy.ascontiguousarray(x, dtype=float64)`.
 //! * Faces: an (M, k) integer array, or a sequence of index sequences
 //!   (polygons of any size).
-//! * Shapes: a `Polytope`, a `(vertices, faces)` pair, any object with
-//!   `.vertices` and `.faces` (a trimesh.Trimesh, without importing trimesh),
-//!   or an (N, 3) point cloud (its exact convex hull), also as an object
-//!   with `.vertices` only (a trimesh.PointCloud).
-//! * Poses: `None` (the identity) or a 4×4 homogeneous rigid transform;
-//!   rotations: (K, 3, 3) matrices or (K, 4) quaternions `(x, y, z, w)`.
+//! * Shapes: a `Polytope`, a model name or mesh file path (a `str` or
+//!   `os.PathLike`, as `dymsum.load`), a `(vertices, faces)` pair, any
+//!   object with `.vertices` and `.faces` (a trimesh.Trimesh, without
+//!   importing trimesh), or an (N, 3) point cloud (its exact convex hull),
+//!   also as an object with `.vertices` only (a trimesh.PointCloud).
+//! * Rotations, wherever one is taken: a `scipy.spatial.transform.Rotation`
+//!   (recognised by its `as_quat`/`as_matrix` methods, so scipy is never
+//!   imported), a (4,) quaternion `(x, y, z, w)` (scalar last, as scipy) or
+//!   a 3×3 rotation matrix. Poses: `None` (the identity), a 4×4 homogeneous
+//!   rigid transform, or any rotation form (about the origin). Lists of
+//!   rotations: a Rotation stack, (K, 4), (K, 3, 3) or (K, 4, 4) without
+//!   translation.
 //! * Errors: invalid input is `ValueError` with dymsum's message prefixed
 //!   by the argument's name; a missing file is `FileNotFoundError`, other
 //!   I/O failures `OSError`.
@@ -19,11 +25,13 @@
 use dymsum::glam::{DMat3, DMat4};
 use dymsum::polytope::{ConvexityReport, MeshPolicy};
 use dymsum::{PolygonMesh, Polytope, Pose, Rotation};
+use dymsum_io::formats::FormatError;
+use dymsum_io::load::LoadError;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyPermissionError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyTuple};
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 /// `ValueError(msg)`.
 pub(crate) fn value_error(msg: impl Into<String>) -> PyErr {
@@ -281,6 +289,51 @@ pub(crate) fn mesh_from_parts(
     Ok(PolygonMesh::new(verts, f))
 }
 
+/// A [`LoadError`] as the matching Python exception: `FileNotFoundError`
+/// for a path that does not exist, `OSError` when a file cannot be read,
+/// `ValueError` otherwise; prefixed by the argument's name when given.
+pub(crate) fn load_error(e: LoadError, what: Option<&str>) -> PyErr {
+    let msg = match what {
+        Some(w) => format!("{w}: {e}"),
+        None => e.to_string(),
+    };
+    match &e {
+        LoadError::NotFound {
+            looks_like_file: true,
+            ..
+        } => io_error(std::io::ErrorKind::NotFound, msg),
+        LoadError::Format {
+            source: FormatError::Io { source, .. },
+            ..
+        } => io_error(source.kind(), msg),
+        _ => value_error(msg),
+    }
+}
+
+/// A polytope from a mesh file or a built-in model name (what `dymsum.load`
+/// takes), loaded with the GIL released; errors as [`load_error`].
+pub(crate) fn load_shape(
+    py: Python<'_>,
+    spec: &str,
+    policy: MeshPolicy,
+    what: Option<&str>,
+) -> PyResult<Shape> {
+    let loaded = py
+        .detach(|| dymsum_io::load_polytope(spec, policy))
+        .map_err(|e| load_error(e, what))?;
+    let origin = match loaded.report {
+        Some(r) => Origin::Mesh(r),
+        None => Origin::Points {
+            count: loaded.input.vertices.len(),
+        },
+    };
+    Ok(Shape {
+        polytope: loaded.polytope,
+        origin,
+        source: loaded.source,
+    })
+}
+
 /// Any accepted shape as a polytope (see the module docs). The hull is
 /// built with the GIL released.
 pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> PyResult<Shape> {
@@ -292,6 +345,11 @@ pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> P
             origin: p.origin.clone(),
             source: p.source.clone(),
         });
+    }
+    // A model name or a path (a str or an os.PathLike), as `dymsum.load`.
+    if obj.is_instance_of::<PyString>() || obj.hasattr("__fspath__")? {
+        let spec = crate::path_string(obj)?;
+        return load_shape(py, &spec, policy, Some(what));
     }
     if let Some((v, f)) = mesh_parts(obj)? {
         let mesh = mesh_from_parts(&v, &f, what)?;
@@ -335,43 +393,208 @@ pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> P
     })
 }
 
-/// A pose: `None` is the identity, else a 4×4 homogeneous rigid transform
-/// (rotation block orthonormal with determinant +1 within 1e-6, last row
-/// exactly `0, 0, 0, 1`, all finite), or a (4,) quaternion `(x, y, z, w)`
-/// (scalar last) for a rotation about the origin.
-pub(crate) fn pose(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Pose> {
-    let Some(obj) = obj.filter(|o| !o.is_none()) else {
-        return Ok(Pose::IDENTITY);
-    };
-    const EXPECTED: &str =
-        "a 4×4 homogeneous matrix, or an (x, y, z, w) quaternion for a pure rotation";
-    let py = obj.py();
-    let probe = numpy(py)?
-        .call_method1("asarray", (obj,))
-        .map_err(|e| err_for(what, format!("expected {EXPECTED}: {}", e.value(py))))?;
-    if shape_of(&probe)? == [4] {
-        let arr = float_array(&probe, 1, &[4], what, EXPECTED)?;
-        let [x, y, z, w]: [f64; 4] = arr.call_method0("tolist")?.extract()?;
-        let rotation = Rotation::from_xyzw(x, y, z, w).ok_or_else(|| {
-            err_for(
-                what,
-                format!("quaternion (x, y, z, w) = ({x}, {y}, {z}, {w}) is zero or not finite"),
-            )
-        })?;
-        return Ok(Pose::new(rotation, dymsum::DVec3::ZERO));
+/// What a pose argument accepts (error messages).
+const POSE_FORMS: &str = "a 4×4 homogeneous rigid transform, or a rotation about the origin: a \
+     scipy.spatial.transform.Rotation, a (4,) quaternion (x, y, z, w) or a 3×3 rotation matrix";
+
+/// What a single-rotation argument accepts (error messages).
+const ROTATION_FORMS: &str = "a scipy.spatial.transform.Rotation, a (4,) quaternion (x, y, z, w) \
+     or a 3×3 rotation matrix";
+
+/// What a list of rotations accepts (error messages).
+const ROTATIONS_FORMS: &str = "a scipy.spatial.transform.Rotation (one or a stack), (K, 4) \
+     quaternions (x, y, z, w), (K, 3, 3) rotation matrices or (K, 4, 4) homogeneous transforms \
+     without translation; or one (4,) quaternion or 3×3 matrix";
+
+/// The form of one rotation or pose in an array, by its trailing shape.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Form {
+    /// `(4,)`: a quaternion `(x, y, z, w)`, scalar last as scipy.
+    Quaternion,
+    /// `(3, 3)`: a rotation matrix.
+    Matrix,
+    /// `(4, 4)`: a homogeneous rigid transform.
+    Homogeneous,
+}
+
+impl Form {
+    fn tail(self) -> &'static [usize] {
+        match self {
+            Form::Quaternion => &[4],
+            Form::Matrix => &[3, 3],
+            Form::Homogeneous => &[4, 4],
+        }
     }
-    let arr = float_array(&probe, 2, &[4, 4], what, EXPECTED)?;
+}
+
+/// A rotation-like argument as an array: a
+/// `scipy.spatial.transform.Rotation` (or any object with `as_quat` and
+/// `as_matrix`, recognised without importing scipy) gives its quaternions
+/// `as_quat()` (scalar last), anything else `numpy.asarray(obj)`.
+fn rotation_probe<'py>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+    expected: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let py = obj.py();
+    let np = numpy(py)?;
+    let is_array = obj.is_instance(&np.getattr("ndarray")?)?;
+    let call = if !is_array && obj.hasattr("as_quat")? && obj.hasattr("as_matrix")? {
+        obj.call_method0("as_quat")
+    } else {
+        np.call_method1("asarray", (obj,))
+    };
+    let arr = call.map_err(|e| err_for(what, format!("expected {expected}: {}", e.value(py))))?;
+    let (kind, dtype) = dtype_kind(&arr)?;
+    if !matches!(kind, 'f' | 'i' | 'u') {
+        return Err(err_for(
+            what,
+            format!("expected {expected}, got dtype {dtype}"),
+        ));
+    }
+    Ok(arr)
+}
+
+/// The rigid transforms in `arr` (shape `[K..] + form.tail()`), each a
+/// rotation (and for [`Form::Homogeneous`] a translation). `name(k)` names
+/// item `k` in error messages (`"quaternion 3"`, or `"quaternion"` for a
+/// single one; empty for a single pose).
+fn transforms(
+    arr: &Bound<'_, PyAny>,
+    form: Form,
+    what: &str,
+    name: impl Fn(usize) -> String,
+) -> PyResult<Vec<Pose>> {
     let flat: Vec<f64> = arr
         .call_method0("ravel")?
         .call_method0("tolist")?
         .extract()?;
-    let mut rows4 = [[0.0; 4]; 4];
-    for (r, row) in rows4.iter_mut().enumerate() {
-        row.copy_from_slice(&flat[4 * r..4 * r + 4]);
+    let size: usize = form.tail().iter().product();
+    let turn = |r: Rotation| Pose::new(r, dymsum::DVec3::ZERO);
+    flat.chunks_exact(size)
+        .enumerate()
+        .map(|(k, c)| match form {
+            Form::Quaternion => {
+                let (x, y, z, w) = (c[0], c[1], c[2], c[3]);
+                Rotation::from_xyzw(x, y, z, w).map(turn).ok_or_else(|| {
+                    err_for(
+                        what,
+                        format!(
+                            "{} (x, y, z, w) = ({x}, {y}, {z}, {w}) is zero or not finite",
+                            name(k)
+                        ),
+                    )
+                })
+            }
+            Form::Matrix => {
+                let r = DMat3::from_cols_slice(c).transpose();
+                Rotation::from_matrix(r).map(turn).ok_or_else(|| {
+                    let reason = rotation_reason(r).replacen(
+                        "not a rigid transform: the 3×3 rotation block must be",
+                        "not a rotation: it must be",
+                        1,
+                    );
+                    err_for(what, format!("{} is {reason}", name(k)))
+                })
+            }
+            Form::Homogeneous => {
+                let mut rows4 = [[0.0; 4]; 4];
+                for (r, row) in rows4.iter_mut().enumerate() {
+                    row.copy_from_slice(&c[4 * r..4 * r + 4]);
+                }
+                // glam is column-major: the transpose of the row-major rows.
+                let m = DMat4::from_cols_array_2d(&rows4).transpose();
+                Pose::from_mat4(m).ok_or_else(|| {
+                    let reason = not_rigid_reason(&rows4);
+                    match name(k) {
+                        n if n.is_empty() => err_for(what, reason),
+                        n => err_for(what, format!("{n}: {reason}")),
+                    }
+                })
+            }
+        })
+        .collect()
+}
+
+/// The name of one item of `form` in error messages, `"quaternion"`,
+/// `"matrix"` or `"transform"`, followed by ` k` in a stack.
+fn item_name(form: Form, k: Option<usize>) -> String {
+    let kind = match form {
+        Form::Quaternion => "quaternion",
+        Form::Matrix => "matrix",
+        Form::Homogeneous => "transform",
+    };
+    match k {
+        Some(k) => format!("{kind} {k}"),
+        None if form == Form::Homogeneous => String::new(),
+        None => kind.to_string(),
     }
-    // glam is column-major: the transpose of the row-major rows.
-    let m = DMat4::from_cols_array_2d(&rows4).transpose();
-    Pose::from_mat4(m).ok_or_else(|| err_for(what, not_rigid_reason(&rows4)))
+}
+
+/// One transform of the given form from `probe` (already an array).
+fn one_transform(
+    probe: &Bound<'_, PyAny>,
+    form: Form,
+    what: &str,
+    expected: &str,
+) -> PyResult<Pose> {
+    let tail = form.tail();
+    let arr = float_array(probe, tail.len(), tail, what, expected)?;
+    let poses = transforms(&arr, form, what, |_| item_name(form, None))?;
+    poses
+        .into_iter()
+        .next()
+        .ok_or_else(|| err_for(what, format!("expected {expected}")))
+}
+
+/// The shape of a rotation-like array, refusing a stack where one rotation
+/// is expected.
+fn single_form(
+    probe: &Bound<'_, PyAny>,
+    what: &str,
+    expected: &str,
+    homogeneous: bool,
+) -> PyResult<Form> {
+    let shape = shape_of(probe)?;
+    match shape.as_slice() {
+        [4] => Ok(Form::Quaternion),
+        [3, 3] => Ok(Form::Matrix),
+        [4, 4] if homogeneous => Ok(Form::Homogeneous),
+        [k, 4] | [k, 3, 3] => Err(err_for(
+            what,
+            format!(
+                "expected one: {expected}; got a stack of {k} (shape {})",
+                shape_text(&shape)
+            ),
+        )),
+        _ => Err(err_for(
+            what,
+            format!("expected {expected}, got shape {}", shape_text(&shape)),
+        )),
+    }
+}
+
+/// A pose: `None` is the identity; a 4×4 homogeneous rigid transform
+/// (rotation block orthonormal with determinant +1 within 1e-6, last row
+/// exactly `0, 0, 0, 1`, all finite); or a rotation about the origin, as
+/// [`rotation`] takes it (a scipy `Rotation`, a (4,) quaternion `(x, y, z,
+/// w)`, a 3×3 rotation matrix).
+pub(crate) fn pose(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Pose> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else {
+        return Ok(Pose::IDENTITY);
+    };
+    let probe = rotation_probe(obj, what, POSE_FORMS)?;
+    let form = single_form(&probe, what, POSE_FORMS, true)?;
+    one_transform(&probe, form, what, POSE_FORMS)
+}
+
+/// One rotation: a `scipy.spatial.transform.Rotation` (a single one), a (4,)
+/// quaternion `(x, y, z, w)` (scalar last, as scipy; renormalised) or a 3×3
+/// rotation matrix (orthonormal with determinant +1 within 1e-6).
+pub(crate) fn rotation(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Rotation> {
+    let probe = rotation_probe(obj, what, ROTATION_FORMS)?;
+    let form = single_form(&probe, what, ROTATION_FORMS, false)?;
+    Ok(one_transform(&probe, form, what, ROTATION_FORMS)?.rotation)
 }
 
 /// [`pose`], with `None` meaning `current` (for updates: the body stays).
@@ -411,79 +634,55 @@ fn rotation_reason(r: DMat3) -> String {
     )
 }
 
-/// Rotations: a (K, 3, 3) array of rotation matrices or a (K, 4) array of
-/// quaternions in the order `(x, y, z, w)` (scalar last, as scipy).
+/// Rotations: a `scipy.spatial.transform.Rotation` (one or a stack), a
+/// (K, 4) array of quaternions `(x, y, z, w)` (scalar last, as scipy; a 2-D
+/// (4, 4) array is four quaternions), a (K, 3, 3) array of rotation
+/// matrices, a (K, 4, 4) array of homogeneous transforms whose translation
+/// is zero, or one (4,) quaternion or 3×3 matrix.
 pub(crate) fn rotations(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rotation>> {
-    let py = obj.py();
-    let np = numpy(py)?;
-    let probe = np.call_method1("asarray", (obj,)).map_err(|e| {
-        err_for(
-            what,
-            format!("expected a (K, 3, 3) or (K, 4) array: {}", e.value(py)),
-        )
-    })?;
+    let probe = rotation_probe(obj, what, ROTATIONS_FORMS)?;
     let shape = shape_of(&probe)?;
-    let quats = shape.len() == 2;
-    let arr = if quats {
-        float_array(
-            &probe,
-            2,
-            &[4],
-            what,
-            "a (K, 3, 3) or (K, 4) array (rotation matrices or (x, y, z, w) quaternions)",
-        )?
-    } else {
-        float_array(
-            &probe,
-            3,
-            &[3, 3],
-            what,
-            "a (K, 3, 3) or (K, 4) array (rotation matrices or (x, y, z, w) quaternions)",
-        )?
+    let form = match shape.as_slice() {
+        [4] | [_, 4] => Form::Quaternion,
+        [3, 3] | [_, 3, 3] => Form::Matrix,
+        [_, 4, 4] => Form::Homogeneous,
+        _ => {
+            return Err(err_for(
+                what,
+                format!(
+                    "expected {ROTATIONS_FORMS}, got shape {}",
+                    shape_text(&shape)
+                ),
+            ))
+        }
     };
-    let flat: Vec<f64> = arr
-        .call_method0("ravel")?
-        .call_method0("tolist")?
-        .extract()?;
-    if quats {
-        flat.as_chunks::<4>()
-            .0
-            .iter()
-            .enumerate()
-            .map(|(k, &[x, y, z, w])| {
-                Rotation::from_xyzw(x, y, z, w).ok_or_else(|| {
-                    err_for(
-                        what,
-                        format!(
-                            "quaternion {k} (x, y, z, w) = ({x}, {y}, {z}, {w}) is zero or not finite"
-                        ),
-                    )
-                })
-            })
-            .collect()
+    let tail = form.tail();
+    let rank = if shape.len() == tail.len() {
+        tail.len()
     } else {
-        flat.as_chunks::<9>()
-            .0
-            .iter()
-            .enumerate()
-            .map(|(k, m)| {
-                let r = DMat3::from_cols_array(m).transpose();
-                Rotation::from_matrix(r).ok_or_else(|| {
-                    err_for(
-                        what,
-                        format!(
-                            "matrix {k} is {}",
-                            rotation_reason(r).replacen(
-                                "not a rigid transform: the 3×3 rotation block must be",
-                                "not a rotation: it must be",
-                                1
-                            )
-                        ),
-                    )
-                })
-            })
-            .collect()
-    }
+        tail.len() + 1
+    };
+    let arr = float_array(&probe, rank, tail, what, ROTATIONS_FORMS)?;
+    let stack = rank > tail.len();
+    let poses = transforms(&arr, form, what, |k| item_name(form, stack.then_some(k)))?;
+    poses
+        .into_iter()
+        .enumerate()
+        .map(|(k, p)| {
+            if p.translation == dymsum::DVec3::ZERO {
+                Ok(p.rotation)
+            } else {
+                Err(err_for(
+                    what,
+                    format!(
+                        "transform {k} has the translation {:?}: give rotations only (the \
+                         slices are the robot turned about its own origin)",
+                        p.translation.to_array()
+                    ),
+                ))
+            }
+        })
+        .collect()
 }
 
 /// An (rows, cols) array taking over `flat` (no copy; `flat.len()` is

@@ -10,8 +10,10 @@
 //! * shapes: an (N, 3) point cloud (its exact hull), a `(vertices, faces)`
 //!   pair, an object with `.vertices` and `.faces` (trimesh), or a
 //!   [`PyPolytope`];
-//! * poses: 4×4 homogeneous rigid transforms (`None` = identity);
-//!   quaternions are `(x, y, z, w)`, scalar last, as scipy;
+//! * shapes may also be model names or mesh file paths (as `load`);
+//! * poses: 4×4 homogeneous rigid transforms (`None` = identity), or a
+//!   rotation about the origin: a scipy `Rotation`, a 3×3 matrix, or a
+//!   quaternion `(x, y, z, w)`, scalar last, as scipy (see `convert`);
 //! * outputs: vertices `float64` (n, 3), faces `int64` (m, 3) fan
 //!   triangles, or with `polygons=True` the merged faces as a list of
 //!   `int64` arrays;
@@ -26,7 +28,6 @@ use dymsum::query::{ConvexPair, Proximity};
 use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{CObstacle, ContactTracker, DynamicSum, Polytope, Pose, UpdateReport};
 use dymsum_io::formats::FormatError;
-use dymsum_io::load::LoadError;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
@@ -245,10 +246,12 @@ fn two_bodies(
 ///
 /// ``a`` and ``b`` are shapes (an (N, 3) point cloud, a ``(vertices,
 /// faces)`` pair, an object with ``.vertices``/``.faces`` such as a
-/// trimesh, or a ``Polytope``). ``pose_a``/``pose_b`` are 4×4 homogeneous
-/// rigid transforms (``None``: identity) or (4,) quaternions ``(x, y, z,
-/// w)`` (scalar last, as scipy) for a rotation about the origin;
-/// ``dymsum.pose(quaternion, translation)`` builds a 4×4 pose. ``method`` is ``"walk"``
+/// trimesh, a ``Polytope``, or a model name or mesh file path as
+/// ``dymsum.load`` takes). ``pose_a``/``pose_b`` are 4×4 homogeneous rigid
+/// transforms (``None``: identity), or rotations about the origin: a
+/// ``scipy.spatial.transform.Rotation``, a 3×3 matrix or a (4,) quaternion
+/// ``(x, y, z, w)`` (scalar last, as scipy);
+/// ``dymsum.pose(rotation, translation)`` builds a 4×4 pose. ``method`` is ``"walk"``
 /// (output-sensitive, fastest), ``"brute"`` or ``"hull"``; all give the same
 /// exact facets. Returns vertices (n, 3) ``float64`` and faces (m, 3)
 /// ``int64`` (fan triangles of the merged faces, counter-clockwise seen from
@@ -307,10 +310,10 @@ fn report_dict<'py>(
 /// ``A ⊕ B`` kept up to date while the bodies move (the DYMSUM algorithm):
 /// each ``update`` repairs only the facets the rotation changed.
 ///
-/// ``DynamicSum(a, b, pose_a=None, pose_b=None)``: shapes as for
-/// ``minkowski_sum``; poses 4×4 homogeneous rigid transforms, or (4,)
-/// quaternions ``(x, y, z, w)`` (scalar last, as scipy) for a rotation about
-/// the origin (``dymsum.pose`` adds a translation). Updates are exact: after any
+/// ``DynamicSum(a, b, pose_a=None, pose_b=None)``: shapes and poses as for
+/// ``minkowski_sum`` (4×4 homogeneous rigid transforms, or rotations about
+/// the origin: a scipy ``Rotation``, a 3×3 matrix or a (4,) quaternion
+/// ``(x, y, z, w)``; ``dymsum.pose`` adds a translation). Updates are exact: after any
 /// sequence of updates the facets equal a fresh ``minkowski_sum`` at the
 /// same poses. Small steps are fastest; large ones fall back to a fresh
 /// static sum automatically.
@@ -606,9 +609,11 @@ impl PyContactTracker {
 /// translations ``t`` at which ``R·robot + t`` meets the obstacle, i.e. the
 /// convex polytope ``obstacle ⊕ (−R·robot)``, as ``(vertices, faces)``.
 ///
-/// ``rotations`` is a (K, 3, 3) array of rotation matrices or a (K, 4)
-/// array of unit quaternions in the order ``(x, y, z, w)`` (scalar last, as
-/// ``scipy.spatial.transform.Rotation.as_quat()``). Computed with DYMSUM,
+/// ``rotations`` is a ``scipy.spatial.transform.Rotation`` (one or a
+/// stack), a (K, 3, 3) array of rotation matrices, a (K, 4) array of unit
+/// quaternions in the order ``(x, y, z, w)`` (scalar last, as
+/// ``Rotation.as_quat()``), a (K, 4, 4) array of homogeneous transforms
+/// without translation, or one (4,) quaternion or 3×3 matrix. Computed with DYMSUM,
 /// one dynamic sum moved from slice to slice (fastest when consecutive
 /// orientations are close; exact in any order); ``parallel=True`` splits the orientations into chunks
 /// over threads (same result). The GIL is released while computing.
@@ -620,6 +625,8 @@ impl PyContactTracker {
 /// >>> slices = dymsum.cobstacle_slices(cube, 2 * cube, quats)
 /// >>> len(slices), slices[0][0].shape
 /// (8, (8, 3))
+/// >>> len(dymsum.cobstacle_slices(cube, "box:2,1,1", Rotation.from_rotvec([[0, 0, 0.1], [0, 0, 0.2]])))
+/// 2
 #[pyfunction]
 #[pyo3(signature = (robot, obstacle, rotations, polygons = false, parallel = false))]
 fn cobstacle_slices<'py>(
@@ -650,48 +657,34 @@ fn cobstacle_slices<'py>(
     Ok(out)
 }
 
-/// A 4×4 homogeneous rigid transform (``float64``) from a unit quaternion in
-/// the order ``(x, y, z, w)`` (scalar last, as scipy; renormalised) and a
-/// translation. ``pose()`` is the identity.
+/// A 4×4 homogeneous rigid transform (``float64``) from a rotation and a
+/// translation. The rotation (the first argument, named ``quaternion``) is
+/// a ``scipy.spatial.transform.Rotation``, a 3×3 rotation matrix, or a
+/// unit quaternion in the order ``(x, y, z, w)`` (scalar last, as scipy;
+/// renormalised). ``pose()`` is the identity.
 ///
-/// >>> import dymsum
+/// >>> import numpy as np, dymsum
 /// >>> dymsum.pose([0, 0, 0, 1], [1, 2, 3])[:3, 3].tolist()
 /// [1.0, 2.0, 3.0]
+/// >>> quarter_turn_z = np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1]])
+/// >>> np.allclose(dymsum.pose(quarter_turn_z), dymsum.pose([0, 0, np.sqrt(0.5), np.sqrt(0.5)]))
+/// True
 #[pyfunction]
 #[pyo3(signature = (quaternion = None, translation = None))]
 fn pose<'py>(
     py: Python<'py>,
-    quaternion: Option<[f64; 4]>,
+    quaternion: Option<&Bound<'py, PyAny>>,
     translation: Option<[f64; 3]>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let rotation = match quaternion {
+    let rotation = match quaternion.filter(|q| !q.is_none()) {
         None => dymsum::Rotation::IDENTITY,
-        Some([x, y, z, w]) => dymsum::Rotation::from_xyzw(x, y, z, w).ok_or_else(|| {
-            value_error(format!(
-                "quaternion: (x, y, z, w) = ({x}, {y}, {z}, {w}) is zero or not finite"
-            ))
-        })?,
+        Some(q) => convert::rotation(q, "quaternion")?,
     };
     let t = translation.unwrap_or([0.0; 3]);
     if t.iter().any(|x| !x.is_finite()) {
         return Err(value_error(format!("translation: {t:?} is not finite")));
     }
     convert::pose_array(py, Pose::new(rotation, t.into()))
-}
-
-fn load_error(e: LoadError) -> PyErr {
-    let msg = e.to_string();
-    match &e {
-        LoadError::NotFound {
-            looks_like_file: true,
-            ..
-        } => io_error(std::io::ErrorKind::NotFound, msg),
-        LoadError::Format {
-            source: FormatError::Io { source, .. },
-            ..
-        } => io_error(source.kind(), msg),
-        _ => value_error(msg),
-    }
 }
 
 fn path_string(path: &Bound<'_, PyAny>) -> PyResult<String> {
@@ -721,23 +714,8 @@ fn load(
     strict: bool,
 ) -> PyResult<PyPolytope> {
     let spec = path_string(path_or_model_name)?;
-    let loaded = py
-        .detach(|| dymsum_io::load_polytope(&spec, policy(strict)))
-        .map_err(load_error)?;
-    let origin = match loaded.report {
-        Some(r) => Origin::Mesh(r),
-        None => Origin::Points {
-            count: loaded.input.vertices.len(),
-        },
-    };
-    PyPolytope::from_shape(
-        py,
-        Shape {
-            polytope: loaded.polytope,
-            origin,
-            source: loaded.source,
-        },
-    )
+    let shape = convert::load_shape(py, &spec, policy(strict), None)?;
+    PyPolytope::from_shape(py, shape)
 }
 
 /// Writes a mesh to ``path`` in the format its extension names (``.off``,

@@ -45,15 +45,20 @@ def test_example_tour_runs(tmp_path):
     assert (tmp_path / "depth.png").exists() == has_matplotlib
 
 
-def test_readme_python_blocks_run(tmp_path, monkeypatch):
+def test_documentation_python_blocks_run(tmp_path, monkeypatch):
+    """Every ``python`` block of the README, the package README and the
+    guides in docs/ runs, and writes nothing into the working directory
+    (examples write into a temporary or named folder)."""
     import pathlib
     import re
 
     root = pathlib.Path(__file__).resolve().parent.parent.parent
-    monkeypatch.chdir(tmp_path)  # they write sum.off
+    monkeypatch.chdir(tmp_path)
+    files = [root / "README.md", root / "python" / "README.md", *sorted((root / "docs").glob("*.md"))]
     ran = 0
-    for readme in (root / "README.md", root / "python" / "README.md"):
-        for block in re.findall(r"```python\n(.*?)```", readme.read_text(), re.S):
-            exec(compile(block, str(readme), "exec"), {})
+    for doc in files:
+        for block in re.findall(r"```python\n(.*?)```", doc.read_text(), re.S):
+            exec(compile(block, str(doc), "exec"), {})
             ran += 1
-    assert ran >= 2 and (tmp_path / "sum.off").exists()
+    assert ran >= 3
+    assert list(tmp_path.iterdir()) == []

@@ -207,8 +207,10 @@ def test_non_convex_mesh_raises_value_error():
 
 ROT = np.eye(4)
 BAD_POSES = [
-    (np.eye(3), "4×4"),
-    (np.eye(4)[:3], "4×4"),
+    (2 * np.eye(3), "not a rotation"),
+    (np.eye(4)[:3], r"4×4 .*shape \(3, 4\)"),
+    (np.zeros(3), r"got shape \(3,\)"),
+    (np.tile([0, 0, 0, 1.0], (3, 1)), "a stack of 3"),
     (2 * np.eye(4), "last row"),
     (np.diag([2.0, 1, 1, 1]), "orthonormal"),
     (np.diag([1.0, 1, -1, 1]), "det"),
@@ -251,7 +253,7 @@ def test_other_errors():
         dymsum.cobstacle_slices(CUBE, CUBE, np.array([[0, 0, 0, 1.0], [0, 0, 0, 0]]))
     with pytest.raises(ValueError, match="matrix 0 is not a rotation"):
         dymsum.cobstacle_slices(CUBE, CUBE, 2 * np.eye(3)[None])
-    with pytest.raises(ValueError, match=r"\(K, 3, 3\) or \(K, 4\)"):
+    with pytest.raises(ValueError, match=r"\(K, 4\) quaternions .* got shape \(2, 3\)"):
         dymsum.cobstacle_slices(CUBE, CUBE, np.zeros((2, 3)))
 
 

@@ -3,7 +3,7 @@
 //! value parsers they share in [`crate::values`].
 //!
 //! Every flag value is checked by a clap value parser, so a malformed or
-//! meaningless value (`--rotate-p 1,2`, a NaN, a zero quaternion, an output
+//! meaningless value (`--rotate-p-wxyz 1,2`, a NaN, a zero quaternion, an output
 //! file with an unknown extension) is a usage error: clap prints it with the
 //! usage line and the process exits with code 2. Bad *inputs* (missing
 //! files, unknown models, non-convex meshes) are found later and exit 1.
@@ -84,5 +84,42 @@ mod tests {
     #[test]
     fn clap_definition_is_consistent() {
         Cli::command().debug_assert();
+    }
+
+    /// Every flag that takes a quaternion (a `W,...` value or a file of
+    /// quaternions) says its component order in its name.
+    #[test]
+    fn every_quaternion_flag_names_its_order() {
+        fn walk(c: &clap::Command, seen: &mut Vec<String>) {
+            for a in c.get_arguments() {
+                let names: Vec<&str> = a
+                    .get_value_names()
+                    .unwrap_or_default()
+                    .iter()
+                    .map(|n| n.as_str())
+                    .collect();
+                let help = a.get_help().map(|h| h.to_string()).unwrap_or_default();
+                if names.iter().any(|n| n.contains("W,")) || help.contains("quaternion") {
+                    let long = a.get_long().unwrap_or_default();
+                    assert!(long.contains("wxyz"), "{} --{long}", c.get_name());
+                    seen.push(format!("{} --{long}", c.get_name()));
+                }
+            }
+            for s in c.get_subcommands() {
+                walk(s, seen);
+            }
+        }
+        let mut seen = Vec::new();
+        walk(&Cli::command(), &mut seen);
+        assert_eq!(
+            seen,
+            [
+                "sum --rotate-p-wxyz",
+                "render --rotate-p-wxyz",
+                "render --highlight-after-wxyz",
+                "cobst --orientations-wxyz",
+                "query --pose-xyz-wxyz"
+            ]
+        );
     }
 }

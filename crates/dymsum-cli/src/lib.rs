@@ -79,10 +79,17 @@ fn is_broken_pipe(e: &anyhow::Error) -> bool {
     })
 }
 
-/// The README's Rust code blocks, compiled and run by `cargo test --doc`.
+/// The README's Rust code blocks, compiled and run by `cargo test --doc`
+/// (with the other Markdown guides below: `tests/docs.rs` checks that
+/// every file under `docs/` with a `rust` block is listed here).
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// The Rust code blocks of docs/RUST.md, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/RUST.md")]
+pub struct RustGuideDoctests;
 
 /// Diagnostics on stderr, `RUST_LOG`-style and off by default:
 /// `RUST_LOG=debug dymsum sum ...` shows what was loaded and how validation

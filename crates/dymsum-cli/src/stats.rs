@@ -77,6 +77,22 @@ pub fn fixed(x: f64, decimals: usize) -> String {
     }
 }
 
+/// `x` with `decimals` decimals (`{:.N}`), never as a negative zero: a
+/// value that rounds to zero prints as `0.000…` whatever its sign.
+///
+/// ```
+/// use dymsum_cli::stats::decimals;
+/// assert_eq!(decimals(-1.9e-7, 6), "0.000000");
+/// assert_eq!(decimals(-0.25, 2), "-0.25");
+/// ```
+pub fn decimals(x: f64, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+        _ => s,
+    }
+}
+
 /// Microseconds elapsed in a [`std::time::Duration`], as a float.
 pub fn micros(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1e6

@@ -127,7 +127,7 @@ fn sum_rotate_and_translate() {
         &cube,
         "-o",
         out.to_str().unwrap(),
-        "--rotate-p",
+        "--rotate-p-wxyz",
         "1,0,0,1",
         "--translate-p",
         "10,-20,30",
@@ -153,7 +153,7 @@ fn sum_rotate_and_translate() {
         &cube,
         "-o",
         out2.to_str().unwrap(),
-        "--rotate-p",
+        "--rotate-p-wxyz",
         "-0.3,0.5,0.2,0.7",
     ]);
     let faces: usize = line
@@ -200,6 +200,24 @@ fn info_text_reports_convexity() {
     }
 }
 
+/// Exactly convex means zero deviation, printed as `0`, for every
+/// exactly convex paper model (their float distances to the hull planes
+/// used to show as `5.551e-17`).
+#[test]
+fn exactly_convex_models_have_zero_deviation() {
+    for name in PAPER_MODELS {
+        let text = ok(&["info", name]);
+        if text.contains("exactly convex") {
+            assert!(
+                text.contains("max deviation:    0 (tolerance"),
+                "{name}: {text}"
+            );
+        } else {
+            assert!(!text.contains("max deviation:    0 "), "{name}: {text}");
+        }
+    }
+}
+
 #[test]
 fn info_json_parses() {
     let text = ok(&["info", "gs2", "--json"]);
@@ -226,6 +244,9 @@ fn info_json_parses() {
     ] {
         assert!(!c[key].is_null(), "{key} in {c}");
     }
+    // gs2 is exactly convex: no deviation at all (not rounding noise).
+    assert_eq!(c["exactly_convex"], true);
+    assert_eq!(c["max_deviation"].as_f64(), Some(0.0), "{c}");
     let pts: serde_json::Value =
         serde_json::from_str(&ok(&["info", "random:30:2", "--json"])).unwrap();
     assert_eq!(pts["input_kind"], "points");
@@ -477,10 +498,12 @@ fn bad_meshes_name_the_operand_and_cause() {
 #[test]
 fn unwritable_output_is_exit_1() {
     let dir = temp_dir("unwritable");
-    let out = dir.join("no/such/dir/s.off");
+    // A file where the output folder should be.
+    std::fs::write(dir.join("file"), "x").unwrap();
+    let out = dir.join("file/s.off");
     bad_input(
         &["sum", "gs1", "dd", "-o", out.to_str().unwrap()],
-        &["writing the sum"],
+        &["creating the output folder", "file"],
     );
 }
 
@@ -491,10 +514,10 @@ fn bad_flags_are_usage_errors() {
     let dir = temp_dir("flags");
     let out = dir.join("s.off");
     let o = out.to_str().unwrap();
-    let err = usage_error(&["sum", "gs1", "dd", "-o", o, "--rotate-p", "1,2"]);
-    assert!(err.contains("--rotate-p"), "{err}");
-    usage_error(&["sum", "gs1", "dd", "-o", o, "--rotate-p", "NaN,0,0,1"]);
-    usage_error(&["sum", "gs1", "dd", "-o", o, "--rotate-p", "0,0,0,0"]);
+    let err = usage_error(&["sum", "gs1", "dd", "-o", o, "--rotate-p-wxyz", "1,2"]);
+    assert!(err.contains("--rotate-p-wxyz"), "{err}");
+    usage_error(&["sum", "gs1", "dd", "-o", o, "--rotate-p-wxyz", "NaN,0,0,1"]);
+    usage_error(&["sum", "gs1", "dd", "-o", o, "--rotate-p-wxyz", "0,0,0,0"]);
     usage_error(&["sum", "gs1", "dd", "-o", o, "--translate-p", "1,2,inf"]);
     usage_error(&["sum", "gs1", "dd", "-o", o, "--translate-p", "1,2"]);
     usage_error(&["sum", "gs1", "dd", "-o", o, "--method", "fast"]);
@@ -533,6 +556,80 @@ fn bad_flags_are_usage_errors() {
     usage_error(&["demo", "--seconds", "-1"]);
     usage_error(&["demo", "--seconds", "abc"]);
     assert!(!out.exists());
+}
+
+/// The flags renamed to say their quaternion order keep their old spelling
+/// as a hidden alias: same result, not listed in `--help`.
+#[test]
+fn old_quaternion_flag_spellings_still_work() {
+    let dir = temp_dir("aliases");
+    let (a, b) = (dir.join("a.off"), dir.join("b.off"));
+    let sum = |flag: &str, out: &std::path::Path| {
+        ok(&[
+            "sum",
+            "gs1",
+            "dd",
+            "-o",
+            out.to_str().unwrap(),
+            flag,
+            "0.9,0.1,0.2,0.3",
+        ]);
+        std::fs::read(out).unwrap()
+    };
+    assert_eq!(sum("--rotate-p", &a), sum("--rotate-p-wxyz", &b));
+    let (a, b) = (dir.join("a.svg"), dir.join("b.svg"));
+    let render = |old: bool, out: &std::path::Path| {
+        let (r, h) = if old {
+            ("--rotate-p", "--highlight-after")
+        } else {
+            ("--rotate-p-wxyz", "--highlight-after-wxyz")
+        };
+        let o = out.to_str().unwrap();
+        ok(&[
+            "render",
+            "gs1",
+            "dd",
+            "-o",
+            o,
+            r,
+            "0.9,0.1,0.2,0.3",
+            h,
+            "0.99,0,0.1,0",
+            "--size",
+            "64",
+        ]);
+        std::fs::read(out).unwrap()
+    };
+    assert_eq!(render(true, &a), render(false, &b));
+    let quats = dir.join("q.txt");
+    std::fs::write(&quats, "1,0,0,0\n0.9,0.1,0.2,0.3\n").unwrap();
+    let cobst = |flag: &str, out: &str| {
+        let out = dir.join(out);
+        ok(&[
+            "cobst",
+            "gs1",
+            "dd",
+            flag,
+            quats.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        std::fs::read(out.join("index.json")).unwrap()
+    };
+    assert_eq!(
+        cobst("--orientations", "s1"),
+        cobst("--orientations-wxyz", "s2")
+    );
+    for (sub, old) in [
+        ("sum", "--rotate-p "),
+        ("render", "--highlight-after "),
+        ("cobst", "--orientations "),
+        ("query", "--pose "),
+    ] {
+        let help = ok(&[sub, "--help"]);
+        assert!(!help.contains(old), "{sub} --help lists {old}: {help}");
+        assert!(help.contains("wxyz"), "{help}");
+    }
 }
 
 #[test]

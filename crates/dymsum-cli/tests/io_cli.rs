@@ -16,6 +16,16 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// The arguments `cobst cube gs1 --axis 0,0,1 --slices N --out OUT EXTRA...`.
+fn cobst_about_z<'a>(slices: &'a str, out: &'a Path, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        "cobst", "cube", "gs1", "--axis", "0,0,1", "--slices", slices,
+    ];
+    args.extend(["--out", s(out)]);
+    args.extend_from_slice(extra);
+    args
+}
+
 #[test]
 fn failed_sum_keeps_the_earlier_output_and_leaves_no_temp() {
     let dir = temp_dir("keep");
@@ -36,26 +46,92 @@ fn failed_sum_keeps_the_earlier_output_and_leaves_no_temp() {
     assert_eq!(names(&dir), ["sum.stl"]);
 }
 
+/// One rule for every writer: a missing output folder is created (with its
+/// missing parents), for files (`sum -o`, `render -o`, `models --write`,
+/// `animate --csv`) and folders (`--frames-dir`, `cobst --out`, `bench
+/// --out`) alike.
 #[test]
-fn write_into_a_missing_directory_names_the_path_and_the_os_error_once() {
+fn every_writer_creates_missing_output_folders() {
     let dir = temp_dir("missing");
-    let target = dir.join("no_such_dir").join("x.off");
-    for args in [
-        vec!["sum", "cube", "gs1", "-o", s(&target)],
-        vec!["render", "cube", "gs1", "-o", "PLACEHOLDER"],
+    let at = |name: &str| dir.join(name).join("deeper");
+    let file = |name: &str, f: &str| at(name).join(f).to_str().unwrap().to_string();
+    ok(&["sum", "cube", "gs1", "-o", &file("sum", "x.off")]);
+    ok(&[
+        "render",
+        "cube",
+        "gs1",
+        "-o",
+        &file("render", "x.svg"),
+        "--size",
+        "32",
+    ]);
+    ok(&["models", "--write", "gs1", &file("models", "gs1.ply")]);
+    let (csv, frames) = (file("csv", "run.csv"), s(&at("frames")).to_string());
+    ok(&[
+        "animate",
+        "cube",
+        "gs1",
+        "--steps-per-rev",
+        "100",
+        "--steps",
+        "2",
+        "--csv",
+        &csv,
+        "--frames-dir",
+        &frames,
+    ]);
+    ok(&cobst_about_z("2", &at("cobst"), &[]));
+    for (name, f) in [
+        ("sum", "x.off"),
+        ("render", "x.svg"),
+        ("models", "gs1.ply"),
+        ("csv", "run.csv"),
+        ("frames", "step_000002.off"),
+        ("cobst", "index.json"),
     ] {
-        let svg = dir.join("no_such_dir").join("x.svg");
-        let args: Vec<&str> = args
-            .iter()
-            .map(|a| if *a == "PLACEHOLDER" { s(&svg) } else { a })
-            .collect();
-        let o = run(&args);
-        assert_eq!(o.status.code(), Some(1));
-        let err = stderr(&o);
-        assert!(err.contains("no_such_dir"), "{err}");
-        assert_eq!(err.matches("No such file or directory").count(), 1, "{err}");
+        assert!(at(name).join(f).is_file(), "{name}: {f}");
     }
-    assert_eq!(names(&dir), Vec::<String>::new());
+    // A file in the way of the folder: exit 1, the path and the OS error
+    // said once, nothing written.
+    let blocker = dir.join("blocker");
+    std::fs::write(&blocker, "x").unwrap();
+    for args in [
+        vec!["sum", "cube", "gs1", "-o", "BLOCKED/x.off"],
+        vec!["render", "cube", "gs1", "-o", "BLOCKED/x.svg"],
+        vec![
+            "animate",
+            "cube",
+            "gs1",
+            "--steps-per-rev",
+            "9",
+            "--steps",
+            "1",
+            "--csv",
+            "BLOCKED/r.csv",
+        ],
+    ] {
+        let args: Vec<String> = args
+            .iter()
+            .map(|a| match a.strip_prefix("BLOCKED/") {
+                Some(f) => s(&blocker.join("sub").join(f)).to_string(),
+                None => a.to_string(),
+            })
+            .collect();
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        let err = stderr(&o);
+        assert!(
+            err.contains("creating the output folder") && err.contains("blocker"),
+            "{err}"
+        );
+        assert_eq!(
+            err.matches("Not a directory").count() + err.matches("File exists").count(),
+            1,
+            "{err}"
+        );
+    }
+    assert_eq!(std::fs::read(&blocker).unwrap(), b"x");
 }
 
 #[test]
@@ -102,17 +178,7 @@ fn failed_animate_keeps_the_earlier_csv() {
 fn cobst_refuses_a_non_empty_directory_and_force_clears_only_its_own_files() {
     let dir = temp_dir("cobst");
     let out = dir.join("slices");
-    ok(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "3",
-        "--out",
-        s(&out),
-    ]);
+    ok(&cobst_about_z("3", &out, &[]));
     assert_eq!(
         names(&out),
         [
@@ -123,49 +189,18 @@ fn cobst_refuses_a_non_empty_directory_and_force_clears_only_its_own_files() {
         ]
     );
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
-    let o = run(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "1",
-        "--out",
-        s(&out),
-    ]);
+    let o = run(&cobst_about_z("1", &out, &[]));
     assert_fails(&o, 1, "not empty");
     assert!(stderr(&o).contains("--force"), "{}", stderr(&o));
     assert_eq!(names(&out).len(), 5);
-    ok(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "1",
-        "--out",
-        s(&out),
-        "--force",
-    ]);
+    ok(&cobst_about_z("1", &out, &["--force"]));
     assert_eq!(names(&out), ["index.json", "notes.txt", "slice_00000.off"]);
     let index = std::fs::read_to_string(out.join("index.json")).unwrap();
     assert_eq!(index.matches("\"slice\"").count(), 1);
     // An empty existing directory is fine without --force.
     let empty = dir.join("empty");
     std::fs::create_dir(&empty).unwrap();
-    ok(&[
-        "cobst",
-        "cube",
-        "gs1",
-        "--axis",
-        "0,0,1",
-        "--slices",
-        "2",
-        "--out",
-        s(&empty),
-    ]);
+    ok(&cobst_about_z("2", &empty, &[]));
 }
 
 /// Runs the binary with a deadline: a hang is a failure, not a stuck test.
@@ -215,7 +250,7 @@ fn fifo_and_device_operands_are_refused_promptly() {
             "cobst",
             "cube",
             "cube",
-            "--orientations",
+            "--orientations-wxyz",
             s(&quats),
             "--out",
             "/dev/null/never",
@@ -261,18 +296,26 @@ fn huge_and_tiny_quaternions_are_normalised_not_called_zero() {
         "gs1",
         "-o",
         s(&reference),
-        "--rotate-p",
+        "--rotate-p-wxyz",
         "1,0,0,1",
     ]);
     for q in ["1e200,0,0,1e200", "1e-200,0,0,1e-200", "1e308,0,0,1e308"] {
         let out = dir.join("q.off");
-        ok(&["sum", "cone", "gs1", "-o", s(&out), "--rotate-p", q]);
+        ok(&["sum", "cone", "gs1", "-o", s(&out), "--rotate-p-wxyz", q]);
         let a = common::model(s(&reference));
         let b = common::model(s(&out));
         assert_eq!(a.vertex_count(), b.vertex_count(), "{q}");
         assert_eq!(a.face_count(), b.face_count(), "{q}");
     }
-    let o = run(&["sum", "cone", "gs1", "-o", "x.off", "--rotate-p", "0,0,0,0"]);
+    let o = run(&[
+        "sum",
+        "cone",
+        "gs1",
+        "-o",
+        "x.off",
+        "--rotate-p-wxyz",
+        "0,0,0,0",
+    ]);
     assert_eq!(o.status.code(), Some(2));
 }
 
@@ -290,7 +333,7 @@ fn orientation_lines_with_empty_fields_are_errors_with_the_line() {
             "cobst",
             "cube",
             "gs1",
-            "--orientations",
+            "--orientations-wxyz",
             s(&file),
             "--out",
             s(&dir.join("out")),
@@ -307,7 +350,7 @@ fn orientation_lines_with_empty_fields_are_errors_with_the_line() {
         "cobst",
         "cube",
         "gs1",
-        "--orientations",
+        "--orientations-wxyz",
         s(&file),
         "--out",
         s(&dir.join("ws")),
@@ -477,7 +520,26 @@ fn models_write_then_sum_through_standard_input_and_output() {
 fn standard_input_serves_one_operand_and_empty_input_is_an_error() {
     let cube = run(&["models", "--write", "box:1,1,1", "-"]).stdout;
     let o = run_with_stdin(&["sum", "-", "-", "-o", "-"], &cube);
-    assert_fails(&o, 1, "one operand only");
+    assert_fails(
+        &o,
+        1,
+        "Q: standard input (`-`) can be read by one operand only",
+    );
+    // Said before anything is read: empty standard input gives the same
+    // error (not "no vertices"), in every command with two operands.
+    for args in [
+        vec!["sum", "-", "-", "-o", "x.off"],
+        vec!["render", "-", "-", "-o", "x.svg"],
+        vec!["animate", "-", "-", "--steps-per-rev", "9", "--steps", "1"],
+        vec!["query", "-", "-", "--pose-xyz-wxyz", "0,0,0,1,0,0,0"],
+        vec![
+            "cobst", "-", "-", "--axis", "0,0,1", "--slices", "2", "--out", "never",
+        ],
+    ] {
+        let o = run_with_stdin(&args, b"");
+        assert_fails(&o, 1, "can be read by one operand only");
+        assert!(!stderr(&o).contains("no vertices"), "{}", stderr(&o));
+    }
     let o = run_with_stdin(&["info", "-"], b"");
     assert_fails(&o, 1, "standard input");
     let o = run(&["models", "--write", "nosuch", "-"]);

@@ -28,7 +28,7 @@ fn query_json_lines_match_the_library() {
     ];
     let mut args = vec!["query", "gs2", "box:1,2,0.5", "--json"];
     for p in &poses {
-        args.push("--pose");
+        args.push("--pose-xyz-wxyz");
         args.push(p);
     }
     let text = ok(&args);
@@ -38,14 +38,14 @@ fn query_json_lines_match_the_library() {
     let pair = ConvexPair::new(&robot, &obstacle).unwrap();
     for (line, p) in lines.iter().zip(&poses) {
         assert!(
-            line.starts_with("{\"pose\":[") && line.contains("],\"collides\":"),
+            line.starts_with("{\"pose_xyz_wxyz\":[") && line.contains("],\"collides\":"),
             "key order: {line}"
         );
         let v: serde_json::Value = serde_json::from_str(line).unwrap();
         let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
         keys.sort_unstable();
         let mut want_keys = [
-            "pose",
+            "pose_xyz_wxyz",
             "collides",
             "depth",
             "distance",
@@ -73,15 +73,21 @@ fn query_json_lines_match_the_library() {
             close(v["distance"].as_f64().unwrap(), want.distance()),
             "{line}"
         );
+        // One meaning in both cases: from the robot (A) towards the
+        // obstacle (B), the library's contact normal or separation direction.
+        let towards_b = match &want {
+            dymsum::query::Proximity::Penetrating(c) => c.normal,
+            dymsum::query::Proximity::Separated(s) => s.direction,
+        };
         let d: Vec<f64> = numbers(&v["direction"]);
         assert!(
-            (DVec3::new(d[0], d[1], d[2]) - want.a_direction()).length() <= 1e-15,
+            (DVec3::new(d[0], d[1], d[2]) - towards_b).length() <= 1e-15,
             "{line}"
         );
         // Witness points: the library's, and consistent with the numbers
         // (apart: the obstacle's point is `distance` along `direction` from
         // the robot's; colliding: the robot's point is `depth` along
-        // `-direction` from the obstacle's).
+        // `direction` from the obstacle's).
         let pr = numbers(&v["point_on_robot"]);
         let po = numbers(&v["point_on_obstacle"]);
         let (pr, po) = (
@@ -98,18 +104,60 @@ fn query_json_lines_match_the_library() {
         );
         let dir = DVec3::new(d[0], d[1], d[2]);
         let gap = if want.intersects() {
-            pr - po + dir * want.depth()
+            pr - po - dir * want.depth()
         } else {
             po - pr - dir * want.distance()
         };
         assert!(gap.length() <= 1e-9, "{line}: witness gap {gap}");
-        let pose_back: Vec<f64> = numbers(&v["pose"]);
+        let pose_back: Vec<f64> = numbers(&v["pose_xyz_wxyz"]);
         for (x, y) in pose_back.iter().zip(&n) {
             assert!(close(*x, *y), "{line}");
         }
     }
     // Both outcomes appear.
     assert!(text.contains("\"collides\":true") && text.contains("\"collides\":false"));
+}
+
+#[test]
+fn query_direction_points_from_robot_to_obstacle_touching_or_apart() {
+    // Just overlapping, and just apart: the same direction, no `-0.0`.
+    let text = ok(&[
+        "query",
+        "box",
+        "box",
+        "--json",
+        "--pose-xyz-wxyz",
+        "0.99,0,0,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "1.01,-0,0,1,0,0,0",
+    ]);
+    assert!(!text.contains("-0.0"), "{text}");
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines[0]["collides"], true);
+    assert_eq!(lines[1]["collides"], false);
+    for v in &lines {
+        assert_eq!(numbers(&v["direction"]), [-1.0, 0.0, 0.0], "{text}");
+    }
+    // The human form says the same, and the old flag still works.
+    let text = ok(&[
+        "query",
+        "box",
+        "box",
+        "--pose",
+        "0.99,0,0,1,0,0,0",
+        "--pose",
+        "1.01,0,0,1,0,0,0",
+    ]);
+    assert!(!text.contains("-0.0"), "{text}");
+    assert_eq!(
+        text.matches("direction robot to obstacle (-1.000000, 0.000000, 0.000000)")
+            .count(),
+        2,
+        "{text}"
+    );
 }
 
 #[test]
@@ -192,7 +240,7 @@ fn cobst_axis_writes_slices_and_index() {
         assert_eq!(e["slice"].as_u64().unwrap() as usize, k);
         let file = format!("slice_{k:05}.off");
         assert_eq!(e["file"].as_str().unwrap(), file);
-        let q: Vec<f64> = numbers(&e["orientation"]);
+        let q: Vec<f64> = numbers(&e["orientation_wxyz"]);
         // serde_json parses floats to within an ulp (no float_roundtrip).
         for (x, y) in q.iter().zip(turns[k].wxyz()) {
             assert!((x - y).abs() <= 1e-15, "{q:?}");
@@ -222,18 +270,25 @@ fn cobst_orientation_file_and_its_errors() {
         run(&all)
     };
     let good = good.to_str().unwrap();
-    let o = cobst(&["--orientations", good]);
+    let o = cobst(&["--orientations-wxyz", good]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(Path::new(&out.join("slice_00001.off")).is_file());
     assert!(!Path::new(&out.join("slice_00002.off")).exists());
     let bad = dir.join("bad.txt");
     std::fs::write(&bad, "1,0,0,0\n1,0,0\n").unwrap();
-    let o = cobst(&["--orientations", bad.to_str().unwrap()]);
+    let o = cobst(&["--orientations-wxyz", bad.to_str().unwrap()]);
     assert_fails(&o, 1, "line 2");
     // Neither source, or both: usage errors.
     let o = cobst(&[]);
     assert_eq!(o.status.code(), Some(2));
-    let o = cobst(&["--axis", "0,0,1", "--slices", "3", "--orientations", good]);
+    let o = cobst(&[
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "3",
+        "--orientations-wxyz",
+        good,
+    ]);
     assert_eq!(o.status.code(), Some(2));
     let o = cobst(&["--axis", "0,0,0", "--slices", "3"]);
     assert_eq!(o.status.code(), Some(2));

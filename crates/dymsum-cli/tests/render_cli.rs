@@ -181,9 +181,9 @@ fn output_is_deterministic() {
         let args = [
             "ellipse",
             "gs4",
-            "--rotate-p",
+            "--rotate-p-wxyz",
             POSE,
-            "--highlight-after",
+            "--highlight-after-wxyz",
             &turn,
             "--size",
             "300",
@@ -224,9 +224,9 @@ fn highlights_exactly_the_added_front_facets() {
             &[
                 p,
                 q,
-                "--rotate-p",
+                "--rotate-p-wxyz",
                 rot,
-                "--highlight-after",
+                "--highlight-after-wxyz",
                 after,
                 "--view",
                 view_arg,
@@ -252,16 +252,16 @@ fn highlights_exactly_the_added_front_facets() {
 fn no_highlight_without_the_flag_or_without_a_turn() {
     let dir = temp_dir("none");
     let svg = dir.join("n.svg");
-    render(&["ellipse", "gs4", "--rotate-p", POSE], &svg);
+    render(&["ellipse", "gs4", "--rotate-p-wxyz", POSE], &svg);
     let plain = std::fs::read_to_string(&svg).unwrap();
     assert_eq!(count(&plain, r#"class="changed""#), 0);
     render(
         &[
             "ellipse",
             "gs4",
-            "--rotate-p",
+            "--rotate-p-wxyz",
             POSE,
-            "--highlight-after",
+            "--highlight-after-wxyz",
             "1,0,0,0",
         ],
         &svg,
@@ -273,17 +273,20 @@ fn no_highlight_without_the_flag_or_without_a_turn() {
     // In the PNG: red only with a real turn.
     let a = dir.join("a.png");
     let b = dir.join("b.png");
-    render(&["ellipse", "gs4", "--rotate-p", POSE, "--size", "200"], &a);
+    render(
+        &["ellipse", "gs4", "--rotate-p-wxyz", POSE, "--size", "200"],
+        &a,
+    );
     let turn = pi_over_40_about_y();
     render(
         &[
             "ellipse",
             "gs4",
-            "--rotate-p",
+            "--rotate-p-wxyz",
             POSE,
             "--size",
             "200",
-            "--highlight-after",
+            "--highlight-after-wxyz",
             &turn,
         ],
         &b,
@@ -303,7 +306,7 @@ fn translation_and_files_are_accepted() {
             "tetra",
             "--translate-p",
             "-5,2,1e1",
-            "--highlight-after",
+            "--highlight-after-wxyz",
             "0.9,0.1,0,0",
         ],
         &svg,
@@ -327,14 +330,14 @@ fn bad_arguments_exit_2() {
         vec!["render", "cube", "cube", "-o", o, "--view", "10"],
         vec!["render", "cube", "cube", "-o", o, "--view", "0,91"],
         vec!["render", "cube", "cube", "-o", o, "--view", "nan,0"],
-        vec!["render", "cube", "cube", "-o", o, "--rotate-p", "1,2"],
+        vec!["render", "cube", "cube", "-o", o, "--rotate-p-wxyz", "1,2"],
         vec![
             "render",
             "cube",
             "cube",
             "-o",
             o,
-            "--highlight-after",
+            "--highlight-after-wxyz",
             "0,0,0,0",
         ],
         vec![
@@ -361,7 +364,9 @@ fn bad_inputs_exit_1() {
     let missing = dir.join("missing.off");
     let dent = fixture("cube_dent.off");
     let open = fixture("cube_open.off");
-    let nodir = dir.join("no/such/dir/x.svg");
+    // A file where the output folder should be (a missing folder is created).
+    std::fs::write(dir.join("file"), "x").unwrap();
+    let nodir = dir.join("file/dir/x.svg");
     for args in [
         vec!["render", "nosuchmodel", "cube", "-o", o],
         vec!["render", "cube", missing.to_str().unwrap(), "-o", o],

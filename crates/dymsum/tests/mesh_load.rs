@@ -37,7 +37,8 @@ fn assert_exact_box(mesh: &PolygonMesh, label: &str) {
         assert_eq!((p.vertex_count(), p.face_count()), (8, 6), "{label}");
         assert!(r.exactly_convex && !r.replaced_by_hull, "{label}: {r:?}");
         assert!(!r.inward_oriented, "{label}");
-        assert!(r.max_deviation <= 1e-9 * r.tolerance, "{label}: {r:?}");
+        // Exactly convex: exactly no deviation (not float noise).
+        assert_eq!(r.max_deviation, 0.0, "{label}: {r:?}");
     }
 }
 

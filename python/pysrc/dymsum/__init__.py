@@ -9,10 +9,14 @@ Conventions, everywhere:
 
 * shapes: an (N, 3) array of points (its exact convex hull), a
   ``(vertices, faces)`` pair, any object with ``.vertices`` and ``.faces``
-  (a ``trimesh.Trimesh``), or a :class:`Polytope` (parse and hull once);
+  (a ``trimesh.Trimesh``), a :class:`Polytope` (parse and hull once), or a
+  built-in model name or mesh file path (as :func:`load`);
+* rotations, wherever one is taken: a ``scipy.spatial.transform.Rotation``
+  (scipy itself is never imported), a 3×3 rotation matrix, or a (4,)
+  quaternion, always ``(x, y, z, w)``, scalar last, as scipy;
 * poses: 4×4 homogeneous rigid transforms (``None`` is the identity), or
-  (4,) quaternions for a rotation about the origin; quaternions are always
-  ``(x, y, z, w)``, scalar last, as scipy (:func:`pose` adds a translation);
+  any rotation form for a rotation about the origin (:func:`pose` adds a
+  translation);
 * outputs: vertices ``float64`` (n, 3) and faces ``int64`` (m, 3) fan
   triangles, or with ``polygons=True`` the merged convex faces as a list of
   ``int64`` arrays;
@@ -20,7 +24,7 @@ Conventions, everywhere:
 
 >>> import numpy as np, dymsum
 >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float)
->>> vertices, faces = dymsum.minkowski_sum(cube, dymsum.load("tcube:4"))
+>>> vertices, faces = dymsum.minkowski_sum(cube, "tcube:4")
 """
 
 from ._dymsum import (

@@ -1,9 +1,12 @@
 """Type stubs of dymsum's extension module (re-exported by ``dymsum``).
 
 Conventions: shapes are (N, 3) point clouds (their exact hull), ``(vertices,
-faces)`` pairs, objects with ``.vertices``/``.faces`` (trimesh), or
-:class:`Polytope`; poses are 4×4 homogeneous rigid transforms (``None`` is
-the identity); quaternions are ``(x, y, z, w)``, scalar last, as scipy.
+faces)`` pairs, objects with ``.vertices``/``.faces`` (trimesh),
+:class:`Polytope`, or model names and mesh file paths (as :func:`load`);
+poses are 4×4 homogeneous rigid transforms (``None`` is the identity) or
+rotations about the origin; a rotation is a
+``scipy.spatial.transform.Rotation``, a 3×3 matrix, or a quaternion
+``(x, y, z, w)``, scalar last, as scipy.
 """
 
 import os
@@ -37,15 +40,33 @@ class _MeshLike(Protocol):
 _Faces = Union[npt.ArrayLike, Sequence[Sequence[int]]]
 """An (M, k) integer array, or a list of index lists (polygons of any size)."""
 
-_ShapeLike = Union["Polytope", npt.ArrayLike, Tuple[npt.ArrayLike, _Faces], _MeshLike]
+_ShapeLike = Union["Polytope", str, os.PathLike[str], npt.ArrayLike, Tuple[npt.ArrayLike, _Faces], _MeshLike]
 """An (N, 3) point array (its exact convex hull), a ``(vertices, faces)`` pair,
-an object with ``.vertices`` and ``.faces`` (a trimesh.Trimesh), or a Polytope."""
+an object with ``.vertices`` and ``.faces`` (a trimesh.Trimesh), a Polytope, or
+a built-in model name or mesh file path (as :func:`load`)."""
 
-_PoseLike = Optional[npt.ArrayLike]
+class _RotationLike(Protocol):
+    """A ``scipy.spatial.transform.Rotation`` (scipy is not imported: any
+    object with ``as_quat()`` returning ``(x, y, z, w)`` and ``as_matrix()``)."""
+
+    def as_quat(self) -> Any: ...
+    def as_matrix(self) -> Any: ...
+
+_Rotation = Union[_RotationLike, npt.ArrayLike]
+"""A ``scipy.spatial.transform.Rotation``, a (4,) quaternion ``(x, y, z, w)``
+(scalar last, as scipy) or a 3×3 rotation matrix."""
+
+_PoseLike = Optional[_Rotation]
 """A 4×4 homogeneous rigid transform (rotation block, translation in the last
-column, last row ``0 0 0 1``), a (4,) quaternion ``(x, y, z, w)`` (scalar
-last, as scipy) for a rotation about the origin, or ``None`` (the identity;
+column, last row ``0 0 0 1``); a rotation about the origin (a
+``scipy.spatial.transform.Rotation``, a (4,) quaternion ``(x, y, z, w)``,
+scalar last as scipy, or a 3×3 rotation matrix); or ``None`` (the identity;
 in ``update`` methods: the body stays)."""
+
+_Rotations = Union[_RotationLike, npt.ArrayLike]
+"""A ``scipy.spatial.transform.Rotation`` (one or a stack), (K, 4) quaternions
+``(x, y, z, w)``, (K, 3, 3) rotation matrices, (K, 4, 4) homogeneous
+transforms without translation, or one (4,) quaternion or 3×3 matrix."""
 
 _Vertices = npt.NDArray[np.float64]
 _Triangles = npt.NDArray[np.int64]
@@ -107,8 +128,8 @@ def minkowski_sum(
 ) -> Tuple[_Vertices, _Triangles]:
     """``(R_a A + t_a) ⊕ (R_b B + t_b)``, exactly, as ``(vertices, faces)``.
 
-    Poses are 4×4 homogeneous rigid transforms (quaternions ``(x, y, z, w)``
-    via :func:`pose`).
+    Poses are 4×4 homogeneous rigid transforms, or rotations about the
+    origin (a scipy ``Rotation``, a 3×3 matrix, a quaternion ``(x, y, z, w)``).
 
     >>> v, f = minkowski_sum(load("cube"), load("gs1"), pose_a=pose([0, 0, 0.38268343, 0.92387953]))
     """
@@ -136,8 +157,8 @@ def minkowski_sum(
 class DynamicSum:
     """``A ⊕ B`` kept up to date while the bodies move (DYMSUM).
 
-    Poses are 4×4 homogeneous rigid transforms; quaternions ``(x, y, z, w)``
-    via :func:`pose`.
+    Poses are 4×4 homogeneous rigid transforms, or rotations about the
+    origin (a scipy ``Rotation``, a 3×3 matrix, a quaternion ``(x, y, z, w)``).
 
     >>> s = DynamicSum(load("ellipse"), load("gs4"))
     >>> report = s.update(pose([0, 0, 0.0087265, 0.9999619]))
@@ -210,20 +231,22 @@ class ContactTracker:
 def cobstacle_slices(
     robot: _ShapeLike,
     obstacle: _ShapeLike,
-    rotations: npt.ArrayLike,
+    rotations: _Rotations,
     polygons: Literal[False] = False,
     parallel: bool = False,
 ) -> list[Tuple[_Vertices, _Triangles]]:
     """C-obstacle slices ``obstacle ⊕ (−R·robot)``, one per rotation.
 
-    ``rotations``: (K, 3, 3) rotation matrices or (K, 4) quaternions in the
-    order ``(x, y, z, w)`` (scalar last, as scipy's ``as_quat()``).
+    ``rotations``: a scipy ``Rotation`` (one or a stack), (K, 3, 3) rotation
+    matrices, (K, 4) quaternions in the order ``(x, y, z, w)`` (scalar last,
+    as scipy's ``as_quat()``), (K, 4, 4) transforms without translation, or
+    one (4,) quaternion or 3×3 matrix.
     """
 @overload
 def cobstacle_slices(
     robot: _ShapeLike,
     obstacle: _ShapeLike,
-    rotations: npt.ArrayLike,
+    rotations: _Rotations,
     polygons: Literal[True],
     parallel: bool = False,
 ) -> list[Tuple[_Vertices, _Polygons]]: ...
@@ -231,13 +254,14 @@ def cobstacle_slices(
 def cobstacle_slices(
     robot: _ShapeLike,
     obstacle: _ShapeLike,
-    rotations: npt.ArrayLike,
+    rotations: _Rotations,
     polygons: bool = False,
     parallel: bool = False,
 ) -> list[Tuple[_Vertices, Union[_Triangles, _Polygons]]]: ...
 
-def pose(quaternion: Optional[Sequence[float]] = None, translation: Optional[Sequence[float]] = None) -> npt.NDArray[np.float64]:
-    """A 4×4 pose from a quaternion ``(x, y, z, w)`` (scalar last, as scipy) and a translation."""
+def pose(quaternion: Optional[_Rotation] = None, translation: Optional[Sequence[float]] = None) -> npt.NDArray[np.float64]:
+    """A 4×4 pose from a rotation (a scipy ``Rotation``, a 3×3 matrix, or a
+    quaternion ``(x, y, z, w)``, scalar last as scipy) and a translation."""
 
 def load(path_or_model_name: Union[str, os.PathLike[str]], strict: bool = False) -> Polytope:
     """A polytope from a mesh file (.off, .obj, .ply, .stl) or a built-in model name."""

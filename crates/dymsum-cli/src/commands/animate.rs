@@ -43,10 +43,11 @@ pub struct AnimateArgs {
     /// Seed of the random axes and hold times.
     #[arg(long, value_name = "S", default_value_t = 0)]
     pub seed: u64,
-    /// Write one CSV row per step to this file.
+    /// Write one CSV row per step to this file (its folder is created if missing).
     #[arg(long, value_name = "FILE")]
     pub csv: Option<PathBuf>,
-    /// Write the merged sum as DIR/step_NNNNNN.off every K-th step and after the last.
+    /// Write the merged sum as DIR/step_NNNNNN.off every K-th step and after the last
+    /// (DIR is created if missing).
     #[arg(long, value_name = "DIR")]
     pub frames_dir: Option<PathBuf>,
     /// Frame interval K (with --frames-dir).
@@ -85,12 +86,12 @@ pub fn frame_path(dir: &Path, step: u64) -> PathBuf {
 /// frame's mesh fails; or, as an internal error, the final dynamic facets
 /// differ from a fresh `walk` sum.
 pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    super::stdin_for_one_operand(&[(&a.p, "P"), (&a.q, "Q")])?;
     let p = load(&a.p, "P", a.strict)?;
     let q = load(&a.q, "Q", a.strict)?;
     let mut csv = open_csv(a.csv.as_deref())?;
     if let Some(dir) = &a.frames_dir {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("cannot create the frames directory {}", dir.display()))?;
+        super::create_output_dir(dir)?;
     }
 
     let mut dynamic = DynamicSum::new(&p.polytope, Pose::IDENTITY, &q.polytope, Pose::IDENTITY)
@@ -128,6 +129,7 @@ fn open_csv(path: Option<&Path>) -> anyhow::Result<Option<AtomicFile>> {
     let Some(path) = path else {
         return Ok(None);
     };
+    super::create_parent_dir(path)?;
     let mut w = AtomicFile::create(path).context("the CSV file")?;
     writeln!(w, "{CSV_HEADER}")?;
     Ok(Some(w))

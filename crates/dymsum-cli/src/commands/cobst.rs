@@ -1,11 +1,13 @@
-//! `dymsum cobst ROBOT OBSTACLE (--axis X,Y,Z --slices N | --orientations FILE) --out DIR`:
+//! `dymsum cobst ROBOT OBSTACLE (--axis X,Y,Z --slices N | --orientations-wxyz FILE) --out DIR`:
 //! configuration-space obstacle slices of a robot translating among an
 //! obstacle, one per robot orientation `R`: `O ⊕ (−R·A)`.
 //!
 //! Slices are computed by DYMSUM from slice to slice, the orientation list
 //! split into contiguous chunks over the cores (identical to the sequential
 //! result). Writes `DIR/slice_NNNNN.off` and `DIR/index.json`, an array of
-//! `{"slice": k, "orientation": [w,x,y,z], "faces": n, "file": "slice_NNNNN.off"}`.
+//! `{"slice": k, "orientation_wxyz": [w,x,y,z], "faces": n, "file": "slice_NNNNN.off"}`
+//! (every quaternion flag and field names its order: scalar first here;
+//! `--orientations` is a hidden alias of `--orientations-wxyz`).
 //! Every file is written atomically (temporary name, then rename).
 //!
 //! A non-empty output directory is refused unless `--force` is given, so
@@ -54,7 +56,8 @@ pub struct CobstArgs {
     pub slices: Option<u32>,
     /// A file of orientations, one quaternion `w,x,y,z` (or whitespace
     /// separated) per line; `#` starts a comment.
-    #[arg(long, value_name = "FILE", conflicts_with_all = ["axis", "slices"])]
+    #[arg(long = "orientations-wxyz", alias = "orientations", value_name = "FILE",
+          conflicts_with_all = ["axis", "slices"])]
     pub orientations: Option<PathBuf>,
     /// Output directory (created if missing). A non-empty directory is
     /// refused unless --force is given.
@@ -146,8 +149,7 @@ fn is_own_output(name: &str) -> bool {
 /// `force` cleared of an earlier run's slices and index (only those).
 fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
     if !dir.exists() {
-        return std::fs::create_dir_all(dir)
-            .with_context(|| format!("creating the output directory {}", dir.display()));
+        return super::create_output_dir(dir);
     }
     if !dir.is_dir() {
         bail!("--out {}: exists and is not a directory", dir.display());
@@ -184,7 +186,7 @@ fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
 #[derive(Serialize)]
 struct IndexEntry {
     slice: usize,
-    orientation: [f64; 4],
+    orientation_wxyz: [f64; 4],
     faces: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     file: Option<String>,
@@ -197,11 +199,12 @@ struct IndexEntry {
 /// # Errors
 /// ROBOT or OBSTACLE cannot be loaded ([`super::query::load_body`]); the
 /// orientations are missing or invalid ([`read_orientations`], a zero
-/// axis, neither `--orientations` nor `--axis` with `--slices`); `--out`
+/// axis, neither `--orientations-wxyz` nor `--axis` with `--slices`); `--out`
 /// is not a directory, is not empty (without `--force`), or cannot be
 /// created, listed or cleared of earlier slices; a slice fails ([`dymsum::query::QueryError`]) or
 /// cannot be written; or `out` cannot be written.
 pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
     let robot = load_body(&a.robot, "ROBOT", a.strict)?;
     let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
     let orientations = chosen_orientations(a)?;
@@ -232,14 +235,14 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The robot orientations asked for: from `--orientations FILE`, or
+/// The robot orientations asked for: from `--orientations-wxyz FILE`, or
 /// `--slices N` evenly spaced turns about `--axis`.
 fn chosen_orientations(a: &CobstArgs) -> anyhow::Result<Vec<Rotation>> {
     Ok(match (&a.orientations, a.axis, a.slices) {
         (Some(file), _, _) => read_orientations(file)?,
         (None, Some(axis), Some(n)) => orientations_about_axis(axis, n as usize)
             .ok_or_else(|| anyhow!("--axis must be a non-zero vector"))?,
-        _ => bail!("give --axis X,Y,Z with --slices N, or --orientations FILE"),
+        _ => bail!("give --axis X,Y,Z with --slices N, or --orientations-wxyz FILE"),
     })
 }
 
@@ -320,7 +323,7 @@ fn write_index(
         .enumerate()
         .map(|(k, r)| IndexEntry {
             slice: k,
-            orientation: r.wxyz(),
+            orientation_wxyz: r.wxyz().map(|x| x + 0.0),
             faces: slices.faces[k],
             file: (!union).then(|| slices.files[k][0].clone()),
             files: union.then(|| slices.files[k].clone()),

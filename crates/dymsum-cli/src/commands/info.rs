@@ -142,7 +142,11 @@ fn write_convexity(out: &mut dyn Write, c: &ConvexityReport) -> std::io::Result<
     row(
         out,
         "max deviation:",
-        format!("{:.3e} (tolerance {:.3e})", c.max_deviation, c.tolerance),
+        if c.max_deviation == 0.0 {
+            format!("0 (tolerance {:.3e})", c.tolerance)
+        } else {
+            format!("{:.3e} (tolerance {:.3e})", c.max_deviation, c.tolerance)
+        },
     )?;
     row(out, "dropped vertices:", c.dropped_vertices.to_string())?;
     row(

@@ -14,8 +14,9 @@ pub mod render;
 pub mod sum;
 
 use std::io::Write;
+use std::path::Path;
 
-use anyhow::anyhow;
+use anyhow::{anyhow, Context};
 use dymsum::polytope::MeshPolicy;
 use dymsum_io::{load_polytope, Loaded};
 
@@ -81,6 +82,25 @@ fn log_loaded(operand: &str, l: &Loaded) {
     }
 }
 
+/// The error for a second operand that reads standard input.
+fn stdin_taken(operand: &str) -> anyhow::Error {
+    anyhow!("{operand}: standard input (`-`) can be read by one operand only")
+}
+
+/// Refuses `-` (standard input) for more than one of `operands` (spec,
+/// name), before any of them is read: `dymsum sum - -` says so whatever
+/// standard input holds, even nothing.
+///
+/// # Errors
+/// The second operand given as `-`, named.
+pub fn stdin_for_one_operand(operands: &[(&str, &str)]) -> anyhow::Result<()> {
+    let mut readers = operands.iter().filter(|(spec, _)| *spec == STDIO);
+    match (readers.next(), readers.next()) {
+        (Some(_), Some((_, second))) => Err(stdin_taken(second)),
+        _ => Ok(()),
+    }
+}
+
 /// Reads all of standard input, refusing a second reader in the same run
 /// (the first took every byte).
 fn read_stdin_once(operand: &str) -> anyhow::Result<Vec<u8>> {
@@ -88,9 +108,7 @@ fn read_stdin_once(operand: &str) -> anyhow::Result<Vec<u8>> {
     use std::sync::atomic::{AtomicBool, Ordering};
     static TAKEN: AtomicBool = AtomicBool::new(false);
     if TAKEN.swap(true, Ordering::SeqCst) {
-        return Err(anyhow!(
-            "{operand}: standard input (`-`) can be read by one operand only"
-        ));
+        return Err(stdin_taken(operand));
     }
     let mut bytes = Vec::new();
     std::io::stdin()
@@ -100,15 +118,44 @@ fn read_stdin_once(operand: &str) -> anyhow::Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Writes a mesh to `path`, atomically, in the format its extension names,
-/// or as OFF to `out` when `path` is `-`.
+/// The one rule for every output of the command line (`sum -o`, `render
+/// -o`, `models --write`, `animate --csv` and `--frames-dir`, `cobst
+/// --out`, `bench --out`): a missing output folder is created, with its
+/// missing parents (as `mkdir -p`). An existing folder is used as it is.
 ///
 /// # Errors
-/// [`dymsum_io::formats::FormatError`] from encoding or writing the file
-/// (unknown extension, a mesh that cannot be encoded, an I/O failure; an
-/// earlier file at `path` is kept), or the I/O error of writing to `out`.
+/// The folder cannot be created (a file is in the way, permissions),
+/// naming the folder.
+pub fn create_output_dir(dir: &Path) -> anyhow::Result<()> {
+    if dir.as_os_str().is_empty() || dir.is_dir() {
+        return Ok(());
+    }
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("creating the output folder {}", dir.display()))
+}
+
+/// [`create_output_dir`] for the folder of an output file.
+///
+/// # Errors
+/// As [`create_output_dir`].
+pub fn create_parent_dir(file: &Path) -> anyhow::Result<()> {
+    match file.parent() {
+        Some(dir) => create_output_dir(dir),
+        None => Ok(()),
+    }
+}
+
+/// Writes a mesh to `path`, atomically, in the format its extension names
+/// (its folder created if missing, [`create_output_dir`]), or as OFF to
+/// `out` when `path` is `-`.
+///
+/// # Errors
+/// The folder cannot be created; [`dymsum_io::formats::FormatError`] from
+/// encoding or writing the file (unknown extension, a mesh that cannot be
+/// encoded, an I/O failure; an earlier file at `path` is kept), or the I/O
+/// error of writing to `out`.
 pub fn write_mesh_or_stdout(
-    path: &std::path::Path,
+    path: &Path,
     mesh: &dymsum::PolygonMesh,
     out: &mut dyn Write,
 ) -> anyhow::Result<()> {
@@ -117,6 +164,7 @@ pub fn write_mesh_or_stdout(
         out.write_all(&bytes)?;
         return Ok(());
     }
+    create_parent_dir(path)?;
     dymsum_io::formats::write_mesh(path, mesh)?;
     Ok(())
 }

@@ -1,9 +1,12 @@
-//! `dymsum query ROBOT OBSTACLE --pose X,Y,Z,W,QX,QY,QZ [--pose ...] [--json]`:
+//! `dymsum query ROBOT OBSTACLE --pose-xyz-wxyz X,Y,Z,W,QX,QY,QZ [...] [--json]`:
 //! for each robot pose, whether the robot collides with the obstacle, with
 //! the exact penetration depth or the distance.
 //!
 //! The robot's coordinates `p` become `R p + t` (the flag lists `t` first,
-//! then the quaternion `R`); the obstacle stays put. Consecutive poses are
+//! then the quaternion `R` scalar first, as its name says; `--pose` is a
+//! hidden alias); the obstacle stays put. Every reported direction points
+//! from the robot towards the obstacle, colliding or apart: the depth or
+//! the distance says which side. Consecutive poses are
 //! answered by one contact tracker (DYMSUM updates between poses), with the
 //! same answers as from-scratch queries.
 //!
@@ -24,7 +27,7 @@ use dymsum::{DVec3, Polytope, Pose, Rotation};
 use serde::Serialize;
 
 use super::{load, policy, short_name};
-use crate::stats::{fixed, short};
+use crate::stats::{decimals, fixed, short};
 
 /// Arguments of `dymsum query`.
 #[derive(Debug, Args)]
@@ -36,17 +39,19 @@ pub struct QueryArgs {
     /// The obstacle (fixed at the origin): as ROBOT.
     #[arg(value_name = "OBSTACLE")]
     pub obstacle: String,
-    /// A robot pose: translation X,Y,Z then unit quaternion W,QX,QY,QZ
-    /// (renormalised); p becomes R p + t. Repeat for several poses.
-    #[arg(long = "pose", value_name = "X,Y,Z,W,QX,QY,QZ", required = true,
-          value_parser = parse_pose, allow_hyphen_values = true)]
+    /// A robot pose: translation X,Y,Z, then the unit quaternion W,QX,QY,QZ
+    /// (scalar first; renormalised); p becomes R p + t. Repeat for several
+    /// poses.
+    #[arg(long = "pose-xyz-wxyz", alias = "pose", value_name = "X,Y,Z,W,QX,QY,QZ",
+          required = true, value_parser = parse_pose, allow_hyphen_values = true)]
     pub poses: Vec<PoseArg>,
-    /// One JSON object per pose and line: `{"pose":[..7],"collides":b,
-    /// "depth":d,"distance":s,"direction":[x,y,z],"point_on_robot":[x,y,z],
-    /// "point_on_obstacle":[x,y,z]}`. `direction` is the unit direction to move
-    /// the robot to separate when colliding, and from the robot towards the
-    /// obstacle when apart; the points are the deepest points when colliding
-    /// and the closest points when apart (in world coordinates).
+    /// One JSON object per pose and line: `{"pose_xyz_wxyz":[..7],
+    /// "collides":b,"depth":d,"distance":s,"direction":[x,y,z],
+    /// "point_on_robot":[x,y,z],"point_on_obstacle":[x,y,z]}`. `direction`
+    /// is the unit vector from the robot towards the obstacle, colliding or
+    /// apart (colliding: move the robot by `-depth * direction` to
+    /// separate); the points are the deepest points when colliding and the
+    /// closest points when apart (in world coordinates).
     #[arg(long)]
     pub json: bool,
     /// Refuse meshes that are convex only within tolerance.
@@ -63,7 +68,8 @@ pub struct PoseArg {
     pub pose: Pose,
 }
 
-/// Parses `X,Y,Z,W,QX,QY,QZ` (finite numbers, non-zero quaternion).
+/// Parses `X,Y,Z,W,QX,QY,QZ` (finite numbers, non-zero quaternion; `-0`
+/// is kept as `0`).
 ///
 /// # Errors
 /// A message when there are not exactly 7 comma-separated values, a value
@@ -79,7 +85,7 @@ pub fn parse_pose(s: &str) -> Result<PoseArg, String> {
     let mut v = [0.0; 7];
     for (slot, p) in v.iter_mut().zip(&parts) {
         *slot = match p.parse::<f64>() {
-            Ok(x) if x.is_finite() => x,
+            Ok(x) if x.is_finite() => x + 0.0,
             Ok(_) => return Err(format!("`{p}` is not a finite number")),
             Err(_) => return Err(format!("`{p}` is not a number")),
         };
@@ -143,10 +149,11 @@ pub fn load_body(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Vec<
     Ok(vec![load(spec, operand, strict)?.polytope])
 }
 
-/// One line of `--json` output, in this key order.
+/// One line of `--json` output, in this key order. Every number goes
+/// through [`no_negative_zero`].
 #[derive(Serialize)]
 struct JsonLine {
-    pose: [f64; 7],
+    pose_xyz_wxyz: [f64; 7],
     collides: bool,
     depth: Option<f64>,
     distance: f64,
@@ -161,10 +168,22 @@ struct Answer {
     /// `None`: depth of a colliding non-convex union (not supported).
     depth: Option<f64>,
     distance: f64,
+    /// Unit vector from the robot towards the obstacle (the contact normal
+    /// when colliding, the separation direction when apart).
     direction: Option<DVec3>,
     /// Witness points (robot, obstacle): the deepest points when colliding,
     /// the closest points when apart; `None` with `depth`.
     witnesses: Option<(DVec3, DVec3)>,
+}
+
+/// The unit direction from the robot (A) towards the obstacle (B): the
+/// contact normal when they overlap, the separation direction when apart
+/// (both point from A towards B in the library).
+fn robot_to_obstacle(p: &Proximity) -> DVec3 {
+    match p {
+        Proximity::Penetrating(c) => c.normal,
+        Proximity::Separated(s) => s.direction,
+    }
 }
 
 fn from_proximity(p: &Proximity) -> Answer {
@@ -176,7 +195,7 @@ fn from_proximity(p: &Proximity) -> Answer {
         collides: p.intersects(),
         depth: Some(p.depth()),
         distance: p.distance(),
-        direction: Some(p.a_direction()),
+        direction: Some(robot_to_obstacle(p)),
         witnesses: Some(witnesses),
     }
 }
@@ -188,6 +207,7 @@ fn from_proximity(p: &Proximity) -> Answer {
 /// pose ([`dymsum::query::QueryError`], naming the pose: coordinates beyond
 /// `f64`, or an internal error); or `out` cannot be written.
 pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
     let robot = load_body(&a.robot, "ROBOT", a.strict)?;
     let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
     let answers = if robot.len() == 1 && obstacle.len() == 1 {
@@ -262,7 +282,7 @@ fn from_union_proximity(q: &UnionProximity, single: bool) -> Answer {
                 collides: true,
                 depth: Some(c.depth),
                 distance: 0.0,
-                direction: Some(-c.normal),
+                direction: Some(c.normal),
                 witnesses: Some((c.point_on_a, c.point_on_b)),
             }
         }
@@ -283,16 +303,27 @@ fn from_union_proximity(q: &UnionProximity, single: bool) -> Answer {
     }
 }
 
+/// `x`, with `-0.0` as `0.0` (the sign of a zero component is noise, and
+/// `-0.0` in the output reads as a different answer).
+fn no_negative_zero(x: f64) -> f64 {
+    x + 0.0
+}
+
+/// A vector for the JSON output, with no negative zero.
+fn json_vec(v: DVec3) -> [f64; 3] {
+    v.to_array().map(no_negative_zero)
+}
+
 /// One answer as a JSON line.
 fn write_json_answer(out: &mut dyn Write, p: &PoseArg, ans: &Answer) -> anyhow::Result<()> {
     let line = JsonLine {
-        pose: p.values,
+        pose_xyz_wxyz: p.values.map(no_negative_zero),
         collides: ans.collides,
-        depth: ans.depth,
-        distance: ans.distance,
-        direction: ans.direction.map(|d| d.to_array()),
-        point_on_robot: ans.witnesses.map(|w| w.0.to_array()),
-        point_on_obstacle: ans.witnesses.map(|w| w.1.to_array()),
+        depth: ans.depth.map(no_negative_zero),
+        distance: no_negative_zero(ans.distance),
+        direction: ans.direction.map(json_vec),
+        point_on_robot: ans.witnesses.map(|w| json_vec(w.0)),
+        point_on_obstacle: ans.witnesses.map(|w| json_vec(w.1)),
     };
     writeln!(out, "{}", serde_json::to_string(&line)?)?;
     Ok(())
@@ -306,13 +337,18 @@ fn write_text_answer(out: &mut dyn Write, p: &PoseArg, ans: &Answer) -> std::io:
         v[0], v[1], v[2], v[3], v[4], v[5], v[6]
     );
     let dir = |d: Option<DVec3>| match d {
-        Some(d) => format!("({:.6}, {:.6}, {:.6})", d.x, d.y, d.z),
+        Some(d) => format!(
+            "({}, {}, {})",
+            decimals(d.x, 6),
+            decimals(d.y, 6),
+            decimals(d.z, 6)
+        ),
         None => "n/a".to_string(),
     };
     if !ans.collides {
         return writeln!(
             out,
-            "{pose}: apart, distance {}, obstacle towards {}",
+            "{pose}: apart, distance {}, direction robot to obstacle {}",
             fixed(ans.distance, 9),
             dir(ans.direction)
         );
@@ -320,7 +356,7 @@ fn write_text_answer(out: &mut dyn Write, p: &PoseArg, ans: &Answer) -> std::io:
     match ans.depth {
         Some(depth) => writeln!(
             out,
-            "{pose}: collides, depth {}, separate by moving the robot along {}",
+            "{pose}: collides, depth {}, direction robot to obstacle {}",
             fixed(depth, 9),
             dir(ans.direction)
         ),

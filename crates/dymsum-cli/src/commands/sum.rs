@@ -25,13 +25,15 @@ pub struct SumArgs {
     pub q: String,
     /// Output mesh; the format follows the extension (.off, .obj, .ply, .stl);
     /// `-` writes OFF to standard output (the summary line then goes to stderr).
+    /// A missing folder is created.
     #[arg(short, long, value_name = "OUT", value_parser = parse_output_path)]
     pub output: PathBuf,
     /// Static algorithm.
     #[arg(long, value_enum, default_value_t = MethodArg::Walk)]
     pub method: MethodArg,
     /// Rotate P about the origin by this unit quaternion, scalar first (W,X,Y,Z; renormalised), before summing.
-    #[arg(long, value_name = "W,X,Y,Z", value_parser = parse_quaternion, allow_hyphen_values = true)]
+    #[arg(long = "rotate-p-wxyz", alias = "rotate-p", value_name = "W,X,Y,Z",
+          value_parser = parse_quaternion, allow_hyphen_values = true)]
     pub rotate_p: Option<Rotation>,
     /// Then translate P by this vector.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
@@ -49,6 +51,7 @@ pub struct SumArgs {
 /// mismatch); its mesh cannot be produced ([`dymsum::sum::MeshError`]);
 /// or the output cannot be written.
 pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
+    super::stdin_for_one_operand(&[(&a.p, "P"), (&a.q, "Q")])?;
     let p = load(&a.p, "P", a.strict)?;
     let q = load(&a.q, "Q", a.strict)?;
     let pose_p = Pose::new(

@@ -86,7 +86,8 @@ pub struct ConvexityReport {
     /// `true` when the mesh was convex only within tolerance and the polytope
     /// is the exact hull of its vertices instead.
     pub replaced_by_hull: bool,
-    /// Largest distance of a mesh vertex or face from the hull boundary.
+    /// Largest distance of a mesh vertex or face from the hull boundary
+    /// (exactly `0.0` when [`exactly_convex`](Self::exactly_convex)).
     pub max_deviation: f64,
     /// The absolute tolerance that was in force.
     pub tolerance: f64,

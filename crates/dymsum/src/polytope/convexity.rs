@@ -443,7 +443,9 @@ pub(crate) fn compare_with_hull(
     Ok(HullComparison {
         exact,
         first_inexact,
-        max_deviation: frame.length(max_dev),
+        // Exactly convex (decided by exact predicates) means no deviation at
+        // all: the float distances measured above are rounding noise then.
+        max_deviation: if exact { 0.0 } else { frame.length(max_dev) },
         inward: signed < 0.0,
     })
 }

@@ -23,7 +23,6 @@ pub mod table1;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use clap::{Args, Subcommand};
 use indicatif::ProgressBar;
 
@@ -92,10 +91,10 @@ pub(crate) fn write_repeats_line(out: &mut dyn Write, repeats: usize) -> std::io
     )
 }
 
-/// Creates the output directory and returns the path of `name` in it.
+/// Creates the output directory ([`crate::commands::create_output_dir`])
+/// and returns the path of `name` in it.
 pub(crate) fn out_file(dir: &Path, name: &str) -> anyhow::Result<PathBuf> {
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("creating the output directory {}", dir.display()))?;
+    crate::commands::create_output_dir(dir)?;
     Ok(dir.join(name))
 }
 

@@ -66,7 +66,8 @@ pub struct RotationArgs {
     /// Seed of the motion.
     #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
-    /// Output directory for rotation.csv, rotation.svg and rotation.png.
+    /// Output directory for rotation.csv, rotation.svg and rotation.png
+    /// (created if missing).
     #[arg(long, value_name = "DIR", default_value = ".")]
     pub out: PathBuf,
 }

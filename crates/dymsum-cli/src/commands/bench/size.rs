@@ -81,7 +81,7 @@ pub struct SizeArgs {
     /// show no brute figure.
     #[arg(long, value_name = "F", default_value_t = 2000)]
     pub brute_max_faces: usize,
-    /// Output directory for size.csv and the plots.
+    /// Output directory for size.csv and the plots (created if missing).
     #[arg(long, value_name = "DIR", default_value = ".")]
     pub out: PathBuf,
 }

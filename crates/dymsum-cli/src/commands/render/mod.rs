@@ -3,9 +3,9 @@
 //!
 //! # What is drawn
 //!
-//! * **The sum.** `P` at the pose `--rotate-p`/`--translate-p`, `Q` at the
+//! * **The sum.** `P` at the pose `--rotate-p-wxyz`/`--translate-p`, `Q` at the
 //!   identity, summed by DYMSUM ([`DynamicSum::new`]). With
-//!   `--highlight-after H`, P is then turned further by `H`
+//!   `--highlight-after-wxyz H`, P is then turned further by `H`
 //!   ([`DynamicSum::rotate_p_by`]) and the picture shows the sum **after**
 //!   the turn. The merged faces of the sum ([`DynamicSum::try_to_mesh`]) are
 //!   drawn in an orthographic projection from the direction `--view
@@ -13,7 +13,7 @@
 //!   fixed relative to the viewer, each front face outlined (its visible
 //!   edges). Back faces are culled; the front faces of a convex polytope
 //!   never overlap, so no depth sorting is needed.
-//! * **The highlighted facets** (only with `--highlight-after`). The
+//! * **The highlighted facets** (only with `--highlight-after-wxyz`). The
 //!   update's [`UpdateReport::added`](dymsum::UpdateReport::added) lists the *facets* (fv, vf and ee
 //!   pieces of the overlay, finer than the merged faces) of the new sum that
 //!   were not in the sum before the turn. Each such facet that faces the
@@ -76,18 +76,21 @@ pub struct RenderArgs {
     /// Second operand Q: a mesh file or a built-in model name.
     #[arg(value_name = "Q")]
     pub q: String,
-    /// The picture; the format follows the extension (.svg or .png).
+    /// The picture; the format follows the extension (.svg or .png). A
+    /// missing folder is created.
     #[arg(short, long, value_name = "OUT", value_parser = parse_picture_path)]
     pub output: PathBuf,
     /// Rotate P about the origin by this unit quaternion, scalar first (W,X,Y,Z; renormalised).
-    #[arg(long, value_name = "W,X,Y,Z", value_parser = parse_quaternion, allow_hyphen_values = true)]
+    #[arg(long = "rotate-p-wxyz", alias = "rotate-p", value_name = "W,X,Y,Z",
+          value_parser = parse_quaternion, allow_hyphen_values = true)]
     pub rotate_p: Option<Rotation>,
     /// Then translate P by this vector.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
     pub translate_p: Option<DVec3>,
     /// Turn P further by this unit quaternion (W,X,Y,Z, scalar first) and draw the sum after the turn, the
     /// facets the turn added (those facing the viewer) in red.
-    #[arg(long, value_name = "W,X,Y,Z", value_parser = parse_quaternion, allow_hyphen_values = true)]
+    #[arg(long = "highlight-after-wxyz", alias = "highlight-after", value_name = "W,X,Y,Z",
+          value_parser = parse_quaternion, allow_hyphen_values = true)]
     pub highlight_after: Option<Rotation>,
     /// Width and height of the picture in pixels (16 to 8192).
     #[arg(long, value_name = "PX", default_value_t = 800,
@@ -177,6 +180,7 @@ pub fn parse_view(s: &str) -> Result<View, String> {
 pub fn run(a: &RenderArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let format = PictureFormat::from_path(&a.output)
         .with_context(|| format!("{}: not a .svg or .png file", a.output.display()))?;
+    super::stdin_for_one_operand(&[(&a.p, "P"), (&a.q, "Q")])?;
     let p = load(&a.p, "P", a.strict)?;
     let q = load(&a.q, "Q", a.strict)?;
     let pose_p = Pose::new(
@@ -205,6 +209,7 @@ pub fn run(a: &RenderArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         PictureFormat::Svg => svg::to_svg(&scene, &name).into_bytes(),
         PictureFormat::Png => raster::to_png(&scene)?,
     };
+    super::create_parent_dir(&a.output)?;
     dymsum_io::atomic::write_atomic_bytes(&a.output, &bytes).context("writing the picture")?;
     write_summary(
         out,
