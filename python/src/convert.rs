@@ -597,6 +597,54 @@ pub(crate) fn rotation(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Rotation>
     Ok(one_transform(&probe, form, what, ROTATION_FORMS)?.rotation)
 }
 
+/// Poses for a batch: `None` (the identity), one pose in any form [`pose`]
+/// takes (a (4, 4) array is one homogeneous transform), or a stack: a
+/// (K, 4, 4) array of homogeneous transforms, a (K, 4) array of quaternions
+/// `(x, y, z, w)`, a (K, 3, 3) array of rotation matrices, or a scipy
+/// `Rotation` stack. One pose stands for every pose of the batch.
+pub(crate) fn pose_stack(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Vec<Pose>> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else {
+        return Ok(vec![Pose::IDENTITY]);
+    };
+    let np = numpy(obj.py())?;
+    let scipy_like = !obj.is_instance(&np.getattr("ndarray")?)?
+        && obj.hasattr("as_quat")?
+        && obj.hasattr("as_matrix")?;
+    let probe = rotation_probe(obj, what, POSE_STACK_FORMS)?;
+    let shape = shape_of(&probe)?;
+    // A (4, 4) array is one homogeneous transform here, not 4 quaternions
+    // (a scipy Rotation stack gives its quaternions).
+    let form = match shape.as_slice() {
+        [4] | [_, 4] if scipy_like => Form::Quaternion,
+        [4, 4] | [_, 4, 4] => Form::Homogeneous,
+        [4] | [_, 4] => Form::Quaternion,
+        [3, 3] | [_, 3, 3] => Form::Matrix,
+        _ => {
+            return Err(err_for(
+                what,
+                format!(
+                    "expected {POSE_STACK_FORMS}, got shape {}",
+                    shape_text(&shape)
+                ),
+            ))
+        }
+    };
+    let tail = form.tail();
+    let rank = if shape.len() == tail.len() {
+        tail.len()
+    } else {
+        tail.len() + 1
+    };
+    let arr = float_array(&probe, rank, tail, what, POSE_STACK_FORMS)?;
+    let stack = rank > tail.len();
+    transforms(&arr, form, what, |k| item_name(form, stack.then_some(k)))
+}
+
+/// What [`pose_stack`] takes, for error messages.
+const POSE_STACK_FORMS: &str = "None, a (K, 4, 4) array of homogeneous rigid transforms, a (K, 4) \
+     array of quaternions (x, y, z, w), a (K, 3, 3) array of rotation matrices, a scipy Rotation, \
+     or one pose";
+
 /// [`pose`], with `None` meaning `current` (for updates: the body stays).
 pub(crate) fn pose_or(obj: Option<&Bound<'_, PyAny>>, what: &str, current: Pose) -> PyResult<Pose> {
     match obj {
@@ -695,6 +743,15 @@ fn matrix<'py, T: numpy::Element>(
     Array2::from_shape_vec(shape, flat)
         .map(|a| a.into_pyarray(py))
         .map_err(|e| value_error(format!("internal error: output shape {shape:?}: {e}")))
+}
+
+/// A (rows, 3) `float64` array from `3 · rows` values, row by row.
+pub(crate) fn rows_array(
+    py: Python<'_>,
+    flat: Vec<f64>,
+    rows: usize,
+) -> PyResult<Bound<'_, PyArray2<f64>>> {
+    matrix(py, flat, (rows, 3))
 }
 
 /// A 4×4 row-major `float64` array of a pose.

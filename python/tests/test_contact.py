@@ -148,3 +148,73 @@ def test_cobstacle_slices_match_qhull(form, rng):
 
 def test_cobstacle_slices_no_rotations():
     assert dymsum.cobstacle_slices(CUBE, CUBE, np.zeros((0, 4))) == []
+
+
+def _batch(rng, k, spread):
+    """K poses of A (random turns near the origin) and of B (moved)."""
+    rots = Rotation.random(k, random_state=rng.integers(1 << 30))
+    poses_a = np.stack([dymsum.pose(r, rng.normal(size=3) * 0.1) for r in rots])
+    poses_b = np.stack(
+        [dymsum.pose(Rotation.random(random_state=rng.integers(1 << 30)), rng.normal(size=3) * spread) for _ in range(k)]
+    )
+    return poses_a, poses_b
+
+
+def test_contact_many_is_contact_row_by_row():
+    """Every row of contact_many equals contact at that pose, bit for bit
+    (boxes, a round hull, apart and overlapping), and collides_many agrees."""
+    rng = np.random.default_rng(18)
+    a = dymsum.Polytope(sphere_points(40, np.random.default_rng(5)))
+    b = dymsum.load("box:1,2,3")
+    poses_a, poses_b = _batch(rng, 300, 1.2)
+    many = dymsum.contact_many(a, b, poses_a, poses_b)
+    assert len(many) == 300 and many.normal.shape == (300, 3)
+    yes = dymsum.collides_many(a, b, poses_a, poses_b)
+    assert yes.dtype == np.bool_ and yes.tolist() == many.collides.tolist()
+    assert 30 < many.collides.sum() < 270
+    for k in range(300):
+        c = dymsum.contact(a, b, poses_a[k], poses_b[k])
+        assert (c.collides, c.depth, c.distance) == (many.collides[k], many.depth[k], many.distance[k])
+        assert c.normal.tolist() == many.normal[k].tolist()
+        assert c.point_a.tolist() == many.point_a[k].tolist()
+        assert c.point_b.tolist() == many.point_b[k].tolist()
+
+
+def test_contact_many_broadcasts_one_pose_and_checks_lengths():
+    cube = CUBE - 0.5
+    xs = np.linspace(0.0, 2.0, 9)
+    poses_b = np.stack([dymsum.pose(translation=[x, 0, 0]) for x in xs])
+    many = dymsum.contact_many(cube, cube, None, poses_b)
+    assert many.depth.tolist() == [max(0.0, 1.0 - x) for x in xs]
+    assert many.distance.tolist() == [max(0.0, x - 1.0) for x in xs]
+    # One pose of A for all, given as a quaternion; B as a scipy stack.
+    turned = dymsum.contact_many(cube, cube, [0, 0, 0, 1], Rotation.from_rotvec(np.zeros((4, 3))))
+    assert len(turned) == 4 and turned.collides.all()
+    with pytest.raises(ValueError, match="same number"):
+        dymsum.contact_many(cube, cube, poses_b[:3], poses_b[:5])
+    with pytest.raises(ValueError, match="poses_b"):
+        dymsum.contact_many(cube, cube, None, np.zeros((3, 2, 2)))
+
+
+def test_tracker_strategies_give_the_static_answers():
+    """Both tracker strategies answer exactly what contact answers, frame
+    by frame, and the certified one needs no exhaustive fallback here."""
+    a = dymsum.load("gs2")
+    b = dymsum.load("cylinder")
+    for strategy in ("certified", "sum"):
+        t = dymsum.ContactTracker(a, b, strategy=strategy)
+        assert t.strategy == strategy
+        for k in range(60):
+            turn = Rotation.from_rotvec([0.0, 0.0, 0.02 * k])
+            pa = dymsum.pose(turn, [2.5 - 0.06 * k, 0.1, 0.0])
+            got = t.update(pa, None)
+            want = dymsum.contact(a, b, pa, None)
+            assert (got.collides, got.depth, got.distance) == (want.collides, want.depth, want.distance)
+            assert got.normal.tolist() == want.normal.tolist()
+        if strategy == "sum":
+            assert t.last_update["facets"] > 0
+        else:
+            assert t.last_update["facets"] == 0
+            assert t.stats["queries"] >= 61 and t.stats["exhaustive_answers"] == 0
+    with pytest.raises(ValueError, match="strategy"):
+        dymsum.ContactTracker(a, b, strategy="fast")

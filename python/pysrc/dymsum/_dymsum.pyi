@@ -21,8 +21,11 @@ __all__ = [
     "DynamicSum",
     "Contact",
     "ContactTracker",
+    "Contacts",
     "minkowski_sum",
+    "collides_many",
     "contact",
+    "contact_many",
     "cobstacle_slices",
     "pose",
     "load",
@@ -217,15 +220,60 @@ def contact(a: _ShapeLike, b: _ShapeLike, pose_a: _PoseLike = None, pose_b: _Pos
 
 @final
 class ContactTracker:
-    """Contact of A and B over a motion: one dynamic sum ``A ⊕ (−B)`` repaired per update."""
+    """Contact of A and B over a motion, with the answers of ``contact`` at every frame.
 
-    def __new__(cls, a: _ShapeLike, b: _ShapeLike, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> ContactTracker: ...
+    ``strategy="certified"`` (default): certified support-function queries
+    warm-started from the last frame; ``"sum"``: the dynamic sum repaired by
+    DYMSUM, every facet evaluated.
+    """
+
+    def __new__(
+        cls,
+        a: _ShapeLike,
+        b: _ShapeLike,
+        pose_a: _PoseLike = None,
+        pose_b: _PoseLike = None,
+        strategy: Literal["certified", "sum"] = "certified",
+    ) -> ContactTracker: ...
     def update(self, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> Contact:
         """Moves A and B to these 4×4 poses (``None`` keeps that body where it is) and answers."""
     @property
     def last(self) -> Contact: ...
     @property
     def last_update(self) -> dict[str, Any]: ...
+    @property
+    def strategy(self) -> str: ...
+    @property
+    def stats(self) -> dict[str, int]:
+        """queries, exhaustive_decisions, exhaustive_answers."""
+
+@final
+class Contacts:
+    """The answers of ``contact_many``: one row per pose."""
+
+    @property
+    def collides(self) -> npt.NDArray[np.bool_]: ...
+    @property
+    def depth(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def distance(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def normal(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def point_a(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def point_b(self) -> npt.NDArray[np.float64]: ...
+    def __len__(self) -> int: ...
+
+_PosesLike = Union[None, npt.ArrayLike, _RotationLike]
+
+def contact_many(a: _ShapeLike, b: _ShapeLike, poses_a: _PosesLike = None, poses_b: _PosesLike = None) -> Contacts:
+    """``contact`` at K poses ((K, 4, 4) arrays, or one pose for all), in parallel."""
+
+def collides_many(
+    a: _ShapeLike, b: _ShapeLike, poses_a: _PosesLike = None, poses_b: _PosesLike = None
+) -> npt.NDArray[np.bool_]:
+    """Overlap or touch at K poses, as a (K,) bool array (GJK with exact certificates)."""
 
 @overload
 def cobstacle_slices(

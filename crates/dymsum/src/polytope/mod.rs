@@ -137,7 +137,14 @@ struct PolytopeData {
     /// (exact, see [`exact::frame_exponent`]), so it is bit-identical for
     /// the same shape at any scale `2^k`.
     frame: i32,
+    /// What the proximity queries need of this body (its reflection,
+    /// bounds), computed on its first query and shared by every handle.
+    query_prep: QueryPrepCell,
 }
+
+/// The lazily computed [`crate::query::BodyPrep`] of a polytope.
+type QueryPrepCell =
+    std::sync::OnceLock<Result<std::sync::Arc<crate::query::BodyPrep>, crate::query::QueryError>>;
 
 impl Polytope {
     /// Number of vertices.
@@ -366,6 +373,7 @@ impl Polytope {
             ring_start,
             ring,
             frame,
+            query_prep: Default::default(),
         };
         let mut poly = Polytope {
             data: std::sync::Arc::new(data),
@@ -480,6 +488,20 @@ impl Polytope {
     #[inline]
     pub fn arc_errors(&self) -> &[f64] {
         &self.data.arc_err
+    }
+
+    /// The data the proximity queries need of this body, computed on first
+    /// use and kept.
+    ///
+    /// # Errors
+    /// Those of [`crate::query::Reflected::new`] (internal only).
+    pub(crate) fn query_prep(
+        &self,
+    ) -> Result<std::sync::Arc<crate::query::BodyPrep>, crate::query::QueryError> {
+        self.data
+            .query_prep
+            .get_or_init(|| crate::query::BodyPrep::of(self).map(std::sync::Arc::new))
+            .clone()
     }
 
     /// The exact (unscaled) normal of face `f`: `(B − A) × (C − A)` for the

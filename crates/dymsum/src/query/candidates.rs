@@ -244,7 +244,7 @@ fn lower_bound(posed: &Posed, n: DVec3, a_vertex: u32, b_vertex: u32) -> f64 {
 /// The candidate of the fv-facet of face `f` of A and vertex `w` of `−B`.
 #[inline]
 pub(super) fn fv_candidate(pair: &ConvexPair, posed: &Posed, f: u32, w: u32) -> Candidate {
-    let w = pair.neg_b.vertex_map[w as usize];
+    let w = pair.neg_b().vertex_map[w as usize];
     let n = posed.na(f);
     Candidate {
         features: FeaturePair::FaceVertex {
@@ -260,7 +260,7 @@ pub(super) fn fv_candidate(pair: &ConvexPair, posed: &Posed, f: u32, w: u32) -> 
 /// The candidate of the vf-facet of vertex `u` of A and face `g` of `−B`.
 #[inline]
 pub(super) fn vf_candidate(pair: &ConvexPair, posed: &Posed, g: u32, u: u32) -> Candidate {
-    let g = pair.neg_b.face_map[g as usize];
+    let g = pair.neg_b().face_map[g as usize];
     let n = -posed.nb(g);
     Candidate {
         features: FeaturePair::VertexFace {
@@ -312,7 +312,7 @@ pub(super) fn push_ee_candidate(
     out: &mut Vec<Candidate>,
 ) {
     let (a, b) = (&pair.a, &pair.b);
-    let e2b = pair.neg_b.edge_map[e2 as usize];
+    let e2b = pair.neg_b().edge_map[e2 as usize];
     let ordered = |[x, y]: [u32; 2]| if x < y { [x, y] } else { [y, x] };
     let [u1, u2] = ordered(a.edge(e as usize).vertices);
     let [w1, w2] = ordered(b.edge(e2b as usize).vertices);
@@ -396,7 +396,7 @@ pub(super) fn ee_direction(
     s: f64,
 ) -> Option<DVec3> {
     use crate::kernel::dd::{self, DD};
-    let (a, q) = (&pair.a, &pair.neg_b.polytope);
+    let (a, q) = (&pair.a, &pair.neg_b().polytope);
     let edge_vec = |p: &Polytope, e: u32| {
         let [u, v] = p.edge(e as usize).vertices;
         (

@@ -318,7 +318,7 @@ fn collect(
 ) {
     let (a, b) = (&pair.a, &pair.b);
     let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
-    let prep = &pair.prepared;
+    let prep = &pair.prep_b;
     ls.in_a.start(a.vertex_count());
     ls.in_b.start(b.vertex_count());
     for &v in &cs.set_a {
@@ -328,7 +328,7 @@ fn collect(
         ls.in_b.mark(w);
     }
     // fv: A's faces at the set, with the vertex of −B their normal lies in.
-    let hint_q = prep.neg_b_vertex[nb.vertex as usize];
+    let hint_q = prep.neg_vertex[nb.vertex as usize];
     ls.faces_a.start(a.face_count());
     for &v in &cs.set_a {
         for r in a.ring(v as usize) {
@@ -343,7 +343,7 @@ fn collect(
     for &w in &cs.set_b {
         for r in b.ring(w as usize) {
             if ls.faces_b.mark(r.face) && face_b(r.face) {
-                let g = prep.neg_b_face[r.face as usize];
+                let g = prep.neg_face[r.face as usize];
                 let (u, _) = vp.locate(&vq.normal(g), na.vertex);
                 ls.facets.vf.push((g, u));
             }
@@ -371,7 +371,7 @@ fn collect(
     for &w in &cs.set_b {
         for r in b.ring(w as usize) {
             if ls.edge_marks_b.mark(r.edge) && keep(&ls.in_b, b.edge(r.edge as usize).vertices) {
-                ls.edges_b.push(prep.neg_b_edge[r.edge as usize]);
+                ls.edges_b.push(prep.neg_edge[r.edge as usize]);
             }
         }
     }

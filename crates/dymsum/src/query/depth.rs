@@ -109,7 +109,7 @@ fn exhaustive_facets(
     let sum = minkowski_sum_posed(
         &pair.a,
         pose_a,
-        &pair.neg_b.polytope,
+        &pair.neg_b().polytope,
         Reflected::pose(pose_b),
         Method::Walk,
     )?;

@@ -88,7 +88,7 @@ fn mean(points: impl Iterator<Item = DVec3>, n: usize) -> DVec3 {
 /// plane's `−h` once `h` is refined (the unrefined `h₀ ≤ h` is no bound).
 fn distance_bound(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     let (a, b) = (&pair.a, &pair.b);
-    let (balls_a, balls_b) = (&pair.prepared.balls_a, &pair.prepared.balls_b);
+    let (balls_a, balls_b) = (&pair.prep_a.balls, &pair.prep_b.balls);
     let (frame_a, frame_b) = (
         |r: f64| balls_a.in_frame(r, posed.k),
         |r: f64| balls_b.in_frame(r, posed.k),

@@ -206,7 +206,7 @@ impl Posed {
         self.turn = (relative != Rotation::IDENTITY).then(|| turn_of(relative));
 
         self.rot_b = pose_b.rotation.matrix();
-        let (ba, bb) = (&pair.prepared.bounds_a, &pair.prepared.bounds_b);
+        let (ba, bb) = (&pair.prep_a.bounds, &pair.prep_b.bounds);
         let (ta, tb) = (
             pose_a.translation.abs().max_element(),
             pose_b.translation.abs().max_element(),
@@ -256,7 +256,7 @@ impl Posed {
             normals: a.normals(),
             arcs: a.arc_normals(),
             turn: self.turn.as_ref(),
-            arc_errs: &pair.prepared.arc_err_a,
+            arc_errs: &pair.prep_a.arc_err,
             base: 0,
             rotation: self.turn.as_ref().map(|t| &t.rot),
             ties: None,
@@ -265,7 +265,7 @@ impl Posed {
 
     /// `−B`'s Gaussian map (its own frame; SoS indices after A's faces).
     pub(super) fn view_neg_b<'a>(&self, pair: &'a ConvexPair) -> GaussView<'a> {
-        let q = &pair.neg_b.polytope;
+        let q = &pair.neg_b().polytope;
         GaussView {
             poly: q,
             normals: q.normals(),

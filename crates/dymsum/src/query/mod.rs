@@ -378,13 +378,63 @@ impl Reflected {
 pub struct ConvexPair {
     a: Polytope,
     b: Polytope,
-    neg_b: std::sync::Arc<Reflected>,
-    prepared: std::sync::Arc<Prepared>,
+    prep_a: std::sync::Arc<BodyPrep>,
+    prep_b: std::sync::Arc<BodyPrep>,
     stats: std::sync::Arc<Counters>,
     /// Query buffers kept between the static queries of this pair and its
     /// clones (one per query running at a time), so that a query
     /// allocates nothing once they have grown.
     pool: std::sync::Arc<std::sync::Mutex<Vec<depth::Scratch>>>,
+}
+
+/// What the queries need of one body beyond the body itself, computed once
+/// per body (on its first query) and kept by the body's [`Polytope`]
+/// handle, so preparing a pair costs nothing after the first time.
+#[derive(Debug)]
+pub(crate) struct BodyPrep {
+    /// Balls around the faces and edges (the separation's branch and
+    /// bound).
+    balls: distance::FeatureBalls,
+    /// Reach and radius (the query frame's bounds).
+    bounds: frame::BodyBounds,
+    /// Error bounds of the arc normals under any rotation, exactly as the
+    /// overlay's operands compute them (the body as A).
+    arc_err: Vec<f64>,
+    /// The reflection `−body` (the body as B).
+    neg: Reflected,
+    /// Vertex, face and edge → the same of the reflection (the inverses of
+    /// [`Reflected`]'s maps).
+    neg_vertex: Vec<u32>,
+    neg_face: Vec<u32>,
+    neg_edge: Vec<u32>,
+}
+
+impl BodyPrep {
+    /// Computes the data of `p`.
+    ///
+    /// # Errors
+    /// Those of [`Reflected::new`] (internal only).
+    pub(crate) fn of(p: &Polytope) -> Result<BodyPrep, QueryError> {
+        let (mut arcs, mut arc_err) = (Vec::new(), Vec::new());
+        crate::sum::rotate_arcs(p, None, &mut arcs, &mut arc_err);
+        let neg = Reflected::new(p)?;
+        let inverse = |map: &[u32]| {
+            let mut inv = vec![0; map.len()];
+            for (i, &j) in map.iter().enumerate() {
+                inv[j as usize] = i as u32;
+            }
+            inv
+        };
+        Ok(BodyPrep {
+            balls: distance::FeatureBalls::of(p),
+            bounds: frame::BodyBounds::of(p),
+            arc_err,
+            neg_vertex: inverse(&neg.vertex_map),
+            neg_face: inverse(&neg.face_map),
+            neg_edge: inverse(&neg.edge_map),
+            neg,
+        })
+    }
 }
 
 /// How a pair's queries were answered: how many, and how many needed an
@@ -435,54 +485,12 @@ impl Counters {
     }
 }
 
-/// What a pair's queries need beyond the bodies, computed once.
-#[derive(Debug)]
-struct Prepared {
-    /// Balls around the faces and edges of A and B (the separation's
-    /// branch and bound).
-    balls_a: distance::FeatureBalls,
-    balls_b: distance::FeatureBalls,
-    /// Reach and radius of each body (the query frame's bounds).
-    bounds_a: frame::BodyBounds,
-    bounds_b: frame::BodyBounds,
-    /// Error bounds of A's arc normals under any rotation, exactly as the
-    /// overlay's operands compute them.
-    arc_err_a: Vec<f64>,
-    /// B's vertex, face and edge → the same of `−B` (the inverses of
-    /// [`Reflected`]'s maps).
-    neg_b_vertex: Vec<u32>,
-    neg_b_face: Vec<u32>,
-    neg_b_edge: Vec<u32>,
-}
-
-impl Prepared {
-    fn of(a: &Polytope, b: &Polytope, neg_b: &Reflected) -> Prepared {
-        let (mut arcs, mut arc_err_a) = (Vec::new(), Vec::new());
-        crate::sum::rotate_arcs(a, None, &mut arcs, &mut arc_err_a);
-        let inverse = |map: &[u32]| {
-            let mut inv = vec![0; map.len()];
-            for (i, &j) in map.iter().enumerate() {
-                inv[j as usize] = i as u32;
-            }
-            inv
-        };
-        Prepared {
-            balls_a: distance::FeatureBalls::of(a),
-            balls_b: distance::FeatureBalls::of(b),
-            bounds_a: frame::BodyBounds::of(a),
-            bounds_b: frame::BodyBounds::of(b),
-            arc_err_a,
-            neg_b_vertex: inverse(&neg_b.vertex_map),
-            neg_b_face: inverse(&neg_b.face_map),
-            neg_b_edge: inverse(&neg_b.edge_map),
-        }
-    }
-}
-
 impl ConvexPair {
-    /// Prepares `a` and `b` (reflects `b`: one convex hull). The pair keeps
-    /// its own handles on the bodies (cheap clones, see [`Polytope`]); a
-    /// clone of the pair shares them and the reflection.
+    /// Prepares `a` and `b`: the data each body's queries need (its
+    /// reflection, one convex hull; bounds and balls) is computed on the
+    /// body's first query and kept by its [`Polytope`] handle, so pairing
+    /// bodies again costs nothing. The pair keeps its own handles on the
+    /// bodies (cheap clones); a clone of the pair shares everything.
     ///
     /// # Errors
     /// Only internal errors of the reflection ([`Reflected::new`]), for a polytope built by this crate:
@@ -490,12 +498,11 @@ impl ConvexPair {
     /// negated vertices fails, [`QueryError::Inconsistent`] if its faces or
     /// edges do not match the original's (a bug in dymsum either way).
     pub fn new(a: &Polytope, b: &Polytope) -> Result<Self, QueryError> {
-        let neg_b = Reflected::new(b)?;
         Ok(ConvexPair {
             a: a.clone(),
             b: b.clone(),
-            prepared: std::sync::Arc::new(Prepared::of(a, b, &neg_b)),
-            neg_b: std::sync::Arc::new(neg_b),
+            prep_a: a.query_prep()?,
+            prep_b: b.query_prep()?,
             stats: std::sync::Arc::new(Counters::default()),
             pool: Default::default(),
         })
@@ -510,7 +517,13 @@ impl ConvexPair {
     }
     /// B's reflection.
     pub fn reflected_b(&self) -> &Reflected {
-        &self.neg_b
+        &self.prep_b.neg
+    }
+
+    /// B's reflection (crate-internal shorthand).
+    #[inline]
+    pub(crate) fn neg_b(&self) -> &Reflected {
+        &self.prep_b.neg
     }
 
     /// Depth or distance at the given poses (a static `walk` sum).
@@ -549,6 +562,78 @@ impl ConvexPair {
     /// The same as [`ConvexPair::query`].
     pub fn query_exhaustive(&self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
         self.with_scratch(|s| depth::evaluate(self, pose_a, pose_b, depth::Facets::Exhaustive, s))
+    }
+
+    /// [`ConvexPair::query`] at many poses `(pose_a, pose_b)`, in order:
+    /// the batch a planner or a physics step needs. The poses are split
+    /// into chunks answered in parallel (rayon), each chunk warm-starting
+    /// from the pose before, so the answers are the static query's, in any
+    /// order and on any number of threads.
+    ///
+    /// ```
+    /// use dymsum::{ConvexPair, DVec3, Polytope, Pose, Rotation};
+    /// let corners: Vec<[f64; 3]> = (0..8)
+    ///     .map(|i| [(i & 1) as f64 - 0.5, ((i >> 1) & 1) as f64 - 0.5, ((i >> 2) & 1) as f64 - 0.5])
+    ///     .collect();
+    /// let cube = Polytope::from_points(&corners)?;
+    /// let pair = ConvexPair::new(&cube, &cube)?;
+    /// let poses: Vec<(Pose, Pose)> = (0..100)
+    ///     .map(|k| (Pose::IDENTITY, Pose::new(Rotation::IDENTITY, DVec3::new(0.02 * k as f64, 0.0, 0.0))))
+    ///     .collect();
+    /// let answers = pair.query_many(&poses)?;
+    /// assert_eq!(answers[25].depth(), 0.5); // centres 0.5 apart
+    /// assert_eq!(answers[75].distance(), 0.5); // centres 1.5 apart
+    /// assert_eq!(answers[75], pair.query(poses[75].0, poses[75].1)?);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// The first error of [`ConvexPair::query`] among the poses.
+    pub fn query_many(&self, poses: &[(Pose, Pose)]) -> Result<Vec<Proximity>, QueryError> {
+        self.many(poses, |pair, (pa, pb), s| {
+            depth::evaluate(pair, pa, pb, depth::Facets::Certified, s)
+        })
+    }
+
+    /// [`ConvexPair::intersects`] at many poses, as
+    /// [`ConvexPair::query_many`].
+    ///
+    /// # Errors
+    /// The first error of [`ConvexPair::intersects`] among the poses.
+    pub fn intersects_many(&self, poses: &[(Pose, Pose)]) -> Result<Vec<bool>, QueryError> {
+        self.many(poses, |pair, (pa, pb), s| {
+            s.posed.reset(pair, pa, pb)?;
+            Ok(depth::decide(pair, s, true))
+        })
+    }
+
+    /// Answers `one` at every pose, in parallel chunks of warm-started
+    /// queries.
+    fn many<T: Send>(
+        &self,
+        poses: &[(Pose, Pose)],
+        one: impl Fn(&ConvexPair, (Pose, Pose), &mut depth::Scratch) -> Result<T, QueryError> + Sync,
+    ) -> Result<Vec<T>, QueryError> {
+        use rayon::prelude::*;
+        const CHUNK: usize = 64;
+        let chunks: Vec<Result<Vec<T>, QueryError>> = poses
+            .par_chunks(CHUNK)
+            .map(|chunk| {
+                let mut scratch = depth::Scratch::default();
+                chunk
+                    .iter()
+                    .map(|&p| {
+                        self.stats.count_query();
+                        one(self, p, &mut scratch)
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut out = Vec::with_capacity(poses.len());
+        for c in chunks {
+            out.extend(c?);
+        }
+        Ok(out)
     }
 
     /// How this pair's queries (and its clones' and trackers') were

@@ -129,7 +129,7 @@ impl ContactTracker {
             TrackerStrategy::DynamicSum => Some(DynamicSum::new(
                 &pair.a,
                 pose_a,
-                &pair.neg_b.polytope,
+                &pair.neg_b().polytope,
                 Reflected::pose(pose_b),
             )?),
         };
