@@ -1,23 +1,27 @@
+//! Development probe: one pair's tracker frames or static queries in a loop (for perf).
 use dymsum::query::ConvexPair;
 use dymsum_bench::contact::contact_motion;
 use dymsum_bench::load;
 fn main() {
-    let name = std::env::args().nth(1).unwrap_or("box".into());
-    let (a, b) = if name == "box" {
-        (load("box:1,2,3"), load("box:2,1,1"))
-    } else {
-        (load("gs4"), load("ellipse"))
-    };
+    let a = load(&std::env::args().nth(1).unwrap_or("box:1,2,3".into()));
+    let b = load(&std::env::args().nth(2).unwrap_or("box:2,1,1".into()));
+    let what = std::env::args().nth(3).unwrap_or("t".into());
     let pair = ConvexPair::new(&a, &b).unwrap();
     let poses = contact_motion(&a, &b, 500.0, 1000);
-    let what = std::env::args().nth(2).unwrap_or("i".into());
+    let mut tr = pair.tracker(poses[0].0, poses[0].1).unwrap();
     let t = std::time::Instant::now();
     for _ in 0..50 {
         for &(pa, pb) in &poses {
-            if what == "i" {
-                std::hint::black_box(pair.intersects(pa, pb).unwrap());
-            } else {
-                std::hint::black_box(pair.query(pa, pb).unwrap());
+            match what.as_str() {
+                "i" => {
+                    std::hint::black_box(pair.intersects(pa, pb).unwrap());
+                }
+                "q" => {
+                    std::hint::black_box(pair.query(pa, pb).unwrap());
+                }
+                _ => {
+                    std::hint::black_box(tr.update(pa, pb).unwrap());
+                }
             }
         }
     }

@@ -164,6 +164,11 @@ impl FacetSet {
         self.ee.extend_from_slice(&overlay.ee);
     }
 
+    /// Whether the set holds no facet.
+    pub(super) fn is_empty(&self) -> bool {
+        self.fv.is_empty() && self.vf.is_empty() && self.ee.is_empty()
+    }
+
     /// Sorts each list and removes repeats (a facet found by two searches).
     pub(super) fn dedup(&mut self) {
         for l in [&mut self.fv, &mut self.vf, &mut self.ee] {

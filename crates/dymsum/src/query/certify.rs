@@ -84,6 +84,89 @@ use super::ConvexPair;
 use crate::gauss::edges_cross;
 use glam::DVec3;
 
+/// Spherical caps holding a body's Gaussian cells (one per vertex) and arcs
+/// (one per edge), in the body's frame: a cell is the spherical polygon of
+/// its corners, inside any cap (no wider than a hemisphere) holding the
+/// corners; an arc lies in the cap about its midpoint through its ends.
+/// Turned with the body, they let the searches skip a cell that cannot
+/// hold a direction, and pairs of arcs that cannot cross, with one dot
+/// product each; the exact predicates decide the rest.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct GaussCaps {
+    /// Per vertex: the cap's unit centre and the cosine of its angle
+    /// (`-1.0`, no rejection, for a cell wider than a hemisphere).
+    cells: Vec<(DVec3, f64)>,
+    /// Per edge: the unit centre and the cosine of half the arc.
+    arcs: Vec<(DVec3, f64)>,
+}
+
+/// How much a cap test's cosine is loosened: the float normals lie within
+/// a few ulps (and [`OVERLAY_MISMATCH`]) of the overlay's exact ones.
+const CAP_SLACK: f64 = 1e-9;
+
+impl GaussCaps {
+    /// The caps of `p`.
+    pub(crate) fn of(p: &crate::Polytope) -> GaussCaps {
+        let cells = (0..p.vertex_count())
+            .map(|v| {
+                let ring = p.ring(v);
+                let sum = ring
+                    .iter()
+                    .fold(DVec3::ZERO, |s, r| s + p.unit_normal(r.face as usize));
+                let len = sum.length();
+                if len.is_nan() || len <= 1e-3 {
+                    return (DVec3::X, -1.0);
+                }
+                let c = sum / len;
+                let cos = ring
+                    .iter()
+                    .map(|r| c.dot(p.unit_normal(r.face as usize)))
+                    .fold(1.0, f64::min);
+                (c, if cos > 1e-3 { cos } else { -1.0 })
+            })
+            .collect();
+        let arcs = p
+            .edges()
+            .iter()
+            .map(|e| {
+                let (a, b) = (
+                    p.unit_normal(e.faces[0] as usize),
+                    p.unit_normal(e.faces[1] as usize),
+                );
+                let mid = a + b;
+                let len = mid.length();
+                if len.is_nan() || len <= 1e-6 {
+                    return (DVec3::X, -1.0);
+                }
+                let c = mid / len;
+                (c, c.dot(a).min(c.dot(b)))
+            })
+            .collect();
+        GaussCaps { cells, arcs }
+    }
+}
+
+/// Whether the unit direction `x` may lie in the cap `(c, cos)` (`c`
+/// already turned to the world).
+#[inline]
+fn in_cap(x: DVec3, (c, cos): (DVec3, f64)) -> bool {
+    cos <= -1.0 || x.dot(c) >= cos - CAP_SLACK
+}
+
+/// Whether two arcs' caps (turned to the world) may meet: the angle
+/// between the centres is at most the sum of the half-angles.
+#[inline]
+fn caps_meet((c1, cos1): (DVec3, f64), (c2, cos2): (DVec3, f64)) -> bool {
+    if cos1 <= -1.0 || cos2 <= -1.0 {
+        return true;
+    }
+    let (sin1, sin2) = (
+        (1.0 - cos1 * cos1).max(0.0).sqrt(),
+        (1.0 - cos2 * cos2).max(0.0).sqrt(),
+    );
+    c1.dot(c2) >= cos1 * cos2 - sin1 * sin2 - CAP_SLACK
+}
+
 /// The most caps a penetration certificate uses.
 const MAX_CAPS: usize = 16;
 
@@ -99,11 +182,13 @@ pub(super) struct LocalScratch {
     in_b: Marks,
     faces_a: Marks,
     faces_b: Marks,
-    edges_a: Vec<u32>,
-    edges_b: Vec<u32>,
+    edges_a: Vec<(u32, Circle, (DVec3, f64))>,
+    edges_b: Vec<(u32, Circle, (DVec3, f64))>,
     edge_marks_a: Marks,
     edge_marks_b: Marks,
     caps: Vec<(DVec3, f64)>,
+    /// A cap's projected points (the separation's lateral bound).
+    points: Vec<DVec3>,
 }
 
 /// `E` of fact 1 plus `err_K`, in frame units.
@@ -149,17 +234,12 @@ pub(super) fn penetration_facets(
     }
     ls.caps.clear();
     for t in ls.epa.tris.iter().filter(|t| t.alive) {
-        let [a, b, cc] = t.v.map(|i| ls.epa.pts[i as usize].w);
-        let (e1, e2) = (b - a, cc - a);
-        let area2 = e1.cross(e2).length();
-        // Rounding of the unit normal (angle) and of the offset.
-        let dm = 6.0 * f64::EPSILON * e1.length() * e2.length() / area2 + 4.0 * f64::EPSILON;
-        let dd = (dm + 4.0 * f64::EPSILON) * a.length();
-        if !(dm.is_finite() && dm < 1e-3) {
-            return false;
-        }
+        let (dm, dd) = (t.dm, t.dd);
         if t.d - dd > c {
             continue;
+        }
+        if !(dm.is_finite() && dm < 1e-3) {
+            return false;
         }
         let cos = (t.d - dd) / c - dm;
         if cos < MIN_CAP_COS || ls.caps.len() == MAX_CAPS {
@@ -178,7 +258,7 @@ pub(super) fn penetration_facets(
         let delta = DIRECTION_ERROR + OVERLAY_MISMATCH;
         let tau_a = 2.0 * (chord + delta) * posed.rho_a;
         let tau_b = 2.0 * (chord + delta) * posed.rho_b;
-        let na = near_max(
+        near_max(
             &pair.a,
             |v| posed.a(v),
             m,
@@ -189,7 +269,7 @@ pub(super) fn penetration_facets(
             &mut cs.marks_a,
             &mut cs.set_a,
         );
-        let nb = near_max(
+        near_max(
             &pair.b,
             |w| posed.b(w),
             -m,
@@ -201,34 +281,63 @@ pub(super) fn penetration_facets(
             &mut cs.set_b,
         );
         // Faces in the cap: their candidates' directions are their rotated
-        // unit normals (compared with a few ulps of slack).
+        // unit normals (compared with a few ulps of slack). Edges whose
+        // float arcs come near the cap: an ee-candidate's direction lies
+        // within DIRECTION_ERROR of its place on both overlay arcs, which
+        // lie within OVERLAY_MISMATCH (and rounding) of the float ones.
         let min_cos = cos - 8.0 * f64::EPSILON;
+        let arc_cos = cos - 2.0 * (DIRECTION_ERROR + OVERLAY_MISMATCH) - 1e-12;
+        let (a, b) = (&pair.a, &pair.b);
         collect(
             pair,
             posed,
-            (&na, &nb),
             cs,
             ls,
-            |f| posed.na(f).dot(m) >= min_cos,
-            |g| -posed.nb(g).dot(m) >= min_cos,
-            true,
+            Keep {
+                face_a: |f| posed.na(f).dot(m) >= min_cos,
+                face_b: |g| -posed.nb(g).dot(m) >= min_cos,
+                edge_a: |e| {
+                    let [f0, f1] = a.edge(e as usize).faces;
+                    arc_meets_cap(posed.na(f0), posed.na(f1), m, arc_cos).then_some(ANY)
+                },
+                edge_b: |e| {
+                    let [g0, g1] = b.edge(e as usize).faces;
+                    arc_meets_cap(-posed.nb(g0), -posed.nb(g1), m, arc_cos).then_some(ANY)
+                },
+                pair: |_, _| true,
+                both: true,
+            },
         );
     }
     ls.facets.dedup();
     true
 }
 
-/// The facets near the separation along the unit direction `n` with
-/// slab width `tau` (module docs), into `ls.facets`.
-pub(super) fn separation_facets(
+/// The near-extreme sets of A in `−n` and of B in `n` (in `cs.set_a`,
+/// `cs.set_b`), each covering at least `tau`, with the rigorous lower bound
+/// `floor` on `min_{D'} n · x` they give: the separation's certificate
+/// (`floor > 0`) and the slab of its facet search in one search per body.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Slab {
+    /// The unit direction (from the origin towards `D'`).
+    n: DVec3,
+    /// `min_{D'} n · x ≥ floor`.
+    pub floor: f64,
+    /// The width both sets cover.
+    pub covered: f64,
+    na: NearMax,
+    nb: NearMax,
+}
+
+/// The [`Slab`] of width `tau` along the unit direction `n`.
+pub(super) fn slab(
     pair: &ConvexPair,
     posed: &Posed,
     n: DVec3,
     tau: f64,
     warm: (u32, u32),
     cs: &mut CertScratch,
-    ls: &mut LocalScratch,
-) {
+) -> Slab {
     let na = near_max(
         &pair.a,
         |v| posed.a(v),
@@ -251,43 +360,218 @@ pub(super) fn separation_facets(
         &mut cs.marks_b,
         &mut cs.set_b,
     );
+    Slab {
+        n,
+        floor: -(na.upper + nb.upper),
+        covered: na.tau.min(nb.tau),
+        na,
+        nb,
+    }
+}
+
+/// The facets of the slab `s` whose features come within the lateral reach
+/// of each other (module docs), for a separation of measured distance at
+/// most `best`, into `ls.facets`.
+pub(super) fn separation_facets(
+    pair: &ConvexPair,
+    posed: &Posed,
+    s: &Slab,
+    best: f64,
+    cs: &mut CertScratch,
+    ls: &mut LocalScratch,
+) {
     ls.facets.clear();
-    collect(pair, posed, (&na, &nb), cs, ls, |_| true, |_| true, false);
+    let lat = Lateral::new(pair, posed, s, best, cs, ls);
+    let (a, b) = (&pair.a, &pair.b);
+    let (balls_a, balls_b) = (&pair.prep_a.balls, &pair.prep_b.balls);
+    // Each feature lies in its ball (corners' mean, precomputed radius; the
+    // rotation keeps lengths to 2^-40, the rounding is in the margin).
+    let turned = 1.0 + 2f64.powi(-40);
+    let ball = |corners: &[u32], at: &dyn Fn(u32) -> DVec3, r: f64| {
+        let c = corners.iter().fold(DVec3::ZERO, |s, &v| s + at(v)) / corners.len() as f64;
+        (lat.project(c), r * turned + lat.margin)
+    };
+    let face_a = |f: u32| {
+        let c = ball(
+            a.face(f as usize),
+            &|v| posed.a(v),
+            balls_a.face(f, posed.k),
+        );
+        lat.near(c, lat.disk_b)
+    };
+    let face_b = |g: u32| {
+        let c = ball(
+            b.face(g as usize),
+            &|w| posed.b(w),
+            balls_b.face(g, posed.k),
+        );
+        lat.near(c, lat.disk_a)
+    };
+    let edge_a = |e: u32| {
+        let c = ball(
+            &a.edge(e as usize).vertices,
+            &|v| posed.a(v),
+            balls_a.edge(e, posed.k),
+        );
+        lat.near(c, lat.disk_b).then_some(c)
+    };
+    let edge_b = |e: u32| {
+        let c = ball(
+            &b.edge(e as usize).vertices,
+            &|w| posed.b(w),
+            balls_b.edge(e, posed.k),
+        );
+        lat.near(c, lat.disk_a).then_some(c)
+    };
+    collect(
+        pair,
+        posed,
+        cs,
+        ls,
+        Keep {
+            face_a,
+            face_b,
+            edge_a,
+            edge_b,
+            pair: |x, y| lat.near(x, y),
+            both: false,
+        },
+    );
     ls.facets.dedup();
 }
 
-/// A rigorous lower bound on `min_{D'} n · x` from the near-extreme
-/// searches, and the warm start they end at.
-pub(super) fn slab_floor(
-    pair: &ConvexPair,
-    posed: &Posed,
+/// Which body a cap piece belongs to.
+#[derive(Clone, Copy)]
+enum Side {
+    A,
+    B,
+}
+
+/// The separation's lateral bound (module docs): a facet that can measure
+/// at most `best` has a point `pa` of its A-feature in A's cap (`n · x` at
+/// most `level_a`) and a point `pb` of its B-feature in B's cap (`n · x` at
+/// least `level_b`), with `|P(pa − pb)| ≤ reach`, `P` the projection along
+/// `n`. Caps and their pieces are bounded by circles in the projection.
+struct Lateral {
     n: DVec3,
-    warm: (u32, u32),
-    cs: &mut CertScratch,
-) -> f64 {
-    let na = near_max(
-        &pair.a,
-        |v| posed.a(v),
-        -n,
-        warm.0,
-        0.0,
-        posed.eta_a,
-        posed.scale,
-        &mut cs.marks_a,
-        &mut cs.set_a,
-    );
-    let nb = near_max(
-        &pair.b,
-        |w| posed.b(w),
-        n,
-        warm.1,
-        0.0,
-        posed.eta_b,
-        posed.scale,
-        &mut cs.marks_b,
-        &mut cs.set_b,
-    );
-    -(na.upper + nb.upper)
+    level_a: f64,
+    level_b: f64,
+    reach: f64,
+    /// Slack for the rounding of the posed points and of the projections.
+    margin: f64,
+    disk_a: Circle,
+    disk_b: Circle,
+}
+
+impl Lateral {
+    fn new(
+        pair: &ConvexPair,
+        posed: &Posed,
+        s: &Slab,
+        best: f64,
+        cs: &CertScratch,
+        ls: &mut LocalScratch,
+    ) -> Lateral {
+        let n = s.n;
+        let err_p = 4.0 * (posed.eta_a + posed.eta_b) + 32.0 * f64::EPSILON * posed.scale;
+        let margin = err_p + 64.0 * f64::EPSILON * posed.scale + 1e-300;
+        // Caps over-approximated: A's minimum is at most its float value
+        // plus the dot product's error, B's maximum at least its float value
+        // less it; the slab's width on top.
+        let err = super::support::dot_error(n, posed.scale);
+        let level_a = -s.na.value + err + s.covered + margin;
+        let level_b = s.nb.value - err - s.covered - margin;
+        let far = best + err_p;
+        let floor = s.floor.max(0.0);
+        let reach = if s.floor > 0.0 && far > floor {
+            (far * far - floor * floor).sqrt() * (1.0 + 4.0 * f64::EPSILON)
+        } else {
+            far
+        } + margin;
+        let mut lat = Lateral {
+            n,
+            level_a,
+            level_b,
+            reach,
+            margin,
+            disk_a: (DVec3::ZERO, 0.0),
+            disk_b: (DVec3::ZERO, 0.0),
+        };
+        lat.disk_a = lat.cap_disk(&pair.a, |v| posed.a(v), &cs.set_a, Side::A, ls);
+        lat.disk_b = lat.cap_disk(&pair.b, |w| posed.b(w), &cs.set_b, Side::B, ls);
+        lat
+    }
+
+    /// `n · x` inside the side's cap.
+    #[inline]
+    fn in_cap(&self, side: Side, x: DVec3) -> bool {
+        match side {
+            Side::A => self.n.dot(x) <= self.level_a,
+            Side::B => self.n.dot(x) >= self.level_b,
+        }
+    }
+
+    /// The point where the segment `p → q` (`p` in the cap, `q` not)
+    /// leaves the side's cap.
+    #[inline]
+    fn cut(&self, side: Side, p: DVec3, q: DVec3) -> DVec3 {
+        let level = match side {
+            Side::A => self.level_a,
+            Side::B => self.level_b,
+        };
+        let (hp, hq) = (self.n.dot(p), self.n.dot(q));
+        let t = ((level - hp) / (hq - hp)).clamp(0.0, 1.0);
+        p + t * (q - p)
+    }
+
+    /// `x` projected along `n`.
+    #[inline]
+    fn project(&self, x: DVec3) -> DVec3 {
+        x - self.n.dot(x) * self.n
+    }
+
+    /// A circle holding the projection of the side's whole cap: its
+    /// vertices (in the near-extreme set) and the points where the edges
+    /// from them leave it.
+    fn cap_disk(
+        &self,
+        poly: &crate::Polytope,
+        at: impl Fn(u32) -> DVec3,
+        set: &[u32],
+        side: Side,
+        ls: &mut LocalScratch,
+    ) -> (DVec3, f64) {
+        ls.points.clear();
+        for &v in set {
+            let p = at(v);
+            if !self.in_cap(side, p) {
+                continue;
+            }
+            ls.points.push(self.project(p));
+            for r in poly.ring(v as usize) {
+                let q = at(r.neighbor);
+                if !self.in_cap(side, q) {
+                    ls.points.push(self.project(self.cut(side, p, q)));
+                }
+            }
+        }
+        if ls.points.is_empty() {
+            return (DVec3::ZERO, f64::INFINITY);
+        }
+        let c = ls.points.iter().fold(DVec3::ZERO, |s, &x| s + x) / ls.points.len() as f64;
+        let r = ls
+            .points
+            .iter()
+            .map(|&x| (x - c).length())
+            .fold(0.0, f64::max);
+        (c, r * (1.0 + 8.0 * f64::EPSILON) + self.margin)
+    }
+
+    /// Whether two projected circles come within the lateral reach.
+    #[inline]
+    fn near(&self, x: (DVec3, f64), y: (DVec3, f64)) -> bool {
+        (x.0 - y.0).length() <= x.1 + y.1 + self.reach
+    }
 }
 
 /// The slab width that covers every facet which could measure at most
@@ -299,23 +583,43 @@ pub(super) fn slab_width(posed: &Posed, best: f64, floor: f64) -> f64 {
         + 1e-300
 }
 
+/// A circle in the projection of the separation's lateral bound: centre
+/// and radius.
+type Circle = (DVec3, f64);
+
+/// Which features a facet search keeps (beyond touching the near-extreme
+/// sets): A's faces, B's faces, A's edges, B's edges (by their own
+/// indices; an edge kept comes with a circle for the pair test), and pairs
+/// of kept edges (by their circles) before their arcs are tested.
+struct Keep<FA, FB, EA, EB, P> {
+    face_a: FA,
+    face_b: FB,
+    edge_a: EA,
+    edge_b: EB,
+    pair: P,
+    /// Edges need both ends in the sets (else one).
+    both: bool,
+}
+
 /// Pushes onto `ls.facets` the overlay facets whose features touch the
-/// near-extreme sets `cs.set_a` (of A) and `cs.set_b` (of B): fv-facets of
-/// A's faces at a vertex of the set (accepted by `face_a`), with their
-/// vertex of `−B` located; vf-facets of B's faces likewise (`face_b`); and
-/// ee-facets of the edges with both ends in the sets (`both`) or one,
-/// tested for crossing arcs.
-#[allow(clippy::too_many_arguments)]
-fn collect(
+/// near-extreme sets `cs.set_a` (of A) and `cs.set_b` (of B) and pass
+/// `keep`: fv-facets of A's faces at a vertex of the set, with their vertex
+/// of `−B` located; vf-facets of B's faces likewise; and ee-facets of the
+/// edges with both ends in the sets (`keep.both`) or one, tested for
+/// crossing arcs.
+fn collect<FA, FB, EA, EB, P>(
     pair: &ConvexPair,
     posed: &Posed,
-    (na, nb): (&NearMax, &NearMax),
     cs: &mut CertScratch,
     ls: &mut LocalScratch,
-    face_a: impl Fn(u32) -> bool,
-    face_b: impl Fn(u32) -> bool,
-    both: bool,
-) {
+    keep: Keep<FA, FB, EA, EB, P>,
+) where
+    FA: Fn(u32) -> bool,
+    FB: Fn(u32) -> bool,
+    EA: Fn(u32) -> Option<Circle>,
+    EB: Fn(u32) -> Option<Circle>,
+    P: Fn(Circle, Circle) -> bool,
+{
     let (a, b) = (&pair.a, &pair.b);
     let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
     let prep = &pair.prep_b;
@@ -327,31 +631,59 @@ fn collect(
     for &w in &cs.set_b {
         ls.in_b.mark(w);
     }
-    // fv: A's faces at the set, with the vertex of −B their normal lies in.
-    let hint_q = prep.neg_vertex[nb.vertex as usize];
+    // fv: A's faces at the set, with the vertex of −B their normal lies
+    // in. That vertex (B's support opposite the normal) must be in B's set
+    // for the facet to matter (fact 2, and the slab), so only a face whose
+    // normal may lie in the cell of a vertex of B's set is located, from
+    // there, and kept if the vertex found is in the set.
+    let (caps_a, caps_b) = (&pair.prep_a.caps, &pair.prep_b.caps);
+    let (rot_a, rot_b) = (posed.pose_a.rotation, posed.pose_b.rotation);
     ls.faces_a.start(a.face_count());
     for &v in &cs.set_a {
         for r in a.ring(v as usize) {
-            if ls.faces_a.mark(r.face) && face_a(r.face) {
-                let (w, _) = vq.locate(&vp.normal(r.face), hint_q);
-                ls.facets.fv.push((r.face, w));
+            if !ls.faces_a.mark(r.face) || !(keep.face_a)(r.face) {
+                continue;
+            }
+            let n = posed.na(r.face);
+            let Some(&w) = cs.set_b.iter().find(|&&w| {
+                let (c, cos) = caps_b.cells[w as usize];
+                in_cap(n, (-rot_b.apply(c), cos))
+            }) else {
+                continue;
+            };
+            let (wq, _) = vq.locate(&vp.normal(r.face), prep.neg_vertex[w as usize]);
+            if ls.in_b.is_marked(pair.neg_b().vertex_map[wq as usize]) {
+                ls.facets.fv.push((r.face, wq));
             }
         }
     }
-    // vf: B's faces at the set, as faces of −B, with the vertex of A.
+    // vf: B's faces at the set, as faces of −B, with the vertex of A (which
+    // must be in A's set likewise).
     ls.faces_b.start(b.face_count());
     for &w in &cs.set_b {
         for r in b.ring(w as usize) {
-            if ls.faces_b.mark(r.face) && face_b(r.face) {
-                let g = prep.neg_face[r.face as usize];
-                let (u, _) = vp.locate(&vq.normal(g), na.vertex);
-                ls.facets.vf.push((g, u));
+            if !ls.faces_b.mark(r.face) || !(keep.face_b)(r.face) {
+                continue;
+            }
+            let n = -posed.nb(r.face);
+            let Some(&u) = cs.set_a.iter().find(|&&u| {
+                let (c, cos) = caps_a.cells[u as usize];
+                in_cap(n, (rot_a.apply(c), cos))
+            }) else {
+                continue;
+            };
+            let g = prep.neg_face[r.face as usize];
+            let (ua, _) = vp.locate(&vq.normal(g), u);
+            if ls.in_a.is_marked(ua) {
+                ls.facets.vf.push((g, ua));
             }
         }
     }
-    // ee: edges at the sets, tested pairwise.
-    let keep = |m: &Marks, ends: [u32; 2]| {
-        if both {
+    // ee: edges at the sets, tested pairwise: the arcs' caps (turned to the
+    // world; B's negated, as −B's arcs) first, then `keep.pair`, then the
+    // exact crossing test.
+    let touches = |m: &Marks, ends: [u32; 2]| {
+        if keep.both {
             m.is_marked(ends[0]) && m.is_marked(ends[1])
         } else {
             m.is_marked(ends[0]) || m.is_marked(ends[1])
@@ -361,8 +693,11 @@ fn collect(
     ls.edge_marks_a.start(a.edge_count());
     for &v in &cs.set_a {
         for r in a.ring(v as usize) {
-            if ls.edge_marks_a.mark(r.edge) && keep(&ls.in_a, a.edge(r.edge as usize).vertices) {
-                ls.edges_a.push(r.edge);
+            if ls.edge_marks_a.mark(r.edge) && touches(&ls.in_a, a.edge(r.edge as usize).vertices) {
+                if let Some(c) = (keep.edge_a)(r.edge) {
+                    let (ac, cos) = caps_a.arcs[r.edge as usize];
+                    ls.edges_a.push((r.edge, c, (rot_a.apply(ac), cos)));
+                }
             }
         }
     }
@@ -370,16 +705,46 @@ fn collect(
     ls.edge_marks_b.start(b.edge_count());
     for &w in &cs.set_b {
         for r in b.ring(w as usize) {
-            if ls.edge_marks_b.mark(r.edge) && keep(&ls.in_b, b.edge(r.edge as usize).vertices) {
-                ls.edges_b.push(prep.neg_edge[r.edge as usize]);
+            if ls.edge_marks_b.mark(r.edge) && touches(&ls.in_b, b.edge(r.edge as usize).vertices) {
+                if let Some(c) = (keep.edge_b)(r.edge) {
+                    let (ac, cos) = caps_b.arcs[r.edge as usize];
+                    ls.edges_b
+                        .push((prep.neg_edge[r.edge as usize], c, (-rot_b.apply(ac), cos)));
+                }
             }
         }
     }
-    for &e in &ls.edges_a {
-        for &e2 in &ls.edges_b {
-            if edges_cross(&vp, e, &vq, e2) {
+    for &(e, ca, arc_a) in &ls.edges_a {
+        for &(e2, cb, arc_b) in &ls.edges_b {
+            if caps_meet(arc_a, arc_b) && (keep.pair)(ca, cb) && edges_cross(&vp, e, &vq, e2) {
                 ls.facets.ee.push((e, e2));
             }
         }
     }
+}
+
+/// A circle that excludes nothing (the penetration's searches have no
+/// lateral bound).
+const ANY: Circle = (DVec3::ZERO, f64::INFINITY);
+
+/// Whether the Gaussian arc between the unit normals `p` and `q` (shorter
+/// than π) comes within the cap `{x : x · m ≥ cos}`: the largest `x · m`
+/// over the arc is at an end, or, where `m`'s projection on the arc's great
+/// circle falls inside the arc, `√(1 − (m · g)²)` for the circle's unit
+/// normal `g`; taken over the whole circle when the inside test is close,
+/// so the answer errs towards keeping.
+fn arc_meets_cap(p: DVec3, q: DVec3, m: DVec3, cos: f64) -> bool {
+    if p.dot(m) >= cos || q.dot(m) >= cos {
+        return true;
+    }
+    let g = p.cross(q);
+    let gl = g.length();
+    if gl == 0.0 {
+        return false;
+    }
+    let g = g / gl;
+    let mg = m.dot(g);
+    let proj = m - mg * g;
+    let inside = p.cross(proj).dot(g) >= -1e-9 && proj.cross(q).dot(g) >= -1e-9;
+    inside && (1.0 - mg * mg).max(0.0).sqrt() >= cos
 }

@@ -10,13 +10,15 @@
 //! posed vertices (see [`evaluate`]).
 use super::candidates::{candidates, refine, winner, Candidate, FacetSet};
 use super::certify::{
-    grow_polytope, penetration_facets, polytope_depth, separation_facets, slab_floor, slab_width,
+    grow_polytope, penetration_facets, polytope_depth, separation_facets, slab, slab_width,
     value_slack, LocalScratch,
 };
 use super::closest::line_line;
 use super::distance::separation;
 use super::frame::Posed;
-use super::gjk::{certify, gjk, origin_in_difference_hull, CertScratch, Gjk};
+use super::gjk::{
+    certify, encloses_origin, gjk, origin_in_difference_hull, separated_on_sets, CertScratch, Gjk,
+};
 use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Reflected, Separation};
 use crate::sum::{minkowski_sum_posed, Method};
 use crate::Pose;
@@ -62,30 +64,35 @@ pub(super) fn evaluate(
     scratch: &mut Scratch,
 ) -> Result<Proximity, QueryError> {
     scratch.posed.reset(pair, pose_a, pose_b)?;
-    let intersecting = decide(pair, scratch, false);
-    let facets = match facets {
-        Facets::Overlay(f) => f,
+    let (intersecting, facets) = match facets {
+        Facets::Overlay(f) => (decide(pair, scratch, false), f),
         Facets::Certified => {
-            if let Some(answer) = certified(pair, scratch, intersecting) {
-                #[cfg(any(test, feature = "check-reference"))]
-                {
-                    let mut fresh = Scratch::default();
-                    let reference = evaluate(pair, pose_a, pose_b, Facets::Exhaustive, &mut fresh)?;
-                    let ours = to_world(&scratch.posed, answer)?;
-                    assert_eq!(
+            let known = match certified(pair, scratch) {
+                Ok(answer) => {
+                    #[cfg(any(test, feature = "check-reference"))]
+                    {
+                        let mut fresh = Scratch::default();
+                        let reference =
+                            evaluate(pair, pose_a, pose_b, Facets::Exhaustive, &mut fresh)?;
+                        let ours = to_world(&scratch.posed, answer)?;
+                        assert_eq!(
                         ours, reference,
                         "the certified answer differs from the exhaustive one at {pose_a:?}, {pose_b:?}"
                     );
+                    }
+                    return to_world(&scratch.posed, answer);
                 }
-                return to_world(&scratch.posed, answer);
-            }
+                Err(known) => known,
+            };
             pair.stats.count_exhaustive_answer();
+            let intersecting = known.unwrap_or_else(|| decide_exhaustively(pair, scratch));
             exhaustive_facets(pair, pose_a, pose_b, &mut scratch.all)?;
-            &scratch.all
+            (intersecting, &scratch.all)
         }
         Facets::Exhaustive => {
+            let intersecting = decide(pair, scratch, false);
             exhaustive_facets(pair, pose_a, pose_b, &mut scratch.all)?;
-            &scratch.all
+            (intersecting, &scratch.all)
         }
     };
     let (answer, _) = evaluate_in_frame(
@@ -117,67 +124,103 @@ fn exhaustive_facets(
     Ok(())
 }
 
-/// The answer (frame units) from the facets near it, when the certificates
-/// of [`super::certify`] hold; `None` otherwise.
-fn certified(pair: &ConvexPair, scratch: &mut Scratch, intersecting: bool) -> Option<Proximity> {
-    let g = scratch.gjk?;
+/// The certified answer (frame units): GJK's exact yes/no, then the facets
+/// near the answer by the certificates of [`super::certify`]. `Err` when a
+/// certificate cannot be made, with the yes/no answer when it is known.
+fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Option<bool>> {
+    let warm = scratch.warm.clamp(pair);
+    let g = gjk(pair, &scratch.posed, warm, scratch.dir, false);
+    scratch.remember(&g);
     let posed = &scratch.posed;
-    let (tol, slack) = (posed.tol, value_slack(posed));
-    let local = &mut scratch.local;
-    let buffers = (&mut scratch.poly, &mut scratch.bounds);
-    if intersecting {
-        if !grow_polytope(pair, posed, &g, local) {
-            return None;
-        }
-        let mut c = polytope_depth(local) + 4.0 * (tol + slack);
-        for _ in 0..2 {
-            if !penetration_facets(pair, posed, c, &mut scratch.cert, local) {
-                return None;
-            }
-            let (answer, hmin) = evaluate_in_frame(
-                pair,
-                posed,
-                &local.facets,
-                true,
-                &mut scratch.cands,
-                (&mut *buffers.0, &mut *buffers.1),
-            );
-            let need = hmin + tol + slack;
-            if need <= c {
-                return Some(answer);
-            }
-            c = need * (1.0 + 1e-12);
-        }
-        return None;
+    if encloses_origin(posed, &g) {
+        return penetration(pair, scratch, &g).ok_or(Some(true));
     }
     let len = g.v.length();
     if !(len > 0.0 && len.is_finite()) {
-        return None;
+        return Err(None);
     }
     let n = g.v / len;
-    let floor = slab_floor(pair, posed, n, g.warm, &mut scratch.cert);
+    // One search per body serves the certificate and the slab: its width
+    // assumes the true floor within 2^-20 of GJK's distance (checked
+    // below, where the answer's distance is known).
+    let mut s = slab(
+        pair,
+        posed,
+        n,
+        slab_width(posed, len, len * (1.0 - 2f64.powi(-20))),
+        g.warm,
+        &mut scratch.cert,
+    );
+    if !(s.floor > 0.0 || separated_on_sets(posed, n, &scratch.cert)) {
+        return Err(None);
+    }
+    let local = &mut scratch.local;
     let mut best = len;
-    for _ in 0..2 {
-        let tau = slab_width(posed, best, floor);
-        separation_facets(pair, posed, n, tau, g.warm, &mut scratch.cert, local);
+    for _ in 0..3 {
+        separation_facets(pair, posed, &s, best, &mut scratch.cert, local);
+        if local.facets.is_empty() {
+            // Too narrow a slab (GJK ended farther from the floor than
+            // assumed): widen it to what the floor found says.
+            let width = slab_width(posed, best, s.floor);
+            s = slab(pair, posed, n, width, g.warm, &mut scratch.cert);
+            continue;
+        }
         let (answer, measured) = evaluate_in_frame(
             pair,
             posed,
             &local.facets,
             false,
             &mut scratch.cands,
-            (&mut *buffers.0, &mut *buffers.1),
+            (&mut scratch.poly, &mut scratch.bounds),
         );
-        let Proximity::Separated(s) = answer else {
-            return None;
+        let Proximity::Separated(sep) = answer else {
+            return Err(Some(false));
         };
         if measured.is_nan() {
-            return None; // no facet measured
+            return Err(Some(false)); // no facet measured
         }
-        if slab_width(posed, s.distance, floor) <= tau {
+        // The slab and the lateral reach assumed `best`: they hold if the
+        // answer measures at most that.
+        let need = slab_width(posed, sep.distance, s.floor);
+        if need <= s.covered && sep.distance <= best {
+            return Ok(answer);
+        }
+        best = best.max(sep.distance) * (1.0 + 1e-9);
+        let width = slab_width(posed, best, s.floor);
+        s = slab(pair, posed, n, width, g.warm, &mut scratch.cert);
+    }
+    Err(Some(false))
+}
+
+/// The certified penetration (frame units) from GJK's enclosing
+/// tetrahedron: EPA's polytope, its caps, and the check of the bound the
+/// caps assumed; `None` when a certificate cannot be made.
+fn penetration(pair: &ConvexPair, scratch: &mut Scratch, g: &Gjk) -> Option<Proximity> {
+    let posed = &scratch.posed;
+    let (tol, slack) = (posed.tol, value_slack(posed));
+    let local = &mut scratch.local;
+    if !grow_polytope(pair, posed, g, local) {
+        return None;
+    }
+    let mut c = polytope_depth(local) + 4.0 * (tol + slack);
+    for _ in 0..2 {
+        if !penetration_facets(pair, posed, c, &mut scratch.cert, local) || local.facets.is_empty()
+        {
+            return None;
+        }
+        let (answer, hmin) = evaluate_in_frame(
+            pair,
+            posed,
+            &local.facets,
+            true,
+            &mut scratch.cands,
+            (&mut scratch.poly, &mut scratch.bounds),
+        );
+        let need = hmin + tol + slack;
+        if need <= c {
             return Some(answer);
         }
-        best = s.distance;
+        c = need * (1.0 + 1e-12);
     }
     None
 }
@@ -186,21 +229,19 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch, intersecting: bool) -> Op
 /// query's support vertices, its certificate, else the exhaustive exact
 /// method (counted).
 pub(super) fn decide(pair: &ConvexPair, scratch: &mut Scratch, yes_no: bool) -> bool {
-    let posed = &scratch.posed;
     let warm = scratch.warm.clamp(pair);
-    let g = gjk(pair, posed, warm, scratch.dir, yes_no);
-    scratch.warm = Warm(g.warm.0, g.warm.1);
-    if g.v.length_squared() > 0.0 {
-        scratch.dir = g.v;
-    }
-    scratch.gjk = Some(g);
-    match certify(pair, posed, &g, &mut scratch.cert) {
+    let g = gjk(pair, &scratch.posed, warm, scratch.dir, yes_no);
+    scratch.remember(&g);
+    match certify(pair, &scratch.posed, &g, &mut scratch.cert) {
         Some(x) => x,
-        None => {
-            pair.stats.count_exhaustive_decision();
-            origin_in_difference_hull(pair, posed)
-        }
+        None => decide_exhaustively(pair, scratch),
     }
+}
+
+/// The exhaustive exact yes/no answer (counted).
+fn decide_exhaustively(pair: &ConvexPair, scratch: &Scratch) -> bool {
+    pair.stats.count_exhaustive_decision();
+    origin_in_difference_hull(pair, &scratch.posed)
 }
 
 /// An answer in frame units scaled back to the world.
@@ -263,6 +304,15 @@ pub(crate) struct Scratch {
 }
 
 impl Scratch {
+    /// Keeps GJK's end as the next query's warm start.
+    fn remember(&mut self, g: &Gjk) {
+        self.warm = Warm(g.warm.0, g.warm.1);
+        if g.v.length_squared() > 0.0 {
+            self.dir = g.v;
+        }
+        self.gjk = Some(*g);
+    }
+
     /// Forgets the warm start (the buffers stay).
     pub(super) fn cold(&mut self) {
         self.warm = Warm::default();

@@ -75,6 +75,19 @@ impl FeatureBalls {
     fn in_frame(&self, r: f64, k: i32) -> f64 {
         mul_pow2(r, k - self.exp)
     }
+
+    /// The radius of face `f`'s ball (about its corners' mean) in the
+    /// query's frame.
+    #[inline]
+    pub(super) fn face(&self, f: u32, k: i32) -> f64 {
+        self.in_frame(self.face_radius[f as usize], k)
+    }
+
+    /// Half the length of edge `e` in the query's frame.
+    #[inline]
+    pub(super) fn edge(&self, e: u32, k: i32) -> f64 {
+        self.in_frame(self.half_edge[e as usize], k)
+    }
 }
 
 /// The mean of `n` points.

@@ -42,6 +42,11 @@ pub(super) struct Tri {
     pub n: DVec3,
     /// Offset `n · v[0]` (float).
     pub d: f64,
+    /// Bounds on the float normal's angle from the exact one and on the
+    /// offset's error (from the corners' cross product and its conditioning).
+    pub dm: f64,
+    /// See `dm`.
+    pub dd: f64,
     /// Still a face of `K`.
     pub alive: bool,
 }
@@ -132,17 +137,25 @@ impl Epa {
     /// when it is degenerate.
     fn add_tri(&mut self, v: [u32; 3]) -> bool {
         let [a, b, c] = v.map(|i| self.pts[i as usize].w);
-        let n = (b - a).cross(c - a);
+        let (e1, e2) = (b - a, c - a);
+        let n = e1.cross(e2);
         let len = n.length();
         if !(len > 0.0 && len.is_finite()) {
             return false;
         }
         let n = n / len;
+        // The edges are off by half an ulp per component, the cross product
+        // and normalisation by a few more: the angle error is at most
+        // `6ε |e1| |e2| / |n| + 4ε`; the offset's, that times |a| plus the
+        // dot product's rounding.
+        let dm = 6.0 * f64::EPSILON * e1.length() * e2.length() / len + 4.0 * f64::EPSILON;
         self.tris.push(Tri {
             v,
             adj: [u32::MAX; 3],
             n,
             d: n.dot(a),
+            dm,
+            dd: (dm + 4.0 * f64::EPSILON) * a.length(),
             alive: true,
         });
         true
@@ -226,8 +239,11 @@ impl Epa {
     /// [`super::certify`]).
     pub(super) fn encloses_origin(&self) -> bool {
         self.tris.iter().filter(|t| t.alive).all(|t| {
-            let [a, b, c] = t.v.map(|i| self.pts[i as usize].w);
-            orient(a, b, c, DVec3::ZERO) == Sign::Negative
+            // The float offset less its error bound decides most faces.
+            t.d - t.dd > 0.0 || {
+                let [a, b, c] = t.v.map(|i| self.pts[i as usize].w);
+                orient(a, b, c, DVec3::ZERO) == Sign::Negative
+            }
         })
     }
 }

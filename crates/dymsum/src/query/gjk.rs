@@ -335,20 +335,28 @@ pub(super) fn certify(
     g: &Gjk,
     cs: &mut CertScratch,
 ) -> Option<bool> {
-    let tiny = g.v.length_squared() <= (posed.scale * 2f64.powi(-30)).powi(2);
-    if !g.separating && g.simplex.len > 0 && (g.enclosed || tiny) {
-        let mut buf = [(DVec3::ZERO, DVec3::ZERO); 4];
-        for (i, p) in g.simplex.pts[..g.simplex.len].iter().enumerate() {
-            buf[i] = (posed.a(p.a), posed.b(p.b));
-        }
-        if origin_in_hull(&buf[..g.simplex.len]) {
-            return Some(true);
-        }
+    if encloses_origin(posed, g) {
+        return Some(true);
     }
     if g.v.length_squared() > 0.0 && separated_along(pair, posed, g.v, g.warm, cs) {
         return Some(false);
     }
     None
+}
+
+/// Exactly whether GJK's final simplex holds the origin (tested when the
+/// simplex is a tetrahedron enclosing it in floats, or when its nearest
+/// point is within rounding of the origin).
+pub(super) fn encloses_origin(posed: &Posed, g: &Gjk) -> bool {
+    let tiny = g.v.length_squared() <= (posed.scale * 2f64.powi(-30)).powi(2);
+    if g.separating || g.simplex.len == 0 || !(g.enclosed || tiny) {
+        return false;
+    }
+    let mut buf = [(DVec3::ZERO, DVec3::ZERO); 4];
+    for (i, p) in g.simplex.pts[..g.simplex.len].iter().enumerate() {
+        buf[i] = (posed.a(p.a), posed.b(p.b));
+    }
+    origin_in_hull(&buf[..g.simplex.len])
 }
 
 /// Exactly whether `min_A' d · a > max_B' d · b` (a separating direction),
@@ -391,6 +399,28 @@ pub(super) fn separated_along(
         return false; // certainly not separated along d
     }
     // Exactly: the rounded extremes are in the sets.
+    let exact_max = |set: &[u32], at: &dyn Fn(u32) -> DVec3, dir: DVec3| {
+        let mut best: Option<Dyadic> = None;
+        for &u in set {
+            let x = exact_dot(dir, at(u));
+            if best
+                .as_ref()
+                .is_none_or(|b| x.sub(b).sign() == Sign::Positive)
+            {
+                best = Some(x);
+            }
+        }
+        best.expect("a near-extreme set is never empty")
+    };
+    let ma = exact_max(&cs.set_a, &|v| posed.a(v), -d);
+    let mb = exact_max(&cs.set_b, &|w| posed.b(w), d);
+    ma.add(&mb).sign() == Sign::Negative
+}
+
+/// Exactly whether the separation along `d` holds, from near-extreme sets
+/// already in `cs` (of A in `−d`, of B in `d`; they contain the rounded
+/// extremes).
+pub(super) fn separated_on_sets(posed: &Posed, d: DVec3, cs: &CertScratch) -> bool {
     let exact_max = |set: &[u32], at: &dyn Fn(u32) -> DVec3, dir: DVec3| {
         let mut best: Option<Dyadic> = None;
         for &u in set {

@@ -407,6 +407,9 @@ pub(crate) struct BodyPrep {
     neg_vertex: Vec<u32>,
     neg_face: Vec<u32>,
     neg_edge: Vec<u32>,
+    /// Caps holding each vertex's Gaussian cell and each edge's Gaussian
+    /// arc (body frame): the certificates' quick rejections.
+    caps: certify::GaussCaps,
 }
 
 impl BodyPrep {
@@ -433,6 +436,7 @@ impl BodyPrep {
             neg_face: inverse(&neg.face_map),
             neg_edge: inverse(&neg.edge_map),
             neg,
+            caps: certify::GaussCaps::of(p),
         })
     }
 }

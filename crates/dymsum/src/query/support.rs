@@ -113,8 +113,6 @@ pub(super) fn dot_error(d: DVec3, scale: f64) -> f64 {
 /// The result of [`near_max`].
 #[derive(Clone, Copy, Debug)]
 pub(super) struct NearMax {
-    /// A vertex of the largest float value.
-    pub vertex: u32,
     /// Its float value.
     pub value: f64,
     /// A rigorous upper bound on `max d · v'` over the rounded posed
@@ -122,7 +120,6 @@ pub(super) struct NearMax {
     pub upper: f64,
     /// The threshold below the best value that the set covers: every vertex
     /// whose exact value is within `τ` of the exact maximum is in the set.
-    #[allow(dead_code)]
     pub tau: f64,
 }
 
@@ -173,8 +170,8 @@ pub(super) fn near_max(
     // Keep only the final threshold's members (the others were admitted
     // under a lower one).
     set.retain(|&u| dir.dot(at(u)) >= best - tau0);
+    let _ = best_v;
     NearMax {
-        vertex: best_v,
         value: best,
         upper: best + err,
         tau: tau0 - slack,
