@@ -18,6 +18,7 @@ use super::distance::separation;
 use super::frame::Posed;
 use super::gjk::{
     certify, encloses_origin, gjk, origin_in_difference_hull, separated_on_sets, CertScratch, Gjk,
+    Simplex,
 };
 use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Reflected, Separation};
 use crate::sum::{minkowski_sum_posed, Method};
@@ -129,7 +130,7 @@ fn exhaustive_facets(
 /// certificate cannot be made, with the yes/no answer when it is known.
 fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Option<bool>> {
     let warm = scratch.warm.clamp(pair);
-    let g = gjk(pair, &scratch.posed, warm, scratch.dir, false);
+    let g = gjk(pair, &scratch.posed, warm, scratch.dir, &scratch.simplex, false);
     scratch.remember(&g);
     let posed = &scratch.posed;
     if encloses_origin(posed, &g) {
@@ -230,7 +231,7 @@ fn penetration(pair: &ConvexPair, scratch: &mut Scratch, g: &Gjk) -> Option<Prox
 /// method (counted).
 pub(super) fn decide(pair: &ConvexPair, scratch: &mut Scratch, yes_no: bool) -> bool {
     let warm = scratch.warm.clamp(pair);
-    let g = gjk(pair, &scratch.posed, warm, scratch.dir, yes_no);
+    let g = gjk(pair, &scratch.posed, warm, scratch.dir, &scratch.simplex, yes_no);
     scratch.remember(&g);
     match certify(pair, &scratch.posed, &g, &mut scratch.cert) {
         Some(x) => x,
@@ -291,6 +292,8 @@ pub(crate) struct Scratch {
     dir: DVec3,
     /// The last GJK run.
     pub(super) gjk: Option<Gjk>,
+    /// Its final simplex (the next query's start).
+    simplex: Simplex,
     pub(super) cert: CertScratch,
     /// Every facet (the exhaustive evaluation).
     all: FacetSet,
@@ -311,6 +314,7 @@ impl Scratch {
             self.dir = g.v;
         }
         self.gjk = Some(*g);
+        self.simplex = g.simplex;
     }
 
     /// Forgets the warm start (the buffers stay).
@@ -318,6 +322,7 @@ impl Scratch {
         self.warm = Warm::default();
         self.dir = DVec3::ZERO;
         self.gjk = None;
+        self.simplex = Simplex::default();
     }
 }
 

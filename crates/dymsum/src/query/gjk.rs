@@ -105,14 +105,18 @@ pub(super) struct Gjk {
     pub warm: (u32, u32),
 }
 
-/// Runs GJK from the support vertices `warm` and the direction `dir`
-/// (towards `D'` from the origin; any non-zero vector). With `yes_no`, it
-/// stops at the first separating support plane.
+/// Runs GJK from the support vertices `warm`, the direction `dir` (towards
+/// `D'` from the origin; any non-zero vector) and the vertex pairs of an
+/// earlier simplex `prior` (a tracker's last frame: its points, posed
+/// anew, are points of `D'`, and under coherent motion they enclose the
+/// origin again, or nearly). With `yes_no`, it stops at the first
+/// separating support plane.
 pub(super) fn gjk(
     pair: &ConvexPair,
     posed: &Posed,
     warm: (u32, u32),
     dir: DVec3,
+    prior: &Simplex,
     yes_no: bool,
 ) -> Gjk {
     let (a_body, b_body) = (&pair.a, &pair.b);
@@ -127,6 +131,31 @@ pub(super) fn gjk(
         v = DVec3::X;
     }
     let mut simplex = Simplex::default();
+    let (na, nb) = (a_body.vertex_count() as u32, b_body.vertex_count() as u32);
+    if prior.len > 0 && prior.pts[..prior.len].iter().all(|p| p.a < na && p.b < nb) {
+        for p in &prior.pts[..prior.len] {
+            simplex.push(Point {
+                w: posed.a(p.a) - posed.b(p.b),
+                ..*p
+            });
+        }
+        let (next, nv) = closest(&simplex);
+        if next.len == 4 {
+            return Gjk {
+                simplex: next,
+                v: nv,
+                enclosed: true,
+                separating: false,
+                warm: (wa, wb),
+            };
+        }
+        simplex = next;
+        if nv.length_squared() > 0.0 {
+            v = nv;
+        } else {
+            simplex = Simplex::default();
+        }
+    }
     let mut enclosed = false;
     let mut separating = false;
     for _ in 0..MAX_ITERATIONS {
