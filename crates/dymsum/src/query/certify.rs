@@ -81,6 +81,8 @@ use super::frame::Posed;
 use super::gjk::{CertScratch, Gjk};
 use super::support::{dot_error, near_max, Marks, NearMax};
 use super::ConvexPair;
+use crate::kernel::exact::mul_pow2_vec;
+use crate::Pose;
 use crate::gauss::edges_cross;
 use glam::DVec3;
 
@@ -200,18 +202,20 @@ pub(super) fn value_slack(posed: &Posed) -> f64 {
         + 4.0 * f64::EPSILON * posed.scale
 }
 
-/// Grows EPA's polytope from GJK's enclosing tetrahedron and checks it
-/// exactly; `false` when there is none to use.
+/// Grows EPA's polytope from GJK's enclosing tetrahedron (towards `hint`
+/// first, a tracker's last contact normal) and checks it exactly; `false`
+/// when there is none to use.
 pub(super) fn grow_polytope(
     pair: &ConvexPair,
     posed: &Posed,
     g: &Gjk,
+    hint: Option<DVec3>,
     ls: &mut LocalScratch,
 ) -> bool {
     if !g.enclosed || g.simplex.len != 4 {
         return false;
     }
-    ls.epa.run(pair, posed, g.simplex.pts) && ls.epa.encloses_origin()
+    ls.epa.run(pair, posed, g.simplex.pts, hint) && ls.epa.encloses_origin()
 }
 
 /// The least offset of a face of EPA's polytope (a lower bound on the
@@ -381,31 +385,30 @@ pub(super) fn separation_facets(
     ls: &mut LocalScratch,
 ) {
     ls.facets.clear();
-    let lat = Lateral::new(pair, posed, s, best, cs, ls);
+    // With one vertex in each set every facet found touches the closest
+    // pair of vertices, so the lateral bound would keep them all: skip it.
+    let lat = if cs.set_a.len() == 1 && cs.set_b.len() == 1 {
+        Lateral::everywhere(s.n)
+    } else {
+        Lateral::new(pair, posed, s, best, cs, ls)
+    };
     let (a, b) = (&pair.a, &pair.b);
     let (balls_a, balls_b) = (&pair.prep_a.balls, &pair.prep_b.balls);
-    // Each feature lies in its ball (corners' mean, precomputed radius; the
+    // Each feature lies in its ball (centre posed, precomputed radius; the
     // rotation keeps lengths to 2^-40, the rounding is in the margin).
     let turned = 1.0 + 2f64.powi(-40);
     let ball = |corners: &[u32], at: &dyn Fn(u32) -> DVec3, r: f64| {
         let c = corners.iter().fold(DVec3::ZERO, |s, &v| s + at(v)) / corners.len() as f64;
         (lat.project(c), r * turned + lat.margin)
     };
+    let posed_centre = |pose: &Pose, c: DVec3| mul_pow2_vec(pose.apply(c), posed.k);
     let face_a = |f: u32| {
-        let c = ball(
-            a.face(f as usize),
-            &|v| posed.a(v),
-            balls_a.face(f, posed.k),
-        );
-        lat.near(c, lat.disk_b)
+        let c = posed_centre(&posed.pose_a, balls_a.face_centre(f));
+        lat.near((lat.project(c), balls_a.face(f, posed.k) * turned + lat.margin), lat.disk_b)
     };
     let face_b = |g: u32| {
-        let c = ball(
-            b.face(g as usize),
-            &|w| posed.b(w),
-            balls_b.face(g, posed.k),
-        );
-        lat.near(c, lat.disk_a)
+        let c = posed_centre(&posed.pose_b, balls_b.face_centre(g));
+        lat.near((lat.project(c), balls_b.face(g, posed.k) * turned + lat.margin), lat.disk_a)
     };
     let edge_a = |e: u32| {
         let c = ball(
@@ -500,6 +503,19 @@ impl Lateral {
         lat.disk_a = lat.cap_disk(&pair.a, |v| posed.a(v), &cs.set_a, Side::A, ls);
         lat.disk_b = lat.cap_disk(&pair.b, |w| posed.b(w), &cs.set_b, Side::B, ls);
         lat
+    }
+
+    /// A bound that keeps everything.
+    fn everywhere(n: DVec3) -> Lateral {
+        Lateral {
+            n,
+            level_a: f64::INFINITY,
+            level_b: f64::NEG_INFINITY,
+            reach: f64::INFINITY,
+            margin: 0.0,
+            disk_a: ANY,
+            disk_b: ANY,
+        }
     }
 
     /// `n · x` inside the side's cap.

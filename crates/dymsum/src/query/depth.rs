@@ -200,7 +200,7 @@ fn penetration(pair: &ConvexPair, scratch: &mut Scratch, g: &Gjk) -> Option<Prox
     let posed = &scratch.posed;
     let (tol, slack) = (posed.tol, value_slack(posed));
     let local = &mut scratch.local;
-    if !grow_polytope(pair, posed, g, local) {
+    if !grow_polytope(pair, posed, g, scratch.normal, local) {
         return None;
     }
     let mut c = polytope_depth(local) + 4.0 * (tol + slack);
@@ -219,6 +219,9 @@ fn penetration(pair: &ConvexPair, scratch: &mut Scratch, g: &Gjk) -> Option<Prox
         );
         let need = hmin + tol + slack;
         if need <= c {
+            if let Proximity::Penetrating(contact) = &answer {
+                scratch.normal = Some(contact.normal);
+            }
             return Some(answer);
         }
         c = need * (1.0 + 1e-12);
@@ -294,6 +297,8 @@ pub(crate) struct Scratch {
     pub(super) gjk: Option<Gjk>,
     /// Its final simplex (the next query's start).
     simplex: Simplex,
+    /// The last penetration's contact normal (EPA's first direction).
+    normal: Option<DVec3>,
     pub(super) cert: CertScratch,
     /// Every facet (the exhaustive evaluation).
     all: FacetSet,
@@ -323,6 +328,7 @@ impl Scratch {
         self.dir = DVec3::ZERO;
         self.gjk = None;
         self.simplex = Simplex::default();
+        self.normal = None;
     }
 }
 

@@ -38,6 +38,8 @@ use glam::DVec3;
 #[derive(Clone, Debug, Default)]
 pub(super) struct FeatureBalls {
     exp: i32,
+    /// Each face's corners' mean (body frame).
+    face_centre: Vec<DVec3>,
     face_radius: Vec<f64>,
     half_edge: Vec<f64>,
 }
@@ -47,16 +49,17 @@ impl FeatureBalls {
     pub(super) fn of(p: &Polytope) -> FeatureBalls {
         let exp = frame_exponent(p.vertices().iter().flat_map(|v| v.to_array()));
         let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
-        let face_radius = (0..p.face_count())
+        let (face_centre, face_radius) = (0..p.face_count())
             .map(|f| {
                 let face = p.face(f);
                 let c = mean(face.iter().map(|&i| v[i as usize]), face.len());
-                up(face
+                let r = up(face
                     .iter()
                     .map(|&i| (v[i as usize] - c).length())
-                    .fold(0.0, f64::max))
+                    .fold(0.0, f64::max));
+                (mul_pow2_vec(c, -exp), r)
             })
-            .collect();
+            .unzip();
         let half_edge = (0..p.edge_count())
             .map(|e| {
                 let [x, y] = p.edge(e).vertices;
@@ -65,6 +68,7 @@ impl FeatureBalls {
             .collect();
         FeatureBalls {
             exp,
+            face_centre,
             face_radius,
             half_edge,
         }
@@ -81,6 +85,12 @@ impl FeatureBalls {
     #[inline]
     pub(super) fn face(&self, f: u32, k: i32) -> f64 {
         self.in_frame(self.face_radius[f as usize], k)
+    }
+
+    /// The centre of face `f`'s ball (body frame).
+    #[inline]
+    pub(super) fn face_centre(&self, f: u32) -> DVec3 {
+        self.face_centre[f as usize]
     }
 
     /// Half the length of edge `e` in the query's frame.

@@ -69,7 +69,13 @@ impl Epa {
     /// Returns `false` when `K` cannot be used: the tetrahedron is flat, or
     /// a step broke the surface (a horizon that is not one loop, a
     /// degenerate new face).
-    pub(super) fn run(&mut self, pair: &ConvexPair, posed: &Posed, tetra: [Point; 4]) -> bool {
+    pub(super) fn run(
+        &mut self,
+        pair: &ConvexPair,
+        posed: &Posed,
+        tetra: [Point; 4],
+        hint: Option<DVec3>,
+    ) -> bool {
         self.pts.clear();
         self.tris.clear();
         let mut t = tetra;
@@ -103,6 +109,23 @@ impl Epa {
             }
         }
         let tol = posed.tol;
+        // A hint (the last frame's contact normal): first grow the face it
+        // points through towards the support point there, which under
+        // coherent motion is next to the answer.
+        if let Some(h) = hint.filter(|h| h.length_squared() > 0.0) {
+            let f = (0..self.tris.len())
+                .max_by(|&i, &j| self.tris[i].n.dot(h).total_cmp(&self.tris[j].n.dot(h)))
+                .expect("four faces");
+            let start = self.pts[self.tris[f].v[0] as usize];
+            let (a, _) = climb(&pair.a, |v| posed.a(v), h, start.a);
+            let (b, _) = climb(&pair.b, |w| posed.b(w), -h, start.b);
+            let w = posed.a(a) - posed.b(b);
+            let tri = self.tris[f];
+            let known = self.pts.iter().any(|p| p.a == a && p.b == b);
+            if !known && tri.n.dot(w) - tri.d > tol && !self.expand(f, Point { w, a, b }) {
+                return false;
+            }
+        }
         for _ in 0..MAX_STEPS {
             let Some(f) = self.nearest() else {
                 return true;
