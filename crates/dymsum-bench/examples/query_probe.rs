@@ -55,6 +55,7 @@ fn main() {
             std::hint::black_box(tr.update(pa, pb).unwrap());
         }
         let tracker = t.elapsed().as_secs_f64() * 1e6 / poses.len() as f64;
+        let active = tr.active_strategy();
         let (sa, sb) = (parry_shape(&a), parry_shape(&b));
         let pp: Vec<_> = poses
             .iter()
@@ -65,6 +66,6 @@ fn main() {
             std::hint::black_box(parry3d_f64::query::contact(qa, &sa, qb, &sb, 0.0).unwrap());
         }
         let parry = t.elapsed().as_secs_f64() * 1e6 / poses.len() as f64;
-        println!("{label:16} hits {hits:4}  query {ours:8.2} µs  intersects {yes_no:6.2} µs  tracker {tracker:6.2} µs  parry {parry:6.2} µs  {:?}", pair.stats());
+        println!("{label:16} hits {hits:4}  query {ours:8.2} µs  intersects {yes_no:6.2} µs  tracker {tracker:6.2} µs ({active:?})  parry {parry:6.2} µs  {:?}", pair.stats());
     }
 }

@@ -81,9 +81,9 @@ use super::frame::Posed;
 use super::gjk::{CertScratch, Gjk};
 use super::support::{dot_error, near_max, Marks, NearMax};
 use super::ConvexPair;
+use crate::gauss::edges_cross;
 use crate::kernel::exact::mul_pow2_vec;
 use crate::Pose;
-use crate::gauss::edges_cross;
 use glam::DVec3;
 
 /// Spherical caps holding a body's Gaussian cells (one per vertex) and arcs
@@ -404,11 +404,23 @@ pub(super) fn separation_facets(
     let posed_centre = |pose: &Pose, c: DVec3| mul_pow2_vec(pose.apply(c), posed.k);
     let face_a = |f: u32| {
         let c = posed_centre(&posed.pose_a, balls_a.face_centre(f));
-        lat.near((lat.project(c), balls_a.face(f, posed.k) * turned + lat.margin), lat.disk_b)
+        lat.near(
+            (
+                lat.project(c),
+                balls_a.face(f, posed.k) * turned + lat.margin,
+            ),
+            lat.disk_b,
+        )
     };
     let face_b = |g: u32| {
         let c = posed_centre(&posed.pose_b, balls_b.face_centre(g));
-        lat.near((lat.project(c), balls_b.face(g, posed.k) * turned + lat.margin), lat.disk_a)
+        lat.near(
+            (
+                lat.project(c),
+                balls_b.face(g, posed.k) * turned + lat.margin,
+            ),
+            lat.disk_a,
+        )
     };
     let edge_a = |e: u32| {
         let c = ball(
@@ -588,6 +600,143 @@ impl Lateral {
     fn near(&self, x: (DVec3, f64), y: (DVec3, f64)) -> bool {
         (x.0 - y.0).length() <= x.1 + y.1 + self.reach
     }
+}
+
+/// The separation's shortcut (module docs, "one facet"): when GJK's final
+/// simplex is a triangle whose three points label one facet `F` of the
+/// overlay (three vertices of one face of A against one vertex of B, or the
+/// reverse, or two edges), `F` is confirmed on the overlay with its exact
+/// predicate, and the lens of the points of `D'` that could measure at most
+/// `best` (those with `n · x ≥ floor` and `|x| ≤ best` plus rounding lie
+/// within `r = √((best + err)² − floor²)` of the axis through the origin
+/// along `n`) lies inside `F`'s projection with room `r` to its boundary,
+/// then no other facet has a point in the lens (facets of a convex
+/// polytope meet only along their boundaries), so `F` alone decides the
+/// separation. Puts `F` into `facets` and returns `true`; else `false`.
+pub(super) fn single_facet(
+    pair: &ConvexPair,
+    posed: &Posed,
+    g: &Gjk,
+    n: DVec3,
+    best: f64,
+    floor: f64,
+    facets: &mut FacetSet,
+) -> bool {
+    if g.simplex.len != 3 {
+        return false;
+    }
+    let pts = &g.simplex.pts[..3];
+    let (a, b) = (&pair.a, &pair.b);
+    let mut av = [pts[0].a, pts[1].a, pts[2].a];
+    let mut bv = [pts[0].b, pts[1].b, pts[2].b];
+    av.sort_unstable();
+    bv.sort_unstable();
+    let distinct = |v: &[u32; 3]| 1 + usize::from(v[1] != v[0]) + usize::from(v[2] != v[1]);
+    let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
+    let prep = &pair.prep_b;
+    let face_with = |p: &crate::Polytope, v: &[u32; 3]| {
+        p.ring(v[0] as usize)
+            .iter()
+            .map(|r| r.face)
+            .find(|&f| v[1..].iter().all(|x| p.face(f as usize).contains(x)))
+    };
+    let edge_between = |p: &crate::Polytope, u: u32, w: u32| {
+        p.ring(u as usize)
+            .iter()
+            .find(|r| r.neighbor == w)
+            .map(|r| r.edge)
+    };
+    facets.clear();
+    // The facet's corners in D' (for the lens test).
+    let mut corners = [DVec3::ZERO; 64];
+    let k;
+    match (distinct(&av), distinct(&bv)) {
+        (3, 1) => {
+            let Some(f) = face_with(a, &av) else {
+                return false;
+            };
+            let w = prep.neg_vertex[bv[0] as usize];
+            if !vq.in_cell(w, &vp.normal(f)) {
+                return false;
+            }
+            let face = a.face(f as usize);
+            if face.len() > corners.len() {
+                return false;
+            }
+            let q = posed.b(bv[0]);
+            for (c, &v) in corners.iter_mut().zip(face) {
+                *c = posed.a(v) - q;
+            }
+            k = face.len();
+            facets.fv.push((f, w));
+        }
+        (1, 3) => {
+            let Some(gb) = face_with(b, &bv) else {
+                return false;
+            };
+            let gq = prep.neg_face[gb as usize];
+            if !vp.in_cell(av[0], &vq.normal(gq)) {
+                return false;
+            }
+            let face = b.face(gb as usize);
+            if face.len() > corners.len() {
+                return false;
+            }
+            let p = posed.a(av[0]);
+            for (c, &w) in corners.iter_mut().zip(face) {
+                *c = p - posed.b(w);
+            }
+            k = face.len();
+            facets.vf.push((gq, av[0]));
+        }
+        (2, 2) => {
+            let (a0, a1) = (av[0], if av[1] != av[0] { av[1] } else { av[2] });
+            let (b0, b1) = (bv[0], if bv[1] != bv[0] { bv[1] } else { bv[2] });
+            let (Some(e), Some(eb)) = (edge_between(a, a0, a1), edge_between(b, b0, b1)) else {
+                return false;
+            };
+            let e2 = prep.neg_edge[eb as usize];
+            if !edges_cross(&vp, e, &vq, e2) {
+                return false;
+            }
+            let (p0, p1, q0, q1) = (posed.a(a0), posed.a(a1), posed.b(b0), posed.b(b1));
+            corners[..4].copy_from_slice(&[p0 - q0, p1 - q0, p1 - q1, p0 - q1]);
+            k = 4;
+            facets.ee.push((e, e2));
+        }
+        _ => return false,
+    }
+    // The lens: lateral reach, with the rounding of the posed points.
+    let err_p = 4.0 * (posed.eta_a + posed.eta_b) + 32.0 * f64::EPSILON * posed.scale;
+    let far = best + err_p;
+    if !(floor > 0.0 && far > floor) {
+        return false;
+    }
+    let margin = err_p + 64.0 * f64::EPSILON * posed.scale;
+    let reach = (far * far - floor * floor).sqrt() * (1.0 + 4.0 * f64::EPSILON) + margin;
+    // The origin's projection along n must lie inside the corners'
+    // projected polygon (convex: one turning sense about n) with room
+    // `reach` to every side.
+    let project = |x: DVec3| x - n.dot(x) * n;
+    let mut sense = 0.0f64;
+    for i in 0..k {
+        let (p, q) = (project(corners[i]), project(corners[(i + 1) % k]));
+        let d = q - p;
+        let len = d.length();
+        if len.is_nan() || len <= 0.0 {
+            return false;
+        }
+        // Signed distance of the origin from the side's line, positive to
+        // the left about n.
+        let side = d.cross(-p).dot(n) / len;
+        if sense == 0.0 {
+            sense = side.signum();
+        }
+        if side * sense <= reach {
+            return false;
+        }
+    }
+    true
 }
 
 /// The slab width that covers every facet which could measure at most

@@ -10,8 +10,8 @@
 //! posed vertices (see [`evaluate`]).
 use super::candidates::{candidates, refine, winner, Candidate, FacetSet};
 use super::certify::{
-    grow_polytope, penetration_facets, polytope_depth, separation_facets, slab, slab_width,
-    value_slack, LocalScratch,
+    grow_polytope, penetration_facets, polytope_depth, separation_facets, single_facet, slab,
+    slab_width, value_slack, LocalScratch,
 };
 use super::closest::line_line;
 use super::distance::separation;
@@ -130,7 +130,14 @@ fn exhaustive_facets(
 /// certificate cannot be made, with the yes/no answer when it is known.
 fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Option<bool>> {
     let warm = scratch.warm.clamp(pair);
-    let g = gjk(pair, &scratch.posed, warm, scratch.dir, &scratch.simplex, false);
+    let g = gjk(
+        pair,
+        &scratch.posed,
+        warm,
+        scratch.dir,
+        &scratch.simplex,
+        false,
+    );
     scratch.remember(&g);
     let posed = &scratch.posed;
     if encloses_origin(posed, &g) {
@@ -156,6 +163,21 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Opti
         return Err(None);
     }
     let local = &mut scratch.local;
+    if s.floor > 0.0 && single_facet(pair, posed, &g, n, len, s.floor, &mut local.facets) {
+        let (answer, measured) = evaluate_in_frame(
+            pair,
+            posed,
+            &local.facets,
+            false,
+            &mut scratch.cands,
+            (&mut scratch.poly, &mut scratch.bounds),
+        );
+        if let Proximity::Separated(sep) = answer {
+            if !measured.is_nan() && sep.distance <= len {
+                return Ok(answer);
+            }
+        }
+    }
     let mut best = len;
     for _ in 0..3 {
         separation_facets(pair, posed, &s, best, &mut scratch.cert, local);
@@ -234,7 +256,14 @@ fn penetration(pair: &ConvexPair, scratch: &mut Scratch, g: &Gjk) -> Option<Prox
 /// method (counted).
 pub(super) fn decide(pair: &ConvexPair, scratch: &mut Scratch, yes_no: bool) -> bool {
     let warm = scratch.warm.clamp(pair);
-    let g = gjk(pair, &scratch.posed, warm, scratch.dir, &scratch.simplex, yes_no);
+    let g = gjk(
+        pair,
+        &scratch.posed,
+        warm,
+        scratch.dir,
+        &scratch.simplex,
+        yes_no,
+    );
     scratch.remember(&g);
     match certify(pair, &scratch.posed, &g, &mut scratch.cert) {
         Some(x) => x,

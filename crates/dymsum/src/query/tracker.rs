@@ -41,18 +41,44 @@ use crate::dynamic::UpdateReport;
 use crate::sum::Overlay;
 use crate::{DynamicSum, Pose};
 
-/// How a [`ContactTracker`] answers each frame.
+/// How a [`ContactTracker`] answers each frame. Every strategy gives the
+/// same answers (the static query's); they differ in speed only.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum TrackerStrategy {
+    /// Measures both of the others on the first [`PROBE_FRAMES`] frames
+    /// (and again every [`REPROBE_EVERY`] frames) and uses the faster: the
+    /// dynamic sum wins on tiny shapes, whose whole sum is a few dozen
+    /// facets, the certified query on everything else.
+    #[default]
+    Auto,
     /// The certified query, warm-started from the last frame: support
     /// functions, GJK, EPA and exact certificates over the facets near the
     /// answer (every facet when a certificate cannot be made, counted in
     /// [`super::QueryStats`]).
-    #[default]
     Certified,
     /// A [`DynamicSum`] of `A ⊕ (−B)` repaired by DYMSUM each frame, every
     /// facet evaluated (the sum is available from [`ContactTracker::sum`]).
     DynamicSum,
+}
+
+/// Frames an [`TrackerStrategy::Auto`] tracker times each strategy on.
+pub const PROBE_FRAMES: u32 = 16;
+
+/// Frames after which an [`TrackerStrategy::Auto`] tracker measures again
+/// (the motion may have changed: contact, separation, speed).
+pub const REPROBE_EVERY: u32 = 4096;
+
+/// What an [`TrackerStrategy::Auto`] tracker is doing.
+#[derive(Clone, Copy, Debug)]
+enum Phase {
+    /// Running both strategies, timing each (nanoseconds so far).
+    Probing {
+        frames: u32,
+        certified: u64,
+        sum: u64,
+    },
+    /// Running the one chosen, for this many more frames.
+    Using { sum: bool, left: u32 },
 }
 
 /// Depth or distance of two moving convex bodies, frame after frame.
@@ -85,6 +111,8 @@ pub enum TrackerStrategy {
 pub struct ContactTracker {
     pair: ConvexPair,
     strategy: TrackerStrategy,
+    /// The automatic strategy's state.
+    phase: Phase,
     /// The dynamic sum (the [`TrackerStrategy::DynamicSum`] strategy).
     sum: Option<DynamicSum>,
     poses: (Pose, Pose),
@@ -99,22 +127,23 @@ pub struct ContactTracker {
 }
 
 impl ContactTracker {
-    /// A tracker at the given poses with the certified strategy. It keeps
-    /// its own handle on the pair (a cheap clone: the bodies and `B`'s
-    /// reflection are shared).
+    /// A tracker at the given poses with the automatic strategy
+    /// ([`TrackerStrategy::Auto`]). It keeps its own handle on the pair (a
+    /// cheap clone: the bodies and `B`'s reflection are shared).
     ///
     /// # Errors
     /// Those of [`ConvexPair::query`]: [`QueryError::OutOfRange`] when a
     /// posed vertex of A or B, or the answer, overflows `f64`.
     pub fn new(pair: &ConvexPair, pose_a: Pose, pose_b: Pose) -> Result<Self, QueryError> {
-        Self::with_strategy(pair, pose_a, pose_b, TrackerStrategy::Certified)
+        Self::with_strategy(pair, pose_a, pose_b, TrackerStrategy::Auto)
     }
 
     /// A tracker at the given poses with the given strategy.
     ///
     /// # Errors
     /// Those of [`ConvexPair::query`]; with
-    /// [`TrackerStrategy::DynamicSum`], also [`QueryError::Sum`] wrapping
+    /// [`TrackerStrategy::DynamicSum`] or [`TrackerStrategy::Auto`], also
+    /// [`QueryError::Sum`] wrapping
     /// [`crate::SumError::Inconsistent`] for an internal error of the
     /// dynamic sum (a bug: please report the poses).
     pub fn with_strategy(
@@ -126,16 +155,25 @@ impl ContactTracker {
         let pair = pair.clone();
         let sum = match strategy {
             TrackerStrategy::Certified => None,
-            TrackerStrategy::DynamicSum => Some(DynamicSum::new(
-                &pair.a,
-                pose_a,
-                &pair.neg_b().polytope,
-                Reflected::pose(pose_b),
-            )?),
+            TrackerStrategy::DynamicSum | TrackerStrategy::Auto => {
+                Some(new_sum(&pair, pose_a, pose_b)?)
+            }
+        };
+        let phase = match strategy {
+            TrackerStrategy::Auto => Phase::Probing {
+                frames: 0,
+                certified: 0,
+                sum: 0,
+            },
+            other => Phase::Using {
+                sum: other == TrackerStrategy::DynamicSum,
+                left: u32::MAX,
+            },
         };
         let mut tracker = ContactTracker {
             pair,
             strategy,
+            phase,
             sum,
             poses: (pose_a, pose_b),
             last: Proximity::Penetrating(super::Contact {
@@ -156,7 +194,7 @@ impl ContactTracker {
         if let Some(sum) = &tracker.sum {
             tracker.overlay = sum.overlay();
         }
-        tracker.answer()?;
+        tracker.answer(strategy == TrackerStrategy::DynamicSum)?;
         Ok(tracker)
     }
 
@@ -170,24 +208,88 @@ impl ContactTracker {
     /// [`ContactTracker::last`] keeps the previous answer.
     pub fn update(&mut self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
         self.poses = (pose_a, pose_b);
-        if let Some(sum) = &mut self.sum {
-            sum.set_pose_into(pose_a, Reflected::pose(pose_b), &mut self.report);
-            sum.overlay_into(&mut self.overlay);
+        match self.phase {
+            Phase::Using { sum, left } => {
+                if sum {
+                    self.move_sum()?;
+                }
+                self.answer(sum)?;
+                self.phase = match (self.strategy, left) {
+                    (TrackerStrategy::Auto, 0) => {
+                        if self.sum.is_none() {
+                            self.sum = Some(new_sum(&self.pair, pose_a, pose_b)?);
+                        }
+                        Phase::Probing {
+                            frames: 0,
+                            certified: 0,
+                            sum: 0,
+                        }
+                    }
+                    _ => Phase::Using {
+                        sum,
+                        left: left.saturating_sub(1),
+                    },
+                };
+            }
+            Phase::Probing {
+                frames,
+                certified,
+                sum,
+            } => {
+                let start = std::time::Instant::now();
+                self.answer(false)?;
+                let mid = std::time::Instant::now();
+                self.move_sum()?;
+                self.answer(true)?;
+                let end = std::time::Instant::now();
+                let (c, s) = (
+                    certified + (mid - start).as_nanos() as u64,
+                    sum + (end - mid).as_nanos() as u64,
+                );
+                self.phase = if frames + 1 < PROBE_FRAMES {
+                    Phase::Probing {
+                        frames: frames + 1,
+                        certified: c,
+                        sum: s,
+                    }
+                } else {
+                    let use_sum = s < c;
+                    if !use_sum {
+                        self.sum = None;
+                        self.report = UpdateReport::default();
+                    }
+                    Phase::Using {
+                        sum: use_sum,
+                        left: REPROBE_EVERY,
+                    }
+                };
+            }
         }
-        self.answer()?;
         Ok(self.last)
     }
 
-    /// Answers at the current poses.
-    fn answer(&mut self) -> Result<(), QueryError> {
+    /// Moves the dynamic sum to the current poses (a DYMSUM update).
+    fn move_sum(&mut self) -> Result<(), QueryError> {
+        let (pose_a, pose_b) = self.poses;
+        let sum = match &mut self.sum {
+            Some(s) => s,
+            None => self.sum.insert(new_sum(&self.pair, pose_a, pose_b)?),
+        };
+        sum.set_pose_into(pose_a, Reflected::pose(pose_b), &mut self.report);
+        sum.overlay_into(&mut self.overlay);
+        Ok(())
+    }
+
+    /// Answers at the current poses, from the dynamic sum's facets or by
+    /// the certified query.
+    fn answer(&mut self, from_sum: bool) -> Result<(), QueryError> {
         let (pose_a, pose_b) = self.poses;
         self.pair.stats.count_query();
-        let facets = match self.strategy {
-            TrackerStrategy::Certified => Facets::Certified,
-            TrackerStrategy::DynamicSum => {
-                self.facets.fill_from(&self.overlay);
-                Facets::Overlay(&self.facets)
-            }
+        let facets = if from_sum {
+            self.facets.fill_from(&self.overlay);
+            Facets::Overlay(&self.facets)
+        } else {
+            Facets::Certified
         };
         self.last = evaluate(&self.pair, pose_a, pose_b, facets, &mut self.scratch)?;
         Ok(())
@@ -198,8 +300,7 @@ impl ContactTracker {
         &self.last
     }
 
-    /// What the last dynamic update changed (empty with the certified
-    /// strategy, which keeps no sum).
+    /// What the last dynamic update changed (empty while no sum is kept).
     pub fn last_update(&self) -> &UpdateReport {
         &self.report
     }
@@ -209,12 +310,23 @@ impl ContactTracker {
         self.poses
     }
 
-    /// The strategy.
+    /// The strategy asked for.
     pub fn strategy(&self) -> TrackerStrategy {
         self.strategy
     }
 
-    /// The dynamic sum `A ⊕ (−B)` (with [`TrackerStrategy::DynamicSum`]).
+    /// The strategy answering now: [`TrackerStrategy::Certified`] or
+    /// [`TrackerStrategy::DynamicSum`] (an automatic tracker measuring both
+    /// reports the one it answered the last frame with).
+    pub fn active_strategy(&self) -> TrackerStrategy {
+        match self.phase {
+            Phase::Using { sum: true, .. } | Phase::Probing { .. } => TrackerStrategy::DynamicSum,
+            Phase::Using { sum: false, .. } => TrackerStrategy::Certified,
+        }
+    }
+
+    /// The dynamic sum `A ⊕ (−B)`, while one is kept (the dynamic-sum
+    /// strategy, or an automatic tracker that measured it faster).
     pub fn sum(&self) -> Option<&DynamicSum> {
         self.sum.as_ref()
     }
@@ -224,4 +336,14 @@ impl ContactTracker {
     pub fn stats(&self) -> super::QueryStats {
         self.pair.stats()
     }
+}
+
+/// A dynamic sum `A ⊕ (−B)` at these poses.
+fn new_sum(pair: &ConvexPair, pose_a: Pose, pose_b: Pose) -> Result<DynamicSum, QueryError> {
+    Ok(DynamicSum::new(
+        &pair.a,
+        pose_a,
+        &pair.neg_b().polytope,
+        Reflected::pose(pose_b),
+    )?)
 }
