@@ -28,7 +28,9 @@ use dymsum::{PolygonMesh, Polytope, Pose, Rotation};
 use dymsum_io::formats::FormatError;
 use dymsum_io::load::LoadError;
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2};
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyPermissionError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
@@ -583,9 +585,31 @@ pub(crate) fn pose(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Pose>
     let Some(obj) = obj.filter(|o| !o.is_none()) else {
         return Ok(Pose::IDENTITY);
     };
+    if let Some(p) = rigid_4x4(obj) {
+        return Ok(p);
+    }
     let probe = rotation_probe(obj, what, POSE_FORMS)?;
     let form = single_form(&probe, what, POSE_FORMS, true)?;
     one_transform(&probe, form, what, POSE_FORMS)
+}
+
+/// The common case read directly from the array's memory: a C-contiguous
+/// (4, 4) `float64` array holding a valid rigid transform (`None`
+/// otherwise, and the general path reads it, with its error messages).
+fn rigid_4x4(obj: &Bound<'_, PyAny>) -> Option<Pose> {
+    let arr = obj.cast::<PyArray2<f64>>().ok()?.readonly();
+    let flat = arr.as_slice().ok()?;
+    (arr.shape() == [4, 4]).then_some(())?;
+    rigid_from_rows(flat)
+}
+
+/// A rigid transform from 16 row-major values, if it is one.
+fn rigid_from_rows(flat: &[f64]) -> Option<Pose> {
+    let mut rows = [[0.0; 4]; 4];
+    for (r, row) in rows.iter_mut().enumerate() {
+        row.copy_from_slice(&flat[4 * r..4 * r + 4]);
+    }
+    Pose::from_mat4(DMat4::from_cols_array_2d(&rows).transpose())
 }
 
 /// One rotation: a `scipy.spatial.transform.Rotation` (a single one), a (4,)
@@ -606,6 +630,20 @@ pub(crate) fn pose_stack(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult
     let Some(obj) = obj.filter(|o| !o.is_none()) else {
         return Ok(vec![Pose::IDENTITY]);
     };
+    // The common case read directly: a C-contiguous (K, 4, 4) float64
+    // array of valid rigid transforms.
+    if let Ok(arr) = obj.cast::<numpy::PyArray3<f64>>() {
+        let ro = arr.readonly();
+        if let (Ok(flat), [_, 4, 4]) = (ro.as_slice(), ro.shape()) {
+            let poses: Option<Vec<Pose>> = flat.chunks_exact(16).map(rigid_from_rows).collect();
+            if let Some(p) = poses {
+                return Ok(p);
+            }
+        }
+    }
+    if let Some(p) = rigid_4x4(obj) {
+        return Ok(vec![p]);
+    }
     let np = numpy(obj.py())?;
     let scipy_like = !obj.is_instance(&np.getattr("ndarray")?)?
         && obj.hasattr("as_quat")?

@@ -543,13 +543,15 @@ fn contact(
 /// Tracks the contact of A and B over a motion, with exactly the answers of
 /// ``contact`` at every frame.
 ///
-/// ``ContactTracker(a, b, pose_a=None, pose_b=None, strategy="certified")``;
+/// ``ContactTracker(a, b, pose_a=None, pose_b=None, strategy="auto")``;
 /// poses 4×4 homogeneous rigid transforms, or rotations about the origin (a
 /// scipy ``Rotation``, a 3×3 matrix, a quaternion ``(x, y, z, w)``).
-/// ``strategy="certified"`` (the default) answers each frame from support
-/// functions warm-started from the last frame, with exact certificates;
+/// ``strategy="certified"`` answers each frame from support functions
+/// warm-started from the last frame, with exact certificates;
 /// ``strategy="sum"`` keeps the dynamic sum ``A ⊕ (−B)`` repaired by DYMSUM
-/// and evaluates every facet (``last_update`` then reports the repair).
+/// and evaluates every facet (``last_update`` then reports the repair);
+/// ``"auto"`` (the default) times both on the first frames and keeps the
+/// faster. Every strategy gives the same answers.
 ///
 /// >>> import numpy as np, dymsum
 /// >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float) - 0.5
@@ -564,7 +566,7 @@ pub struct PyContactTracker {
 #[pymethods]
 impl PyContactTracker {
     #[new]
-    #[pyo3(signature = (a, b, pose_a = None, pose_b = None, strategy = "certified"))]
+    #[pyo3(signature = (a, b, pose_a = None, pose_b = None, strategy = "auto"))]
     fn new(
         py: Python<'_>,
         a: &Bound<'_, PyAny>,
@@ -574,11 +576,12 @@ impl PyContactTracker {
         strategy: &str,
     ) -> PyResult<Self> {
         let strategy = match strategy {
+            "auto" => TrackerStrategy::Auto,
             "certified" => TrackerStrategy::Certified,
             "sum" => TrackerStrategy::DynamicSum,
             other => {
                 return Err(convert::value_error(format!(
-                    "ContactTracker: strategy must be \"certified\" or \"sum\", got {other:?}"
+                    "ContactTracker: strategy must be \"auto\", \"certified\" or \"sum\", got {other:?}"
                 )))
             }
         };
@@ -627,13 +630,18 @@ impl PyContactTracker {
         report_dict(py, self.inner.last_update(), facets)
     }
 
-    /// The strategy: ``"certified"`` or ``"sum"``.
+    /// The strategy asked for: ``"auto"``, ``"certified"`` or ``"sum"``.
     #[getter]
     fn strategy(&self) -> &'static str {
-        match self.inner.strategy() {
-            TrackerStrategy::Certified => "certified",
-            TrackerStrategy::DynamicSum => "sum",
-        }
+        strategy_name(self.inner.strategy())
+    }
+
+    /// The strategy answering now: ``"certified"`` or ``"sum"`` (an
+    /// ``"auto"`` tracker measures both on its first frames and keeps the
+    /// faster).
+    #[getter]
+    fn active_strategy(&self) -> &'static str {
+        strategy_name(self.inner.active_strategy())
     }
 
     /// How the pair's queries were answered: a dict with ``queries``,
@@ -643,6 +651,15 @@ impl PyContactTracker {
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         stats_dict(py, self.inner.stats())
+    }
+}
+
+/// A strategy's name in Python.
+fn strategy_name(s: TrackerStrategy) -> &'static str {
+    match s {
+        TrackerStrategy::Auto => "auto",
+        TrackerStrategy::Certified => "certified",
+        TrackerStrategy::DynamicSum => "sum",
     }
 }
 

@@ -201,9 +201,10 @@ def test_tracker_strategies_give_the_static_answers():
     by frame, and the certified one needs no exhaustive fallback here."""
     a = dymsum.load("gs2")
     b = dymsum.load("cylinder")
-    for strategy in ("certified", "sum"):
+    for strategy in ("certified", "sum", "auto"):
         t = dymsum.ContactTracker(a, b, strategy=strategy)
         assert t.strategy == strategy
+        assert t.active_strategy in ("certified", "sum")
         for k in range(60):
             turn = Rotation.from_rotvec([0.0, 0.0, 0.02 * k])
             pa = dymsum.pose(turn, [2.5 - 0.06 * k, 0.1, 0.0])
@@ -213,7 +214,7 @@ def test_tracker_strategies_give_the_static_answers():
             assert got.normal.tolist() == want.normal.tolist()
         if strategy == "sum":
             assert t.last_update["facets"] > 0
-        else:
+        elif strategy == "certified":
             assert t.last_update["facets"] == 0
             assert t.stats["queries"] >= 61 and t.stats["exhaustive_answers"] == 0
     with pytest.raises(ValueError, match="strategy"):

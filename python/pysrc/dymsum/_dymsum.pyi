@@ -222,9 +222,9 @@ def contact(a: _ShapeLike, b: _ShapeLike, pose_a: _PoseLike = None, pose_b: _Pos
 class ContactTracker:
     """Contact of A and B over a motion, with the answers of ``contact`` at every frame.
 
-    ``strategy="certified"`` (default): certified support-function queries
-    warm-started from the last frame; ``"sum"``: the dynamic sum repaired by
-    DYMSUM, every facet evaluated.
+    ``strategy="certified"``: certified support-function queries warm-started
+    from the last frame; ``"sum"``: the dynamic sum repaired by DYMSUM, every
+    facet evaluated; ``"auto"`` (default): the faster of the two, measured.
     """
 
     def __new__(
@@ -233,7 +233,7 @@ class ContactTracker:
         b: _ShapeLike,
         pose_a: _PoseLike = None,
         pose_b: _PoseLike = None,
-        strategy: Literal["certified", "sum"] = "certified",
+        strategy: Literal["auto", "certified", "sum"] = "auto",
     ) -> ContactTracker: ...
     def update(self, pose_a: _PoseLike = None, pose_b: _PoseLike = None) -> Contact:
         """Moves A and B to these 4×4 poses (``None`` keeps that body where it is) and answers."""
@@ -243,6 +243,8 @@ class ContactTracker:
     def last_update(self) -> dict[str, Any]: ...
     @property
     def strategy(self) -> str: ...
+    @property
+    def active_strategy(self) -> str: ...
     @property
     def stats(self) -> dict[str, int]:
         """queries, exhaustive_decisions, exhaustive_answers."""
