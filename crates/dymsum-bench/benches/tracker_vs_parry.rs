@@ -1,11 +1,16 @@
-//! Issue 10 §3: exact contact per frame against parry3d-f64's GJK/EPA.
-//! For each pair, body A turns at 500 and at 5,000 steps per turn while it
-//! slides in and out of contact with B (`dymsum_bench::contact`), 1,000
-//! frames used cyclically:
+//! Exact contact per frame against parry3d-f64's GJK/EPA (issues 10 §3
+//! and 18). For each pair, body A turns at 500 and at 5,000 steps per turn
+//! while it slides in and out of contact with B (`dymsum_bench::contact`),
+//! 1,000 frames used cyclically:
 //!
-//! * `dymsum`: one `ContactTracker::update` (the DYMSUM update of
-//!   `A ⊕ (−B)` plus the exact depth or distance, direction and witness
-//!   features);
+//! * `dymsum`: one `ContactTracker::update` (strategy `Auto`: the certified
+//!   query warm-started from the last frame, or the DYMSUM-kept sum where
+//!   that measured faster; the exact depth or distance, direction and
+//!   witness features);
+//! * `static`: one cold `ConvexPair::query` (no warm start) at the same
+//!   poses;
+//! * `intersects`: `ConvexPair::intersects` alone (GJK with its exact
+//!   certificates);
 //! * `parry`: one `parry3d_f64::query::contact` (GJK/EPA, depth only when
 //!   touching, no distance).
 //!
@@ -105,9 +110,11 @@ fn tracker_vs_parry(c: &mut Criterion) {
             }
             let id = format!("{label}@{steps}");
             eprintln!(
-                "note {id}: {} and {} vertices, {hits} of {FRAMES} frames in contact",
+                "note {id}: {} and {} vertices, {hits} of {FRAMES} frames in contact, tracker uses {:?}, {:?}",
                 a.vertex_count(),
-                b.vertex_count()
+                b.vertex_count(),
+                tracker.active_strategy(),
+                pair.stats()
             );
             let mut k = 0usize;
             group.bench_function(BenchmarkId::new("dymsum", &id), |bench| {
@@ -118,6 +125,20 @@ fn tracker_vs_parry(c: &mut Criterion) {
                             .update(poses[k].0, poses[k].1)
                             .expect("a tracker update"),
                     )
+                })
+            });
+            let mut k = 0usize;
+            group.bench_function(BenchmarkId::new("static", &id), |bench| {
+                bench.iter(|| {
+                    k = (k + 1) % FRAMES;
+                    black_box(pair.query(poses[k].0, poses[k].1).expect("a query"))
+                })
+            });
+            let mut k = 0usize;
+            group.bench_function(BenchmarkId::new("intersects", &id), |bench| {
+                bench.iter(|| {
+                    k = (k + 1) % FRAMES;
+                    black_box(pair.intersects(poses[k].0, poses[k].1).expect("a query"))
                 })
             });
             let mut k = 0usize;

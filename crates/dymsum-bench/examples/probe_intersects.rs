@@ -1,5 +1,7 @@
-//! Development probe: one pair's tracker frames or static queries in a loop (for perf).
-use dymsum::query::ConvexPair;
+//! Development probe: one pair's tracker frames or static queries in a loop
+//! (for profiling): `probe_intersects A B [t|s|c|q|i]` (tracker auto, sum,
+//! certified; static query; intersects).
+use dymsum::query::{ContactTracker, ConvexPair, TrackerStrategy};
 use dymsum_bench::contact::contact_motion;
 use dymsum_bench::load;
 fn main() {
@@ -8,7 +10,12 @@ fn main() {
     let what = std::env::args().nth(3).unwrap_or("t".into());
     let pair = ConvexPair::new(&a, &b).unwrap();
     let poses = contact_motion(&a, &b, 500.0, 1000);
-    let mut tr = pair.tracker(poses[0].0, poses[0].1).unwrap();
+    let strategy = match what.as_str() {
+        "s" => TrackerStrategy::DynamicSum,
+        "c" => TrackerStrategy::Certified,
+        _ => TrackerStrategy::Auto,
+    };
+    let mut tr = ContactTracker::with_strategy(&pair, poses[0].0, poses[0].1, strategy).unwrap();
     let t = std::time::Instant::now();
     for _ in 0..50 {
         for &(pa, pb) in &poses {

@@ -107,7 +107,7 @@ pub(super) fn climb(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
 /// matter to the depth (within the tie tolerance of the best value) and
 /// keeps those candidates, in order, together with the unrefined ones that
 /// may face the origin (`h₀ ≤ tol`), which the separation refines only
-/// when their distance bound can win ([`super::distance::separation`]).
+/// when their distance bound can win ([`super::separation::separation`]).
 pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate>, tol: f64) {
     let Some(first) = (0..cands.len()).min_by(|&i, &j| cands[i].h.total_cmp(&cands[j].h)) else {
         return;
@@ -126,7 +126,7 @@ pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate
     }
     // A candidate left unrefined with `h₀ ≤ tol` may face the origin; the
     // separation refines it if its distance bound can win
-    // ([`super::distance::separation`]). The others cannot matter.
+    // ([`super::separation::separation`]). The others cannot matter.
     cands.retain(|c| c.refined || c.h <= tol);
 }
 
@@ -321,29 +321,38 @@ pub(super) fn push_ee_candidate(
     let ordered = |[x, y]: [u32; 2]| if x < y { [x, y] } else { [y, x] };
     let [u1, u2] = ordered(a.edge(e as usize).vertices);
     let [w1, w2] = ordered(b.edge(e2b as usize).vertices);
+    // X up to sign in floats, with a bound on its error.
+    let (m, q) = (vp.arc(e), vq.arc(e2));
+    let (em, eq) = (vp.arc_errs[e as usize], vq.arc_errs[e2 as usize]);
+    let xu = posed.rot_b * m.cross(q);
+    let (lm, lq, lx) = (m.length(), q.length(), xu.length());
+    let x_err = em * (lq + eq) + lm * eq + 4.0 * f64::EPSILON * lm * lq;
+    let p = posed.a(u1) - posed.b(w1);
+    if skip_above.is_finite() && lx > 0.0 && lx.is_finite() && x_err <= 1e-6 * lx {
+        // X lies on A's arc, a positive combination of the arc's two unit
+        // normals, so its sign is that of `xu · (n0 + n1)` when that is
+        // clearly non-zero (the arc is not nearly a half circle). Then
+        // h₀ ≥ its value at the float direction less the direction's
+        // error (angle `delta`) times |p| and the rounding: a candidate
+        // certainly above `skip_above` is left out before the exact side.
+        let [f0, f1] = a.edge(e as usize).faces;
+        let mid = posed.na(f0) + posed.na(f1);
+        let t = xu.dot(mid);
+        if t.abs() > 1e-6 * lx * mid.length() {
+            let delta = 2.0 * x_err / lx + 16.0 * f64::EPSILON + 2.0 * OVERLAY_MISMATCH;
+            let pl = p.length();
+            if t.signum() * xu.dot(p) / lx - (delta + 4.0 * f64::EPSILON) * pl > skip_above {
+                return;
+            }
+        }
+    }
     let (_, d) = vq.edge_arc(e2);
     let s = if vp.arc_side(e, &d).is_negative() {
         -1.0
     } else {
         1.0
     };
-    // X in floats, with a bound on its error.
-    let (m, q) = (vp.arc(e), vq.arc(e2));
-    let (em, eq) = (vp.arc_errs[e as usize], vq.arc_errs[e2 as usize]);
-    let xq = m.cross(q) * s;
-    let (lm, lq, lx) = (m.length(), q.length(), xq.length());
-    let x_err = em * (lq + eq) + lm * eq + 4.0 * f64::EPSILON * lm * lq;
-    let x_world = posed.rot_b * xq;
-    let p = posed.a(u1) - posed.b(w1);
-    if skip_above.is_finite() && lx > 0.0 && lx.is_finite() && x_err <= 1e-6 * lx {
-        // h₀ ≥ its value at the float direction less the direction's error
-        // (angle `delta`) times |p| and the rounding.
-        let delta = 2.0 * x_err / lx + 16.0 * f64::EPSILON + 2.0 * OVERLAY_MISMATCH;
-        let pl = p.length();
-        if x_world.dot(p) / x_world.length() - (delta + 4.0 * f64::EPSILON) * pl > skip_above {
-            return;
-        }
-    }
+    let x_world = xu * s;
     let da = posed.a(u2) - posed.a(u1);
     let db = posed.b(w2) - posed.b(w1);
     let c = da.cross(db);

@@ -1,9 +1,9 @@
 //! Proximity queries and configuration-space obstacles built on the sums
 //! (paper §1): penetration depth, distance and collision of two convex
-//! bodies, a per-frame contact tracker, C-obstacle slices, and unions of
-//! convex pieces.
+//! bodies, a per-frame contact tracker, batches, C-obstacle slices, and
+//! unions of convex pieces.
 //!
-//! # Everything goes through the Minkowski difference
+//! # The answer is defined by the Minkowski difference
 //! For convex bodies `A` and `B` at their poses, `D = A ⊕ (−B)` contains the
 //! origin exactly when they overlap, and translating `A` by `t` translates
 //! `D` by `t`. Hence
@@ -14,14 +14,50 @@
 //!   value `h_D(n) = h_A(n) + h_B(−n)`;
 //! * **distance**: the distance from the origin to `D` when it lies outside.
 //!
-//! `D` is computed exactly (combinatorially) by the sum algorithms, with `−B`
-//! the point reflection of `B` ([`Reflected`]). Its facet labels name the
-//! features of `A` and `B` that generate each facet, and those give the
-//! witness points. Because every face of `A` and every face of `B` is a facet
-//! label (fv and vf pairs) and the ee pairs are exactly the crossing edge
-//! pairs, the candidate set is complete: no direction is missed, which is
-//! where GJK/EPA implementations lose accuracy (EPA stops on a tolerance and
-//! can report an edge–edge depth too large, or a wrong direction).
+//! The facets of `D` are the facets of the exact overlay of the two
+//! Gaussian maps ([`crate::sum`]), with `−B` the point reflection of `B`
+//! ([`Reflected`]); their labels name the features of `A` and `B` that
+//! generate them, and those give the witness points. Every facet is a
+//! *candidate* ([`candidates`](self)): a direction and its support value.
+//! The answer is the winner among all of them, by rules that depend only
+//! on the set of candidates: the least value, ties within `16 ε B` settled
+//! by the direction's lexicographic key, then by the features' order. The
+//! candidate set is complete, so no direction is missed, which is where
+//! GJK/EPA implementations lose accuracy (EPA stops on a tolerance and can
+//! report an edge–edge depth too large, or a wrong direction).
+//!
+//! # How it is computed: support functions and certificates
+//! Building all of `D` costs O(mn); a query does not. The layout of this
+//! module follows the steps of [`ConvexPair::query`]:
+//!
+//! * `frame`: the bodies posed on demand in one power-of-two frame, with
+//!   rigorous bounds on the posing's rounding;
+//! * `support`: support functions by hill climbing from a warm start, and
+//!   the complete near-extreme sets with rigorous bounds;
+//! * `gjk`: GJK on the posed difference; its yes/no answer **certified
+//!   exactly** (a separating direction compared exactly, or the origin in
+//!   its simplex by exact determinants), else decided by the exhaustive
+//!   exact method (counted in [`QueryStats`]);
+//! * `epa`: EPA's polytope `K ⊆ D'` around the origin, checked exactly;
+//! * `certify`: the certificates that every facet outside a small set near
+//!   the answer cannot change it (caps around `K`'s faces for a
+//!   penetration, a slab and its lateral bound for a separation), and the
+//!   search that finds that set with the overlay's own exact predicates;
+//! * `candidates`, `evaluate`, `separation`, `closest`: the answer from a
+//!   set of facets, the same code for the certified set, for the whole
+//!   sum ([`ConvexPair::query_exhaustive`], the reference in the tests)
+//!   and for a tracker's dynamic sum;
+//! * `tracker`: [`ContactTracker`], warm-started frame to frame, or
+//!   evaluating a DYMSUM-kept sum ([`TrackerStrategy`]).
+//!
+//! Every soundness argument is written where it is used: the near-extreme
+//! sets in `support`, the yes/no certificates in `gjk`, the caps, the slab
+//! and the one-facet shortcut in `certify`, the candidates' directions in
+//! `candidates`. Where a certificate cannot be made (the origin within
+//! rounding of `D`'s boundary, a degenerate EPA polytope), the whole sum
+//! is evaluated instead and [`QueryStats`] counts it; on the benchmark
+//! workloads this never happens. With the `check-reference` feature every
+//! certified answer is also compared with the exhaustive one.
 //!
 //! # Conventions
 //! * [`Contact::normal`] is the unit contact normal pointing **from A towards
@@ -35,36 +71,33 @@
 //! * Touching bodies (origin on the boundary of `D`) are *intersecting*, with
 //!   depth `0`.
 //!
-//! # Determinism and symmetry
-//! Each candidate direction and support value is computed from the original
-//! bodies' features by a fixed formula whose float result is exactly negated
-//! (direction) or unchanged (value) when `A` and `B` are swapped; support
-//! values are found by a deterministic hill climb from the facet's feature.
-//! Candidates within `16 ε · scale` of the minimum are tied; among tied
-//! candidates the one whose direction, taken up to sign, is lexicographically
-//! smallest wins. So `query(B, A)` reports the same depth and the opposite
-//! normal as `query(A, B)` — except when the tied directions include both
-//! some `n` and `−n` (for example identical bodies at the same pose): no rule
-//! can then be antisymmetric (swapping identical bodies is the same call),
-//! and the direction with positive first non-zero component is returned.
-//! In degenerate inputs where the overlay's symbolic perturbation picks
-//! different (equivalent) facets for the two orders, the results agree to
-//! rounding error.
+//! # Exactness and tolerance
+//! * **Yes or no is exact.** Whether the bodies overlap or touch is decided
+//!   exactly on the posed bodies as computed (`R p + t` rounded once per
+//!   coordinate), with no tolerance: touching is touching.
+//! * **Which facet wins is exact** up to the tie rule: the facet set of `D`
+//!   is the exact overlay, and the certificates prove the winner among all
+//!   facets.
+//! * **Depths, distances and points are float constructions** from the
+//!   winning facet's features: a support value carries an error of a few
+//!   ulps of the coordinates' magnitude, about `1e-15 · B` where `B` bounds
+//!   the posed coordinates.
 //!
-//! # Robustness and tolerance
-//! The facet *set* of `D` is exact (exact predicates on the posed normals).
-//! The *metric* answers are float computations: posed vertices are rounded
-//! (`R p + t`), and a support value carries an error of a few ulps of the
-//! coordinates' magnitude, about `1e-15 · scale` where `scale` is the largest
-//! absolute coordinate of the posed bodies. The collision decision is
-//! `min h ≥ 0` on those values, so a gap or an overlap smaller than that is
-//! decided by rounding; anything larger is decided correctly. Exactly
-//! representable contacts (axis-aligned faces, dyadic coordinates, identity
-//! or quarter-turn rotations) are exact: touching boxes report depth `0`.
+//! # Determinism and symmetry
+//! The answer depends only on the bodies and poses: not on the warm start,
+//! the order of the candidates, the strategy or the thread (a tracker frame
+//! equals a cold query bit for bit). Swapping A and B reports the same
+//! depth and the opposite normal — except when the tied directions include
+//! both some `n` and `−n` (identical bodies at the same pose: no rule can
+//! then be antisymmetric, and the direction with positive first non-zero
+//! component is returned), and to rounding where an edge–edge direction had
+//! to be computed from the overlay (nearly parallel edges) or the overlay's
+//! symbolic perturbation picks different equivalent facets for the two
+//! orders.
 //!
 //! # Scale
 //! Answers are computed in the pair's power-of-two frame (posed coordinates
-//! times `2^k`, the largest in `[1, 2)`) and scaled back, so scaling both
+//! times `2^k`, their bound in `[1, 2)`) and scaled back, so scaling both
 //! bodies and their translations by `2^j` scales depth, distance and
 //! witness points by exactly `2^j` (directions unchanged), with no overflow
 //! or underflow of intermediate squared lengths at any scale. A posed
@@ -90,11 +123,11 @@ mod candidates;
 mod certify;
 mod closest;
 mod cobst;
-mod depth;
-mod distance;
 mod epa;
+mod evaluate;
 mod frame;
 mod gjk;
+mod separation;
 
 mod support;
 mod tracker;
@@ -384,7 +417,7 @@ pub struct ConvexPair {
     /// Query buffers kept between the static queries of this pair and its
     /// clones (one per query running at a time), so that a query
     /// allocates nothing once they have grown.
-    pool: std::sync::Arc<std::sync::Mutex<Vec<depth::Scratch>>>,
+    pool: std::sync::Arc<std::sync::Mutex<Vec<evaluate::Scratch>>>,
 }
 
 /// What the queries need of one body beyond the body itself, computed once
@@ -394,7 +427,7 @@ pub struct ConvexPair {
 pub(crate) struct BodyPrep {
     /// Balls around the faces and edges (the separation's branch and
     /// bound).
-    balls: distance::FeatureBalls,
+    balls: separation::FeatureBalls,
     /// Reach and radius (the query frame's bounds).
     bounds: frame::BodyBounds,
     /// Error bounds of the arc normals under any rotation, exactly as the
@@ -429,7 +462,7 @@ impl BodyPrep {
             inv
         };
         Ok(BodyPrep {
-            balls: distance::FeatureBalls::of(p),
+            balls: separation::FeatureBalls::of(p),
             bounds: frame::BodyBounds::of(p),
             arc_err,
             neg_vertex: inverse(&neg.vertex_map),
@@ -541,13 +574,15 @@ impl ConvexPair {
     ///   internal error of the sum (a bug: please report the poses).
     pub fn query(&self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
         self.stats.count_query();
-        self.with_scratch(|s| depth::evaluate(self, pose_a, pose_b, depth::Facets::Certified, s))
+        self.with_scratch(|s| {
+            evaluate::evaluate(self, pose_a, pose_b, evaluate::Facets::Certified, s)
+        })
     }
 
     /// Runs `f` with buffers from the pool, reset to a cold start (no warm
     /// start from an earlier query: a static query's cost does not depend
     /// on the queries before it).
-    fn with_scratch<T>(&self, f: impl FnOnce(&mut depth::Scratch) -> T) -> T {
+    fn with_scratch<T>(&self, f: impl FnOnce(&mut evaluate::Scratch) -> T) -> T {
         let taken = self.pool.lock().ok().and_then(|mut p| p.pop());
         let mut scratch = taken.unwrap_or_default();
         scratch.cold();
@@ -565,7 +600,9 @@ impl ConvexPair {
     /// # Errors
     /// The same as [`ConvexPair::query`].
     pub fn query_exhaustive(&self, pose_a: Pose, pose_b: Pose) -> Result<Proximity, QueryError> {
-        self.with_scratch(|s| depth::evaluate(self, pose_a, pose_b, depth::Facets::Exhaustive, s))
+        self.with_scratch(|s| {
+            evaluate::evaluate(self, pose_a, pose_b, evaluate::Facets::Exhaustive, s)
+        })
     }
 
     /// [`ConvexPair::query`] at many poses `(pose_a, pose_b)`, in order:
@@ -595,7 +632,7 @@ impl ConvexPair {
     /// The first error of [`ConvexPair::query`] among the poses.
     pub fn query_many(&self, poses: &[(Pose, Pose)]) -> Result<Vec<Proximity>, QueryError> {
         self.many(poses, |pair, (pa, pb), s| {
-            depth::evaluate(pair, pa, pb, depth::Facets::Certified, s)
+            evaluate::evaluate(pair, pa, pb, evaluate::Facets::Certified, s)
         })
     }
 
@@ -607,7 +644,7 @@ impl ConvexPair {
     pub fn intersects_many(&self, poses: &[(Pose, Pose)]) -> Result<Vec<bool>, QueryError> {
         self.many(poses, |pair, (pa, pb), s| {
             s.posed.reset(pair, pa, pb)?;
-            Ok(depth::decide(pair, s, true))
+            Ok(evaluate::decide(pair, s, true))
         })
     }
 
@@ -616,14 +653,14 @@ impl ConvexPair {
     fn many<T: Send>(
         &self,
         poses: &[(Pose, Pose)],
-        one: impl Fn(&ConvexPair, (Pose, Pose), &mut depth::Scratch) -> Result<T, QueryError> + Sync,
+        one: impl Fn(&ConvexPair, (Pose, Pose), &mut evaluate::Scratch) -> Result<T, QueryError> + Sync,
     ) -> Result<Vec<T>, QueryError> {
         use rayon::prelude::*;
         const CHUNK: usize = 64;
         let chunks: Vec<Result<Vec<T>, QueryError>> = poses
             .par_chunks(CHUNK)
             .map(|chunk| {
-                let mut scratch = depth::Scratch::default();
+                let mut scratch = evaluate::Scratch::default();
                 chunk
                     .iter()
                     .map(|&p| {
@@ -686,7 +723,7 @@ impl ConvexPair {
         self.stats.count_query();
         self.with_scratch(|s| {
             s.posed.reset(self, pose_a, pose_b)?;
-            Ok(depth::decide(self, s, true))
+            Ok(evaluate::decide(self, s, true))
         })
     }
 

@@ -35,7 +35,7 @@
 //! ```
 
 use super::candidates::FacetSet;
-use super::depth::{evaluate, Facets, Scratch};
+use super::evaluate::{evaluate, Facets, Scratch};
 use super::{ConvexPair, Proximity, QueryError, Reflected};
 use crate::dynamic::UpdateReport;
 use crate::sum::Overlay;

@@ -316,7 +316,7 @@ mod tests {
     /// round hulls, apart and overlapping: every query goes through the
     /// checks that the separation's branch and bound equals measuring
     /// every facing facet ([`super::separation`]) and that leaving out
-    /// ee-candidates changes no answer (`depth::evaluate_in_frame`).
+    /// ee-candidates changes no answer (`evaluate::evaluate_in_frame`).
     #[test]
     fn pruned_queries_equal_evaluating_every_facet() {
         let mut r = Lcg(7);

@@ -14,12 +14,12 @@ use super::certify::{
     slab_width, value_slack, LocalScratch,
 };
 use super::closest::line_line;
-use super::distance::separation;
 use super::frame::Posed;
 use super::gjk::{
     certify, encloses_origin, gjk, origin_in_difference_hull, separated_on_sets, CertScratch, Gjk,
     Simplex,
 };
+use super::separation::separation;
 use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Reflected, Separation};
 use crate::sum::{minkowski_sum_posed, Method};
 use crate::Pose;
