@@ -12,6 +12,12 @@ cd "$(dirname "$0")/.."
 printf '\n=== cargo test --workspace --release\n'
 cargo test --workspace --release
 
+# The certified queries against their exhaustive reference on every query
+# of the core's suite (the feature makes each certified answer also
+# evaluate every facet and assert that both are equal).
+printf '\n=== cargo test -p dymsum --release --features check-reference\n'
+cargo test -p dymsum --release --features check-reference
+
 # maturin builds the extension with cargo: share the workspace's target dir
 # (the dependencies the two workspaces have in common are built once).
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"

@@ -212,10 +212,37 @@ pub(super) fn grow_polytope(
     hint: Option<DVec3>,
     ls: &mut LocalScratch,
 ) -> bool {
-    if !g.enclosed || g.simplex.len != 4 {
-        return false;
-    }
-    ls.epa.run(pair, posed, g.simplex.pts, hint) && ls.epa.encloses_origin()
+    let grown = if g.enclosed && g.simplex.len == 4 {
+        ls.epa.run(pair, posed, g.simplex.pts, hint)
+    } else {
+        // No enclosing tetrahedron (the origin on a face or an edge of
+        // GJK's simplex): start from the hull of the simplex and the
+        // support points along the axes.
+        let mut pts = [super::gjk::Point::default(); 10];
+        pts[..g.simplex.len].copy_from_slice(&g.simplex.pts[..g.simplex.len]);
+        let mut k = g.simplex.len;
+        for d in [
+            DVec3::X,
+            DVec3::NEG_X,
+            DVec3::Y,
+            DVec3::NEG_Y,
+            DVec3::Z,
+            DVec3::NEG_Z,
+        ] {
+            let (a, _) = super::support::climb(&pair.a, |v| posed.a(v), d, g.warm.0);
+            let (b, _) = super::support::climb(&pair.b, |w| posed.b(w), -d, g.warm.1);
+            if !pts[..k].iter().any(|p| p.a == a && p.b == b) {
+                pts[k] = super::gjk::Point {
+                    w: posed.a(a) - posed.b(b),
+                    a,
+                    b,
+                };
+                k += 1;
+            }
+        }
+        ls.epa.run_from_hull(pair, posed, &pts[..k], hint)
+    };
+    grown && ls.epa.encloses_origin()
 }
 
 /// The least offset of a face of EPA's polytope (a lower bound on the

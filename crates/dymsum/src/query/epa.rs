@@ -108,6 +108,13 @@ impl Epa {
                 self.tris[i].adj[k] = j as u32;
             }
         }
+        self.grow(pair, posed, hint)
+    }
+
+    /// Expands `K` (towards `hint` first), then its nearest face until the
+    /// support plane is reached (within the tie tolerance) or the budget
+    /// ends; `false` when a step broke the surface.
+    fn grow(&mut self, pair: &ConvexPair, posed: &Posed, hint: Option<DVec3>) -> bool {
         let tol = posed.tol;
         // A hint (the last frame's contact normal): first grow the face it
         // points through towards the support point there, which under
@@ -154,6 +161,51 @@ impl Epa {
         (0..self.tris.len())
             .filter(|&i| self.tris[i].alive)
             .min_by(|&i, &j| self.tris[i].d.total_cmp(&self.tris[j].d))
+    }
+
+    /// Grows `K` from the convex hull of `pts` (points of `D'`), for when
+    /// GJK ended without an enclosing tetrahedron (the origin on a face or
+    /// an edge of its simplex, typical of axis-aligned boxes): the exact
+    /// hull of the points, its faces split into fans. `false` when the
+    /// points are flat or a step breaks the surface.
+    pub(super) fn run_from_hull(
+        &mut self,
+        pair: &ConvexPair,
+        posed: &Posed,
+        pts: &[Point],
+        hint: Option<DVec3>,
+    ) -> bool {
+        use crate::hull::{convex_hull, FloatPoints};
+        self.pts.clear();
+        self.tris.clear();
+        let ws: Vec<DVec3> = pts.iter().map(|p| p.w).collect();
+        let Ok(hull) = convex_hull(&FloatPoints(&ws)) else {
+            return false;
+        };
+        self.pts.extend_from_slice(pts);
+        for face in &hull.faces {
+            for i in 1..face.len() - 1 {
+                if !self.add_tri([face[0] as u32, face[i] as u32, face[i + 1] as u32]) {
+                    return false;
+                }
+            }
+        }
+        // Adjacency: each directed edge against its reverse.
+        let n = self.tris.len();
+        for i in 0..n {
+            for k in 0..3 {
+                let (p, q) = (self.tris[i].v[k], self.tris[i].v[(k + 1) % 3]);
+                let Some(j) = (0..n).find(|&j| {
+                    j != i
+                        && (0..3)
+                            .any(|m| self.tris[j].v[m] == q && self.tris[j].v[(m + 1) % 3] == p)
+                }) else {
+                    return false;
+                };
+                self.tris[i].adj[k] = j as u32;
+            }
+        }
+        self.grow(pair, posed, hint)
     }
 
     /// Adds the triangle `v` (outward normal from its corners); `false`
