@@ -12,7 +12,9 @@ use std::io::Write;
 
 use clap::{CommandFactory, Parser, Subcommand};
 
-use crate::commands::{animate, bench, cobst, completions, demo, info, models, query, render, sum};
+use crate::commands::{
+    animate, bench, cobst, completions, demo, info, models, motion, query, render, sum,
+};
 
 /// Exact static and dynamic Minkowski sums of convex polytopes.
 ///
@@ -50,6 +52,8 @@ pub enum Command {
     Cobst(cobst::CobstArgs),
     /// Collision, penetration depth and distance of a robot at given poses.
     Query(query::QueryArgs),
+    /// Whether a robot moving straight between two poses touches the obstacle (certified).
+    Motion(motion::MotionArgs),
 }
 
 impl Command {
@@ -72,6 +76,7 @@ impl Command {
             Command::Render(a) => render::run(&a, out),
             Command::Cobst(a) => cobst::run(&a, out),
             Command::Query(a) => query::run(&a, out),
+            Command::Motion(a) => motion::run(&a, out),
         }
     }
 }

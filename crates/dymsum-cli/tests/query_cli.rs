@@ -294,3 +294,93 @@ fn cobst_orientation_file_and_its_errors() {
     assert_eq!(o.status.code(), Some(2));
     dymsum_testkit::files::remove_dir(&dir);
 }
+
+/// `dymsum motion`: the JSON answer equals the library's check, a contact
+/// bracket is within the tolerance and really in contact, free motions are
+/// free, and bad input is an error naming it.
+#[test]
+fn motion_answers_match_the_library() {
+    use dymsum::query::{ConvexUnion, Motion, MotionCheck, MotionChecker};
+    let (robot, obstacle) = (model("box:4,0.1,0.1"), model("box:0.2,0.2,2"));
+    let checker = MotionChecker::new(&ConvexUnion::from(robot), &[ConvexUnion::from(obstacle)]);
+    let pose = |x: f64, y: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, y, 0.0));
+    for (from, to, a, b) in [
+        (
+            "0,1,0,1,0,0,0",
+            "0,-1,0,1,0,0,0",
+            pose(0.0, 1.0),
+            pose(0.0, -1.0),
+        ),
+        (
+            "0,3,0,1,0,0,0",
+            "3,3,0,1,0,0,0",
+            pose(0.0, 3.0),
+            pose(3.0, 3.0),
+        ),
+    ] {
+        let text = ok(&[
+            "motion",
+            "box:4,0.1,0.1",
+            "box:0.2,0.2,2",
+            "--from-xyz-wxyz",
+            from,
+            "--to-xyz-wxyz",
+            to,
+            "--tolerance",
+            "1e-6",
+            "--json",
+        ]);
+        let v: serde_json::Value = serde_json::from_str(text.trim()).unwrap();
+        match checker.check(a, b, 1e-6).unwrap() {
+            MotionCheck::Free => {
+                assert_eq!(v["free"], true, "{text}");
+                assert!(v["t_contact"].is_null() && v["contact_pose_xyz_wxyz"].is_null());
+            }
+            MotionCheck::Collides { t_safe, t_contact } => {
+                assert_eq!(v["free"], false, "{text}");
+                assert_eq!(v["t_safe"].as_f64(), t_safe);
+                assert_eq!(v["t_contact"].as_f64(), Some(t_contact));
+                assert!(t_contact - t_safe.unwrap() <= 1e-6);
+                assert!(checker
+                    .collides_at(Motion::new(a, b).at(t_contact))
+                    .unwrap());
+                let p = numbers(&v["contact_pose_xyz_wxyz"]);
+                assert!((p[1] - 0.15).abs() < 1e-6, "{p:?}");
+            }
+        }
+    }
+    let o = run(&[
+        "motion",
+        "box",
+        "box",
+        "--from-xyz-wxyz",
+        "3,0,0,1,0,0,0",
+        "--to-xyz-wxyz",
+        "4,0,0,1,0,0,0",
+        "--tolerance",
+        "0",
+    ]);
+    assert_fails(&o, 1, "tolerance");
+    let o = run(&[
+        "motion",
+        "box",
+        "box",
+        "--from-xyz-wxyz",
+        "3,0,0,1,0,0",
+        "--to-xyz-wxyz",
+        "4,0,0,1,0,0,0",
+    ]);
+    assert_fails(&o, 2, "7 comma-separated");
+    // Starting in contact: no certified time, contact at t = 0.
+    let text = ok(&[
+        "motion",
+        "box",
+        "box",
+        "--from-xyz-wxyz",
+        "0.5,0,0,1,0,0,0",
+        "--to-xyz-wxyz",
+        "4,0,0,1,0,0,0",
+    ]);
+    assert!(text.contains("free up to t = none"), "{text}");
+    assert!(!stderr(&o).is_empty());
+}

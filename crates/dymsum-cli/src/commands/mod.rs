@@ -9,6 +9,7 @@ pub mod completions;
 pub mod demo;
 pub mod info;
 pub mod models;
+pub mod motion;
 pub mod query;
 pub mod render;
 pub mod sum;

@@ -72,6 +72,11 @@ impl Simplex {
         self.len += 1;
     }
 
+    /// Adds a point without vertex labels (GJK on other convex sets).
+    pub(super) fn push_point(&mut self, w: DVec3) {
+        self.push(Point { w, a: 0, b: 0 });
+    }
+
     fn has(&self, a: u32, b: u32) -> bool {
         self.pts[..self.len].iter().any(|p| p.a == a && p.b == b)
     }
@@ -210,7 +215,7 @@ fn same_sign(a: f64, b: f64) -> bool {
 
 /// The sub-simplex of `s` whose hull holds the point of `hull(s)` nearest
 /// the origin, and that point (signed volumes).
-fn closest(s: &Simplex) -> (Simplex, DVec3) {
+pub(super) fn closest(s: &Simplex) -> (Simplex, DVec3) {
     let (mask, lambda) = match s.len {
         1 => (1, [1.0, 0.0, 0.0, 0.0]),
         2 => segment([s.pts[0].w, s.pts[1].w]),

@@ -127,6 +127,7 @@ mod epa;
 mod evaluate;
 mod frame;
 mod gjk;
+mod motion;
 mod separation;
 
 mod support;
@@ -134,6 +135,9 @@ mod tracker;
 mod union;
 
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
+pub use motion::{
+    check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, MIN_WIDTH,
+};
 pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};
 
