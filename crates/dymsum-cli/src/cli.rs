@@ -123,7 +123,9 @@ mod tests {
                 "render --rotate-p-wxyz",
                 "render --highlight-after-wxyz",
                 "cobst --orientations-wxyz",
-                "query --pose-xyz-wxyz"
+                "query --pose-xyz-wxyz",
+                "motion --from-xyz-wxyz",
+                "motion --to-xyz-wxyz"
             ]
         );
     }

@@ -302,7 +302,8 @@ fn cobst_orientation_file_and_its_errors() {
 fn motion_answers_match_the_library() {
     use dymsum::query::{ConvexUnion, Motion, MotionCheck, MotionChecker};
     let (robot, obstacle) = (model("box:4,0.1,0.1"), model("box:0.2,0.2,2"));
-    let checker = MotionChecker::new(&ConvexUnion::from(robot), &[ConvexUnion::from(obstacle)]);
+    let checker =
+        MotionChecker::new(&ConvexUnion::from(robot), &[ConvexUnion::from(obstacle)]).unwrap();
     let pose = |x: f64, y: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, y, 0.0));
     for (from, to, a, b) in [
         (

@@ -98,7 +98,7 @@ fn random_motions_agree_with_dense_sampling() {
     let (mut free, mut collide) = (0, 0);
     for (i, body) in shapes.iter().enumerate() {
         let body = ConvexUnion::from(body.clone());
-        let checker = MotionChecker::new(&body, &obstacles);
+        let checker = MotionChecker::new(&body, &obstacles).unwrap();
         for k in 0..40 {
             let pose = |r: &mut ChaCha8Rng| {
                 Pose::new(
@@ -127,7 +127,7 @@ fn thin_walls_are_not_stepped_over() {
     let cube = ConvexUnion::from(cuboid([-0.1, -0.1, -0.1], [0.1, 0.1, 0.1]));
     for thickness in [1e-2, 1e-5, 1e-9] {
         let wall = ConvexUnion::from(cuboid([0.0, -5.0, -5.0], [thickness, 5.0, 5.0]));
-        let checker = MotionChecker::new(&cube, &[wall]);
+        let checker = MotionChecker::new(&cube, &[wall]).unwrap();
         let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
         assert!(!checker.collides_at(at(-3.0)).unwrap() && !checker.collides_at(at(3.0)).unwrap());
         match checker.check(at(-3.0), at(3.0), 1e-7).unwrap() {
@@ -148,7 +148,7 @@ fn thin_walls_are_not_stepped_over() {
 fn a_turning_bar_sweeps_through_a_box_between_free_poses() {
     let bar = ConvexUnion::from(cuboid([-2.0, -0.05, -0.05], [2.0, 0.05, 0.05]));
     let block = ConvexUnion::from(cuboid([1.7, 0.6, -1.0], [1.9, 0.8, 1.0]));
-    let checker = MotionChecker::new(&bar, &[block]);
+    let checker = MotionChecker::new(&bar, &[block]).unwrap();
     let turn = |deg: f64| {
         Pose::new(
             Rotation::from_axis_angle(DVec3::Z, deg.to_radians()).unwrap(),
@@ -183,7 +183,7 @@ fn a_turning_bar_sweeps_through_a_box_between_free_poses() {
 fn grazing_touching_and_starting_in_contact() {
     let cube = ConvexUnion::from(cuboid([-0.5, -0.5, -0.5], [0.5, 0.5, 0.5]));
     let floor = ConvexUnion::from(cuboid([-10.0, -10.0, -1.0], [10.0, 10.0, 0.0]));
-    let checker = MotionChecker::new(&cube, &[floor]);
+    let checker = MotionChecker::new(&cube, &[floor]).unwrap();
     let at = |x: f64, z: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, z));
     // Sliding 1e-3 above the floor: free.
     assert_eq!(
@@ -233,7 +233,7 @@ fn grazing_touching_and_starting_in_contact() {
 #[test]
 fn bad_tolerances_are_typed_errors_and_batches_equal_single_checks() {
     let cube = ConvexUnion::from(cuboid([-0.5, -0.5, -0.5], [0.5, 0.5, 0.5]));
-    let checker = MotionChecker::new(&cube, &[cube.clone()]);
+    let checker = MotionChecker::new(&cube, std::slice::from_ref(&cube)).unwrap();
     let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
     for bad in [0.0, -1.0, 1.0, f64::NAN, f64::INFINITY] {
         assert!(matches!(

@@ -73,7 +73,7 @@ pub fn run(a: &MotionArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         .ok_or_else(|| anyhow!("ROBOT has no pieces"))?;
     let obstacle = ConvexUnion::new(load_body(&a.obstacle, "OBSTACLE", a.strict)?)
         .ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?;
-    let checker = MotionChecker::new(&robot, &[obstacle]);
+    let checker = MotionChecker::new(&robot, &[obstacle]).context("preparing the check")?;
     let answer = checker
         .check(a.from.pose, a.to.pose, a.tolerance)
         .context("the motion check")?;

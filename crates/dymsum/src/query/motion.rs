@@ -217,7 +217,7 @@ struct Scratch {
 /// let turn = |deg: f64| {
 ///     Pose::new(Rotation::from_axis_angle(DVec3::Z, deg.to_radians()).unwrap(), DVec3::ZERO)
 /// };
-/// let checker = MotionChecker::new(&bar, &[block]);
+/// let checker = MotionChecker::new(&bar, &[block])?;
 /// for deg in [0.0, 45.0, 90.0] {
 ///     assert!(!checker.collides_at(turn(deg))?); // free at both ends and halfway
 /// }
@@ -266,16 +266,17 @@ fn radius_about(p: &Polytope, c: DVec3) -> f64 {
 impl MotionChecker {
     /// Prepares `body` (the moving union, in its own frame) against
     /// `obstacles` (unions placed in the world frame).
-    pub fn new(body: &ConvexUnion, obstacles: &[ConvexUnion]) -> MotionChecker {
+    ///
+    /// # Errors
+    /// Those of [`ConvexPair::new`] (not expected for valid polytopes).
+    pub fn new(body: &ConvexUnion, obstacles: &[ConvexUnion]) -> Result<MotionChecker, QueryError> {
         let mut pairs = Vec::new();
         let mut prepared = Vec::new();
         for (i, p) in body.pieces().iter().enumerate() {
             for (j, o) in obstacles.iter().enumerate() {
                 for (k, q) in o.pieces().iter().enumerate() {
                     pairs.push((i, j, k));
-                    prepared.push(
-                        ConvexPair::new(p, q).expect("the reflection of a valid polytope is valid"),
-                    );
+                    prepared.push(ConvexPair::new(p, q)?);
                 }
             }
         }
@@ -308,7 +309,7 @@ impl MotionChecker {
                     .collect()
             })
             .collect();
-        MotionChecker {
+        Ok(MotionChecker {
             body: body.clone(),
             obstacles: obstacles.to_vec(),
             pairs,
@@ -318,7 +319,7 @@ impl MotionChecker {
             balls,
             obstacle_scale,
             pool: std::sync::Mutex::new(Vec::new()),
-        }
+        })
     }
 
     /// Whether the body at `pose` touches or overlaps an obstacle (exact).
@@ -422,7 +423,7 @@ impl MotionChecker {
 /// [`MotionChecker::check`]. Prepare a [`MotionChecker`] for many checks.
 ///
 /// # Errors
-/// Those of [`MotionChecker::check`].
+/// Those of [`MotionChecker::new`] and [`MotionChecker::check`].
 pub fn check_motion(
     body: &ConvexUnion,
     obstacles: &[ConvexUnion],
@@ -430,20 +431,20 @@ pub fn check_motion(
     to: Pose,
     tolerance: f64,
 ) -> Result<MotionCheck, MotionError> {
-    MotionChecker::new(body, obstacles).check(from, to, tolerance)
+    MotionChecker::new(body, obstacles)?.check(from, to, tolerance)
 }
 
 /// [`check_motion`] for many motions, in parallel, in order.
 ///
 /// # Errors
-/// Those of [`MotionChecker::check`].
+/// Those of [`MotionChecker::new`] and [`MotionChecker::check`].
 pub fn check_motions(
     body: &ConvexUnion,
     obstacles: &[ConvexUnion],
     motions: &[(Pose, Pose)],
     tolerance: f64,
 ) -> Result<Vec<MotionCheck>, MotionError> {
-    MotionChecker::new(body, obstacles).check_many(motions, tolerance)
+    MotionChecker::new(body, obstacles)?.check_many(motions, tolerance)
 }
 
 impl PieceSearch<'_> {
