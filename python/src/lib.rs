@@ -21,6 +21,7 @@
 #![forbid(unsafe_code)]
 
 mod convert;
+mod motion;
 
 use convert::{err_for, io_error, value_error, Origin, Shape};
 use dymsum::polytope::MeshPolicy;
@@ -76,7 +77,7 @@ pub struct PyPolytope {
 }
 
 impl PyPolytope {
-    fn from_shape(py: Python<'_>, s: Shape) -> PyResult<Self> {
+    pub(crate) fn from_shape(py: Python<'_>, s: Shape) -> PyResult<Self> {
         let mesh = s.polytope.to_mesh();
         let vertices = convert::vertices_array(py, mesh.vertices)?;
         let faces = convert::triangles_array(py, &mesh.faces)?;
@@ -1024,6 +1025,7 @@ fn _dymsum(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(save, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
+    motion::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -22,6 +22,13 @@ __all__ = [
     "Contact",
     "ContactTracker",
     "Contacts",
+    "ConvexUnion",
+    "MotionCheck",
+    "MotionChecks",
+    "MotionChecker",
+    "MotionUndecided",
+    "check_motion",
+    "check_motions",
     "minkowski_sum",
     "collides_many",
     "contact",
@@ -308,6 +315,71 @@ def cobstacle_slices(
     polygons: bool = False,
     parallel: bool = False,
 ) -> list[Tuple[_Vertices, Union[_Triangles, _Polygons]]]: ...
+
+@final
+class ConvexUnion:
+    """A union of convex pieces (a convex decomposition; pieces may overlap)."""
+
+    def __new__(cls, pieces: Sequence[_ShapeLike]) -> ConvexUnion: ...
+    @property
+    def pieces(self) -> list[Polytope]: ...
+    def __len__(self) -> int: ...
+
+_BodyLike = Union[ConvexUnion, _ShapeLike]
+_ObstaclesLike = Union[ConvexUnion, _ShapeLike, Sequence[Union[ConvexUnion, _ShapeLike]]]
+
+class MotionUndecided(RuntimeError):
+    """A motion grazing an obstacle within rounding: neither free nor colliding certified."""
+
+    t_safe: float
+    t: float
+    index: Optional[int]
+
+@final
+class MotionCheck:
+    """The answer of a certified motion check."""
+
+    @property
+    def free(self) -> bool: ...
+    @property
+    def t_safe(self) -> Optional[float]: ...
+    @property
+    def t_contact(self) -> Optional[float]: ...
+    def __bool__(self) -> bool: ...
+
+@final
+class MotionChecks:
+    """The answers of ``check_motions``: one row per motion."""
+
+    @property
+    def free(self) -> npt.NDArray[np.bool_]: ...
+    @property
+    def t_safe(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def t_contact(self) -> npt.NDArray[np.float64]: ...
+    def __len__(self) -> int: ...
+
+@final
+class MotionChecker:
+    """A body and obstacles prepared for many certified motion checks."""
+
+    def __new__(cls, body: _BodyLike, obstacles: _ObstaclesLike) -> MotionChecker: ...
+    def check(self, pose0: _PoseLike, pose1: _PoseLike, tolerance: float = 1e-6) -> MotionCheck:
+        """The straight motion from ``pose0`` to ``pose1`` (linear translation, slerp rotation)."""
+    def check_many(self, poses0: _PosesLike, poses1: _PosesLike, tolerance: float = 1e-6) -> MotionChecks:
+        """``check`` for K motions ((K, 4, 4) pose arrays), in parallel."""
+    def collides_at(self, pose: _PoseLike = None) -> bool:
+        """Whether the body at ``pose`` touches or overlaps an obstacle (exact)."""
+
+def check_motion(
+    body: _BodyLike, obstacles: _ObstaclesLike, pose0: _PoseLike, pose1: _PoseLike, tolerance: float = 1e-6
+) -> MotionCheck:
+    """Certified check of the straight motion from ``pose0`` to ``pose1``: ``free``, ``t_safe``, ``t_contact``."""
+
+def check_motions(
+    body: _BodyLike, obstacles: _ObstaclesLike, poses0: _PosesLike, poses1: _PosesLike, tolerance: float = 1e-6
+) -> MotionChecks:
+    """``check_motion`` for K motions ((K, 4, 4) pose arrays), in parallel."""
 
 def pose(quaternion: Optional[_Rotation] = None, translation: Optional[Sequence[float]] = None) -> npt.NDArray[np.float64]:
     """A 4×4 pose from a rotation (a scipy ``Rotation``, a 3×3 matrix, or a

@@ -44,13 +44,29 @@
 //! added to `s` with the rounding of every dot product, and `δ` and `s` are
 //! rounded up.
 //!
+//! GJK's direction is off by about `ε · size / distance`, so when the
+//! pieces come within about `√ε · size` of each other the gap along it can
+//! fall short of the true distance. Where the swept set and the obstacle
+//! are apart in floats but the gap does not certify, a second bound is
+//! tried (conservative advancement): over `[a, b]` a point `p` of the piece
+//! moves by at most `|T(b) − T(a)| + r δ` from its place at `a`
+//! (`|(R(t) − R(a)) p| ≤ 2 r sin(δ/2) ≤ r δ`, and the translation is
+//! linear), so the interval is free when the exact distance at `a`
+//! ([`ConvexPair::query`]) exceeds that, plus the rounding of the
+//! distance (far below `10⁻¹²` of the coordinates' scale) and twice the
+//! pose error above.
+//!
 //! # The search
 //! For each piece of the body and each obstacle piece, intervals are
 //! examined left to right from `[0, 1]`: an interval the bound certifies
 //! free is done; one it cannot certify is halved, and once it is no wider
 //! than the tolerance its right end is queried exactly: a contact there
 //! closes the search with the bracket. So the certified intervals before a
-//! bracket cover `[0, t_safe]` without gaps. Every pair is searched only up
+//! bracket cover `[0, t_safe]` without gaps. When halving keeps ending just
+//! before a contact (an interval `[a, b]` a thousand times narrower than
+//! the tolerance, `b` free, not certified), the times `a + tol`,
+//! `a + tol/2`, … `a + tol/128` are queried too: `[0, a]` is certified, so
+//! a contact at any of them is a valid bracket. Every pair is searched only up
 //! to the earliest contact found so far. An interval narrower than
 //! [`MIN_WIDTH`] that is neither certified nor colliding at its ends (the
 //! bodies within rounding of each other, grazing) is
@@ -61,7 +77,7 @@
 //! continues until a queried pose lies inside it.
 
 use super::support::{climb, near_max, Marks};
-use super::{ConvexPair, ConvexUnion, QueryError};
+use super::{ConvexPair, ConvexUnion, Proximity, QueryError};
 use crate::{DVec3, Polytope, Pose, Rotation};
 use glam::DQuat;
 
@@ -172,7 +188,7 @@ impl Motion {
 
 /// What the search needs of one piece pair.
 struct PieceSearch<'a> {
-    pair: ConvexPair,
+    pair: &'a ConvexPair,
     body: &'a Polytope,
     obstacle: &'a Polytope,
     /// The body piece's reach about its origin (rounded up).
@@ -365,7 +381,7 @@ impl MotionChecker {
         let mut result = Ok(());
         for (idx, &(i, j, k)) in self.pairs.iter().enumerate() {
             let search = PieceSearch {
-                pair: self.prepared[idx].clone(),
+                pair: &self.prepared[idx],
                 body: &self.body.pieces()[i],
                 obstacle: &self.obstacles[j].pieces()[k],
                 reach: self.reach[i],
@@ -460,11 +476,20 @@ impl PieceSearch<'_> {
         s.stack.clear();
         s.stack.push((0.0, limit));
         while let Some((a, b)) = s.stack.pop() {
-            if self.certified_free(motion, a, b, s) {
+            if self.certified_free(motion, a, b, s)? {
                 continue;
             }
-            if b - a <= tol && self.pair.intersects(motion.at(b), Pose::IDENTITY)? {
-                return Ok(Some((a, b)));
+            if b - a <= tol {
+                if self.pair.intersects(motion.at(b), Pose::IDENTITY)? {
+                    return Ok(Some((a, b)));
+                }
+                if b - a <= tol / 1024.0 {
+                    // Stuck just before a contact that no halving point
+                    // hits: any contact in (a, a + tol] closes the search.
+                    if let Some(c) = self.contact_ahead(motion, a, limit, tol)? {
+                        return Ok(Some((a, c)));
+                    }
+                }
             }
             if b - a <= MIN_WIDTH {
                 return Err(MotionError::Undecided { t_safe: a, t: b });
@@ -476,9 +501,36 @@ impl PieceSearch<'_> {
         Ok(None)
     }
 
+    /// A time in `(a, min(a + tol, limit)]` at which the pieces touch or
+    /// overlap (exact query), trying `a + tol`, `a + tol/2`, … `a + tol/128`.
+    fn contact_ahead(
+        &self,
+        motion: &Motion,
+        a: f64,
+        limit: f64,
+        tol: f64,
+    ) -> Result<Option<f64>, QueryError> {
+        let mut step = tol;
+        for _ in 0..8 {
+            let c = (a + step).min(limit);
+            if c > a && self.pair.intersects(motion.at(c), Pose::IDENTITY)? {
+                return Ok(Some(c));
+            }
+            step *= 0.5;
+        }
+        Ok(None)
+    }
+
     /// Whether the piece cannot touch the obstacle piece for any `t` in
-    /// `[a, b]` (the bound of the module docs).
-    fn certified_free(&self, motion: &Motion, a: f64, b: f64, s: &mut Scratch) -> bool {
+    /// `[a, b]`: the swept-hull bound, then the advancement bound (module
+    /// docs).
+    fn certified_free(
+        &self,
+        motion: &Motion,
+        a: f64,
+        b: f64,
+        s: &mut Scratch,
+    ) -> Result<bool, QueryError> {
         let (pa, pb) = (motion.at(a), motion.at(b));
         let r = self.reach;
         // Rounding of the interpolated poses against the exact motion, and
@@ -494,14 +546,25 @@ impl PieceSearch<'_> {
         let (c, ro) = self.obstacle_ball;
         if segment_distance(pa.translation, pb.translation, c) > r + ro + inflate + 1e-12 * (r + ro)
         {
-            return true;
+            return Ok(true);
         }
         // GJK between the swept hull and the obstacle, then the gap along
         // its direction, bounded rigorously.
         let Some((n, hints)) = self.separating_direction(pa, pb) else {
-            return false;
+            return Ok(false);
         };
-        self.gap(pa, pb, n, hints, s) > inflate
+        if self.gap(pa, pb, n, hints, s) > inflate {
+            return Ok(true);
+        }
+        // Apart in floats but not certified (GJK's direction is off by
+        // about ε·size/distance when nearly touching): the exact distance
+        // at `a` against how far any point of the piece moves over [a, b].
+        let Proximity::Separated(sep) = self.pair.query(pa, Pose::IDENTITY)? else {
+            return Ok(false);
+        };
+        let moved = (pb.translation - pa.translation).length() + r * delta;
+        let margin = 1e-12 * (r + t_mag + self.scales.1) + 2.0 * pose_err;
+        Ok(sep.distance > moved * (1.0 + 1e-12) + margin)
     }
 
     /// A unit direction `n` from the obstacle towards the swept hull that
