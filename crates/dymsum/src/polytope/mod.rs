@@ -121,9 +121,13 @@ struct PolytopeData {
     normals: Vec<DVec3>,
     normal_triple: Vec<[u32; 3]>,
     normal_err: Vec<f64>,
-    /// Per face: bit `k` set when component `k` of the exact normal is known
-    /// to be non-zero or unknown, i.e. clear only for components known to
-    /// be exactly zero (the float normal is exact and that component is 0).
+    /// Per face: bit `k` set when component `k` of the exact normal may be
+    /// non-zero, i.e. clear only for components known to be exactly zero
+    /// (the float normal is exact and that component is 0, or the zero
+    /// pattern of the defining triple's edge vectors forces it: see
+    /// `cross_support`). Exact zeros keep exact predicates on boxes and
+    /// axis-aligned plates on their cheap paths even when the normal itself
+    /// is not a float.
     normal_support: Vec<u8>,
     normal_scale: Vec<f64>,
     arc_normals: Vec<DVec3>,
@@ -334,25 +338,22 @@ impl Polytope {
         let mut normal_triple = Vec::with_capacity(faces.len());
         let mut normal_err = Vec::with_capacity(faces.len());
         let mut normal_scale = Vec::with_capacity(faces.len());
+        let mut normal_support = Vec::with_capacity(faces.len());
         for (face, f) in faces.iter().enumerate() {
             let (n, triple, err, scale) =
                 face_normal(&framed, f).ok_or(PolytopeError::FaceOutOfRange { face })?;
+            let [a, b, c] = triple.map(|v| framed[v as usize]);
+            let exact_zeros = if err == 0.0 {
+                n.cmpne(DVec3::ZERO).bitmask() as u8
+            } else {
+                0b111
+            };
+            normal_support.push(exact_zeros & cross_support(b - a, c - a));
             normals.push(n);
             normal_triple.push(triple);
             normal_err.push(err);
             normal_scale.push(scale);
         }
-        let normal_support = normals
-            .iter()
-            .zip(&normal_err)
-            .map(|(n, &err)| {
-                if err == 0.0 {
-                    n.cmpne(DVec3::ZERO).bitmask() as u8
-                } else {
-                    0b111
-                }
-            })
-            .collect();
         let unit_normals = normals.iter().map(|n| n.normalize()).collect();
         let inv_normal_len = normals.iter().map(|n| 1.0 / n.length()).collect();
         let data = PolytopeData {
@@ -565,7 +566,9 @@ impl ExactVector for FaceNormal<'_> {
     #[inline]
     fn exact_components(&self) -> [Option<f64>; 3] {
         if self.poly.data.normal_err[self.face as usize] != 0.0 {
-            return [None; 3];
+            // Only the components known to be zero.
+            let zero = self.zero_mask();
+            return [0, 1, 2].map(|k| (zero >> k & 1 != 0).then_some(0.0));
         }
         let n = self.poly.data.normals[self.face as usize];
         match self.rotation {
@@ -579,18 +582,13 @@ impl ExactVector for FaceNormal<'_> {
     }
     #[inline]
     fn zero_mask(&self) -> u8 {
+        let support = self.poly.data.normal_support[self.face as usize];
         let Some(m) = self.rotation else {
-            // Unrotated, `approx` is the polytope's normal (bit for bit) and
-            // `err` its bound: exact when the bound is zero.
-            let n = self.approx;
-            let exact = self.err == 0.0;
-            return u8::from(exact && n.x == 0.0)
-                | u8::from(exact && n.y == 0.0) << 1
-                | u8::from(exact && n.z == 0.0) << 2;
+            // Unrotated: the components known to be zero.
+            return !support & 0b111;
         };
         // (M n)_r is exactly zero when M[r][k] = 0 for every k where n_k
         // may be non-zero.
-        let support = self.poly.data.normal_support[self.face as usize];
         let mut zero = 0b111;
         for (k, col) in [m.x_axis, m.y_axis, m.z_axis].into_iter().enumerate() {
             if support >> k & 1 != 0 {
@@ -616,6 +614,25 @@ impl ExactVector for FaceNormal<'_> {
             }
         }
     }
+}
+
+/// The components of `d1 × d2` that may be non-zero (bit `k` set), from
+/// the zero pattern of the *float* differences `d1`, `d2` alone: a float
+/// difference `x − y` is zero exactly when `x = y`, so its zeros are those
+/// of the exact difference, and a component of the cross product whose two
+/// products each have a zero factor is exactly zero however the others
+/// round (a box of side 0.05 has axis-parallel normals although their
+/// lengths, 0.05², are not floats).
+fn cross_support(d1: DVec3, d2: DVec3) -> u8 {
+    let zero = |v: DVec3, k: usize| v[k] == 0.0;
+    let mut support = 0;
+    for (k, (i, j)) in [(1, 2), (2, 0), (0, 1)].into_iter().enumerate() {
+        let vanishes = (zero(d1, i) || zero(d2, j)) && (zero(d1, j) || zero(d2, i));
+        if !vanishes {
+            support |= 1 << k;
+        }
+    }
+    support
 }
 
 /// `row · n` when it is a float obtainable without rounding. Terms with an
