@@ -270,3 +270,38 @@ proptest! {
         }
     }
 }
+
+/// Regression (found by the motion benchmark's planner steps): round hulls
+/// a vertex of A about `10⁻⁹` of their size off a face of B. GJK's
+/// direction is then too coarse to certify the separation along it, and
+/// every such query used to fall back to the exhaustive evaluation; the
+/// face normals and edge cross products of GJK's simplex certify it.
+#[test]
+fn regression_nearly_touching_round_hulls_are_certified_without_fallback() {
+    let mut r = rng(91);
+    let a = round(20, &mut r);
+    let b = round(60, &mut r);
+    let pair = ConvexPair::new(&a, &b).unwrap();
+    for k in 0..120 {
+        let rot = random_rotation(&mut r);
+        let f = k % b.face_count();
+        let n = b.unit_normal(f);
+        let plane = b.vertex(b.face(f)[0] as usize).dot(n);
+        let low = a
+            .vertices()
+            .iter()
+            .map(|&v| n.dot(rot.apply(v)))
+            .fold(f64::INFINITY, f64::min);
+        let gap = [1e-9, 3e-9, 1e-8][k % 3];
+        let pa = Pose::new(rot, n * (plane - low + gap));
+        let answer = check(&pair, pa, Pose::IDENTITY, "nearly touching");
+        assert!(!answer.intersects(), "apart by {gap} along a face normal");
+    }
+    let stats = pair.stats();
+    report("nearly touching", stats);
+    assert_eq!(
+        (stats.exhaustive_decisions, stats.exhaustive_answers),
+        (0, 0),
+        "every nearly touching query is certified"
+    );
+}

@@ -74,6 +74,14 @@
 //! facet with an A-feature touching A's near-extreme set and a B-feature
 //! touching B's; `best` is first estimated by GJK's `|v|` and checked
 //! afterwards (one retry, else the exhaustive evaluation).
+//!
+//! Nothing above needs `n` to be GJK's direction: any unit `n` with
+//! `s > 0` serves. When the bodies nearly touch (within about `√ε` of
+//! their size), GJK's `v` is the difference of nearly equal points and too
+//! coarse for `s > 0`; then the face normals and edge cross products of the
+//! final simplex's features (exact to rounding at any distance; by the
+//! separating axis theorem one of them separates) are tried instead
+//! (`gjk::separating_feature_axis`), before the exhaustive evaluation.
 
 use super::candidates::{FacetSet, DIRECTION_ERROR, OVERLAY_MISMATCH};
 use super::epa::Epa;

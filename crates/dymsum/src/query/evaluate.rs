@@ -16,8 +16,8 @@ use super::certify::{
 use super::closest::line_line;
 use super::frame::Posed;
 use super::gjk::{
-    certify, encloses_origin, gjk, origin_in_difference_hull, separated_on_sets, CertScratch, Gjk,
-    Simplex,
+    certify, encloses_origin, gjk, origin_in_difference_hull, separated_on_sets,
+    separating_feature_axis, CertScratch, Gjk, Simplex,
 };
 use super::separation::separation;
 use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Reflected, Separation};
@@ -147,23 +147,28 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Opti
     if !(len > 0.0 && len.is_finite()) {
         return Err(None);
     }
-    let n = g.v / len;
+    let mut n = g.v / len;
     // One search per body serves the certificate and the slab: its width
     // assumes the true floor within 2^-20 of GJK's distance (checked
     // below, where the answer's distance is known).
-    let mut s = slab(
-        pair,
-        posed,
-        n,
-        slab_width(posed, len, len * (1.0 - 2f64.powi(-20))),
-        g.warm,
-        &mut scratch.cert,
-    );
+    let width = slab_width(posed, len, len * (1.0 - 2f64.powi(-20)));
+    let mut s = slab(pair, posed, n, width, g.warm, &mut scratch.cert);
+    let mut along_v = true;
     if !(s.floor > 0.0 || separated_on_sets(posed, n, &scratch.cert)) {
-        return Err(None);
+        // GJK's direction is too coarse (the bodies nearly touch): a face
+        // normal or edge cross product of the simplex's features is exact
+        // to rounding, and any separating unit axis bounds the distance
+        // from below, so the slab along it serves the same argument.
+        n = separating_feature_axis(pair, posed, &g, &mut scratch.cert).ok_or(None)?;
+        s = slab(pair, posed, n, width, g.warm, &mut scratch.cert);
+        if !(s.floor > 0.0 || separated_on_sets(posed, n, &scratch.cert)) {
+            return Err(Some(false));
+        }
+        along_v = false;
     }
     let local = &mut scratch.local;
-    if s.floor > 0.0 && single_facet(pair, posed, &g, n, len, s.floor, &mut local.facets) {
+    if along_v && s.floor > 0.0 && single_facet(pair, posed, &g, n, len, s.floor, &mut local.facets)
+    {
         let (answer, measured) = evaluate_in_frame(
             pair,
             posed,

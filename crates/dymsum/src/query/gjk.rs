@@ -372,10 +372,92 @@ pub(super) fn certify(
     if encloses_origin(posed, g) {
         return Some(true);
     }
-    if g.v.length_squared() > 0.0 && separated_along(pair, posed, g.v, g.warm, cs) {
+    if g.v.length_squared() > 0.0
+        && (separated_along(pair, posed, g.v, g.warm, cs)
+            || separating_feature_axis(pair, posed, g, cs).is_some())
+    {
         return Some(false);
     }
     None
+}
+
+/// How many feature axes [`separating_feature_axis`] tries.
+const FEATURE_AXES: usize = 3;
+
+/// A unit axis that separates A' and B' exactly, among the features of
+/// GJK's final simplex (`None` when none of those tried does): the normals of the faces of A and B around
+/// the simplex's vertices and the cross products of their edges, the ones
+/// nearest GJK's direction first.
+///
+/// GJK's direction `v` is the difference of two nearly equal points when
+/// the bodies nearly touch, so it is off by about `ε · size / |v|`: along
+/// it the separation can fail to show although the bodies are apart by
+/// `10⁻⁹` of their size. A face normal or an edge cross product is exact to
+/// `ε` whatever the distance, and by the separating axis theorem one of
+/// them separates two disjoint polytopes (the one of the features nearest
+/// each other, which GJK's simplex holds).
+pub(super) fn separating_feature_axis(
+    pair: &ConvexPair,
+    posed: &Posed,
+    g: &Gjk,
+    cs: &mut CertScratch,
+) -> Option<DVec3> {
+    let v = g.v.normalize();
+    if !v.is_finite() {
+        return None;
+    }
+    let pts = &g.simplex.pts[..g.simplex.len];
+    let mut best = [(f64::NEG_INFINITY, DVec3::ZERO, (0u32, 0u32)); FEATURE_AXES];
+    let mut offer = |d: DVec3, warm: (u32, u32)| {
+        let len = d.length();
+        if !(len > 0.0 && len.is_finite()) {
+            return;
+        }
+        let d = d / len;
+        let score = d.dot(v);
+        if score > best[FEATURE_AXES - 1].0 {
+            best[FEATURE_AXES - 1] = (score, d, warm);
+            best.sort_by(|x, y| y.0.total_cmp(&x.0));
+        }
+    };
+    for (i, p) in pts.iter().enumerate() {
+        if pts[..i].iter().any(|q| q.a == p.a) {
+            continue;
+        }
+        for r in pair.a.ring(p.a as usize) {
+            // A's faces facing B: outward normals near −v.
+            offer(-posed.na(r.face), (p.a, p.b));
+        }
+    }
+    for (i, p) in pts.iter().enumerate() {
+        if pts[..i].iter().any(|q| q.b == p.b) {
+            continue;
+        }
+        for r in pair.b.ring(p.b as usize) {
+            offer(posed.nb(r.face), (p.a, p.b));
+        }
+    }
+    for (i, p) in pts.iter().enumerate() {
+        if pts[..i].iter().any(|q| q.a == p.a) {
+            continue;
+        }
+        for ra in pair.a.ring(p.a as usize) {
+            let ea = posed.a(ra.neighbor) - posed.a(p.a);
+            for (j, q) in pts.iter().enumerate() {
+                if pts[..j].iter().any(|x| x.b == q.b) {
+                    continue;
+                }
+                for rb in pair.b.ring(q.b as usize) {
+                    let c = ea.cross(posed.b(rb.neighbor) - posed.b(q.b));
+                    offer(if c.dot(v) < 0.0 { -c } else { c }, (p.a, q.b));
+                }
+            }
+        }
+    }
+    best.iter()
+        .filter(|(score, _, _)| *score > 0.0)
+        .find(|&&(_, d, warm)| separated_along(pair, posed, d, warm, cs))
+        .map(|&(_, d, _)| d)
 }
 
 /// Exactly whether GJK's final simplex holds the origin (tested when the
