@@ -77,7 +77,7 @@
 //! continues until a queried pose lies inside it.
 
 use super::support::{climb, near_max, Marks};
-use super::{ConvexPair, ConvexUnion, Proximity, QueryError};
+use super::{ConvexPair, ConvexUnion, Proximity, QueryError, QueryStats};
 use crate::{DVec3, Polytope, Pose, Rotation};
 use glam::DQuat;
 
@@ -338,6 +338,21 @@ impl MotionChecker {
         })
     }
 
+    /// The exact queries' counters summed over the piece pairs
+    /// ([`ConvexPair::stats`]): how many the search asked, and how many of
+    /// them no certificate could settle (answered from the exhaustive
+    /// method instead).
+    pub fn stats(&self) -> QueryStats {
+        self.prepared
+            .iter()
+            .map(ConvexPair::stats)
+            .fold(QueryStats::default(), |s, p| QueryStats {
+                queries: s.queries + p.queries,
+                exhaustive_decisions: s.exhaustive_decisions + p.exhaustive_decisions,
+                exhaustive_answers: s.exhaustive_answers + p.exhaustive_answers,
+            })
+    }
+
     /// Whether the body at `pose` touches or overlaps an obstacle (exact).
     ///
     /// # Errors
@@ -550,26 +565,34 @@ impl PieceSearch<'_> {
         }
         // GJK between the swept hull and the obstacle, then the gap along
         // its direction, bounded rigorously.
-        let Some((n, hints)) = self.separating_direction(pa, pb) else {
+        let Some((n, estimate, hints)) = self.separating_direction(pa, pb) else {
             return Ok(false);
         };
         if self.gap(pa, pb, n, hints, s) > inflate {
             return Ok(true);
         }
-        // Apart in floats but not certified (GJK's direction is off by
-        // about ε·size/distance when nearly touching): the exact distance
-        // at `a` against how far any point of the piece moves over [a, b].
+        // Apart in floats by more than the inflation but not certified
+        // (GJK's direction is off by about ε·size/distance when nearly
+        // touching): the exact distance at `a` against how far any point
+        // of the piece moves over [a, b]. Not tried when GJK's estimate is
+        // within the inflation: the swept set really is that near, and
+        // halving is what helps.
+        let scale = r + t_mag + self.scales.1;
+        if estimate <= inflate {
+            return Ok(false);
+        }
         let Proximity::Separated(sep) = self.pair.query(pa, Pose::IDENTITY)? else {
             return Ok(false);
         };
         let moved = (pb.translation - pa.translation).length() + r * delta;
-        let margin = 1e-12 * (r + t_mag + self.scales.1) + 2.0 * pose_err;
+        let margin = 1e-12 * scale + 2.0 * pose_err;
         Ok(sep.distance > moved * (1.0 + 1e-12) + margin)
     }
 
     /// A unit direction `n` from the obstacle towards the swept hull that
-    /// GJK proposes (`None` when they overlap in floats).
-    fn separating_direction(&self, pa: Pose, pb: Pose) -> Option<(DVec3, [u32; 3])> {
+    /// GJK proposes, with GJK's float estimate of their distance (`None`
+    /// when they overlap in floats).
+    fn separating_direction(&self, pa: Pose, pb: Pose) -> Option<(DVec3, f64, [u32; 3])> {
         let (body, obstacle) = (self.body, self.obstacle);
         let (ra, rb) = (pa.rotation.matrix(), pb.rotation.matrix());
         let (mut wa, mut wb, mut wo) = (0u32, 0u32, 0u32);
@@ -612,7 +635,7 @@ impl PieceSearch<'_> {
             v = nv;
         }
         let len = v.length();
-        (len > 0.0 && len.is_finite()).then(|| (v / len, [wa, wb, wo]))
+        (len > 0.0 && len.is_finite()).then(|| (v / len, len, [wa, wb, wo]))
     }
 
     /// A rigorous lower bound on `min_{H ⊕ [T]} n · x − max_O n · o`.
