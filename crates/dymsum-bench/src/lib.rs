@@ -12,6 +12,7 @@
 #![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 
 pub mod contact;
+pub mod motion;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
