@@ -128,12 +128,16 @@ mod evaluate;
 mod frame;
 mod gjk;
 mod separation;
-
+mod slabs;
 mod support;
 mod tracker;
 mod union;
 
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
+pub use slabs::{
+    certified_slab_in_cell, certified_slabs_about_axis, certified_slabs_about_axis_par,
+    full_turn_angles, rotations_about_axis, Slab, SlabCover, SlabError, ROTATION_SLACK,
+};
 pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};
 
@@ -174,6 +178,9 @@ pub enum QueryError {
     /// finite is supported, at any scale.
     #[error("outside the supported range: {0}")]
     OutOfRange(String),
+    /// Bad input to a certified slab ([`Slab`]): the variant names it.
+    #[error(transparent)]
+    Slab(#[from] SlabError),
 }
 
 /// The features of `A` and `B` generating a facet of `A ⊕ (−B)` (indices
