@@ -45,8 +45,8 @@ use crate::{DynamicSum, Pose};
 /// same answers (the static query's); they differ in speed only.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum TrackerStrategy {
-    /// Measures both of the others on the first [`PROBE_FRAMES`] frames
-    /// (and again every [`REPROBE_EVERY`] frames) and uses the faster: the
+    /// Measures both of the others on the first 16 frames (`PROBE_FRAMES`)
+    /// (and again every 4096 frames, `REPROBE_EVERY`) and uses the faster: the
     /// dynamic sum wins on tiny shapes, whose whole sum is a few dozen
     /// facets, the certified query on everything else.
     #[default]
