@@ -3,6 +3,11 @@
 //! bodies, a per-frame contact tracker, batches, C-obstacle slices, and
 //! unions of convex pieces.
 //!
+//! Certified C-obstacle slabs ([`Slab`]): one convex region, as half-spaces
+//! rounded outward or as a checked mesh, that holds every slice over a
+//! range of orientations (between two orientations of a turn, or in a cell
+//! of SO(3)); what is certified and why is in [`slabs`].
+//!
 //! # The answer is defined by the Minkowski difference
 //! For convex bodies `A` and `B` at their poses, `D = A ⊕ (−B)` contains the
 //! origin exactly when they overlap, and translating `A` by `t` translates
@@ -128,7 +133,7 @@ mod evaluate;
 mod frame;
 mod gjk;
 mod separation;
-mod slabs;
+pub mod slabs;
 mod support;
 mod tracker;
 mod union;

@@ -4,7 +4,7 @@
 //! orientations in SO(3) — given as half-spaces `{x : N x ≤ d}` (what cell
 //! decompositions and graphs of convex sets consume) or as a checked mesh.
 //!
-//! A slice ([`super::cobst`]) holds for its one orientation; a planner that
+//! A slice ([`CObstacle::slice`]) holds for its one orientation; a planner that
 //! samples orientations misses what happens between the samples. A slab
 //! closes that gap conservatively: a translation outside the slab is free
 //! at every orientation of its range.
@@ -96,14 +96,16 @@
 //! bound of the best; `H`'s vertices are exact, so its `η` is 0), `|n|`,
 //! `σ` and every sum are rounded up. Then `H ⊕ ball(m) ⊆ {x : n·x ≤ d}`
 //! for every face, whatever the rounding of `n`: the slab is never too
-//! small. A face whose unit normal is within `2⁻³⁰` of a kept
-//! neighbour's shares that neighbour's plane (rounding bends the slices'
-//! faces of four or more corners, and the exact hull splits them into
-//! nearly coplanar triangles): leaving a half-space out only enlarges the
-//! slab, by at most `2⁻³⁰` of its size in that direction, and spares the
-//! planner (and [`Slab::mesh`]) thousands of slivers. `σ(δ)` is bounded by `2(x − x³/6 + x⁵/120)²`, `x = min(δ, π)/4`
+//! small. `σ(δ)` is bounded by `2(x − x³/6 + x⁵/120)²`, `x = min(δ, π)/4`
 //! (`sin x` is below its quintic Taylor polynomial for `0 ≤ x ≤ π/2`),
 //! rounded up; `δ` is bounded from above from the quaternions.
+//!
+//! A face whose unit normal is within `2⁻³⁰` of a kept neighbour's shares
+//! that neighbour's plane: rounding bends the slices' faces of four or
+//! more corners, and the exact hull splits them into nearly coplanar
+//! triangles. Leaving a half-space out only enlarges the slab (its plane
+//! turned by at most `2⁻³⁰` rad onto the neighbour's), and spares the
+//! planner, and [`Slab::mesh`], thousands of slivers.
 //!
 //! # How tight
 //! `H` is the hull of two slices of the swept set, so its support function
@@ -132,7 +134,7 @@
 //! [`crate::sum::validate::check_convex_mesh`]; one that failed would be an
 //! error, never returned. Its faces are maximal for the rounded vertices:
 //! a face of `P` with four or more corners is usually split by rounding.
-
+//!
 //! ```
 //! use dymsum::{DVec3, Polytope};
 //! use dymsum::query::{certified_slabs_about_axis, full_turn_angles};
