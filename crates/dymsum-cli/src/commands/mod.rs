@@ -11,6 +11,7 @@ pub mod info;
 pub mod models;
 pub mod query;
 pub mod render;
+pub mod slabs;
 pub mod sum;
 
 use std::io::Write;

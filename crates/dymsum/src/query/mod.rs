@@ -141,7 +141,8 @@ mod union;
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
 pub use slabs::{
     certified_slab_in_cell, certified_slabs_about_axis, certified_slabs_about_axis_par,
-    full_turn_angles, rotations_about_axis, Slab, SlabCover, SlabError, ROTATION_SLACK,
+    full_turn_angles, rotations_about_axis, slab_meshes_par, Slab, SlabCover, SlabError,
+    ROTATION_SLACK,
 };
 pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};

@@ -854,6 +854,14 @@ impl CObstacle {
     }
 }
 
+/// The meshes of `slabs` ([`Slab::mesh`]) on rayon's threads, in order.
+///
+/// # Errors
+/// The first error of [`Slab::mesh`], in order.
+pub fn slab_meshes_par(slabs: &[Slab]) -> Result<Vec<PolygonMesh>, QueryError> {
+    slabs.par_iter().map(Slab::mesh).collect()
+}
+
 /// The angles `2πk/n` for `k = 0..=n` (the last is `2π`, the same rotation
 /// as the first): `n` slabs covering a full turn with
 /// [`certified_slabs_about_axis`].
