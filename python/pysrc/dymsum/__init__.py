@@ -3,7 +3,7 @@
 Exact ``A ⊕ B`` of convex polytopes (every combinatorial decision an exact
 predicate), kept up to date while the bodies rotate (the DYMSUM algorithm),
 penetration depth and distance, contact tracking and configuration-space
-obstacle slices, from NumPy arrays.
+obstacle slices and certified slabs between them, from NumPy arrays.
 
 Conventions, everywhere:
 
@@ -33,6 +33,7 @@ from ._dymsum import (
     Contacts as Contacts,
     DynamicSum as DynamicSum,
     Polytope as Polytope,
+    Slab as Slab,
     __version__ as __version__,
     cobstacle_slices as cobstacle_slices,
     collides_many as collides_many,
@@ -51,6 +52,7 @@ __all__ = [
     "Contacts",
     "DynamicSum",
     "Polytope",
+    "Slab",
     "cobstacle_slices",
     "collides_many",
     "contact",
