@@ -295,11 +295,12 @@ fn run_certified(
     let pairs = bodies.0.len() * bodies.1.len();
     writeln!(
         out,
-        "Certified C-obstacle slabs of {} among {}: {} slabs ({} piece pair{}), {lo}–{hi} planes \
+        "Certified C-obstacle slabs of {} among {}: {} slab{} ({} piece pair{}), {lo}–{hi} planes \
          per slab, margin ≤ {margin:.3e}, written to {} in {}",
         short_name(&a.robot),
         short_name(&a.obstacle),
         planes.len(),
+        if planes.len() == 1 { "" } else { "s" },
         pairs,
         if pairs == 1 { "" } else { "s" },
         a.out.display(),
