@@ -22,7 +22,7 @@ def test_function_docstrings():
 
 def test_class_and_package_docstrings():
     attempted = 0
-    for obj in (dymsum, dymsum.Polytope, dymsum.DynamicSum, dymsum.ContactTracker, dymsum.ConvexUnion, dymsum.MotionChecker):
+    for obj in (dymsum, dymsum.Polytope, dymsum.DynamicSum, dymsum.ContactTracker, dymsum.ConvexUnion, dymsum.MotionChecker, dymsum.Slab):
         r = run(obj, getattr(obj, "__name__", "dymsum"))
         assert r.failed == 0, obj
         attempted += r.attempted

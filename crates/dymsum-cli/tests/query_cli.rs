@@ -385,3 +385,332 @@ fn motion_answers_match_the_library() {
     assert!(text.contains("free up to t = none"), "{text}");
     assert!(!stderr(&o).is_empty());
 }
+
+/// `count + 1` evenly spaced values from `lo` to `hi`.
+fn dense(lo: f64, hi: f64, count: usize) -> Vec<f64> {
+    (0..=count)
+        .map(|j| lo + (hi - lo) * j as f64 / count as f64)
+        .collect()
+}
+
+/// `x` strictly outside a convex mesh (an exact `orient` per face).
+fn outside(mesh: &dymsum::PolygonMesh, x: DVec3) -> bool {
+    mesh.faces.iter().any(|f| {
+        let p = |i: usize| DVec3::from(mesh.vertices[f[i]]);
+        dymsum::kernel::predicates::orient(p(0), p(1), p(2), x) == dymsum::kernel::Sign::Positive
+    })
+}
+
+/// `a` and `b` equal within an ulp (serde_json parses without
+/// `float_roundtrip`).
+fn near(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 2.0 * f64::EPSILON * a.abs().max(b.abs())
+}
+
+/// The index entry's keys, sorted.
+fn keys(e: &serde_json::Value) -> Vec<String> {
+    let mut k: Vec<String> = e.as_object().unwrap().keys().cloned().collect();
+    k.sort_unstable();
+    k
+}
+
+#[test]
+fn cobst_certified_meshes_hold_every_slice_between_their_angles() {
+    let dir = temp_dir("certified_off");
+    let out = dir.join("slabs");
+    let n = 8;
+    let text = ok(&[
+        "cobst",
+        "gs1",
+        "box:2,1,1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "8",
+        "--certified",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        text.starts_with("Certified C-obstacle slabs of gs1 among box:2,1,1: 8 slabs"),
+        "{text}"
+    );
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("index.json")).unwrap()).unwrap();
+    let entries = index.as_array().unwrap();
+    assert_eq!(entries.len(), n);
+    let names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert_eq!(names.len(), n + 1, "{names:?}");
+    let (robot, obstacle) = (model("gs1"), model("box:2,1,1"));
+    let cobst = dymsum::CObstacle::new(&robot, &obstacle).unwrap();
+    let angles = dymsum::query::full_turn_angles(n);
+    let turns = dymsum::query::rotations_about_axis(DVec3::Z, &angles).unwrap();
+    let slabs = cobst.certified_slabs(&turns).unwrap();
+    let mut poking_out = 0;
+    for (k, e) in entries.iter().enumerate() {
+        let file = format!("slab_{k:05}.off");
+        assert_eq!(
+            keys(e),
+            [
+                "faces",
+                "file",
+                "from_angle",
+                "from_wxyz",
+                "margin",
+                "planes",
+                "slab",
+                "to_angle",
+                "to_wxyz"
+            ]
+        );
+        assert_eq!(e["slab"].as_u64().unwrap() as usize, k);
+        assert_eq!(e["file"].as_str().unwrap(), file);
+        assert!(near(e["from_angle"].as_f64().unwrap(), angles[k]), "{e}");
+        assert!(near(e["to_angle"].as_f64().unwrap(), angles[k + 1]), "{e}");
+        for (x, y) in numbers(&e["from_wxyz"]).iter().zip(turns[k].wxyz()) {
+            assert!((x - y).abs() <= 1e-15, "{e}");
+        }
+        for (x, y) in numbers(&e["to_wxyz"]).iter().zip(turns[k + 1].wxyz()) {
+            assert!((x - y).abs() <= 1e-15, "{e}");
+        }
+        assert_eq!(e["planes"].as_u64().unwrap() as usize, slabs[k].len());
+        assert!(
+            near(e["margin"].as_f64().unwrap(), slabs[k].margin()),
+            "{e}"
+        );
+        // The mesh as written (OFF: shortest round-trip decimals), checked
+        // exactly, holds every vertex of the slices at 13 angles across its
+        // interval; between the ends, some poke out of the end slices' hull.
+        let mesh = dymsum_io::formats::read_mesh(&out.join(&file)).unwrap();
+        assert_eq!(dymsum::sum::validate::check_convex_mesh(&mesh), Ok(()));
+        assert_eq!(e["faces"].as_u64().unwrap() as usize, mesh.faces.len());
+        let samples =
+            dymsum::query::rotations_about_axis(DVec3::Z, &dense(angles[k], angles[k + 1], 12))
+                .unwrap();
+        for (j, slice) in cobst.slices(&samples).enumerate() {
+            for v in &slice.unwrap().vertices {
+                let x = DVec3::from(*v);
+                assert!(
+                    !outside(&mesh, x),
+                    "slab {k}, sample {j}: {x:?} outside the mesh"
+                );
+                assert!(slabs[k].contains(x), "slab {k}, sample {j}: {x:?} outside");
+                let hull = slabs[k].hull();
+                poking_out += usize::from(hull.faces().any(|f| {
+                    let p = |i: usize| hull.vertex(f[i] as usize);
+                    dymsum::kernel::predicates::orient(p(0), p(1), p(2), x)
+                        == dymsum::kernel::Sign::Positive
+                }));
+            }
+        }
+    }
+    assert!(
+        poking_out > 100,
+        "only {poking_out} slice vertices outside the hull of the end slices"
+    );
+    dymsum_testkit::files::remove_dir(&dir);
+}
+
+#[test]
+fn cobst_certified_halfspaces_hold_every_slice_on_the_shortest_paths() {
+    let dir = temp_dir("certified_json");
+    let out = dir.join("slabs");
+    // Identity, a turn by 1 rad about (1, 1, 0), then 0.8 rad more about z.
+    let axis = DVec3::new(1.0, 1.0, 0.0);
+    let first = Rotation::from_axis_angle(axis, 1.0).unwrap();
+    let second = first.then(&Rotation::from_axis_angle(DVec3::Z, 0.8).unwrap());
+    let turns = [Rotation::IDENTITY, first, second];
+    let file = dir.join("turns.txt");
+    let lines: Vec<String> = turns
+        .iter()
+        .map(|r| {
+            let [w, x, y, z] = r.wxyz();
+            format!("{w:?},{x:?},{y:?},{z:?}\n")
+        })
+        .collect();
+    std::fs::write(&file, lines.concat()).unwrap();
+    ok(&[
+        "cobst",
+        "box:2,0.5,0.5",
+        "gs2",
+        "--orientations-wxyz",
+        file.to_str().unwrap(),
+        "--certified",
+        "--format",
+        "halfspaces",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("index.json")).unwrap()).unwrap();
+    let entries = index.as_array().unwrap();
+    assert_eq!(entries.len(), 2);
+    let (robot, obstacle) = (model("box:2,0.5,0.5"), model("gs2"));
+    let cobst = dymsum::CObstacle::new(&robot, &obstacle).unwrap();
+    let slabs = cobst.certified_slabs(&turns).unwrap();
+    // The rotations on each shortest path, as dymsum computes them.
+    let paths: [Vec<Rotation>; 2] = [
+        dymsum::query::rotations_about_axis(axis, &dense(0.0, 1.0, 16)).unwrap(),
+        dense(0.0, 0.8, 16)
+            .iter()
+            .map(|&t| first.then(&Rotation::from_axis_angle(DVec3::Z, t).unwrap()))
+            .collect(),
+    ];
+    for (k, e) in entries.iter().enumerate() {
+        assert_eq!(
+            keys(e),
+            ["file", "from_wxyz", "margin", "planes", "slab", "to_wxyz"]
+        );
+        let name = format!("slab_{k:05}.json");
+        assert_eq!(e["file"].as_str().unwrap(), name);
+        let h: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(&name)).unwrap()).unwrap();
+        assert_eq!(keys(&h), ["normals", "offsets"]);
+        let normals: Vec<DVec3> = h["normals"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| {
+                let n = numbers(n);
+                assert_eq!(n.len(), 3);
+                DVec3::new(n[0], n[1], n[2])
+            })
+            .collect();
+        let offsets = numbers(&h["offsets"]);
+        assert_eq!(normals.len(), offsets.len());
+        assert_eq!(normals.len(), e["planes"].as_u64().unwrap() as usize);
+        assert_eq!(normals.len(), slabs[k].len());
+        for (i, n) in normals.iter().enumerate() {
+            assert!((n.length() - 1.0).abs() < 1e-12, "{n:?}");
+            let lib = slabs[k].normals()[i];
+            assert!(
+                (0..3).all(|c| near(n[c], lib[c])),
+                "normal {i}: {n:?} != {lib:?}"
+            );
+            assert!(near(offsets[i], slabs[k].offsets()[i]), "offset {i}");
+        }
+        // Every vertex of every sampled slice: inside the library's slab
+        // (exactly), and inside the half-spaces as written, in floats with a
+        // margin far below the sagitta (the test fails without it).
+        let mut deepest = f64::INFINITY;
+        for (j, slice) in cobst.slices(&paths[k]).enumerate() {
+            for v in &slice.unwrap().vertices {
+                let x = DVec3::from(*v);
+                assert!(slabs[k].contains(x), "slab {k}, sample {j}: {x:?} outside");
+                for (n, d) in normals.iter().zip(&offsets) {
+                    deepest = deepest.min(d - n.dot(x));
+                    assert!(n.dot(x) <= d + 1e-12, "slab {k}, sample {j}: {x:?}");
+                }
+            }
+        }
+        assert!(deepest < slabs[k].margin(), "slab {k}: {deepest} {e}");
+    }
+    dymsum_testkit::files::remove_dir(&dir);
+}
+
+#[test]
+fn cobst_certified_unions_and_refusals() {
+    let dir = temp_dir("certified_union");
+    let out = dir.join("slabs");
+    ok(&[
+        "cobst",
+        "box:4,0.2,0.2+box:0.2,0.2,4",
+        "box:0.5",
+        "--axis",
+        "1,0,0",
+        "--slices",
+        "3",
+        "--certified",
+        "--format",
+        "halfspaces",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("index.json")).unwrap()).unwrap();
+    for (k, e) in index.as_array().unwrap().iter().enumerate() {
+        let files: Vec<&str> = e["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f.as_str().unwrap())
+            .collect();
+        assert_eq!(
+            files,
+            [
+                format!("slab_{k:05}_r0_o0.json"),
+                format!("slab_{k:05}_r1_o0.json")
+            ]
+        );
+        assert!(e.get("file").is_none(), "{e}");
+        let mut planes = 0;
+        for f in &files {
+            let h: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(out.join(f)).unwrap()).unwrap();
+            planes += h["offsets"].as_array().unwrap().len();
+        }
+        assert_eq!(e["planes"].as_u64().unwrap() as usize, planes);
+    }
+    // --force clears the slabs, and only them.
+    std::fs::write(out.join("notes.txt"), "keep").unwrap();
+    let o = run(&[
+        "cobst",
+        "box",
+        "gs1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_fails(&o, 1, "slab_* files");
+    std::fs::remove_file(out.join("notes.txt")).unwrap();
+    ok(&[
+        "cobst",
+        "box",
+        "gs1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+        "--force",
+    ]);
+    assert!(!out.join("slab_00000_r0_o0.json").exists());
+    assert!(out.join("slice_00001.off").is_file());
+    // `cobst box gs1 ARGS --out FRESH`.
+    let fresh = dir.join("fresh");
+    let cobst = |args: &[&str]| {
+        let mut all = vec!["cobst", "box", "gs1"];
+        all.extend_from_slice(args);
+        all.extend(["--out", fresh.to_str().unwrap()]);
+        run(&all)
+    };
+    // --format needs --certified: a usage error.
+    let o = cobst(&["--axis", "0,0,1", "--slices", "3", "--format", "halfspaces"]);
+    assert_fails(&o, 2, "--certified");
+    let o = cobst(&[
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "3",
+        "--certified",
+        "--format",
+        "obj",
+    ]);
+    assert_fails(&o, 2, "--format");
+    // A slab covers at most a half turn; it lies between two orientations.
+    let o = cobst(&["--axis", "0,0,1", "--slices", "1", "--certified"]);
+    assert_fails(&o, 1, "more than π");
+    let one = dir.join("one.txt");
+    std::fs::write(&one, "1,0,0,0\n").unwrap();
+    let o = cobst(&["--orientations-wxyz", one.to_str().unwrap(), "--certified"]);
+    assert_fails(&o, 1, "at least 2");
+    assert!(!fresh.join("index.json").exists());
+    dymsum_testkit::files::remove_dir(&dir);
+}

@@ -3,7 +3,7 @@
 Exact ``A ⊕ B`` of convex polytopes (every combinatorial decision an exact
 predicate), kept up to date while the bodies rotate (the DYMSUM algorithm),
 penetration depth and distance, contact tracking and configuration-space
-obstacle slices, from NumPy arrays.
+obstacle slices and certified slabs between them, from NumPy arrays.
 
 Conventions, everywhere:
 
@@ -38,6 +38,7 @@ from ._dymsum import (
     MotionChecks as MotionChecks,
     MotionUndecided as MotionUndecided,
     Polytope as Polytope,
+    Slab as Slab,
     __version__ as __version__,
     check_motion as check_motion,
     check_motions as check_motions,
@@ -63,6 +64,7 @@ __all__ = [
     "MotionChecks",
     "MotionUndecided",
     "Polytope",
+    "Slab",
     "check_motion",
     "check_motions",
     "cobstacle_slices",

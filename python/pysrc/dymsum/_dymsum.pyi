@@ -29,6 +29,7 @@ __all__ = [
     "MotionUndecided",
     "check_motion",
     "check_motions",
+    "Slab",
     "minkowski_sum",
     "collides_many",
     "contact",
@@ -274,6 +275,42 @@ class Contacts:
     def point_b(self) -> npt.NDArray[np.float64]: ...
     def __len__(self) -> int: ...
 
+@final
+class Slab:
+    """A certified C-obstacle slab (``cobstacle_slices(..., certified=True)``):
+    ``{x : normals @ x <= offsets}`` contains every slice for every rotation on
+    the shortest path between its two end rotations."""
+
+    @property
+    def normals(self) -> npt.NDArray[np.float64]:
+        """Read-only (M, 3) unit outward normals."""
+    @property
+    def offsets(self) -> npt.NDArray[np.float64]:
+        """Read-only (M,) offsets, rounded outward."""
+    @property
+    def margin(self) -> float:
+        """How far each plane is pushed beyond the end slices' hull (sagitta and rounding)."""
+    @property
+    def rotations(self) -> npt.NDArray[np.float64]:
+        """The end rotations, (2, 4) quaternions ``(x, y, z, w)``."""
+    @property
+    def angle(self) -> float:
+        """An upper bound on the angle between the end rotations (radians)."""
+    @overload
+    def contains(self, points: Sequence[float]) -> bool:
+        """Exact ``normals @ x <= offsets`` for one (3,) point, or each of (N, 3) points."""
+    @overload
+    def contains(self, points: npt.ArrayLike) -> Union[bool, npt.NDArray[np.bool_]]: ...
+    @overload
+    def mesh(self, polygons: Literal[False] = False) -> Tuple[_Vertices, _Triangles]:
+        """``(vertices, faces)`` of a checked convex mesh containing the slab."""
+    @overload
+    def mesh(self, polygons: Literal[True]) -> Tuple[_Vertices, _Polygons]: ...
+    @overload
+    def mesh(self, polygons: bool = False) -> Tuple[_Vertices, Union[_Triangles, _Polygons]]: ...
+    def __len__(self) -> int:
+        """The number of half-spaces."""
+
 _PosesLike = Union[None, npt.ArrayLike, _RotationLike]
 
 def contact_many(a: _ShapeLike, b: _ShapeLike, poses_a: _PosesLike = None, poses_b: _PosesLike = None) -> Contacts:
@@ -291,13 +328,15 @@ def cobstacle_slices(
     rotations: _Rotations,
     polygons: Literal[False] = False,
     parallel: bool = False,
+    certified: Literal[False] = False,
 ) -> list[Tuple[_Vertices, _Triangles]]:
     """C-obstacle slices ``obstacle ⊕ (−R·robot)``, one per rotation.
 
     ``rotations``: a scipy ``Rotation`` (one or a stack), (K, 3, 3) rotation
     matrices, (K, 4) quaternions in the order ``(x, y, z, w)`` (scalar last,
     as scipy's ``as_quat()``), (K, 4, 4) transforms without translation, or
-    one (4,) quaternion or 3×3 matrix.
+    one (4,) quaternion or 3×3 matrix. ``certified=True``: the K − 1
+    certified slabs between consecutive rotations instead (:class:`Slab`).
     """
 @overload
 def cobstacle_slices(
@@ -306,7 +345,18 @@ def cobstacle_slices(
     rotations: _Rotations,
     polygons: Literal[True],
     parallel: bool = False,
+    certified: Literal[False] = False,
 ) -> list[Tuple[_Vertices, _Polygons]]: ...
+@overload
+def cobstacle_slices(
+    robot: _ShapeLike,
+    obstacle: _ShapeLike,
+    rotations: _Rotations,
+    polygons: Literal[False] = False,
+    parallel: bool = False,
+    *,
+    certified: Literal[True],
+) -> list[Slab]: ...
 @overload
 def cobstacle_slices(
     robot: _ShapeLike,
@@ -314,7 +364,8 @@ def cobstacle_slices(
     rotations: _Rotations,
     polygons: bool = False,
     parallel: bool = False,
-) -> list[Tuple[_Vertices, Union[_Triangles, _Polygons]]]: ...
+    certified: bool = False,
+) -> Union[list[Tuple[_Vertices, Union[_Triangles, _Polygons]]], list[Slab]]: ...
 
 @final
 class ConvexUnion:

@@ -16,6 +16,10 @@
 //! (`slice_*.off` and `index.json`) are removed first and nothing else is
 //! touched.
 //!
+//! With `--certified`, certified slabs are written instead of slices: each
+//! contains every slice between two consecutive orientations (see
+//! [`super::slabs`]).
+//!
 //! With a union of convex pieces as robot or obstacle (`a.off+b.off`, or an
 //! OBJ file with several objects), a slice is the union of the piece-pair
 //! sums: they are written as `slice_NNNNN_rI_oJ.off` and the index entry
@@ -27,12 +31,13 @@ use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context};
 use clap::Args;
-use dymsum::query::{orientations_about_axis, CObstacle};
+use dymsum::query::{full_turn_angles, orientations_about_axis, rotations_about_axis, CObstacle};
 use dymsum::{DVec3, DynamicSum, Polytope, Rotation};
 use serde::Serialize;
 
 use super::query::load_body;
 use super::short_name;
+use super::slabs::{write_slabs, SlabFormat};
 use crate::stats::{human_us, micros};
 
 /// Arguments of `dymsum cobst`.
@@ -71,6 +76,18 @@ pub struct CobstArgs {
     /// Refuse meshes that are convex only within tolerance.
     #[arg(long)]
     pub strict: bool,
+    /// Write certified slabs instead of slices: slab k contains every slice
+    /// for the orientations between orientation k and the next (with
+    /// --slices N: the N slabs of the full turn; with --orientations-wxyz:
+    /// the shortest turn between consecutive orientations).
+    #[arg(long)]
+    pub certified: bool,
+    /// How to write the slabs (with --certified): meshes `slab_NNNNN.off`,
+    /// or half-spaces `slab_NNNNN.json` (unit normals and offsets: the slab
+    /// is {x : n·x ≤ d}).
+    #[arg(long, value_enum, value_name = "FORMAT", default_value_t = SlabFormat::Off,
+          requires = "certified")]
+    pub format: SlabFormat,
 }
 
 /// Parses a non-zero axis `X,Y,Z`.
@@ -140,9 +157,12 @@ pub fn read_orientations(path: &Path) -> anyhow::Result<Vec<Rotation>> {
     Ok(out)
 }
 
-/// `true` for the names cobst writes: `index.json` and `slice_*.off`.
+/// `true` for the names cobst writes: `index.json`, `slice_*.off`,
+/// `slab_*.off` and `slab_*.json`.
 fn is_own_output(name: &str) -> bool {
-    name == "index.json" || (name.starts_with("slice_") && name.ends_with(".off"))
+    name == "index.json"
+        || (name.starts_with("slice_") && name.ends_with(".off"))
+        || (name.starts_with("slab_") && (name.ends_with(".off") || name.ends_with(".json")))
 }
 
 /// Creates the output directory, or checks an existing one: empty, or with
@@ -165,7 +185,7 @@ fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
         bail!(
             "--out {}: the directory is not empty ({} entries); slices of an earlier run would \
              mix with the new ones. Choose an empty or new directory, or add --force to remove \
-             the earlier slice_*.off and index.json there first",
+             the earlier slice_*/slab_* files and index.json there first",
             dir.display(),
             entries.len()
         );
@@ -207,6 +227,9 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
     let robot = load_body(&a.robot, "ROBOT", a.strict)?;
     let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
+    if a.certified {
+        return run_certified(a, (&robot, &obstacle), out);
+    }
     let orientations = chosen_orientations(a)?;
     prepare_out_dir(&a.out, a.force)?;
     let union = robot.len() > 1 || obstacle.len() > 1;
@@ -227,6 +250,57 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         short_name(&a.robot),
         short_name(&a.obstacle),
         orientations.len(),
+        pairs,
+        if pairs == 1 { "" } else { "s" },
+        a.out.display(),
+        human_us(elapsed),
+    )?;
+    Ok(())
+}
+
+/// `dymsum cobst --certified`: the slabs between consecutive orientations
+/// (`--slices N` about `--axis`: the angles `2πk/N` for `k = 0..=N`, so the
+/// `N` slabs close the turn).
+fn run_certified(
+    a: &CobstArgs,
+    bodies: (&[Polytope], &[Polytope]),
+    out: &mut dyn Write,
+) -> anyhow::Result<()> {
+    let (orientations, angles) = match (&a.orientations, a.axis, a.slices) {
+        (Some(file), _, _) => (read_orientations(file)?, None),
+        (None, Some(axis), Some(n)) => {
+            let angles = full_turn_angles(n as usize);
+            let turns = rotations_about_axis(axis, &angles).context("--axis with --slices")?;
+            (turns, Some(angles))
+        }
+        _ => bail!("give --axis X,Y,Z with --slices N, or --orientations-wxyz FILE"),
+    };
+    prepare_out_dir(&a.out, a.force)?;
+    let start = Instant::now();
+    let written = write_slabs(&a.out, bodies, &orientations, angles.as_deref(), a.format)
+        .with_context(|| {
+            format!(
+                "slabs of {} against {}",
+                short_name(&a.robot),
+                short_name(&a.obstacle)
+            )
+        })?;
+    let elapsed = micros(start.elapsed());
+    let planes = &written.planes;
+    let (lo, hi) = (
+        planes.iter().min().copied().unwrap_or(0),
+        planes.iter().max().copied().unwrap_or(0),
+    );
+    let margin = written.margins.iter().copied().fold(0.0, f64::max);
+    let pairs = bodies.0.len() * bodies.1.len();
+    writeln!(
+        out,
+        "Certified C-obstacle slabs of {} among {}: {} slab{} ({} piece pair{}), {lo}–{hi} planes \
+         per slab, margin ≤ {margin:.3e}, written to {} in {}",
+        short_name(&a.robot),
+        short_name(&a.obstacle),
+        planes.len(),
+        if planes.len() == 1 { "" } else { "s" },
         pairs,
         if pairs == 1 { "" } else { "s" },
         a.out.display(),

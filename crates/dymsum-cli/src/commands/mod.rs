@@ -12,6 +12,7 @@ pub mod models;
 pub mod motion;
 pub mod query;
 pub mod render;
+pub mod slabs;
 pub mod sum;
 
 use std::io::Write;

@@ -94,6 +94,11 @@ impl CObstacle {
         &self.neg_robot.polytope
     }
 
+    /// The obstacle `O`.
+    pub fn obstacle(&self) -> &Polytope {
+        &self.obstacle
+    }
+
     /// The slice at one orientation, computed from scratch.
     ///
     /// # Errors

@@ -3,6 +3,11 @@
 //! bodies, a per-frame contact tracker, batches, C-obstacle slices, and
 //! unions of convex pieces.
 //!
+//! Certified C-obstacle slabs ([`Slab`]): one convex region, as half-spaces
+//! rounded outward or as a checked mesh, that holds every slice over a
+//! range of orientations (between two orientations of a turn, or in a cell
+//! of SO(3)); what is certified and why is in [`slabs`].
+//!
 //! # The answer is defined by the Minkowski difference
 //! For convex bodies `A` and `B` at their poses, `D = A ⊕ (−B)` contains the
 //! origin exactly when they overlap, and translating `A` by `t` translates
@@ -129,7 +134,7 @@ mod frame;
 mod gjk;
 mod motion;
 mod separation;
-
+pub mod slabs;
 mod support;
 mod tracker;
 mod union;
@@ -137,6 +142,11 @@ mod union;
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
 pub use motion::{
     check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, MIN_WIDTH,
+};
+pub use slabs::{
+    certified_slab_in_cell, certified_slabs_about_axis, certified_slabs_about_axis_par,
+    full_turn_angles, rotations_about_axis, slab_meshes_par, Slab, SlabCover, SlabError,
+    ROTATION_SLACK,
 };
 pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};
@@ -178,6 +188,9 @@ pub enum QueryError {
     /// finite is supported, at any scale.
     #[error("outside the supported range: {0}")]
     OutOfRange(String),
+    /// Bad input to a certified slab ([`Slab`]): the variant names it.
+    #[error(transparent)]
+    Slab(#[from] SlabError),
 }
 
 /// The features of `A` and `B` generating a facet of `A ⊕ (−B)` (indices

@@ -1,0 +1,1022 @@
+//! Certified C-obstacle slabs: one convex region that contains *every*
+//! C-obstacle slice `O ⊕ (−R·A)` for a whole range of robot orientations
+//! `R` — between two consecutive orientations of a turn, or in a ball of
+//! orientations in SO(3) — given as half-spaces `{x : N x ≤ d}` (what cell
+//! decompositions and graphs of convex sets consume) or as a checked mesh.
+//!
+//! A slice ([`CObstacle::slice`]) holds for its one orientation; a planner that
+//! samples orientations misses what happens between the samples. A slab
+//! closes that gap conservatively: a translation outside the slab is free
+//! at every orientation of its range.
+//!
+//! # What "certified" means
+//! Let `ε = 2⁻⁴⁰` ([`ROTATION_SLACK`]), `r` bound `|a|` over the robot's
+//! vertices (the robot turns about its own origin) and `R_O` bound `|o|`
+//! over the obstacle's. For a 3×3 matrix `M` write `S(M) = O ⊕ (−M·A)`.
+//!
+//! * **Between two orientations** `R_k`, `R_{k+1}` ([`Rotation`]s): the slab
+//!   contains `S(M)` — and the slice dymsum computes for `M`, with its
+//!   rounded vertices — for every matrix `M` within `ε` (spectral norm) of
+//!   a rotation `R` on a *shortest path* in SO(3) (a geodesic, of angle
+//!   `≤ π`; both of them at angle `π`) from some rotation within angle `ε`
+//!   of `R_k` to some rotation within angle `ε` of `R_{k+1}`.
+//! * **In a cell** with centre `R_c` and radius `ρ < π`: the same for every
+//!   `R` within angle `ρ + ε` of `R_c`.
+//!
+//! Turns about one axis ([`rotations_about_axis`]): the turn by angle `θ`
+//! about an axis, for `θ` between two angles at most `π` apart, is a
+//! shortest path between its ends, so a slab holds the slices of the turn
+//! by **every real angle** in `[θ_k, θ_{k+1}]` about the exact axis, and of
+//! every rotation [`Rotation::from_axis_angle`] computes there. The slack
+//! `ε` covers the rotations as computed:
+//!
+//! * a stored [`Rotation`]'s matrix (`DMat3::from_quat` of a quaternion of
+//!   norm `1 ± 4·2⁻⁵²`, entries within `2⁻⁴⁷` of `0`, `±1` snapped) differs
+//!   from the exact rotation of its normalised quaternion by at most
+//!   `2|1 − |q|²| + 3·(4u·2) + 3·2⁻⁴⁷ < 2.6·10⁻¹⁴ < 2⁻⁴⁵` in spectral
+//!   norm (`u = 2⁻⁵³`; `DMat3::from_quat(λq̂) = λ²R(q̂) + (1 − λ²)I`);
+//! * [`Rotation::from_axis_angle`] of a float angle `θ` about an axis scaled
+//!   to `[1, 2)` by a power of two (exact; [`rotations_about_axis`] does so,
+//!   so that the axis's squared length neither underflows nor overflows):
+//!   the normalised axis is within `4u` of the exact one, `sin` and `cos`
+//!   of `θ/2` within an ulp (the platform's libm; glibc, musl and macOS
+//!   are), so the quaternion is within `12u`; snapping components below
+//!   `10⁻¹⁴` and renormalising moves it by at most `4.1·10⁻¹⁴`; the rotation
+//!   angle is at most twice the quaternion distance, `< 9·10⁻¹⁴ < 2⁻⁴³`;
+//! * a step compared as `fl(θ_{k+1} − θ_k) ≤ π` (float `π`) is at most `π`
+//!   plus half an ulp of `π`: the part of the turn beyond a half turn is
+//!   within `2⁻⁵¹` of the half turn's end.
+//!
+//! # Why a slab contains the slices
+//! Take a vertex `p` of `−A` (`|p| ≤ r`), and `R = E(t)·R_a` on a shortest
+//! path from `R_a` to `R_b` (`E(t)` the turn by `tδ'` about a fixed axis,
+//! `t ∈ [0, 1]`, `δ' = angle(R_a, R_b) ≤ π`). The points `E(t)R_a p` run on
+//! a circle arc of radius at most `|p|` and angle `δ' ≤ π`, so each lies
+//! within the **sagitta** `r·σ(δ')`, `σ(δ) = 1 − cos(δ/2) = 2 sin²(δ/4)`, of
+//! the chord between the arc's ends (the arc is at most a half circle, so
+//! the foot of the perpendicular falls on the chord). The ends `R_a p`,
+//! `R_b p` are within `(ε + 2⁻⁴⁵) r` of `M_k p`, `M_{k+1} p` (the stored
+//! matrices: `|R_a p − R_k p| ≤ 2 sin(ε/2)|p|`), and `|Mp − Rp| ≤ εr`, and
+//! `δ' ≤ δ + 2ε` with `δ` the angle between `R_k` and `R_{k+1}`. Adding a
+//! vertex `o` of `O`: every vertex `o + Mp` of `S(M)` lies within
+//! `r(σ(δ + 2ε) + 3ε)` of the segment between `o + M_k p ∈ S(M_k)` and
+//! `o + M_{k+1} p ∈ S(M_{k+1})`, so
+//!
+//! ```text
+//! S(M) ⊆ conv(S(M_k) ∪ S(M_{k+1})) ⊕ ball(r(σ(δ + 2ε) + 3ε)).
+//! ```
+//!
+//! In a cell, `|Rp − M_c p| ≤ 2 sin((ρ + ε)/2) r + 2⁻⁴⁵ r ≤ (ρ + 2ε) r`, so
+//! `S(M) ⊆ S(M_c) ⊕ ball(r(ρ + 3ε))`.
+//!
+//! **The slices' rounding.** dymsum's mesh of a slice has the vertices
+//! `fl(fl(M p) + o)`: each coordinate of `fl(M p)` is off by at most
+//! `γ₃ Σ_j |M_ij||p_j| ≤ 3.01u·r` (rows of norm `≤ 1 + 2⁻⁴⁵`), the sum
+//! adds `u(|Mp|_i + |o_i|)`, so a vertex is within `√3·u(4.02 r + R_O)
+//! < e = 8·2⁻⁵²(r + R_O)` of its exact value. The mesh is the exact hull of
+//! rounded vertices among which is the rounded counterpart of every
+//! vertex of the exact slice (`sum::merge`: kept corners are the exact
+//! slice's vertices, and a corner a repair leaves out lies inside the
+//! checked result), so `S(M_k) ⊆ conv(mesh_k) ⊕ ball(e)`, and the slice
+//! computed for `M` is within `e` of `S(M)`. With `H = conv(mesh_k ∪
+//! mesh_{k+1})` (or `conv(mesh_c)`), every certified slice lies in
+//! `H ⊕ ball(m)`, the **margin**
+//!
+//! ```text
+//! m = r(σ(δ + 2ε) + 3ε) + 2e      (between orientations)
+//! m = r(ρ + 3ε) + 2e              (in a cell)
+//! ```
+//!
+//! **The half-spaces.** `H` is the exact hull of the float vertices
+//! ([`crate::hull::convex_hull`] through [`Polytope::from_dvec3s`]: exact
+//! predicates, maximal faces). For each face, `n` is its float unit normal
+//! and the offset `d ≥ max_{v ∈ H} n·v + |n|·m`: the maximum is bounded
+//! from above rigorously by the near-extreme search of `query::support`
+//! (hill climbing, then every vertex within the float dot products' error
+//! bound of the best; `H`'s vertices are exact, so its `η` is 0), `|n|`,
+//! `σ` and every sum are rounded up. Then `H ⊕ ball(m) ⊆ {x : n·x ≤ d}`
+//! for every face, whatever the rounding of `n`: the slab is never too
+//! small. `σ(δ)` is bounded by `2(x − x³/6 + x⁵/120)²`, `x = min(δ, π)/4`
+//! (`sin x` is below its quintic Taylor polynomial for `0 ≤ x ≤ π/2`),
+//! rounded up; `δ` is bounded from above from the quaternions.
+//!
+//! A face whose unit normal is within `2⁻³⁰` of a kept neighbour's shares
+//! that neighbour's plane: rounding bends the slices' faces of four or
+//! more corners, and the exact hull splits them into nearly coplanar
+//! triangles. Leaving a half-space out only enlarges the slab (its plane
+//! turned by at most `2⁻³⁰` rad onto the neighbour's), and spares the
+//! planner, and [`Slab::mesh`], thousands of slivers.
+//!
+//! # How tight
+//! `H` is the hull of two slices of the swept set, so its support function
+//! is at most the swept set's, and each plane reaches at most `m` beyond
+//! the swept C-obstacle in its own direction: about `r δ²/8` for a step
+//! `δ`, so four times more slices make the slabs sixteen times tighter
+//! (the table in `docs/BENCHMARKS.md`, "Certified C-obstacle slabs").
+//! Near a sharp vertex of `H` the polytope `{N x ≤ d}` reaches further, by
+//! `m / cos` of half the angle between the planes there.
+//!
+//! # The mesh
+//! [`Slab::mesh`] contains the polytope `P = {N x ≤ d}`. By polar duality
+//! about an interior point `c` (the mean of `H`'s vertices), the vertices
+//! of `P' = {x : n_i·(x − c) ≤ t_i}` are the poles of the facets of the
+//! hull of the points `q_i = n_i / t_i`; that hull is built with exact
+//! predicates on the rational `q_i` (homogeneous coordinates `(n_i, t_i)`,
+//! a float filter first), so its facets are exactly `P'`'s vertices. Each
+//! vertex is computed by Cramer's rule (floats with determinant error
+//! bounds, or exact determinants rounded once) within a bound `τ`. The
+//! mesh is the exact hull of the rounded vertices, which contains
+//! `P' ⊖ ball(τ) = {n_i·(x − c) ≤ t_i − τ|n_i|}` (the hull of points each
+//! within `τ` of a polytope's vertices has a support function at most `τ`
+//! below the polytope's). With `t_i ≥ d_i − n_i·c + μ`, `μ ≥ τ max|n_i|`
+//! (rounded up; `μ` starts at `2⁻⁴⁰` of the coordinates' magnitude and is
+//! raised when `τ` needs it), that is `⊇ P`. The mesh passes
+//! [`crate::sum::validate::check_convex_mesh`]; one that failed would be an
+//! error, never returned. Its faces are maximal for the rounded vertices:
+//! a face of `P` with four or more corners is usually split by rounding.
+//!
+//! ```
+//! use dymsum::{DVec3, Polytope};
+//! use dymsum::query::{certified_slabs_about_axis, full_turn_angles};
+//! let corners = |x: f64, y: f64, z: f64| -> Vec<[f64; 3]> {
+//!     (0..8).map(|i| [x * ((i & 1) as f64 - 0.5), y * (((i >> 1) & 1) as f64 - 0.5), z * (((i >> 2) & 1) as f64 - 0.5)]).collect()
+//! };
+//! let bar = Polytope::from_points(&corners(4.0, 0.2, 0.2))?;
+//! let block = Polytope::from_points(&corners(1.0, 1.0, 1.0))?;
+//! // 16 slabs covering a full turn about z.
+//! let slabs = certified_slabs_about_axis(&bar, &block, DVec3::Z, &full_turn_angles(16))?;
+//! assert_eq!(slabs.len(), 16);
+//! // Half-spaces N x <= d ...
+//! let s = &slabs[0];
+//! assert_eq!(s.normals().len(), s.offsets().len());
+//! // ... holding the bar's tip swept through the first sixteenth of a turn.
+//! let tip = |angle: f64| DVec3::new(-2.0 * angle.cos(), -2.0 * angle.sin(), 0.0);
+//! assert!(s.contains(tip(0.1)));
+//! assert!(!s.contains(DVec3::new(3.0, 0.0, 0.0)));
+//! // The same slab as a mesh, checked exactly.
+//! let mesh = s.mesh()?;
+//! assert!(mesh.faces.len() >= 6);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use super::frame::{up, BodyBounds};
+use super::support::{near_max, Marks};
+use super::{CObstacle, QueryError};
+use crate::hull::{convex_hull, FloatPoints};
+use crate::kernel::exact::{self, Dyadic};
+use crate::kernel::{bounds, Sign};
+use crate::polytope::Polytope;
+use crate::sum::{validate::check_convex_mesh, MeshError};
+use crate::{DVec3, PolygonMesh, Rotation};
+use rayon::prelude::*;
+
+/// The slack `ε = 2⁻⁴⁰` by which every certified range of rotations is
+/// widened (module docs): rotations within angle `ε` of the range's ends
+/// or centre, and matrices within `ε` of those rotations, so that the
+/// rotations dymsum computes (their rounding and snapping, below `2⁻⁴²`)
+/// are covered.
+pub const ROTATION_SLACK: f64 = 9.094_947_017_729_282e-13;
+
+/// Faces of the slices' hull whose unit normals are within this (`2^-30`)
+/// of a kept neighbour's share its plane (module docs).
+const SAME_PLANE: f64 = 9.313_225_746_154_785e-10;
+
+/// Normal components below this (`2^-200`) are set to zero.
+const TINY_COMPONENT: f64 = 6.223_015_277_861_142e-61;
+
+/// `π` rounded up (the next float above `f64::consts::PI`).
+const PI_UP: f64 = 3.141_592_653_589_793_6;
+
+/// Bad input to a slab computation: each variant names the offending value.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SlabError {
+    /// The rotation axis is zero or not finite.
+    #[error("the rotation axis {axis:?} is zero or not finite")]
+    BadAxis {
+        /// The axis given.
+        axis: [f64; 3],
+    },
+    /// An angle is NaN or infinite.
+    #[error("angle {index} is {angle}, not a finite number")]
+    NonFiniteAngle {
+        /// Its position in the list.
+        index: usize,
+        /// The angle.
+        angle: f64,
+    },
+    /// An angle does not exceed the one before it.
+    #[error(
+        "angle {index} ({angle}) does not exceed the angle before it ({previous}): \
+         the angles must increase strictly"
+    )]
+    NotIncreasing {
+        /// Its position in the list.
+        index: usize,
+        /// The angle before it.
+        previous: f64,
+        /// The angle.
+        angle: f64,
+    },
+    /// Two consecutive angles are more than `π` apart: the turn between
+    /// them is not a shortest path, and the sagitta bound needs arcs of at
+    /// most a half turn. Add angles in between.
+    #[error(
+        "the step to angle {index} is {step} rad, more than π: a slab covers at most a half \
+         turn (add angles in between)"
+    )]
+    StepTooLarge {
+        /// The position of the step's end in the list.
+        index: usize,
+        /// The step, in radians.
+        step: f64,
+    },
+    /// Fewer than two orientations: a slab lies between two.
+    #[error("{count} orientation(s) given: a slab lies between two, so at least 2 are needed")]
+    TooFewOrientations {
+        /// How many were given.
+        count: usize,
+    },
+    /// The cell radius is negative, NaN, or not below `π`.
+    #[error("the cell radius {radius} is not an angle in [0, π)")]
+    BadRadius {
+        /// The radius given.
+        radius: f64,
+    },
+}
+
+/// The orientations a slab is certified for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SlabCover {
+    /// Every rotation on a shortest path from `from` to `to` (widened by
+    /// [`ROTATION_SLACK`], see the module docs).
+    Path {
+        /// The first end.
+        from: Rotation,
+        /// The second end.
+        to: Rotation,
+        /// An upper bound on the angle between them (radians), slack
+        /// included.
+        angle: f64,
+    },
+    /// Every rotation within `radius` of `centre` (widened by
+    /// [`ROTATION_SLACK`]).
+    Cell {
+        /// The centre.
+        centre: Rotation,
+        /// The radius (radians).
+        radius: f64,
+    },
+}
+
+/// A certified C-obstacle slab: the half-spaces `{x : n_i·x ≤ d_i}` whose
+/// intersection contains every slice `O ⊕ (−R·A)` for the orientations
+/// `R` of its [`SlabCover`] (see the [module docs](self) for the precise
+/// statement). Built by [`CObstacle::certified_slabs`],
+/// [`CObstacle::certified_slab_in_cell`] and the functions of this module.
+#[derive(Clone, Debug)]
+pub struct Slab {
+    normals: Vec<DVec3>,
+    offsets: Vec<f64>,
+    hull: Polytope,
+    margin: f64,
+    cover: SlabCover,
+}
+
+impl Slab {
+    /// The unit outward normals `n_i`, one per face of [`Slab::hull`] (float
+    /// constructions; the containment holds for them as they are).
+    pub fn normals(&self) -> &[DVec3] {
+        &self.normals
+    }
+
+    /// The offsets `d_i`, rounded outward: the slab is `{x : n_i·x ≤ d_i}`.
+    pub fn offsets(&self) -> &[f64] {
+        &self.offsets
+    }
+
+    /// The number of half-spaces.
+    pub fn len(&self) -> usize {
+        self.normals.len()
+    }
+
+    /// `true` when the slab has no half-space (never: a slab is bounded).
+    pub fn is_empty(&self) -> bool {
+        self.normals.is_empty()
+    }
+
+    /// The exact hull of the slices the slab was built from (the two ends'
+    /// slices, or the cell centre's), whose face planes, pushed out by
+    /// [`Slab::margin`], are the half-spaces.
+    pub fn hull(&self) -> &Polytope {
+        &self.hull
+    }
+
+    /// How far each plane is pushed beyond the hull (per unit of normal
+    /// length): the sagitta or `r·ρ` term plus the rounding terms.
+    pub fn margin(&self) -> f64 {
+        self.margin
+    }
+
+    /// The orientations the slab is certified for.
+    pub fn cover(&self) -> SlabCover {
+        self.cover
+    }
+
+    /// Whether `x` satisfies every `n_i·x ≤ d_i`, decided exactly (a float
+    /// filter, then exact arithmetic); `false` for a non-finite `x`.
+    pub fn contains(&self, x: DVec3) -> bool {
+        x.is_finite()
+            && self
+                .normals
+                .iter()
+                .zip(&self.offsets)
+                .all(|(&n, &d)| slack_sign(n, d, x) != Sign::Negative)
+    }
+
+    /// The slab as a closed convex mesh (maximal faces, counter-clockwise
+    /// outward) that **contains** the polytope `{N x ≤ d}`: the vertices of
+    /// `{N x ≤ d + μ}` (`μ` a tiny push, module docs) rounded, and their
+    /// exact hull, checked with [`check_convex_mesh`]. Where rounding bends
+    /// a face of four or more corners, the hull splits it.
+    ///
+    /// # Errors
+    /// [`QueryError::OutOfRange`] when a vertex overflows `f64`;
+    /// [`QueryError::Mesh`] or [`QueryError::Inconsistent`] only for an
+    /// internal error (a mesh failing its check is never returned).
+    pub fn mesh(&self) -> Result<PolygonMesh, QueryError> {
+        let centre = self.hull.centroid_of_vertices();
+        let size = self.hull.diameter() + 2.0 * self.margin;
+        if !(centre.is_finite() && size.is_finite()) {
+            return Err(QueryError::OutOfRange(
+                "the slab's mesh coordinates overflow f64".into(),
+            ));
+        }
+        let longest = self
+            .normals
+            .iter()
+            .map(|n| up(n.length()))
+            .fold(0.0, f64::max);
+        // 2^-40 of the coordinates' magnitude: far above the rounding of
+        // the vertices, far below anything a planner resolves.
+        let mut push = (centre.abs().max_element() + size) * ROTATION_SLACK;
+        for _ in 0..8 {
+            let (vertices, rounding) = self.pushed_vertices(centre, push)?;
+            let needed = up(rounding * longest);
+            if needed <= push {
+                let points = FloatPoints(&vertices);
+                let hull = convex_hull(&points).map_err(|e| {
+                    QueryError::Inconsistent(format!("the slab's vertices span no volume: {e}"))
+                })?;
+                let mesh = hull.to_mesh(&points);
+                check_convex_mesh(&mesh).map_err(MeshError::from)?;
+                return Ok(mesh);
+            }
+            push = 2.0 * needed;
+        }
+        Err(QueryError::Inconsistent(
+            "the slab's vertices could not be bounded".into(),
+        ))
+    }
+
+    /// The vertices of `{x : n_i·(x − c) ≤ t_i}` with every
+    /// `t_i ≥ d_i − n_i·c + push` (rounded up), by polar duality (module
+    /// docs), and a bound on their rounding (Euclidean, each vertex).
+    fn pushed_vertices(&self, c: DVec3, push: f64) -> Result<(Vec<DVec3>, f64), QueryError> {
+        let mut t: Vec<f64> = self
+            .normals
+            .iter()
+            .zip(&self.offsets)
+            .map(|(&n, &d)| {
+                let (v, err) = bounds::dot(n, 0.0, c, 0.0);
+                above(above(d - below(v - err)) + push)
+            })
+            .collect();
+        if let Some(i) = t.iter().position(|x| !(x.is_finite() && *x > 0.0)) {
+            return Err(QueryError::Inconsistent(format!(
+                "the slab's centre is not inside its plane {i} ({:e})",
+                t[i]
+            )));
+        }
+        // Scale the offsets by a power of two (exact) to about 1: the dual
+        // points and their determinants stay far from overflow and
+        // underflow at any scale; the vertices scale back exactly.
+        let k = exact::frame_exponent(t.iter().copied());
+        t.iter_mut().for_each(|x| *x = exact::mul_pow2(*x, k));
+        let dual = PolarPoints::new(&self.normals, &t);
+        let hull = convex_hull(&dual)
+            .map_err(|e| QueryError::Inconsistent(format!("the slab's dual hull failed: {e}")))?;
+        let mut rounding = 0.0f64;
+        let mut vertices = Vec::with_capacity(hull.faces.len());
+        for f in &hull.faces {
+            let rows = [f[0], f[1], f[2]].map(|i| (self.normals[i], t[i]));
+            let (z, err) = solve_planes(rows)?;
+            let (z, err) = (exact::mul_pow2_vec(z, -k), exact::mul_pow2(err, -k));
+            let v = c + z;
+            if !v.is_finite() {
+                return Err(QueryError::OutOfRange(
+                    "a vertex of the slab overflows f64".into(),
+                ));
+            }
+            // The sum adds at most half an ulp per coordinate; the scaling
+            // back may lose bits only below 2^-1022.
+            let sum = SQRT3 * f64::EPSILON * v.abs().max_element() + 4.0 * f64::MIN_POSITIVE;
+            rounding = rounding.max(up(err + sum));
+            vertices.push(v);
+        }
+        Ok((vertices, rounding))
+    }
+}
+
+/// `√3`, rounded up.
+const SQRT3: f64 = 1.732_050_807_568_877_4;
+
+/// The point `z` on the three planes `n_j·z = t_j`, and a bound on its
+/// Euclidean rounding error: Cramer's rule in floats with the
+/// determinants' error bounds ([`bounds::det3`]) when they are small
+/// against the determinant, else in exact arithmetic rounded once per
+/// determinant.
+fn solve_planes(rows: [(DVec3, f64); 3]) -> Result<(DVec3, f64), QueryError> {
+    let n = rows.map(|(n, _)| n);
+    let with_t = |k: usize| {
+        rows.map(|(mut n, t)| {
+            n[k] = t;
+            n
+        })
+    };
+    let (det, det_err) = bounds::det3(n, [0.0; 3]);
+    if det_err.is_finite() && det_err * 1048576.0 < det.abs() {
+        let mut z = DVec3::ZERO;
+        let mut err = 0.0;
+        for k in 0..3 {
+            let (num, num_err) = bounds::det3(with_t(k), [0.0; 3]);
+            z[k] = num / det;
+            let e = (num_err + z[k].abs() * det_err) / (det.abs() - det_err)
+                + z[k].abs() * f64::EPSILON;
+            err += e * e;
+        }
+        return Ok((z, up(1.01 * err.sqrt())));
+    }
+    let exact_det = |rows: [DVec3; 3]| {
+        let [a, b, c] = rows.map(exact::exact);
+        exact::det3(&a, &b, &c)
+    };
+    let det = exact_det(n);
+    let top = det.top_exponent().ok_or_else(|| {
+        QueryError::Inconsistent("three planes of a slab vertex are dependent".into())
+    })?;
+    let d = det.to_f64_shifted(-top);
+    let mut z = DVec3::ZERO;
+    for k in 0..3 {
+        z[k] = exact_det(with_t(k)).to_f64_shifted(-top) / d;
+    }
+    // Each determinant within 3u, the division u: 8·2^-52 relative, plus
+    // underflow.
+    Ok((
+        z,
+        up(8.0 * f64::EPSILON * z.length() + 4.0 * f64::MIN_POSITIVE),
+    ))
+}
+
+/// The dual points `q_i = n_i / t_i` (`t_i > 0`) of a slab's planes, with
+/// predicates exact for the rational points: homogeneous coordinates
+/// `(n_i, t_i)`, so `det[q_b − q_a, q_c − q_a, q_d − q_a]` has the sign of
+/// `−det[(n_a, t_a); (n_b, t_b); (n_c, t_c); (n_d, t_d)]`. A float filter
+/// on the rounded `q_i` decides almost always; exact arithmetic otherwise.
+struct PolarPoints<'a> {
+    normals: &'a [DVec3],
+    offsets: &'a [f64],
+    /// `fl(n_i / t_i)`, each component within `u` of its own magnitude.
+    q: Vec<DVec3>,
+}
+
+impl<'a> PolarPoints<'a> {
+    fn new(normals: &'a [DVec3], offsets: &'a [f64]) -> Self {
+        let q = normals.iter().zip(offsets).map(|(&n, &t)| n / t).collect();
+        PolarPoints {
+            normals,
+            offsets,
+            q,
+        }
+    }
+
+    /// The homogeneous row `(n_i, t_i)`, exactly.
+    fn row(&self, i: usize) -> [Dyadic; 4] {
+        let n = self.normals[i];
+        [n.x, n.y, n.z, self.offsets[i]].map(Dyadic::from_f64)
+    }
+
+    /// The 3×3 minor of rows `rows` and columns `cols`, exactly.
+    fn minor(&self, rows: [usize; 3], cols: [usize; 3]) -> Dyadic {
+        let [a, b, c] = rows.map(|i| {
+            let r = self.row(i);
+            cols.map(|j| r[j])
+        });
+        exact::det3(&a, &b, &c)
+    }
+}
+
+impl crate::hull::HullPoints for PolarPoints<'_> {
+    fn len(&self) -> usize {
+        self.q.len()
+    }
+
+    fn coords(&self, i: usize) -> DVec3 {
+        self.q[i]
+    }
+
+    fn orient(&self, a: usize, b: usize, c: usize, d: usize) -> Sign {
+        // The rounded differences, each within ε(|q_i| + |q_a| + |v|)
+        // componentwise (the quotients' and the subtraction's rounding).
+        let diff = |i: usize| {
+            let v = self.q[i] - self.q[a];
+            let e = (self.q[i].abs() + self.q[a].abs() + v.abs()) * f64::EPSILON;
+            (v, e.length())
+        };
+        let ((u, eu), (v, ev), (w, ew)) = (diff(b), diff(c), diff(d));
+        let (det, bound) = bounds::det3([u, v, w], [eu, ev, ew]);
+        if let Some(sign) = Sign::certified(det, bound + f64::MIN_POSITIVE) {
+            return sign;
+        }
+        // Laplace along the offsets' column: det4 = Σ_i (−1)^(i+3) t_i M_i.
+        let rows = [a, b, c, d];
+        let mut det4 = Dyadic::zero();
+        for skip in 0..4 {
+            let mut rest = [0; 3];
+            let mut k = 0;
+            for (j, &r) in rows.iter().enumerate() {
+                if j != skip {
+                    rest[k] = r;
+                    k += 1;
+                }
+            }
+            let term = self
+                .minor(rest, [0, 1, 2])
+                .mul(&Dyadic::from_f64(self.offsets[rows[skip]]));
+            det4 = if (skip + 3) % 2 == 0 {
+                det4.add(&term)
+            } else {
+                det4.sub(&term)
+            };
+        }
+        det4.sign().flip()
+    }
+
+    fn coincident(&self, a: usize, b: usize) -> bool {
+        let (ra, rb) = (self.row(a), self.row(b));
+        (0..4).all(|i| (i + 1..4).all(|j| exact::det2(&ra[i], &ra[j], &rb[i], &rb[j]).is_zero()))
+    }
+
+    fn collinear(&self, a: usize, b: usize, c: usize) -> bool {
+        [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]]
+            .into_iter()
+            .all(|cols| self.minor([a, b, c], cols).is_zero())
+    }
+}
+
+/// The exact sign of `d − n·x`: a float filter, then exact arithmetic.
+fn slack_sign(n: DVec3, d: f64, x: DVec3) -> Sign {
+    let (v, err) = bounds::dot(n, 0.0, x, 0.0);
+    let diff = d - v;
+    let bound = 1.01 * (err + diff.abs() * f64::EPSILON) + f64::MIN_POSITIVE;
+    Sign::certified(diff, bound).unwrap_or_else(|| {
+        Dyadic::from_f64(d)
+            .sub(&exact::dot(&exact::exact(n), &exact::exact(x)))
+            .sign()
+    })
+}
+
+/// A float at least `x` and at least the value `x` was rounded from, when
+/// `x` is the result of one rounded operation (one ulp up, or more).
+#[inline]
+fn above(x: f64) -> f64 {
+    x + (x.abs() * f64::EPSILON + f64::MIN_POSITIVE)
+}
+
+/// A float at most `x` (the mirror of [`above`]).
+#[inline]
+fn below(x: f64) -> f64 {
+    -above(-x)
+}
+
+/// The largest coordinate magnitude of `points`.
+fn max_coordinate(points: &[DVec3]) -> f64 {
+    points
+        .iter()
+        .fold(0.0, |m: f64, v| m.max(v.abs().max_element()))
+}
+
+/// An upper bound on the sagitta factor `σ(δ) = 1 − cos(δ/2)` for an
+/// angle bound `delta ≥ 0` (module docs): `2 sin²(x)`, `x = min(δ, π)/4`,
+/// with `sin x ≤ x − x³/6 + x⁵/120`, rounded up.
+fn sagitta_factor(delta: f64) -> f64 {
+    let x = delta.clamp(0.0, PI_UP) / 4.0;
+    let x2 = x * x;
+    let s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0));
+    // About ten roundings of relative size u each, squared and doubled:
+    // (1 + 64·2^-52) covers them with room to spare.
+    2.0 * s * s * (1.0 + 64.0 * f64::EPSILON) + f64::MIN_POSITIVE
+}
+
+/// An upper bound on the angle of the rotation between `a` and `b`: the
+/// float angle (`Rotation::angle_to`: a quaternion product, a norm and an
+/// `atan2`, each within a few ulps) plus `2⁻⁴⁵`.
+fn angle_bound(a: &Rotation, b: &Rotation) -> f64 {
+    up(a.angle_to(b)) + 2.842_170_943_040_401e-14
+}
+
+/// The bounds shared by every slab of one robot and obstacle.
+#[derive(Clone, Copy, Debug)]
+struct Reach {
+    /// `r`: the robot's largest `|a|`, rounded up.
+    robot: f64,
+    /// `e`: the rounding of a slice vertex, `8·2⁻⁵²(r + R_O)`, rounded up.
+    slice_rounding: f64,
+}
+
+impl Reach {
+    fn of(c: &CObstacle) -> Result<Reach, QueryError> {
+        let robot = BodyBounds::of(c.reflected_robot()).reach;
+        let obstacle = BodyBounds::of(c.obstacle()).reach;
+        let slice_rounding = up(8.0 * f64::EPSILON * up(robot + obstacle));
+        if !slice_rounding.is_finite() {
+            return Err(QueryError::OutOfRange(
+                "the robot's or the obstacle's coordinates are too large for a slab's bounds"
+                    .into(),
+            ));
+        }
+        Ok(Reach {
+            robot,
+            slice_rounding,
+        })
+    }
+
+    /// The margin `r·(factor + 3ε) + 2e`, rounded up.
+    fn margin(&self, factor: f64) -> f64 {
+        up(up(self.robot * up(factor + 3.0 * ROTATION_SLACK)) + 2.0 * self.slice_rounding)
+    }
+}
+
+/// The vertices of a slice's mesh.
+fn slice_points(mesh: &PolygonMesh) -> Vec<DVec3> {
+    mesh.vertices.iter().map(|&v| DVec3::from(v)).collect()
+}
+
+/// The slab around the hull of `points` with every plane pushed out by
+/// `margin` (module docs).
+fn slab_around(points: &[DVec3], margin: f64, cover: SlabCover) -> Result<Slab, QueryError> {
+    let hull = Polytope::from_dvec3s(points)
+        .map_err(|e| QueryError::Inconsistent(format!("the hull of the slices failed: {e}")))?;
+    let scale = max_coordinate(hull.vertices());
+    let (mut marks, mut set) = (Marks::default(), Vec::new());
+    let mut normals = Vec::with_capacity(hull.face_count());
+    let mut offsets = Vec::with_capacity(hull.face_count());
+    let mut kept: Vec<Option<DVec3>> = Vec::with_capacity(hull.face_count());
+    for f in 0..hull.face_count() {
+        // Components below 2^-200 are dropped (the offset is computed for
+        // the normal as kept), so exact evaluations of the planes stay
+        // within a few hundred bits.
+        let n = DVec3::from(hull.unit_normal(f).to_array().map(|x| {
+            if x.abs() < TINY_COMPONENT {
+                0.0
+            } else {
+                x
+            }
+        }));
+        // A face nearly coplanar with a kept neighbour shares its plane.
+        let twin = hull.face_edges(f).iter().any(|&e| {
+            let [l, r] = hull.edge(e as usize).faces;
+            let g = if l as usize == f { r } else { l } as usize;
+            g < f && kept[g].is_some_and(|m| (m - n).length() <= SAME_PLANE)
+        });
+        if twin {
+            kept.push(None);
+            continue;
+        }
+        kept.push(Some(n));
+        let top = near_max(
+            &hull,
+            |v| hull.vertex(v as usize),
+            n,
+            hull.face(f)[0],
+            0.0,
+            0.0,
+            scale,
+            &mut marks,
+            &mut set,
+        );
+        let d = above(above(top.upper) + above(up(n.length()) * margin));
+        if !d.is_finite() || !n.is_finite() {
+            return Err(QueryError::OutOfRange(format!(
+                "a slab offset overflows f64 (face {f} of the slices' hull)"
+            )));
+        }
+        normals.push(n);
+        offsets.push(d);
+    }
+    Ok(Slab {
+        normals,
+        offsets,
+        hull,
+        margin,
+        cover,
+    })
+}
+
+/// The slab between two consecutive orientations and their slices' vertices.
+fn slab_between(
+    reach: &Reach,
+    (from, to): (Rotation, Rotation),
+    (p, q): (&[DVec3], &[DVec3]),
+) -> Result<Slab, QueryError> {
+    let angle = angle_bound(&from, &to) + 2.0 * ROTATION_SLACK;
+    let margin = reach.margin(sagitta_factor(angle));
+    let points: Vec<DVec3> = p.iter().chain(q).copied().collect();
+    slab_around(&points, margin, SlabCover::Path { from, to, angle })
+}
+
+impl CObstacle {
+    /// The certified slabs between consecutive orientations: slab `k`
+    /// contains every slice for the rotations on a shortest path from
+    /// `orientations[k]` to `orientations[k + 1]` (module docs), so `K`
+    /// orientations give `K − 1` slabs (repeat the first orientation at the
+    /// end to close a turn). The slices are computed by one dynamic sum
+    /// moved from orientation to orientation, as [`CObstacle::slices`].
+    ///
+    /// ```
+    /// use dymsum::query::{rotations_about_axis, full_turn_angles};
+    /// use dymsum::{CObstacle, DVec3, Polytope};
+    /// let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])?;
+    /// let block = Polytope::from_points(&[[2., 0., 0.], [3., 0., 0.], [2., 1., 0.], [2., 0., 1.]])?;
+    /// let cobst = CObstacle::new(&tet, &block)?;
+    /// let turns = rotations_about_axis(DVec3::new(1.0, 2.0, 3.0), &full_turn_angles(12))?;
+    /// let slabs = cobst.certified_slabs(&turns)?;
+    /// assert_eq!(slabs.len(), 12);
+    /// // Every slice is inside the slabs next to it.
+    /// for (k, turn) in turns.iter().enumerate().take(12) {
+    ///     let slice = cobst.slice(*turn)?;
+    ///     let inside = |s: &dymsum::query::Slab| slice.vertices.iter().all(|&v| s.contains(v.into()));
+    ///     assert!(inside(&slabs[k]) && inside(&slabs[(k + 11) % 12]));
+    /// }
+    /// assert_eq!(cobst.certified_slabs_par(&turns)?.len(), 12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`QueryError::Slab`] ([`SlabError::TooFewOrientations`]) for fewer
+    /// than two orientations; those of [`CObstacle::slices`] (a slice's
+    /// mesh); [`QueryError::OutOfRange`] when a bound or offset overflows
+    /// `f64`; [`QueryError::Inconsistent`] only for an internal error.
+    pub fn certified_slabs(&self, orientations: &[Rotation]) -> Result<Vec<Slab>, QueryError> {
+        let reach = self.slab_reach(orientations)?;
+        let mut out = Vec::with_capacity(orientations.len() - 1);
+        let mut previous: Option<Vec<DVec3>> = None;
+        for (k, slice) in self.slices(orientations).enumerate() {
+            let points = slice_points(&slice?);
+            if let Some(p) = &previous {
+                let ends = (orientations[k - 1], orientations[k]);
+                out.push(slab_between(&reach, ends, (p, &points))?);
+            }
+            previous = Some(points);
+        }
+        Ok(out)
+    }
+
+    /// [`CObstacle::certified_slabs`] on rayon's threads: the slices in
+    /// parallel chunks ([`CObstacle::map_par`]), then the slabs in parallel
+    /// (the same slabs, in order).
+    ///
+    /// # Errors
+    /// The same as [`CObstacle::certified_slabs`] (the first in order).
+    pub fn certified_slabs_par(&self, orientations: &[Rotation]) -> Result<Vec<Slab>, QueryError> {
+        let reach = self.slab_reach(orientations)?;
+        let slices: Vec<Vec<DVec3>> = self
+            .map_par(orientations, |_, _, s| {
+                s.try_to_mesh().map(|m| slice_points(&m))
+            })?
+            .into_iter()
+            .collect::<Result<_, _>>()?;
+        (0..orientations.len() - 1)
+            .into_par_iter()
+            .map(|k| {
+                let ends = (orientations[k], orientations[k + 1]);
+                slab_between(&reach, ends, (&slices[k], &slices[k + 1]))
+            })
+            .collect()
+    }
+
+    /// Checks that there are at least two orientations; the bounds.
+    fn slab_reach(&self, orientations: &[Rotation]) -> Result<Reach, QueryError> {
+        if orientations.len() < 2 {
+            return Err(SlabError::TooFewOrientations {
+                count: orientations.len(),
+            }
+            .into());
+        }
+        Reach::of(self)
+    }
+
+    /// The certified slab of an orientation cell: it contains every slice
+    /// for the rotations within angle `radius` of `centre` (module docs),
+    /// the centre's slice with every face plane pushed out by
+    /// `r·radius` (and the rounding terms).
+    ///
+    /// ```
+    /// use dymsum::{CObstacle, DVec3, Polytope, Rotation};
+    /// let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])?;
+    /// let cobst = CObstacle::new(&tet, &tet)?;
+    /// let centre = Rotation::from_axis_angle(DVec3::new(1.0, 1.0, 0.0), 0.3).ok_or("axis")?;
+    /// let slab = cobst.certified_slab_in_cell(centre, 0.05)?;
+    /// let near = Rotation::from_axis_angle(DVec3::new(0.0, 1.0, 1.0), 0.04).ok_or("axis")?.then(&centre);
+    /// assert!(cobst.slice(near)?.vertices.iter().all(|&v| slab.contains(v.into())));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`QueryError::Slab`] ([`SlabError::BadRadius`]) unless
+    /// `0 ≤ radius < π`; those of [`CObstacle::slice`];
+    /// [`QueryError::OutOfRange`] when a bound or offset overflows `f64`;
+    /// [`QueryError::Inconsistent`] only for an internal error.
+    pub fn certified_slab_in_cell(
+        &self,
+        centre: Rotation,
+        radius: f64,
+    ) -> Result<Slab, QueryError> {
+        if !(0.0..std::f64::consts::PI).contains(&radius) {
+            return Err(SlabError::BadRadius { radius }.into());
+        }
+        let reach = Reach::of(self)?;
+        let points = slice_points(&self.slice(centre)?);
+        slab_around(
+            &points,
+            reach.margin(radius),
+            SlabCover::Cell { centre, radius },
+        )
+    }
+}
+
+/// The meshes of `slabs` ([`Slab::mesh`]) on rayon's threads, in order.
+///
+/// # Errors
+/// The first error of [`Slab::mesh`], in order.
+pub fn slab_meshes_par(slabs: &[Slab]) -> Result<Vec<PolygonMesh>, QueryError> {
+    slabs.par_iter().map(Slab::mesh).collect()
+}
+
+/// The angles `2πk/n` for `k = 0..=n` (the last is `2π`, the same rotation
+/// as the first): `n` slabs covering a full turn with
+/// [`certified_slabs_about_axis`].
+pub fn full_turn_angles(n: usize) -> Vec<f64> {
+    (0..=n)
+        .map(|k| std::f64::consts::TAU * k as f64 / n as f64)
+        .collect()
+}
+
+/// The rotations about `axis` by `angles`, checked for slabs: the axis
+/// non-zero and finite (scaled to `[1, 2)` by a power of two first, so
+/// that its length is accurate at any scale), at least two angles, all
+/// finite, strictly increasing, consecutive ones at most `π` apart.
+///
+/// # Errors
+/// The offending input as a [`SlabError`].
+pub fn rotations_about_axis(axis: DVec3, angles: &[f64]) -> Result<Vec<Rotation>, SlabError> {
+    let bad_axis = || SlabError::BadAxis {
+        axis: axis.to_array(),
+    };
+    if !axis.is_finite() || axis == DVec3::ZERO {
+        return Err(bad_axis());
+    }
+    let axis = exact::mul_pow2_vec(axis, exact::frame_exponent(axis.to_array().into_iter()));
+    if angles.len() < 2 {
+        return Err(SlabError::TooFewOrientations {
+            count: angles.len(),
+        });
+    }
+    for (index, &angle) in angles.iter().enumerate() {
+        if !angle.is_finite() {
+            return Err(SlabError::NonFiniteAngle { index, angle });
+        }
+        if index > 0 {
+            let previous = angles[index - 1];
+            if angle <= previous {
+                return Err(SlabError::NotIncreasing {
+                    index,
+                    previous,
+                    angle,
+                });
+            }
+            let step = angle - previous;
+            if step > std::f64::consts::PI {
+                return Err(SlabError::StepTooLarge { index, step });
+            }
+        }
+    }
+    angles
+        .iter()
+        .map(|&a| Rotation::from_axis_angle(axis, a).ok_or_else(bad_axis))
+        .collect()
+}
+
+/// Certified slabs of `robot` turning about `axis` among `obstacle`: slab
+/// `k` holds every slice for the turns by the angles in
+/// `[angles[k], angles[k + 1]]` (so `K` angles give `K − 1` slabs; pass
+/// [`full_turn_angles`] for a full turn), computed sequentially by one
+/// dynamic sum (see [`CObstacle::certified_slabs`] and the module docs).
+///
+/// # Errors
+/// The input checks of [`rotations_about_axis`] as [`QueryError::Slab`],
+/// then those of [`CObstacle::new`] and [`CObstacle::certified_slabs`].
+pub fn certified_slabs_about_axis(
+    robot: &Polytope,
+    obstacle: &Polytope,
+    axis: DVec3,
+    angles: &[f64],
+) -> Result<Vec<Slab>, QueryError> {
+    let turns = rotations_about_axis(axis, angles)?;
+    CObstacle::new(robot, obstacle)?.certified_slabs(&turns)
+}
+
+/// [`certified_slabs_about_axis`] on rayon's threads (the same slabs).
+///
+/// # Errors
+/// The same as [`certified_slabs_about_axis`].
+pub fn certified_slabs_about_axis_par(
+    robot: &Polytope,
+    obstacle: &Polytope,
+    axis: DVec3,
+    angles: &[f64],
+) -> Result<Vec<Slab>, QueryError> {
+    let turns = rotations_about_axis(axis, angles)?;
+    CObstacle::new(robot, obstacle)?.certified_slabs_par(&turns)
+}
+
+/// The certified slab of `robot` among `obstacle` for every orientation
+/// within angle `radius` of `centre` (see
+/// [`CObstacle::certified_slab_in_cell`]).
+///
+/// # Errors
+/// Those of [`CObstacle::new`] and [`CObstacle::certified_slab_in_cell`].
+pub fn certified_slab_in_cell(
+    robot: &Polytope,
+    obstacle: &Polytope,
+    centre: Rotation,
+    radius: f64,
+) -> Result<Slab, QueryError> {
+    CObstacle::new(robot, obstacle)?.certified_slab_in_cell(centre, radius)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sagitta_bound_is_above_the_sagitta_and_tight() {
+        for i in 0..=1000 {
+            let delta = std::f64::consts::PI * i as f64 / 1000.0;
+            // 1 − cos(δ/2) without cancellation.
+            let exact = 2.0 * (delta / 4.0).sin().powi(2);
+            let bound = sagitta_factor(delta);
+            assert!(bound >= exact, "δ = {delta}: {bound} < {exact}");
+            assert!(
+                bound <= exact * 1.0002 + 1e-300,
+                "δ = {delta}: {bound} vs {exact}"
+            );
+        }
+        // Beyond π the bound stays at the half turn's (the path is shortest).
+        assert_eq!(sagitta_factor(4.0), sagitta_factor(PI_UP));
+        assert!(sagitta_factor(PI_UP) >= 1.0);
+    }
+
+    #[test]
+    fn the_rotation_slack_is_two_to_the_minus_forty() {
+        assert_eq!(ROTATION_SLACK, 2f64.powi(-40));
+        assert_eq!(PI_UP, f64::from_bits(std::f64::consts::PI.to_bits() + 1));
+        assert_eq!(
+            angle_bound(&Rotation::IDENTITY, &Rotation::IDENTITY),
+            2f64.powi(-45)
+        );
+    }
+
+    #[test]
+    fn rounding_helpers_move_outward() {
+        for x in [0.0, 1.0, -1.0, 1e-310, -1e300, 3.5e-20] {
+            assert!(above(x) > x && below(x) < x, "{x}");
+        }
+    }
+
+    #[test]
+    fn exact_side_decides_ties_and_near_ties() {
+        let n = DVec3::new(0.6, 0.8, 0.0);
+        let x = DVec3::new(1.0, 1.0, 5.0);
+        let d = n.dot(x); // 1.4 rounded: the exact n·x differs from it
+        let exact_side = slack_sign(n, d, x);
+        let diff = Dyadic::from_f64(d)
+            .sub(&exact::dot(&exact::exact(n), &exact::exact(x)))
+            .sign();
+        assert_eq!(exact_side, diff);
+        assert_eq!(slack_sign(DVec3::X, 1.0, DVec3::X), Sign::Zero);
+        assert_eq!(
+            slack_sign(DVec3::X, 1.0, DVec3::new(1.0 + f64::EPSILON, 0.0, 0.0)),
+            Sign::Negative
+        );
+    }
+}
