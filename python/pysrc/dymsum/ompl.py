@@ -137,7 +137,10 @@ class MotionResult(NamedTuple):
       free; ``None`` when ``s1`` itself is invalid);
     * ``t_contact``: a ``t`` at which the body touches or overlaps an
       obstacle, ``t_contact - t_safe`` at most the tolerance (``None`` when
-      free, when an end is out of bounds, or when undecided);
+      free, when an end is out of bounds, or when undecided). For an SE(3)
+      turn below OMPL's threshold (``|q₁·q₂| > 1 − 1e-9``), where OMPL's
+      interpolation holds the first rotation, the contact may be on that
+      motion or on the true (slerp) motion: both are certified;
     * ``undecided``: the motion grazes an obstacle within rounding
       (``MotionUndecided``): not free, certified free up to ``t_safe``.
     """
