@@ -139,7 +139,7 @@ def main():
         print(f"no path found in {r['time']:.3f} s")
         return 1
     print(f"path found: length {r['length']:.3f} ({r['states']} states) in {r['time']:.3f} s of planning")
-    verdict = "yes" if r["certified"] else f"NO: {r['uncertified_motions']} motions touch a plate"
+    verdict = "yes" if r["certified"] else f"NO: {r['uncertified_motions']} of its motions touch a plate"
     print(f"every motion of the path certified free by dymsum: {verdict}")
     return 0
 

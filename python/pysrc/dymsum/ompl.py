@@ -204,8 +204,8 @@ class _Buffers(threading.local):
     def __init__(self) -> None:
         self.a = np.eye(4)
         self.b = np.eye(4)
-        self.va = memoryview(self.a).cast("B").cast("d")
-        self.vb = memoryview(self.b).cast("B").cast("d")
+        self.va = self.a.data.cast("B").cast("d")
+        self.vb = self.b.data.cast("B").cast("d")
 
 
 class _Poser:
@@ -466,6 +466,7 @@ def _validator_class() -> type:
                 if c.free:
                     continue
                 seg_safe = None if c.t_safe is None else ta + (tb - ta) * c.t_safe
+                assert c.t_contact is not None  # not free: a contact
                 seg_contact = ta + (tb - ta) * c.t_contact
                 if seg_safe is None and ta > 0.0:
                     seg_safe = ta  # the segment's start was certified by the one before
