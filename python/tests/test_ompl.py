@@ -636,8 +636,23 @@ def test_plan_with_the_scene_builders(name):
     assert r["found"] and r["certified"] and r["uncertified_motions"] == 0
     v = r["validators"]
     assert v.motion_validator.checked > 0 and v.state_checker.checked > 0
-    # Every motion of the path, checked again here with a fresh validator.
     assert r["length"] > 0
+
+
+@pytest.mark.parametrize("name", ["ompl_se2", "ompl_se3"])
+def test_planned_paths_are_free_by_the_dense_oracle(name):
+    # The simplified path (long shortcuts past the walls' openings), every
+    # motion asked at 10⁵ instants, independently of dymsum's motion check.
+    mod = example(name)
+    ss, v = mod.simple_setup(discrete=False)
+    assert ss.solve(30.0) and ss.haveExactSolutionPath()
+    ss.simplifySolution()
+    values = [values_of(s) for s in ss.getSolutionPath().getStates()]
+    assert values[0][0] < -2 and values[-1][0] > 2  # from one side of the walls to the other
+    oracle = Oracle(*mod.scene())
+    for v1, v2 in zip(values, values[1:]):
+        ts, hit = oracle.motion_hits(v1, v2)
+        assert not hit.any(), (v1, v2, ts[hit][:3])
 
 
 # --- the API ----------------------------------------------------------------------
