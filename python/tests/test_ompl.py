@@ -178,7 +178,7 @@ class Oracle:
     obstacle box. That distance is at most ``(|c| + |e|)·Θ·h + |Δx|·h``:
     OMPL turns at a constant rate ``Θ`` about a fixed axis through the
     body's origin and translates at the constant velocity ``Δx``; ``h`` is
-    half the run's length in t. Runs that are not skipped are split 16
+    half the run's length in t. Runs that are not skipped are split 32
     ways, down to single instants, which get the exact query for each
     (piece, obstacle) pair whose boxes meet."""
 
@@ -209,10 +209,12 @@ class Oracle:
         abs_rot = np.abs(rot)
         half = np.matmul(self.halves[None], abs_rot.transpose(0, 2, 1)) + grow  # (K, P, 3)
         near = np.all(np.abs(gap) <= (half[:, :, None] + oh[None, None] + slack), axis=3)
-        # In the piece's frame: the obstacle's centre, and its half extents.
-        local = np.abs(np.matmul(gap, rot[:, None]))  # (K, P, O, 3)
-        ohl = np.matmul(oh[None], abs_rot)  # (K, O, 3)
-        near &= np.all(local <= (self.halves[None, :, None] + grow[:, :, None] + ohl[:, None] + slack), axis=3)
+        # In the piece's frame (only where the world's axes do not separate):
+        # the obstacle's centre, and its half extents.
+        k, p, o = np.nonzero(near)
+        local = np.abs(np.einsum("nji,nj->ni", rot[k], gap[k, p, o]))
+        ohl = np.einsum("nji,nj->ni", abs_rot[k], oh[o])
+        near[k, p, o] = np.all(local <= self.halves[p] + grow[k, p] + ohl + slack, axis=1)
         return near
 
     def collisions(self, poses, near=None):
@@ -251,7 +253,7 @@ class Oracle:
                 break
             lo, hi = lo[keep], hi[keep]
             size = hi - lo + 1
-            cuts = lo[:, None] + (size[:, None] * np.arange(17)[None]) // 16
+            cuts = lo[:, None] + (size[:, None] * np.arange(33)[None]) // 32
             lo, hi = cuts[:, :-1].ravel(), cuts[:, 1:].ravel() - 1
             keep = hi >= lo
             lo, hi = lo[keep], hi[keep]
