@@ -3,9 +3,12 @@
 # package's. The package is built from source and installed with
 # `pip install ./python` into a virtual environment (target/pyenv, or
 # $DYMSUM_PYENV) together with the test dependencies (pytest, numpy, scipy,
-# and mypy for checking the type stubs against the module), then pytest runs
-# python/tests. Needs the Rust toolchain and python3 with venv and pip
-# (PyPI and crates.io reachable on the first run).
+# mypy for checking the type stubs against the module, and OMPL's Python
+# wheel for dymsum.ompl's tests, which then must run: DYMSUM_REQUIRE_OMPL=1),
+# then pytest runs python/tests. Needs the Rust toolchain and python3 with
+# venv and pip (PyPI and crates.io reachable on the first run). Where OMPL
+# has no wheel (it publishes Linux ones), DYMSUM_NO_OMPL=1 leaves it out and
+# its tests are skipped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -24,14 +27,23 @@ export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$PWD/target}"
 venv="${DYMSUM_PYENV:-target/pyenv}"
 python="${PYTHON:-python3}"
 
-printf '\n=== Python: pip install ./python pytest numpy scipy mypy (into %s)\n' "$venv"
+# OMPL only as a wheel (its source build needs Boost and a C++ toolchain).
+ompl=(--only-binary ompl 'ompl>=2.0,<3')
+if [ "${DYMSUM_NO_OMPL:-0}" = 1 ]; then
+    ompl=()
+    export DYMSUM_REQUIRE_OMPL=0
+else
+    export DYMSUM_REQUIRE_OMPL=1
+fi
+
+printf '\n=== Python: pip install ./python pytest numpy scipy mypy %s (into %s)\n' "${ompl[*]:+ompl}" "$venv"
 if [ ! -x "$venv/bin/python" ]; then
     "$python" -m venv "$venv" || {
         echo "creating a virtual environment failed: install python3's venv module (e.g. apt-get install python3-venv)" >&2
         exit 1
     }
 fi
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy "${ompl[@]}"
 
 printf '\n=== Python: stubtest (the type stubs match the module)\n'
 (cd "$venv" && bin/python -m mypy.stubtest dymsum._dymsum)
