@@ -873,8 +873,22 @@ fn collides_many<'py>(
 /// >>> slabs = dymsum.cobstacle_slices("box:4,0.2,0.2", "box", turn, certified=True)
 /// >>> len(slabs), slabs[0].normals.shape[1], bool(slabs[0].contains([2.0, 0.0, 0.0]))
 /// (16, 3, True)
+///
+/// ``certified=True`` with ``cell_radius=rho`` (radians, ``0 <= rho < π``)
+/// returns instead one slab per rotation, for the orientation cell about
+/// it: slab ``k`` contains every slice for every rotation within angle
+/// ``rho`` of ``rotations[k]``, about any axis (its slice with every face
+/// plane pushed out by ``r·rho``, ``r`` the robot's largest distance from
+/// its origin, and the rounding terms). ``ValueError`` for a radius out of
+/// range, or without ``certified=True``.
+///
+/// >>> centres = Rotation.from_rotvec([[0, 0, 0], [0, 0.5, 0]])
+/// >>> cells = dymsum.cobstacle_slices("box:4,0.2,0.2", "box", centres, certified=True, cell_radius=0.1)
+/// >>> len(cells), cells[1].cell_radius, cells[1].rotations.shape
+/// (2, 0.1, (1, 4))
 #[pyfunction]
-#[pyo3(signature = (robot, obstacle, rotations, polygons = false, parallel = false, certified = false))]
+#[pyo3(signature = (robot, obstacle, rotations, polygons = false, parallel = false, certified = false, cell_radius = None))]
+#[allow(clippy::too_many_arguments)]
 fn cobstacle_slices<'py>(
     py: Python<'py>,
     robot: &Bound<'py, PyAny>,
@@ -883,7 +897,13 @@ fn cobstacle_slices<'py>(
     polygons: bool,
     parallel: bool,
     certified: bool,
+    cell_radius: Option<f64>,
 ) -> PyResult<Bound<'py, PyList>> {
+    if cell_radius.is_some() && !certified {
+        return Err(value_error(
+            "cobstacle_slices: cell_radius applies to certified slabs (add certified=True)",
+        ));
+    }
     let rots = convert::rotations(rotations, "rotations")?;
     let sr = shape_of(robot, "robot")?;
     let so = shape_of(obstacle, "obstacle")?;
@@ -897,10 +917,11 @@ fn cobstacle_slices<'py>(
         let slabs = py
             .detach(|| {
                 let c = CObstacle::new(&sr.polytope, &so.polytope)?;
-                if parallel {
-                    c.certified_slabs_par(&rots)
-                } else {
-                    c.certified_slabs(&rots)
+                match (cell_radius, parallel) {
+                    (Some(rho), true) => c.certified_slabs_in_cells_par(&rots, rho),
+                    (Some(rho), false) => c.certified_slabs_in_cells(&rots, rho),
+                    (None, true) => c.certified_slabs_par(&rots),
+                    (None, false) => c.certified_slabs(&rots),
                 }
             })
             .map_err(|e| err_for("cobstacle_slices", e))?;
@@ -933,7 +954,9 @@ fn cobstacle_slices<'py>(
 /// ``R`` on the shortest path between its two end rotations (the hull of
 /// the two end slices with every face plane pushed out by the arc's
 /// sagitta and the rounding terms, offsets rounded outward). A translation
-/// outside it is free at every orientation between the ends.
+/// outside it is free at every orientation between the ends. With
+/// ``cell_radius=rho``: for every rotation within angle ``rho`` of its
+/// centre rotation (the centre's slice, planes pushed out by ``r·rho``).
 ///
 /// >>> import numpy as np, dymsum
 /// >>> from scipy.spatial.transform import Rotation
@@ -985,14 +1008,15 @@ impl PySlab {
 
     /// How far each plane is pushed beyond the end slices' hull: the
     /// sagitta ``r·(1 − cos(δ/2))`` of the turn by ``δ`` (``r`` bounds the
-    /// robot's radius) plus the rounding terms.
+    /// robot's radius) plus the rounding terms; for a cell of radius
+    /// ``rho``, ``r·rho`` plus the rounding terms.
     #[getter]
     fn margin(&self) -> f64 {
         self.inner.margin()
     }
 
     /// The end rotations, a (2, 4) array of quaternions ``(x, y, z, w)``
-    /// (scalar last, as scipy).
+    /// (scalar last, as scipy); for a cell, its centre, a (1, 4) array.
     #[getter]
     fn rotations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let quats: Vec<[f64; 4]> = match self.inner.cover() {
@@ -1005,12 +1029,23 @@ impl PySlab {
             .map_err(|e| value_error(format!("internal error: {e}")))
     }
 
-    /// An upper bound on the angle between the end rotations (radians).
+    /// An upper bound on the angle between the end rotations (radians);
+    /// for a cell, its radius.
     #[getter]
     fn angle(&self) -> f64 {
         match self.inner.cover() {
             SlabCover::Path { angle, .. } => angle,
             SlabCover::Cell { radius, .. } => radius,
+        }
+    }
+
+    /// The cell's radius (radians) for a slab from ``cell_radius=``;
+    /// ``None`` for a slab between two rotations.
+    #[getter]
+    fn cell_radius(&self) -> Option<f64> {
+        match self.inner.cover() {
+            SlabCover::Path { .. } => None,
+            SlabCover::Cell { radius, .. } => Some(radius),
         }
     }
 

@@ -144,3 +144,57 @@ def test_parallel_equals_sequential_and_refusals():
     with pytest.raises(ValueError, match="polygons"):
         dymsum.cobstacle_slices("gs1", "box", turns, polygons=True, certified=True)
     assert "half-spaces" in repr(seq[0])
+
+
+def cell_samples(centre, radius, count, rng):
+    """``count`` rotations ``E * centre`` with ``E`` a turn about a random
+    axis by an angle in ``[0, radius]`` (every third by ``radius`` itself,
+    the cell's rim), by scipy."""
+    axes = rng.normal(size=(count, 3))
+    axes /= np.linalg.norm(axes, axis=1)[:, None]
+    angles = rng.uniform(0.0, radius, size=count)
+    angles[::3] = radius
+    samples = Rotation.from_rotvec(axes * angles[:, None]) * centre
+    assert ((samples * centre.inv()).magnitude() <= radius * (1 + 1e-12) + 1e-12).all()
+    return samples
+
+
+@pytest.mark.parametrize("radius", [0.0, 0.05, 0.3, 1.0, 2.5])
+def test_cells_hold_every_slice_within_the_radius_and_need_the_r_rho_term(rng, radius):
+    robot = sphere_points(30, rng, radii=(1.5, 0.4, 0.3)) + [0.2, -0.1, 0.3]
+    obstacle = sphere_points(40, rng, radii=(0.7, 1.0, 0.5)) + [1.0, 2.0, -1.0]
+    reach = np.linalg.norm(robot, axis=1).max()
+    centres = Rotation.random(4, random_state=rng)
+    slabs = dymsum.cobstacle_slices(robot, obstacle, centres, certified=True, cell_radius=radius)
+    par = dymsum.cobstacle_slices(robot, obstacle, centres, parallel=True, certified=True, cell_radius=radius)
+    assert len(slabs) == len(par) == 4
+    for k, slab in enumerate(slabs):
+        assert np.array_equal(slab.normals, par[k].normals) and np.array_equal(slab.offsets, par[k].offsets)
+        assert slab.cell_radius == radius and slab.angle == radius
+        assert slab.rotations.shape == (1, 4)
+        assert (Rotation.from_quat(slab.rotations[0]) * centres[k].inv()).magnitude() <= 1e-12
+        # The margin is r·rho plus rounding terms far below it.
+        assert reach * radius <= slab.margin <= reach * radius * (1 + 1e-9) + 1e-9
+        beyond = check_holds(slab, robot, obstacle, cell_samples(centres[k], radius, 30, rng))
+        if radius > 0:
+            # The sampled slices leave the centre slice by a good part of
+            # r·rho: the centre slice's hull alone (no r·rho term) fails.
+            assert beyond > 0.2 * reach * radius, (k, beyond, slab.margin)
+
+
+def test_cell_refusals_and_the_path_slabs_have_no_radius():
+    centres = Rotation.from_rotvec([[0, 0, 0], [0, 0.5, 0]])
+    for bad in (-0.1, np.nan, np.pi, 4.0, np.inf):
+        with pytest.raises(ValueError, match="cell radius"):
+            dymsum.cobstacle_slices(BAR, BLOCK, centres, certified=True, cell_radius=bad)
+    with pytest.raises(ValueError, match="certified=True"):
+        dymsum.cobstacle_slices(BAR, BLOCK, centres, cell_radius=0.1)
+    (one,) = dymsum.cobstacle_slices(BAR, BLOCK, centres[:1], certified=True, cell_radius=0.1)
+    assert slab_ok(one)
+    (path,) = dymsum.cobstacle_slices(BAR, BLOCK, centres, certified=True)
+    assert path.cell_radius is None and path.rotations.shape == (2, 4)
+
+
+def slab_ok(slab):
+    """A bounded slab: its half-spaces hold the origin region they were built around."""
+    return len(slab) >= 6 and slab.contains(np.zeros(3)) and not slab.contains([10.0, 0.0, 0.0])

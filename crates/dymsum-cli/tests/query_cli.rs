@@ -714,3 +714,293 @@ fn cobst_certified_unions_and_refusals() {
     assert!(!fresh.join("index.json").exists());
     dymsum_testkit::files::remove_dir(&dir);
 }
+
+/// `n` rotations within angle `radius` of `centre`: `E·centre` with `E` a
+/// turn about a random axis by a random angle in `[0, radius]`, every third
+/// by `radius` itself (the cell's rim).
+fn cell_samples(
+    centre: Rotation,
+    radius: f64,
+    n: usize,
+    r: &mut rand_chacha::ChaCha8Rng,
+) -> Vec<Rotation> {
+    use rand::Rng;
+    (0..n)
+        .map(|i| {
+            let axis = loop {
+                let v = DVec3::new(
+                    r.random_range(-1.0..1.0),
+                    r.random_range(-1.0..1.0),
+                    r.random_range(-1.0..1.0),
+                );
+                if (0.1..=1.0).contains(&v.length()) {
+                    break v;
+                }
+            };
+            let angle = if i % 3 == 0 {
+                radius
+            } else {
+                r.random_range(0.0..=radius)
+            };
+            let rot = Rotation::from_axis_angle(axis, angle)
+                .unwrap()
+                .then(&centre);
+            assert!(centre.angle_to(&rot) <= radius + 1e-12);
+            rot
+        })
+        .collect()
+}
+
+#[test]
+fn cobst_certified_cells_hold_every_slice_within_the_radius() {
+    use rand::SeedableRng;
+    let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(20);
+    let dir = temp_dir("certified_cells");
+    let (robot, obstacle) = (model("box:2,0.5,0.5"), model("gs2"));
+    let cobst = dymsum::CObstacle::new(&robot, &obstacle).unwrap();
+    let reach = robot
+        .vertices()
+        .iter()
+        .map(|v| v.length())
+        .fold(0.0, f64::max);
+    // Three centres about different axes, written as w,x,y,z lines.
+    let centres = [
+        Rotation::IDENTITY,
+        Rotation::from_axis_angle(DVec3::new(1.0, 1.0, 0.0), 1.0).unwrap(),
+        Rotation::from_axis_angle(DVec3::new(-0.3, 0.2, 1.0), 2.5).unwrap(),
+    ];
+    let file = dir.join("centres.txt");
+    let lines: Vec<String> = centres
+        .iter()
+        .map(|c| {
+            let [w, x, y, z] = c.wxyz();
+            format!("{w:?},{x:?},{y:?},{z:?}\n")
+        })
+        .collect();
+    std::fs::write(&file, lines.concat()).unwrap();
+    let rho = 0.2;
+    for format in ["off", "halfspaces"] {
+        let out = dir.join(format);
+        let text = ok(&[
+            "cobst",
+            "box:2,0.5,0.5",
+            "gs2",
+            "--orientations-wxyz",
+            file.to_str().unwrap(),
+            "--certified",
+            "--cell-radius",
+            "0.2",
+            "--format",
+            format,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(
+            text.starts_with(
+                "Certified C-obstacle slabs of box:2,0.5,0.5 among gs2: 3 slabs for cells of \
+                 radius 0.2 rad (1 piece pair)"
+            ),
+            "{text}"
+        );
+        let index: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("index.json")).unwrap())
+                .unwrap();
+        let entries = index.as_array().unwrap();
+        assert_eq!(entries.len(), centres.len());
+        let slabs = cobst.certified_slabs_in_cells(&centres, rho).unwrap();
+        let (mut beyond_centre_slice, mut deepest) = (0usize, f64::NEG_INFINITY);
+        for (k, e) in entries.iter().enumerate() {
+            let mut want = vec!["centre_wxyz", "file", "margin", "planes", "radius", "slab"];
+            if format == "off" {
+                want.push("faces");
+                want.sort_unstable();
+            }
+            assert_eq!(keys(e), want, "{e}");
+            assert_eq!(e["slab"].as_u64().unwrap() as usize, k);
+            assert_eq!(e["radius"].as_f64().unwrap(), rho);
+            for (x, y) in numbers(&e["centre_wxyz"]).iter().zip(centres[k].wxyz()) {
+                assert!((x - y).abs() <= 1e-15, "{e}");
+            }
+            let slab = &slabs[k];
+            assert_eq!(e["planes"].as_u64().unwrap() as usize, slab.len());
+            assert!(near(e["margin"].as_f64().unwrap(), slab.margin()), "{e}");
+            // The margin is r·ρ plus rounding terms far below it.
+            assert!(slab.margin() >= reach * rho && slab.margin() <= reach * rho * (1.0 + 1e-9));
+            let name = e["file"].as_str().unwrap();
+            let ext = if format == "off" { "off" } else { "json" };
+            assert_eq!(name, format!("slab_{k:05}.{ext}"));
+            // The file as written: the mesh, or the half-spaces (the
+            // library's, within the JSON parser's last bit).
+            let (mesh, planes) = if format == "off" {
+                let mesh = dymsum_io::formats::read_mesh(&out.join(name)).unwrap();
+                assert_eq!(dymsum::sum::validate::check_convex_mesh(&mesh), Ok(()));
+                assert_eq!(e["faces"].as_u64().unwrap() as usize, mesh.faces.len());
+                (Some(mesh), Vec::new())
+            } else {
+                let h: serde_json::Value =
+                    serde_json::from_str(&std::fs::read_to_string(out.join(name)).unwrap())
+                        .unwrap();
+                let normals = h["normals"].as_array().unwrap();
+                let offsets = numbers(&h["offsets"]);
+                assert_eq!(normals.len(), slab.len());
+                let planes: Vec<(DVec3, f64)> = normals
+                    .iter()
+                    .zip(offsets)
+                    .map(|(n, d)| {
+                        let n = numbers(n);
+                        (DVec3::new(n[0], n[1], n[2]), d)
+                    })
+                    .collect();
+                for (i, (n, d)) in planes.iter().enumerate() {
+                    let lib = slab.normals()[i];
+                    assert!((0..3).all(|c| near(n[c], lib[c])), "normal {i}");
+                    assert!(near(*d, slab.offsets()[i]), "offset {i}");
+                }
+                (None, planes)
+            };
+            // Every vertex of every slice at random rotations in the cell:
+            // inside the slab exactly, inside the mesh as written exactly,
+            // inside the half-spaces as written (floats, 1e-12 far below
+            // r·ρ ≈ 0.21).
+            let samples = cell_samples(centres[k], rho, 24, &mut r);
+            let hull = slab.hull();
+            for (j, slice) in cobst.slices(&samples).enumerate() {
+                for v in &slice.unwrap().vertices {
+                    let x = DVec3::from(*v);
+                    assert!(slab.contains(x), "slab {k}, sample {j}: {x:?} outside");
+                    if let Some(m) = &mesh {
+                        assert!(
+                            !outside(m, x),
+                            "slab {k}, sample {j}: {x:?} outside the mesh"
+                        );
+                    }
+                    for (n, d) in &planes {
+                        assert!(n.dot(x) <= d + 1e-12, "slab {k}, sample {j}: {x:?}");
+                        // How far into the r·ρ margin the slice reaches.
+                        deepest = deepest.max(n.dot(x) - (d - slab.margin()));
+                    }
+                    // Without the r·ρ term the slab would be the centre
+                    // slice's hull: count the vertices outside it.
+                    beyond_centre_slice += usize::from(hull.faces().any(|f| {
+                        let p = |i: usize| hull.vertex(f[i] as usize);
+                        dymsum::kernel::predicates::orient(p(0), p(1), p(2), x)
+                            == dymsum::kernel::Sign::Positive
+                    }));
+                }
+            }
+        }
+        assert!(
+            beyond_centre_slice > 1000,
+            "{format}: only {beyond_centre_slice} sampled slice vertices outside the centre slices"
+        );
+        if format == "halfspaces" {
+            // Sampled slices reach well into the margin (about 93% of it):
+            // planes pushed out by half of r·ρ would not hold them.
+            assert!(deepest > 0.5 * reach * rho, "{deepest}");
+        }
+    }
+    dymsum_testkit::files::remove_dir(&dir);
+}
+
+#[test]
+fn cobst_certified_cells_about_an_axis_and_refusals() {
+    let dir = temp_dir("certified_cells_axis");
+    let out = dir.join("slabs");
+    ok(&[
+        "cobst",
+        "gs1",
+        "box:2,1,1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "6",
+        "--certified",
+        "--cell-radius",
+        "0.5",
+        "--format",
+        "halfspaces",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("index.json")).unwrap()).unwrap();
+    let entries = index.as_array().unwrap();
+    assert_eq!(entries.len(), 6);
+    let (robot, obstacle) = (model("gs1"), model("box:2,1,1"));
+    let cobst = dymsum::CObstacle::new(&robot, &obstacle).unwrap();
+    let centres = orientations_about_axis(DVec3::Z, 6).unwrap();
+    let slabs = cobst.certified_slabs_in_cells(&centres, 0.5).unwrap();
+    for (k, e) in entries.iter().enumerate() {
+        assert_eq!(
+            keys(e),
+            [
+                "angle",
+                "centre_wxyz",
+                "file",
+                "margin",
+                "planes",
+                "radius",
+                "slab"
+            ]
+        );
+        let angle = std::f64::consts::TAU * k as f64 / 6.0;
+        assert!(near(e["angle"].as_f64().unwrap(), angle), "{e}");
+        for (x, y) in numbers(&e["centre_wxyz"]).iter().zip(centres[k].wxyz()) {
+            assert!((x - y).abs() <= 1e-15, "{e}");
+        }
+        assert_eq!(e["planes"].as_u64().unwrap() as usize, slabs[k].len());
+        // The turns about z by angle ± 0.5 lie in the cell.
+        let turns =
+            dymsum::query::rotations_about_axis(DVec3::Z, &dense(angle - 0.5, angle + 0.5, 10))
+                .unwrap();
+        for slice in cobst.slices(&turns) {
+            assert!(slice
+                .unwrap()
+                .vertices
+                .iter()
+                .all(|&v| slabs[k].contains(DVec3::from(v))));
+        }
+    }
+    // Bad radii: negative, NaN, π or more, not a number: usage errors
+    // that name the flag and the range.
+    let fresh = dir.join("fresh");
+    for bad in ["-0.1", "NaN", "3.141592653589793", "4", "inf", "abc"] {
+        let o = run(&[
+            "cobst",
+            "box",
+            "gs1",
+            "--axis",
+            "0,0,1",
+            "--slices",
+            "4",
+            "--certified",
+            "--cell-radius",
+            bad,
+            "--out",
+            fresh.to_str().unwrap(),
+        ]);
+        assert_fails(&o, 2, "--cell-radius");
+        let err = stderr(&o);
+        assert!(
+            err.contains("0 ≤ RHO < π") || err.contains("not a number"),
+            "{bad}: {err}"
+        );
+    }
+    // --cell-radius needs --certified.
+    let o = run(&[
+        "cobst",
+        "box",
+        "gs1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "4",
+        "--cell-radius",
+        "0.1",
+        "--out",
+        fresh.to_str().unwrap(),
+    ]);
+    assert_fails(&o, 2, "--certified");
+    assert!(!fresh.exists());
+    dymsum_testkit::files::remove_dir(&dir);
+}

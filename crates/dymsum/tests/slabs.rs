@@ -320,6 +320,73 @@ fn cells_in_so3() {
 }
 
 #[test]
+fn cells_in_a_batch_hold_their_samples_sequential_and_parallel_alike() {
+    // Centres along a wandering path (one dynamic sum moved between them):
+    // each batch slab holds the slices sampled in its cell, as the single
+    // cell's slab does, with the same margin; the parallel batch is the
+    // sequential one.
+    let mut r = rng(25);
+    let a = random_polytope(Kind::Ball, 20, &mut r);
+    let b = random_polytope(Kind::Cube, 15, &mut r);
+    let cobst = CObstacle::new(&a, &b).unwrap();
+    let mut centres = vec![random_rotation(&mut r)];
+    for _ in 0..9 {
+        let step = Rotation::from_axis_angle(random_axis(&mut r), 0.3).unwrap();
+        centres.push(step.then(centres.last().unwrap()));
+    }
+    let radius = 0.25;
+    let seq = cobst.certified_slabs_in_cells(&centres, radius).unwrap();
+    let par = cobst
+        .certified_slabs_in_cells_par(&centres, radius)
+        .unwrap();
+    assert_eq!(seq.len(), centres.len());
+    assert_eq!(par.len(), centres.len());
+    for (k, (s, p)) in seq.iter().zip(&par).enumerate() {
+        assert_eq!(s.normals(), p.normals());
+        assert_eq!(s.offsets(), p.offsets());
+        let one = cobst.certified_slab_in_cell(centres[k], radius).unwrap();
+        assert_eq!(s.cover(), one.cover());
+        assert_eq!(s.margin(), one.margin());
+        let samples: Vec<Rotation> = (0..12)
+            .map(|i| {
+                let angle = if i % 3 == 0 {
+                    radius
+                } else {
+                    r.random_range(0.0..=radius)
+                };
+                Rotation::from_axis_angle(random_axis(&mut r), angle)
+                    .unwrap()
+                    .then(&centres[k])
+            })
+            .collect();
+        holds(&cobst, s, &samples, &format!("batch cell {k}"));
+    }
+    assert!(cobst
+        .certified_slabs_in_cells(&[], radius)
+        .unwrap()
+        .is_empty());
+    assert!(cobst
+        .certified_slabs_in_cells_par(&[], radius)
+        .unwrap()
+        .is_empty());
+    for radius in [-0.1, f64::NAN, PI] {
+        for e in [
+            cobst
+                .certified_slabs_in_cells(&centres, radius)
+                .unwrap_err(),
+            cobst
+                .certified_slabs_in_cells_par(&centres, radius)
+                .unwrap_err(),
+        ] {
+            assert!(
+                matches!(e, QueryError::Slab(SlabError::BadRadius { .. })),
+                "{radius}: {e}"
+            );
+        }
+    }
+}
+
+#[test]
 fn slabs_between_any_rotations_hold_the_shortest_path() {
     // Consecutive orientations about different axes: the slab holds the
     // slices along the shortest path (slerp) between them.

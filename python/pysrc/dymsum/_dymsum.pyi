@@ -279,7 +279,8 @@ class Contacts:
 class Slab:
     """A certified C-obstacle slab (``cobstacle_slices(..., certified=True)``):
     ``{x : normals @ x <= offsets}`` contains every slice for every rotation on
-    the shortest path between its two end rotations."""
+    the shortest path between its two end rotations (with ``cell_radius=rho``:
+    within angle ``rho`` of its centre rotation)."""
 
     @property
     def normals(self) -> npt.NDArray[np.float64]:
@@ -289,13 +290,17 @@ class Slab:
         """Read-only (M,) offsets, rounded outward."""
     @property
     def margin(self) -> float:
-        """How far each plane is pushed beyond the end slices' hull (sagitta and rounding)."""
+        """How far each plane is pushed beyond the end slices' hull (sagitta, or
+        ``r·rho`` for a cell, and rounding)."""
     @property
     def rotations(self) -> npt.NDArray[np.float64]:
-        """The end rotations, (2, 4) quaternions ``(x, y, z, w)``."""
+        """The end rotations, (2, 4) quaternions ``(x, y, z, w)``; a cell's centre, (1, 4)."""
     @property
     def angle(self) -> float:
-        """An upper bound on the angle between the end rotations (radians)."""
+        """An upper bound on the angle between the end rotations (radians); a cell's radius."""
+    @property
+    def cell_radius(self) -> Optional[float]:
+        """The cell's radius (radians), ``None`` for a slab between two rotations."""
     @overload
     def contains(self, points: Sequence[float]) -> bool:
         """Exact ``normals @ x <= offsets`` for one (3,) point, or each of (N, 3) points."""
@@ -329,6 +334,7 @@ def cobstacle_slices(
     polygons: Literal[False] = False,
     parallel: bool = False,
     certified: Literal[False] = False,
+    cell_radius: None = None,
 ) -> list[Tuple[_Vertices, _Triangles]]:
     """C-obstacle slices ``obstacle ⊕ (−R·robot)``, one per rotation.
 
@@ -336,7 +342,9 @@ def cobstacle_slices(
     matrices, (K, 4) quaternions in the order ``(x, y, z, w)`` (scalar last,
     as scipy's ``as_quat()``), (K, 4, 4) transforms without translation, or
     one (4,) quaternion or 3×3 matrix. ``certified=True``: the K − 1
-    certified slabs between consecutive rotations instead (:class:`Slab`).
+    certified slabs between consecutive rotations instead (:class:`Slab`);
+    with ``cell_radius=rho`` (radians, ``0 <= rho < π``) one slab per
+    rotation, holding every slice within angle ``rho`` of it.
     """
 @overload
 def cobstacle_slices(
@@ -346,6 +354,7 @@ def cobstacle_slices(
     polygons: Literal[True],
     parallel: bool = False,
     certified: Literal[False] = False,
+    cell_radius: None = None,
 ) -> list[Tuple[_Vertices, _Polygons]]: ...
 @overload
 def cobstacle_slices(
@@ -356,6 +365,7 @@ def cobstacle_slices(
     parallel: bool = False,
     *,
     certified: Literal[True],
+    cell_radius: Optional[float] = None,
 ) -> list[Slab]: ...
 @overload
 def cobstacle_slices(
@@ -365,6 +375,7 @@ def cobstacle_slices(
     polygons: bool = False,
     parallel: bool = False,
     certified: bool = False,
+    cell_radius: Optional[float] = None,
 ) -> Union[list[Tuple[_Vertices, Union[_Triangles, _Polygons]]], list[Slab]]: ...
 
 @final

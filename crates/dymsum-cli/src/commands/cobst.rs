@@ -17,8 +17,9 @@
 //! touched.
 //!
 //! With `--certified`, certified slabs are written instead of slices: each
-//! contains every slice between two consecutive orientations (see
-//! [`super::slabs`]).
+//! contains every slice between two consecutive orientations, or with
+//! `--cell-radius RHO` every slice within angle `RHO` of one orientation
+//! (see [`super::slabs`]).
 //!
 //! With a union of convex pieces as robot or obstacle (`a.off+b.off`, or an
 //! OBJ file with several objects), a slice is the union of the piece-pair
@@ -37,7 +38,7 @@ use serde::Serialize;
 
 use super::query::load_body;
 use super::short_name;
-use super::slabs::{write_slabs, SlabFormat};
+use super::slabs::{write_slabs, Cells, SlabFormat};
 use crate::stats::{human_us, micros};
 
 /// Arguments of `dymsum cobst`.
@@ -88,6 +89,29 @@ pub struct CobstArgs {
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = SlabFormat::Off,
           requires = "certified")]
     pub format: SlabFormat,
+    /// With --certified: one slab per orientation instead, containing every
+    /// slice for every rotation within angle RHO (radians, 0 ≤ RHO < π) of
+    /// it, about any axis (an orientation cell in SO(3)): its slice with
+    /// every face plane pushed out by r·RHO (r: the robot's largest
+    /// distance from its origin) and the rounding terms.
+    #[arg(long = "cell-radius", value_name = "RHO", value_parser = parse_cell_radius,
+          allow_hyphen_values = true, requires = "certified")]
+    pub cell_radius: Option<f64>,
+}
+
+/// Parses a cell radius: an angle in radians, `0 ≤ RHO < π` (a cell of
+/// radius π or more would be all of SO(3), beyond the `r·ρ` bound's reach).
+fn parse_cell_radius(s: &str) -> Result<f64, String> {
+    let rho: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number (an angle in radians)"))?;
+    if !(0.0..std::f64::consts::PI).contains(&rho) {
+        return Err(format!(
+            "the cell radius must be an angle in radians with 0 ≤ RHO < π (3.14159…), got {rho}"
+        ));
+    }
+    Ok(rho)
 }
 
 /// Parses a non-zero axis `X,Y,Z`.
@@ -260,7 +284,9 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
 
 /// `dymsum cobst --certified`: the slabs between consecutive orientations
 /// (`--slices N` about `--axis`: the angles `2πk/N` for `k = 0..=N`, so the
-/// `N` slabs close the turn).
+/// `N` slabs close the turn), or with `--cell-radius` the slabs of the
+/// cells about each orientation (`--slices N`: the angles `2πk/N` for
+/// `k = 0..N`).
 fn run_certified(
     a: &CobstArgs,
     bodies: (&[Polytope], &[Polytope]),
@@ -269,22 +295,40 @@ fn run_certified(
     let (orientations, angles) = match (&a.orientations, a.axis, a.slices) {
         (Some(file), _, _) => (read_orientations(file)?, None),
         (None, Some(axis), Some(n)) => {
-            let angles = full_turn_angles(n as usize);
-            let turns = rotations_about_axis(axis, &angles).context("--axis with --slices")?;
-            (turns, Some(angles))
+            let mut angles = full_turn_angles(n as usize);
+            if a.cell_radius.is_some() {
+                // One cell per orientation: the full turn's end is its start.
+                angles.pop();
+                let turns = orientations_about_axis(axis, n as usize)
+                    .ok_or_else(|| anyhow!("--axis must be a non-zero vector"))?;
+                (turns, Some(angles))
+            } else {
+                let turns = rotations_about_axis(axis, &angles).context("--axis with --slices")?;
+                (turns, Some(angles))
+            }
         }
         _ => bail!("give --axis X,Y,Z with --slices N, or --orientations-wxyz FILE"),
     };
+    let cells = match a.cell_radius {
+        Some(radius) => Cells::Around {
+            centres: &orientations,
+            angles: angles.as_deref(),
+            radius,
+        },
+        None => Cells::Between {
+            orientations: &orientations,
+            angles: angles.as_deref(),
+        },
+    };
     prepare_out_dir(&a.out, a.force)?;
     let start = Instant::now();
-    let written = write_slabs(&a.out, bodies, &orientations, angles.as_deref(), a.format)
-        .with_context(|| {
-            format!(
-                "slabs of {} against {}",
-                short_name(&a.robot),
-                short_name(&a.obstacle)
-            )
-        })?;
+    let written = write_slabs(&a.out, bodies, cells, a.format).with_context(|| {
+        format!(
+            "slabs of {} against {}",
+            short_name(&a.robot),
+            short_name(&a.obstacle)
+        )
+    })?;
     let elapsed = micros(start.elapsed());
     let planes = &written.planes;
     let (lo, hi) = (
@@ -295,12 +339,15 @@ fn run_certified(
     let pairs = bodies.0.len() * bodies.1.len();
     writeln!(
         out,
-        "Certified C-obstacle slabs of {} among {}: {} slab{} ({} piece pair{}), {lo}–{hi} planes \
-         per slab, margin ≤ {margin:.3e}, written to {} in {}",
+        "Certified C-obstacle slabs of {} among {}: {} slab{}{} ({} piece pair{}), {lo}–{hi} \
+         planes per slab, margin ≤ {margin:.3e}, written to {} in {}",
         short_name(&a.robot),
         short_name(&a.obstacle),
         planes.len(),
         if planes.len() == 1 { "" } else { "s" },
+        a.cell_radius
+            .map(|r| format!(" for cells of radius {r} rad"))
+            .unwrap_or_default(),
         pairs,
         if pairs == 1 { "" } else { "s" },
         a.out.display(),

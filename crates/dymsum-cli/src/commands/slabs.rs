@@ -18,6 +18,12 @@
 //! `slab_NNNNN_rI_oJ.*`, listed under `"files"` (`"planes"` and `"faces"`
 //! their totals, `"margin"` the largest). Every file is written
 //! atomically.
+//!
+//! With `--cell-radius RHO`, slab `k` is instead the slab of the orientation
+//! cell about orientation `k` ([`dymsum::CObstacle::certified_slabs_in_cells_par`]):
+//! it contains every slice for every rotation within angle `RHO` of it
+//! (one slab per orientation; its index entry has `"centre_wxyz"` and
+//! `"radius"` in place of the ends, with `--axis` also `"angle"`).
 
 use std::path::Path;
 
@@ -53,16 +59,95 @@ struct Halfspaces {
     offsets: Vec<f64>,
 }
 
+/// The orientations the slabs cover.
+#[derive(Clone, Copy, Debug)]
+pub enum Cells<'a> {
+    /// Slab `k` between `orientations[k]` and `orientations[k + 1]`
+    /// (`angles`, when given, their angles about the axis).
+    Between {
+        /// The orientations.
+        orientations: &'a [Rotation],
+        /// Their angles about `--axis`.
+        angles: Option<&'a [f64]>,
+    },
+    /// Slab `k` of the rotations within angle `radius` of `centres[k]`.
+    Around {
+        /// The cells' centres.
+        centres: &'a [Rotation],
+        /// Their angles about `--axis`.
+        angles: Option<&'a [f64]>,
+        /// The cells' radius (radians).
+        radius: f64,
+    },
+}
+
+impl Cells<'_> {
+    /// The number of slabs.
+    fn len(&self) -> usize {
+        match self {
+            Cells::Between { orientations, .. } => orientations.len().saturating_sub(1),
+            Cells::Around { centres, .. } => centres.len(),
+        }
+    }
+
+    /// The slabs of one piece pair.
+    fn slabs(&self, c: &CObstacle) -> Result<Vec<Slab>, dymsum::QueryError> {
+        match *self {
+            Cells::Between { orientations, .. } => c.certified_slabs_par(orientations),
+            Cells::Around {
+                centres, radius, ..
+            } => c.certified_slabs_in_cells_par(centres, radius),
+        }
+    }
+
+    /// The index entry of slab `k`, less what was written.
+    fn entry(&self, k: usize) -> IndexEntry {
+        let mut e = IndexEntry {
+            slab: k,
+            ..IndexEntry::default()
+        };
+        match *self {
+            Cells::Between {
+                orientations,
+                angles,
+            } => {
+                e.from_wxyz = Some(orientations[k].wxyz().map(plain));
+                e.to_wxyz = Some(orientations[k + 1].wxyz().map(plain));
+                e.from_angle = angles.map(|a| plain(a[k]));
+                e.to_angle = angles.map(|a| plain(a[k + 1]));
+            }
+            Cells::Around {
+                centres,
+                angles,
+                radius,
+            } => {
+                e.centre_wxyz = Some(centres[k].wxyz().map(plain));
+                e.angle = angles.map(|a| plain(a[k]));
+                e.radius = Some(radius);
+            }
+        }
+        e
+    }
+}
+
 /// One entry of `index.json`.
-#[derive(Serialize)]
+#[derive(Default, Serialize)]
 struct IndexEntry {
     slab: usize,
-    from_wxyz: [f64; 4],
-    to_wxyz: [f64; 4],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    from_wxyz: Option<[f64; 4]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    to_wxyz: Option<[f64; 4]>,
     #[serde(skip_serializing_if = "Option::is_none")]
     from_angle: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     to_angle: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    centre_wxyz: Option<[f64; 4]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    angle: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    radius: Option<f64>,
     planes: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     faces: Option<usize>,
@@ -89,9 +174,8 @@ fn plain(x: f64) -> f64 {
     x + 0.0
 }
 
-/// Computes the slabs between consecutive `orientations` for every piece
-/// pair and writes them into `dir` in `format`, with their index
-/// (`angles`, when given, are the orientations' angles about the axis).
+/// Computes the slabs of `cells` for every piece pair and writes them into
+/// `dir` in `format`, with their index.
 ///
 /// # Errors
 /// A slab fails ([`dymsum::QueryError`], named by piece pair and slab) or a
@@ -99,12 +183,11 @@ fn plain(x: f64) -> f64 {
 pub fn write_slabs(
     dir: &Path,
     (robot, obstacle): (&[Polytope], &[Polytope]),
-    orientations: &[Rotation],
-    angles: Option<&[f64]>,
+    cells: Cells<'_>,
     format: SlabFormat,
 ) -> anyhow::Result<Written> {
     let union = robot.len() > 1 || obstacle.len() > 1;
-    let n = orientations.len().saturating_sub(1);
+    let n = cells.len();
     let mut written = Written {
         planes: vec![0; n],
         faces: vec![0; n],
@@ -124,7 +207,7 @@ pub fn write_slabs(
                 String::new()
             };
             let slabs = CObstacle::new(r, o)
-                .and_then(|c| c.certified_slabs_par(orientations))
+                .and_then(|c| cells.slabs(&c))
                 .with_context(|| format!("certified slabs{pair}"))?;
             let meshes = match format {
                 SlabFormat::Off => {
@@ -154,7 +237,7 @@ pub fn write_slabs(
         }
     }
     bar.finish_and_clear();
-    write_index(dir, orientations, angles, format, &written, union)?;
+    write_index(dir, cells, format, &written, union)?;
     Ok(written)
 }
 
@@ -176,24 +259,19 @@ fn write_halfspaces(path: &Path, slab: &Slab) -> anyhow::Result<()> {
 /// Writes `index.json`.
 fn write_index(
     dir: &Path,
-    orientations: &[Rotation],
-    angles: Option<&[f64]>,
+    cells: Cells<'_>,
     format: SlabFormat,
     w: &Written,
     union: bool,
 ) -> anyhow::Result<()> {
     let index: Vec<IndexEntry> = (0..w.planes.len())
         .map(|k| IndexEntry {
-            slab: k,
-            from_wxyz: orientations[k].wxyz().map(plain),
-            to_wxyz: orientations[k + 1].wxyz().map(plain),
-            from_angle: angles.map(|a| plain(a[k])),
-            to_angle: angles.map(|a| plain(a[k + 1])),
             planes: w.planes[k],
             faces: (format == SlabFormat::Off).then_some(w.faces[k]),
             margin: w.margins[k],
             file: (!union).then(|| w.files[k][0].clone()),
             files: union.then(|| w.files[k].clone()),
+            ..cells.entry(k)
         })
         .collect();
     let json = serde_json::to_string_pretty(&index)? + "\n";

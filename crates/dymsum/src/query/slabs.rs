@@ -272,7 +272,8 @@ pub enum SlabCover {
 /// intersection contains every slice `O ⊕ (−R·A)` for the orientations
 /// `R` of its [`SlabCover`] (see the [module docs](self) for the precise
 /// statement). Built by [`CObstacle::certified_slabs`],
-/// [`CObstacle::certified_slab_in_cell`] and the functions of this module.
+/// [`CObstacle::certified_slab_in_cell`], [`CObstacle::certified_slabs_in_cells`]
+/// and the functions of this module.
 #[derive(Clone, Debug)]
 pub struct Slab {
     normals: Vec<DVec3>,
@@ -841,16 +842,84 @@ impl CObstacle {
         centre: Rotation,
         radius: f64,
     ) -> Result<Slab, QueryError> {
+        let margin = self.cell_margin(radius)?;
+        let points = slice_points(&self.slice(centre)?);
+        slab_around(&points, margin, SlabCover::Cell { centre, radius })
+    }
+
+    /// The certified slabs of the cells of one `radius` about each of
+    /// `centres` (one slab per centre, in order): slab `k` contains every
+    /// slice for the rotations within angle `radius` of `centres[k]`, as
+    /// [`CObstacle::certified_slab_in_cell`] (module docs), the centres'
+    /// slices computed by one dynamic sum moved from centre to centre, as
+    /// [`CObstacle::slices`] (fastest when consecutive centres are close).
+    ///
+    /// ```
+    /// use dymsum::{CObstacle, DVec3, Polytope, Rotation};
+    /// let tet = Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])?;
+    /// let cobst = CObstacle::new(&tet, &tet)?;
+    /// let centres: Vec<Rotation> = (0..4)
+    ///     .map(|k| Rotation::from_axis_angle(DVec3::new(1.0, 1.0, 0.0), 0.2 * k as f64).ok_or("axis"))
+    ///     .collect::<Result<_, _>>()?;
+    /// let slabs = cobst.certified_slabs_in_cells(&centres, 0.1)?;
+    /// assert_eq!(slabs.len(), 4);
+    /// let near = Rotation::from_axis_angle(DVec3::Z, 0.1).ok_or("axis")?.then(&centres[2]);
+    /// assert!(cobst.slice(near)?.vertices.iter().all(|&v| slabs[2].contains(v.into())));
+    /// assert_eq!(cobst.certified_slabs_in_cells_par(&centres, 0.1)?[2].offsets(), slabs[2].offsets());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// Those of [`CObstacle::certified_slab_in_cell`] (the first in order);
+    /// those of [`CObstacle::slices`].
+    pub fn certified_slabs_in_cells(
+        &self,
+        centres: &[Rotation],
+        radius: f64,
+    ) -> Result<Vec<Slab>, QueryError> {
+        let margin = self.cell_margin(radius)?;
+        self.slices(centres)
+            .zip(centres)
+            .map(|(slice, &centre)| {
+                let cover = SlabCover::Cell { centre, radius };
+                slab_around(&slice_points(&slice?), margin, cover)
+            })
+            .collect()
+    }
+
+    /// [`CObstacle::certified_slabs_in_cells`] on rayon's threads: the
+    /// slices in parallel chunks ([`CObstacle::map_par`]), then the slabs
+    /// in parallel (the same slabs, in order).
+    ///
+    /// # Errors
+    /// The same as [`CObstacle::certified_slabs_in_cells`] (the first in
+    /// order).
+    pub fn certified_slabs_in_cells_par(
+        &self,
+        centres: &[Rotation],
+        radius: f64,
+    ) -> Result<Vec<Slab>, QueryError> {
+        let margin = self.cell_margin(radius)?;
+        let slices: Vec<Vec<DVec3>> = self
+            .map_par(centres, |_, _, s| s.try_to_mesh().map(|m| slice_points(&m)))?
+            .into_iter()
+            .collect::<Result<_, _>>()?;
+        slices
+            .par_iter()
+            .zip(centres)
+            .map(|(points, &centre)| {
+                slab_around(points, margin, SlabCover::Cell { centre, radius })
+            })
+            .collect()
+    }
+
+    /// Checks a cell radius (`0 ≤ radius < π`); the margin `r·ρ` plus the
+    /// rounding terms (module docs).
+    fn cell_margin(&self, radius: f64) -> Result<f64, QueryError> {
         if !(0.0..std::f64::consts::PI).contains(&radius) {
             return Err(SlabError::BadRadius { radius }.into());
         }
-        let reach = Reach::of(self)?;
-        let points = slice_points(&self.slice(centre)?);
-        slab_around(
-            &points,
-            reach.margin(radius),
-            SlabCover::Cell { centre, radius },
-        )
+        Ok(Reach::of(self)?.margin(radius))
     }
 }
 
