@@ -139,6 +139,50 @@ mod support;
 mod tracker;
 mod union;
 
+/// Helpers shared by the query modules' unit tests.
+#[cfg(test)]
+pub(crate) mod test_support {
+    use crate::{DVec3, Polytope};
+
+    /// A small deterministic generator (no dev-dependency in unit tests).
+    pub(crate) struct Lcg(pub(crate) u64);
+
+    impl Lcg {
+        /// Uniform in `[-1, 1)`.
+        pub(crate) fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+
+        /// A random unit vector.
+        pub(crate) fn unit(&mut self) -> DVec3 {
+            loop {
+                let v = DVec3::new(self.next(), self.next(), self.next());
+                if v.length() > 0.1 && v.length() <= 1.0 {
+                    return v.normalize();
+                }
+            }
+        }
+    }
+
+    /// The box `[-x, x] × [-y, y] × [-z, z]`.
+    pub(crate) fn boxed(x: f64, y: f64, z: f64) -> Polytope {
+        let pts: Vec<[f64; 3]> = (0..8)
+            .map(|i| {
+                [
+                    if i & 1 == 0 { -x } else { x },
+                    if i & 2 == 0 { -y } else { y },
+                    if i & 4 == 0 { -z } else { z },
+                ]
+            })
+            .collect();
+        Polytope::from_points(&pts).unwrap()
+    }
+}
+
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
 pub use motion::{
     check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, MIN_WIDTH,

@@ -279,38 +279,7 @@ mod tests {
     use crate::query::{ConvexPair, Proximity};
     use crate::{DVec3, Polytope, Pose, Rotation};
 
-    /// A small deterministic generator (no dev-dependency in unit tests).
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }
-        fn unit(&mut self) -> DVec3 {
-            loop {
-                let v = DVec3::new(self.next(), self.next(), self.next());
-                if v.length() > 0.1 && v.length() <= 1.0 {
-                    return v.normalize();
-                }
-            }
-        }
-    }
-
-    fn boxed(x: f64, y: f64, z: f64) -> Polytope {
-        let pts: Vec<[f64; 3]> = (0..8)
-            .map(|i| {
-                [
-                    if i & 1 == 0 { -x } else { x },
-                    if i & 2 == 0 { -y } else { y },
-                    if i & 4 == 0 { -z } else { z },
-                ]
-            })
-            .collect();
-        Polytope::from_points(&pts).unwrap()
-    }
+    use crate::query::test_support::{boxed, Lcg};
 
     /// Random hulls, boxes with parallel faces at exact quarter turns, and
     /// round hulls, apart and overlapping: every query goes through the
