@@ -47,10 +47,15 @@ from ._dymsum import (
     contact as contact,
     contact_many as contact_many,
     load as load,
-    minkowski_sum as minkowski_sum,
     models as models,
     pose as pose,
     save as save,
+)
+from .nonconvex import (
+    MeshUnionError as MeshUnionError,
+    UnionSum as UnionSum,
+    convex_pieces as convex_pieces,
+    minkowski_sum as minkowski_sum,
 )
 
 __all__ = [
@@ -59,18 +64,21 @@ __all__ = [
     "Contacts",
     "ConvexUnion",
     "DynamicSum",
+    "MeshUnionError",
     "MotionCheck",
     "MotionChecker",
     "MotionChecks",
     "MotionUndecided",
     "Polytope",
     "Slab",
+    "UnionSum",
     "check_motion",
     "check_motions",
     "cobstacle_slices",
     "collides_many",
     "contact",
     "contact_many",
+    "convex_pieces",
     "load",
     "minkowski_sum",
     "models",
