@@ -25,9 +25,10 @@ used; without them a clear ``ImportError`` names the package to install.
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Any, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _dymsum as _ext
 
@@ -45,7 +46,11 @@ class MeshUnionError(RuntimeError):
     merged mesh failed validation (never returned)."""
 
 
-class UnionSum(tuple):
+if TYPE_CHECKING:
+    from ._dymsum import _Method, _Polygons, _PoseLike, _ShapeLike, _Triangles, _Vertices
+
+
+class UnionSum(Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]):
     """``(vertices, faces)`` of a non-convex Minkowski sum, with ``info``.
 
     Unpacks like the convex result (``vertices, faces = minkowski_sum(...)``);
@@ -57,17 +62,17 @@ class UnionSum(tuple):
 
     info: Dict[str, Any]
 
-    def __new__(cls, vertices: np.ndarray, faces: np.ndarray, info: Dict[str, Any]) -> "UnionSum":
+    def __new__(cls, vertices: npt.NDArray[np.float64], faces: npt.NDArray[np.int64], info: Dict[str, Any]) -> "UnionSum":
         self = super().__new__(cls, (vertices, faces))
         self.info = info
         return self
 
     @property
-    def vertices(self) -> np.ndarray:
+    def vertices(self) -> npt.NDArray[np.float64]:
         return self[0]
 
     @property
-    def faces(self) -> np.ndarray:
+    def faces(self) -> npt.NDArray[np.int64]:
         return self[1]
 
     @property
@@ -480,6 +485,55 @@ def _cull(sums: list) -> list:
     return [sums[k] for k in sorted(kept)]
 
 
+@overload
+def minkowski_sum(
+    a: "_ext.ConvexUnion",
+    b: "Union[_ext.ConvexUnion, _ShapeLike]",
+    pose_a: "_PoseLike" = None,
+    pose_b: "_PoseLike" = None,
+    method: "_Method" = "walk",
+    polygons: Literal[False] = False,
+    *,
+    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+    cull: bool = True,
+) -> UnionSum: ...
+@overload
+def minkowski_sum(
+    a: "_ShapeLike",
+    b: "_ext.ConvexUnion",
+    pose_a: "_PoseLike" = None,
+    pose_b: "_PoseLike" = None,
+    method: "_Method" = "walk",
+    polygons: Literal[False] = False,
+    *,
+    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+    cull: bool = True,
+) -> UnionSum: ...
+@overload
+def minkowski_sum(
+    a: "_ShapeLike",
+    b: "_ShapeLike",
+    pose_a: "_PoseLike" = None,
+    pose_b: "_PoseLike" = None,
+    method: "_Method" = "walk",
+    *,
+    polygons: Literal[True],
+) -> "Tuple[_Vertices, _Polygons]": ...
+@overload
+def minkowski_sum(
+    a: "_ShapeLike",
+    b: "_ShapeLike",
+    pose_a: "_PoseLike" = None,
+    pose_b: "_PoseLike" = None,
+    method: "_Method" = "walk",
+    polygons: Literal[False] = False,
+    *,
+    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+    cull: bool = True,
+) -> "Tuple[_Vertices, _Triangles]": ...
 def minkowski_sum(
     a: Any,
     b: Any,
