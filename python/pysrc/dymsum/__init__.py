@@ -52,6 +52,7 @@ from ._dymsum import (
     save as save,
 )
 from .nonconvex import (
+    DynamicUnionSum as DynamicUnionSum,
     MeshUnionError as MeshUnionError,
     UnionSum as UnionSum,
     convex_pieces as convex_pieces,
@@ -64,6 +65,7 @@ __all__ = [
     "Contacts",
     "ConvexUnion",
     "DynamicSum",
+    "DynamicUnionSum",
     "MeshUnionError",
     "MotionCheck",
     "MotionChecker",

@@ -32,7 +32,7 @@ import numpy.typing as npt
 
 from . import _dymsum as _ext
 
-__all__ = ["UnionSum", "MeshUnionError", "minkowski_sum", "convex_pieces", "check_closed_mesh"]
+__all__ = ["UnionSum", "MeshUnionError", "DynamicUnionSum", "minkowski_sum", "convex_pieces", "check_closed_mesh"]
 
 DECOMPOSITIONS = ("coacd", "vhacd")
 
@@ -416,6 +416,11 @@ def _union_sum(
         keep = _cull(sums)
         culled = len(sums) - len(keep)
         sums = keep
+    return _merge(m3d, sums, culled, len(pa), len(pb), {"a": info_a, "b": info_b})
+
+
+def _merge(m3d: Any, sums: list, culled: int, na: int, nb: int, decomposition: Dict[str, Any]) -> UnionSum:
+    """Manifold's union of the pair sums ``(i, j, vertices, faces)``, validated."""
     mans = [_to_manifold(m3d, v, f, f"the sum of pieces {i} and {j}") for i, j, v, f in sums]
     union = m3d.Manifold.batch_boolean(mans, m3d.OpType.Add) if len(mans) > 1 else mans[0]
     if union.status() != m3d.Error.NoError:
@@ -433,10 +438,10 @@ def _union_sum(
         raise MeshUnionError(f"the merged mesh's volume {volume!r} differs from Manifold's {union.volume()!r}")
     shells = len(_components(len(vertices), faces))
     info = {
-        "pieces": (len(pa), len(pb)),
-        "pairs": len(pa) * len(pb),
+        "pieces": (na, nb),
+        "pairs": na * nb,
         "pairs_culled": culled,
-        "decomposition": {"a": info_a, "b": info_b},
+        "decomposition": decomposition,
         "volume": volume,
         "genus": int(union.genus()),
         "shells": shells,
@@ -569,3 +574,65 @@ def minkowski_sum(
     if polygons:
         raise ValueError("polygons=True is for convex sums; the sum of non-convex bodies is a triangle mesh")
     return _union_sum(a, b, pose_a, pose_b, method, decomposition, decomposition_options, cull)
+
+
+class DynamicUnionSum:
+    """``A ⊕ B`` of non-convex bodies kept up to date while they move.
+
+    One :class:`DynamicSum` per pair of convex pieces, each repaired by
+    DYMSUM on :meth:`update` (exact, as for convex bodies); :meth:`mesh`
+    merges the current pair sums with Manifold into one validated closed
+    mesh (a :class:`UnionSum`), redone on each call. Bodies as
+    :func:`minkowski_sum` takes them (``decomposition`` for a non-convex
+    mesh).
+    """
+
+    def __init__(
+        self,
+        a: Any,
+        b: Any,
+        pose_a: Any = None,
+        pose_b: Any = None,
+        *,
+        decomposition: Optional[str] = None,
+        decomposition_options: Optional[Dict[str, Any]] = None,
+        cull: bool = True,
+    ) -> None:
+        self._pa, info_a = convex_pieces(a, decomposition, decomposition_options)
+        self._pb, info_b = convex_pieces(b, decomposition, decomposition_options)
+        self._decomposition = {"a": info_a, "b": info_b}
+        self._cull = cull
+        self._sums = [
+            (i, j, _ext.DynamicSum(p, q, pose_a, pose_b)) for i, p in enumerate(self._pa) for j, q in enumerate(self._pb)
+        ]
+
+    def __len__(self) -> int:
+        """The number of piece pairs."""
+        return len(self._sums)
+
+    def update(self, pose_a: Any = None, pose_b: Any = None) -> Dict[str, Any]:
+        """Moves A and B (``None`` keeps that body where it is) and repairs
+        every pair sum. The report sums the pairs' reports (``facets``,
+        ``errors``, ``removed``, ``added``, ``recomputed``: pairs recomputed
+        from scratch)."""
+        total: Dict[str, Any] = {"pairs": len(self._sums), "facets": 0, "errors": 0, "removed": 0, "added": 0, "recomputed": 0}
+        for _, _, s in self._sums:
+            r = s.update(pose_a, pose_b)
+            for k in ("facets", "errors", "removed", "added"):
+                total[k] += int(r[k])
+            total["recomputed"] += int(bool(r["recomputed"]))
+        return total
+
+    def mesh(self) -> UnionSum:
+        """The current sum as one closed mesh (Manifold's union, validated)."""
+        m3d = _manifold3d()
+        sums = []
+        for i, j, s in self._sums:
+            v, f = s.mesh()
+            sums.append((i, j, np.asarray(v), np.asarray(f)))
+        culled = 0
+        if self._cull and len(sums) > 1:
+            keep = _cull(sums)
+            culled = len(sums) - len(keep)
+            sums = keep
+        return _merge(m3d, sums, culled, len(self._pa), len(self._pb), self._decomposition)
