@@ -3,12 +3,14 @@
 # package's. The package is built from source and installed with
 # `pip install ./python` into a virtual environment (target/pyenv, or
 # $DYMSUM_PYENV) together with the test dependencies (pytest, numpy, scipy,
-# mypy for checking the type stubs against the module, and OMPL's Python
-# wheel for dymsum.ompl's tests, which then must run: DYMSUM_REQUIRE_OMPL=1),
-# then pytest runs python/tests. Needs the Rust toolchain and python3 with
-# venv and pip (PyPI and crates.io reachable on the first run). Where OMPL
-# has no wheel (it publishes Linux ones), DYMSUM_NO_OMPL=1 leaves it out and
-# its tests are skipped.
+# mypy for checking the type stubs against the module, OMPL's Python wheel
+# for dymsum.ompl's tests, which then must run: DYMSUM_REQUIRE_OMPL=1, and
+# the optional extras for non-convex sums: manifold3d, coacd, vhacdx, then
+# required: DYMSUM_REQUIRE_MANIFOLD=1), then pytest runs python/tests.
+# Needs the Rust toolchain and python3 with venv and pip (PyPI and
+# crates.io reachable on the first run). Where OMPL has no wheel (it
+# publishes Linux ones), DYMSUM_NO_OMPL=1 leaves it out and its tests are
+# skipped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -44,6 +46,13 @@ if [ ! -x "$venv/bin/python" ]; then
     }
 fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy "${ompl[@]}"
+# The optional extras of non-convex sums (dymsum.minkowski_sum on unions and
+# non-convex meshes): Manifold merges the piece sums; CoACD and V-HACD
+# decompose. The package never imports them unless used; here they are
+# installed and required, so the non-convex tests and doc examples run
+# rather than skip.
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check manifold3d coacd vhacdx
+export DYMSUM_REQUIRE_MANIFOLD=1
 
 printf '\n=== Python: stubtest (the type stubs match the module)\n'
 (cd "$venv" && bin/python -m mypy.stubtest dymsum._dymsum)

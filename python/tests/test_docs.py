@@ -49,12 +49,22 @@ def test_documentation_python_blocks_run(tmp_path, monkeypatch):
     """Every ``python`` block of the README, the package README and the
     guides in docs/ runs, and writes nothing into the working directory
     (examples write into a temporary or named folder). Blocks that import
-    OMPL are skipped where it is not installed, unless DYMSUM_REQUIRE_OMPL=1
-    (scripts/test.sh installs it and sets that)."""
+    OMPL are skipped where it is not installed, unless DYMSUM_REQUIRE_OMPL=1;
+    blocks whose first line is "# needs: PKG ..." where those packages are
+    missing, unless DYMSUM_REQUIRE_MANIFOLD=1 (scripts/test.sh installs
+    both and sets both)."""
+    import importlib
     import importlib.util
     import os
     import pathlib
     import re
+
+    def importable(name):
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            return False
+        return True
 
     root = pathlib.Path(__file__).resolve().parent.parent.parent
     monkeypatch.chdir(tmp_path)
@@ -66,6 +76,13 @@ def test_documentation_python_blocks_run(tmp_path, monkeypatch):
             if re.search(r"^\s*(from|import) ompl\b", block, re.M):
                 ompl_blocks += 1
                 if not have_ompl:
+                    continue
+            # A block whose first line is "# needs: PKG ..." uses optional
+            # packages: skipped without them, unless DYMSUM_REQUIRE_MANIFOLD=1
+            # (scripts/test.sh installs them and sets it).
+            needs = re.match(r"# needs: (.*)\n", block)
+            if needs and os.environ.get("DYMSUM_REQUIRE_MANIFOLD") != "1":
+                if not all(importable(m) for m in needs.group(1).split()):
                     continue
             exec(compile(block, str(doc), "exec"), {})
             ran += 1

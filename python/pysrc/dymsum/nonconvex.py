@@ -1,0 +1,638 @@
+"""Minkowski sums of non-convex bodies as one closed mesh.
+
+``A ⊕ B`` of two unions of convex pieces is the union, over every pair of
+pieces, of the exact convex sums ``a_i ⊕ b_j`` (dymsum's own, as for convex
+bodies). That union is merged into one closed, oriented 2-manifold by the
+Manifold library (the optional ``manifold3d`` package: never a hand-written
+boolean), and the result is validated before it is returned.
+
+What is exact, and what is not:
+
+* each piece-pair sum is exact (every decision an exact predicate), its
+  vertices rounded to ``float64`` as for any convex sum;
+* the union is Manifold's float boolean (robust, with its own
+  rounding-level tolerance), so the merged mesh is the true union up to that
+  rounding;
+* a non-convex mesh given as ``(vertices, faces)`` is split into connected
+  components; components that are exactly convex (and outward) are taken as
+  they are; anything else needs a decomposition (``decomposition="coacd"`` or
+  ``"vhacd"``, optional extras), which is approximate: its kind and its
+  volume error against the input are recorded in the result's ``info``.
+
+The optional packages (manifold3d, coacd, vhacdx) are imported only when
+used; without them a clear ``ImportError`` names the package to install.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _dymsum as _ext
+
+__all__ = ["UnionSum", "MeshUnionError", "DynamicUnionSum", "minkowski_sum", "convex_pieces", "check_closed_mesh"]
+
+DECOMPOSITIONS = ("coacd", "vhacd")
+
+# The convex sum (typed by _dymsum.pyi's overloads; called here with
+# arguments passed through from the caller).
+_convex_sum: Any = _ext.minkowski_sum
+
+
+class MeshUnionError(RuntimeError):
+    """The union of the piece-pair sums failed: Manifold rejected a mesh, or the
+    merged mesh failed validation (never returned)."""
+
+
+if TYPE_CHECKING:
+    from ._dymsum import _Method, _Polygons, _PoseLike, _ShapeLike, _Triangles, _Vertices
+
+
+class UnionSum(Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]):
+    """``(vertices, faces)`` of a non-convex Minkowski sum, with ``info``.
+
+    Unpacks like the convex result (``vertices, faces = minkowski_sum(...)``);
+    ``info`` says how it was made: ``pieces`` (per operand), ``pairs``,
+    ``pairs_culled``, ``decomposition`` (per operand: ``method`` and, for an
+    approximate decomposition, ``volume_error`` against the input),
+    ``volume``, ``genus``, ``shells``.
+    """
+
+    info: Dict[str, Any]
+
+    def __new__(cls, vertices: npt.NDArray[np.float64], faces: npt.NDArray[np.int64], info: Dict[str, Any]) -> "UnionSum":
+        self = super().__new__(cls, (vertices, faces))
+        self.info = info
+        return self
+
+    @property
+    def vertices(self) -> npt.NDArray[np.float64]:
+        return self[0]
+
+    @property
+    def faces(self) -> npt.NDArray[np.int64]:
+        return self[1]
+
+    @property
+    def volume(self) -> float:
+        return float(self.info["volume"])
+
+    def __repr__(self) -> str:
+        return f"UnionSum({len(self[0])} vertices, {len(self[1])} triangles, volume {self.volume:.9g})"
+
+
+def _manifold3d():
+    try:
+        import manifold3d
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError(
+            "the Minkowski sum of non-convex bodies merges the piece sums with the Manifold library: "
+            "pip install manifold3d (or dymsum[nonconvex])"
+        ) from e
+    return manifold3d
+
+
+# ---------------------------------------------------------------- mesh checks
+
+
+def _as_mesh(vertices: Any, faces: Any) -> Tuple[np.ndarray, np.ndarray]:
+    v = np.ascontiguousarray(vertices, dtype=np.float64)
+    f = np.asarray(faces)
+    if v.ndim != 2 or v.shape[1] != 3 or len(v) == 0:
+        raise ValueError(f"mesh vertices must be a non-empty (n, 3) array, got shape {v.shape}")
+    if f.ndim != 2 or f.shape[1] != 3 or len(f) == 0:
+        raise ValueError(f"mesh faces must be a non-empty (m, 3) array of triangles, got shape {f.shape}")
+    if not np.issubdtype(f.dtype, np.integer):
+        if not np.all(np.asarray(f, dtype=np.float64) == np.round(np.asarray(f, dtype=np.float64))):
+            raise ValueError("mesh faces must be integer vertex indices")
+    f = np.ascontiguousarray(f, dtype=np.int64)
+    if not np.all(np.isfinite(v)):
+        raise ValueError("mesh vertices must be finite")
+    if f.min() < 0 or f.max() >= len(v):
+        raise ValueError(f"mesh faces index vertex {int(f.max()) if f.max() >= len(v) else int(f.min())}, out of range 0..{len(v) - 1}")
+    return v, f
+
+
+def check_closed_mesh(vertices: np.ndarray, faces: np.ndarray) -> Optional[str]:
+    """Why ``(vertices, faces)`` is not a closed, oriented 2-manifold triangle
+    mesh of positive volume, or ``None`` when it is.
+
+    Tolerance-free: no face repeats a vertex, every directed edge occurs once
+    and its reverse once (each edge in exactly two faces, in opposite
+    directions), every vertex's faces form one fan (no pinched vertex), and
+    the signed volume is positive.
+    """
+    f = np.asarray(faces, dtype=np.int64)
+    v = np.asarray(vertices, dtype=np.float64)
+    bad = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 0] == f[:, 2])
+    if bad.any():
+        return f"face {int(np.argmax(bad))} repeats a vertex"
+    n = len(v)
+    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    key = e[:, 0] * n + e[:, 1]
+    uniq, counts = np.unique(key, return_counts=True)
+    if (counts > 1).any():
+        k = int(uniq[np.argmax(counts > 1)])
+        return f"directed edge ({k // n}, {k % n}) occurs {int(counts.max())} times (non-manifold or inconsistently oriented)"
+    rev = e[:, 1] * n + e[:, 0]
+    has_rev = np.isin(rev, uniq)
+    if not has_rev.all():
+        i = int(np.argmin(has_rev))
+        return f"edge ({int(e[i, 0])}, {int(e[i, 1])}) has no opposite half-edge (the mesh is open or inconsistently oriented)"
+    # Pinched vertices: the half-edges around each vertex must form one cycle.
+    # Each face corner (face t, vertex a, next b, previous c) links the
+    # outgoing half-edge a->b to the outgoing half-edge a->c of the face
+    # across edge c->a. One cycle per used vertex.
+    m = len(f)
+    order = np.argsort(key)
+    skey = key[order]
+    # outgoing half-edge index h = t + m*k for corner k of face t: edge (f[t,k], f[t,k+1]).
+    nxt = np.empty(3 * m, dtype=np.int64)
+    for k in range(3):
+        a, c = f[:, k], f[:, (k + 2) % 3]
+        # the half-edge a->c (in the neighbouring face): its index
+        pos = order[np.searchsorted(skey, a * n + c)]
+        nxt[k * m + np.arange(m)] = pos
+    # The cycles of the permutation nxt are the fans: label each half-edge
+    # with the smallest index on its cycle by pointer doubling, and count.
+    label = np.arange(3 * m)
+    jump = nxt.copy()
+    for _ in range(int(np.ceil(np.log2(3 * m + 1))) + 1):
+        label = np.minimum(label, label[jump])
+        jump = jump[jump]
+    cycles = len(np.unique(label))
+    used = len(np.unique(f))
+    if cycles != used:
+        return f"{cycles - used} pinched vertex fan(s): a vertex where the surface touches itself"
+    t = v[f]
+    vol = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0
+    if not vol > 0:
+        return f"signed volume {vol:.6g} is not positive (inward or empty)"
+    return None
+
+
+def signed_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
+    t = np.asarray(vertices, dtype=np.float64)[np.asarray(faces, dtype=np.int64)]
+    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
+
+
+def _components(n: int, faces: np.ndarray) -> List[np.ndarray]:
+    """Face index sets of the edge-connected components."""
+    m = len(faces)
+    # Faces sharing an edge are connected: label propagation over vertices.
+    label = np.arange(n)
+    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]]])
+    while True:
+        lo = np.minimum(label[e[:, 0]], label[e[:, 1]])
+        new = label.copy()
+        np.minimum.at(new, e[:, 0], lo)
+        np.minimum.at(new, e[:, 1], lo)
+        new = new[new]
+        if np.array_equal(new, label):
+            break
+        label = new
+    face_label = label[faces[:, 0]]
+    out = []
+    for lab in np.unique(face_label):
+        out.append(np.nonzero(face_label == lab)[0])
+    assert sum(len(c) for c in out) == m
+    return out
+
+
+def _submesh(vertices: np.ndarray, faces: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    used, inv = np.unique(faces, return_inverse=True)
+    return vertices[used], inv.reshape(faces.shape).astype(np.int64)
+
+
+# --------------------------------------------------------------- decompositions
+
+
+def _to_manifold(m3d: Any, vertices: np.ndarray, faces: np.ndarray, what: str) -> Any:
+    mesh = m3d.Mesh64(
+        vert_properties=np.array(vertices, dtype=np.float64, order="C"),  # a writable copy
+        tri_verts=np.array(faces, dtype=np.uint64, order="C"),
+    )
+    man = m3d.Manifold(mesh)
+    if man.status() != m3d.Error.NoError:
+        raise MeshUnionError(f"Manifold refused {what}: {man.status()}")
+    return man
+
+
+def _decompose(vertices: np.ndarray, faces: np.ndarray, method: str, options: Dict[str, Any]) -> List[np.ndarray]:
+    """Convex parts (point arrays) of a closed mesh by an optional library."""
+    if method == "coacd":
+        try:
+            import coacd
+        except ImportError as e:
+            raise ImportError("decomposition='coacd' needs the coacd package: pip install coacd") from e
+        coacd.set_log_level("error")
+        parts = coacd.run_coacd(coacd.Mesh(vertices, faces.astype(np.int32)), **options)
+        return [np.asarray(p[0], dtype=np.float64) for p in parts]
+    if method == "vhacd":
+        try:
+            import vhacdx
+        except ImportError as e:
+            raise ImportError("decomposition='vhacd' needs the vhacdx package: pip install vhacdx") from e
+        parts = vhacdx.compute_vhacd(vertices, faces.astype(np.uint32), **options)
+        return [np.asarray(p[0], dtype=np.float64) for p in parts]
+    raise ValueError(f"unknown decomposition {method!r}: use one of {', '.join(map(repr, DECOMPOSITIONS))}")
+
+
+def _volume_error(pieces: Sequence[Any], vertices: np.ndarray, faces: np.ndarray) -> Dict[str, float]:
+    """How far the union of the pieces is from the input mesh (by Manifold)."""
+    m3d = _manifold3d()
+    union = m3d.Manifold.batch_boolean(
+        [_to_manifold(m3d, p.vertices, p.faces, f"decomposition piece {i}") for i, p in enumerate(pieces)], m3d.OpType.Add
+    )
+    vin = signed_volume(vertices, faces)
+    out: Dict[str, float] = {"input_volume": vin, "union_volume": union.volume()}
+    try:
+        inp = _to_manifold(m3d, vertices, faces, "the input mesh")
+    except MeshUnionError:
+        # The input is not a valid manifold for Manifold: the volumes only.
+        out["volume_error"] = abs(union.volume() - vin) / vin
+        return out
+    extra = (union - inp).volume()
+    missing = (inp - union).volume()
+    out["added_volume"] = extra
+    out["missing_volume"] = missing
+    out["volume_error"] = (extra + missing) / vin
+    return out
+
+
+def convex_pieces(
+    shape: Any, decomposition: Optional[str] = None, options: Optional[Dict[str, Any]] = None
+) -> Tuple[List[Any], Dict[str, Any]]:
+    """The convex pieces of a body, and how they were obtained.
+
+    A :class:`ConvexUnion` gives its pieces; a convex shape (anything
+    :class:`Polytope` accepts) is one piece; a closed mesh ``(vertices,
+    faces)`` (or an object with ``.vertices`` and ``.faces``) that is not
+    convex is split into connected components, taken as pieces when every
+    one is exactly convex and outward; otherwise it is decomposed by
+    ``decomposition`` (``"coacd"`` or ``"vhacd"``), and the volume error of
+    the union of the parts against the input is reported.
+    """
+    opts = dict(options or {})
+    if isinstance(shape, _ext.ConvexUnion):
+        return list(shape.pieces), {"method": "given", "exact": True}
+    if isinstance(shape, _ext.Polytope):
+        return [shape], {"method": "convex", "exact": True}
+    mesh = _mesh_of(shape)
+    if mesh is None:
+        return [_ext.Polytope(shape)], {"method": "convex", "exact": True}
+    try:
+        return [_ext.Polytope(shape)], {"method": "convex", "exact": True}
+    except ValueError as convex_error:
+        refusal = str(convex_error)
+    # dymsum's own refusal stands for a mesh that is no solid at all; only a
+    # closed, outward mesh goes on as a non-convex body.
+    try:
+        vertices, faces = _as_mesh(*mesh)
+    except ValueError:
+        raise ValueError(refusal) from None
+    why = check_closed_mesh(vertices, faces)
+    # Shells that overlap or touch (repeated directed edges, pinched
+    # vertices) are accepted: the body is their union. An open, inward or
+    # degenerate mesh is not a solid.
+    if why is not None and not (why.startswith("directed edge") or "pinched" in why):
+        raise ValueError(f"{refusal} (as a non-convex body: {why})")
+    if not signed_volume(vertices, faces) > 0:
+        raise ValueError(f"{refusal} (as a non-convex body: its signed volume is not positive)")
+    pieces: List[Any] = []
+    rest: List[np.ndarray] = []
+    cavity = False
+    for comp in _components(len(vertices), faces):
+        cv, cf = _submesh(vertices, faces[comp])
+        if check_closed_mesh(cv, cf) is not None or signed_volume(cv, cf) <= 0:
+            # An inward shell (a cavity) or a broken shell: only a
+            # decomposition of the whole mesh can take it into account.
+            cavity = True
+            rest.append(comp)
+            continue
+        try:
+            pieces.append(_ext.Polytope((cv, cf), strict=True))
+        except ValueError:
+            rest.append(comp)
+    if not rest:
+        return pieces, {"method": "components", "exact": True, "components": len(pieces)}
+    if decomposition is None:
+        raise ValueError(
+            f"a non-convex mesh ({refusal}) needs a convex decomposition: pass decomposition='coacd' "
+            "or decomposition='vhacd' (optional packages coacd / vhacdx), or give its convex pieces "
+            "as dymsum.ConvexUnion([...])"
+        )
+    if decomposition not in DECOMPOSITIONS:
+        raise ValueError(f"unknown decomposition {decomposition!r}: use one of {', '.join(map(repr, DECOMPOSITIONS))}")
+    if cavity:
+        pieces, rest = [], [np.arange(len(faces))]
+    sel = np.concatenate(rest)
+    dv, df = _submesh(vertices, faces[sel])
+    parts = _decompose(dv, df, decomposition, opts)
+    decomposed = []
+    flat = 0
+    for p in parts:
+        try:
+            decomposed.append(_ext.Polytope(p))
+        except ValueError as e:
+            # A flat (zero-volume) part adds nothing to the union; any
+            # other refusal is an error.
+            if "degenerate input" not in str(e):
+                raise
+            flat += 1
+    if not decomposed:
+        raise ValueError(f"the {decomposition} decomposition returned no solid part")
+    info: Dict[str, Any] = {
+        "method": decomposition,
+        "exact": False,
+        "options": opts,
+        "convex_components": len(pieces),
+        "parts": len(decomposed),
+        "flat_parts_dropped": flat,
+    }
+    pieces = pieces + decomposed
+    info.update(_volume_error(pieces, vertices, faces))
+    return pieces, info
+
+
+def _mesh_of(shape: Any) -> Optional[Tuple[Any, Any]]:
+    """``(vertices, faces)`` when ``shape`` is given as a mesh, else ``None``."""
+    if hasattr(shape, "vertices") and hasattr(shape, "faces"):
+        return shape.vertices, shape.faces
+    if isinstance(shape, (tuple, list)) and len(shape) == 2:
+        f = np.asarray(shape[1]) if not isinstance(shape[1], (str, bytes)) else None
+        v = np.asarray(shape[0]) if not isinstance(shape[0], (str, bytes)) else None
+        if f is not None and v is not None and f.ndim == 2 and f.shape[1] == 3 and v.ndim == 2 and v.shape[1] == 3:
+            if np.issubdtype(f.dtype, np.integer):
+                return shape[0], shape[1]
+    return None
+
+
+def _is_nonconvex_solid(shape: Any) -> bool:
+    """A closed, outward triangle mesh that dymsum refuses as a polytope."""
+    if isinstance(shape, (_ext.ConvexUnion, _ext.Polytope)):
+        return False
+    mesh = _mesh_of(shape)
+    if mesh is None:
+        return False
+    try:
+        vertices, faces = _as_mesh(*mesh)
+    except ValueError:
+        return False
+    try:
+        _ext.Polytope((vertices, faces))
+        return False
+    except ValueError:
+        pass
+    why = check_closed_mesh(vertices, faces)
+    return (why is None or why.startswith("directed edge") or "pinched" in why) and signed_volume(vertices, faces) > 0
+
+
+# ---------------------------------------------------------------------- the sum
+
+
+def _union_sum(
+    a: Any,
+    b: Any,
+    pose_a: Any,
+    pose_b: Any,
+    method: str,
+    decomposition: Optional[str],
+    decomposition_options: Optional[Dict[str, Any]],
+    cull: bool,
+) -> UnionSum:
+    m3d = _manifold3d()
+    pa, info_a = convex_pieces(a, decomposition, decomposition_options)
+    pb, info_b = convex_pieces(b, decomposition, decomposition_options)
+    sums = []
+    for i, p in enumerate(pa):
+        for j, q in enumerate(pb):
+            v, f = _convex_sum(p, q, pose_a, pose_b, method)
+            sums.append((i, j, np.asarray(v), np.asarray(f)))
+    culled = 0
+    if cull and len(sums) > 1:
+        keep = _cull(sums)
+        culled = len(sums) - len(keep)
+        sums = keep
+    return _merge(m3d, sums, culled, len(pa), len(pb), {"a": info_a, "b": info_b})
+
+
+def _merge(m3d: Any, sums: list, culled: int, na: int, nb: int, decomposition: Dict[str, Any]) -> UnionSum:
+    """Manifold's union of the pair sums ``(i, j, vertices, faces)``, validated."""
+    mans = [_to_manifold(m3d, v, f, f"the sum of pieces {i} and {j}") for i, j, v, f in sums]
+    union = m3d.Manifold.batch_boolean(mans, m3d.OpType.Add) if len(mans) > 1 else mans[0]
+    if union.status() != m3d.Error.NoError:
+        raise MeshUnionError(f"Manifold's union of the piece sums failed: {union.status()}")
+    mesh = union.to_mesh64()
+    vertices = np.array(mesh.vert_properties[:, :3], dtype=np.float64)
+    faces = np.array(mesh.tri_verts, dtype=np.int64)
+    if len(faces) == 0:
+        raise MeshUnionError("Manifold's union of the piece sums is empty")
+    why = check_closed_mesh(vertices, faces)
+    if why is not None:
+        raise MeshUnionError(f"the merged sum is not a valid closed mesh: {why}")
+    volume = signed_volume(vertices, faces)
+    if abs(volume - union.volume()) > 1e-9 * abs(volume):
+        raise MeshUnionError(f"the merged mesh's volume {volume!r} differs from Manifold's {union.volume()!r}")
+    shells = len(_components(len(vertices), faces))
+    info = {
+        "pieces": (na, nb),
+        "pairs": na * nb,
+        "pairs_culled": culled,
+        "decomposition": decomposition,
+        "volume": volume,
+        "genus": int(union.genus()),
+        "shells": shells,
+    }
+    vertices.setflags(write=False)
+    faces.setflags(write=False)
+    return UnionSum(vertices, faces, info)
+
+
+def _planes(v: np.ndarray, f: np.ndarray) -> np.ndarray:
+    t = v[f]
+    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    return np.hstack([n, -np.einsum("ij,ij->i", n, t[:, 0])[:, None]])
+
+
+def _cull(sums: list) -> list:
+    """Drop pair sums certified inside another kept one.
+
+    A convex sum lies inside a convex sum ``S`` when all its vertices do:
+    tested against the planes of ``S``'s triangles with a margin of 1e-9 of
+    the size, far above the rounding of the planes, so a pair is dropped
+    only when it is clearly inside. Bounding boxes filter first.
+    """
+    boxes = [(v.min(axis=0), v.max(axis=0)) for _, _, v, _ in sums]
+    size = max(float(np.abs(np.array([b for bb in boxes for b in bb])).max()), 1e-300)
+    margin = 1e-9 * size
+    order = sorted(range(len(sums)), key=lambda k: -float(np.prod(boxes[k][1] - boxes[k][0])))
+    kept: List[int] = []
+    planes: Dict[int, np.ndarray] = {}
+    for k in order:
+        lo, hi = boxes[k]
+        inside = False
+        for o in kept:
+            olo, ohi = boxes[o]
+            if np.all(lo >= olo) and np.all(hi <= ohi):
+                if o not in planes:
+                    planes[o] = _planes(sums[o][2], sums[o][3])
+                pl = planes[o]
+                d = sums[k][2] @ pl[:, :3].T + pl[:, 3]
+                if d.max() < -margin:
+                    inside = True
+                    break
+        if not inside:
+            kept.append(k)
+    return [sums[k] for k in sorted(kept)]
+
+
+@overload
+def minkowski_sum(
+    a: "_ext.ConvexUnion",
+    b: "Union[_ext.ConvexUnion, _ShapeLike]",
+    pose_a: "_PoseLike" = None,
+    pose_b: "_PoseLike" = None,
+    method: "_Method" = "walk",
+    polygons: Literal[False] = False,
+    *,
+    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+    cull: bool = True,
+) -> UnionSum: ...
+@overload
+def minkowski_sum(
+    a: "_ShapeLike",
+    b: "_ext.ConvexUnion",
+    pose_a: "_PoseLike" = None,
+    pose_b: "_PoseLike" = None,
+    method: "_Method" = "walk",
+    polygons: Literal[False] = False,
+    *,
+    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+    cull: bool = True,
+) -> UnionSum: ...
+@overload
+def minkowski_sum(
+    a: "_ShapeLike",
+    b: "_ShapeLike",
+    pose_a: "_PoseLike" = None,
+    pose_b: "_PoseLike" = None,
+    method: "_Method" = "walk",
+    *,
+    polygons: Literal[True],
+) -> "Tuple[_Vertices, _Polygons]": ...
+@overload
+def minkowski_sum(
+    a: "_ShapeLike",
+    b: "_ShapeLike",
+    pose_a: "_PoseLike" = None,
+    pose_b: "_PoseLike" = None,
+    method: "_Method" = "walk",
+    polygons: Literal[False] = False,
+    *,
+    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+    cull: bool = True,
+) -> "Tuple[_Vertices, _Triangles]": ...
+def minkowski_sum(
+    a: Any,
+    b: Any,
+    pose_a: Any = None,
+    pose_b: Any = None,
+    method: str = "walk",
+    polygons: bool = False,
+    *,
+    decomposition: Optional[str] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+    cull: bool = True,
+) -> Any:
+    """``(R_a A + t_a) ⊕ (R_b B + t_b)`` as ``(vertices, faces)``.
+
+    Convex operands: the exact convex sum (as ``dymsum._dymsum.minkowski_sum``).
+    A :class:`ConvexUnion` or a non-convex closed mesh: the union over piece
+    pairs of the exact convex sums, merged by Manifold (``manifold3d``) into
+    one closed, oriented, validated mesh, returned as a :class:`UnionSum`
+    (``vertices, faces`` plus ``.info``). A non-convex mesh whose components
+    are not all exactly convex needs ``decomposition="coacd"`` or
+    ``"vhacd"`` (``decomposition_options`` go to that library). ``cull``
+    drops pair sums certified inside another one.
+    """
+    union = isinstance(a, _ext.ConvexUnion) or isinstance(b, _ext.ConvexUnion)
+    if decomposition is None and not union:
+        try:
+            return _convex_sum(a, b, pose_a, pose_b, method, polygons)
+        except ValueError:
+            # dymsum's own message stands unless an operand is a closed,
+            # outward mesh that is refused only for not being convex.
+            if not any(_is_nonconvex_solid(x) for x in (a, b)):
+                raise
+    if polygons:
+        raise ValueError("polygons=True is for convex sums; the sum of non-convex bodies is a triangle mesh")
+    return _union_sum(a, b, pose_a, pose_b, method, decomposition, decomposition_options, cull)
+
+
+class DynamicUnionSum:
+    """``A ⊕ B`` of non-convex bodies kept up to date while they move.
+
+    One :class:`DynamicSum` per pair of convex pieces, each repaired by
+    DYMSUM on :meth:`update` (exact, as for convex bodies); :meth:`mesh`
+    merges the current pair sums with Manifold into one validated closed
+    mesh (a :class:`UnionSum`), redone on each call. Bodies as
+    :func:`minkowski_sum` takes them (``decomposition`` for a non-convex
+    mesh).
+    """
+
+    def __init__(
+        self,
+        a: Any,
+        b: Any,
+        pose_a: Any = None,
+        pose_b: Any = None,
+        *,
+        decomposition: Optional[str] = None,
+        decomposition_options: Optional[Dict[str, Any]] = None,
+        cull: bool = True,
+    ) -> None:
+        self._pa, info_a = convex_pieces(a, decomposition, decomposition_options)
+        self._pb, info_b = convex_pieces(b, decomposition, decomposition_options)
+        self._decomposition = {"a": info_a, "b": info_b}
+        self._cull = cull
+        self._sums = [
+            (i, j, _ext.DynamicSum(p, q, pose_a, pose_b)) for i, p in enumerate(self._pa) for j, q in enumerate(self._pb)
+        ]
+
+    def __len__(self) -> int:
+        """The number of piece pairs."""
+        return len(self._sums)
+
+    def update(self, pose_a: Any = None, pose_b: Any = None) -> Dict[str, Any]:
+        """Moves A and B (``None`` keeps that body where it is) and repairs
+        every pair sum. The report sums the pairs' reports (``facets``,
+        ``errors``, ``removed``, ``added``, ``recomputed``: pairs recomputed
+        from scratch)."""
+        total: Dict[str, Any] = {"pairs": len(self._sums), "facets": 0, "errors": 0, "removed": 0, "added": 0, "recomputed": 0}
+        for _, _, s in self._sums:
+            r = s.update(pose_a, pose_b)
+            for k in ("facets", "errors", "removed", "added"):
+                total[k] += int(r[k])
+            total["recomputed"] += int(bool(r["recomputed"]))
+        return total
+
+    def mesh(self) -> UnionSum:
+        """The current sum as one closed mesh (Manifold's union, validated)."""
+        m3d = _manifold3d()
+        sums = []
+        for i, j, s in self._sums:
+            v, f = s.mesh()
+            sums.append((i, j, np.asarray(v), np.asarray(f)))
+        culled = 0
+        if self._cull and len(sums) > 1:
+            keep = _cull(sums)
+            culled = len(sums) - len(keep)
+            sums = keep
+        return _merge(m3d, sums, culled, len(self._pa), len(self._pb), self._decomposition)
