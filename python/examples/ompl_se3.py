@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import time
 
 import numpy as np
 
@@ -100,25 +99,8 @@ def plan(discrete=False, seconds=10.0, simplify=True):
     ``certified`` (every motion of the path certified free by dymsum) and
     ``validators``."""
     ss, validators = simple_setup(discrete)
-    solved = ss.solve(seconds)
-    found = bool(solved) and ss.haveExactSolutionPath()
-    out = {"found": found, "time": ss.getLastPlanComputationTime(), "validators": validators}
-    if not found:
-        return out
-    simplify_time = 0.0
-    if simplify:
-        t0 = time.perf_counter()
-        ss.simplifySolution()
-        simplify_time = time.perf_counter() - t0
-    path = ss.getSolutionPath()
-    checks = dymsum.ompl.certified_path(ss, path, validators.checker)
-    out.update(
-        length=path.length(),
-        states=path.getStateCount(),
-        simplify_time=simplify_time,
-        certified=all(c.free for c in checks),
-        uncertified_motions=sum(not c.free for c in checks),
-    )
+    out = dymsum.ompl.solve_and_certify(ss, validators.checker, seconds, simplify)
+    out["validators"] = validators
     return out
 
 

@@ -80,6 +80,7 @@ __all__ = [
     "se3_pose",
     "setup_state_checker",
     "setup_validators",
+    "solve_and_certify",
 ]
 
 #: SE(2): a yaw change within this of π is checked as two halves.
@@ -589,3 +590,36 @@ def certified_path(
     si = _space_information(space_information)
     validator = _validator_class()(si, _checker(robot, obstacles), tolerance)
     return validator.check_path(path)
+
+
+def solve_and_certify(simple_setup: Any, checker: MotionChecker, seconds: float = 10.0, simplify: bool = True) -> dict:
+    """Plans once with an OMPL ``SimpleSetup`` whatever its validators, then
+    checks every motion of the path found with the certified check.
+
+    Returns a dict: ``found`` (an exact solution), ``time`` (OMPL's planning
+    time, s) and, when found, ``length``, ``states``, ``simplify_time`` (s,
+    0 without ``simplify``), ``certified`` (every motion certified free)
+    and ``uncertified_motions`` (how many are not)."""
+    import time
+
+    ss = simple_setup
+    solved = ss.solve(seconds)
+    found = bool(solved) and ss.haveExactSolutionPath()
+    out: dict = {"found": found, "time": ss.getLastPlanComputationTime()}
+    if not found:
+        return out
+    simplify_time = 0.0
+    if simplify:
+        t0 = time.perf_counter()
+        ss.simplifySolution()
+        simplify_time = time.perf_counter() - t0
+    path = ss.getSolutionPath()
+    checks = certified_path(ss, path, checker)
+    out.update(
+        length=path.length(),
+        states=path.getStateCount(),
+        simplify_time=simplify_time,
+        certified=all(c.free for c in checks),
+        uncertified_motions=sum(not c.free for c in checks),
+    )
+    return out
