@@ -142,7 +142,7 @@ impl CObstacle {
         })
     }
 
-    fn advance<'b>(
+    pub(super) fn advance<'b>(
         &self,
         sum: &'b mut Option<DynamicSum>,
         r: Rotation,

@@ -132,6 +132,7 @@ mod epa;
 mod evaluate;
 mod frame;
 mod gjk;
+mod halfspaces;
 mod motion;
 mod separation;
 pub mod slabs;
@@ -140,6 +141,7 @@ mod tracker;
 mod union;
 
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
+pub use halfspaces::HalfSpaces;
 pub use motion::{
     check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, MIN_WIDTH,
 };
