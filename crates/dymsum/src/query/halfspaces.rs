@@ -123,7 +123,7 @@ struct Scratch {
 }
 
 /// The largest `|v|` of each body, computed once per pair.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Reaches {
     p: f64,
     q: f64,
@@ -237,7 +237,26 @@ fn above(x: f64) -> f64 {
 
 impl CObstacle {
     fn reaches(&self) -> Reaches {
-        Reaches::of(self.reflected_robot(), self.obstacle())
+        self.reaches
+    }
+
+    /// The half-spaces of the slice held by `sum`, a dynamic sum of this
+    /// C-obstacle's reflected robot and obstacle (as handed to the closure
+    /// of [`CObstacle::map_par`]).
+    ///
+    /// # Errors
+    /// [`QueryError::OutOfRange`] when an offset overflows `f64`;
+    /// [`QueryError::Inconsistent`] for an internal error, or when `sum`
+    /// is not a sum of this C-obstacle's bodies.
+    pub fn halfspaces_of(&self, sum: &DynamicSum) -> Result<HalfSpaces, QueryError> {
+        if sum.p().vertex_count() != self.reflected_robot().vertex_count()
+            || sum.q().vertex_count() != self.obstacle().vertex_count()
+        {
+            return Err(QueryError::Inconsistent(
+                "halfspaces_of: the dynamic sum is not of this C-obstacle's bodies".into(),
+            ));
+        }
+        SCRATCH.with(|c| sum_halfspaces(sum, self.reaches, &mut c.borrow_mut()))
     }
 
     /// The slice at one orientation as half-spaces, computed from scratch
@@ -283,12 +302,9 @@ impl CObstacle {
         &self,
         orientations: &[Rotation],
     ) -> Result<Vec<HalfSpaces>, QueryError> {
-        let reach = self.reaches();
-        self.map_par(orientations, |_, _, s| {
-            SCRATCH.with(|c| sum_halfspaces(s, reach, &mut c.borrow_mut()))
-        })?
-        .into_iter()
-        .collect()
+        self.map_par(orientations, |_, _, s| self.halfspaces_of(s))?
+            .into_iter()
+            .collect()
     }
 }
 
