@@ -6,7 +6,9 @@
 # mypy for checking the type stubs against the module, and OMPL's Python
 # wheel for dymsum.ompl's tests, which then must run: DYMSUM_REQUIRE_OMPL=1),
 # then pytest runs python/tests. Needs the Rust toolchain and python3 with
-# venv and pip (PyPI and crates.io reachable on the first run). Where OMPL
+# venv and pip (PyPI and crates.io reachable on the first run). Dask
+# (dask[distributed]) is installed too: cobstacle_map's tests on
+# LocalClusters then must run (DYMSUM_REQUIRE_DASK=1). Where OMPL
 # has no wheel (it publishes Linux ones), DYMSUM_NO_OMPL=1 leaves it out and
 # its tests are skipped.
 set -euo pipefail
@@ -43,7 +45,10 @@ if [ ! -x "$venv/bin/python" ]; then
         exit 1
     }
 fi
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy "${ompl[@]}"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy 'dask[distributed]' "${ompl[@]}"
+# cobstacle_map on Dask LocalClusters (threads and processes) must run, and
+# the CLI's map container (built by the cargo tests above) is loaded.
+export DYMSUM_REQUIRE_DASK=1 DYMSUM_CLI="$CARGO_TARGET_DIR/release/dymsum" DYMSUM_REQUIRE_CLI=1
 
 printf '\n=== Python: stubtest (the type stubs match the module)\n'
 (cd "$venv" && bin/python -m mypy.stubtest dymsum._dymsum)

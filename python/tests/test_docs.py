@@ -50,7 +50,8 @@ def test_documentation_python_blocks_run(tmp_path, monkeypatch):
     guides in docs/ runs, and writes nothing into the working directory
     (examples write into a temporary or named folder). Blocks that import
     OMPL are skipped where it is not installed, unless DYMSUM_REQUIRE_OMPL=1
-    (scripts/test.sh installs it and sets that)."""
+    (scripts/test.sh installs it and sets that); so are blocks that import
+    Dask, unless DYMSUM_REQUIRE_DASK=1."""
     import importlib.util
     import os
     import pathlib
@@ -60,6 +61,7 @@ def test_documentation_python_blocks_run(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     files = [root / "README.md", root / "python" / "README.md", *sorted((root / "docs").glob("*.md"))]
     have_ompl = os.environ.get("DYMSUM_REQUIRE_OMPL") == "1" or importlib.util.find_spec("ompl") is not None
+    have_dask = os.environ.get("DYMSUM_REQUIRE_DASK") == "1" or importlib.util.find_spec("distributed") is not None
     ran = ompl_blocks = 0
     for doc in files:
         for block in re.findall(r"```python\n(.*?)```", doc.read_text(), re.S):
@@ -67,6 +69,8 @@ def test_documentation_python_blocks_run(tmp_path, monkeypatch):
                 ompl_blocks += 1
                 if not have_ompl:
                     continue
+            if re.search(r"^\s*(from|import) (dask|distributed)\b", block, re.M) and not have_dask:
+                continue
             exec(compile(block, str(doc), "exec"), {})
             ran += 1
     assert ran >= 3 and ompl_blocks >= 2

@@ -52,6 +52,12 @@ from ._dymsum import (
     pose as pose,
     save as save,
 )
+from ._maps import (
+    CObstacleMap as CObstacleMap,
+    CObstacleMapError as CObstacleMapError,
+    cobstacle_map as cobstacle_map,
+    load_cobstacle_map as load_cobstacle_map,
+)
 
 __all__ = [
     "Contact",
@@ -76,4 +82,8 @@ __all__ = [
     "models",
     "pose",
     "save",
+    "CObstacleMap",
+    "CObstacleMapError",
+    "cobstacle_map",
+    "load_cobstacle_map",
 ]

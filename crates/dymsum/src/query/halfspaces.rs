@@ -117,6 +117,10 @@ impl Posed {
 #[derive(Default)]
 struct Scratch {
     overlay: Overlay,
+    /// The posed vertices of P and Q (`Operands::p_vertex`, `q_vertex`),
+    /// computed once per slice rather than once per visit.
+    posed_p: Vec<DVec3>,
+    posed_q: Vec<DVec3>,
     marks_p: Marks,
     marks_q: Marks,
     set: Vec<u32>,
@@ -152,6 +156,15 @@ fn sum_halfspaces(
     let bq = Posed::of(reach.q, ops.pose_q.translation);
     let (rp, rq) = (ops.pose_p.rotation, ops.pose_q.rotation);
     let (m, nf) = (overlay.fv.len(), overlay.vf.len());
+    scratch.posed_p.clear();
+    scratch
+        .posed_p
+        .extend((0..ops.p.vertex_count() as u32).map(|v| ops.p_vertex(v)));
+    scratch.posed_q.clear();
+    scratch
+        .posed_q
+        .extend((0..ops.q.vertex_count() as u32).map(|v| ops.q_vertex(v)));
+    let (pp, pq) = (&scratch.posed_p, &scratch.posed_q);
     let mut out = HalfSpaces {
         normals: Vec::with_capacity(overlay.len()),
         offsets: Vec::with_capacity(overlay.len()),
@@ -177,8 +190,8 @@ fn sum_halfspaces(
             let qe = ops.q.edge(e2 as usize);
             let [u1, u2] = pe.vertices;
             let [w1, w2] = qe.vertices;
-            let c = (ops.p_vertex(u2) - ops.p_vertex(u1))
-                .cross(ops.q_vertex(w2) - ops.q_vertex(w1))
+            let c = (pp[u2 as usize] - pp[u1 as usize])
+                .cross(pq[w2 as usize] - pq[w1 as usize])
                 .normalize_or_zero();
             // Outward: towards the normals of P's faces at the edge.
             let [f0, f1] = pe.faces;
@@ -193,7 +206,7 @@ fn sum_halfspaces(
         };
         let sp = near_max(
             &ops.p,
-            |v| ops.p_vertex(v),
+            |v| pp[v as usize],
             n,
             u,
             0.0,
@@ -204,7 +217,7 @@ fn sum_halfspaces(
         );
         let sq = near_max(
             &ops.q,
-            |v| ops.q_vertex(v),
+            |v| pq[v as usize],
             n,
             w,
             0.0,
