@@ -169,8 +169,8 @@ fn sum_halfspaces(
         normals: Vec::with_capacity(overlay.len()),
         offsets: Vec::with_capacity(overlay.len()),
     };
-    for id in 0..overlay.len() {
-        if degenerate[id] || groups.find(id as u32) != id as u32 {
+    for (id, &flat) in degenerate.iter().enumerate() {
+        if flat || groups.find(id as u32) != id as u32 {
             continue;
         }
         // The normal, and a vertex of each operand on the facet.
