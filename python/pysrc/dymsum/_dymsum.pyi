@@ -40,6 +40,8 @@ __all__ = [
     "save",
     "models",
     "__version__",
+    "_rotations_xyzw",
+    "_cobstacle_block",
 ]
 
 class _MeshLike(Protocol):

@@ -133,7 +133,8 @@ class CObstacleMap:
         fd, tmp = tempfile.mkstemp(prefix=".map-", suffix=".npz.tmp", dir=folder)
         try:
             with os.fdopen(fd, "wb") as f:
-                np.savez(f, **self._a)
+                savez: Any = np.savez  # its keyword `allow_pickle` is no array name here
+                savez(f, **self._a)
                 f.flush()
                 os.fsync(f.fileno())
             os.replace(tmp, path)
