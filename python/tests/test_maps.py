@@ -89,9 +89,9 @@ def test_certified_slabs_match_cobstacle_slices():
         dymsum.cobstacle_map("box", "box", closed, form="mesh", certified=True)
 
 
-def test_blocks_do_not_change_the_result():
+def test_blocks_and_workers_do_not_change_the_result():
     a = dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, block=1)
-    b = dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, block=256)
+    b = dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, block=256, workers=1)
     same_arrays(a, b)
 
 
@@ -169,5 +169,9 @@ def test_dask_gives_the_same_map_bit_for_bit(processes):
         with distributed.Client(cluster) as client:
             remote = dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, client=client, block=6)
             same_arrays(local, remote)
+            # Maps one after the other on one client (the same pieces
+            # scattered again while the first map's are released).
+            for _ in range(3):
+                same_arrays(local, dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, client=client, block=6))
             with pytest.raises(dymsum.CObstacleMapError, match=r"pair \(r0, o1\), block 0"):
                 dymsum.cobstacle_map(CUBE, [CUBE, CUBE * 1e308], TURN, client=client, block=16)

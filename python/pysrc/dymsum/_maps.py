@@ -171,9 +171,12 @@ def cobstacle_map(
     certified: bool = False,
     client: Any = None,
     block: int = 256,
+    workers: Optional[int] = None,
 ) -> CObstacleMap:
     """The C-obstacle slices of every robot piece against every obstacle
-    piece at every rotation (see the module docs and docs/PYTHON.md)."""
+    piece at every rotation (see the module docs and docs/PYTHON.md).
+    ``workers``: the local thread pool's size (``client=None``; default:
+    the CPU count)."""
     if form not in ("halfspaces", "mesh"):
         raise ValueError(f'cobstacle_map: form must be "halfspaces" or "mesh", got {form!r}')
     if certified and form != "halfspaces":
@@ -203,7 +206,7 @@ def cobstacle_map(
 
     results: List[Any] = [None] * len(specs)
     if client is None:
-        with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        with ThreadPoolExecutor(max_workers=workers or os.cpu_count() or 1) as pool:
             futures = [
                 pool.submit(_task, rverts[i], overts[j], quats[s : e + int(certified)], form, certified)
                 for (_, _, i, j, s, e) in specs
@@ -216,8 +219,10 @@ def cobstacle_map(
                         f.cancel()
                     raise CObstacleMapError(f"cobstacle_map: {label(i, j, b, s, e)}: {exc}") from exc
     else:
-        rv = client.scatter(rverts, broadcast=True)
-        ov = client.scatter(overts, broadcast=True)
+        # Fresh keys (hash=False): an earlier map's scattered pieces with the
+        # same content may be being released, and would take these with them.
+        rv = client.scatter(rverts, broadcast=True, hash=False)
+        ov = client.scatter(overts, broadcast=True, hash=False)
         futures = [
             client.submit(
                 _task, rv[i], ov[j], quats[s : e + int(certified)], form, certified, pure=False
