@@ -4,13 +4,14 @@
 # `pip install ./python` into a virtual environment (target/pyenv, or
 # $DYMSUM_PYENV) together with the test dependencies (pytest, numpy, scipy,
 # mypy for checking the type stubs against the module, OMPL's Python wheel
-# for dymsum.ompl's tests, which then must run: DYMSUM_REQUIRE_OMPL=1, and
-# the optional extras for non-convex sums: manifold3d, coacd, vhacdx, then
-# required: DYMSUM_REQUIRE_MANIFOLD=1), then pytest runs python/tests.
-# Needs the Rust toolchain and python3 with venv and pip (PyPI and
-# crates.io reachable on the first run). Where OMPL has no wheel (it
-# publishes Linux ones), DYMSUM_NO_OMPL=1 leaves it out and its tests are
-# skipped.
+# for dymsum.ompl's tests, which then must run: DYMSUM_REQUIRE_OMPL=1, the
+# optional extras for non-convex sums: manifold3d, coacd, vhacdx, then
+# required: DYMSUM_REQUIRE_MANIFOLD=1, and dask[distributed]:
+# cobstacle_map's tests on LocalClusters then must run:
+# DYMSUM_REQUIRE_DASK=1), then pytest runs python/tests. Needs the Rust
+# toolchain and python3 with venv and pip (PyPI and crates.io reachable on
+# the first run). Where OMPL has no wheel (it publishes Linux ones),
+# DYMSUM_NO_OMPL=1 leaves it out and its tests are skipped.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -45,7 +46,10 @@ if [ ! -x "$venv/bin/python" ]; then
         exit 1
     }
 fi
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy "${ompl[@]}"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy 'dask[distributed]' "${ompl[@]}"
+# cobstacle_map on Dask LocalClusters (threads and processes) must run, and
+# the CLI's map container (built by the cargo tests above) is loaded.
+export DYMSUM_REQUIRE_DASK=1 DYMSUM_CLI="$CARGO_TARGET_DIR/release/dymsum" DYMSUM_REQUIRE_CLI=1
 # The optional extras of non-convex sums (dymsum.minkowski_sum on unions and
 # non-convex meshes): Manifold merges the piece sums; CoACD and V-HACD
 # decompose. The package never imports them unless used; here they are

@@ -21,6 +21,7 @@
 #![forbid(unsafe_code)]
 
 mod convert;
+mod maps;
 mod motion;
 
 use convert::{err_for, io_error, value_error, Origin, Shape};
@@ -103,6 +104,16 @@ impl PyPolytope {
     fn new(py: Python<'_>, a: &Bound<'_, PyAny>, strict: bool) -> PyResult<Self> {
         let s = convert::shape(a, "a", policy(strict))?;
         Self::from_shape(py, s)
+    }
+
+    /// Pickles as ``Polytope(vertices)``: the same body (its hull), so
+    /// that a map's tasks can be shipped to worker processes.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        let args = PyTuple::new(py, [self.vertices.bind(py).clone()])?;
+        PyTuple::new(
+            py,
+            [py.get_type::<PyPolytope>().into_any(), args.into_any()],
+        )
     }
 
     /// The vertices, a read-only (n, 3) ``float64`` array (the same array on
@@ -1243,6 +1254,7 @@ fn _dymsum(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(save, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
     motion::register(m)?;
+    maps::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

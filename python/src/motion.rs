@@ -79,6 +79,15 @@ impl PyConvexUnion {
         self.inner.pieces().len()
     }
 
+    /// Pickles as ``ConvexUnion(pieces)`` (each piece a ``Polytope``).
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, pyo3::types::PyTuple>> {
+        let args = pyo3::types::PyTuple::new(py, [self.pieces(py)?])?;
+        pyo3::types::PyTuple::new(
+            py,
+            [py.get_type::<PyConvexUnion>().into_any(), args.into_any()],
+        )
+    }
+
     fn __repr__(&self) -> String {
         format!("ConvexUnion({} pieces)", self.inner.pieces().len())
     }

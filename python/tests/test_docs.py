@@ -51,8 +51,9 @@ def test_documentation_python_blocks_run(tmp_path, monkeypatch):
     (examples write into a temporary or named folder). Blocks that import
     OMPL are skipped where it is not installed, unless DYMSUM_REQUIRE_OMPL=1;
     blocks whose first line is "# needs: PKG ..." where those packages are
-    missing, unless DYMSUM_REQUIRE_MANIFOLD=1 (scripts/test.sh installs
-    both and sets both)."""
+    missing, unless DYMSUM_REQUIRE_MANIFOLD=1; blocks that import Dask
+    where it is missing, unless DYMSUM_REQUIRE_DASK=1 (scripts/test.sh
+    installs all three and sets the variables)."""
     import importlib
     import importlib.util
     import os
@@ -70,6 +71,7 @@ def test_documentation_python_blocks_run(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     files = [root / "README.md", root / "python" / "README.md", *sorted((root / "docs").glob("*.md"))]
     have_ompl = os.environ.get("DYMSUM_REQUIRE_OMPL") == "1" or importlib.util.find_spec("ompl") is not None
+    have_dask = os.environ.get("DYMSUM_REQUIRE_DASK") == "1" or importlib.util.find_spec("distributed") is not None
     ran = ompl_blocks = 0
     for doc in files:
         for block in re.findall(r"```python\n(.*?)```", doc.read_text(), re.S):
@@ -84,6 +86,8 @@ def test_documentation_python_blocks_run(tmp_path, monkeypatch):
             if needs and os.environ.get("DYMSUM_REQUIRE_MANIFOLD") != "1":
                 if not all(importable(m) for m in needs.group(1).split()):
                     continue
+            if re.search(r"^\s*(from|import) (dask|distributed)\b", block, re.M) and not have_dask:
+                continue
             exec(compile(block, str(doc), "exec"), {})
             ran += 1
     assert ran >= 3 and ompl_blocks >= 2

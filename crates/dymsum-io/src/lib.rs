@@ -5,6 +5,8 @@
 //! * [`models`]: the paper's 13 models, tessellated cubes and parametric
 //!   primitives, by name.
 //! * [`atomic`]: atomic file writes and bounded reads of regular files.
+//! * [`npz`]: NumPy `.npz` archives of plain arrays; [`cmap`]: the
+//!   C-obstacle map container written in one.
 //! * [`load`]: an operand from a file path or a model name, as a polytope
 //!   ([`load_polytope`]).
 #![forbid(unsafe_code)]
@@ -12,8 +14,10 @@
 #![warn(missing_docs)]
 
 pub mod atomic;
+pub mod cmap;
 pub mod formats;
 pub mod load;
 pub mod models;
+pub mod npz;
 
 pub use load::{load_mesh, load_polytope, load_polytope_bytes, LoadError, Loaded};

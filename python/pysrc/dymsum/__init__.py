@@ -58,6 +58,12 @@ from .nonconvex import (
     convex_pieces as convex_pieces,
     minkowski_sum as minkowski_sum,
 )
+from ._maps import (
+    CObstacleMap as CObstacleMap,
+    CObstacleMapError as CObstacleMapError,
+    cobstacle_map as cobstacle_map,
+    load_cobstacle_map as load_cobstacle_map,
+)
 
 __all__ = [
     "Contact",
@@ -86,4 +92,8 @@ __all__ = [
     "models",
     "pose",
     "save",
+    "CObstacleMap",
+    "CObstacleMapError",
+    "cobstacle_map",
+    "load_cobstacle_map",
 ]

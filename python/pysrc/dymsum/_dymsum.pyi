@@ -40,6 +40,8 @@ __all__ = [
     "save",
     "models",
     "__version__",
+    "_rotations_xyzw",
+    "_cobstacle_block",
 ]
 
 class _MeshLike(Protocol):
@@ -98,6 +100,8 @@ class Polytope:
     """
 
     def __new__(cls, a: _ShapeLike, strict: bool = False) -> Polytope: ...
+    def __reduce__(self) -> Tuple[Any, Tuple[_Vertices]]:
+        """Pickles as ``Polytope(vertices)`` (the same hull)."""
     @property
     def vertices(self) -> _Vertices:
         """Read-only (n, 3) float64 array (the same array on every access)."""
@@ -386,6 +390,8 @@ class ConvexUnion:
     @property
     def pieces(self) -> list[Polytope]: ...
     def __len__(self) -> int: ...
+    def __reduce__(self) -> Tuple[Any, Tuple[list[Polytope]]]:
+        """Pickles as ``ConvexUnion(pieces)``."""
 
 _BodyLike = Union[ConvexUnion, _ShapeLike]
 _ObstaclesLike = Union[ConvexUnion, _ShapeLike, Sequence[Union[ConvexUnion, _ShapeLike]]]
@@ -456,3 +462,11 @@ def save(path: Union[str, os.PathLike[str]], vertices: npt.ArrayLike, faces: _Fa
 def save(path: Union[str, os.PathLike[str]], vertices: _ShapeLike, faces: None = None) -> None: ...
 def models() -> list[str]:
     """Names of the built-in models and model families."""
+
+def _rotations_xyzw(rotations: _Rotations) -> npt.NDArray[np.float64]:
+    """The rotations as (K, 4) quaternions ``(x, y, z, w)``, as dymsum reads them."""
+
+def _cobstacle_block(
+    robot: _ShapeLike, obstacle: _ShapeLike, rotations: _Rotations, form: str, certified: bool
+) -> Tuple[npt.NDArray[Any], ...]:
+    """One task of :func:`dymsum.cobstacle_map`: one piece pair, one block of rotations."""

@@ -40,6 +40,7 @@ use super::query::load_body;
 use super::short_name;
 use super::slabs::{write_slabs, Cells, SlabFormat};
 use crate::stats::{human_us, micros};
+use dymsum_io::cmap::{Form, MapBuilder};
 
 /// Arguments of `dymsum cobst`.
 #[derive(Debug, Args)]
@@ -83,12 +84,14 @@ pub struct CobstArgs {
     /// the shortest turn between consecutive orientations).
     #[arg(long)]
     pub certified: bool,
-    /// How to write the slabs (with --certified): meshes `slab_NNNNN.off`,
-    /// or half-spaces `slab_NNNNN.json` (unit normals and offsets: the slab
-    /// is {x : n·x ≤ d}).
-    #[arg(long, value_enum, value_name = "FORMAT", default_value_t = SlabFormat::Off,
-          requires = "certified")]
-    pub format: SlabFormat,
+    /// What to write: `off`, one mesh per slice (or slab), `slice_NNNNN.off`;
+    /// `halfspaces`, one JSON of unit outward normals and offsets per slice
+    /// (or slab), `slice_NNNNN.json` (the region is {x : n·x ≤ d}; for
+    /// slices read straight from the sum's facets, no mesh built); `npz`,
+    /// the whole map as half-spaces in one NumPy archive `DIR/map.npz`;
+    /// `npz-mesh`, the meshes in `DIR/map.npz` (slices only).
+    #[arg(long, value_enum, value_name = "FORMAT", default_value_t = CobstFormat::Off)]
+    pub format: CobstFormat,
     /// With --certified: one slab per orientation instead, containing every
     /// slice for every rotation within angle RHO (radians, 0 ≤ RHO < π) of
     /// it, about any axis (an orientation cell in SO(3)): its slice with
@@ -112,6 +115,19 @@ fn parse_cell_radius(s: &str) -> Result<f64, String> {
         ));
     }
     Ok(rho)
+}
+
+/// `dymsum cobst --format`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum CobstFormat {
+    /// One OFF mesh per slice or slab, and `index.json`.
+    Off,
+    /// One JSON of half-spaces per slice or slab, and `index.json`.
+    Halfspaces,
+    /// The map as half-spaces in `DIR/map.npz`.
+    Npz,
+    /// The map as meshes in `DIR/map.npz`.
+    NpzMesh,
 }
 
 /// Parses a non-zero axis `X,Y,Z`.
@@ -181,11 +197,15 @@ pub fn read_orientations(path: &Path) -> anyhow::Result<Vec<Rotation>> {
     Ok(out)
 }
 
-/// `true` for the names cobst writes: `index.json`, `slice_*.off`,
-/// `slab_*.off` and `slab_*.json`.
+/// The container `--format npz` and `npz-mesh` write into `--out`.
+pub const MAP_FILE: &str = "map.npz";
+
+/// `true` for the names cobst writes: `index.json`, `map.npz`,
+/// `slice_*.off`, `slice_*.json`, `slab_*.off` and `slab_*.json`.
 fn is_own_output(name: &str) -> bool {
     name == "index.json"
-        || (name.starts_with("slice_") && name.ends_with(".off"))
+        || name == MAP_FILE
+        || (name.starts_with("slice_") && (name.ends_with(".off") || name.ends_with(".json")))
         || (name.starts_with("slab_") && (name.ends_with(".off") || name.ends_with(".json")))
 }
 
@@ -258,25 +278,43 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     prepare_out_dir(&a.out, a.force)?;
     let union = robot.len() > 1 || obstacle.len() > 1;
     let start = Instant::now();
-    let slices = write_slices(a, &robot, &obstacle, &orientations)?;
+    let slices = match a.format {
+        CobstFormat::Npz | CobstFormat::NpzMesh => {
+            let form = if a.format == CobstFormat::Npz {
+                Form::HalfSpaces
+            } else {
+                Form::Mesh
+            };
+            write_map(a, (&robot, &obstacle), &orientations, form)?
+        }
+        _ => write_slices(a, &robot, &obstacle, &orientations)?,
+    };
     let elapsed = micros(start.elapsed());
-    write_index(&a.out, &orientations, &slices, union)?;
+    if !matches!(a.format, CobstFormat::Npz | CobstFormat::NpzMesh) {
+        write_index(&a.out, &orientations, &slices, union)?;
+    }
     let faces = &slices.faces;
     let (lo, hi) = (
         faces.iter().min().copied().unwrap_or(0),
         faces.iter().max().copied().unwrap_or(0),
     );
     let pairs = robot.len() * obstacle.len();
+    let (unit, target) = match a.format {
+        CobstFormat::Off => ("faces", a.out.clone()),
+        CobstFormat::Halfspaces => ("planes", a.out.clone()),
+        CobstFormat::Npz => ("planes", a.out.join(MAP_FILE)),
+        CobstFormat::NpzMesh => ("faces", a.out.join(MAP_FILE)),
+    };
     writeln!(
         out,
-        "C-obstacle of {} among {}: {} slices ({} piece pair{}), {lo}–{hi} faces per slice, \
+        "C-obstacle of {} among {}: {} slices ({} piece pair{}), {lo}–{hi} {unit} per slice, \
          written to {} in {}",
         short_name(&a.robot),
         short_name(&a.obstacle),
         orientations.len(),
         pairs,
         if pairs == 1 { "" } else { "s" },
-        a.out.display(),
+        target.display(),
         human_us(elapsed),
     )?;
     Ok(())
@@ -309,6 +347,18 @@ fn run_certified(
         }
         _ => bail!("give --axis X,Y,Z with --slices N, or --orientations-wxyz FILE"),
     };
+    if a.format == CobstFormat::NpzMesh {
+        bail!(
+            "--format npz-mesh with --certified: the map holds slabs as half-spaces only; \
+             use --format npz, or --format off for one mesh per slab"
+        );
+    }
+    if a.format == CobstFormat::Npz && a.cell_radius.is_some() {
+        bail!(
+            "--format npz with --cell-radius: the map container holds slabs between \
+             consecutive orientations only; use --format halfspaces or off for cell slabs"
+        );
+    }
     let cells = match a.cell_radius {
         Some(radius) => Cells::Around {
             centres: &orientations,
@@ -322,20 +372,32 @@ fn run_certified(
     };
     prepare_out_dir(&a.out, a.force)?;
     let start = Instant::now();
-    let written = write_slabs(&a.out, bodies, cells, a.format).with_context(|| {
+    let what = || {
         format!(
             "slabs of {} against {}",
             short_name(&a.robot),
             short_name(&a.obstacle)
         )
-    })?;
+    };
+    let (planes, margins) = match a.format {
+        CobstFormat::Npz => write_slab_map(&a.out, bodies, &orientations).with_context(what)?,
+        f => {
+            let f = if f == CobstFormat::Off {
+                SlabFormat::Off
+            } else {
+                SlabFormat::Halfspaces
+            };
+            let w = write_slabs(&a.out, bodies, cells, f).with_context(what)?;
+            (w.planes, w.margins)
+        }
+    };
     let elapsed = micros(start.elapsed());
-    let planes = &written.planes;
+    let planes = &planes;
     let (lo, hi) = (
         planes.iter().min().copied().unwrap_or(0),
         planes.iter().max().copied().unwrap_or(0),
     );
-    let margin = written.margins.iter().copied().fold(0.0, f64::max);
+    let margin = margins.iter().copied().fold(0.0, f64::max);
     let pairs = bodies.0.len() * bodies.1.len();
     writeln!(
         out,
@@ -354,6 +416,43 @@ fn run_certified(
         human_us(elapsed),
     )?;
     Ok(())
+}
+
+/// The certified slabs of every piece pair between consecutive
+/// `orientations`, as half-spaces in `dir/map.npz`; returns the planes
+/// (summed over the pairs) and the largest margin of each slab.
+fn write_slab_map(
+    dir: &Path,
+    (robot, obstacle): (&[Polytope], &[Polytope]),
+    orientations: &[Rotation],
+) -> anyhow::Result<(Vec<usize>, Vec<f64>)> {
+    let n = orientations.len().saturating_sub(1);
+    let mut map = MapBuilder::new(
+        Form::HalfSpaces,
+        true,
+        orientations,
+        n,
+        piece_names("r", robot.len()),
+        piece_names("o", obstacle.len()),
+    );
+    let (mut planes, mut margins) = (vec![0usize; n], vec![0.0f64; n]);
+    for (i, r) in robot.iter().enumerate() {
+        for (j, o) in obstacle.iter().enumerate() {
+            let slabs = CObstacle::new(r, o)
+                .and_then(|c| c.certified_slabs_par(orientations))
+                .with_context(|| {
+                    format!("certified slabs (robot piece {i}, obstacle piece {j})")
+                })?;
+            map.add_pair(i, j);
+            for (k, slab) in slabs.iter().enumerate() {
+                map.push_planes(slab.normals(), slab.offsets());
+                planes[k] += slab.len();
+                margins[k] = margins[k].max(slab.margin());
+            }
+        }
+    }
+    map.write(&dir.join(MAP_FILE))?;
+    Ok((planes, margins))
 }
 
 /// The robot orientations asked for: from `--orientations-wxyz FILE`, or
@@ -395,12 +494,23 @@ fn write_slices(
             let cob = CObstacle::new(r, o).context("reflecting the robot")?;
             let written = cob
                 .map_par(orientations, |k, _, sum| {
-                    let name = if union {
-                        format!("slice_{k:05}_r{i}_o{j}.off")
+                    let ext = if a.format == CobstFormat::Halfspaces {
+                        "json"
                     } else {
-                        format!("slice_{k:05}.off")
+                        "off"
                     };
-                    let res = write_slice(sum, k, &a.out.join(&name)).map(|f| (f, name));
+                    let name = if union {
+                        format!("slice_{k:05}_r{i}_o{j}.{ext}")
+                    } else {
+                        format!("slice_{k:05}.{ext}")
+                    };
+                    let path = a.out.join(&name);
+                    let res = if a.format == CobstFormat::Halfspaces {
+                        write_slice_halfspaces(sum, &cob, k, &path)
+                    } else {
+                        write_slice(sum, k, &path)
+                    };
+                    let res = res.map(|f| (f, name));
                     bar.inc(1);
                     res
                 })
@@ -420,6 +530,101 @@ fn write_slices(
     }
     bar.finish_and_clear();
     Ok(slices)
+}
+
+/// Writes slice `k`'s half-spaces (read from the sum's facets) to `path`
+/// as JSON `{"normals": [[x, y, z], ...], "offsets": [d, ...]}`; returns
+/// the number of planes.
+fn write_slice_halfspaces(
+    sum: &DynamicSum,
+    cob: &CObstacle,
+    k: usize,
+    path: &Path,
+) -> anyhow::Result<usize> {
+    let h = cob
+        .halfspaces_of(sum)
+        .map_err(|e| anyhow::Error::new(e).context(format!("slice {k}")))?;
+    #[derive(Serialize)]
+    struct Json {
+        normals: Vec<[f64; 3]>,
+        offsets: Vec<f64>,
+    }
+    let json = Json {
+        normals: h
+            .normals()
+            .iter()
+            .map(|n| n.to_array().map(|x| x + 0.0))
+            .collect(),
+        offsets: h.offsets().iter().map(|&d| d + 0.0).collect(),
+    };
+    let text = serde_json::to_string(&json)? + "\n";
+    dymsum_io::atomic::write_atomic_bytes(path, text.as_bytes())?;
+    Ok(h.len())
+}
+
+/// Computes every slice of every piece pair (in parallel over the
+/// orientations, DYMSUM within each chunk) and writes them as one map
+/// container `DIR/map.npz` of `form`.
+fn write_map(
+    a: &CobstArgs,
+    (robot, obstacle): (&[Polytope], &[Polytope]),
+    orientations: &[Rotation],
+    form: Form,
+) -> anyhow::Result<Slices> {
+    let n = orientations.len();
+    let mut map = MapBuilder::new(
+        form,
+        false,
+        orientations,
+        n,
+        piece_names("r", robot.len()),
+        piece_names("o", obstacle.len()),
+    );
+    let mut slices = Slices {
+        faces: vec![0usize; n],
+        files: vec![Vec::new(); n],
+    };
+    let bar = crate::progress::bar(
+        (robot.len() * obstacle.len()) as u64,
+        "cobst",
+        "piece pairs",
+    );
+    for (i, r) in robot.iter().enumerate() {
+        for (j, o) in obstacle.iter().enumerate() {
+            let pair = format!(
+                "slices of {} against {} (robot piece {i}, obstacle piece {j})",
+                short_name(&a.robot),
+                short_name(&a.obstacle)
+            );
+            let cob = CObstacle::new(r, o).context("reflecting the robot")?;
+            map.add_pair(i, j);
+            match form {
+                Form::HalfSpaces => {
+                    let hs = cob.halfspace_slices_par(orientations).context(pair)?;
+                    for (k, h) in hs.iter().enumerate() {
+                        slices.faces[k] += h.len();
+                        map.push_halfspaces(h);
+                    }
+                }
+                Form::Mesh => {
+                    let meshes = cob.slices_par(orientations).context(pair)?;
+                    for (k, m) in meshes.iter().enumerate() {
+                        slices.faces[k] += m.faces.len();
+                        map.push_mesh(m);
+                    }
+                }
+            }
+            bar.inc(1);
+        }
+    }
+    bar.finish_and_clear();
+    map.write(&a.out.join(MAP_FILE))?;
+    Ok(slices)
+}
+
+/// `prefix0`, `prefix1`, ...: the names of a body's pieces in a map.
+fn piece_names(prefix: &str, n: usize) -> Vec<String> {
+    (0..n).map(|i| format!("{prefix}{i}")).collect()
 }
 
 /// Writes slice `k`, the sum's mesh, to `path`; returns its face count.

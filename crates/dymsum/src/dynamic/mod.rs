@@ -460,6 +460,11 @@ impl DynamicSum {
         Some((old, old.angle_to(&new)))
     }
 
+    /// The posed operands (for readers of the current state).
+    pub(crate) fn operands(&self) -> &crate::sum::Operands {
+        &self.ops
+    }
+
     /// The current overlay, with ee-pairs sorted.
     pub fn overlay(&self) -> Overlay {
         let mut out = Overlay::default();

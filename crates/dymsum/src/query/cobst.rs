@@ -75,6 +75,8 @@ pub fn orientations_about_axis(axis: DVec3, n: usize) -> Option<Vec<Rotation>> {
 pub struct CObstacle {
     neg_robot: std::sync::Arc<Reflected>,
     obstacle: Polytope,
+    /// The bodies' reach, for the half-space slices.
+    pub(super) reaches: super::halfspaces::Reaches,
 }
 
 impl CObstacle {
@@ -83,8 +85,10 @@ impl CObstacle {
     /// # Errors
     /// Only internal errors of the reflection, as [`ConvexPair::new`](super::ConvexPair::new).
     pub fn new(robot: &Polytope, obstacle: &Polytope) -> Result<Self, QueryError> {
+        let neg_robot = Reflected::new(robot)?;
         Ok(CObstacle {
-            neg_robot: std::sync::Arc::new(Reflected::new(robot)?),
+            reaches: super::halfspaces::Reaches::of(&neg_robot.polytope, obstacle),
+            neg_robot: std::sync::Arc::new(neg_robot),
             obstacle: obstacle.clone(),
         })
     }
@@ -142,7 +146,7 @@ impl CObstacle {
         })
     }
 
-    fn advance<'b>(
+    pub(super) fn advance<'b>(
         &self,
         sum: &'b mut Option<DynamicSum>,
         r: Rotation,

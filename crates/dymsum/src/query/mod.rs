@@ -132,6 +132,7 @@ mod epa;
 mod evaluate;
 mod frame;
 mod gjk;
+mod halfspaces;
 mod motion;
 mod separation;
 pub mod slabs;
@@ -184,6 +185,7 @@ pub(crate) mod test_support {
 }
 
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
+pub use halfspaces::HalfSpaces;
 pub use motion::{
     check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, MIN_WIDTH,
 };

@@ -76,13 +76,13 @@ use glam::DVec3;
 /// A vertex of the sum as `(vertex of P, vertex of Q)`.
 type SumVertex = (u32, u32);
 
-struct UnionFind(Vec<u32>);
+pub(crate) struct UnionFind(Vec<u32>);
 
 impl UnionFind {
     fn new(n: usize) -> Self {
         UnionFind((0..n as u32).collect())
     }
-    fn find(&mut self, mut x: u32) -> u32 {
+    pub(crate) fn find(&mut self, mut x: u32) -> u32 {
         while self.0[x as usize] != x {
             let p = self.0[x as usize];
             self.0[x as usize] = self.0[p as usize];
@@ -263,7 +263,7 @@ fn exact_sum(a: f64, b: f64) -> bool {
 /// Union of the coplanar facets (module docs): returns the union-find,
 /// which ee-facets are degenerate (zero area), and whether any facet is
 /// coplanar with another or degenerate.
-fn coplanar_groups(ops: &Operands, overlay: &Overlay) -> (UnionFind, Vec<bool>, bool) {
+pub(crate) fn coplanar_groups(ops: &Operands, overlay: &Overlay) -> (UnionFind, Vec<bool>, bool) {
     let m = overlay.fv.len();
     let n = overlay.vf.len();
     let total = overlay.len();
