@@ -301,5 +301,27 @@ fn certified_npz_holds_the_slabs_and_npz_mesh_is_refused() {
         !dir.join("n").exists(),
         "nothing written for a refused format"
     );
+    // Cell slabs do not fit the container (slabs between orientations).
+    let o = run(&[
+        "cobst",
+        "gs1",
+        "box:2,1,1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "8",
+        "--out",
+        dir.join("c").to_str().unwrap(),
+        "--certified",
+        "--cell-radius",
+        "0.1",
+        "--format",
+        "npz",
+    ]);
+    assert_fails(&o, 1, "--cell-radius");
+    assert!(
+        !dir.join("c").exists(),
+        "nothing written for a refused format"
+    );
     dymsum_testkit::files::remove_dir(&dir);
 }
