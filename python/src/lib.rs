@@ -340,7 +340,7 @@ fn report_dict<'py>(
 /// >>> sorted(report)[:3]
 /// ['added', 'ee_errors', 'errors']
 /// >>> v, f = s.mesh()
-#[pyclass(module = "dymsum", name = "DynamicSum")]
+#[pyclass(module = "dymsum", name = "DynamicSum", subclass)]
 pub struct PyDynamicSum {
     inner: DynamicSum,
 }
@@ -1178,6 +1178,62 @@ fn load(
     PyPolytope::from_shape(py, shape)
 }
 
+/// The bodies of a mesh file, as written, without hulls or checks: a list
+/// of ``(name, vertices, faces)`` with vertices (N, 3) ``float64`` and faces
+/// (M, 3) ``int64`` (polygons fan-triangulated). An OBJ file gives one body
+/// per object (groups of one closed mesh are one body); other formats one
+/// body named after the file. Used for non-convex bodies given by path
+/// (``minkowski_sum``, ``contact``, ... take them); ``load`` is the convex
+/// reader.
+///
+/// Raises ``FileNotFoundError`` / ``OSError`` when the file cannot be read
+/// and ``ValueError`` when it does not parse.
+///
+/// >>> import dymsum, tempfile, os
+/// >>> path = os.path.join(tempfile.mkdtemp(), "two.obj")
+/// >>> _ = open(path, "w").write("o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+/// ...                           "o b\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n")
+/// >>> [(name, v.shape, f.shape) for name, v, f in dymsum.read_mesh_bodies(path)]
+/// [('a', (4, 3), (4, 3)), ('b', (4, 3), (4, 3))]
+#[pyfunction]
+fn read_mesh_bodies<'py>(
+    py: Python<'py>,
+    path: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyList>> {
+    let spec = path_string(path)?;
+    let p = std::path::Path::new(&spec);
+    let read = py.detach(
+        || -> Result<Vec<(String, dymsum::PolygonMesh)>, FormatError> {
+            let is_obj = dymsum_io::formats::Format::from_path(p).ok()
+                == Some(dymsum_io::formats::Format::Obj);
+            if is_obj {
+                dymsum_io::formats::read_obj_objects(p)
+            } else {
+                let name = p
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_default();
+                Ok(vec![(name, dymsum_io::formats::read_mesh(p)?)])
+            }
+        },
+    );
+    let bodies = read.map_err(|e| {
+        let msg = format!("file {spec}: {e}");
+        match &e {
+            FormatError::Io { source, .. } => io_error(source.kind(), msg),
+            _ => value_error(msg),
+        }
+    })?;
+    let out = PyList::empty(py);
+    for (name, mesh) in bodies {
+        let tri = mesh.triangulated();
+        let vertices = convert::vertices_array(py, tri.vertices)?;
+        let faces = convert::triangles_array(py, &tri.faces)?;
+        out.append((name, vertices, faces))?;
+    }
+    Ok(out)
+}
+
 /// Writes a mesh to ``path`` in the format its extension names (``.off``,
 /// ``.obj``, ``.ply`` ASCII, ``.stl`` binary), atomically.
 ///
@@ -1252,6 +1308,7 @@ fn _dymsum(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pose, m)?)?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(save, m)?)?;
+    m.add_function(wrap_pyfunction!(read_mesh_bodies, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
     motion::register(m)?;
     maps::register(m)?;

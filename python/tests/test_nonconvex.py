@@ -400,3 +400,163 @@ def test_dynamic_union_sum_follows_a_turning_body():
         assert r.volume == pytest.approx(fresh.volume, rel=1e-12)
         if k in (0, 5):
             oracle_check(r, pieces, small, pose_b=pose, seed=k)
+
+
+# ------------------------------------------------ contact, slices, DynamicSum, paths
+
+
+def _translation(t):
+    return dymsum.pose(translation=list(map(float, t)))
+
+
+def _moved(pose, shift):
+    p = np.eye(4) if pose is None else np.array(pose, float)
+    p[:3, 3] += shift
+    return p
+
+
+def _union_collides(a, b, pose_a, pose_b):
+    """Exact collision of two unions, from dymsum's convex pair queries."""
+    return any(dymsum.contact(p, q, pose_a, pose_b).collides for p in a.pieces for q in b.pieces)
+
+
+@pytest.mark.parametrize(
+    "at, depth, normal",
+    [
+        ((0.25, 0.25, 0.1), 0.6, (0, 0, -1)),  # in the corner, low: the cube leaves downwards
+        ((2.0, 0.1, 0.3), 0.6, (0, -1, 0)),  # in the long arm, near its side
+        ((0.3, 2.8, 0.3), 0.2, (0, 1, 0)),  # at the tip of the short arm
+    ],
+)
+def test_union_contact_depth_of_an_L_and_a_cube(at, depth, normal):
+    """Depth from the merged C-obstacle: known answers for a 0.5 cube inside
+    the L (translating A by −depth·normal leaves the bodies touching)."""
+    c = dymsum.contact(L_union(), cube(0.5), None, _translation(at))
+    assert isinstance(c, dymsum.UnionContact) and c.collides
+    assert c.depth == pytest.approx(depth, abs=1e-12)
+    assert c.distance == 0.0
+    np.testing.assert_allclose(c.normal, normal, atol=1e-12)
+    np.testing.assert_allclose(c.point_a - c.point_b, c.depth * c.normal, atol=1e-9)
+    assert c.info["cobstacle"]["shells"] == 1
+
+
+def test_union_contact_apart_is_the_exact_minimum_distance():
+    c = dymsum.contact(L_union(), cube(0.5), None, _translation((2.0, 2.0, 0.25)))
+    assert isinstance(c, dymsum.UnionContact) and not c.collides and c.depth == 0.0
+    assert c.distance == 1.0  # to the short arm's side x = 1: exact
+    pair = [dymsum.contact(p, cube(0.5), None, _translation((2.0, 2.0, 0.25))).distance for p in L_union().pieces]
+    assert c.distance == min(pair)
+
+
+def test_union_contact_of_one_piece_equals_the_convex_contact():
+    a, b = dymsum.load("gs4"), dymsum.load("ellipse")
+    pose_b = dymsum.pose(Rotation.from_rotvec([0.3, 0.2, -0.4]).as_quat(), [0.2, -0.1, 0.05])
+    convex = dymsum.contact(a, b, None, pose_b)
+    union = dymsum.contact(dymsum.ConvexUnion([a]), b, None, pose_b)
+    assert convex.collides and union.collides
+    assert union.depth == pytest.approx(convex.depth, rel=1e-9)
+    np.testing.assert_allclose(union.normal, convex.normal, atol=1e-6)
+
+
+def test_union_contact_depth_against_translation_oracle():
+    """Random unions of boxes, random poses: translating A by −(depth+ε)·normal
+    separates every piece pair, and no translation shorter than depth−ε along
+    300 random directions does (exact pair collision tests)."""
+    rng = np.random.default_rng(21)
+    checked = 0
+    for trial in range(12):
+        a = dymsum.ConvexUnion([box(lo, lo + rng.uniform(0.3, 1.5, 3)) for lo in rng.uniform(-1, 1, (3, 3))])
+        b = dymsum.ConvexUnion([box(lo, lo + rng.uniform(0.2, 1.0, 3)) for lo in rng.uniform(-0.5, 0.5, (2, 3))])
+        pose_b = np.eye(4)
+        pose_b[:3, :3] = Rotation.from_rotvec(rng.normal(size=3) * 0.7).as_matrix()
+        pose_b[:3, 3] = rng.uniform(-0.5, 0.5, 3)
+        c = dymsum.contact(a, b, None, pose_b)
+        if not c.collides:
+            continue
+        checked += 1
+        eps = 1e-7 * (1 + c.depth)
+        assert not _union_collides(a, b, _moved(None, -(c.depth + eps) * c.normal), pose_b)
+        for u in rng.normal(size=(300, 3)):
+            u /= np.linalg.norm(u)
+            assert _union_collides(a, b, _moved(None, -(c.depth - eps) * u), pose_b), f"trial {trial}: shorter way out along {u}"
+        pair_depths = [dymsum.contact(p, q, None, pose_b).depth for p in a.pieces for q in b.pieces]
+        assert c.depth >= max(pair_depths) - 1e-12
+    assert checked >= 6
+
+
+def test_cobstacle_slices_of_unions_against_pair_slices():
+    """Each merged slice is valid, holds exactly the points of the union of
+    the convex pair slices (random points away from the boundary)."""
+    rotations = Rotation.from_rotvec(np.outer(np.linspace(0, 1.2, 4), [0.2, 0.4, 0.9]))
+    robot = dymsum.ConvexUnion([box((-0.3, -0.3, -0.3), (0.9, 0.3, 0.3)), box((-0.3, -0.3, -0.3), (0.3, 0.9, 0.3))])
+    slices = dymsum.cobstacle_slices(robot, L_union(), rotations)
+    assert len(slices) == 4
+    rng = np.random.default_rng(3)
+    for k, s in enumerate(slices):
+        assert isinstance(s, dymsum.UnionSum)
+        assert_valid(*s)
+        pair = [dymsum.cobstacle_slices(p, q, rotations[k : k + 1])[0] for p in robot.pieces for q in L_union().pieces]
+        planes = []
+        for v, f in pair:
+            h = ConvexHull(v)
+            planes.append(h.equations)
+        lo, hi = s.vertices.min(axis=0), s.vertices.max(axis=0)
+        pts = rng.uniform(lo - 0.2, hi + 0.2, (3000, 3))
+        level = np.min([(pts @ eq[:, :3].T + eq[:, 3]).max(axis=1) for eq in planes], axis=0)
+        ours = np.round(winding_numbers(pts, *s)) >= 1
+        far = np.abs(level) > 1e-7
+        assert np.array_equal(ours[far], (level < 0)[far])
+    certified = dymsum.cobstacle_slices(robot, L_union(), rotations, certified=True)
+    assert len(certified) == 3 and all(len(step) == 4 for step in certified)
+    assert all(isinstance(slab, dymsum.Slab) for step in certified for slab in step)
+
+
+def test_cobstacle_slices_of_unions_refuse_polygons():
+    with pytest.raises(ValueError, match="polygons=True"):
+        dymsum.cobstacle_slices(L_union(), cube(1), np.array([[0, 0, 0, 1.0]]), polygons=True)
+
+
+def test_dynamic_sum_of_a_union_is_a_dynamic_union_sum():
+    s = dymsum.DynamicSum(L_union(), cube(0.5, (10, 0, 0)))
+    assert isinstance(s, dymsum.DynamicUnionSum) and len(s) == 2
+    assert s.mesh().volume == pytest.approx(12.375, rel=1e-12)
+    convex = dymsum.DynamicSum(cube(1), cube(2))
+    assert isinstance(convex, dymsum.DynamicSum) and len(convex.mesh()[0]) == 8
+
+
+def _write_obj(path, bodies):
+    with open(path, "w") as fh:
+        k = 0
+        for name, (v, f) in bodies:
+            fh.write(f"o {name}\n")
+            for x in v:
+                fh.write("v %r %r %r\n" % tuple(map(float, x)))
+            for t in f:
+                fh.write("f %d %d %d\n" % tuple(int(i) + 1 + k for i in t))
+            k += len(v)
+
+
+def test_bodies_from_files(tmp_path):
+    """A mesh file path works where a shape is taken: OBJ objects are pieces,
+    an OFF of separate convex shells is split into its components, and a
+    file of one convex body stays a plain convex operand."""
+    obj = tmp_path / "L.obj"
+    _write_obj(obj, [(n, box_mesh(lo, hi)) for n, (lo, hi) in zip("ab", L_BOXES)])
+    assert [name for name, _, _ in dymsum.read_mesh_bodies(obj)] == ["a", "b"]
+    r = dymsum.minkowski_sum(str(obj), cube(0.5, (10, 0, 0)))
+    assert r.volume == pytest.approx(12.375, rel=1e-12)
+    assert r.info["decomposition"]["a"]["method"] == "objects"
+    ring = [((0, 0, 0), (4, 1, 1)), ((0, 3, 0), (4, 4, 1)), ((0, 1, 0), (1, 3, 1)), ((3, 1, 0), (4, 3, 1))]
+    off = tmp_path / "ring.off"
+    dymsum.save(off, *two_box_mesh(ring))
+    s = dymsum.minkowski_sum(obj, off)
+    assert_valid(*s)
+    assert s.info["decomposition"]["b"]["method"] == "components"
+    assert s.volume == pytest.approx(box_union_volume(box_sum_boxes(L_BOXES, ring)), rel=1e-12)
+    c = dymsum.contact(obj, cube(0.5), None, _translation((0.25, 0.25, 0.25)))
+    assert c.depth == pytest.approx(0.75, abs=1e-12)
+    single = tmp_path / "cube.off"
+    dymsum.save(single, *box_mesh((0, 0, 0), (1, 1, 1)))
+    assert type(dymsum.minkowski_sum(single, single)) is tuple
+    with pytest.raises(FileNotFoundError):
+        dymsum.read_mesh_bodies(tmp_path / "missing.obj")

@@ -14,9 +14,11 @@ from typing import Any, Literal, Optional, Protocol, Sequence, Tuple, Union, fin
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import disjoint_base
 
 __version__: str
 __all__ = [
+    "read_mesh_bodies",
     "Polytope",
     "DynamicSum",
     "Contact",
@@ -168,7 +170,7 @@ def minkowski_sum(
     polygons: bool = False,
 ) -> Tuple[_Vertices, Union[_Triangles, _Polygons]]: ...
 
-@final
+@disjoint_base
 class DynamicSum:
     """``A ⊕ B`` kept up to date while the bodies move (DYMSUM).
 
@@ -460,6 +462,11 @@ def load(path_or_model_name: Union[str, os.PathLike[str]], strict: bool = False)
 def save(path: Union[str, os.PathLike[str]], vertices: npt.ArrayLike, faces: _Faces) -> None: ...
 @overload
 def save(path: Union[str, os.PathLike[str]], vertices: _ShapeLike, faces: None = None) -> None: ...
+def read_mesh_bodies(
+    path: Union[str, os.PathLike[str]],
+) -> list[Tuple[str, npt.NDArray[np.float64], npt.NDArray[np.int64]]]:
+    """The bodies of a mesh file as written: ``(name, vertices, faces)``, polygons fan-triangulated."""
+
 def models() -> list[str]:
     """Names of the built-in models and model families."""
 

@@ -25,6 +25,7 @@ used; without them a clear ``ImportError`` names the package to install.
 
 from __future__ import annotations
 
+import os
 from typing import TYPE_CHECKING, Any, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
@@ -32,7 +33,19 @@ import numpy.typing as npt
 
 from . import _dymsum as _ext
 
-__all__ = ["UnionSum", "MeshUnionError", "DynamicUnionSum", "minkowski_sum", "convex_pieces", "check_closed_mesh"]
+__all__ = [
+    "UnionSum",
+    "UnionContact",
+    "MeshUnionError",
+    "DynamicSum",
+    "DynamicUnionSum",
+    "minkowski_sum",
+    "contact",
+    "cobstacle_slices",
+    "convex_pieces",
+    "check_closed_mesh",
+    "closest_boundary_point",
+]
 
 DECOMPOSITIONS = ("coacd", "vhacd")
 
@@ -280,6 +293,12 @@ def convex_pieces(
         return list(shape.pieces), {"method": "given", "exact": True}
     if isinstance(shape, _ext.Polytope):
         return [shape], {"method": "convex", "exact": True}
+    path = _path_of(shape)
+    if path is not None:
+        try:
+            return [_ext.Polytope(path)], {"method": "convex", "exact": True}
+        except ValueError:
+            return _path_pieces(path, decomposition, opts)
     mesh = _mesh_of(shape)
     if mesh is None:
         return [_ext.Polytope(shape)], {"method": "convex", "exact": True}
@@ -569,7 +588,7 @@ def minkowski_sum(
         except ValueError:
             # dymsum's own message stands unless an operand is a closed,
             # outward mesh that is refused only for not being convex.
-            if not any(_is_nonconvex_solid(x) for x in (a, b)):
+            if not any(_is_union_operand(x) for x in (a, b)):
                 raise
     if polygons:
         raise ValueError("polygons=True is for convex sums; the sum of non-convex bodies is a triangle mesh")
@@ -636,3 +655,342 @@ class DynamicUnionSum:
             culled = len(sums) - len(keep)
             sums = keep
         return _merge(m3d, sums, culled, len(self._pa), len(self._pb), self._decomposition)
+
+
+# ------------------------------------------------- bodies given by file path
+
+
+def _path_of(shape: Any) -> Optional[str]:
+    """The file path ``shape`` names, if it names an existing file."""
+    if isinstance(shape, (str, os.PathLike)):
+        path = os.fspath(shape)
+        if isinstance(path, str) and os.path.isfile(path):
+            return path
+    return None
+
+
+def _path_pieces(path: str, decomposition: Optional[str], options: Optional[Dict[str, Any]]) -> Tuple[List[Any], Dict[str, Any]]:
+    """Convex pieces of a mesh file that ``Polytope`` refuses: the bodies of
+    the file (OBJ objects), each convex or split as :func:`convex_pieces`
+    splits a mesh."""
+    bodies = _ext.read_mesh_bodies(path)
+    if len(bodies) == 1:
+        _, v, f = bodies[0]
+        return convex_pieces((v, f), decomposition, options)
+    pieces: List[Any] = []
+    objects = []
+    for name, v, f in bodies:
+        got, how = convex_pieces((v, f) if len(f) else v, decomposition, options)
+        pieces.extend(got)
+        objects.append({"name": name, **how})
+    info: Dict[str, Any] = {"method": "objects", "exact": all(o["exact"] for o in objects), "objects": objects}
+    return pieces, info
+
+
+def _is_union_operand(shape: Any) -> bool:
+    """A body that is not one convex polytope: a :class:`ConvexUnion`, a
+    closed non-convex mesh, or a mesh file holding either."""
+    if isinstance(shape, _ext.ConvexUnion):
+        return True
+    path = _path_of(shape)
+    if path is not None:
+        try:
+            _ext.Polytope(path)
+            return False
+        except ValueError:
+            pass
+        try:
+            bodies = _ext.read_mesh_bodies(path)
+        except (ValueError, OSError):
+            return False
+        if len(bodies) > 1:
+            return True
+        return _is_nonconvex_solid((bodies[0][1], bodies[0][2]))
+    return _is_nonconvex_solid(shape)
+
+
+# ------------------------------------------------------------------ poses
+
+
+def _pose_matrix(pose: Any) -> np.ndarray:
+    """Any accepted pose as a 4×4 ``float64`` rigid transform."""
+    if pose is None:
+        return np.eye(4)
+    if not hasattr(pose, "as_quat"):
+        m = np.asarray(pose, dtype=np.float64)
+        if m.shape == (4, 4):
+            return m
+    return np.array(_ext.pose(pose), dtype=np.float64)
+
+
+def _reflected(piece: Any) -> Any:
+    """``−piece`` (exact: negation is exact in floats)."""
+    return _ext.Polytope(-np.asarray(_ext.Polytope(piece).vertices))
+
+
+# ---------------------------------------------------------------- contact
+
+
+class UnionContact:
+    """The contact of two bodies at least one of which is non-convex.
+
+    The same attributes as :class:`Contact` — ``collides``, ``depth``,
+    ``distance``, ``normal`` (from A towards B), ``point_a``, ``point_b`` —
+    plus ``pair``, the indices ``(i, j)`` of the pieces that decide the
+    answer, and ``info`` (``pieces``, ``decomposition`` per body, and for a
+    depth ``cobstacle``: the merged C-obstacle's info).
+
+    ``collides`` and ``distance`` are exact (the pair answers are exact; the
+    distance is their minimum). ``depth`` is the distance from the origin to
+    the boundary of the merged C-obstacle ``A ⊕ (−B)``: the union, by
+    Manifold, of the exact piece-pair sums, so it is exact up to that
+    union's float construction; ``normal`` and the witness points come from
+    the closest boundary point ``p = depth · normal`` (translating A by
+    ``−p`` leaves the bodies touching).
+    """
+
+    __slots__ = ("collides", "depth", "distance", "_normal", "_point_a", "_point_b", "pair", "info")
+
+    def __init__(
+        self,
+        collides: bool,
+        depth: float,
+        distance: float,
+        normal: np.ndarray,
+        point_a: np.ndarray,
+        point_b: np.ndarray,
+        pair: Tuple[int, int],
+        info: Dict[str, Any],
+    ) -> None:
+        self.collides = bool(collides)
+        self.depth = float(depth)
+        self.distance = float(distance)
+        self._normal = np.array(normal, dtype=np.float64)
+        self._point_a = np.array(point_a, dtype=np.float64)
+        self._point_b = np.array(point_b, dtype=np.float64)
+        self.pair = pair
+        self.info = info
+
+    @property
+    def normal(self) -> npt.NDArray[np.float64]:
+        return self._normal.copy()
+
+    @property
+    def point_a(self) -> npt.NDArray[np.float64]:
+        return self._point_a.copy()
+
+    @property
+    def point_b(self) -> npt.NDArray[np.float64]:
+        return self._point_b.copy()
+
+    def __repr__(self) -> str:
+        if self.collides:
+            return f"UnionContact(collides=True, depth={self.depth}, normal={self._normal.tolist()}, pair={self.pair})"
+        return f"UnionContact(collides=False, distance={self.distance}, normal={self._normal.tolist()}, pair={self.pair})"
+
+
+def closest_boundary_point(vertices: np.ndarray, faces: np.ndarray, point: Any) -> Tuple[np.ndarray, int]:
+    """The point of the triangle mesh closest to ``point``, and its triangle.
+
+    Vectorised closest point on each triangle (Ericson's region tests);
+    degenerate triangles are skipped (their edges belong to neighbours).
+    """
+    p = np.asarray(point, dtype=np.float64)
+    t = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)]
+    a, b, c = t[:, 0], t[:, 1], t[:, 2]
+    ab, ac = b - a, c - a
+    ap, bp, cp = p - a, p - b, p - c
+    d1, d2 = np.einsum("ij,ij->i", ab, ap), np.einsum("ij,ij->i", ac, ap)
+    d3, d4 = np.einsum("ij,ij->i", ab, bp), np.einsum("ij,ij->i", ac, bp)
+    d5, d6 = np.einsum("ij,ij->i", ab, cp), np.einsum("ij,ij->i", ac, cp)
+    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denom = va + vb + vc
+        out = a + ab * (vb / denom)[:, None] + ac * (vc / denom)[:, None]
+        # Regions in reverse priority: each later assignment wins.
+        m = (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)
+        w = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+        out[m] = (b + (c - b) * w[:, None])[m]
+        m = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
+        w = d2 / (d2 - d6)
+        out[m] = (a + ac * w[:, None])[m]
+        m = (d6 >= 0) & (d5 <= d6)
+        out[m] = c[m]
+        m = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
+        w = d1 / (d1 - d3)
+        out[m] = (a + ab * w[:, None])[m]
+        m = (d3 >= 0) & (d4 <= d3)
+        out[m] = b[m]
+        m = (d1 <= 0) & (d2 <= 0)
+        out[m] = a[m]
+    dist = np.linalg.norm(out - p, axis=1)
+    dist[~np.isfinite(dist)] = np.inf
+    k = int(np.argmin(dist))
+    return out[k], k
+
+
+def _union_contact(
+    a: Any,
+    b: Any,
+    pose_a: Any,
+    pose_b: Any,
+    decomposition: Optional[str],
+    decomposition_options: Optional[Dict[str, Any]],
+) -> UnionContact:
+    pa, info_a = convex_pieces(a, decomposition, decomposition_options)
+    pb, info_b = convex_pieces(b, decomposition, decomposition_options)
+    ta, tb = _pose_matrix(pose_a), _pose_matrix(pose_b)
+    info: Dict[str, Any] = {"pieces": (len(pa), len(pb)), "decomposition": {"a": info_a, "b": info_b}}
+    best = None
+    hits = []
+    for i, p in enumerate(pa):
+        for j, q in enumerate(pb):
+            c = _ext.contact(p, q, ta, tb)
+            if c.collides:
+                hits.append((c.depth, i, j, c))
+            elif best is None or c.distance < best[0]:
+                best = (c.distance, i, j, c)
+    if not hits:
+        assert best is not None
+        _, i, j, c = best
+        return UnionContact(False, 0.0, c.distance, c.normal, c.point_a, c.point_b, (i, j), info)
+    # The C-obstacle A ⊕ (−B): −(R q + t) = R (−q) − t.
+    neg_b = [_reflected(q) for q in pb]
+    tneg = tb.copy()
+    tneg[:3, 3] = -tb[:3, 3]
+    sums = []
+    for i, p in enumerate(pa):
+        for j, q in enumerate(neg_b):
+            v, f = _convex_sum(p, q, ta, tneg)
+            sums.append((i, j, np.asarray(v), np.asarray(f)))
+    keep = _cull(sums) if len(sums) > 1 else sums
+    cobstacle = _merge(_manifold3d(), keep, len(sums) - len(keep), len(pa), len(pb), info["decomposition"])
+    info["cobstacle"] = cobstacle.info
+    point, _ = closest_boundary_point(cobstacle.vertices, cobstacle.faces, np.zeros(3))
+    depth = float(np.linalg.norm(point))
+    _, i, j, deepest = max(hits, key=lambda h: h[0])
+    if not depth > 0:
+        return UnionContact(True, 0.0, 0.0, deepest.normal, deepest.point_a, deepest.point_b, (i, j), info)
+    normal = point / depth
+    # The pair whose sum holds p most deeply decides the witnesses: A moved
+    # by −p touches B there.
+    inside = [float((pl[:, :3] @ point + pl[:, 3]).max()) for pl in (_planes(v, f) for _, _, v, f in sums)]
+    k = int(np.argmin(inside))
+    i, j = sums[k][0], sums[k][1]
+    moved = ta.copy()
+    moved[:3, 3] -= point
+    w = _ext.contact(pa[i], pb[j], moved, tb)
+    return UnionContact(True, depth, 0.0, normal, w.point_a + point, w.point_b, (i, j), info)
+
+
+def contact(
+    a: Any,
+    b: Any,
+    pose_a: Any = None,
+    pose_b: Any = None,
+    *,
+    decomposition: Optional[str] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+) -> Any:
+    """Penetration depth or distance of A and B at their poses.
+
+    Convex bodies: the exact :class:`Contact` (``dymsum._dymsum.contact``).
+    A :class:`ConvexUnion`, a closed non-convex mesh or a mesh file of
+    several objects: a :class:`UnionContact` with the same attributes
+    (collision and distance exact; depth from the merged C-obstacle, exact
+    up to Manifold's union; needs ``manifold3d`` when the bodies collide).
+    ``decomposition`` as for :func:`minkowski_sum`.
+
+    >>> import dymsum
+    >>> L = dymsum.ConvexUnion(["box:3,1,1", dymsum.Polytope([[x, y, z] for x in (-1.5, -0.5) for y in (0.5, 2) for z in (-0.5, 0.5)])])
+    >>> c = dymsum.contact(L, "box:1,1,1", None, dymsum.pose(translation=[0.0, 3.0, 0.0]))
+    >>> c.collides, c.distance
+    (False, 0.5)
+    """
+    if decomposition is None and not (isinstance(a, _ext.ConvexUnion) or isinstance(b, _ext.ConvexUnion)):
+        try:
+            return _ext.contact(a, b, pose_a, pose_b)
+        except ValueError:
+            if not any(_is_union_operand(x) for x in (a, b)):
+                raise
+    return _union_contact(a, b, pose_a, pose_b, decomposition, decomposition_options)
+
+
+# ------------------------------------------------------------- C-obstacles
+
+
+def cobstacle_slices(
+    robot: Any,
+    obstacle: Any,
+    rotations: Any,
+    polygons: bool = False,
+    parallel: bool = False,
+    certified: bool = False,
+    cell_radius: Optional[float] = None,
+    *,
+    decomposition: Optional[str] = None,
+    decomposition_options: Optional[Dict[str, Any]] = None,
+    cull: bool = True,
+) -> Any:
+    """C-obstacle slices ``obstacle ⊕ (−R·robot)``, one per rotation.
+
+    Convex bodies: as ``dymsum._dymsum.cobstacle_slices`` (meshes, or
+    certified :class:`Slab` s). A :class:`ConvexUnion`, a closed non-convex
+    mesh or a mesh file of several objects: each piece pair's slices are
+    kept by DYMSUM across the rotations, and each slice is the union of the
+    pair slices merged by Manifold into one validated :class:`UnionSum`;
+    with ``certified=True`` each step is a list of the piece pairs'
+    :class:`Slab` s (robot piece major), whose union holds every slice
+    between the two rotations.
+    """
+    if decomposition is None and not (isinstance(robot, _ext.ConvexUnion) or isinstance(obstacle, _ext.ConvexUnion)):
+        try:
+            return _ext.cobstacle_slices(robot, obstacle, rotations, polygons, parallel, certified, cell_radius)
+        except ValueError:
+            if not any(_is_union_operand(x) for x in (robot, obstacle)):
+                raise
+    if polygons:
+        raise ValueError("polygons=True is for convex bodies; a non-convex C-obstacle slice is a triangle mesh")
+    pr, info_r = convex_pieces(robot, decomposition, decomposition_options)
+    po, info_o = convex_pieces(obstacle, decomposition, decomposition_options)
+    pairs = [(i, j) for i in range(len(pr)) for j in range(len(po))]
+    per_pair = [_ext.cobstacle_slices(pr[i], po[j], rotations, False, parallel, certified, cell_radius) for i, j in pairs]
+    steps = len(per_pair[0])
+    if certified:
+        return [[slabs[k] for slabs in per_pair] for k in range(steps)]
+    m3d = _manifold3d()
+    decomposition_info = {"robot": info_r, "obstacle": info_o}
+    out = []
+    for k in range(steps):
+        sums = [(i, j, np.asarray(s[k][0]), np.asarray(s[k][1])) for (i, j), s in zip(pairs, per_pair)]
+        culled = 0
+        if cull and len(sums) > 1:
+            keep = _cull(sums)
+            culled = len(sums) - len(keep)
+            sums = keep
+        out.append(_merge(m3d, sums, culled, len(pr), len(po), decomposition_info))
+    return out
+
+
+# ------------------------------------------------------------ DynamicSum
+
+
+class DynamicSum(_ext.DynamicSum):
+    """``A ⊕ B`` kept up to date while the bodies move (DYMSUM).
+
+    Convex bodies: the extension's dynamic sum (``update``, ``mesh``, ...).
+    Given a :class:`ConvexUnion`, a closed non-convex mesh or a mesh file of
+    several objects (or a ``decomposition``), the constructor returns a
+    :class:`DynamicUnionSum` instead: one dynamic sum per piece pair, merged
+    on ``mesh()``.
+    """
+
+    def __new__(cls, a: Any, b: Any, pose_a: Any = None, pose_b: Any = None, **kwargs: Any) -> Any:
+        if kwargs or isinstance(a, _ext.ConvexUnion) or isinstance(b, _ext.ConvexUnion):
+            return DynamicUnionSum(a, b, pose_a, pose_b, **kwargs)
+        try:
+            return super().__new__(cls, a, b, pose_a, pose_b)
+        except ValueError:
+            if not any(_is_union_operand(x) for x in (a, b)):
+                raise
+        return DynamicUnionSum(a, b, pose_a, pose_b)
