@@ -560,3 +560,51 @@ def test_bodies_from_files(tmp_path):
     assert type(dymsum.minkowski_sum(single, single)) is tuple
     with pytest.raises(FileNotFoundError):
         dymsum.read_mesh_bodies(tmp_path / "missing.obj")
+
+
+THICK_L = [((0, 0, 0), (3.1, 1.1, 1.1)), ((0, 0, 0), (1.1, 3.1, 1.1))]
+
+
+def thick_L_mesh():
+    """One closed non-convex triangle mesh (not a union of convex shells)."""
+    s = dymsum.minkowski_sum(L_union(), cube(0.1))
+    assert dymsum.nonconvex.check_closed_mesh(*s) is None and len(dymsum.nonconvex._components(len(s[0]), s[1])) == 1
+    return np.array(s[0]), np.array(s[1])
+
+
+@pytest.mark.parametrize("offset", [(0, 0, 0), (10, 0, 0), (0, 0, 5), (-3, -3, 0)])
+def test_boundary_method_needs_no_decomposition(offset):
+    """decomposition='boundary': A ⊕ B = (A + b) ∪ ⋃ (t ⊕ B) over A's
+    triangles; exact pieces, B anywhere (manifold3d assumes B holds the
+    origin). Against the exact box-union volume and the membership oracle."""
+    v, f = thick_L_mesh()
+    with pytest.raises(ValueError, match="decomposition='boundary'"):
+        dymsum.minkowski_sum((v, f), cube(0.5, offset))
+    r = dymsum.minkowski_sum((v, f), cube(0.5, offset), decomposition="boundary")
+    assert_valid(*r)
+    exact = box_union_volume(box_sum_boxes(THICK_L, [(np.array(offset, float), np.add(offset, 0.5))]))
+    assert r.volume == pytest.approx(exact, rel=1e-12)
+    assert r.info["decomposition"]["a"] == {"method": "boundary", "exact": True, "triangles": len(f)}
+    assert r.info["copies"] == 1 and r.info["shells"] == 1
+    oracle_check(r, [box(lo, hi) for lo, hi in THICK_L], [cube(0.5, offset)])
+
+
+def test_boundary_method_with_pieces_first_and_rotated():
+    """B a union (two copies of A), the mesh second (swapped), a rotation."""
+    v, f = thick_L_mesh()
+    small = dymsum.ConvexUnion([box((-0.3, -0.3, -0.3), (0.6, 0.3, 0.3)), box((-0.3, -0.3, -0.3), (0.3, 0.6, 0.3))])
+    pose = np.eye(4)
+    pose[:3, :3] = Rotation.from_rotvec([0.2, -0.3, 0.5]).as_matrix()
+    pose[:3, 3] = [1.0, -2.0, 0.5]
+    r = dymsum.minkowski_sum(small, (v, f), pose_a=pose, decomposition="boundary")
+    assert_valid(*r)
+    assert r.info["copies"] == 2 and r.info["decomposition"]["b"]["method"] == "boundary"
+    fresh = dymsum.minkowski_sum(small, dymsum.ConvexUnion([box(lo, hi) for lo, hi in THICK_L]), pose_a=pose)
+    assert r.volume == pytest.approx(fresh.volume, rel=1e-9)
+    oracle_check(r, [posed(box((-0.3, -0.3, -0.3), (0.6, 0.3, 0.3)), pose), posed(box((-0.3, -0.3, -0.3), (0.3, 0.6, 0.3)), pose)], [box(lo, hi) for lo, hi in THICK_L])
+
+
+def test_boundary_method_refuses_two_meshes():
+    v, f = thick_L_mesh()
+    with pytest.raises(ValueError, match="both bodies here need a decomposition"):
+        dymsum.minkowski_sum((v, f), (v + 5.0, f), decomposition="boundary")

@@ -54,6 +54,15 @@ DECOMPOSITIONS = ("coacd", "vhacd")
 _convex_sum: Any = _ext.minkowski_sum
 
 
+class _NeedsDecomposition(ValueError):
+    """A non-convex mesh that is not a union of exactly convex components,
+    given with no decomposition; carries the mesh."""
+
+    def __init__(self, message: str, vertices: np.ndarray, faces: np.ndarray) -> None:
+        super().__init__(message)
+        self.mesh = (vertices, faces)
+
+
 class MeshUnionError(RuntimeError):
     """The union of the piece-pair sums failed: Manifold rejected a mesh, or the
     merged mesh failed validation (never returned)."""
@@ -337,11 +346,14 @@ def convex_pieces(
             rest.append(comp)
     if not rest:
         return pieces, {"method": "components", "exact": True, "components": len(pieces)}
-    if decomposition is None:
-        raise ValueError(
+    if decomposition is None or decomposition == "boundary":
+        raise _NeedsDecomposition(
             f"a non-convex mesh ({refusal}) needs a convex decomposition: pass decomposition='coacd' "
             "or decomposition='vhacd' (optional packages coacd / vhacdx), or give its convex pieces "
-            "as dymsum.ConvexUnion([...])"
+            "as dymsum.ConvexUnion([...]); minkowski_sum also takes decomposition='boundary' "
+            "(exact, when the other body is convex or in convex pieces)",
+            vertices,
+            faces,
         )
     if decomposition not in DECOMPOSITIONS:
         raise ValueError(f"unknown decomposition {decomposition!r}: use one of {', '.join(map(repr, DECOMPOSITIONS))}")
@@ -423,6 +435,8 @@ def _union_sum(
     cull: bool,
 ) -> UnionSum:
     m3d = _manifold3d()
+    if decomposition == "boundary":
+        return _boundary_sum(m3d, a, b, pose_a, pose_b, decomposition_options, cull)
     pa, info_a = convex_pieces(a, decomposition, decomposition_options)
     pb, info_b = convex_pieces(b, decomposition, decomposition_options)
     sums = []
@@ -438,9 +452,19 @@ def _union_sum(
     return _merge(m3d, sums, culled, len(pa), len(pb), {"a": info_a, "b": info_b})
 
 
-def _merge(m3d: Any, sums: list, culled: int, na: int, nb: int, decomposition: Dict[str, Any]) -> UnionSum:
-    """Manifold's union of the pair sums ``(i, j, vertices, faces)``, validated."""
+def _merge(
+    m3d: Any,
+    sums: list,
+    culled: int,
+    na: int,
+    nb: int,
+    decomposition: Dict[str, Any],
+    extra: Sequence[Tuple[str, np.ndarray, np.ndarray]] = (),
+) -> UnionSum:
+    """Manifold's union of the pair sums ``(i, j, vertices, faces)`` (and of
+    the ``extra`` closed meshes ``(what, vertices, faces)``), validated."""
     mans = [_to_manifold(m3d, v, f, f"the sum of pieces {i} and {j}") for i, j, v, f in sums]
+    mans += [_to_manifold(m3d, v, f, what) for what, v, f in extra]
     union = m3d.Manifold.batch_boolean(mans, m3d.OpType.Add) if len(mans) > 1 else mans[0]
     if union.status() != m3d.Error.NoError:
         raise MeshUnionError(f"Manifold's union of the piece sums failed: {union.status()}")
@@ -456,7 +480,7 @@ def _merge(m3d: Any, sums: list, culled: int, na: int, nb: int, decomposition: D
     if abs(volume - union.volume()) > 1e-9 * abs(volume):
         raise MeshUnionError(f"the merged mesh's volume {volume!r} differs from Manifold's {union.volume()!r}")
     shells = len(_components(len(vertices), faces))
-    info = {
+    info: Dict[str, Any] = {
         "pieces": (na, nb),
         "pairs": na * nb,
         "pairs_culled": culled,
@@ -468,6 +492,78 @@ def _merge(m3d: Any, sums: list, culled: int, na: int, nb: int, decomposition: D
     vertices.setflags(write=False)
     faces.setflags(write=False)
     return UnionSum(vertices, faces, info)
+
+
+def _boundary_mesh(shape: Any) -> Optional[Tuple[np.ndarray, np.ndarray, Dict[str, Any]]]:
+    """``(vertices, faces, info)`` of a body that is not a union of exactly
+    convex components (it needs a decomposition), else ``None``."""
+    try:
+        convex_pieces(shape, "boundary")
+    except _NeedsDecomposition as e:
+        v, f = e.mesh
+        return v, f, {"method": "boundary", "exact": True, "triangles": len(f)}
+    return None
+
+
+def _posed_points(points: np.ndarray, pose: np.ndarray) -> np.ndarray:
+    return points @ pose[:3, :3].T + pose[:3, 3]
+
+
+def _boundary_sum(
+    m3d: Any, a: Any, b: Any, pose_a: Any, pose_b: Any, options: Optional[Dict[str, Any]], cull: bool
+) -> UnionSum:
+    """``A ⊕ B`` for a closed non-convex mesh A and B convex or in convex
+    pieces ``B_j``, with no decomposition of A:
+
+        A ⊕ B_j = (A + b_j) ∪ ⋃_{triangles t of ∂A} (t ⊕ B_j)   for any b_j ∈ B_j.
+
+    Proof: for x = a + b (a ∈ A, b ∈ B_j), follow ``y(s) = x − b(s)`` with
+    ``b(s)`` on the segment from b_j to b (in B_j, which is convex): y(1) = a
+    is in A; either y(0) = x − b_j is in A (x ∈ A + b_j), or y crosses ∂A at
+    some s, where y(s) lies on a triangle t and x = y(s) + b(s) ∈ t ⊕ B_j.
+    Both sides are in A ⊕ B_j, so they are equal. Each ``t ⊕ B_j`` is the
+    exact hull of the pairwise vertex sums; no approximation enters before
+    Manifold's union. (manifold3d's own ``minkowski_sum`` takes A itself for
+    A + b_j, which is wrong when B does not contain the origin.)
+    """
+    if options:
+        raise ValueError("decomposition='boundary' takes no decomposition_options")
+    ma, mb = _boundary_mesh(a), _boundary_mesh(b)
+    if ma is not None and mb is not None:
+        raise ValueError(
+            "decomposition='boundary' sums a non-convex mesh with a convex body or convex pieces; "
+            "both bodies here need a decomposition: give one as dymsum.ConvexUnion([...]) or use "
+            "decomposition='coacd' / 'vhacd'"
+        )
+    if ma is None and mb is None:
+        return _union_sum(a, b, pose_a, pose_b, "walk", None, None, cull)
+    swap = ma is None
+    (v, f, info_mesh), other, pose_mesh, pose_other = (mb, a, pose_b, pose_a) if swap else (ma, b, pose_a, pose_b)
+    assert v is not None
+    pieces, info_other = convex_pieces(other)
+    tm, to = _pose_matrix(pose_mesh), _pose_matrix(pose_other)
+    mesh_v = _posed_points(np.asarray(v, dtype=np.float64), tm)
+    tris = mesh_v[np.asarray(f)]
+    sums = []
+    copies = []
+    for j, piece in enumerate(pieces):
+        pv = _posed_points(np.asarray(_ext.Polytope(piece).vertices, dtype=np.float64), to)
+        copies.append((f"the mesh moved by a vertex of piece {j}", mesh_v + pv[0], np.asarray(f)))
+        for k, t in enumerate(tris):
+            hull = _ext.Polytope((t[:, None, :] + pv[None, :, :]).reshape(-1, 3))
+            sums.append((k, j, np.asarray(hull.vertices), np.asarray(hull.faces)))
+    culled = 0
+    if cull and len(sums) > 1:
+        keep = _cull(sums)
+        culled = len(sums) - len(keep)
+        sums = keep
+    decomposition = {"a": info_other, "b": info_mesh} if swap else {"a": info_mesh, "b": info_other}
+    na, nb = (len(pieces), len(f)) if swap else (len(f), len(pieces))
+    if swap:
+        sums = [(j, k, sv, sf) for k, j, sv, sf in sums]
+    out = _merge(m3d, sums, culled, na, nb, decomposition, copies)
+    out.info["copies"] = len(copies)
+    return out
 
 
 def _planes(v: np.ndarray, f: np.ndarray) -> np.ndarray:
@@ -483,30 +579,33 @@ def _cull(sums: list) -> list:
     A convex sum lies inside a convex sum ``S`` when all its vertices do:
     tested against the planes of ``S``'s triangles with a margin of 1e-9 of
     the size, far above the rounding of the planes, so a pair is dropped
-    only when it is clearly inside. Bounding boxes filter first.
+    only when it is clearly inside. Bounding boxes filter first (one
+    vectorised test against every kept box).
     """
-    boxes = [(v.min(axis=0), v.max(axis=0)) for _, _, v, _ in sums]
-    size = max(float(np.abs(np.array([b for bb in boxes for b in bb])).max()), 1e-300)
+    lo = np.array([v.min(axis=0) for _, _, v, _ in sums])
+    hi = np.array([v.max(axis=0) for _, _, v, _ in sums])
+    size = max(float(np.abs(np.concatenate([lo, hi])).max()), 1e-300)
     margin = 1e-9 * size
-    order = sorted(range(len(sums)), key=lambda k: -float(np.prod(boxes[k][1] - boxes[k][0])))
-    kept: List[int] = []
+    order = np.argsort(-np.prod(hi - lo, axis=1), kind="stable")
+    kept = np.empty(len(sums), dtype=np.int64)
+    n_kept = 0
     planes: Dict[int, np.ndarray] = {}
     for k in order:
-        lo, hi = boxes[k]
+        k = int(k)
+        ks = kept[:n_kept]
+        boxed = ks[np.all(lo[k] >= lo[ks], axis=1) & np.all(hi[k] <= hi[ks], axis=1)]
         inside = False
-        for o in kept:
-            olo, ohi = boxes[o]
-            if np.all(lo >= olo) and np.all(hi <= ohi):
-                if o not in planes:
-                    planes[o] = _planes(sums[o][2], sums[o][3])
-                pl = planes[o]
-                d = sums[k][2] @ pl[:, :3].T + pl[:, 3]
-                if d.max() < -margin:
-                    inside = True
-                    break
+        for o in boxed.tolist():
+            if o not in planes:
+                planes[o] = _planes(sums[o][2], sums[o][3])
+            pl = planes[o]
+            if (sums[k][2] @ pl[:, :3].T + pl[:, 3]).max() < -margin:
+                inside = True
+                break
         if not inside:
-            kept.append(k)
-    return [sums[k] for k in sorted(kept)]
+            kept[n_kept] = k
+            n_kept += 1
+    return [sums[k] for k in sorted(kept[:n_kept].tolist())]
 
 
 @overload
@@ -518,7 +617,7 @@ def minkowski_sum(
     method: "_Method" = "walk",
     polygons: Literal[False] = False,
     *,
-    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition: Optional[Literal["coacd", "vhacd", "boundary"]] = None,
     decomposition_options: Optional[Dict[str, Any]] = None,
     cull: bool = True,
 ) -> UnionSum: ...
@@ -531,7 +630,7 @@ def minkowski_sum(
     method: "_Method" = "walk",
     polygons: Literal[False] = False,
     *,
-    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition: Optional[Literal["coacd", "vhacd", "boundary"]] = None,
     decomposition_options: Optional[Dict[str, Any]] = None,
     cull: bool = True,
 ) -> UnionSum: ...
@@ -554,7 +653,7 @@ def minkowski_sum(
     method: "_Method" = "walk",
     polygons: Literal[False] = False,
     *,
-    decomposition: Optional[Literal["coacd", "vhacd"]] = None,
+    decomposition: Optional[Literal["coacd", "vhacd", "boundary"]] = None,
     decomposition_options: Optional[Dict[str, Any]] = None,
     cull: bool = True,
 ) -> "Tuple[_Vertices, _Triangles]": ...
@@ -578,7 +677,9 @@ def minkowski_sum(
     one closed, oriented, validated mesh, returned as a :class:`UnionSum`
     (``vertices, faces`` plus ``.info``). A non-convex mesh whose components
     are not all exactly convex needs ``decomposition="coacd"`` or
-    ``"vhacd"`` (``decomposition_options`` go to that library). ``cull``
+    ``"vhacd"`` (``decomposition_options`` go to that library), or
+    ``"boundary"`` when the other body is convex or in convex pieces (exact:
+    one piece per triangle of the mesh, see :func:`_boundary_sum`). ``cull``
     drops pair sums certified inside another one.
     """
     union = isinstance(a, _ext.ConvexUnion) or isinstance(b, _ext.ConvexUnion)
