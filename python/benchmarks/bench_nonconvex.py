@@ -2,7 +2,7 @@
 Manifold) against manifold3d's own ``Manifold.minkowski_sum``.
 
     pip install ./python scipy manifold3d coacd
-    python python/benchmarks/bench_nonconvex.py [--repeats 3] [--coacd]
+    python python/benchmarks/bench_nonconvex.py [--repeats 3] [--coacd] [--cgal target/cgal_minkowski]
 
 Rows (A non-convex; B convex or non-convex; triangle counts of the meshes
 handed to manifold3d):
@@ -20,8 +20,17 @@ handed to manifold3d):
   ``--coacd`` also through CoACD's approximate decomposition (its time and
   reported volume error in their own columns).
 
+* ``..., boundary``: the same A as one closed mesh, summed with
+  ``decomposition="boundary"`` (no decomposition: one exact piece per
+  triangle of A, plus A moved by a point of B);
+* with ``--cgal BINARY``: CGAL's exact Nef ``minkowski_sum_3`` on the same
+  meshes for the smallest rows (python/benchmarks/cgal/cgal_minkowski.cpp,
+  built against Debian's libcgal-dev; ``--cgal-timeout`` seconds each,
+  default 600, as the issue's "where it finishes in 10 minutes").
+
 Times are medians over the repeats (manifold3d's once beyond 20 s); the
-decomposition (``decomp``) is timed separately and not in ``dymsum``.
+decomposition (``decomp``) is timed separately and not in ``dymsum``; the
+"ratio with decomposition" column adds it.
 Correctness: the volume against a reference: the exact volume of a union of
 boxes (coordinate compression) where A and B are boxes, else the volume of
 the union over piece pairs of scipy's hulls (Qhull) of pairwise vertex sums
@@ -32,8 +41,12 @@ where B contains the origin (where its answer is right).
 import argparse
 import importlib.metadata
 import itertools
+import json
+import os
 import platform
 import statistics
+import subprocess
+import tempfile
 import time
 
 import manifold3d as m3d
@@ -93,31 +106,37 @@ def complement_pieces(cube_half, sphere_vertices):
     triangle f of S, ``C ∩ cone(f) ∩ {n_f·x ≥ d_f}`` (the cone from the
     origin over f). A point of C outside S lies in the cone of the facet
     where its ray leaves S, beyond that facet's plane; the pieces meet only
-    on their boundaries. Each is the hull of the vertices of its 10
-    half-spaces (every feasible triple-plane point)."""
+    on their boundaries. Each is the exact hull of the vertices of its 10
+    half-spaces (every feasible triple-plane point), all triangles solved
+    at once (vectorised)."""
     hull = ConvexHull(sphere_vertices)
-    pts = hull.points
-    box_planes = [(np.eye(3)[k] * sgn, cube_half) for k in range(3) for sgn in (1.0, -1.0)]
+    tri = hull.points[hull.simplices]  # (T, 3, 3)
+    eq = hull.equations
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    flip = np.einsum("ij,ij->i", np.cross(b - a, c - a), eq[:, :3]) < 0
+    b, c = np.where(flip[:, None], c, b), np.where(flip[:, None], b, c)
+    t = len(tri)
+    n = np.empty((t, 10, 3))
+    off = np.zeros((t, 10))
+    n[:, :6] = np.array([np.eye(3)[k] * sgn for k in range(3) for sgn in (1.0, -1.0)])
+    off[:, :6] = cube_half
+    n[:, 6], n[:, 7], n[:, 8] = -np.cross(a, b), -np.cross(b, c), -np.cross(c, a)
+    n[:, 9], off[:, 9] = -eq[:, :3], eq[:, 3]
+    triples = np.array(list(itertools.combinations(range(10), 3)))  # (120, 3)
+    m = n[:, triples]  # (T, 120, 3, 3)
+    rhs = off[:, triples]  # (T, 120, 3)
+    det = np.linalg.det(m)
+    ok = np.abs(det) >= 1e-12
+    m[~ok] = np.eye(3)
+    x = np.linalg.solve(m, rhs[..., None])[..., 0]  # (T, 120, 3)
+    feasible = ok & np.all(np.einsum("tpk,tqk->tpq", x, n) <= off[:, None, :] + 1e-9 * cube_half, axis=2)
     pieces = []
-    for tri, eq in zip(hull.simplices, hull.equations):
-        a, b, c = pts[tri]
-        if np.dot(np.cross(b - a, c - a), eq[:3]) < 0:
-            b, c = c, b
-        planes = box_planes + [(-np.cross(a, b), 0.0), (-np.cross(b, c), 0.0), (-np.cross(c, a), 0.0), (-eq[:3], eq[3])]
-        n = np.array([p[0] for p in planes])
-        off = np.array([p[1] for p in planes])
-        cand = []
-        for i, j, k in itertools.combinations(range(len(planes)), 3):
-            m = n[[i, j, k]]
-            if abs(np.linalg.det(m)) < 1e-12:
-                continue
-            x = np.linalg.solve(m, off[[i, j, k]])
-            if np.all(n @ x <= off + 1e-9 * cube_half):
-                cand.append(x)
+    for k in range(t):
+        cand = x[k][feasible[k]]
         if len(cand) < 4:
             continue
         try:
-            pieces.append(dymsum.Polytope(np.array(cand)))
+            pieces.append(dymsum.Polytope(cand))
         except ValueError:
             pass  # flat: no volume
     return pieces
@@ -140,12 +159,35 @@ def hull_union_volume(pieces_a, pieces_b):
     return M.batch_boolean(hulls, m3d.OpType.Add).volume()
 
 
-def row(name, a_union, b_union, a_man, b_man, reference, repeats, b_has_origin, decomp=None):
+def run_cgal(binary, a_man, b_man, timeout):
+    """CGAL's Nef ``minkowski_sum_3`` on the same meshes (OFF files), in a
+    subprocess with a time limit: (seconds, volume) or (None, reason)."""
+    with tempfile.TemporaryDirectory() as d:
+        paths = []
+        for name, man in (("a", a_man), ("b", b_man)):
+            m = man.to_mesh64()
+            path = os.path.join(d, f"{name}.off")
+            dymsum.save(path, np.array(m.vert_properties[:, :3]), np.array(m.tri_verts, dtype=np.int64))
+            paths.append(path)
+        try:
+            out = subprocess.run([binary, *paths], capture_output=True, text=True, timeout=timeout, check=True)
+        except subprocess.TimeoutExpired:
+            return None, f"> {timeout:.0f} s"
+        except subprocess.CalledProcessError as e:
+            return None, f"failed: {e.stderr.strip()[:60]}"
+    r = json.loads(out.stdout)
+    return r["seconds"], r["volume"]
+
+
+def row(name, a_union, b_union, a_man, b_man, reference, repeats, b_has_origin, decomp=None, decomp_s=0.0, decomposition=None, cgal=None):
     print(f"{name}: A {a_man.num_tri()} + B {b_man.num_tri()} triangles", end="", flush=True)
-    ours_t, ours_n, ours = median_time(lambda: dymsum.minkowski_sum(a_union, b_union), repeats)
+    kw = {"decomposition": decomposition} if decomposition else {}
+    ours_t, ours_n, ours = median_time(lambda: dymsum.minkowski_sum(a_union, b_union, **kw), repeats)
     print(f"; dymsum {ours_t:.3f} s", end="", flush=True)
     man_t, man_n, theirs = median_time(lambda: a_man.minkowski_sum(b_man), repeats)
-    print(f"; manifold3d {man_t:.3f} s", flush=True)
+    print(f"; manifold3d {man_t:.3f} s", end="", flush=True)
+    cgal_t, cgal_v = run_cgal(cgal[0], a_man, b_man, cgal[1]) if cgal else (None, "not run")
+    print(f"; CGAL {cgal_t if cgal_t is None else round(cgal_t, 3)} {cgal_v}", flush=True)
     ref_vol, ref_err, ref_kind = reference
     ours_rel = abs(ours.volume - ref_vol) / ref_vol
     man_rel = abs(theirs.volume() - ref_vol) / ref_vol
@@ -156,9 +198,12 @@ def row(name, a_union, b_union, a_man, b_man, reference, repeats, b_has_origin, 
         "pairs": f"{ours.info['pairs'] - ours.info['pairs_culled']}/{ours.info['pairs']}",
         "decomp": decomp,
         "dymsum_s": ours_t,
+        "decomp_s": decomp_s,
+        "cgal": (f"{cgal_t * 1e3:.0f} ms, volume {cgal_v:.10g}" if cgal_t is not None else cgal_v),
         "manifold_s": man_t,
         "runs": f"{ours_n}/{man_n}",
         "ratio": ours_t / man_t,
+        "ratio_all": (ours_t + decomp_s) / man_t,
         "vol": ours.volume,
         "ref": f"{ref_vol:.10g}" + (f" ± {ref_err:.2g}" if ref_err else "") + f" ({ref_kind})",
         "ours_rel": ours_rel,
@@ -174,7 +219,11 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--coacd", action="store_true", help="also the cube - sphere row through CoACD")
+    ap.add_argument("--cgal", metavar="BINARY", help="also CGAL's Nef minkowski_sum_3 (python/benchmarks/cgal/cgal_minkowski.cpp)")
+    ap.add_argument("--cgal-timeout", type=float, default=600.0, help="seconds per CGAL row (default 600)")
+    ap.add_argument("--segments", default="16,24,40,120", help="sphere segments of the cube - sphere rows")
     a = ap.parse_args()
+    cgal = (a.cgal, a.cgal_timeout) if a.cgal else None
     print(
         f"median of {a.repeats} (manifold3d once when over 20 s); Python {platform.python_version()}, "
         f"dymsum {dymsum.__version__}, manifold3d {importlib.metadata.version('manifold3d')}"
@@ -194,6 +243,7 @@ def main():
             (box_union_volume([(np.add(l0, cb[0]), np.add(l1, cb[1])) for l0, l1 in L]), 0, "exact"),
             a.repeats,
             False,
+            cgal=cgal,
         )
     )
 
@@ -213,6 +263,7 @@ def main():
                 (hull_union_volume(pa, [bv]), 0, "hulls"),
                 a.repeats,
                 True,
+                cgal=cgal if k == 4 else None,
             )
         )
     for k in (4, 16, 64):
@@ -228,12 +279,13 @@ def main():
                 (exact, 0, "exact"),
                 a.repeats,
                 True,
+                cgal=cgal if k == 4 else None,
             )
         )
 
     # OpenSCAD-style: (cube(10) - sphere(6)) + sphere(1).
     bv = ball(16, 1.0)
-    for seg in (16, 24, 40):
+    for seg in map(int, a.segments.split(",")):
         sv = np.array(M.sphere(6, seg).to_mesh64().vert_properties[:, :3])
         a_man = M.cube((10, 10, 10), True) - M.hull_points(sv)
         t = time.perf_counter()
@@ -251,6 +303,24 @@ def main():
                 a.repeats,
                 True,
                 decomp=f"{len(pieces)} exact, {dt:.2f} s",
+                decomp_s=dt,
+                cgal=cgal if seg == 16 else None,
+            )
+        )
+        m = a_man.to_mesh64()
+        av, af = np.array(m.vert_properties[:, :3]), np.array(m.tri_verts, dtype=np.int64)
+        rows.append(
+            row(
+                f"cube(10) - sphere(6, {seg}) + sphere(1), boundary",
+                (av, af),
+                bv,
+                a_man,
+                M.hull_points(bv),
+                (hull_union_volume(pa, [bv]), 0, "hulls of the exact pieces"),
+                a.repeats,
+                True,
+                decomp=f"none: boundary, {len(af)} triangles",
+                decomposition="boundary",
             )
         )
         if a.coacd and seg == 24:
@@ -274,12 +344,12 @@ def main():
             )
 
     print()
-    print("| case | triangles (A + B) | pairs kept | decomposition | dymsum | manifold3d | ratio | dymsum volume | reference | dymsum rel. err | manifold3d volume | manifold3d rel. err | shells (dymsum/manifold3d) | valid |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| case | triangles (A + B) | pairs kept | decomposition | dymsum | manifold3d | ratio | ratio with decomposition | CGAL Nef | dymsum volume | reference | dymsum rel. err | manifold3d volume | manifold3d rel. err | shells (dymsum/manifold3d) | valid |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         print(
             f"| {r['case']} | {r['tris']} | {r['pairs']} | {r['decomp'] or 'given'} | {r['dymsum_s'] * 1e3:.1f} ms | "
-            f"{r['manifold_s'] * 1e3:.1f} ms | {r['ratio']:.2f}× | {r['vol']:.10g} | {r['ref']} | {r['ours_rel']:.1e} | "
+            f"{r['manifold_s'] * 1e3:.1f} ms | {r['ratio']:.2f}× | {r['ratio_all']:.2f}× | {r['cgal']} | {r['vol']:.10g} | {r['ref']} | {r['ours_rel']:.1e} | "
             f"{r['man_vol']:.10g} | {r['man_rel']:.1e} | {r['shells']} | {r['valid']} |"
         )
     print()
