@@ -479,15 +479,32 @@ def _merge(
     volume = signed_volume(vertices, faces)
     if abs(volume - union.volume()) > 1e-9 * abs(volume):
         raise MeshUnionError(f"the merged mesh's volume {volume!r} differs from Manifold's {union.volume()!r}")
-    shells = len(_components(len(vertices), faces))
+    genus = int(union.genus())
+    comps = _components(len(vertices), faces)
+    # Every connected part of the true union contains a whole piece, so an
+    # outward shell smaller than the smallest piece is the union's rounding
+    # (Manifold can leave a flat sliver tetrahedron): certified, dropped and
+    # counted. Inward shells (cavities) are kept whatever their size.
+    dropped = 0
+    if len(comps) > 1:
+        floor = 0.5 * min(signed_volume(np.asarray(v), np.asarray(f)) for v, f in [(x[2], x[3]) for x in sums] + [(x[1], x[2]) for x in extra])
+        keep = [c for c in comps if not 0.0 <= signed_volume(vertices, faces[c]) < floor]
+        dropped = len(comps) - len(keep)
+        if dropped:
+            vertices, faces = _submesh(vertices, faces[np.concatenate(keep)])
+            comps = _components(len(vertices), faces)
+            volume = signed_volume(vertices, faces)
+            edges = len({(min(a, b), max(a, b)) for t in faces.tolist() for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0]))})
+            genus = 1 - (len(vertices) - edges + len(faces)) // 2
     info: Dict[str, Any] = {
         "pieces": (na, nb),
         "pairs": na * nb,
         "pairs_culled": culled,
         "decomposition": decomposition,
         "volume": volume,
-        "genus": int(union.genus()),
-        "shells": shells,
+        "genus": genus,
+        "shells": len(comps),
+        "slivers_dropped": dropped,
     }
     vertices.setflags(write=False)
     faces.setflags(write=False)
