@@ -1178,6 +1178,50 @@ fn load(
     PyPolytope::from_shape(py, shape)
 }
 
+/// ``t ⊕ P`` for every triangle ``t``: ``triangles`` (3T, 3) (three rows per
+/// triangle), ``points`` (N, 3). Returns T ``(vertices, faces)`` pairs, each
+/// the exact hull of the 3N pairwise sums (a triangle plus a convex body),
+/// computed in parallel with the GIL released. Used by
+/// ``minkowski_sum(..., decomposition="boundary")``.
+#[pyfunction]
+fn _triangle_sums<'py>(
+    py: Python<'py>,
+    triangles: &Bound<'py, PyAny>,
+    points: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyList>> {
+    use rayon::prelude::*;
+    let tri = convert::points(triangles, "triangles")?;
+    let pts = convert::points(points, "points")?;
+    let tri = convert::rows(&tri, "triangles")?;
+    let pts = convert::rows(&pts, "points")?;
+    if tri.len() % 3 != 0 {
+        return Err(value_error(format!(
+            "triangles: {} rows, not three per triangle",
+            tri.len()
+        )));
+    }
+    let hulls = py.detach(|| {
+        tri.par_chunks(3)
+            .map(|t| {
+                let sums: Vec<[f64; 3]> = t
+                    .iter()
+                    .flat_map(|a| {
+                        pts.iter()
+                            .map(move |b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]])
+                    })
+                    .collect();
+                Polytope::from_points(&sums).map(|p| p.to_mesh())
+            })
+            .collect::<Vec<_>>()
+    });
+    let out = PyList::empty(py);
+    for (k, h) in hulls.into_iter().enumerate() {
+        let mesh = h.map_err(|e| err_for(&format!("triangle {k}"), e))?;
+        out.append(convert::mesh_tuple(py, mesh, false)?)?;
+    }
+    Ok(out)
+}
+
 /// The bodies of a mesh file, as written, without hulls or checks: a list
 /// of ``(name, vertices, faces)`` with vertices (N, 3) ``float64`` and faces
 /// (M, 3) ``int64`` (polygons fan-triangulated). An OBJ file gives one body
@@ -1309,6 +1353,7 @@ fn _dymsum(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(save, m)?)?;
     m.add_function(wrap_pyfunction!(read_mesh_bodies, m)?)?;
+    m.add_function(wrap_pyfunction!(_triangle_sums, m)?)?;
     m.add_function(wrap_pyfunction!(models, m)?)?;
     motion::register(m)?;
     maps::register(m)?;

@@ -43,6 +43,7 @@ __all__ = [
     "models",
     "__version__",
     "_rotations_xyzw",
+    "_triangle_sums",
     "_cobstacle_block",
 ]
 
@@ -466,6 +467,11 @@ def read_mesh_bodies(
     path: Union[str, os.PathLike[str]],
 ) -> list[Tuple[str, npt.NDArray[np.float64], npt.NDArray[np.int64]]]:
     """The bodies of a mesh file as written: ``(name, vertices, faces)``, polygons fan-triangulated."""
+
+def _triangle_sums(
+    triangles: npt.ArrayLike, points: npt.ArrayLike
+) -> list[Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]]:
+    """``t ⊕ P`` for every triangle (three rows each): exact hulls of pairwise sums, in parallel."""
 
 def models() -> list[str]:
     """Names of the built-in models and model families."""

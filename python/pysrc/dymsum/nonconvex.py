@@ -563,17 +563,15 @@ def _boundary_sum(
     tris = mesh_v[np.asarray(f)]
     sums = []
     copies = []
+    flat = np.ascontiguousarray(tris.reshape(-1, 3))
     for j, piece in enumerate(pieces):
         pv = _posed_points(np.asarray(_ext.Polytope(piece).vertices, dtype=np.float64), to)
         copies.append((f"the mesh moved by a vertex of piece {j}", mesh_v + pv[0], np.asarray(f)))
-        for k, t in enumerate(tris):
-            hull = _ext.Polytope((t[:, None, :] + pv[None, :, :]).reshape(-1, 3))
-            sums.append((k, j, np.asarray(hull.vertices), np.asarray(hull.faces)))
+        for k, (hv, hf) in enumerate(_ext._triangle_sums(flat, np.ascontiguousarray(pv))):
+            sums.append((k, j, hv, hf))
+    # No culling: a triangle's sum straddles the mesh's boundary, so one
+    # inside another is rare and the test would cost more than it saves.
     culled = 0
-    if cull and len(sums) > 1:
-        keep = _cull(sums)
-        culled = len(sums) - len(keep)
-        sums = keep
     decomposition = {"a": info_other, "b": info_mesh} if swap else {"a": info_mesh, "b": info_other}
     na, nb = (len(pieces), len(f)) if swap else (len(f), len(pieces))
     if swap:
