@@ -9,7 +9,6 @@ use crate::{Polytope, Pose};
 
 /// The penetration depth of two overlapping unions.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct UnionDepth {
     /// The length of the shortest translation of A that separates the
     /// bodies (to touching): the origin's distance to the boundary of the
