@@ -275,6 +275,31 @@ fn a_sphere_like_polytope_plus_an_l_rotated() {
     oracle(&sum, &l, pose, &ball, ID, 600, 8);
 }
 
+/// A comb of 16 teeth, rotated generically, ⊕ an L: `boolmesh` leaves
+/// sliver triangles here (corners exactly collinear); the mesh is still a
+/// closed oriented solid, and agrees with the oracle.
+#[test]
+fn a_rotated_comb_plus_an_l() {
+    let mut teeth = vec![cuboid([0., 0., 0.], [32., 1., 1.])];
+    teeth.extend((0..16).map(|i| cuboid([2.0 * i as f64, 1., 0.], [2.0 * i as f64 + 1., 4., 1.])));
+    let comb = union(teeth);
+    let l = l_shape();
+    let pa = Pose::new(
+        Rotation::from_wxyz(0.9, 0.2, -0.3, 0.25).unwrap(),
+        DVec3::ZERO,
+    );
+    let sum = UnionSum::new(&comb, pa, &l, ID, Method::Walk, true).unwrap();
+    assert_eq!(
+        (
+            sum.info().pairs,
+            sum.info().mesh.shells,
+            sum.info().mesh.genus
+        ),
+        (34, 1, 0)
+    );
+    oracle(&sum, &comb, pa, &l, ID, 400, 10);
+}
+
 /// Near-degenerate input: boxes sharing a face (coplanar touching piece
 /// sums) far from the origin. A valid mesh with the right volume, or a
 /// typed error; never an invalid mesh.

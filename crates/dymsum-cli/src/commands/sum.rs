@@ -66,7 +66,8 @@ pub struct SumArgs {
     /// Print the summary as one JSON object: `{"p":..,"q":..,"method":..,
     /// "pieces":[p,q],"pairs":n,"pairs_culled":k,"decomposition":{"p":{..},
     /// "q":{..}},"vertices":v,"faces":f,"volume":x,"shells":s,"genus":g,
-    /// "microseconds":t}` (`decomposition` entries: `method`, `exact`,
+    /// "slivers":z,"microseconds":t}` (`slivers`: zero-area triangles the
+    /// boolean left) (`decomposition` entries: `method`, `exact`,
     /// `pieces`, `volume_error`...).
     #[arg(long)]
     pub json: bool,
@@ -87,6 +88,7 @@ struct JsonSummary<'a> {
     volume: f64,
     shells: usize,
     genus: i64,
+    slivers: usize,
     microseconds: f64,
 }
 
@@ -138,7 +140,7 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
             [1, 0, 0],
             &mesh,
             volume,
-            (1, 0),
+            (1, 0, 0),
             elapsed,
             summary,
         );
@@ -192,7 +194,7 @@ fn run_union(
             [np * nq, info.pairs_culled, 0],
             sum.mesh(),
             info.mesh.volume,
-            (info.mesh.shells, info.mesh.genus),
+            (info.mesh.shells, info.mesh.genus, info.mesh.slivers),
             elapsed,
             summary,
         );
@@ -230,7 +232,7 @@ fn write_json(
     pairs: [usize; 3],
     mesh: &dymsum::PolygonMesh,
     volume: f64,
-    (shells, genus): (usize, i64),
+    (shells, genus, slivers): (usize, i64, usize),
     elapsed: f64,
     out: &mut dyn Write,
 ) -> anyhow::Result<()> {
@@ -250,6 +252,7 @@ fn write_json(
         volume,
         shells,
         genus,
+        slivers,
         microseconds: elapsed,
     };
     writeln!(out, "{}", serde_json::to_string(&s)?)?;

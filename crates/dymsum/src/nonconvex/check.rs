@@ -55,12 +55,6 @@ pub enum ClosedMeshError {
         /// The number of fans around it.
         fans: usize,
     },
-    /// A triangle's three corners are collinear (exact test).
-    #[error("triangle {face} is degenerate (its corners are collinear)")]
-    Degenerate {
-        /// The triangle (in the fan triangulation of the faces).
-        face: usize,
-    },
     /// The signed volume is not positive: the mesh is inward or empty.
     #[error("signed volume {volume:e} is not positive (inward or empty)")]
     NotPositive {
@@ -83,6 +77,10 @@ pub struct ClosedMeshInfo {
     pub shells: usize,
     /// The total genus: `shells − χ / 2` with `χ = V − E + F`; 1 for a ring.
     pub genus: i64,
+    /// Sliver triangles: corners exactly collinear (zero area). The mesh is
+    /// still closed and oriented; a float boolean can leave such slivers
+    /// where piece sums meet at grazing angles.
+    pub slivers: usize,
 }
 
 /// The fan triangles of a polygon mesh.
@@ -106,8 +104,9 @@ pub(crate) fn triangles(mesh: &PolygonMesh) -> Result<Vec<[usize; 3]>, ClosedMes
 /// Checks that `mesh` is a closed, oriented 2-manifold of positive volume,
 /// without tolerance: finite vertices, well-formed faces, every directed
 /// edge once and its reverse once, no pinched vertex (the faces around each
-/// vertex form one fan), no triangle with collinear corners (exact
-/// predicate), and a positive signed volume. Returns what it measured.
+/// vertex form one fan), and a positive signed volume. Returns what it
+/// measured, with the number of sliver triangles (corners exactly
+/// collinear, by exact predicates), which are allowed.
 ///
 /// ```
 /// use dymsum::nonconvex::{check_closed_mesh, ClosedMeshError};
@@ -194,18 +193,17 @@ pub(crate) fn check_triangles(
     if let Some((&vertex, &n)) = fans.iter().filter(|(_, &n)| n > 1).min_by_key(|(&v, _)| v) {
         return Err(ClosedMeshError::Pinched { vertex, fans: n });
     }
-    for (t, f) in tris.iter().enumerate() {
-        if collinear(vertices[f[0]], vertices[f[1]], vertices[f[2]]) {
-            return Err(ClosedMeshError::Degenerate { face: t });
-        }
-    }
+    let slivers = tris
+        .iter()
+        .filter(|f| collinear(vertices[f[0]], vertices[f[1]], vertices[f[2]]))
+        .count();
     let used = fans.len();
     let edges = half.len() / 2;
     let chi = used as i64 - edges as i64 + tris.len() as i64;
     let shells = shells(vertices.len(), tris);
     let genus = shells as i64 - chi / 2;
     let volume = signed_volume(vertices, tris);
-    if !(volume > 0.0) {
+    if volume.is_nan() || volume <= 0.0 {
         return Err(ClosedMeshError::NotPositive { volume });
     }
     Ok(ClosedMeshInfo {
@@ -214,6 +212,7 @@ pub(crate) fn check_triangles(
         volume,
         shells,
         genus,
+        slivers,
     })
 }
 

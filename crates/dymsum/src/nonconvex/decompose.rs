@@ -143,7 +143,7 @@ pub fn convex_pieces(
     }
     check_solid(&tris).map_err(input)?;
     let total = signed_volume(&mesh.vertices, &tris);
-    if !(total > 0.0) {
+    if total.is_nan() || total <= 0.0 {
         return Err(input(format!(
             "its signed volume {total:e} is not positive (inward or empty)"
         )));

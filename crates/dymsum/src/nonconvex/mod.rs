@@ -19,8 +19,11 @@
 //! * the union is `boolmesh`'s float boolean: the merged mesh is the union
 //!   of the pair sums up to the rounding of its new vertices (where piece
 //!   sums cross); holes and cavities are kept;
-//! * the validation is exact (combinatorial checks, collinearity by exact
-//!   predicates; the volume is a float sum);
+//! * the validation is exact and combinatorial (every directed edge once
+//!   and its reverse once, no pinched vertex); the volume is a float sum
+//!   and must be positive; sliver triangles (corners exactly collinear) are
+//!   counted, not refused (`boolmesh` can leave them where piece sums meet
+//!   at grazing angles; the surface is still closed and oriented);
 //! * a non-convex closed mesh becomes pieces by [`convex_pieces`]: exactly
 //!   convex connected components are taken as they are (exact); anything
 //!   else needs a decomposition ([`Decomposition::Vhacd`], parry's V-HACD
