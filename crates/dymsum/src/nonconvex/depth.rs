@@ -26,7 +26,7 @@ pub struct UnionDepth {
 
 /// `−(pose · P)` as a polytope and pose: the negated vertices (exact)
 /// under the rotation of `pose` and the negated translation.
-fn negated(p: &Polytope, pose: Pose) -> Result<(Polytope, Pose), UnionMeshError> {
+pub(crate) fn negated(p: &Polytope, pose: Pose) -> Result<(Polytope, Pose), UnionMeshError> {
     let v: Vec<DVec3> = p.vertices().iter().map(|&x| -x).collect();
     let neg = Polytope::from_dvec3s(&v)?;
     Ok((neg, Pose::new(pose.rotation, -pose.translation)))

@@ -35,6 +35,38 @@ fn guarded<T>(what: &str, f: impl FnOnce() -> Result<T, String>) -> Result<T, Un
     }
 }
 
+/// The union of closed meshes (each a closed, outward 2-manifold: convex
+/// piece sums, C-obstacle slices of piece pairs), merged by `boolmesh` and
+/// validated as [`super::check_closed_mesh`].
+///
+/// ```
+/// use dymsum::nonconvex::merge_closed_meshes;
+/// use dymsum::Polytope;
+/// let cube = |o: f64| {
+///     let c: Vec<[f64; 3]> = (0..8).map(|i| std::array::from_fn(|k| o + (i >> k & 1) as f64)).collect();
+///     Polytope::from_points(&c).unwrap().to_mesh()
+/// };
+/// // Two unit cubes overlapping in a 0.5³ corner.
+/// let (_mesh, info) = merge_closed_meshes(&[cube(0.0), cube(0.5)])?;
+/// assert!((info.volume - (2.0 - 0.125)).abs() < 1e-12);
+/// # Ok::<(), dymsum::nonconvex::UnionMeshError>(())
+/// ```
+///
+/// # Errors
+/// [`UnionMeshError::Boolean`] when `boolmesh` refuses a mesh (not a
+/// closed 2-manifold) or fails; [`UnionMeshError::Invalid`] when there is
+/// no mesh or the result fails validation.
+pub fn merge_closed_meshes(
+    meshes: &[PolygonMesh],
+) -> Result<(PolygonMesh, ClosedMeshInfo), UnionMeshError> {
+    let named: Vec<(String, PolygonMesh)> = meshes
+        .iter()
+        .enumerate()
+        .map(|(k, m)| (format!("mesh {k}"), m.clone()))
+        .collect();
+    union_meshes(&named)
+}
+
 /// `boolmesh`'s boolean of two manifolds.
 pub(crate) fn boolean(
     a: &Manifold,

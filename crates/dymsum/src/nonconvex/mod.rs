@@ -63,6 +63,7 @@ pub use crate::query::ConvexUnion;
 pub use check::{check_closed_mesh, ClosedMeshError, ClosedMeshInfo};
 pub use decompose::{convex_pieces, Decomposition, DecompositionInfo};
 pub use depth::UnionDepth;
+pub use merge::merge_closed_meshes;
 pub use sum::{DynamicUnionSum, UnionSum, UnionSumInfo};
 
 use crate::query::QueryError;

@@ -8,7 +8,7 @@ use super::merge::union_meshes;
 use super::UnionMeshError;
 use crate::query::ConvexUnion;
 use crate::sum::{minkowski_sum_posed, Method};
-use crate::{DynamicSum, PolygonMesh, Pose, SanityError, UpdateReport};
+use crate::{DynamicSum, PolygonMesh, Pose, Rotation, SanityError, UpdateReport};
 
 /// How a [`UnionSum`] was made, and what it measured.
 #[derive(Clone, Debug, PartialEq)]
@@ -299,5 +299,60 @@ impl DynamicUnionSum {
     /// The first pair's failure.
     pub fn sanity_check(&self) -> Result<(), SanityError> {
         self.sums.iter().try_for_each(|(_, s)| s.sanity_check())
+    }
+}
+
+impl ConvexUnion {
+    /// C-obstacle slices of this union as a robot among `obstacle`, each
+    /// merged into one closed mesh: for each orientation `R`, the union of
+    /// the piece-pair sums `O_j ⊕ (−R·A_i)` (the translations that make the
+    /// robot overlap the obstacle). One [`DynamicSum`] per piece pair is
+    /// turned from orientation to orientation by DYMSUM (exact); the union
+    /// is redone per slice by `boolmesh` and validated, as
+    /// [`UnionSum::new`]. Feature `union-mesh`.
+    ///
+    /// ```
+    /// use dymsum::query::orientations_about_axis;
+    /// use dymsum::{ConvexUnion, DVec3, Polytope};
+    /// let cuboid = |lo: [f64; 3], hi: [f64; 3]| {
+    ///     let c: Vec<[f64; 3]> = (0..8)
+    ///         .map(|i| std::array::from_fn(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+    ///         .collect();
+    ///     Polytope::from_points(&c).unwrap()
+    /// };
+    /// let l = ConvexUnion::new(vec![cuboid([0., 0., 0.], [3., 1., 1.]), cuboid([0., 0., 0.], [1., 3., 1.])]).unwrap();
+    /// let turns = orientations_about_axis(DVec3::Z, 4).unwrap();
+    /// let slices = l.cobstacle_union_slices(&l, &turns)?;
+    /// assert_eq!(slices.len(), 4);
+    /// assert!(slices.iter().all(|s| s.info().mesh.shells == 1));
+    /// # Ok::<(), dymsum::nonconvex::UnionMeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`UnionMeshError::Polytope`] when a negated piece cannot be built;
+    /// those of [`UnionSum::new`] for a slice.
+    pub fn cobstacle_union_slices(
+        &self,
+        obstacle: &ConvexUnion,
+        orientations: &[Rotation],
+    ) -> Result<Vec<UnionSum>, UnionMeshError> {
+        let Some(&first) = orientations.first() else {
+            return Ok(Vec::new());
+        };
+        let neg = self
+            .pieces()
+            .iter()
+            .map(|p| super::depth::negated(p, Pose::IDENTITY).map(|(n, _)| n))
+            .collect::<Result<Vec<_>, _>>()?;
+        let neg =
+            ConvexUnion::new(neg).ok_or(UnionMeshError::Invalid(super::ClosedMeshError::Empty))?;
+        let at = |r: Rotation| Pose::new(r, DVec3::ZERO);
+        let mut sums = DynamicUnionSum::new(obstacle, Pose::IDENTITY, &neg, at(first))?;
+        let mut out = Vec::with_capacity(orientations.len());
+        for &r in orientations {
+            sums.set_pose(Pose::IDENTITY, at(r));
+            out.push(sums.union(true)?);
+        }
+        Ok(out)
     }
 }
