@@ -11,7 +11,6 @@ use dymsum::nonconvex::{convex_pieces, Decomposition, DecompositionInfo, UnionMe
 use dymsum::Polytope;
 
 use super::query::load_body;
-use super::short_name;
 
 /// A convex decomposition for non-convex meshes, as a command-line value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -51,9 +50,10 @@ impl Solid {
 ///
 /// # Errors
 /// Those of [`load_body`] when the operand is no closed solid at all; for a
-/// non-convex closed mesh, [`UnionMeshError::NeedsDecomposition`] (naming
-/// `--decomposition vhacd`) or a decomposition failure, with the operand
-/// named.
+/// non-convex closed mesh, the convex loader's message (naming the operand
+/// and where the mesh is not convex) followed by
+/// [`UnionMeshError::NeedsDecomposition`] (naming `--decomposition vhacd`)
+/// or a decomposition failure.
 pub fn load_solid(
     spec: &str,
     operand: &str,
@@ -88,7 +88,8 @@ pub fn load_solid(
         Err(UnionMeshError::Input { reason }) => {
             Err(refusal.context(format!("(as a non-convex body: {reason})")))
         }
-        Err(e) => Err(anyhow!("{operand} (file {}): {e}", short_name(spec))),
+        // Why it is not convex, then what to do about it.
+        Err(e) => Err(anyhow!("{refusal}; {e}")),
     }
 }
 
