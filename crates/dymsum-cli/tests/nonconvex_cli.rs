@@ -224,3 +224,46 @@ fn an_open_mesh_is_still_refused_as_before() {
     ]);
     assert_fails(&o, 1, "open mesh");
 }
+
+#[test]
+fn animate_a_union_writes_merged_valid_frames() {
+    let dir = temp_dir("animate");
+    let l = l_obj(&dir);
+    let ring = boxes_off(
+        &dir,
+        "ring.off",
+        &[
+            ([0., 0., 0.], [3., 1., 1.]),
+            ([0., 2., 0.], [3., 3., 1.]),
+            ([0., 0.5, 0.], [1., 2.5, 1.]),
+            ([2., 0.5, 0.], [3., 2.5, 1.]),
+        ],
+    );
+    let frames = dir.join("frames");
+    let csv = dir.join("a.csv");
+    let text = ok(&[
+        "animate",
+        &l,
+        &ring,
+        "--steps-per-rev",
+        "100",
+        "--steps",
+        "20",
+        "--frames-dir",
+        frames.to_str().unwrap(),
+        "--every",
+        "10",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        text.contains("8 piece pairs, each updated by DYMSUM"),
+        "{text}"
+    );
+    assert!(text.contains("(verified against walk)"), "{text}");
+    assert_eq!(std::fs::read_to_string(&csv).unwrap().lines().count(), 21);
+    for step in [10, 20] {
+        let info = read_valid(&frames.join(format!("step_{step:06}.off")));
+        assert_eq!(info.shells, 1);
+    }
+}

@@ -270,6 +270,20 @@ impl DynamicUnionSum {
         self.sums.len()
     }
 
+    /// The piece pairs `(piece of A, piece of B)` and their dynamic sums.
+    pub fn pairs(&self) -> impl Iterator<Item = ((usize, usize), &DynamicSum)> + '_ {
+        self.sums.iter().map(|(ij, s)| (*ij, s))
+    }
+
+    /// Turns A further by `r` about the origin (every pair sum repaired by
+    /// DYMSUM). Returns one report per pair, in pair order.
+    pub fn rotate_a_by(&mut self, r: Rotation) -> Vec<UpdateReport> {
+        self.sums
+            .iter_mut()
+            .map(|(_, s)| s.rotate_p_by(r))
+            .collect()
+    }
+
     /// Moves both bodies; every pair sum is repaired by DYMSUM. Returns one
     /// report per pair, in pair order.
     pub fn set_pose(&mut self, pose_a: Pose, pose_b: Pose) -> Vec<UpdateReport> {
