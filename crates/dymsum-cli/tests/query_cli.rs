@@ -208,10 +208,13 @@ fn query_unions_of_pieces() {
         "{text}"
     );
     assert_eq!(lines[1]["collides"], true);
-    assert!(
-        lines[1]["depth"].is_null(),
-        "depth of a union is not supported: {text}"
-    );
+    // The depth of the cross against the cube: out along ±y, 0.25 + 0.1,
+    // from the merged C-obstacle mesh (no witness points).
+    let depth = lines[1]["depth"].as_f64().unwrap();
+    assert!((depth - 0.35).abs() < 1e-12, "{text}");
+    let dir = numbers(&lines[1]["direction"]);
+    assert!((dir[1].abs() - 1.0).abs() < 1e-12, "{text}");
+    assert!(lines[1]["point_on_robot"].is_null(), "{text}");
 }
 
 #[test]

@@ -14,6 +14,9 @@
 //!   all returning the same labelled facet set, and the merged polygon mesh.
 //! * [`dynamic`]: DYMSUM, the sum kept up to date while the bodies rotate.
 //! * [`mesh`]: a plain polygon mesh, the exchange type with file formats.
+//! * `nonconvex` (feature `union-mesh`): sums of non-convex bodies (unions
+//!   of convex pieces, or closed meshes) merged into one validated closed
+//!   mesh.
 //! * [`interop`]: conversions of rotations, poses and shapes to and from
 //!   glam, and behind the optional features `parry`, `mint` and `nalgebra`,
 //!   to and from parry3d-f64, mint and nalgebra.
@@ -38,6 +41,8 @@ pub mod hull;
 pub mod interop;
 pub mod kernel;
 pub mod mesh;
+#[cfg(feature = "union-mesh")]
+pub mod nonconvex;
 pub mod polytope;
 pub mod query;
 pub mod sanity;

@@ -134,6 +134,13 @@ pub enum SanityError {
     /// by edge of Q) disagree.
     #[error("the ee indices by P edge and by Q edge disagree")]
     EeIndicesDisagree,
+    /// The merged mesh of a non-convex sum (`nonconvex::UnionSum`, feature
+    /// `union-mesh`) is not a valid closed mesh, or not the one recorded.
+    #[error("union mesh: {reason}")]
+    UnionMesh {
+        /// The check that failed.
+        reason: String,
+    },
 }
 
 #[cfg(test)]

@@ -13,6 +13,7 @@ pub mod motion;
 pub mod query;
 pub mod render;
 pub mod slabs;
+pub mod solid;
 pub mod sum;
 
 use std::io::Write;

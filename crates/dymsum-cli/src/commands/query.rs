@@ -13,9 +13,11 @@
 //! A body may be a union of convex pieces: several operands joined with `+`
 //! (`a.off+b.off`), or an OBJ file with several objects or groups. For
 //! unions, collision and distance are exact (any pair collides; the minimum
-//! pairwise distance); the penetration depth of a non-convex union is not
-//! supported, and is reported as `null` (with a `null` direction) when a
-//! union collides.
+//! pairwise distance); the penetration depth of a colliding non-convex
+//! union is the origin's distance to the boundary of the merged C-obstacle
+//! mesh ([`ConvexUnion::penetration_depth_mesh`]: exact piece-pair sums,
+//! their union by `boolmesh` in floats), with the direction; the witness
+//! points are then `null`.
 
 use std::io::Write;
 use std::path::Path;
@@ -165,7 +167,8 @@ struct JsonLine {
 /// One pose's answer.
 struct Answer {
     collides: bool,
-    /// `None`: depth of a colliding non-convex union (not supported).
+    /// `None` only if the merged C-obstacle of a colliding non-convex union
+    /// finds no overlap (never expected: collision is decided first).
     depth: Option<f64>,
     distance: f64,
     /// Unit vector from the robot towards the obstacle (the contact normal
@@ -267,7 +270,17 @@ fn union_answers(
             let q = ru
                 .query(p.pose, &ou, Pose::IDENTITY)
                 .with_context(|| format!("pose {}", k + 1))?;
-            Ok(from_union_proximity(&q, single))
+            let mut ans = from_union_proximity(&q, single);
+            if ans.collides && ans.depth.is_none() {
+                let d = ru
+                    .penetration_depth_mesh(p.pose, &ou, Pose::IDENTITY)
+                    .with_context(|| format!("pose {}: the depth of the union", k + 1))?;
+                if let Some(d) = d {
+                    ans.depth = Some(d.depth);
+                    ans.direction = (d.depth > 0.0).then_some(d.normal);
+                }
+            }
+            Ok(ans)
         })
         .collect()
 }

@@ -1,4 +1,12 @@
 //! `dymsum sum P Q -o OUT`: one static Minkowski sum, written as a mesh.
+//!
+//! Convex operands give the exact convex sum. An operand that is a union of
+//! convex pieces (`a.off+b.off`, an OBJ file with several objects) or a
+//! closed non-convex mesh (its exactly convex components, or the pieces of
+//! `--decomposition vhacd`) gives the union of the exact piece-pair sums,
+//! merged into one closed mesh by `boolmesh` and validated; the summary
+//! says how each operand was taken apart and how far a decomposition's
+//! pieces are from the input.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -9,9 +17,13 @@ use clap::Args;
 use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DVec3, Pose, Rotation};
 
-use super::{load, short_name};
+use super::short_name;
+use super::solid::{describe, load_solid, DecompositionArg, Solid};
 use crate::stats::{human_us, micros};
 use crate::values::{parse_output_path, parse_quaternion, parse_vector, MethodArg};
+use dymsum::nonconvex::{DecompositionInfo, UnionSum};
+use dymsum::ConvexUnion;
+use serde::Serialize;
 
 /// `dymsum sum`.
 #[derive(Debug, Args)]
@@ -41,6 +53,49 @@ pub struct SumArgs {
     /// Refuse meshes that are convex only within tolerance (instead of using their exact hull).
     #[arg(long)]
     pub strict: bool,
+    /// Take a non-convex mesh whose connected components are not all
+    /// exactly convex apart by this decomposition (approximate: the summary
+    /// reports its volume error against the input). Without it such a mesh
+    /// is refused; exactly convex components are always taken as they are.
+    #[arg(long, value_enum, value_name = "METHOD")]
+    pub decomposition: Option<DecompositionArg>,
+    /// Merge every piece-pair sum, even those certified inside another
+    /// (non-convex sums).
+    #[arg(long)]
+    pub no_cull: bool,
+    /// Print the summary as one JSON object: `{"p":..,"q":..,"method":..,
+    /// "pieces":[p,q],"pairs":n,"pairs_culled":k,"decomposition":{"p":{..},
+    /// "q":{..}},"vertices":v,"faces":f,"volume":x,"shells":s,"genus":g,
+    /// "slivers":z,"microseconds":t}` (`slivers`: zero-area triangles the
+    /// boolean left) (`decomposition` entries: `method`, `exact`,
+    /// `pieces`, `volume_error`...).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The `--json` summary.
+#[derive(Serialize)]
+struct JsonSummary<'a> {
+    p: String,
+    q: String,
+    method: &'static str,
+    pieces: [usize; 2],
+    pairs: usize,
+    pairs_culled: usize,
+    decomposition: JsonDecomposition<'a>,
+    vertices: usize,
+    faces: usize,
+    volume: f64,
+    shells: usize,
+    genus: i64,
+    slivers: usize,
+    microseconds: f64,
+}
+
+#[derive(Serialize)]
+struct JsonDecomposition<'a> {
+    p: &'a DecompositionInfo,
+    q: &'a DecompositionInfo,
 }
 
 /// Runs `dymsum sum`.
@@ -52,15 +107,18 @@ pub struct SumArgs {
 /// or the output cannot be written.
 pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.p, "P"), (&a.q, "Q")])?;
-    let p = load(&a.p, "P", a.strict)?;
-    let q = load(&a.q, "Q", a.strict)?;
+    let p = load_solid(&a.p, "P", a.strict, a.decomposition)?;
+    let q = load_solid(&a.q, "Q", a.strict, a.decomposition)?;
     let pose_p = Pose::new(
         a.rotate_p.unwrap_or(Rotation::IDENTITY),
         a.translate_p.unwrap_or(DVec3::ZERO),
     );
     let method: Method = a.method.into();
+    if !(p.is_convex() && q.is_convex()) {
+        return run_union(a, p, q, pose_p, method, out);
+    }
     let start = Instant::now();
-    let sum = minkowski_sum_posed(&p.polytope, pose_p, &q.polytope, Pose::IDENTITY, method)
+    let sum = minkowski_sum_posed(&p.pieces[0], pose_p, &q.pieces[0], Pose::IDENTITY, method)
         .with_context(|| format!("{} ⊕ {} ({})", a.p, a.q, method.name()))?;
     let elapsed = micros(start.elapsed());
     let with_precision = sum.mesh_with_precision();
@@ -72,6 +130,21 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let (fv, vf, ee) = sum.counts();
     let mut stderr = std::io::stderr();
     let summary: &mut dyn Write = if to_stdout { &mut stderr } else { out };
+    if a.json {
+        let volume = mesh.signed_volume();
+        return write_json(
+            a,
+            &p,
+            &q,
+            method,
+            [1, 0, 0],
+            &mesh,
+            volume,
+            (1, 0, 0),
+            elapsed,
+            summary,
+        );
+    }
     writeln!(
         summary,
         "{} ⊕ {} ({}): {fv} fv + {vf} vf + {ee} ee = {} facets, {} faces after merging{}, {}",
@@ -88,4 +161,115 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         human_us(elapsed),
     )?;
     Ok(())
+}
+
+/// The non-convex path: the union of the exact piece-pair sums, merged and
+/// validated.
+fn run_union(
+    a: &SumArgs,
+    p: Solid,
+    q: Solid,
+    pose_p: Pose,
+    method: Method,
+    out: &mut dyn Write,
+) -> anyhow::Result<()> {
+    let (np, nq) = (p.pieces.len(), q.pieces.len());
+    let pu = ConvexUnion::new(p.pieces.clone()).context("P has no pieces")?;
+    let qu = ConvexUnion::new(q.pieces.clone()).context("Q has no pieces")?;
+    let start = Instant::now();
+    let sum = UnionSum::new(&pu, pose_p, &qu, Pose::IDENTITY, method, !a.no_cull)
+        .with_context(|| format!("{} ⊕ {} ({}, union of piece sums)", a.p, a.q, method.name()))?;
+    let elapsed = micros(start.elapsed());
+    let to_stdout = a.output.as_os_str() == super::STDIO;
+    super::write_mesh_or_stdout(&a.output, sum.mesh(), out).context("writing the sum")?;
+    let info = sum.info();
+    let mut stderr = std::io::stderr();
+    let summary: &mut dyn Write = if to_stdout { &mut stderr } else { out };
+    if a.json {
+        return write_json(
+            a,
+            &p,
+            &q,
+            method,
+            [np * nq, info.pairs_culled, 0],
+            sum.mesh(),
+            info.mesh.volume,
+            (info.mesh.shells, info.mesh.genus, info.mesh.slivers),
+            elapsed,
+            summary,
+        );
+    }
+    writeln!(
+        summary,
+        "{} ⊕ {} ({}): {} ⊕ {}, {} pair sums ({} culled) merged by boolmesh: \
+         {} triangles, volume {}, {} shell{}, genus {}; P {}, Q {}; {}",
+        short_name(&a.p),
+        short_name(&a.q),
+        method.name(),
+        plural(np, "piece"),
+        plural(nq, "piece"),
+        info.pairs,
+        info.pairs_culled,
+        info.mesh.triangles,
+        volume_text(info.mesh.volume),
+        info.mesh.shells,
+        if info.mesh.shells == 1 { "" } else { "s" },
+        info.mesh.genus,
+        describe(&p.info),
+        describe(&q.info),
+        human_us(elapsed),
+    )?;
+    Ok(())
+}
+
+/// Writes the `--json` summary. `pairs` is `[pairs, culled, _]`.
+#[allow(clippy::too_many_arguments)]
+fn write_json(
+    a: &SumArgs,
+    p: &Solid,
+    q: &Solid,
+    method: Method,
+    pairs: [usize; 3],
+    mesh: &dymsum::PolygonMesh,
+    volume: f64,
+    (shells, genus, slivers): (usize, i64, usize),
+    elapsed: f64,
+    out: &mut dyn Write,
+) -> anyhow::Result<()> {
+    let s = JsonSummary {
+        p: short_name(&a.p),
+        q: short_name(&a.q),
+        method: method.name(),
+        pieces: [p.pieces.len(), q.pieces.len()],
+        pairs: pairs[0],
+        pairs_culled: pairs[1],
+        decomposition: JsonDecomposition {
+            p: &p.info,
+            q: &q.info,
+        },
+        vertices: mesh.vertices.len(),
+        faces: mesh.faces.len(),
+        volume,
+        shells,
+        genus,
+        slivers,
+        microseconds: elapsed,
+    };
+    writeln!(out, "{}", serde_json::to_string(&s)?)?;
+    Ok(())
+}
+
+/// A volume with 6 decimals, trailing zeros dropped (`12.375`).
+fn volume_text(v: f64) -> String {
+    let s = format!("{v:.6}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// `1 piece`, `2 pieces`.
+fn plural(n: usize, what: &str) -> String {
+    if n == 1 {
+        format!("1 {what}")
+    } else {
+        format!("{n} {what}s")
+    }
 }

@@ -11,12 +11,14 @@
 //!   collection of piece-pair sums (not merged into one mesh);
 //! * the per-pair contacts, for information.
 //!
-//! **Not supported: the penetration depth of a non-convex union.** The
-//! minimum over piece pairs is not it (the translation that separates one
-//! pair can push another pair into contact), and the true depth needs the
-//! boundary of a union of sums. [`ConvexUnion::penetration_depth`] returns
+//! **The penetration depth of a non-convex union** is not the minimum over
+//! piece pairs (the translation that separates one pair can push another
+//! pair into contact): the true depth needs the boundary of a union of
+//! sums. [`ConvexUnion::penetration_depth`] returns
 //! [`QueryError::UnionDepthUnsupported`] unless both unions have a single
-//! piece, rather than a wrong number.
+//! piece, rather than a wrong number; with the feature `union-mesh`,
+//! `ConvexUnion::penetration_depth_mesh` (module `nonconvex`) measures it
+//! on the merged C-obstacle mesh.
 
 use super::{CObstacle, Contact, ConvexPair, Proximity, QueryError, Separation};
 use crate::polytope::Polytope;
@@ -159,7 +161,9 @@ impl ConvexUnion {
     }
 
     /// The penetration depth: only for single-piece (convex) unions;
-    /// otherwise [`QueryError::UnionDepthUnsupported`] (see the module docs).
+    /// otherwise [`QueryError::UnionDepthUnsupported`] (see the module docs;
+    /// with the feature `union-mesh`, `penetration_depth_mesh` answers
+    /// for unions too).
     ///
     /// # Errors
     /// [`QueryError::UnionDepthUnsupported`] when either union has more than

@@ -1,0 +1,111 @@
+//! Loading an operand that may be non-convex: one convex body, a union of
+//! convex pieces (`a.off+b.off`, an OBJ file with several objects), or a
+//! closed non-convex mesh taken apart into convex pieces (its exactly convex
+//! components, or a decomposition chosen with `--decomposition`).
+
+use std::path::Path;
+
+use anyhow::anyhow;
+use clap::ValueEnum;
+use dymsum::nonconvex::{convex_pieces, Decomposition, DecompositionInfo, UnionMeshError};
+use dymsum::Polytope;
+
+use super::query::load_body;
+
+/// A convex decomposition for non-convex meshes, as a command-line value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum DecompositionArg {
+    /// parry's V-HACD (approximate: its volume error is reported).
+    Vhacd,
+}
+
+impl From<DecompositionArg> for Decomposition {
+    fn from(d: DecompositionArg) -> Decomposition {
+        match d {
+            DecompositionArg::Vhacd => Decomposition::VHACD,
+        }
+    }
+}
+
+/// An operand's convex pieces and how they were obtained.
+#[derive(Debug)]
+pub struct Solid {
+    /// The convex pieces (at least one).
+    pub pieces: Vec<Polytope>,
+    /// How: `convex`, `given`, `components` or `vhacd`.
+    pub info: DecompositionInfo,
+}
+
+impl Solid {
+    /// One convex body, taken as it is.
+    pub fn is_convex(&self) -> bool {
+        self.info.method == "convex"
+    }
+}
+
+/// Loads operand `spec` as convex pieces. A convex body or a union of
+/// convex pieces loads as for `dymsum query` ([`load_body`]); a mesh file
+/// refused only for not being convex is split into its exactly convex
+/// connected components, or else by `decomposition`.
+///
+/// # Errors
+/// Those of [`load_body`] when the operand is no closed solid at all; for a
+/// non-convex closed mesh, the convex loader's message (naming the operand
+/// and where the mesh is not convex) followed by
+/// [`UnionMeshError::NeedsDecomposition`] (naming `--decomposition vhacd`)
+/// or a decomposition failure.
+pub fn load_solid(
+    spec: &str,
+    operand: &str,
+    strict: bool,
+    decomposition: Option<DecompositionArg>,
+) -> anyhow::Result<Solid> {
+    let refusal = match load_body(spec, operand, strict) {
+        Ok(pieces) => {
+            let n = pieces.len();
+            let method = if n == 1 { "convex" } else { "given" };
+            return Ok(Solid {
+                pieces,
+                info: DecompositionInfo::exact(method, n),
+            });
+        }
+        Err(e) => e,
+    };
+    let path = Path::new(spec);
+    if spec.contains('+') || !path.is_file() {
+        return Err(refusal);
+    }
+    let Ok(mesh) = dymsum_io::formats::read_mesh(path) else {
+        return Err(refusal);
+    };
+    if mesh.faces.is_empty() {
+        return Err(refusal);
+    }
+    let d = decomposition.map_or(Decomposition::Components, Decomposition::from);
+    match convex_pieces(&mesh, d) {
+        Ok((pieces, info)) => Ok(Solid { pieces, info }),
+        // No closed solid: the convex loader's message says most.
+        Err(UnionMeshError::Input { reason }) => {
+            Err(refusal.context(format!("(as a non-convex body: {reason})")))
+        }
+        // Why it is not convex, then what to do about it.
+        Err(e) => Err(anyhow!("{refusal}; {e}")),
+    }
+}
+
+/// How an operand's pieces were obtained, for the summary line: `as
+/// given`, `convex`, `2 convex components (exact)`, `vhacd: 7 pieces
+/// (volume error 0.81%)`.
+pub fn describe(info: &DecompositionInfo) -> String {
+    match info.method {
+        "convex" => "convex".to_string(),
+        "given" => format!("{} pieces as given", info.pieces),
+        "components" => format!("{} convex components (exact)", info.pieces),
+        m => format!(
+            "{m}: {} pieces, {} exact (volume error {:.3}%)",
+            info.pieces,
+            info.convex_components,
+            100.0 * info.volume_error.unwrap_or(f64::NAN)
+        ),
+    }
+}

@@ -1,0 +1,269 @@
+//! `dymsum sum` of non-convex bodies (issue 21): unions of convex pieces
+//! (OBJ objects, `+`), closed meshes of convex components, a non-convex mesh
+//! refused without `--decomposition` and taken apart by V-HACD with it.
+//! Every written mesh is re-read and validated.
+
+mod common;
+
+use std::path::Path;
+
+use common::{assert_fails, ok, temp_dir};
+use dymsum::nonconvex::check_closed_mesh;
+
+const FACES: [[usize; 4]; 6] = [
+    [0, 2, 3, 1],
+    [4, 5, 7, 6],
+    [0, 1, 5, 4],
+    [2, 6, 7, 3],
+    [0, 4, 6, 2],
+    [1, 3, 7, 5],
+];
+
+fn corners(lo: [f64; 3], hi: [f64; 3]) -> Vec<[f64; 3]> {
+    (0..8)
+        .map(|i| std::array::from_fn(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+        .collect()
+}
+
+/// The L (3×1×1 and 1×3×1 boxes at the origin) as an OBJ of two objects.
+fn l_obj(dir: &Path) -> String {
+    let mut s = String::new();
+    for (k, (name, hi)) in [("long", [3., 1., 1.]), ("short", [1., 3., 1.])]
+        .iter()
+        .enumerate()
+    {
+        s += &format!("o {name}\n");
+        for p in corners([0.; 3], *hi) {
+            s += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+        }
+        for f in FACES {
+            s += &format!(
+                "f {} {} {} {}\n",
+                f[0] + 1 + 8 * k,
+                f[1] + 1 + 8 * k,
+                f[2] + 1 + 8 * k,
+                f[3] + 1 + 8 * k
+            );
+        }
+    }
+    let path = dir.join("L.obj");
+    std::fs::write(&path, s).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// An OFF of boxes as separate (overlapping) shells.
+fn boxes_off(dir: &Path, name: &str, boxes: &[([f64; 3], [f64; 3])]) -> String {
+    let mut v = Vec::new();
+    let mut f = Vec::new();
+    for (lo, hi) in boxes {
+        let o = v.len();
+        v.extend(corners(*lo, *hi));
+        f.extend(FACES.iter().map(|q| q.map(|i| i + o)));
+    }
+    let mut s = format!("OFF\n{} {} 0\n", v.len(), f.len());
+    for p in &v {
+        s += &format!("{} {} {}\n", p[0], p[1], p[2]);
+    }
+    for q in &f {
+        s += &format!("4 {} {} {} {}\n", q[0], q[1], q[2], q[3]);
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, s).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// The extruded L outline: one closed, non-convex mesh.
+fn l_mesh_off(dir: &Path) -> String {
+    let o = [[0., 0.], [3., 0.], [3., 1.], [1., 1.], [1., 3.], [0., 3.]];
+    let mut s = "OFF\n12 14 0\n".to_string();
+    for z in [0., 1.] {
+        for p in o {
+            s += &format!("{} {} {z}\n", p[0], p[1]);
+        }
+    }
+    for t in [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5]] {
+        s += &format!(
+            "3 {} {} {}\n3 {} {} {}\n",
+            t[0],
+            t[2],
+            t[1],
+            t[0] + 6,
+            t[1] + 6,
+            t[2] + 6
+        );
+    }
+    for i in 0..6 {
+        let j = (i + 1) % 6;
+        s += &format!("4 {i} {j} {} {}\n", j + 6, i + 6);
+    }
+    let path = dir.join("Lmesh.off");
+    std::fs::write(&path, s).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+fn read_valid(path: &Path) -> dymsum::nonconvex::ClosedMeshInfo {
+    let mesh = dymsum_io::formats::read_mesh(path).unwrap();
+    check_closed_mesh(&mesh).unwrap()
+}
+
+fn json(text: &str) -> serde_json::Value {
+    serde_json::from_str(text.trim()).unwrap()
+}
+
+#[test]
+fn l_obj_plus_a_half_cube_is_one_valid_solid_of_volume_12_375() {
+    let dir = temp_dir("l_cube");
+    let l = l_obj(&dir);
+    for (k, o) in [[0., 0., 0.], [10., 0., 0.], [0., 0., 5.], [-3., -3., 0.]]
+        .iter()
+        .enumerate()
+    {
+        let cube = boxes_off(&dir, &format!("cube{k}.off"), &[(*o, o.map(|x| x + 0.5))]);
+        let out = dir.join(format!("sum{k}.off"));
+        let s = json(&ok(&[
+            "sum",
+            &l,
+            &cube,
+            "-o",
+            out.to_str().unwrap(),
+            "--json",
+        ]));
+        assert_eq!(s["pieces"], serde_json::json!([2, 1]));
+        assert_eq!(s["decomposition"]["p"]["method"], "given");
+        assert_eq!(s["shells"], 1);
+        let info = read_valid(&out);
+        assert!(
+            (info.volume - 12.375).abs() < 1e-9,
+            "{o:?}: {}",
+            info.volume
+        );
+        assert_eq!((info.shells, info.genus), (1, 0));
+    }
+}
+
+#[test]
+fn l_obj_plus_a_ring_off_and_the_ring_keeps_its_hole() {
+    let dir = temp_dir("l_ring");
+    let l = l_obj(&dir);
+    let ring = boxes_off(
+        &dir,
+        "ring.off",
+        &[
+            ([0., 0., 0.], [3., 1., 1.]),
+            ([0., 2., 0.], [3., 3., 1.]),
+            ([0., 0.5, 0.], [1., 2.5, 1.]),
+            ([2., 0.5, 0.], [3., 2.5, 1.]),
+        ],
+    );
+    let out = dir.join("out.off");
+    let line = ok(&["sum", &l, &ring, "-o", out.to_str().unwrap()]);
+    assert!(line.contains("2 pieces ⊕ 4 pieces, 8 pair sums"), "{line}");
+    assert!(line.contains("Q 4 convex components (exact)"), "{line}");
+    read_valid(&out);
+    // The ring plus a small cube: genus 1 kept.
+    let cube = boxes_off(&dir, "small.off", &[([0.; 3], [0.25; 3])]);
+    let out = dir.join("ring_cube.off");
+    let s = json(&ok(&[
+        "sum",
+        &ring,
+        &cube,
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(s["genus"], 1);
+    let info = read_valid(&out);
+    assert_eq!((info.shells, info.genus), (1, 1));
+    // Also as `+`-joined pieces, and to standard output.
+    let joined = format!(
+        "{}+{}",
+        dir.join("small.off").display(),
+        dir.join("cube_b.off").display()
+    );
+    boxes_off(&dir, "cube_b.off", &[([2.; 3], [3.; 3])]);
+    let text = ok(&["sum", &l, &joined, "-o", "-"]);
+    assert!(text.starts_with("OFF"), "{text}");
+}
+
+#[test]
+fn a_non_convex_mesh_needs_a_decomposition() {
+    let dir = temp_dir("l_mesh");
+    let l = l_mesh_off(&dir);
+    let out = dir.join("out.off");
+    let o = common::run(&["sum", &l, "cube", "-o", out.to_str().unwrap()]);
+    assert_fails(&o, 1, "needs a convex decomposition");
+    assert_fails(&o, 1, "--decomposition vhacd");
+    assert!(!out.exists());
+    let s = json(&ok(&[
+        "sum",
+        &l,
+        "cube",
+        "-o",
+        out.to_str().unwrap(),
+        "--decomposition",
+        "vhacd",
+        "--json",
+    ]));
+    assert_eq!(s["decomposition"]["p"]["method"], "vhacd");
+    assert_eq!(s["decomposition"]["p"]["exact"], false);
+    let err = s["decomposition"]["p"]["volume_error"].as_f64().unwrap();
+    assert!((0.0..0.25).contains(&err), "{s}");
+    read_valid(&out);
+}
+
+#[test]
+fn an_open_mesh_is_still_refused_as_before() {
+    let dir = temp_dir("open");
+    let out = dir.join("out.off");
+    let o = common::run(&[
+        "sum",
+        &common::fixture("cube_open.off"),
+        "cube",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_fails(&o, 1, "open mesh");
+}
+
+#[test]
+fn animate_a_union_writes_merged_valid_frames() {
+    let dir = temp_dir("animate");
+    let l = l_obj(&dir);
+    let ring = boxes_off(
+        &dir,
+        "ring.off",
+        &[
+            ([0., 0., 0.], [3., 1., 1.]),
+            ([0., 2., 0.], [3., 3., 1.]),
+            ([0., 0.5, 0.], [1., 2.5, 1.]),
+            ([2., 0.5, 0.], [3., 2.5, 1.]),
+        ],
+    );
+    let frames = dir.join("frames");
+    let csv = dir.join("a.csv");
+    let text = ok(&[
+        "animate",
+        &l,
+        &ring,
+        "--steps-per-rev",
+        "100",
+        "--steps",
+        "20",
+        "--frames-dir",
+        frames.to_str().unwrap(),
+        "--every",
+        "10",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        text.contains("8 piece pairs, each updated by DYMSUM"),
+        "{text}"
+    );
+    assert!(text.contains("(verified against walk)"), "{text}");
+    assert_eq!(std::fs::read_to_string(&csv).unwrap().lines().count(), 21);
+    for step in [10, 20] {
+        let info = read_valid(&frames.join(format!("step_{step:06}.off")));
+        assert_eq!(info.shells, 1);
+    }
+}

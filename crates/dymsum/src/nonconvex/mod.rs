@@ -1,0 +1,125 @@
+//! Minkowski sums of non-convex bodies as one closed mesh (feature
+//! `union-mesh`).
+//!
+//! `A ⊕ B` of two unions of convex pieces ([`ConvexUnion`]) is the union,
+//! over every pair of pieces, of the exact convex sums `a_i ⊕ b_j`
+//! ([`crate::minkowski_sum_posed`], or one [`crate::DynamicSum`] per pair
+//! under motion: [`DynamicUnionSum`]). That union is merged into one
+//! closed, oriented 2-manifold by the pure-Rust mesh boolean `boolmesh`
+//! (after the Manifold library; never hand-written here), then validated
+//! by [`check_closed_mesh`] before it is returned: a mesh that fails is an
+//! error ([`UnionMeshError::Invalid`]), never a result.
+//!
+//! What is exact, and what is not:
+//!
+//! * each piece-pair sum is exact (every decision an exact predicate), its
+//!   vertices rounded to `f64` as for any convex sum;
+//! * pair sums left out of the union (`pairs_culled`) are certified inside
+//!   another pair sum by exact orientation tests;
+//! * the union is `boolmesh`'s float boolean: the merged mesh is the union
+//!   of the pair sums up to the rounding of its new vertices (where piece
+//!   sums cross); holes and cavities are kept;
+//! * the validation is exact and combinatorial (every directed edge once
+//!   and its reverse once, no pinched vertex); the volume is a float sum
+//!   and must be positive; sliver triangles (corners exactly collinear) are
+//!   counted, not refused (`boolmesh` can leave them where piece sums meet
+//!   at grazing angles; the surface is still closed and oriented);
+//! * a non-convex closed mesh becomes pieces by [`convex_pieces`]: exactly
+//!   convex connected components are taken as they are (exact); anything
+//!   else needs a decomposition ([`Decomposition::Vhacd`], parry's V-HACD
+//!   under the `parry` feature), which is approximate: its volume error
+//!   against the input is in the [`DecompositionInfo`];
+//! * the penetration depth of two unions
+//!   ([`ConvexUnion::penetration_depth_mesh`]) decides collision exactly and
+//!   measures the origin's distance to the merged C-obstacle mesh: exact up
+//!   to the union's float construction.
+//!
+//! ```
+//! use dymsum::nonconvex::UnionSum;
+//! use dymsum::{sum::Method, ConvexUnion, Polytope, Pose};
+//! let cuboid = |lo: [f64; 3], hi: [f64; 3]| {
+//!     let c: Vec<[f64; 3]> = (0..8)
+//!         .map(|i| std::array::from_fn(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+//!         .collect();
+//!     Polytope::from_points(&c).unwrap()
+//! };
+//! // The L: a 3×1×1 and a 1×3×1 box overlapping at the origin.
+//! let l = ConvexUnion::new(vec![cuboid([0., 0., 0.], [3., 1., 1.]), cuboid([0., 0., 0.], [1., 3., 1.])]).unwrap();
+//! let cube = ConvexUnion::new(vec![cuboid([0., 0., 0.], [0.5, 0.5, 0.5])]).unwrap();
+//! let sum = UnionSum::new(&l, Pose::IDENTITY, &cube, Pose::IDENTITY, Method::Walk, true)?;
+//! let info = sum.info();
+//! assert!((info.mesh.volume - 12.375).abs() < 1e-12);
+//! assert_eq!((info.mesh.shells, info.mesh.genus, info.pairs), (1, 0, 2));
+//! # Ok::<(), dymsum::nonconvex::UnionMeshError>(())
+//! ```
+
+mod check;
+mod decompose;
+mod depth;
+mod merge;
+mod sum;
+
+pub use crate::query::ConvexUnion;
+pub use check::{check_closed_mesh, ClosedMeshError, ClosedMeshInfo};
+pub use decompose::{convex_pieces, Decomposition, DecompositionInfo};
+pub use depth::UnionDepth;
+pub use merge::merge_closed_meshes;
+pub use sum::{DynamicUnionSum, UnionSum, UnionSumInfo};
+
+use crate::query::QueryError;
+use crate::sum::MeshError;
+use crate::{PolytopeError, SumError};
+
+/// Why a non-convex sum (or its decomposition, or a depth from it) failed.
+#[derive(Debug, thiserror::Error)]
+pub enum UnionMeshError {
+    /// The input mesh is not a closed, outward solid.
+    #[error("the mesh is not a closed solid: {reason}")]
+    Input {
+        /// Why.
+        reason: String,
+    },
+    /// A connected component is not exactly convex and no decomposition was
+    /// chosen.
+    #[error(
+        "a non-convex mesh ({nonconvex} of its {components} connected components not exactly convex) \
+         needs a convex decomposition: choose V-HACD (Rust: Decomposition::Vhacd with the `parry` \
+         feature; CLI: --decomposition vhacd), or give its convex pieces (files joined with `+`, \
+         OBJ objects)"
+    )]
+    NeedsDecomposition {
+        /// Connected components of the mesh.
+        components: usize,
+        /// Those not exactly convex (or inward shells: cavities).
+        nonconvex: usize,
+    },
+    /// The chosen decomposition is not compiled in.
+    #[error("the {0} decomposition needs dymsum's `parry` feature")]
+    DecompositionUnavailable(&'static str),
+    /// The decomposition failed or returned no solid part.
+    #[error("decomposition: {0}")]
+    Decomposition(String),
+    /// `boolmesh` refused a mesh or failed on a boolean.
+    #[error("mesh boolean ({step}): {message}")]
+    Boolean {
+        /// The mesh or the operation.
+        step: String,
+        /// `boolmesh`'s message.
+        message: String,
+    },
+    /// The merged mesh failed validation (it is not returned).
+    #[error("the merged mesh is not a valid closed mesh: {0}")]
+    Invalid(ClosedMeshError),
+    /// A piece-pair sum failed.
+    #[error(transparent)]
+    Sum(#[from] SumError),
+    /// The mesh of a piece-pair sum failed.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    /// A piece could not be built.
+    #[error(transparent)]
+    Polytope(#[from] PolytopeError),
+    /// A collision query failed.
+    #[error(transparent)]
+    Query(#[from] QueryError),
+}
