@@ -267,3 +267,60 @@ fn animate_a_union_writes_merged_valid_frames() {
         assert_eq!(info.shells, 1);
     }
 }
+
+#[test]
+fn cobst_merge_writes_one_valid_mesh_per_slice_equal_to_the_library_union() {
+    use dymsum::query::orientations_about_axis;
+    use dymsum::{ConvexUnion, DVec3, Polytope};
+    let dir = temp_dir("cobst-merge");
+    let l = l_obj(&dir);
+    let out = dir.join("slices");
+    let text = ok(&[
+        "cobst",
+        &l,
+        "box:1,1,1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "6",
+        "--out",
+        out.to_str().unwrap(),
+        "--merge",
+    ]);
+    assert!(text.contains("6 slices (2 piece pairs)"), "{text}");
+    let index: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("index.json")).unwrap()).unwrap();
+    let box_at = |lo: [f64; 3], hi: [f64; 3]| Polytope::from_points(&corners(lo, hi)).unwrap();
+    let robot = ConvexUnion::new(vec![
+        box_at([0.; 3], [3., 1., 1.]),
+        box_at([0.; 3], [1., 3., 1.]),
+    ])
+    .unwrap();
+    let obstacle = ConvexUnion::new(vec![box_at([-0.5; 3], [0.5; 3])]).unwrap();
+    let turns = orientations_about_axis(DVec3::Z, 6).unwrap();
+    let expected = robot.cobstacle_union_slices(&obstacle, &turns).unwrap();
+    for (k, slice) in expected.iter().enumerate() {
+        let entry = &index[k];
+        assert_eq!(entry["file"], format!("slice_{k:05}.off"));
+        assert!(entry.get("files").is_none());
+        let info = read_valid(&out.join(format!("slice_{k:05}.off")));
+        assert_eq!(info.shells, 1);
+        assert!((info.volume - slice.info().mesh.volume).abs() <= 1e-9 * info.volume);
+    }
+    // Only with --format off, and never with --certified.
+    let o = common::run(&[
+        "cobst",
+        &l,
+        "box:1,1,1",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "6",
+        "--out",
+        dir.join("npz").to_str().unwrap(),
+        "--merge",
+        "--format",
+        "npz",
+    ]);
+    assert_fails(&o, 1, "--merge writes one mesh per slice");
+}

@@ -24,7 +24,11 @@
 //! With a union of convex pieces as robot or obstacle (`a.off+b.off`, or an
 //! OBJ file with several objects), a slice is the union of the piece-pair
 //! sums: they are written as `slice_NNNNN_rI_oJ.off` and the index entry
-//! lists them under `"files"` (with `"faces"` their total).
+//! lists them under `"files"` (with `"faces"` their total). With `--merge`,
+//! each slice is written instead as one closed mesh `slice_NNNNN.off`: one
+//! dynamic sum per piece pair turned from slice to slice by DYMSUM, their
+//! union redone per slice by `boolmesh` and validated
+//! ([`dymsum::ConvexUnion::cobstacle_union_slices`]).
 
 use std::io::{BufRead, Write};
 use std::path::{Path, PathBuf};
@@ -33,7 +37,7 @@ use std::time::Instant;
 use anyhow::{anyhow, bail, Context};
 use clap::Args;
 use dymsum::query::{full_turn_angles, orientations_about_axis, rotations_about_axis, CObstacle};
-use dymsum::{DVec3, DynamicSum, Polytope, Rotation};
+use dymsum::{ConvexUnion, DVec3, DynamicSum, Polytope, Rotation};
 use serde::Serialize;
 
 use super::query::load_body;
@@ -100,6 +104,12 @@ pub struct CobstArgs {
     #[arg(long = "cell-radius", value_name = "RHO", value_parser = parse_cell_radius,
           allow_hyphen_values = true, requires = "certified")]
     pub cell_radius: Option<f64>,
+    /// Write each slice of a union robot or obstacle as one closed mesh
+    /// (`slice_NNNNN.off`): the validated union of its piece-pair slices
+    /// (each pair turned by DYMSUM, the union redone per slice). With
+    /// --format off only, not with --certified.
+    #[arg(long, conflicts_with = "certified")]
+    pub merge: bool,
 }
 
 /// Parses a cell radius: an angle in radians, `0 ≤ RHO < π` (a cell of
@@ -276,18 +286,26 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     }
     let orientations = chosen_orientations(a)?;
     prepare_out_dir(&a.out, a.force)?;
-    let union = robot.len() > 1 || obstacle.len() > 1;
+    let mut union = robot.len() > 1 || obstacle.len() > 1;
+    if a.merge && a.format != CobstFormat::Off {
+        bail!("--merge writes one mesh per slice: use it with --format off");
+    }
     let start = Instant::now();
-    let slices = match a.format {
-        CobstFormat::Npz | CobstFormat::NpzMesh => {
-            let form = if a.format == CobstFormat::Npz {
-                Form::HalfSpaces
-            } else {
-                Form::Mesh
-            };
-            write_map(a, (&robot, &obstacle), &orientations, form)?
+    let slices = if a.merge {
+        union = false;
+        write_merged_slices(a, &robot, &obstacle, &orientations)?
+    } else {
+        match a.format {
+            CobstFormat::Npz | CobstFormat::NpzMesh => {
+                let form = if a.format == CobstFormat::Npz {
+                    Form::HalfSpaces
+                } else {
+                    Form::Mesh
+                };
+                write_map(a, (&robot, &obstacle), &orientations, form)?
+            }
+            _ => write_slices(a, &robot, &obstacle, &orientations)?,
         }
-        _ => write_slices(a, &robot, &obstacle, &orientations)?,
     };
     let elapsed = micros(start.elapsed());
     if !matches!(a.format, CobstFormat::Npz | CobstFormat::NpzMesh) {
@@ -529,6 +547,41 @@ fn write_slices(
         }
     }
     bar.finish_and_clear();
+    Ok(slices)
+}
+
+/// Writes each slice as the validated union of its piece-pair slices,
+/// one closed mesh `slice_K.off` (`--merge`).
+fn write_merged_slices(
+    a: &CobstArgs,
+    robot: &[Polytope],
+    obstacle: &[Polytope],
+    orientations: &[Rotation],
+) -> anyhow::Result<Slices> {
+    let what = || {
+        format!(
+            "merged slices of {} against {}",
+            short_name(&a.robot),
+            short_name(&a.obstacle)
+        )
+    };
+    let union = |pieces: &[Polytope], name: &str| {
+        ConvexUnion::new(pieces.to_vec()).ok_or_else(|| anyhow!("{name} has no pieces"))
+    };
+    let merged = union(robot, "ROBOT")?
+        .cobstacle_union_slices(&union(obstacle, "OBSTACLE")?, orientations)
+        .with_context(what)?;
+    let mut slices = Slices {
+        faces: Vec::with_capacity(merged.len()),
+        files: Vec::with_capacity(merged.len()),
+    };
+    for (k, slice) in merged.iter().enumerate() {
+        let name = format!("slice_{k:05}.off");
+        dymsum_io::formats::write_mesh(&a.out.join(&name), slice.mesh())
+            .with_context(|| format!("slice {k}"))?;
+        slices.faces.push(slice.mesh().faces.len());
+        slices.files.push(vec![name]);
+    }
     Ok(slices)
 }
 
