@@ -324,3 +324,75 @@ fn cobst_merge_writes_one_valid_mesh_per_slice_equal_to_the_library_union() {
     ]);
     assert_fails(&o, 1, "--merge writes one mesh per slice");
 }
+
+#[test]
+fn query_cobst_and_motion_take_meshes_of_convex_shells_and_announce_a_decomposition() {
+    let dir = temp_dir("bodies");
+    let ring = boxes_off(
+        &dir,
+        "ring.off",
+        &[
+            ([0., 0., 0.], [3., 1., 1.]),
+            ([0., 2., 0.], [3., 3., 1.]),
+            ([0., 0.5, 0.], [1., 2.5, 1.]),
+            ([2., 0.5, 0.], [3., 2.5, 1.]),
+        ],
+    );
+    // The unit box in the ring's hole: apart, 0.5 from the inner walls.
+    let text = ok(&[
+        "query",
+        &ring,
+        "box:0.5,0.5,0.5",
+        "--pose-xyz-wxyz",
+        "-1.5,-1.5,-0.5,1,0,0,0",
+    ]);
+    assert!(text.contains("apart, distance 0.250000000"), "{text}");
+    let out = dir.join("slices");
+    let text = ok(&[
+        "cobst",
+        &ring,
+        "box:0.5,0.5,0.5",
+        "--axis",
+        "0,0,1",
+        "--slices",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+        "--merge",
+    ]);
+    assert!(text.contains("3 slices (4 piece pairs)"), "{text}");
+    for k in 0..3 {
+        // A 0.5 box turned about z fits the 1×1 hole: every slice keeps it.
+        assert_eq!(read_valid(&out.join(format!("slice_{k:05}.off"))).genus, 1);
+    }
+    let text = ok(&[
+        "motion",
+        &ring,
+        "box:0.5,0.5,0.5",
+        "--from-xyz-wxyz",
+        "-1.5,-1.5,-0.5,1,0,0,0",
+        "--to-xyz-wxyz",
+        "-1.5,-1.2,-0.5,1,0,0,0",
+    ]);
+    assert!(text.contains("free"), "{text}");
+    // A mesh that needs a decomposition: refused, or taken apart by V-HACD
+    // with a note on standard error.
+    let l = l_mesh_off(&dir);
+    let o = common::run(&["query", &l, "box", "--pose-xyz-wxyz", "5,5,5,1,0,0,0"]);
+    assert_fails(&o, 1, "--decomposition vhacd");
+    let o = common::run(&[
+        "query",
+        &l,
+        "box",
+        "--pose-xyz-wxyz",
+        "5,5,5,1,0,0,0",
+        "--decomposition",
+        "vhacd",
+    ]);
+    assert!(o.status.success());
+    assert!(
+        common::stderr(&o).contains("taken apart by vhacd"),
+        "{}",
+        common::stderr(&o)
+    );
+}

@@ -40,9 +40,9 @@ use dymsum::query::{full_turn_angles, orientations_about_axis, rotations_about_a
 use dymsum::{ConvexUnion, DVec3, DynamicSum, Polytope, Rotation};
 use serde::Serialize;
 
-use super::query::load_body;
 use super::short_name;
 use super::slabs::{write_slabs, Cells, SlabFormat};
+use super::solid::load_pieces;
 use crate::stats::{human_us, micros};
 use dymsum_io::cmap::{Form, MapBuilder};
 
@@ -82,6 +82,12 @@ pub struct CobstArgs {
     /// Refuse meshes that are convex only within tolerance.
     #[arg(long)]
     pub strict: bool,
+    /// Take a non-convex mesh whose connected components are not all
+    /// exactly convex apart by this decomposition (approximate: announced
+    /// on standard error with its volume error). Without it such a mesh is
+    /// refused; exactly convex components are always taken as they are.
+    #[arg(long, value_enum, value_name = "METHOD")]
+    pub decomposition: Option<super::solid::DecompositionArg>,
     /// Write certified slabs instead of slices: slab k contains every slice
     /// for the orientations between orientation k and the next (with
     /// --slices N: the N slabs of the full turn; with --orientations-wxyz:
@@ -279,8 +285,8 @@ struct IndexEntry {
 /// cannot be written; or `out` cannot be written.
 pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = load_body(&a.robot, "ROBOT", a.strict)?;
-    let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
+    let robot = load_pieces(&a.robot, "ROBOT", a.strict, a.decomposition)?;
+    let obstacle = load_pieces(&a.obstacle, "OBSTACLE", a.strict, a.decomposition)?;
     if a.certified {
         return run_certified(a, (&robot, &obstacle), out);
     }

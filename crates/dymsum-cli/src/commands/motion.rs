@@ -15,7 +15,8 @@ use clap::Args;
 use dymsum::query::{ConvexUnion, Motion, MotionCheck, MotionChecker};
 use serde::Serialize;
 
-use super::query::{load_body, parse_pose, PoseArg};
+use super::query::{parse_pose, PoseArg};
+use super::solid::load_pieces;
 use crate::stats::decimals;
 
 /// Arguments of `dymsum motion`.
@@ -50,6 +51,12 @@ pub struct MotionArgs {
     /// Refuse meshes that are convex only within tolerance.
     #[arg(long)]
     pub strict: bool,
+    /// Take a non-convex mesh whose connected components are not all
+    /// exactly convex apart by this decomposition (approximate: announced
+    /// on standard error with its volume error). Without it such a mesh is
+    /// refused; exactly convex components are always taken as they are.
+    #[arg(long, value_enum, value_name = "METHOD")]
+    pub decomposition: Option<super::solid::DecompositionArg>,
 }
 
 /// The `--json` output, in this key order.
@@ -69,10 +76,15 @@ struct JsonAnswer {
 /// (undecided); or `out` cannot be written.
 pub fn run(a: &MotionArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = ConvexUnion::new(load_body(&a.robot, "ROBOT", a.strict)?)
+    let robot = ConvexUnion::new(load_pieces(&a.robot, "ROBOT", a.strict, a.decomposition)?)
         .ok_or_else(|| anyhow!("ROBOT has no pieces"))?;
-    let obstacle = ConvexUnion::new(load_body(&a.obstacle, "OBSTACLE", a.strict)?)
-        .ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?;
+    let obstacle = ConvexUnion::new(load_pieces(
+        &a.obstacle,
+        "OBSTACLE",
+        a.strict,
+        a.decomposition,
+    )?)
+    .ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?;
     let checker = MotionChecker::new(&robot, &[obstacle]).context("preparing the check")?;
     let answer = checker
         .check(a.from.pose, a.to.pose, a.tolerance)

@@ -28,6 +28,7 @@ use dymsum::query::{ConvexPair, ConvexUnion, Proximity, UnionProximity};
 use dymsum::{DVec3, Polytope, Pose, Rotation};
 use serde::Serialize;
 
+use super::solid::load_pieces;
 use super::{load, policy, short_name};
 use crate::stats::{decimals, fixed, short};
 
@@ -59,6 +60,12 @@ pub struct QueryArgs {
     /// Refuse meshes that are convex only within tolerance.
     #[arg(long)]
     pub strict: bool,
+    /// Take a non-convex mesh whose connected components are not all
+    /// exactly convex apart by this decomposition (approximate: announced
+    /// on standard error with its volume error). Without it such a mesh is
+    /// refused; exactly convex components are always taken as they are.
+    #[arg(long, value_enum, value_name = "METHOD")]
+    pub decomposition: Option<super::solid::DecompositionArg>,
 }
 
 /// A parsed `--pose`: the 7 numbers as given, and the pose.
@@ -211,8 +218,8 @@ fn from_proximity(p: &Proximity) -> Answer {
 /// `f64`, or an internal error); or `out` cannot be written.
 pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = load_body(&a.robot, "ROBOT", a.strict)?;
-    let obstacle = load_body(&a.obstacle, "OBSTACLE", a.strict)?;
+    let robot = load_pieces(&a.robot, "ROBOT", a.strict, a.decomposition)?;
+    let obstacle = load_pieces(&a.obstacle, "OBSTACLE", a.strict, a.decomposition)?;
     let answers = if robot.len() == 1 && obstacle.len() == 1 {
         convex_answers(&robot[0], &obstacle[0], &a.poses)?
     } else {

@@ -93,6 +93,30 @@ pub fn load_solid(
     }
 }
 
+/// The convex pieces of operand `spec` for the commands that take bodies
+/// as pieces (`query`, `cobst`, `motion`): as [`load_solid`]; a
+/// decomposition, being approximate, is announced on standard error with
+/// its volume error (never silently).
+///
+/// # Errors
+/// Those of [`load_solid`].
+pub fn load_pieces(
+    spec: &str,
+    operand: &str,
+    strict: bool,
+    decomposition: Option<DecompositionArg>,
+) -> anyhow::Result<Vec<Polytope>> {
+    let solid = load_solid(spec, operand, strict, decomposition)?;
+    if !solid.info.exact {
+        eprintln!(
+            "note: {operand} ({}) taken apart by {}",
+            super::short_name(spec),
+            describe(&solid.info)
+        );
+    }
+    Ok(solid.pieces)
+}
+
 /// How an operand's pieces were obtained, for the summary line: `as
 /// given`, `convex`, `2 convex components (exact)`, `vhacd: 7 pieces
 /// (volume error 0.81%)`.
