@@ -151,11 +151,17 @@ pub(super) fn near_max(
     }
 }
 
-/// [`near_max`]'s upper bound alone, without the set's final trim (its
-/// `upper`, bit for bit: the same search). With `τ = 0` it is the largest
-/// float `fl(dir · v')` over *every* vertex plus `err` (module docs: the
-/// set holds the maximiser of the rounded vertices), so it depends only on
-/// `dir` and the posed vertices, not on `start` or the adjacency.
+/// [`near_max`]'s upper bound alone (its `upper` with `τ = 0`, bit for
+/// bit): the largest float `fl(dir · v')` over *every* vertex plus `err`
+/// (module docs: the set holds the maximiser of the rounded vertices), so
+/// it depends only on `dir` and the posed vertices, not on `start` or the
+/// adjacency. For a `start` near the maximum (a vertex of the facet whose
+/// normal is `dir`), without the climb: the search alone, from `start`,
+/// ends at a best vertex whose neighbours it has all seen, a float local
+/// maximum, and from there the module docs' argument applies unchanged
+/// (the increasing path to an exact maximum has float values at least the
+/// best less `2(η|d| + err)`, above every threshold of the search, which
+/// only rises to the best less `τ₀`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn near_max_upper(
     poly: &Polytope,
@@ -167,7 +173,32 @@ pub(super) fn near_max_upper(
     marks: &mut Marks,
     set: &mut Vec<u32>,
 ) -> f64 {
-    let (best, _, err) = near_search(poly, &at, dir, start, 0.0, eta, scale, marks, set);
+    let err = dot_error(dir, scale);
+    let slack = 2.0 * (eta * dir.length() + err);
+    let tau0 = slack + slack;
+    let mut best = dir.dot(at(start));
+    marks.start(poly.vertex_count());
+    set.clear();
+    marks.mark(start);
+    set.push(start);
+    let mut i = 0;
+    while i < set.len() {
+        let v = set[i];
+        i += 1;
+        for r in poly.ring(v as usize) {
+            let u = r.neighbor;
+            if !marks.mark(u) {
+                continue;
+            }
+            let x = dir.dot(at(u));
+            if x >= best - tau0 {
+                set.push(u);
+                if x > best {
+                    best = x;
+                }
+            }
+        }
+    }
     best + err
 }
 
