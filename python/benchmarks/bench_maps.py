@@ -10,7 +10,7 @@ temporary folder (the default, ``shared_dir=None``) and through Dask
 itself (``shared_dir=False``).
 
     pip install "./python[dask]" scipy
-    python python/benchmarks/bench_maps.py [--orientations 4000] [--block 256]
+    python python/benchmarks/bench_maps.py [--orientations 4000] [--block 256] [--repeats 3] [--malloc dask|tuned]
 """
 
 import argparse
@@ -52,8 +52,24 @@ def main():
     ap.add_argument("--orientations", type=int, default=4000)
     ap.add_argument("--block", type=int, default=256)
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument(
+        "--malloc",
+        choices=["dask", "tuned"],
+        default="dask",
+        help="the workers' glibc malloc settings: Dask's (MALLOC_TRIM_THRESHOLD_=65536) or "
+        "MALLOC_TRIM_THRESHOLD_=268435456 MALLOC_MMAP_THRESHOLD_=33554432 (docs/BENCHMARKS.md)",
+    )
     a = ap.parse_args()
+    import dask
     from distributed import Client, LocalCluster
+
+    if a.malloc == "tuned":
+        dask.config.set(
+            {
+                "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 268435456,
+                "distributed.nanny.pre-spawn-environ.MALLOC_MMAP_THRESHOLD_": 33554432,
+            }
+        )
 
     arm, obstacles = scene()
     k = a.orientations
@@ -61,7 +77,7 @@ def main():
     rand = Rotation.random(k, random_state=22)
     print(
         f"# {platform.node()}, {os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}; {len(arm)} pieces × {len(obstacles)} obstacles, "
-        f"{k} orientations, block {a.block}; best of {a.repeats} interleaved runs",
+        f"{k} orientations, block {a.block}; best of {a.repeats} interleaved runs; workers' malloc: {a.malloc}",
         flush=True,
     )
     clusters = {n: LocalCluster(n_workers=n, threads_per_worker=1, dashboard_address=None) for n in (1, 2)}
