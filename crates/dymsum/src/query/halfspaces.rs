@@ -14,9 +14,13 @@
 //! ([`DynamicSum::try_to_mesh`]) has the vertices `fl(p' + q')` with `p'`,
 //! `q'` the rounded posed vertices of the two operands. For a normal `n`,
 //! `max n·p'` and `max n·q'` are bounded from above rigorously by the
-//! near-extreme search of `query::support` (hill climbing from the facet's
-//! own vertices, then every vertex within the float dot products' error
-//! bound of the best), and `d = up_P + up_Q + 2|n|₁·u·(s_P + s_Q) + err`
+//! near-extreme search of `query::support` (breadth-first from the facet's
+//! own vertex over every vertex within the float dot products' error bound
+//! of the best: the largest float `n·p'` over all vertices, plus its
+//! rounding; for a plane from a face of the obstacle, which does not move,
+//! the obstacle's term is carried over from slice to slice while its posed
+//! vertices are the same bit for bit), and
+//! `d = up_P + up_Q + 2|n|₁·u·(s_P + s_Q) + err`
 //! (`s` the coordinates' magnitudes, `err` one dot product's rounding),
 //! every sum rounded up. So every vertex `x` of the slice's mesh satisfies
 //! `n·x ≤ d` both exactly and in floats: the region is never smaller than
