@@ -3,10 +3,14 @@
 about one axis and 4,000 random orientations, half-spaces, on 1 and 2
 local workers: the thread pool (``client=None, workers=n``) and a Dask
 ``LocalCluster`` of ``n`` single-threaded worker processes; the container's
-size. One run each (the maps are also checked equal, bit for bit).
+size. The best of ``--repeats`` runs of each, interleaved (the machine is
+shared: the least disturbed run of each); every map checked equal, bit for
+bit. Dask twice on the same cluster: blocks handed back as files in a shared
+temporary folder (the default, ``shared_dir=None``) and through Dask
+itself (``shared_dir=False``).
 
     pip install "./python[dask]" scipy
-    python python/benchmarks/bench_maps.py [--orientations 4000] [--block 256]
+    python python/benchmarks/bench_maps.py [--orientations 4000] [--block 256] [--repeats 3] [--malloc dask|tuned]
 """
 
 import argparse
@@ -47,35 +51,81 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--orientations", type=int, default=4000)
     ap.add_argument("--block", type=int, default=256)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument(
+        "--malloc",
+        choices=["dask", "tuned"],
+        default="dask",
+        help="the workers' glibc malloc settings: Dask's (MALLOC_TRIM_THRESHOLD_=65536) or "
+        "MALLOC_TRIM_THRESHOLD_=268435456 MALLOC_MMAP_THRESHOLD_=33554432 (docs/BENCHMARKS.md)",
+    )
     a = ap.parse_args()
+    import dask
     from distributed import Client, LocalCluster
+
+    if a.malloc == "tuned":
+        dask.config.set(
+            {
+                "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": 268435456,
+                "distributed.nanny.pre-spawn-environ.MALLOC_MMAP_THRESHOLD_": 33554432,
+            }
+        )
 
     arm, obstacles = scene()
     k = a.orientations
     axis = Rotation.from_rotvec(np.outer(np.linspace(0, 2 * np.pi, k, endpoint=False), [0.2, 0.3, 0.93]))
     rand = Rotation.random(k, random_state=22)
-    print(f"# {platform.node()}, {os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}; 4 pieces × 12 obstacles, {k} orientations, block {a.block}")
-    print("| orientations | pool | 1 worker | 2 workers | speed-up | Dask 1 | Dask 2 | Dask overhead (1 / 2) | container |")
-    print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-    for name, rots in (("about one axis", axis), ("random", rand)):
-        t1, m1 = timed(lambda: dymsum.cobstacle_map(arm, obstacles, rots, block=a.block, workers=1))
-        t2, m2 = timed(lambda: dymsum.cobstacle_map(arm, obstacles, rots, block=a.block, workers=2))
-        dt = []
-        for n in (1, 2):
-            with LocalCluster(n_workers=n, threads_per_worker=1, dashboard_address=None) as cluster, Client(cluster) as client:
-                dymsum.cobstacle_map(arm, obstacles, rots[:8], client=client)  # warm the workers
-                t, md = timed(lambda: dymsum.cobstacle_map(arm, obstacles, rots, client=client, block=a.block))
-                dt.append(t)
-                assert all(np.array_equal(md.arrays[x], m1.arrays[x]) for x in m1.arrays)
-        assert all(np.array_equal(m2.arrays[x], m1.arrays[x]) for x in m1.arrays)
-        with tempfile.TemporaryDirectory() as d:
-            path = os.path.join(d, "map.npz")
-            m1.save(path)
-            size = os.path.getsize(path)
-        print(
-            f"| {name} | threads | {t1:.2f} s | {t2:.2f} s | {t1 / t2:.2f}× | {dt[0]:.2f} s | {dt[1]:.2f} s "
-            f"| {100 * (dt[0] / t1 - 1):+.0f}% / {100 * (dt[1] / t2 - 1):+.0f}% | {size / 2**20:.1f} MiB |"
-        )
+    print(
+        f"# {platform.node()}, {os.cpu_count()} CPUs, load {os.getloadavg()[0]:.1f}; {len(arm)} pieces × {len(obstacles)} obstacles, "
+        f"{k} orientations, block {a.block}; best of {a.repeats} interleaved runs; workers' malloc: {a.malloc}",
+        flush=True,
+    )
+    clusters = {n: LocalCluster(n_workers=n, threads_per_worker=1, dashboard_address=None) for n in (1, 2)}
+    clients = {n: Client(c) for n, c in clusters.items()}
+    try:
+        for c in clients.values():
+            dymsum.cobstacle_map(arm, obstacles, axis[:8], client=c)  # warm the workers
+        print("| orientations | 1 worker | 2 workers | speed-up | Dask 1 | Dask 2 | Dask overhead (1 / 2) | Dask in memory 1 / 2 | overhead in memory | container |")
+        print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+        for name, rots in (("about one axis", axis), ("random", rand)):
+            best: dict = {}
+            ref = None
+            for _ in range(a.repeats):
+                for n in (1, 2):
+                    runs = (
+                        ("pool", lambda: dymsum.cobstacle_map(arm, obstacles, rots, block=a.block, workers=n)),
+                        ("files", lambda: dymsum.cobstacle_map(arm, obstacles, rots, client=clients[n], block=a.block)),
+                        ("memory", lambda: dymsum.cobstacle_map(arm, obstacles, rots, client=clients[n], block=a.block, shared_dir=False)),
+                    )
+                    for kind, f in runs:
+                        t, m = timed(f)
+                        best[kind, n] = min(t, best.get((kind, n), np.inf))
+                        if ref is None:
+                            ref = m
+                        else:
+                            assert all(np.array_equal(m.arrays[x], ref.arrays[x]) for x in ref.arrays)
+                        del m
+            with tempfile.TemporaryDirectory() as d:
+                path = os.path.join(d, "map.npz")
+                ref.save(path)
+                size = os.path.getsize(path)
+            del ref
+            p1, p2 = best["pool", 1], best["pool", 2]
+            f1, f2 = best["files", 1], best["files", 2]
+            m1, m2 = best["memory", 1], best["memory", 2]
+            print(
+                f"| {name} | {p1:.2f} s | {p2:.2f} s | {p1 / p2:.2f}× | {f1:.2f} s | {f2:.2f} s "
+                f"| {100 * (f1 / p1 - 1):+.0f}% / {100 * (f2 / p2 - 1):+.0f}% "
+                f"| {m1:.2f} s / {m2:.2f} s | {100 * (m1 / p1 - 1):+.0f}% / {100 * (m2 / p2 - 1):+.0f}% "
+                f"| {size / 2**20:.1f} MiB |",
+                flush=True,
+            )
+    finally:
+        for c in clients.values():
+            c.close()
+        for c in clusters.values():
+            c.close()
+    print(f"# load at the end {os.getloadavg()[0]:.1f}")
 
 
 if __name__ == "__main__":

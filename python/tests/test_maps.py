@@ -175,3 +175,36 @@ def test_dask_gives_the_same_map_bit_for_bit(processes):
                 same_arrays(local, dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, client=client, block=6))
             with pytest.raises(dymsum.CObstacleMapError, match=r"pair \(r0, o1\), block 0"):
                 dymsum.cobstacle_map(CUBE, [CUBE, CUBE * 1e308], TURN, client=client, block=16)
+
+
+@pytest.mark.parametrize("shared", ["tmp", False])
+def test_dask_blocks_come_back_as_files_or_in_memory_and_nothing_is_left(tmp_path, shared):
+    distributed = dask_or_skip()
+    local = dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, block=3)
+    shared_dir = tmp_path if shared == "tmp" else False
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            same_arrays(local, dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, client=client, block=3, shared_dir=shared_dir))
+            assert os.listdir(tmp_path) == []
+            with pytest.raises(dymsum.CObstacleMapError, match=r"pair \(r0, o1\), block 0 \(orientations 0\.\.8\)"):
+                dymsum.cobstacle_map(CUBE, [CUBE, CUBE * 1e308], TURN, client=client, block=8, shared_dir=shared_dir)
+    assert os.listdir(tmp_path) == []
+
+
+def test_a_worker_that_does_not_see_the_folder_sends_its_blocks_through_dask(tmp_path):
+    from dymsum import _maps
+
+    _, rv = _maps._pieces(ROBOT, "r")
+    _, ov = _maps._pieces(OBSTACLES, "o")
+    q = np.asarray(_maps._rotations_xyzw(TURN))
+    units = [(0, 1, 0, 5), (1, 0, 5, 9)]
+    (tmp_path / "token").write_text("abc", encoding="ascii")
+    kind, blocks = _maps._remote_task(rv, ov, q, units, "halfspaces", False, str(tmp_path), "xyz", "t.npy")
+    assert kind == "arrays" and os.listdir(tmp_path) == ["token"]
+    kind, name = _maps._remote_task(rv, ov, q, units, "halfspaces", False, str(tmp_path), "abc", "t.npy")
+    assert (kind, name) == ("file", "t.npy")
+    read = _maps._read_blocks(str(tmp_path), name, len(units), 3)
+    assert os.listdir(tmp_path) == ["token"]
+    for x, y in zip(blocks, read):
+        for a, b in zip(x, y):
+            assert a.dtype == b.dtype and np.array_equal(a.view(np.int64) if a.dtype.kind == "f" else a, b.view(np.int64) if b.dtype.kind == "f" else b)

@@ -11,6 +11,8 @@ docs/PYTHON.md and in the Rust crate ``dymsum_io::cmap``.
 from __future__ import annotations
 
 import os
+import secrets
+import shutil
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
@@ -64,6 +66,76 @@ def _task(robot: np.ndarray, obstacle: np.ndarray, quats: np.ndarray, form: str,
     # buffer: aligned copies (the values are unchanged).
     robot, obstacle, quats = (np.array(a, dtype=np.float64, order="C", copy=True) for a in (robot, obstacle, quats))
     return tuple(_cobstacle_block(robot, obstacle, quats, form, certified))
+
+
+#: The name of the token file in a transfer folder (see :func:`_remote_task`).
+_TOKEN = "token"
+
+
+def _sees(folder: str, token: str) -> bool:
+    """Whether this process sees the client's transfer folder: the token
+    file the client wrote there holds ``token`` (a random name: a folder of
+    the same path on another machine's own disk does not)."""
+    try:
+        with open(os.path.join(folder, _TOKEN), encoding="ascii") as f:
+            return f.read() == token
+    except OSError:
+        return False
+
+
+def _remote_task(
+    robots: List[np.ndarray],
+    obstacles: List[np.ndarray],
+    quats: np.ndarray,
+    units: List[Tuple[int, int, int, int]],
+    form: str,
+    certified: bool,
+    folder: Optional[str],
+    token: str,
+    name: str,
+) -> Tuple[Any, ...]:
+    """One Dask task: the blocks ``units`` (robot piece, obstacle piece,
+    first and end orientation) one after the other, each as
+    :func:`_task`. Returns ``("error", u, exc)`` for the first failing
+    unit ``u`` (the client names its pair and block); else, when the
+    worker sees the client's transfer folder (:func:`_sees`), the blocks'
+    arrays written there as one file of consecutive ``.npy`` records (raw
+    float64/int64, bit for bit; a temporary name renamed once complete),
+    ``("file", name)``; else ``("arrays", blocks)`` through Dask."""
+    c = int(certified)
+    out = []
+    for u, (i, j, s, e) in enumerate(units):
+        try:
+            out.append(_task(robots[i], obstacles[j], quats[s : e + c], form, certified))
+        except Exception as exc:  # named by the client
+            return ("error", u, exc)
+    if folder is None or not _sees(folder, token):
+        return ("arrays", out)
+    path = os.path.join(folder, name)
+    tmp = f"{path}.{secrets.token_hex(4)}.tmp"
+    try:
+        with open(tmp, "wb") as f:
+            for block in out:
+                for x in block:
+                    np.save(f, x, allow_pickle=False)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+    return ("file", name)
+
+
+def _read_blocks(folder: str, name: str, blocks: int, count: int) -> List[Tuple[np.ndarray, ...]]:
+    """The ``blocks`` × ``count`` arrays a worker wrote to ``folder/name``;
+    the file is removed once read."""
+    path = os.path.join(folder, name)
+    with open(path, "rb") as f:
+        out = [tuple(np.load(f, allow_pickle=False) for _ in range(count)) for _ in range(blocks)]
+    os.unlink(path)
+    return out
 
 
 class CObstacleMap:
@@ -172,11 +244,18 @@ def cobstacle_map(
     client: Any = None,
     block: int = 256,
     workers: Optional[int] = None,
+    shared_dir: Union[None, bool, str, "os.PathLike[str]"] = None,
 ) -> CObstacleMap:
     """The C-obstacle slices of every robot piece against every obstacle
     piece at every rotation (see the module docs and docs/PYTHON.md).
     ``workers``: the local thread pool's size (``client=None``; default:
-    the CPU count)."""
+    the CPU count). ``shared_dir`` (with a Dask ``client``): where workers
+    hand their blocks back as files, in a fresh temporary folder removed
+    before returning: ``None`` the system's temporary directory (right for
+    a ``LocalCluster``), a path on a filesystem every worker mounts at the
+    same path for a cluster of several machines, ``False`` never (every
+    block travels through Dask). A worker that does not see the folder
+    sends its block through Dask instead."""
     if form not in ("halfspaces", "mesh"):
         raise ValueError(f'cobstacle_map: form must be "halfspaces" or "mesh", got {form!r}')
     if certified and form != "halfspaces":
@@ -219,22 +298,64 @@ def cobstacle_map(
                         f.cancel()
                     raise CObstacleMapError(f"cobstacle_map: {label(i, j, b, s, e)}: {exc}") from exc
     else:
-        # Fresh keys (hash=False): an earlier map's scattered pieces with the
-        # same content may be being released, and would take these with them.
-        rv = client.scatter(rverts, broadcast=True, hash=False)
-        ov = client.scatter(overts, broadcast=True, hash=False)
-        futures = [
-            client.submit(
-                _task, rv[i], ov[j], quats[s : e + int(certified)], form, certified, pure=False
-            )
-            for (_, _, i, j, s, e) in specs
-        ]
-        for n, (fut, (_, b, i, j, s, e)) in enumerate(zip(futures, specs)):
-            try:
-                results[n] = fut.result()
-            except Exception as exc:
-                client.cancel(futures)
-                raise CObstacleMapError(f"cobstacle_map: {label(i, j, b, s, e)}: {exc}") from exc
+        counts = {"halfspaces": 3, "mesh": 5}[form]
+        folder: Optional[str] = None
+        token = secrets.token_hex(16)
+        if shared_dir is not False:
+            base = None if shared_dir is None or shared_dir is True else os.fspath(shared_dir)
+            folder = tempfile.mkdtemp(prefix="dymsum-map-", dir=base)
+        try:
+            if folder is not None:
+                with open(os.path.join(folder, _TOKEN), "w", encoding="ascii") as tf:
+                    tf.write(token)
+            # Fresh keys (hash=False): an earlier map's scattered pieces with
+            # the same content may be being released, and would take these
+            # with them.
+            rv = client.scatter(rverts, broadcast=True, hash=False)
+            ov = client.scatter(overts, broadcast=True, hash=False)
+            qv = client.scatter(quats, broadcast=True, hash=False)
+            # Several blocks per Dask task: each task costs the scheduler a
+            # few milliseconds, about 20% of a 256-orientation block here;
+            # 16 tasks per worker thread keep the load balanced.
+            threads = max(1, sum(client.nthreads().values()))
+            per = max(1, -(-len(specs) // (16 * threads)))
+            groups = [list(range(g, min(g + per, len(specs)))) for g in range(0, len(specs), per)]
+            futures = [
+                client.submit(
+                    _remote_task,
+                    rv,
+                    ov,
+                    qv,
+                    [specs[n][2:] for n in g],
+                    form,
+                    certified,
+                    folder,
+                    token,
+                    f"task-{t}.npy",
+                    pure=False,
+                )
+                for t, g in enumerate(groups)
+            ]
+            for fut, g in zip(futures, groups):
+                try:
+                    r: Tuple[Any, ...] = fut.result()
+                except Exception as exc:
+                    client.cancel(futures)
+                    _, b, i, j, s, e = specs[g[0]]
+                    last = specs[g[-1]]
+                    raise CObstacleMapError(
+                        f"cobstacle_map: a task of {label(i, j, b, s, e)} to {label(*last[2:4], last[1], *last[4:])}: {exc}"
+                    ) from exc
+                if r[0] == "error":
+                    client.cancel(futures)
+                    _, b, i, j, s, e = specs[g[r[1]]]
+                    raise CObstacleMapError(f"cobstacle_map: {label(i, j, b, s, e)}: {r[2]}") from r[2]
+                got = _read_blocks(folder, r[1], len(g), counts) if r[0] == "file" and folder else r[1]
+                for n, x in zip(g, got):
+                    results[n] = x
+        finally:
+            if folder is not None:
+                shutil.rmtree(folder, ignore_errors=True)
 
     arrays: Dict[str, np.ndarray] = {
         "format": np.array(FORMAT),

@@ -14,9 +14,13 @@
 //! ([`DynamicSum::try_to_mesh`]) has the vertices `fl(p' + q')` with `p'`,
 //! `q'` the rounded posed vertices of the two operands. For a normal `n`,
 //! `max n·p'` and `max n·q'` are bounded from above rigorously by the
-//! near-extreme search of `query::support` (hill climbing from the facet's
-//! own vertices, then every vertex within the float dot products' error
-//! bound of the best), and `d = up_P + up_Q + 2|n|₁·u·(s_P + s_Q) + err`
+//! near-extreme search of `query::support` (breadth-first from the facet's
+//! own vertex over every vertex within the float dot products' error bound
+//! of the best: the largest float `n·p'` over all vertices, plus its
+//! rounding; for a plane from a face of the obstacle, which does not move,
+//! the obstacle's term is carried over from slice to slice while its posed
+//! vertices are the same bit for bit), and
+//! `d = up_P + up_Q + 2|n|₁·u·(s_P + s_Q) + err`
 //! (`s` the coordinates' magnitudes, `err` one dot product's rounding),
 //! every sum rounded up. So every vertex `x` of the slice's mesh satisfies
 //! `n·x ≤ d` both exactly and in floats: the region is never smaller than
@@ -47,7 +51,7 @@
 //! ```
 
 use super::frame::{up, BodyBounds};
-use super::support::{dot_error, near_max, Marks};
+use super::support::{dot_error, near_max_upper, Marks};
 use super::{CObstacle, QueryError};
 use crate::polytope::Polytope;
 use crate::sum::merge::coplanar_groups;
@@ -124,6 +128,22 @@ struct Scratch {
     marks_p: Marks,
     marks_q: Marks,
     set: Vec<u32>,
+    /// The Q-side offset term of each vf-plane (per face of Q: its normal
+    /// and `max n·q'` bounded, as the search gives it), valid while Q's
+    /// posed vertices and bounds are those of `q_key` (Q does not move
+    /// between the slices of a C-obstacle).
+    vf_q: Vec<Option<([u64; 3], f64)>>,
+    q_key: (Vec<DVec3>, [u64; 2]),
+    /// How many Q-side searches of vf-planes the cache saved, and how many
+    /// it did not (tests).
+    #[cfg(test)]
+    vf_hits: (usize, usize),
+}
+
+/// The bits of a vector (a cache key: `-0.0` and `0.0` differ).
+#[inline]
+fn bits(v: DVec3) -> [u64; 3] {
+    v.to_array().map(f64::to_bits)
 }
 
 /// The largest `|v|` of each body, computed once per pair.
@@ -164,6 +184,25 @@ fn sum_halfspaces(
     scratch
         .posed_q
         .extend((0..ops.q.vertex_count() as u32).map(|v| ops.q_vertex(v)));
+    // The vf-planes' Q-side terms carry over while Q's posed vertices do
+    // (`near_max_upper` depends on the direction and the posed vertices
+    // only).
+    let q_bounds = [bq.scale.to_bits(), bq.eta.to_bits()];
+    if scratch.q_key.1 != q_bounds
+        || scratch.q_key.0.len() != scratch.posed_q.len()
+        || scratch
+            .q_key
+            .0
+            .iter()
+            .zip(&scratch.posed_q)
+            .any(|(a, b)| bits(*a) != bits(*b))
+        || scratch.vf_q.len() != nf
+    {
+        scratch.vf_q.clear();
+        scratch.vf_q.resize(nf, None);
+        scratch.q_key.0.clone_from(&scratch.posed_q);
+        scratch.q_key.1 = q_bounds;
+    }
     let (pp, pq) = (&scratch.posed_p, &scratch.posed_q);
     let mut out = HalfSpaces {
         normals: Vec::with_capacity(overlay.len()),
@@ -204,32 +243,54 @@ fn sum_halfspaces(
             }
             (c, u1, w1)
         };
-        let sp = near_max(
+        let sp = near_max_upper(
             &ops.p,
             |v| pp[v as usize],
             n,
             u,
-            0.0,
             bp.eta,
             bp.scale,
             &mut scratch.marks_p,
             &mut scratch.set,
         );
-        let sq = near_max(
-            &ops.q,
-            |v| pq[v as usize],
-            n,
-            w,
-            0.0,
-            bq.eta,
-            bq.scale,
-            &mut scratch.marks_q,
-            &mut scratch.set,
-        );
+        let mut search_q = || {
+            near_max_upper(
+                &ops.q,
+                |v| pq[v as usize],
+                n,
+                w,
+                bq.eta,
+                bq.scale,
+                &mut scratch.marks_q,
+                &mut scratch.set,
+            )
+        };
+        let sq = if (m..m + nf).contains(&id) {
+            match scratch.vf_q[id - m] {
+                Some((key, sq)) if key == bits(n) => {
+                    #[cfg(test)]
+                    {
+                        scratch.vf_hits.0 += 1;
+                    }
+                    sq
+                }
+                _ => {
+                    let sq = search_q();
+                    scratch.vf_q[id - m] = Some((bits(n), sq));
+                    #[cfg(test)]
+                    {
+                        scratch.vf_hits.1 += 1;
+                    }
+                    sq
+                }
+            }
+        } else {
+            search_q()
+        };
         let s = up(bp.scale + bq.scale);
         let l1 = up(n.x.abs() + n.y.abs() + n.z.abs());
         let rounding = up(2.0 * l1 * f64::EPSILON * s) + dot_error(n, s);
-        let d = above(above(sp.upper + sq.upper) + rounding);
+        let d = above(above(sp + sq) + rounding);
         if !d.is_finite() {
             return Err(QueryError::OutOfRange(format!(
                 "a half-space offset overflows f64 (facet {id} of the slice)"
@@ -324,4 +385,267 @@ impl CObstacle {
 thread_local! {
     /// Per-thread scratch of [`CObstacle::halfspace_slices_par`].
     static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
+}
+
+#[cfg(test)]
+mod tests {
+    //! The fast read-out (`near_max_upper`, the vf-planes' Q-side terms
+    //! carried over between slices) against the read-out it replaced, kept
+    //! here as the reference: the same planes, bit for bit.
+    use super::*;
+    use crate::query::support::near_max;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The per-slice read-out before the fast path (every plane's two
+    /// searches done in full by `near_max`, nothing carried over).
+    pub(super) fn reference_halfspaces(
+        sum: &DynamicSum,
+        reach: Reaches,
+        scratch: &mut Scratch,
+    ) -> Result<HalfSpaces, QueryError> {
+        let ops: &Operands = sum.operands();
+        sum.overlay_into(&mut scratch.overlay);
+        let overlay = &scratch.overlay;
+        let (mut groups, degenerate, _) = coplanar_groups(ops, overlay);
+        let bp = Posed::of(reach.p, ops.pose_p.translation);
+        let bq = Posed::of(reach.q, ops.pose_q.translation);
+        let (rp, rq) = (ops.pose_p.rotation, ops.pose_q.rotation);
+        let (m, nf) = (overlay.fv.len(), overlay.vf.len());
+        scratch.posed_p.clear();
+        scratch
+            .posed_p
+            .extend((0..ops.p.vertex_count() as u32).map(|v| ops.p_vertex(v)));
+        scratch.posed_q.clear();
+        scratch
+            .posed_q
+            .extend((0..ops.q.vertex_count() as u32).map(|v| ops.q_vertex(v)));
+        let (pp, pq) = (&scratch.posed_p, &scratch.posed_q);
+        let mut out = HalfSpaces {
+            normals: Vec::with_capacity(overlay.len()),
+            offsets: Vec::with_capacity(overlay.len()),
+        };
+        for (id, &flat) in degenerate.iter().enumerate() {
+            if flat || groups.find(id as u32) != id as u32 {
+                continue;
+            }
+            // The normal, and a vertex of each operand on the facet.
+            let (n, u, w) = if id < m {
+                let w = overlay.fv[id];
+                (rp.apply(ops.p.unit_normal(id)), ops.p.face(id)[0], w)
+            } else if id < m + nf {
+                let g = id - m;
+                (
+                    rq.apply(ops.q.unit_normal(g)),
+                    overlay.vf[g],
+                    ops.q.face(g)[0],
+                )
+            } else {
+                let (e, e2) = overlay.ee[id - m - nf];
+                let pe = ops.p.edge(e as usize);
+                let qe = ops.q.edge(e2 as usize);
+                let [u1, u2] = pe.vertices;
+                let [w1, w2] = qe.vertices;
+                let c = (pp[u2 as usize] - pp[u1 as usize])
+                    .cross(pq[w2 as usize] - pq[w1 as usize])
+                    .normalize_or_zero();
+                // Outward: towards the normals of P's faces at the edge.
+                let [f0, f1] = pe.faces;
+                let out = rp.apply(ops.p.unit_normal(f0 as usize) + ops.p.unit_normal(f1 as usize));
+                let c = if c.dot(out) < 0.0 { -c } else { c };
+                if c == DVec3::ZERO || !c.is_finite() {
+                    return Err(QueryError::Inconsistent(format!(
+                        "the normal of facet ee({e}, {e2}) is zero or not finite"
+                    )));
+                }
+                (c, u1, w1)
+            };
+            let sp = near_max(
+                &ops.p,
+                |v| pp[v as usize],
+                n,
+                u,
+                0.0,
+                bp.eta,
+                bp.scale,
+                &mut scratch.marks_p,
+                &mut scratch.set,
+            );
+            let sq = near_max(
+                &ops.q,
+                |v| pq[v as usize],
+                n,
+                w,
+                0.0,
+                bq.eta,
+                bq.scale,
+                &mut scratch.marks_q,
+                &mut scratch.set,
+            );
+            let s = up(bp.scale + bq.scale);
+            let l1 = up(n.x.abs() + n.y.abs() + n.z.abs());
+            let rounding = up(2.0 * l1 * f64::EPSILON * s) + dot_error(n, s);
+            let d = above(above(sp.upper + sq.upper) + rounding);
+            if !d.is_finite() {
+                return Err(QueryError::OutOfRange(format!(
+                    "a half-space offset overflows f64 (facet {id} of the slice)"
+                )));
+            }
+            out.normals.push(n);
+            out.offsets.push(d);
+        }
+        Ok(out)
+    }
+
+    fn random_body(rng: &mut ChaCha8Rng, n: usize, kind: u32) -> Polytope {
+        let pts: Vec<[f64; 3]> = (0..n)
+            .map(|_| {
+                let v = DVec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                );
+                match kind {
+                    // On a sphere: mostly triangles.
+                    0 => (v.normalize_or_zero() * 1.5).to_array(),
+                    // A grid: coplanar faces, merged planes.
+                    1 => (v * 4.0).round().to_array(),
+                    // Far from the origin, tiny.
+                    _ => (v * 1e-3 + DVec3::new(1e3, -2e3, 5e2)).to_array(),
+                }
+            })
+            .collect();
+        Polytope::from_points(&pts).unwrap()
+    }
+
+    #[test]
+    fn fast_halfspaces_equal_the_reference_on_random_rotations() {
+        let mut rng = ChaCha8Rng::seed_from_u64(22);
+        let mut hits = (0, 0);
+        for case in 0..9u32 {
+            let robot = random_body(&mut rng, 40 + 20 * case as usize, case % 3);
+            let obstacle = random_body(&mut rng, 60, (case / 3) % 3);
+            let cobst = CObstacle::new(&robot, &obstacle).unwrap();
+            // Random orientations, and a run of small steps about one axis
+            // (the walk the cache is for).
+            let axis = DVec3::new(rng.random_range(-1.0..1.0), 0.3, 1.0);
+            let mut turns: Vec<Rotation> = (0..12)
+                .map(|_| {
+                    let a = DVec3::new(
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                        rng.random_range(-1.0..1.0),
+                    );
+                    Rotation::from_axis_angle(a, rng.random_range(0.0..6.3)).unwrap()
+                })
+                .collect();
+            turns
+                .extend((0..12).map(|k| Rotation::from_axis_angle(axis, 0.01 * k as f64).unwrap()));
+            let mut scratch = Scratch::default();
+            let mut reference = Scratch::default();
+            let mut sum = None;
+            for (k, &r) in turns.iter().enumerate() {
+                let s = cobst.advance(&mut sum, r).unwrap();
+                let fast = sum_halfspaces(s, cobst.reaches(), &mut scratch).unwrap();
+                let slow = reference_halfspaces(s, cobst.reaches(), &mut reference).unwrap();
+                assert_eq!(fast.len(), slow.len(), "case {case}, slice {k}");
+                for (i, ((a, b), (c, d))) in fast
+                    .normals()
+                    .iter()
+                    .zip(fast.offsets())
+                    .zip(slow.normals().iter().zip(slow.offsets()))
+                    .enumerate()
+                {
+                    assert_eq!(bits(*a), bits(*c), "case {case}, slice {k}, plane {i}");
+                    assert_eq!(
+                        b.to_bits(),
+                        d.to_bits(),
+                        "case {case}, slice {k}, plane {i}"
+                    );
+                }
+            }
+            // And the public entry points agree with the reference too.
+            assert_eq!(
+                cobst.halfspace_slices(&turns).unwrap(),
+                turns
+                    .iter()
+                    .map(|&r| cobst.halfspace_slice(r).unwrap())
+                    .collect::<Vec<_>>()
+            );
+            hits.0 += scratch.vf_hits.0;
+            hits.1 += scratch.vf_hits.1;
+        }
+        // The Q-side terms of vf-planes are carried over between slices.
+        assert!(hits.0 > hits.1, "{hits:?}");
+    }
+}
+
+/// Timing of the fast read-out against the reference, interleaved in one
+/// process (docs/BENCHMARKS.md, "C-obstacle maps"): robot and obstacle
+/// vertices, one `x y z` a line, in `DYMSUM_HS_ROBOT` and
+/// `DYMSUM_HS_OBSTACLE`; 4,000 orientations about `(1, 2, 3)`.
+/// `cargo test --release -p dymsum --lib halfspace_timing -- --ignored --nocapture`
+#[cfg(test)]
+mod timing {
+    use super::tests::reference_halfspaces;
+    use super::*;
+    use crate::query::orientations_about_axis;
+    use crate::Pose;
+    use std::time::Instant;
+
+    fn read(var: &str) -> Polytope {
+        let path = std::env::var(var).unwrap_or_else(|_| panic!("set {var}"));
+        let pts: Vec<[f64; 3]> = std::fs::read_to_string(path)
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect();
+        Polytope::from_points(&pts).unwrap()
+    }
+
+    #[test]
+    #[ignore = "timing: needs DYMSUM_HS_ROBOT and DYMSUM_HS_OBSTACLE"]
+    fn halfspace_timing() {
+        let (robot, obstacle) = (read("DYMSUM_HS_ROBOT"), read("DYMSUM_HS_OBSTACLE"));
+        let cobst = CObstacle::new(&robot, &obstacle).unwrap();
+        let turns = orientations_about_axis(DVec3::new(1.0, 2.0, 3.0), 4000).unwrap();
+        let run = |f: &mut dyn FnMut(&DynamicSum) -> usize| {
+            let t = Instant::now();
+            let mut sum = None;
+            let mut n = 0;
+            for &r in &turns {
+                n += f(cobst.advance(&mut sum, r).unwrap());
+            }
+            (t.elapsed().as_secs_f64(), n)
+        };
+        for rep in 0..3 {
+            let (tu, _) = run(&mut |s| s.facet_count());
+            let mut scratch = Scratch::default();
+            let (tf, nf) = run(&mut |s| {
+                sum_halfspaces(s, cobst.reaches(), &mut scratch)
+                    .unwrap()
+                    .len()
+            });
+            let mut scratch = Scratch::default();
+            let (tr, nr) = run(&mut |s| {
+                reference_halfspaces(s, cobst.reaches(), &mut scratch)
+                    .unwrap()
+                    .len()
+            });
+            assert_eq!(nf, nr);
+            println!(
+                "rep {rep}: updates {:.1} ms, fast {:.1} ms ({:.1}× updates), reference {:.1} ms ({:.1}× updates): fast/reference {:.3}",
+                tu * 1e3,
+                tf * 1e3,
+                tf / tu,
+                tr * 1e3,
+                tr / tu,
+                tf / tr
+            );
+        }
+        let _ = Pose::IDENTITY;
+    }
 }

@@ -140,10 +140,89 @@ pub(super) fn near_max(
     marks: &mut Marks,
     set: &mut Vec<u32>,
 ) -> NearMax {
+    let (best, tau0, err) = near_search(poly, &at, dir, start, tau, eta, scale, marks, set);
+    // Keep only the final threshold's members (the others were admitted
+    // under a lower one).
+    set.retain(|&u| dir.dot(at(u)) >= best - tau0);
+    NearMax {
+        value: best,
+        upper: best + err,
+        tau: tau0 - 2.0 * (eta * dir.length() + err),
+    }
+}
+
+/// [`near_max`]'s upper bound alone (its `upper` with `τ = 0`, bit for
+/// bit): the largest float `fl(dir · v')` over *every* vertex plus `err`
+/// (module docs: the set holds the maximiser of the rounded vertices), so
+/// it depends only on `dir` and the posed vertices, not on `start` or the
+/// adjacency. For a `start` near the maximum (a vertex of the facet whose
+/// normal is `dir`), without the climb: the search alone, from `start`,
+/// ends at a best vertex whose neighbours it has all seen, a float local
+/// maximum, and from there the module docs' argument applies unchanged
+/// (the increasing path to an exact maximum has float values at least the
+/// best less `2(η|d| + err)`, above every threshold of the search, which
+/// only rises to the best less `τ₀`).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn near_max_upper(
+    poly: &Polytope,
+    at: impl Fn(u32) -> DVec3,
+    dir: DVec3,
+    start: u32,
+    eta: f64,
+    scale: f64,
+    marks: &mut Marks,
+    set: &mut Vec<u32>,
+) -> f64 {
+    let err = dot_error(dir, scale);
+    let slack = 2.0 * (eta * dir.length() + err);
+    let tau0 = slack + slack;
+    let mut best = dir.dot(at(start));
+    marks.start(poly.vertex_count());
+    set.clear();
+    marks.mark(start);
+    set.push(start);
+    let mut i = 0;
+    while i < set.len() {
+        let v = set[i];
+        i += 1;
+        for r in poly.ring(v as usize) {
+            let u = r.neighbor;
+            if !marks.mark(u) {
+                continue;
+            }
+            let x = dir.dot(at(u));
+            if x >= best - tau0 {
+                set.push(u);
+                if x > best {
+                    best = x;
+                }
+            }
+        }
+    }
+    best + err
+}
+
+/// The search of [`near_max`]: the climb, then the breadth-first search
+/// over the vertices within `τ₀` of the best (left in `set`, with some
+/// admitted under a lower threshold). Returns the best float value, `τ₀`
+/// and the dot products' error bound.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn near_search(
+    poly: &Polytope,
+    at: &impl Fn(u32) -> DVec3,
+    dir: DVec3,
+    start: u32,
+    tau: f64,
+    eta: f64,
+    scale: f64,
+    marks: &mut Marks,
+    set: &mut Vec<u32>,
+) -> (f64, f64, f64) {
     let err = dot_error(dir, scale);
     let slack = 2.0 * (eta * dir.length() + err);
     let tau0 = tau.max(slack) + slack;
-    let (mut best_v, mut best) = climb(poly, &at, dir, start);
+    let (mut best_v, mut best) = climb(poly, at, dir, start);
     marks.start(poly.vertex_count());
     set.clear();
     marks.mark(best_v);
@@ -167,13 +246,6 @@ pub(super) fn near_max(
             }
         }
     }
-    // Keep only the final threshold's members (the others were admitted
-    // under a lower one).
-    set.retain(|&u| dir.dot(at(u)) >= best - tau0);
     let _ = best_v;
-    NearMax {
-        value: best,
-        upper: best + err,
-        tau: tau0 - slack,
-    }
+    (best, tau0, err)
 }
