@@ -3,6 +3,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use boolmesh::prelude::{compute_boolean, Manifold, OpType};
+use rayon::prelude::*;
 
 use super::check::{check_triangles, triangles, ClosedMeshInfo};
 use super::UnionMeshError;
@@ -110,25 +111,28 @@ pub(crate) fn union_meshes(
     if level.is_empty() {
         return Err(UnionMeshError::Invalid(super::ClosedMeshError::Empty));
     }
+    // Each level's unions are independent: run them on the rayon pool
+    // (the result does not depend on the thread count).
     while level.len() > 1 {
-        let mut next = Vec::with_capacity(level.len().div_ceil(2));
-        let mut it = level.into_iter();
-        while let Some((na, a)) = it.next() {
-            match it.next() {
-                Some((nb, b)) => {
-                    let name = format!("{na} ∪ {nb}");
-                    let short = if name.len() > 120 {
-                        "the union of the piece sums".to_string()
-                    } else {
-                        name
-                    };
-                    let u = boolean(&a, &b, OpType::Add, &short)?;
-                    next.push((short, u));
-                }
-                None => next.push((na, a)),
-            }
-        }
-        level = next;
+        level = level
+            .into_par_iter()
+            .chunks(2)
+            .map(|pair| {
+                let mut it = pair.into_iter();
+                let (na, a) = it.next().expect("a chunk is never empty");
+                let Some((nb, b)) = it.next() else {
+                    return Ok((na, a));
+                };
+                let name = format!("{na} ∪ {nb}");
+                let short = if name.len() > 120 {
+                    "the union of the piece sums".to_string()
+                } else {
+                    name
+                };
+                let u = boolean(&a, &b, OpType::Add, &short)?;
+                Ok((short, u))
+            })
+            .collect::<Result<Vec<_>, UnionMeshError>>()?;
     }
     let (_, m) = level
         .pop()
