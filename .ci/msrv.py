@@ -2,7 +2,10 @@
 """Checks each workspace crate's `rust-version` against its locked dependencies.
 
 For every workspace member, the largest `rust-version` declared by any crate
-in its transitive normal and build dependencies (as locked in Cargo.lock) is
+in its transitive normal and build dependencies (as locked in Cargo.lock,
+with the features that member alone turns on: `cargo tree -p MEMBER`, not
+the workspace-wide unification of `cargo metadata`, where one member turning
+on an optional feature of another would charge its dependencies to both) is
 a lower bound of the toolchain the member really needs. The declared
 `rust-version` must be at least that bound; it may not claim an older
 toolchain than its dependencies accept. (Use of newer standard-library APIs
@@ -26,7 +29,7 @@ def version(v):
 
 # The toolchain each optional feature of `dymsum` needs, as documented in
 # docs/RUST.md ("The minimum supported Rust is ...") and crates/dymsum/Cargo.toml.
-FEATURE_MSRV = {"parry": "1.90", "nalgebra": "1.89", "mint": "1.85", "serde": "1.85"}
+FEATURE_MSRV = {"parry": "1.90", "nalgebra": "1.89", "union-mesh": "1.88", "mint": "1.85", "serde": "1.85"}
 
 
 def metadata(features=None):
@@ -36,28 +39,36 @@ def metadata(features=None):
     return json.loads(subprocess.check_output(cmd))
 
 
-def need_of(meta, name):
-    """The largest rust-version in the normal dependencies of crate `name`."""
-    pkgs = {p["id"]: p for p in meta["packages"]}
-    nodes = {n["id"]: n for n in meta["resolve"]["nodes"]}
-    root = next(i for i in meta["workspace_members"] if pkgs[i]["name"] == name)
-    seen, stack = set(), [root]
-    while stack:
-        for dep in nodes[stack.pop()]["deps"]:
-            kinds = {k["kind"] for k in dep["dep_kinds"]} - {"dev"}
-            if kinds and dep["pkg"] not in seen:
-                seen.add(dep["pkg"])
-                stack.append(dep["pkg"])
+def tree(name, features=None, dev=False):
+    """The (name, version) of every crate `name` depends on, built alone
+    (`cargo tree -p NAME`: features resolved for that package only), through
+    normal and build edges (and its own dev-dependencies with `dev`)."""
+    edges = "normal,build,dev" if dev else "normal,build"
+    cmd = ["cargo", "tree", "--locked", "-p", name, "-e", edges, "--prefix", "none", "--target", "all"]
+    if features:
+        cmd += ["--features", features]
+    out = set()
+    # The first line is `name` itself.
+    for line in subprocess.check_output(cmd, text=True).splitlines()[1:]:
+        parts = line.split()
+        if len(parts) >= 2 and parts[1].startswith("v") and not line.startswith("["):
+            out.add((parts[0], parts[1][1:]))
+    return out
+
+
+def need_of(meta, name, features=None, dev=False):
+    """The largest rust-version in the dependencies of crate `name`."""
+    rust = {(p["name"], p["version"]): p.get("rust_version") for p in meta["packages"]}
     return max(
-        ((version(pkgs[d].get("rust_version")), pkgs[d]["name"]) for d in seen),
+        ((version(rust.get(d)), d[0]) for d in tree(name, features, dev)),
         default=((0,), "none"),
     )
 
 
-def check_features():
+def check_features(meta):
     bad = 0
     for feature, claimed in FEATURE_MSRV.items():
-        need, who = need_of(metadata(f"dymsum/{feature}"), "dymsum")
+        need, who = need_of(meta, "dymsum", feature)
         ok = version(claimed) >= need
         bad += not ok
         print(
@@ -70,31 +81,12 @@ def check_features():
 def main():
     meta = metadata()
     pkgs = {p["id"]: p for p in meta["packages"]}
-    nodes = {n["id"]: n for n in meta["resolve"]["nodes"]}
-
-    def closure(root, with_dev):
-        seen, stack = set(), [root]
-        while stack:
-            pid = stack.pop()
-            for dep in nodes[pid]["deps"]:
-                kinds = {k["kind"] for k in dep["dep_kinds"]}
-                if not with_dev or pid != root:
-                    kinds.discard("dev")
-                if kinds and dep["pkg"] not in seen:
-                    seen.add(dep["pkg"])
-                    stack.append(dep["pkg"])
-        return seen
-
     bad = 0
     for mid in meta["workspace_members"]:
         member = pkgs[mid]
         declared = member.get("rust_version")
         for with_dev, what in ((False, "dependencies"), (True, "with dev-dependencies")):
-            deps = closure(mid, with_dev)
-            need, who = max(
-                ((version(pkgs[d].get("rust_version")), pkgs[d]["name"]) for d in deps),
-                default=((0,), "none"),
-            )
+            need, who = need_of(meta, member["name"], dev=with_dev)
             need_s = ".".join(map(str, need))
             ok = declared is not None and version(declared) >= need
             # Dev-dependencies only bind those who run our tests: report them,
@@ -105,7 +97,7 @@ def main():
                 f"{member['name']:14} declares {declared or 'nothing':6} "
                 f"{what:24} need {need_s:6} ({who}){'' if ok or with_dev else '  <-- too old'}"
             )
-    bad += check_features()
+    bad += check_features(meta)
     if bad:
         print(f"{bad} crate(s) or feature(s) declare a rust-version older than their dependencies need")
         return 1
