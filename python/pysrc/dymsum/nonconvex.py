@@ -623,6 +623,25 @@ def _cull(sums: list) -> list:
     return [sums[k] for k in sorted(kept[:n_kept].tolist())]
 
 
+_NOT_CONVEX = object()
+
+
+def _convex_path(call: Any, operands: Sequence[Any], union_asked: bool) -> Any:
+    """``call()`` (the convex path) unless an operand is not one convex
+    body: ``_NOT_CONVEX`` when ``union_asked`` (a decomposition or other
+    union option was given), an operand is a :class:`ConvexUnion`, or the
+    convex path refuses an operand that is a closed non-convex solid
+    (:func:`_is_union_operand`). dymsum's own refusal stands otherwise."""
+    if union_asked or any(isinstance(x, _ext.ConvexUnion) for x in operands):
+        return _NOT_CONVEX
+    try:
+        return call()
+    except ValueError:
+        if not any(_is_union_operand(x) for x in operands):
+            raise
+    return _NOT_CONVEX
+
+
 @overload
 def minkowski_sum(
     a: "_ext.ConvexUnion",
@@ -697,15 +716,9 @@ def minkowski_sum(
     one piece per triangle of the mesh, see :func:`_boundary_sum`). ``cull``
     drops pair sums certified inside another one.
     """
-    union = isinstance(a, _ext.ConvexUnion) or isinstance(b, _ext.ConvexUnion)
-    if decomposition is None and not union:
-        try:
-            return _convex_sum(a, b, pose_a, pose_b, method, polygons)
-        except ValueError:
-            # dymsum's own message stands unless an operand is a closed,
-            # outward mesh that is refused only for not being convex.
-            if not any(_is_union_operand(x) for x in (a, b)):
-                raise
+    out = _convex_path(lambda: _convex_sum(a, b, pose_a, pose_b, method, polygons), (a, b), decomposition is not None)
+    if out is not _NOT_CONVEX:
+        return out
     if polygons:
         raise ValueError("polygons=True is for convex sums; the sum of non-convex bodies is a triangle mesh")
     return _union_sum(a, b, pose_a, pose_b, method, decomposition, decomposition_options, cull)
@@ -1023,12 +1036,9 @@ def contact(
     >>> c.collides, c.distance
     (False, 0.5)
     """
-    if decomposition is None and not (isinstance(a, _ext.ConvexUnion) or isinstance(b, _ext.ConvexUnion)):
-        try:
-            return _ext.contact(a, b, pose_a, pose_b)
-        except ValueError:
-            if not any(_is_union_operand(x) for x in (a, b)):
-                raise
+    out = _convex_path(lambda: _ext.contact(a, b, pose_a, pose_b), (a, b), decomposition is not None)
+    if out is not _NOT_CONVEX:
+        return out
     return _union_contact(a, b, pose_a, pose_b, decomposition, decomposition_options)
 
 
@@ -1059,12 +1069,13 @@ def cobstacle_slices(
     :class:`Slab` s (robot piece major), whose union holds every slice
     between the two rotations.
     """
-    if decomposition is None and not (isinstance(robot, _ext.ConvexUnion) or isinstance(obstacle, _ext.ConvexUnion)):
-        try:
-            return _ext.cobstacle_slices(robot, obstacle, rotations, polygons, parallel, certified, cell_radius)
-        except ValueError:
-            if not any(_is_union_operand(x) for x in (robot, obstacle)):
-                raise
+    out = _convex_path(
+        lambda: _ext.cobstacle_slices(robot, obstacle, rotations, polygons, parallel, certified, cell_radius),
+        (robot, obstacle),
+        decomposition is not None,
+    )
+    if out is not _NOT_CONVEX:
+        return out
     if polygons:
         raise ValueError("polygons=True is for convex bodies; a non-convex C-obstacle slice is a triangle mesh")
     pr, info_r = convex_pieces(robot, decomposition, decomposition_options)
@@ -1102,11 +1113,7 @@ class DynamicSum(_ext.DynamicSum):
     """
 
     def __new__(cls, a: Any, b: Any, pose_a: Any = None, pose_b: Any = None, **kwargs: Any) -> Any:
-        if kwargs or isinstance(a, _ext.ConvexUnion) or isinstance(b, _ext.ConvexUnion):
-            return DynamicUnionSum(a, b, pose_a, pose_b, **kwargs)
-        try:
-            return super().__new__(cls, a, b, pose_a, pose_b)
-        except ValueError:
-            if not any(_is_union_operand(x) for x in (a, b)):
-                raise
-        return DynamicUnionSum(a, b, pose_a, pose_b)
+        out = _convex_path(lambda: super(DynamicSum, cls).__new__(cls, a, b, pose_a, pose_b), (a, b), bool(kwargs))
+        if out is not _NOT_CONVEX:
+            return out
+        return DynamicUnionSum(a, b, pose_a, pose_b, **kwargs)
