@@ -176,7 +176,26 @@ pub(super) fn near_max_upper(
     let err = dot_error(dir, scale);
     let slack = 2.0 * (eta * dir.length() + err);
     let tau0 = slack + slack;
-    let mut best = dir.dot(at(start));
+    let best = near_set(poly, &at, dir, start, dir.dot(at(start)), tau0, marks, set);
+    best + err
+}
+
+/// The breadth-first search shared by [`near_max_upper`] and
+/// [`near_search`]: from `start` (whose value is `best`), every vertex
+/// reached through vertices within `tau0` of the best value seen is
+/// admitted into `set`. Returns the best float value.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn near_set(
+    poly: &Polytope,
+    at: &impl Fn(u32) -> DVec3,
+    dir: DVec3,
+    start: u32,
+    mut best: f64,
+    tau0: f64,
+    marks: &mut Marks,
+    set: &mut Vec<u32>,
+) -> f64 {
     marks.start(poly.vertex_count());
     set.clear();
     marks.mark(start);
@@ -199,7 +218,7 @@ pub(super) fn near_max_upper(
             }
         }
     }
-    best + err
+    best
 }
 
 /// The search of [`near_max`]: the climb, then the breadth-first search
@@ -222,30 +241,7 @@ fn near_search(
     let err = dot_error(dir, scale);
     let slack = 2.0 * (eta * dir.length() + err);
     let tau0 = tau.max(slack) + slack;
-    let (mut best_v, mut best) = climb(poly, at, dir, start);
-    marks.start(poly.vertex_count());
-    set.clear();
-    marks.mark(best_v);
-    set.push(best_v);
-    let mut i = 0;
-    while i < set.len() {
-        let v = set[i];
-        i += 1;
-        for r in poly.ring(v as usize) {
-            let u = r.neighbor;
-            if !marks.mark(u) {
-                continue;
-            }
-            let x = dir.dot(at(u));
-            if x >= best - tau0 {
-                set.push(u);
-                if x > best {
-                    best = x;
-                    best_v = u;
-                }
-            }
-        }
-    }
-    let _ = best_v;
+    let (top, value) = climb(poly, at, dir, start);
+    let best = near_set(poly, at, dir, top, value, tau0, marks, set);
     (best, tau0, err)
 }
