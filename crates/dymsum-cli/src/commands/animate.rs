@@ -163,6 +163,18 @@ struct Totals {
     ee_errors: usize,
 }
 
+impl Totals {
+    /// Nothing yet, with room for `steps` update times.
+    fn for_steps(steps: u64) -> Totals {
+        Totals {
+            times: Vec::with_capacity(steps.min(1 << 24) as usize),
+            frames: 0,
+            fv_errors: 0,
+            ee_errors: 0,
+        }
+    }
+}
+
 /// Turns P `a.steps` steps under the paper's motion, timing each DYMSUM
 /// update, with a CSV row per step (if `csv`) and the frames due.
 fn animate(
@@ -172,12 +184,7 @@ fn animate(
 ) -> anyhow::Result<Totals> {
     let mut motion = PaperMotion::new(a.steps_per_rev, a.seed);
     let bar = progress_bar(a.steps);
-    let mut totals = Totals {
-        times: Vec::with_capacity(a.steps.min(1 << 24) as usize),
-        frames: 0,
-        fv_errors: 0,
-        ee_errors: 0,
-    };
+    let mut totals = Totals::for_steps(a.steps);
     for step in 1..=a.steps {
         let rot = motion.next_step();
         let start = Instant::now();
@@ -271,12 +278,7 @@ fn run_union(
         DynamicUnionSum::new(&pu, Pose::IDENTITY, &qu, Pose::IDENTITY).context("initial sums")?;
     let mut motion = PaperMotion::new(a.steps_per_rev, a.seed);
     let bar = progress_bar(a.steps);
-    let mut totals = Totals {
-        times: Vec::with_capacity(a.steps.min(1 << 24) as usize),
-        frames: 0,
-        fv_errors: 0,
-        ee_errors: 0,
-    };
+    let mut totals = Totals::for_steps(a.steps);
     for step in 1..=a.steps {
         let rot = motion.next_step();
         let start = Instant::now();
