@@ -7,6 +7,10 @@
 //! leaves a truncated target and never destroys an earlier good file; on an
 //! error the temporary file is removed and the error names the target path.
 //!
+//! Temporary names carry their owner's process id, so a later run can tell a
+//! killed writer's leftovers from a running writer's file:
+//! [`remove_stale_temps`] removes the former only ([`owner_alive`]).
+//!
 //! [`read_regular_file`] reads a whole file, refusing anything that is not a
 //! regular file (a FIFO, a character device such as `/dev/zero`, a
 //! directory) before opening it, so reading cannot hang on a pipe or run out
@@ -82,6 +86,113 @@ impl FileError {
 }
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// The process id in a temporary name this crate (or `dymsum`'s Python
+/// package) writes: `.STEM.tmp-PID-N` followed by nothing or `.EXT`, with
+/// `N` a token of ASCII letters, digits and `_` (a counter here, a random
+/// token in Python's `CObstacleMap.save`). `None` for any other name.
+///
+/// ```
+/// use dymsum_io::atomic::temp_owner;
+/// assert_eq!(temp_owner(".map.tmp-4242-7.npz"), Some(4242));
+/// assert_eq!(temp_owner(".slice_00001.tmp-17-0.off"), Some(17));
+/// assert_eq!(temp_owner(".map.tmp-99-k3x_a9.npz"), Some(99));
+/// assert_eq!(temp_owner("map.npz"), None);
+/// assert_eq!(temp_owner(".map.tmp-x-1.npz"), None);
+/// ```
+pub fn temp_owner(name: &str) -> Option<u32> {
+    if !name.starts_with('.') {
+        return None;
+    }
+    let at = name.rfind(".tmp-")?;
+    if at == 0 {
+        return None;
+    }
+    let rest = &name[at + 5..];
+    let (pid, rest) = rest.split_once('-')?;
+    if pid.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    let token = rest.split_once('.').map_or(rest, |(t, _)| t);
+    if token.is_empty()
+        || !token
+            .bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b == b'_')
+    {
+        return None;
+    }
+    pid.parse().ok()
+}
+
+/// Whether the process `pid` may still be running: this process, or (on
+/// systems with `/proc`, Linux) a process whose `/proc/PID` exists. Where
+/// that cannot be told (no `/proc`), every owner counts as alive, so no
+/// file is ever removed from under a running writer. A dead owner's id
+/// reused by an unrelated process only keeps its file until a later run.
+pub fn owner_alive(pid: u32) -> bool {
+    if pid == std::process::id() {
+        return true;
+    }
+    let proc = Path::new("/proc");
+    if !proc.join("self").exists() {
+        return true;
+    }
+    proc.join(pid.to_string()).exists()
+}
+
+/// What [`remove_stale_temps`] found in a folder.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct StaleTemps {
+    /// The temporary files of dead owners, removed.
+    pub removed: Vec<PathBuf>,
+    /// The temporary files of owners still running, left alone.
+    pub live: Vec<PathBuf>,
+}
+
+/// Removes the temporary files ([`temp_owner`]'s names) that killed writers
+/// left in `dir`, those whose owner process is dead ([`owner_alive`]); a
+/// running writer's are left alone and listed. Other entries, folders and
+/// anything that cannot be inspected are not touched.
+///
+/// # Errors
+/// [`FileError::Read`] naming `dir` when it cannot be listed;
+/// [`FileError::Write`] naming a stale file that cannot be removed.
+pub fn remove_stale_temps(dir: &Path) -> Result<StaleTemps, FileError> {
+    remove_stale_temps_with(dir, &owner_alive)
+}
+
+pub(crate) fn remove_stale_temps_with(
+    dir: &Path,
+    alive: &dyn Fn(u32) -> bool,
+) -> Result<StaleTemps, FileError> {
+    let mut out = StaleTemps::default();
+    let list_err = |source| FileError::Read {
+        path: dir.to_path_buf(),
+        source,
+    };
+    for e in std::fs::read_dir(dir).map_err(list_err)? {
+        let e = e.map_err(list_err)?;
+        let name = e.file_name();
+        let Some(pid) = name.to_str().and_then(temp_owner) else {
+            continue;
+        };
+        if !e.file_type().is_ok_and(|t| t.is_file()) {
+            continue;
+        }
+        let path = e.path();
+        if alive(pid) {
+            out.live.push(path);
+        } else {
+            match std::fs::remove_file(&path) {
+                Ok(()) => out.removed.push(path),
+                // Removed meanwhile (by another run): nothing left to do.
+                Err(e) if e.kind() == io::ErrorKind::NotFound => {}
+                Err(source) => return Err(FileError::Write { path, source }),
+            }
+        }
+    }
+    Ok(out)
+}
 
 /// A hidden temporary path next to `path`, unique within this process:
 /// `.STEM.tmp-PID-N.EXT` (the extension kept last, for writers that choose
@@ -311,4 +422,92 @@ pub fn read_regular_file(path: &Path) -> Result<Vec<u8>, FileError> {
         )));
     }
     Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A writer that fails (as a full disk or a kill would stop it) once
+    /// `left` more bytes have gone through.
+    struct FailAfter<'a> {
+        inner: &'a mut dyn Write,
+        left: usize,
+    }
+
+    impl Write for FailAfter<'_> {
+        fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+            if self.left == 0 {
+                return Err(io::Error::other("injected failure"));
+            }
+            let n = buf.len().min(self.left);
+            self.left -= n;
+            self.inner.write(&buf[..n])
+        }
+
+        fn flush(&mut self) -> io::Result<()> {
+            self.inner.flush()
+        }
+    }
+
+    #[test]
+    fn a_writer_failing_after_k_bytes_for_every_k_keeps_the_old_file_and_no_temp() {
+        let dir = std::env::temp_dir().join(format!("dymsum-atomic-k-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("map.npz");
+        write_atomic_bytes(&path, b"the old map").unwrap();
+        let new: Vec<u8> = (0..=255u8).cycle().take(9000).collect();
+        for k in 0..new.len() {
+            let err = write_atomic(&path, |w| {
+                let mut f = FailAfter { inner: w, left: k };
+                // Written in uneven pieces, as encoders do.
+                for chunk in new.chunks(37) {
+                    f.write_all(chunk)?;
+                }
+                f.flush()
+            })
+            .unwrap_err();
+            assert!(err.to_string().contains("map.npz"), "{err}");
+            assert_eq!(std::fs::read(&path).unwrap(), b"the old map", "k = {k}");
+            assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "k = {k}");
+        }
+        write_atomic(&path, |w| w.write_all(&new)).unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), new);
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn stale_temps_of_dead_owners_are_removed_and_live_ones_kept() {
+        let dir = std::env::temp_dir().join(format!("dymsum-atomic-stale-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        for name in [
+            ".map.tmp-7-0.npz",
+            ".map.tmp-8-ab_1.npz",
+            "map.npz",
+            ".notes",
+        ] {
+            std::fs::write(dir.join(name), name).unwrap();
+        }
+        let found = remove_stale_temps_with(&dir, &|pid| pid == 8).unwrap();
+        assert_eq!(found.removed, [dir.join(".map.tmp-7-0.npz")]);
+        assert_eq!(found.live, [dir.join(".map.tmp-8-ab_1.npz")]);
+        let mut left: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        left.sort();
+        assert_eq!(left, [".map.tmp-8-ab_1.npz", ".notes", "map.npz"]);
+        // This process is alive; a process that has exited is not.
+        assert!(owner_alive(std::process::id()));
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        let pid = child.id();
+        child.wait().unwrap();
+        if Path::new("/proc/self").exists() {
+            assert!(!owner_alive(pid) || Path::new("/proc").join(pid.to_string()).exists());
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

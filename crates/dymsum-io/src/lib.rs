@@ -4,7 +4,8 @@
 //!   (ASCII and binary read, binary write), chosen by file extension.
 //! * [`models`]: the paper's 13 models, tessellated cubes and parametric
 //!   primitives, by name.
-//! * [`atomic`]: atomic file writes and bounded reads of regular files.
+//! * [`atomic`]: atomic file writes and bounded reads of regular files;
+//!   [`staging`]: a set of files in a folder replaced without loss on a kill.
 //! * [`npz`]: NumPy `.npz` archives of plain arrays; [`cmap`]: the
 //!   C-obstacle map container written in one.
 //! * [`load`]: an operand from a file path or a model name, as a polytope
@@ -19,5 +20,6 @@ pub mod formats;
 pub mod load;
 pub mod models;
 pub mod npz;
+pub mod staging;
 
 pub use load::{load_mesh, load_polytope, load_polytope_bytes, LoadError, Loaded};

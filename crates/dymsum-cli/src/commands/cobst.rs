@@ -13,8 +13,16 @@
 //! A non-empty output directory is refused unless `--force` is given, so
 //! slices of an earlier run never sit next to new ones unnoticed; with
 //! `--force`, the files an earlier run may have written there
-//! (`slice_*.off` and `index.json`) are removed first and nothing else is
-//! touched.
+//! (`slice_*`, `slab_*`, `index.json`, `map.npz`) are replaced and nothing
+//! else is touched.
+//!
+//! Nothing is lost on a kill: the new files are written into a hidden
+//! staging folder inside `--out` and swapped in only once all are complete
+//! ([`dymsum_io::staging`]); until then the earlier run's files are
+//! untouched. A run first cleans up after killed runs there (their
+//! temporary files and staging folders, recognised by the owner's process
+//! id; a running process's are left alone) and never counts temporary
+//! entries when deciding that the folder is not empty.
 //!
 //! With `--certified`, certified slabs are written instead of slices: each
 //! contains every slice between two consecutive orientations, or with
@@ -45,6 +53,7 @@ use super::slabs::{write_slabs, Cells, SlabFormat};
 use super::solid::load_pieces;
 use crate::stats::{human_us, micros};
 use dymsum_io::cmap::{Form, MapBuilder};
+use dymsum_io::staging::{is_temp_name, StagedDir};
 
 /// Arguments of `dymsum cobst`.
 #[derive(Debug, Args)]
@@ -74,9 +83,9 @@ pub struct CobstArgs {
     /// refused unless --force is given.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// Write into a non-empty --out directory: first remove the slices and
-    /// index an earlier run left there (`slice_*.off`, `index.json`); other
-    /// files are kept.
+    /// Write into a non-empty --out directory: replace the slices and
+    /// index an earlier run left there (`slice_*`, `slab_*`, `index.json`,
+    /// `map.npz`) once the new ones are complete; other files are kept.
     #[arg(long)]
     pub force: bool,
     /// Refuse meshes that are convex only within tolerance.
@@ -225,40 +234,42 @@ fn is_own_output(name: &str) -> bool {
         || (name.starts_with("slab_") && (name.ends_with(".off") || name.ends_with(".json")))
 }
 
-/// Creates the output directory, or checks an existing one: empty, or with
-/// `force` cleared of an earlier run's slices and index (only those).
-fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<()> {
+/// Creates the output directory, or checks an existing one: cleaned up
+/// after killed runs ([`dymsum_io::staging::recover`]), then empty (its
+/// temporary entries aside) or `force` given. Returns the staging folder
+/// the new files are written into; [`StagedDir::commit`] swaps them in,
+/// replacing an earlier run's files (only those, [`is_own_output`]).
+fn prepare_out_dir(dir: &Path, force: bool) -> anyhow::Result<StagedDir> {
     if !dir.exists() {
-        return super::create_output_dir(dir);
-    }
-    if !dir.is_dir() {
+        super::create_output_dir(dir)?;
+    } else if !dir.is_dir() {
         bail!("--out {}: exists and is not a directory", dir.display());
     }
-    let entries: Vec<std::fs::DirEntry> = std::fs::read_dir(dir)
-        .with_context(|| format!("--out {}", dir.display()))?
-        .collect::<Result<_, _>>()
-        .with_context(|| format!("--out {}", dir.display()))?;
-    if entries.is_empty() {
-        return Ok(());
-    }
-    if !force {
-        bail!(
-            "--out {}: the directory is not empty ({} entries); slices of an earlier run would \
-             mix with the new ones. Choose an empty or new directory, or add --force to remove \
-             the earlier slice_*/slab_* files and index.json there first",
-            dir.display(),
-            entries.len()
-        );
-    }
-    for e in entries {
-        let name = e.file_name();
-        let is_file = e.file_type().is_ok_and(|t| t.is_file());
-        if is_file && name.to_str().is_some_and(is_own_output) {
-            let path = e.path();
-            std::fs::remove_file(&path)
-                .with_context(|| format!("removing the earlier {}", path.display()))?;
+    dymsum_io::staging::recover(dir, &is_own_output)
+        .with_context(|| format!("--out {}: cleaning up after an earlier run", dir.display()))?;
+    let mut entries = 0usize;
+    for e in std::fs::read_dir(dir).with_context(|| format!("--out {}", dir.display()))? {
+        let e = e.with_context(|| format!("--out {}", dir.display()))?;
+        if !e.file_name().to_str().is_some_and(is_temp_name) {
+            entries += 1;
         }
     }
+    if entries > 0 && !force {
+        bail!(
+            "--out {}: the directory is not empty ({entries} entries); slices of an earlier run \
+             would mix with the new ones. Choose an empty or new directory, or add --force to \
+             replace the earlier slice_*/slab_* files and index.json there (once the new ones \
+             are complete)",
+            dir.display(),
+        );
+    }
+    StagedDir::create(dir).with_context(|| format!("--out {}", dir.display()))
+}
+
+/// Swaps the files written into `staged` into `--out` (replacing an earlier
+/// run's, [`is_own_output`]).
+fn commit_out_dir(staged: StagedDir) -> anyhow::Result<()> {
+    staged.commit(&is_own_output)?;
     Ok(())
 }
 
@@ -291,7 +302,8 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         return run_certified(a, (&robot, &obstacle), out);
     }
     let orientations = chosen_orientations(a)?;
-    prepare_out_dir(&a.out, a.force)?;
+    let staged = prepare_out_dir(&a.out, a.force)?;
+    let dir = staged.path();
     let mut union = robot.len() > 1 || obstacle.len() > 1;
     if a.merge && a.format != CobstFormat::Off {
         bail!("--merge writes one mesh per slice: use it with --format off");
@@ -299,7 +311,7 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let start = Instant::now();
     let slices = if a.merge {
         union = false;
-        write_merged_slices(a, &robot, &obstacle, &orientations)?
+        write_merged_slices(a, dir, &robot, &obstacle, &orientations)?
     } else {
         match a.format {
             CobstFormat::Npz | CobstFormat::NpzMesh => {
@@ -308,15 +320,16 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
                 } else {
                     Form::Mesh
                 };
-                write_map(a, (&robot, &obstacle), &orientations, form)?
+                write_map(a, dir, (&robot, &obstacle), &orientations, form)?
             }
-            _ => write_slices(a, &robot, &obstacle, &orientations)?,
+            _ => write_slices(a, dir, &robot, &obstacle, &orientations)?,
         }
     };
     let elapsed = micros(start.elapsed());
     if !matches!(a.format, CobstFormat::Npz | CobstFormat::NpzMesh) {
-        write_index(&a.out, &orientations, &slices, union)?;
+        write_index(dir, &orientations, &slices, union)?;
     }
+    commit_out_dir(staged)?;
     let faces = &slices.faces;
     let (lo, hi) = (
         faces.iter().min().copied().unwrap_or(0),
@@ -394,7 +407,8 @@ fn run_certified(
             angles: angles.as_deref(),
         },
     };
-    prepare_out_dir(&a.out, a.force)?;
+    let staged = prepare_out_dir(&a.out, a.force)?;
+    let dir = staged.path();
     let start = Instant::now();
     let what = || {
         format!(
@@ -404,17 +418,18 @@ fn run_certified(
         )
     };
     let (planes, margins) = match a.format {
-        CobstFormat::Npz => write_slab_map(&a.out, bodies, &orientations).with_context(what)?,
+        CobstFormat::Npz => write_slab_map(dir, bodies, &orientations).with_context(what)?,
         f => {
             let f = if f == CobstFormat::Off {
                 SlabFormat::Off
             } else {
                 SlabFormat::Halfspaces
             };
-            let w = write_slabs(&a.out, bodies, cells, f).with_context(what)?;
+            let w = write_slabs(dir, bodies, cells, f).with_context(what)?;
             (w.planes, w.margins)
         }
     };
+    commit_out_dir(staged)?;
     let elapsed = micros(start.elapsed());
     let planes = &planes;
     let (lo, hi) = (
@@ -498,10 +513,11 @@ struct Slices {
     files: Vec<Vec<String>>,
 }
 
-/// Writes one OFF file per slice and piece pair into `a.out` (named
+/// Writes one OFF file per slice and piece pair into `dir`, the staging folder (named
 /// `slice_K.off`, or `slice_K_rI_oJ.off` when a body has several pieces).
 fn write_slices(
     a: &CobstArgs,
+    dir: &Path,
     robot: &[Polytope],
     obstacle: &[Polytope],
     orientations: &[Rotation],
@@ -528,7 +544,7 @@ fn write_slices(
                     } else {
                         format!("slice_{k:05}.{ext}")
                     };
-                    let path = a.out.join(&name);
+                    let path = dir.join(&name);
                     let res = if a.format == CobstFormat::Halfspaces {
                         write_slice_halfspaces(sum, &cob, k, &path)
                     } else {
@@ -560,6 +576,7 @@ fn write_slices(
 /// one closed mesh `slice_K.off` (`--merge`).
 fn write_merged_slices(
     a: &CobstArgs,
+    dir: &Path,
     robot: &[Polytope],
     obstacle: &[Polytope],
     orientations: &[Rotation],
@@ -583,7 +600,7 @@ fn write_merged_slices(
     };
     for (k, slice) in merged.iter().enumerate() {
         let name = format!("slice_{k:05}.off");
-        dymsum_io::formats::write_mesh(&a.out.join(&name), slice.mesh())
+        dymsum_io::formats::write_mesh(&dir.join(&name), slice.mesh())
             .with_context(|| format!("slice {k}"))?;
         slices.faces.push(slice.mesh().faces.len());
         slices.files.push(vec![name]);
@@ -626,6 +643,7 @@ fn write_slice_halfspaces(
 /// container `DIR/map.npz` of `form`.
 fn write_map(
     a: &CobstArgs,
+    dir: &Path,
     (robot, obstacle): (&[Polytope], &[Polytope]),
     orientations: &[Rotation],
     form: Form,
@@ -677,7 +695,7 @@ fn write_map(
         }
     }
     bar.finish_and_clear();
-    map.write(&a.out.join(MAP_FILE))?;
+    map.write(&dir.join(MAP_FILE))?;
     Ok(slices)
 }
 
