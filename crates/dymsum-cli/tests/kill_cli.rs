@@ -193,3 +193,21 @@ fn temporary_entries_of_dead_writers_are_removed_live_ones_kept_and_neither_coun
         assert!(out.join("slice_00001.off").is_file());
     }
 }
+
+#[test]
+fn every_writer_removes_a_killed_writers_temporary_file_beside_its_output() {
+    let dir = temp_dir("sum-temps");
+    let mut child = Command::new("true").spawn().unwrap();
+    let dead = child.id();
+    child.wait().unwrap();
+    let stale = dir.join(format!(".sum.tmp-{dead}-0.off"));
+    let live = dir.join(format!(".sum.tmp-{}-0.off", std::process::id()));
+    std::fs::write(&stale, "partial").unwrap();
+    std::fs::write(&live, "partial").unwrap();
+    ok(&["sum", "cube", "gs1", "-o", s(&dir.join("sum.off"))]);
+    assert!(dir.join("sum.off").is_file());
+    assert!(live.exists(), "a running writer's file is kept");
+    if Path::new("/proc/self").exists() && !Path::new("/proc").join(dead.to_string()).exists() {
+        assert!(!stale.exists(), "{:?}", names(&dir));
+    }
+}

@@ -124,17 +124,28 @@ fn read_stdin_once(operand: &str) -> anyhow::Result<Vec<u8>> {
 /// The one rule for every output of the command line (`sum -o`, `render
 /// -o`, `models --write`, `animate --csv` and `--frames-dir`, `cobst
 /// --out`, `bench --out`): a missing output folder is created, with its
-/// missing parents (as `mkdir -p`). An existing folder is used as it is.
+/// missing parents (as `mkdir -p`). An existing folder is used as it is,
+/// once the temporary files that killed writers left there (their owner
+/// process is dead) are removed; a running writer's are kept
+/// ([`dymsum_io::atomic::remove_stale_temps`]).
 ///
 /// # Errors
 /// The folder cannot be created (a file is in the way, permissions),
 /// naming the folder.
 pub fn create_output_dir(dir: &Path) -> anyhow::Result<()> {
-    if dir.as_os_str().is_empty() || dir.is_dir() {
-        return Ok(());
+    if !(dir.as_os_str().is_empty() || dir.is_dir()) {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("creating the output folder {}", dir.display()))?;
     }
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("creating the output folder {}", dir.display()))
+    // Best effort: a folder that cannot be listed or cleaned is reported by
+    // the write itself, if it fails.
+    let here = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let _ = dymsum_io::atomic::remove_stale_temps(here);
+    Ok(())
 }
 
 /// [`create_output_dir`] for the folder of an output file.
