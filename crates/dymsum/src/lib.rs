@@ -14,6 +14,9 @@
 //!   all returning the same labelled facet set, and the merged polygon mesh.
 //! * [`dynamic`]: DYMSUM, the sum kept up to date while the bodies rotate.
 //! * [`mesh`]: a plain polygon mesh, the exchange type with file formats.
+//! * [`solid`]: the exact check of a non-convex mesh given as a solid
+//!   (closed, oriented, manifold shells that do not cross themselves, of
+//!   positive volume).
 //! * `nonconvex` (feature `union-mesh`): sums of non-convex bodies (unions
 //!   of convex pieces, or closed meshes) merged into one validated closed
 //!   mesh.
@@ -46,6 +49,7 @@ pub mod nonconvex;
 pub mod polytope;
 pub mod query;
 pub mod sanity;
+pub mod solid;
 pub mod sum;
 
 pub use dynamic::{DynamicSum, UpdateReport};
@@ -61,4 +65,5 @@ pub use query::{
     Separation,
 };
 pub use sanity::SanityError;
+pub use solid::{check_solid_mesh, SolidError};
 pub use sum::{minkowski_sum, minkowski_sum_posed, Facet, Method, MinkowskiSum, SumError};

@@ -439,12 +439,12 @@ fn mesh_inputs_components_and_refusals() {
         "{err}"
     );
     assert!(err.to_string().contains("--decomposition vhacd"), "{err}");
-    // An open mesh is refused as input.
+    // An open mesh is refused as input, by the exact solid check.
     let mut open = l.clone();
     open.faces.pop();
     assert!(matches!(
         convex_pieces(&open, Decomposition::VHACD),
-        Err(UnionMeshError::Input { .. })
+        Err(UnionMeshError::Solid(dymsum::SolidError::OpenEdge { .. }))
     ));
     assert!(matches!(
         check_closed_mesh(&open),

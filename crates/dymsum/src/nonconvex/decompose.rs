@@ -1,17 +1,18 @@
 //! The convex pieces of a closed mesh: its exactly convex components, or a
 //! decomposition (parry's V-HACD under the `parry` feature).
 
-use super::check::{components, signed_volume, triangles};
+use super::check::triangles;
 use super::merge::{boolean, to_manifold, volume};
 use super::UnionMeshError;
 use crate::polytope::MeshPolicy;
+use crate::solid::check_solid_mesh;
 use crate::{PolygonMesh, Polytope};
 
 /// How a non-convex closed mesh becomes convex pieces.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Decomposition {
-    /// Only exact: each connected component must be exactly convex (and
-    /// outward); anything else is refused with
+    /// Only exact: each shell (connected component) must be exactly
+    /// convex; anything else is refused with
     /// [`UnionMeshError::NeedsDecomposition`].
     #[default]
     Components,
@@ -51,8 +52,8 @@ impl Decomposition {
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct DecompositionInfo {
     /// `"convex"` (one convex body), `"given"` (pieces given by the
-    /// caller), `"components"` (the mesh's connected components, each
-    /// exactly convex) or `"vhacd"`.
+    /// caller), `"components"` (the mesh's shells, each exactly convex) or
+    /// `"vhacd"`.
     pub method: &'static str,
     /// `true` when the union of the pieces is the input exactly (every
     /// method but a decomposition library).
@@ -88,12 +89,15 @@ impl DecompositionInfo {
     }
 }
 
-/// The convex pieces of a closed mesh (a solid: closed, outward; shells
-/// may overlap or touch).
+/// The convex pieces of a mesh given as a solid.
 ///
-/// A convex mesh is one piece; otherwise each connected component that is
-/// exactly convex and outward is taken as it is, and the others (with any
-/// inward shell, a cavity, the whole mesh) go to `decomposition`.
+/// A convex mesh is one piece. Otherwise the mesh is first checked exactly
+/// by [`check_solid_mesh`] (each shell closed, oriented, manifold, not
+/// crossing itself, of positive volume; no face listed twice or back to
+/// back), and refused with [`UnionMeshError::Solid`] when it fails: the
+/// body is the union of its shells (which may overlap). Each shell that is
+/// exactly convex is taken as it is; the others go, shell by shell, to
+/// `decomposition`.
 ///
 /// ```
 /// use dymsum::nonconvex::{convex_pieces, Decomposition, UnionMeshError};
@@ -108,15 +112,19 @@ impl DecompositionInfo {
 ///         f.push(q.iter().map(|&i| o + i).collect());
 ///     }
 /// }
-/// let (pieces, info) = convex_pieces(&PolygonMesh::new(v, f), Decomposition::Components)?;
+/// let (pieces, info) = convex_pieces(&PolygonMesh::new(v.clone(), f.clone()), Decomposition::Components)?;
 /// assert_eq!((pieces.len(), info.method, info.exact), (2, "components", true));
+/// // The same faces listed twice: no solid, refused whatever the decomposition.
+/// f.extend(f.clone());
+/// let err = convex_pieces(&PolygonMesh::new(v, f), Decomposition::VHACD).unwrap_err();
+/// assert!(matches!(err, UnionMeshError::Solid(_)));
 /// # Ok::<(), UnionMeshError>(())
 /// ```
 ///
 /// # Errors
-/// [`UnionMeshError::Input`] when the mesh is not a closed outward solid;
-/// [`UnionMeshError::NeedsDecomposition`] for a non-convex component
-/// under [`Decomposition::Components`];
+/// [`UnionMeshError::Solid`] when the mesh is not a solid;
+/// [`UnionMeshError::NeedsDecomposition`] for a non-convex shell under
+/// [`Decomposition::Components`];
 /// [`UnionMeshError::DecompositionUnavailable`] for V-HACD without the
 /// `parry` feature; [`UnionMeshError::Decomposition`] when it returns no
 /// solid part.
@@ -129,39 +137,21 @@ pub fn convex_pieces(
             return Ok((vec![p], DecompositionInfo::exact("convex", 1)));
         }
     }
-    let input = |reason: String| UnionMeshError::Input { reason };
-    if let Some(v) = mesh
-        .vertices
-        .iter()
-        .position(|p| !p.iter().all(|x| x.is_finite()))
-    {
-        return Err(input(format!("vertex {v} is not finite")));
-    }
-    let tris = triangles(mesh).map_err(|e| input(e.to_string()))?;
-    if tris.is_empty() {
-        return Err(input("the mesh has no faces".into()));
-    }
-    check_solid(&tris).map_err(input)?;
-    let total = signed_volume(&mesh.vertices, &tris);
-    if total.is_nan() || total <= 0.0 {
-        return Err(input(format!(
-            "its signed volume {total:e} is not positive (inward or empty)"
-        )));
-    }
+    let solid = check_solid_mesh(mesh)?;
+    let shell_mesh = |shell: &[usize]| {
+        let fans = shell.iter().flat_map(|&f| {
+            let face = &mesh.faces[f];
+            face[1..].windows(2).map(move |w| [face[0], w[0], w[1]])
+        });
+        submesh(&mesh.vertices, fans)
+    };
     let mut pieces = Vec::new();
-    let mut rest: Vec<Vec<usize>> = Vec::new();
-    let mut cavity = false;
-    let comps = components(mesh.vertices.len(), &tris);
-    for comp in &comps {
-        let sub = submesh(&mesh.vertices, comp.iter().map(|&t| tris[t]));
-        if sub.signed_volume() <= 0.0 {
-            cavity = true;
-            rest.push(comp.clone());
-            continue;
-        }
+    let mut rest: Vec<PolygonMesh> = Vec::new();
+    for shell in &solid.shells {
+        let sub = shell_mesh(shell);
         match Polytope::from_mesh(&sub, MeshPolicy::strict()) {
             Ok((p, _)) => pieces.push(p),
-            Err(_) => rest.push(comp.clone()),
+            Err(_) => rest.push(sub),
         }
     }
     if rest.is_empty() {
@@ -172,25 +162,36 @@ pub fn convex_pieces(
     }
     if decomposition == Decomposition::Components {
         return Err(UnionMeshError::NeedsDecomposition {
-            components: comps.len(),
+            components: solid.shells.len(),
             nonconvex: rest.len(),
         });
     }
-    if cavity {
-        pieces.clear();
-        rest = vec![(0..tris.len()).collect()];
-    }
     let convex_components = pieces.len();
-    let sel = submesh(&mesh.vertices, rest.iter().flatten().map(|&t| tris[t]));
-    let parts = decompose(&sel, decomposition)?;
-    if parts.is_empty() {
-        return Err(UnionMeshError::Decomposition(format!(
-            "the {} decomposition returned no solid part",
-            decomposition.name()
-        )));
+    for sub in &rest {
+        let parts = decompose(sub, decomposition)?;
+        if parts.is_empty() {
+            return Err(UnionMeshError::Decomposition(format!(
+                "the {} decomposition returned no solid part",
+                decomposition.name()
+            )));
+        }
+        pieces.extend(parts);
     }
-    pieces.extend(parts);
-    let (union_volume, volume_error) = volume_error(&pieces, mesh, total)?;
+    // The input as one closed mesh: the union of its shells when they are
+    // several (they may overlap).
+    let (input, total) = if solid.shells.len() == 1 {
+        (mesh.clone(), mesh.signed_volume())
+    } else {
+        let shells: Vec<(String, PolygonMesh)> = solid
+            .shells
+            .iter()
+            .enumerate()
+            .map(|(k, s)| (format!("shell {k} of the input"), shell_mesh(s)))
+            .collect();
+        let (union, info) = super::merge::union_meshes(&shells)?;
+        (union, info.volume)
+    };
+    let (union_volume, volume_error) = volume_error(&pieces, &input, total)?;
     let n = pieces.len();
     Ok((
         pieces,
@@ -204,25 +205,6 @@ pub fn convex_pieces(
             volume_error: Some(volume_error),
         },
     ))
-}
-
-/// Every undirected edge used as often in each direction (shells may
-/// overlap or touch, but no edge is open or flipped).
-fn check_solid(tris: &[[usize; 3]]) -> Result<(), String> {
-    let mut count: std::collections::HashMap<(usize, usize), i64> = Default::default();
-    for f in tris {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            let key = (a.min(b), a.max(b));
-            *count.entry(key).or_insert(0) += if a < b { 1 } else { -1 };
-        }
-    }
-    match count.iter().filter(|(_, &c)| c != 0).min_by_key(|(k, _)| **k) {
-        Some((&(a, b), _)) => Err(format!(
-            "edge ({a}, {b}) is not used once in each direction (the mesh is open or inconsistently oriented)"
-        )),
-        None => Ok(()),
-    }
 }
 
 /// The mesh of some triangles, with only their vertices.

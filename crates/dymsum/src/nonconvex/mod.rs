@@ -24,9 +24,10 @@
 //!   and must be positive; sliver triangles (corners exactly collinear) are
 //!   counted, not refused (`boolmesh` can leave them where piece sums meet
 //!   at grazing angles; the surface is still closed and oriented);
-//! * a non-convex closed mesh becomes pieces by [`convex_pieces`]: exactly
-//!   convex connected components are taken as they are (exact); anything
-//!   else needs a decomposition ([`Decomposition::Vhacd`], parry's V-HACD
+//! * a non-convex closed mesh becomes pieces by [`convex_pieces`], after the
+//!   exact check that it is a solid ([`crate::solid`]; else
+//!   [`UnionMeshError::Solid`]): exactly convex shells are taken as they
+//!   are (exact); anything else needs a decomposition ([`Decomposition::Vhacd`], parry's V-HACD
 //!   under the `parry` feature), which is approximate: its volume error
 //!   against the input is in the [`DecompositionInfo`];
 //! * the penetration depth of two unions
@@ -79,8 +80,12 @@ pub enum UnionMeshError {
         /// Why.
         reason: String,
     },
-    /// A connected component is not exactly convex and no decomposition was
-    /// chosen.
+    /// The input mesh is not a solid by the exact check
+    /// ([`crate::solid::check_solid_mesh`]).
+    #[error("the mesh is not a valid solid: {0}")]
+    Solid(#[from] crate::solid::SolidError),
+    /// A shell (connected component) is not exactly convex and no
+    /// decomposition was chosen.
     #[error(
         "a non-convex mesh ({nonconvex} of its {components} connected components not exactly convex) \
          needs a convex decomposition: choose V-HACD (Rust: Decomposition::Vhacd with the `parry` \

@@ -172,6 +172,18 @@ impl DirectedEdges {
         self.find(a, b).map(|pos| self.face_corner(pos).0)
     }
 
+    /// The faces holding the directed edge `a → b` (more than one when it
+    /// is used twice), in the order of their half-edge ids.
+    pub(crate) fn faces_of(&self, a: usize, b: usize) -> Vec<usize> {
+        let row = self.start[a]..self.start[a + 1];
+        let mut faces: Vec<(usize, usize)> = row
+            .filter(|&pos| self.target[pos] == b)
+            .map(|pos| (self.half_edge[pos], self.face_corner(pos).0))
+            .collect();
+        faces.sort_unstable();
+        faces.into_iter().map(|(_, f)| f).collect()
+    }
+
     /// A directed edge that occurs twice (in two faces or twice in one), if
     /// any.
     pub(crate) fn repeated_edge(&self) -> Option<(usize, usize)> {
@@ -197,6 +209,19 @@ impl DirectedEdges {
     /// Checks that the mesh is a closed, oriented 2-manifold sphere (module
     /// docs, step 2).
     pub(crate) fn check_sphere(&self, unused: Unused) -> Result<(), TopologyDefect> {
+        let used = self.check_manifold(unused)?;
+        let edges = (self.target.len() / 2) as i64;
+        let euler = used as i64 - edges + self.faces as i64;
+        if euler != 2 {
+            return Err(TopologyDefect::Euler(euler));
+        }
+        Ok(())
+    }
+
+    /// Checks that the mesh is a closed, oriented 2-manifold of any genus
+    /// and any number of components (module docs, step 2 without Euler's
+    /// formula); returns the number of vertices used.
+    pub(crate) fn check_manifold(&self, unused: Unused) -> Result<usize, TopologyDefect> {
         let n = self.vertex_count();
         if let Some((a, b)) = self.repeated_edge() {
             return Err(TopologyDefect::EdgeUsedTwice(a, b));
@@ -208,7 +233,7 @@ impl DirectedEdges {
                 }
             }
         }
-        let mut used = 0i64;
+        let mut used = 0usize;
         for v in 0..n {
             let degree = self.start[v + 1] - self.start[v];
             if degree == 0 {
@@ -235,12 +260,7 @@ impl DirectedEdges {
                 return Err(TopologyDefect::PinchedVertex(v));
             }
         }
-        let edges = (self.target.len() / 2) as i64;
-        let euler = used - edges + self.faces as i64;
-        if euler != 2 {
-            return Err(TopologyDefect::Euler(euler));
-        }
-        Ok(())
+        Ok(used)
     }
 }
 

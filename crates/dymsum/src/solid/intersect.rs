@@ -1,0 +1,205 @@
+//! Exact triangle–triangle tests for [`super::check_solid_mesh`]: does a
+//! pair of non-degenerate triangles meet anywhere but along what they
+//! share?
+//!
+//! Every decision is the exact sign of `orient3d` ([`orient`]) or of
+//! `orient2d` on a coordinate projection ([`orient2`]), or an exact
+//! comparison of input coordinates; no value is constructed.
+//!
+//! The one primitive is [`segment_meets_triangle`] (closed sets). Two
+//! triangles with no common vertex meet if and only if an edge of one meets
+//! the other: their intersection is convex; when the planes differ it is a
+//! segment of their common line whose ends lie on the triangles' edges, and
+//! when they are coplanar an overlap holds a vertex of one in the other or
+//! two crossing edges. Two triangles `(v, p₁, p₂)` and `(v, q₁, q₂)` sharing
+//! only `v` meet elsewhere if and only if `[p₁, p₂]` meets the second or
+//! `[q₁, q₂]` meets the first: a second common point `x` makes `[v, x]`
+//! common (convexity), and the far end of the shorter of `T₁ ∩ L`, `T₂ ∩ L`
+//! along it lies on an opposite edge (for coplanar triangles the same holds
+//! of the vertices of the common polygon). Two triangles sharing the edge
+//! `uw` meet only along it unless they are coplanar with their third
+//! corners on the same side of `uw` (a fold).
+
+use crate::kernel::predicates::{orient, orient2, Sign};
+use glam::DVec3;
+
+/// A coordinate plane `(i, j)` onto which the triangle projects without
+/// degenerating, or `None` when its corners are collinear (all three
+/// projections flat, so exactly collinear).
+pub(super) fn projection(t: &[DVec3; 3]) -> Option<(usize, usize)> {
+    [(0, 1), (1, 2), (0, 2)]
+        .into_iter()
+        .find(|&(i, j)| orient2(pr(t[0], i, j), pr(t[1], i, j), pr(t[2], i, j)) != Sign::Zero)
+}
+
+#[inline]
+fn pr(p: DVec3, i: usize, j: usize) -> [f64; 2] {
+    [p[i], p[j]]
+}
+
+/// Whether collinear `p` lies on the closed segment `[a, b]` (exact
+/// coordinate comparisons: `p` on the line, between the ends in both
+/// coordinates).
+fn between(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
+    (0..2).all(|k| a[k].min(b[k]) <= p[k] && p[k] <= a[k].max(b[k]))
+}
+
+/// Closed 2-D segments `[a, b]` and `[c, d]` meet.
+fn segments_meet_2d(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let (d1, d2) = (orient2(c, d, a), orient2(c, d, b));
+    let (d3, d4) = (orient2(a, b, c), orient2(a, b, d));
+    if d1 == d2.flip() && d1 != Sign::Zero && d3 == d4.flip() && d3 != Sign::Zero {
+        return true;
+    }
+    (d1 == Sign::Zero && between(c, d, a))
+        || (d2 == Sign::Zero && between(c, d, b))
+        || (d3 == Sign::Zero && between(a, b, c))
+        || (d4 == Sign::Zero && between(a, b, d))
+}
+
+/// `p` in the closed 2-D triangle `t` (not flat).
+fn point_in_triangle_2d(p: [f64; 2], t: &[[f64; 2]; 3]) -> bool {
+    let s = [
+        orient2(t[0], t[1], p),
+        orient2(t[1], t[2], p),
+        orient2(t[2], t[0], p),
+    ];
+    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+/// The closed segment `[a, b]` meets the closed triangle `t` (not flat).
+pub(super) fn segment_meets_triangle(a: DVec3, b: DVec3, t: &[DVec3; 3]) -> bool {
+    let (sa, sb) = (orient(t[0], t[1], t[2], a), orient(t[0], t[1], t[2], b));
+    if sa == sb && sa != Sign::Zero {
+        return false;
+    }
+    if sa == Sign::Zero && sb == Sign::Zero {
+        // In the triangle's plane: on a projection where the triangle is
+        // not flat (a bijection on that plane).
+        let Some((i, j)) = projection(t) else {
+            return false;
+        };
+        let (a, b) = (pr(a, i, j), pr(b, i, j));
+        let q = t.map(|p| pr(p, i, j));
+        return point_in_triangle_2d(a, &q)
+            || point_in_triangle_2d(b, &q)
+            || (0..3).any(|k| segments_meet_2d(a, b, q[k], q[(k + 1) % 3]));
+    }
+    // The segment meets the plane in one point; it is in the triangle iff
+    // the line through the segment passes through the closed triangle.
+    let s = [
+        orient(a, b, t[0], t[1]),
+        orient(a, b, t[1], t[2]),
+        orient(a, b, t[2], t[0]),
+    ];
+    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+/// Triangles `t` and `u` (not flat) with no common vertex meet.
+pub(super) fn disjoint_triangles_meet(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
+    (0..3).any(|k| segment_meets_triangle(t[k], t[(k + 1) % 3], u))
+        || (0..3).any(|k| segment_meets_triangle(u[k], u[(k + 1) % 3], t))
+}
+
+/// Triangles `(v, p₁, p₂)` and `(v, q₁, q₂)` (not flat) sharing only the
+/// corner `v` meet elsewhere: `p = [p₁, p₂]`, `q = [q₁, q₂]`.
+pub(super) fn vertex_sharing_triangles_meet(
+    t: &[DVec3; 3],
+    p: [DVec3; 2],
+    u: &[DVec3; 3],
+    q: [DVec3; 2],
+) -> bool {
+    segment_meets_triangle(p[0], p[1], u) || segment_meets_triangle(q[0], q[1], t)
+}
+
+/// Triangles `(u, w, p)` and `(w, u, q)` (not flat) sharing the edge `uw`
+/// overlap: coplanar, with `p` and `q` on the same side of `uw`.
+pub(super) fn edge_sharing_triangles_fold(u: DVec3, w: DVec3, p: DVec3, q: DVec3) -> bool {
+    if orient(u, w, p, q) != Sign::Zero {
+        return false;
+    }
+    let Some((i, j)) = projection(&[u, w, p]) else {
+        return false;
+    };
+    let side = |x: DVec3| orient2(pr(u, i, j), pr(w, i, j), pr(x, i, j));
+    side(p) == side(q)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64, z: f64) -> DVec3 {
+        DVec3::new(x, y, z)
+    }
+
+    #[test]
+    fn crossing_touching_and_apart() {
+        let t = [v(0., 0., 0.), v(2., 0., 0.), v(0., 2., 0.)];
+        // Pierces the interior.
+        let u = [v(0.5, 0.5, -1.), v(0.5, 0.5, 1.), v(3., 3., 0.5)];
+        assert!(disjoint_triangles_meet(&t, &u));
+        // Touches an edge at one point (closed sets meet).
+        let u = [v(1., -1., -1.), v(1., 1., -1.), v(1., 0., 0.)];
+        assert!(disjoint_triangles_meet(&t, &u));
+        // Above the plane.
+        let u = [v(0.5, 0.5, 1e-300), v(0.5, 0.6, 1.), v(0.6, 0.5, 1.)];
+        assert!(!disjoint_triangles_meet(&t, &u));
+        // Coplanar, inside.
+        let u = [v(0.1, 0.1, 0.), v(0.5, 0.1, 0.), v(0.1, 0.5, 0.)];
+        assert!(disjoint_triangles_meet(&t, &u));
+        // Coplanar, apart.
+        let u = [v(3., 3., 0.), v(4., 3., 0.), v(3., 4., 0.)];
+        assert!(!disjoint_triangles_meet(&t, &u));
+    }
+
+    #[test]
+    fn shared_corner_and_edge() {
+        let o = v(0., 0., 0.);
+        let t = [o, v(2., 0., 0.), v(0., 2., 0.)];
+        // Coplanar, overlapping wedges.
+        let u = [o, v(1., 1., 0.), v(-1., 3., 0.)];
+        assert!(vertex_sharing_triangles_meet(
+            &t,
+            [t[1], t[2]],
+            &u,
+            [u[1], u[2]]
+        ));
+        // Coplanar, wedges apart.
+        let u = [o, v(-1., 0., 0.), v(0., -1., 0.)];
+        assert!(!vertex_sharing_triangles_meet(
+            &t,
+            [t[1], t[2]],
+            &u,
+            [u[1], u[2]]
+        ));
+        // Another plane through a wedge's edge: meets along it.
+        let u = [o, v(1., 0., 0.), v(1., 0., 1.)];
+        assert!(vertex_sharing_triangles_meet(
+            &t,
+            [t[1], t[2]],
+            &u,
+            [u[1], u[2]]
+        ));
+        // A fold about a shared edge, and a flat hinge.
+        let (a, b) = (v(0., 0., 0.), v(1., 0., 0.));
+        assert!(edge_sharing_triangles_fold(
+            a,
+            b,
+            v(0., 1., 0.),
+            v(5., 2., 0.)
+        ));
+        assert!(!edge_sharing_triangles_fold(
+            a,
+            b,
+            v(0., 1., 0.),
+            v(5., -2., 0.)
+        ));
+        assert!(!edge_sharing_triangles_fold(
+            a,
+            b,
+            v(0., 1., 0.),
+            v(5., 2., 1e-300)
+        ));
+    }
+}
