@@ -792,9 +792,13 @@ pub(crate) fn rows_array(
     matrix(py, flat, (rows, 3))
 }
 
-/// A 4×4 row-major `float64` array of a pose.
+/// A 4×4 row-major `float64` array of a pose: the rotation block is the
+/// matrix of the quaternion as given (`Rotation::matrix_as_given`, not
+/// snapped), so that a pose handed back keeps which way a motion to it
+/// turns (a half turn plus 1e-300 stays on its side).
 pub(crate) fn pose_array<'py>(py: Python<'py>, pose: Pose) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let cols = pose.to_mat4().transpose().to_cols_array();
+    let m = DMat4::from_mat3_translation(pose.rotation.matrix_as_given(), pose.translation);
+    let cols = m.transpose().to_cols_array();
     matrix(py, cols.to_vec(), (4, 4))
 }
 

@@ -5,7 +5,9 @@
 use crate::convert::{self, err_for, value_error};
 use crate::PyPolytope;
 use dymsum::polytope::MeshPolicy;
-use dymsum::query::{ConvexUnion, MotionCheck, MotionChecker, MotionError};
+use dymsum::query::{
+    ConvexUnion, MotionCheck, MotionChecker, MotionError, DEFAULT_BUDGET, MIN_TOLERANCE,
+};
 use dymsum::Pose;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::create_exception;
@@ -157,12 +159,24 @@ fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<ConvexUnion>> {
 }
 
 fn check_tolerance(tolerance: f64) -> PyResult<()> {
-    if tolerance > 0.0 && tolerance < 1.0 {
+    if (MIN_TOLERANCE..1.0).contains(&tolerance) {
         Ok(())
     } else {
         Err(value_error(format!(
-            "tolerance must be a finite number in (0, 1), got {tolerance}"
+            "tolerance must be a finite number in [{MIN_TOLERANCE:e}, 1) (the smallest the \
+             search can bracket: it halves intervals down to 2^-48 of the motion), got {tolerance}"
         )))
+    }
+}
+
+/// The work budget: `None` is the default, else at least one interval.
+fn checked_budget(budget: Option<u64>) -> PyResult<u64> {
+    match budget {
+        None => Ok(DEFAULT_BUDGET),
+        Some(0) => Err(value_error(
+            "budget must be at least 1 (intervals per check; default 4096)",
+        )),
+        Some(b) => Ok(b),
     }
 }
 
@@ -170,17 +184,31 @@ fn check_tolerance(tolerance: f64) -> PyResult<()> {
 /// `t_safe`, `t`, `index`) for a grazing motion, `ValueError` otherwise.
 fn motion_error(py: Python<'_>, what: &str, e: MotionError, index: Option<usize>) -> PyErr {
     match e {
-        MotionError::Undecided { t_safe, t } => {
-            let at = index.map_or(String::new(), |k| format!(" (motion {k})"));
-            let err = MotionUndecided::new_err(format!("{what}{at}: {e}"));
-            let value = err.value(py);
-            let _ = value.setattr("t_safe", t_safe);
-            let _ = value.setattr("t", t);
-            let _ = value.setattr("index", index);
-            err
-        }
+        MotionError::Undecided { t_safe, t } => undecided(py, what, &e, t_safe, Some(t), index),
+        MotionError::BudgetExhausted { t_safe, .. } => undecided(py, what, &e, t_safe, None, index),
         other => err_for(what, other),
     }
+}
+
+/// `MotionUndecided` with its attributes: `t_safe` (every `t ≤ t_safe`
+/// certified free), `t` (the end of a grazing interval; `None` when the
+/// budget ran out), `index`.
+fn undecided(
+    py: Python<'_>,
+    what: &str,
+    e: &MotionError,
+    t_safe: f64,
+    t: Option<f64>,
+    index: Option<usize>,
+) -> PyErr {
+    let at = index.map_or(String::new(), |k| format!(" (motion {k})"));
+    let err = MotionUndecided::new_err(format!("{what}{at}: {e}"));
+    let value = err.value(py);
+    let _ = value.setattr("t_safe", t_safe);
+    let _ = value.setattr("t", t);
+    let _ = value.setattr("index", index);
+    let _ = value.setattr("budget_exhausted", t.is_none());
+    err
 }
 
 /// The answer of a motion check.
@@ -361,7 +389,14 @@ fn check_batch(
 /// shapes (or one), placed in the world frame. ``check(pose0, pose1)``
 /// checks the straight motion between two poses: translation linear,
 /// rotation by slerp along the shorter arc (exactly OMPL's SE(2) and SE(3)
-/// interpolation). The GIL is released while checking.
+/// interpolation). The arc is decided from the rotations as given: the
+/// exact sign of the dot product of their quaternions (a scipy
+/// ``Rotation`` or a quaternion as passed; a matrix converted to a
+/// quaternion), the second negated when it is negative, kept at exactly
+/// zero (docs/LIMITS.md). ``budget``: the most intervals one check
+/// examines (default 4096) before it raises ``MotionUndecided`` with the
+/// certified ``t_safe``: a deterministic cap on the work of a grazing
+/// motion. The GIL is released while checking.
 ///
 /// A bar turning about its centre past a small block: both end poses and
 /// the halfway pose are free, the motion is not.
@@ -389,24 +424,41 @@ pub struct PyMotionChecker {
 #[pymethods]
 impl PyMotionChecker {
     #[new]
+    #[pyo3(signature = (body, obstacles, budget = None))]
     fn new(
         py: Python<'_>,
         body: &Bound<'_, PyAny>,
         obstacles: &Bound<'_, PyAny>,
+        budget: Option<u64>,
     ) -> PyResult<Self> {
+        let budget = checked_budget(budget)?;
         let body = union_of(body, "body")?;
         let obstacles = obstacles_of(obstacles)?;
         let inner = py
             .detach(|| MotionChecker::new(&body, &obstacles))
-            .map_err(|e| err_for("MotionChecker", e))?;
+            .map_err(|e| err_for("MotionChecker", e))?
+            .with_budget(budget);
         Ok(PyMotionChecker { inner })
+    }
+
+    /// The most intervals one check examines (``budget=`` at construction).
+    #[getter]
+    fn budget(&self) -> u64 {
+        self.inner.budget()
+    }
+
+    /// The intervals examined by all checks so far (the work the budget
+    /// counts).
+    #[getter]
+    fn steps(&self) -> u64 {
+        self.inner.steps()
     }
 
     /// Checks the motion from ``pose0`` to ``pose1`` (4×4 homogeneous rigid
     /// transforms, or rotations about the origin), with the bracket
     /// ``t_contact - t_safe`` no wider than ``tolerance`` (in ``t``): a
     /// ``MotionCheck``. Raises ``MotionUndecided`` for a motion grazing an
-    /// obstacle within rounding.
+    /// obstacle within rounding or one that used up the budget.
     #[pyo3(signature = (pose0, pose1, tolerance = 1e-6))]
     fn check(
         &self,
@@ -473,8 +525,11 @@ impl PyMotionChecker {
 /// world frame. Poses are 4×4 homogeneous rigid transforms; the translation
 /// moves linearly and the rotation by slerp along the shorter arc (OMPL's
 /// SE(2)/SE(3) interpolation). Build a ``MotionChecker`` for many checks.
-/// Raises ``MotionUndecided`` for a motion grazing an obstacle within
-/// rounding. The GIL is released while checking.
+/// The arc is decided from the rotations as given (exact sign of the
+/// quaternions' dot product). Raises ``MotionUndecided`` for a motion
+/// grazing an obstacle within rounding or one that examined ``budget``
+/// intervals (default 4096) without a decision. The GIL is released while
+/// checking.
 ///
 /// A box sliding through a wall 0.002 thick:
 ///
@@ -487,7 +542,7 @@ impl PyMotionChecker {
 /// >>> dymsum.check_motion(cube, [wall], None, dymsum.pose(translation=[0, 3, 0])).free
 /// True
 #[pyfunction]
-#[pyo3(signature = (body, obstacles, pose0, pose1, tolerance = 1e-6))]
+#[pyo3(signature = (body, obstacles, pose0, pose1, tolerance = 1e-6, budget = None))]
 pub fn check_motion(
     py: Python<'_>,
     body: &Bound<'_, PyAny>,
@@ -495,14 +550,18 @@ pub fn check_motion(
     pose0: Option<&Bound<'_, PyAny>>,
     pose1: Option<&Bound<'_, PyAny>>,
     tolerance: f64,
+    budget: Option<u64>,
 ) -> PyResult<PyMotionCheck> {
     check_tolerance(tolerance)?;
+    let budget = checked_budget(budget)?;
     let p0 = convert::pose(pose0, "pose0")?;
     let p1 = convert::pose(pose1, "pose1")?;
     let body = union_of(body, "body")?;
     let obstacles = obstacles_of(obstacles)?;
     let answer = py.detach(|| -> Result<MotionCheck, MotionError> {
-        MotionChecker::new(&body, &obstacles)?.check(p0, p1, tolerance)
+        MotionChecker::new(&body, &obstacles)?
+            .with_budget(budget)
+            .check(p0, p1, tolerance)
     });
     answer
         .map(PyMotionCheck::from_check)
@@ -523,7 +582,7 @@ pub fn check_motion(
 /// >>> dymsum.check_motions(cube, [wall], None, ends).free.tolist()
 /// [False, True, True]
 #[pyfunction]
-#[pyo3(signature = (body, obstacles, poses0, poses1, tolerance = 1e-6))]
+#[pyo3(signature = (body, obstacles, poses0, poses1, tolerance = 1e-6, budget = None))]
 pub fn check_motions(
     py: Python<'_>,
     body: &Bound<'_, PyAny>,
@@ -531,14 +590,17 @@ pub fn check_motions(
     poses0: Option<&Bound<'_, PyAny>>,
     poses1: Option<&Bound<'_, PyAny>>,
     tolerance: f64,
+    budget: Option<u64>,
 ) -> PyResult<PyMotionChecks> {
     check_tolerance(tolerance)?;
+    let budget = checked_budget(budget)?;
     let motions = motion_pairs(poses0, poses1)?;
     let body = union_of(body, "body")?;
     let obstacles = obstacles_of(obstacles)?;
     let checker = py
         .detach(|| MotionChecker::new(&body, &obstacles))
-        .map_err(|e| err_for("check_motions", e))?;
+        .map_err(|e| err_for("check_motions", e))?
+        .with_budget(budget);
     check_batch(py, &checker, &motions, tolerance, "check_motions")
 }
 

@@ -1010,3 +1010,95 @@ fn cobst_certified_cells_about_an_axis_and_refusals() {
     assert!(!fresh.exists());
     dymsum_testkit::files::remove_dir(&dir);
 }
+
+/// An axis-aligned box as an OFF file.
+fn box_off(dir: &Path, name: &str, lo: [f64; 3], hi: [f64; 3]) -> String {
+    let mut text = String::from("OFF\n8 6 0\n");
+    for i in 0..8 {
+        let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
+        text.push_str(&format!("{} {} {}\n", pick(0), pick(1), pick(2)));
+    }
+    for f in [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ] {
+        text.push_str(&format!("4 {} {} {} {}\n", f[0], f[1], f[2], f[3]));
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// Issue 26 §1: `--to-xyz-wxyz 0,0,0,-8.598507252118853e-15,0,0,1` (a turn
+/// by 180° + 1e-12° about z) turns the short way, clockwise, through a
+/// block only that arc sweeps; the mirrored end and the exact half turns
+/// (`w = ±0`, the second quaternion kept as given) turn the other way.
+/// Also the budget flag and the smallest tolerance.
+#[test]
+fn regression_motion_half_turn_takes_the_arc_of_the_quaternions_as_given() {
+    let dir = temp_dir("half-turn");
+    let bar = box_off(&dir, "bar.off", [0.0, -0.05, -0.05], [2.0, 0.05, 0.05]);
+    let block = box_off(&dir, "block.off", [-0.1, -1.6, -1.0], [0.1, -1.4, 1.0]);
+    let free = |to: &str| -> bool {
+        let text = ok(&[
+            "motion",
+            &bar,
+            &block,
+            "--from-xyz-wxyz",
+            "0,0,0,1,0,0,0",
+            "--to-xyz-wxyz",
+            to,
+            "--json",
+        ]);
+        let v: serde_json::Value = serde_json::from_str(text.trim()).unwrap();
+        v["free"].as_bool().unwrap()
+    };
+    assert!(!free("0,0,0,-8.598507252118853e-15,0,0,1"));
+    assert!(free("0,0,0,8.598507252118853e-15,0,0,1"));
+    assert!(!free("0,0,0,-1e-300,0,0,1"));
+    assert!(free("0,0,0,1e-300,0,0,1"));
+    assert!(free("0,0,0,0,0,0,1") && free("0,0,0,-0,0,0,1"));
+    assert!(!free("0,0,0,0,0,0,-1") && !free("0,0,0,-0,0,0,-1"));
+    // A budget of one interval cannot decide the sweeping motion.
+    let o = run(&[
+        "motion",
+        &bar,
+        &block,
+        "--from-xyz-wxyz",
+        "0,0,0,1,0,0,0",
+        "--to-xyz-wxyz",
+        "0,0,0,-1e-300,0,0,1",
+        "--budget",
+        "1",
+    ]);
+    assert_fails(&o, 1, "budget of 1 intervals");
+    let o = run(&[
+        "motion",
+        &bar,
+        &block,
+        "--from-xyz-wxyz",
+        "0,0,0,1,0,0,0",
+        "--to-xyz-wxyz",
+        "0,0,0,1,0,0,0",
+        "--budget",
+        "0",
+    ]);
+    assert_fails(&o, 2, "budget");
+    let o = run(&[
+        "motion",
+        &bar,
+        &block,
+        "--from-xyz-wxyz",
+        "0,0,0,1,0,0,0",
+        "--to-xyz-wxyz",
+        "3,0,0,1,0,0,0",
+        "--tolerance",
+        "1e-300",
+    ]);
+    assert_fails(&o, 1, "3.637978807091713e-12");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -45,6 +45,7 @@ __all__ = [
     "_rotations_xyzw",
     "_triangle_sums",
     "_cobstacle_block",
+    "check_solid",
 ]
 
 class _MeshLike(Protocol):
@@ -400,11 +401,14 @@ _BodyLike = Union[ConvexUnion, _ShapeLike]
 _ObstaclesLike = Union[ConvexUnion, _ShapeLike, Sequence[Union[ConvexUnion, _ShapeLike]]]
 
 class MotionUndecided(RuntimeError):
-    """A motion grazing an obstacle within rounding: neither free nor colliding certified."""
+    """A motion grazing an obstacle within rounding, or one that used up its
+    work budget: neither free nor colliding certified; every ``t <= t_safe``
+    is certified free."""
 
     t_safe: float
-    t: float
+    t: Optional[float]
     index: Optional[int]
+    budget_exhausted: bool
 
 @final
 class MotionCheck:
@@ -434,7 +438,11 @@ class MotionChecks:
 class MotionChecker:
     """A body and obstacles prepared for many certified motion checks."""
 
-    def __new__(cls, body: _BodyLike, obstacles: _ObstaclesLike) -> MotionChecker: ...
+    def __new__(cls, body: _BodyLike, obstacles: _ObstaclesLike, budget: Optional[int] = None) -> MotionChecker: ...
+    @property
+    def budget(self) -> int: ...
+    @property
+    def steps(self) -> int: ...
     def check(self, pose0: _PoseLike, pose1: _PoseLike, tolerance: float = 1e-6) -> MotionCheck:
         """The straight motion from ``pose0`` to ``pose1`` (linear translation, slerp rotation)."""
     def check_many(self, poses0: _PosesLike, poses1: _PosesLike, tolerance: float = 1e-6) -> MotionChecks:
@@ -443,12 +451,22 @@ class MotionChecker:
         """Whether the body at ``pose`` touches or overlaps an obstacle (exact)."""
 
 def check_motion(
-    body: _BodyLike, obstacles: _ObstaclesLike, pose0: _PoseLike, pose1: _PoseLike, tolerance: float = 1e-6
+    body: _BodyLike,
+    obstacles: _ObstaclesLike,
+    pose0: _PoseLike,
+    pose1: _PoseLike,
+    tolerance: float = 1e-6,
+    budget: Optional[int] = None,
 ) -> MotionCheck:
     """Certified check of the straight motion from ``pose0`` to ``pose1``: ``free``, ``t_safe``, ``t_contact``."""
 
 def check_motions(
-    body: _BodyLike, obstacles: _ObstaclesLike, poses0: _PosesLike, poses1: _PosesLike, tolerance: float = 1e-6
+    body: _BodyLike,
+    obstacles: _ObstaclesLike,
+    poses0: _PosesLike,
+    poses1: _PosesLike,
+    tolerance: float = 1e-6,
+    budget: Optional[int] = None,
 ) -> MotionChecks:
     """``check_motion`` for K motions ((K, 4, 4) pose arrays), in parallel."""
 
@@ -467,6 +485,9 @@ def read_mesh_bodies(
     path: Union[str, os.PathLike[str]],
 ) -> list[Tuple[str, npt.NDArray[np.float64], npt.NDArray[np.int64]]]:
     """The bodies of a mesh file as written: ``(name, vertices, faces)``, polygons fan-triangulated."""
+
+def check_solid(vertices: npt.ArrayLike, faces: Any) -> list[npt.NDArray[np.int64]]:
+    """The shells (face indices) of a mesh given as a solid; ``ValueError`` saying what is wrong and where otherwise (exact)."""
 
 def _triangle_sums(
     triangles: npt.ArrayLike, points: npt.ArrayLike

@@ -1,9 +1,15 @@
 //! `dymsum motion ROBOT OBSTACLE --from-xyz-wxyz POSE --to-xyz-wxyz POSE
-//! [--tolerance T] [--json]`: whether the robot, moving straight from one
+//! [--tolerance T] [--budget N] [--json]`: whether the robot, moving straight from one
 //! pose to the other (translation linear, rotation by slerp: OMPL's SE(2)
 //! and SE(3) interpolation), touches the obstacle at any instant: certified
 //! free, or the first contact bracketed within the tolerance (in the
 //! motion's parameter `t` from 0 to 1), never by sampling.
+//!
+//! The arc of the rotation is decided from the quaternions as given (the
+//! exact sign of their dot product: `--to-xyz-wxyz 0,0,0,-1e-300,0,0,1`
+//! turns the short way, clockwise), and the search examines at most
+//! `--budget` intervals (deterministic; past it the answer is undecided
+//! with the certified `t_safe`).
 //!
 //! A body may be a union of convex pieces (`a.off+b.off`, or an OBJ file
 //! with several objects). The obstacle stays put.
@@ -40,8 +46,15 @@ pub struct MotionArgs {
     pub to: PoseArg,
     /// The widest bracket of the first contact, in the motion's parameter t
     /// (0 at the start, 1 at the end).
+    /// At least 2^-38 (about 3.6e-12), the smallest the search can bracket.
     #[arg(long, default_value_t = 1e-6, value_name = "T")]
     pub tolerance: f64,
+    /// The most intervals the search examines before it gives up as
+    /// undecided (with the time up to which the motion is certified free):
+    /// a deterministic cap on the work of a motion grazing an obstacle.
+    #[arg(long, default_value_t = dymsum::query::DEFAULT_BUDGET, value_name = "N",
+          value_parser = clap::value_parser!(u64).range(1..))]
+    pub budget: u64,
     /// One JSON object: `{"free":b,"t_safe":x|null,"t_contact":x|null,
     /// "contact_pose_xyz_wxyz":[..7]|null}`. `t_safe`: every t up to it is
     /// certified free (null when the robot collides at the start);
@@ -71,9 +84,10 @@ struct JsonAnswer {
 /// Runs `dymsum motion`.
 ///
 /// # Errors
-/// ROBOT or OBSTACLE cannot be loaded; the tolerance is not in `(0, 1)`; a
-/// pose overflows `f64`; the motion grazes the obstacle within rounding
-/// (undecided); or `out` cannot be written.
+/// ROBOT or OBSTACLE cannot be loaded; the tolerance is not in
+/// `[2^-38, 1)`; a pose overflows `f64`; the motion grazes the obstacle
+/// within rounding or uses up the budget (undecided); or `out` cannot be
+/// written.
 pub fn run(a: &MotionArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
     let robot = ConvexUnion::new(load_pieces(&a.robot, "ROBOT", a.strict, a.decomposition)?)
@@ -85,7 +99,9 @@ pub fn run(a: &MotionArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         a.decomposition,
     )?)
     .ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?;
-    let checker = MotionChecker::new(&robot, &[obstacle]).context("preparing the check")?;
+    let checker = MotionChecker::new(&robot, &[obstacle])
+        .context("preparing the check")?
+        .with_budget(a.budget);
     let answer = checker
         .check(a.from.pose, a.to.pose, a.tolerance)
         .context("the motion check")?;

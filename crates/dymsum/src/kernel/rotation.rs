@@ -11,6 +11,22 @@
 //! consistently). The snaps move the rotation by less than `2e-14` rad, the
 //! rounding level of composed quaternions; rotations smaller than that are
 //! the identity.
+//!
+//! # The quaternion as given
+//! A rotation also keeps the quaternion it was made from, *as given*: not
+//! snapped, not normalised (only scaled by a power of two, which is
+//! exact), with its sign ([`Rotation::quat_as_given`]). Snapping and the
+//! canonical sign (`w ≥ 0`) are right for the rotation itself but erase
+//! which way a motion to a nearly opposite orientation turns: a turn by
+//! `180° + 1e-12°` about z has `w = −8.6e-15`, snapped to `0`, after which
+//! the two arcs tie. The arc of a motion (`query::motion`) is therefore
+//! decided from the quaternions as given, by the exact sign of their dot
+//! product ([`crate::kernel::predicates::dot4`]). A matrix gives the
+//! quaternion glam's `DQuat::from_mat3` converts it to (its largest
+//! component positive), a composition the product of the given
+//! quaternions, an inverse the conjugate. Equality of rotations compares
+//! the rotations (the snapped quaternion and matrix), not the given
+//! quaternions.
 
 use glam::{DMat3, DQuat, DVec3};
 
@@ -30,11 +46,39 @@ fn snap(x: f64) -> f64 {
     }
 }
 
-/// A rotation of 3-space, as a unit quaternion plus its (snapped) matrix.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// `q` scaled by a power of two (exact unless a component lies more than
+/// 2¹⁰⁷⁴ below the largest) so that its largest component is in `[1, 2)`:
+/// squaring can then neither overflow nor underflow, and a non-zero finite
+/// quaternion is never called zero. `None` for a zero or non-finite `q`.
+fn scaled_pow2(q: DQuat) -> Option<DQuat> {
+    let m = q.w.abs().max(q.x.abs()).max(q.y.abs()).max(q.z.abs());
+    if !m.is_finite() || m == 0.0 {
+        return None;
+    }
+    // Unbiased exponent of m (subnormals count as -1023: the scaled
+    // maximum is then at least 2^-51, still safe to square).
+    let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    let pow2 = |k: i32| f64::from_bits(((k + 1023) as u64) << 52);
+    // Two factors, each within the normal range, for |e| up to 1023.
+    let (s1, s2) = (pow2(-(e / 2)), pow2(-(e - e / 2)));
+    Some(q * s1 * s2)
+}
+
+/// A rotation of 3-space, as a unit quaternion plus its (snapped) matrix,
+/// and the quaternion it was given as (module docs).
+#[derive(Clone, Copy, Debug)]
 pub struct Rotation {
     quat: DQuat,
     matrix: DMat3,
+    given: DQuat,
+}
+
+impl PartialEq for Rotation {
+    /// The same rotation (snapped quaternion and matrix); the quaternions
+    /// as given may differ, in sign for instance.
+    fn eq(&self, other: &Rotation) -> bool {
+        self.quat == other.quat && self.matrix == other.matrix
+    }
 }
 
 impl Default for Rotation {
@@ -48,30 +92,18 @@ impl Rotation {
     pub const IDENTITY: Rotation = Rotation {
         quat: DQuat::IDENTITY,
         matrix: DMat3::IDENTITY,
+        given: DQuat::IDENTITY,
     };
 
     /// From quaternion components `w, x, y, z`; renormalised. Returns `None`
     /// for a zero or non-finite quaternion.
     pub fn from_wxyz(w: f64, x: f64, y: f64, z: f64) -> Option<Rotation> {
-        // Scale by a power of two (exact) so the largest component is in
-        // [1, 2): squaring can then neither overflow (1e200) nor underflow
-        // (1e-200), and a non-zero finite quaternion is never called zero.
-        let m = w.abs().max(x.abs()).max(y.abs()).max(z.abs());
-        if !m.is_finite() || m == 0.0 {
-            return None;
-        }
-        // Unbiased exponent of m (subnormals count as -1023: the scaled
-        // maximum is then at least 2^-51, still safe to square).
-        let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-        let pow2 = |k: i32| f64::from_bits(((k + 1023) as u64) << 52);
-        // Two factors, each within the normal range, for |e| up to 1023.
-        let (s1, s2) = (pow2(-(e / 2)), pow2(-(e - e / 2)));
-        let q = DQuat::from_xyzw(x * s1 * s2, y * s1 * s2, z * s1 * s2, w * s1 * s2);
+        let q = scaled_pow2(DQuat::from_xyzw(x, y, z, w))?;
         let len = q.length();
         if !len.is_finite() || len == 0.0 {
             return None;
         }
-        Some(Self::from_unit_quat(q / len))
+        Some(Self::from_unit_quat(q / len, q))
     }
 
     /// From quaternion components in the order `x, y, z, w` (scalar last, as
@@ -96,11 +128,43 @@ impl Rotation {
     }
 
     /// From a quaternion assumed (close to) unit length; renormalised.
+    /// `q` is kept as the quaternion as given.
     pub fn from_quat(q: DQuat) -> Rotation {
-        Self::from_unit_quat(q)
+        Self::from_unit_quat(q, q)
     }
 
-    fn from_unit_quat(q: DQuat) -> Rotation {
+    /// The quaternion this rotation was given as: not snapped, not
+    /// normalised, its sign kept (module docs). The arc of a motion between
+    /// two rotations is decided from these.
+    pub fn quat_as_given(&self) -> DQuat {
+        self.given
+    }
+
+    /// The matrix to hand out for this rotation so that converting it
+    /// back keeps the arc information: [`Self::matrix`] (snapped, so exact
+    /// quarter turns stay exact), except where the snap of tiny quaternion
+    /// components erased a non-zero component of the quaternion as given
+    /// (a half turn plus `1e-12°` or `1e-300` rad): then the matrix of the
+    /// quaternion as given, unsnapped, which stays on its side of the half
+    /// turn.
+    pub fn matrix_as_given(&self) -> DMat3 {
+        let n = self.given.length();
+        if !(n.is_finite() && n > 0.0) {
+            return self.matrix;
+        }
+        let unit = self.given / n;
+        let erased = unit
+            .to_array()
+            .iter()
+            .any(|&c| c != 0.0 && c.abs() < QUAT_SNAP);
+        if erased {
+            DMat3::from_quat(unit)
+        } else {
+            self.matrix
+        }
+    }
+
+    fn from_unit_quat(q: DQuat, given: DQuat) -> Rotation {
         let snap_q = |c: f64| if c.abs() < QUAT_SNAP { 0.0 } else { c };
         let q = DQuat::from_xyzw(snap_q(q.x), snap_q(q.y), snap_q(q.z), snap_q(q.w));
         // Renormalise, but leave an already unit quaternion bit-identical.
@@ -118,6 +182,7 @@ impl Rotation {
         Rotation {
             quat: q,
             matrix: DMat3::from_cols(cols[0], cols[1], cols[2]),
+            given,
         }
     }
 
@@ -128,10 +193,8 @@ impl Rotation {
         if !len.is_finite() || len == 0.0 || !angle.is_finite() {
             return None;
         }
-        Some(Self::from_unit_quat(DQuat::from_axis_angle(
-            axis / len,
-            angle,
-        )))
+        let q = DQuat::from_axis_angle(axis / len, angle);
+        Some(Self::from_unit_quat(q, q))
     }
 
     /// From a rotation matrix (orthonormal, determinant +1, within 1e-6).
@@ -144,7 +207,8 @@ impl Rotation {
         {
             return None;
         }
-        Some(Self::from_unit_quat(DQuat::from_mat3(&m)))
+        let q = DQuat::from_mat3(&m);
+        Some(Self::from_unit_quat(q, q))
     }
 
     /// The unit quaternion (with `w >= 0`).
@@ -170,18 +234,19 @@ impl Rotation {
 
     /// `self` followed by `other` (i.e. `other ∘ self`).
     pub fn then(&self, other: &Rotation) -> Rotation {
+        let given = scaled_pow2(other.given * self.given).unwrap_or(other.given * self.given);
         if *other == Rotation::IDENTITY {
-            return *self;
+            return Rotation { given, ..*self };
         }
         if *self == Rotation::IDENTITY {
-            return *other;
+            return Rotation { given, ..*other };
         }
-        Self::from_quat(other.quat * self.quat)
+        Self::from_unit_quat(other.quat * self.quat, given)
     }
 
     /// The inverse rotation.
     pub fn inverse(&self) -> Rotation {
-        Self::from_unit_quat(self.quat.conjugate())
+        Self::from_unit_quat(self.quat.conjugate(), self.given.conjugate())
     }
 
     /// Rotation angle in radians, in `[0, π]`.

@@ -187,7 +187,8 @@ pub(crate) mod test_support {
 pub use cobst::{cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle};
 pub use halfspaces::HalfSpaces;
 pub use motion::{
-    check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, MIN_WIDTH,
+    check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, DEFAULT_BUDGET,
+    MIN_TOLERANCE, MIN_WIDTH,
 };
 pub use slabs::{
     certified_slab_in_cell, certified_slabs_about_axis, certified_slabs_about_axis_par,

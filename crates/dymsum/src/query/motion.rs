@@ -9,6 +9,23 @@
 //! is slerp between rotations about z). The body's points move as
 //! `x(t) = R(t) p + T(t)`.
 //!
+//! # The arc
+//! Which way the rotation turns is decided once, from the rotations *as
+//! given* ([`Rotation::quat_as_given`]: the quaternions the caller passed,
+//! or converted from the matrices they passed, before the snapping of tiny
+//! components and the canonical sign that [`Rotation`] applies): the exact
+//! sign of the dot product of the two quaternions
+//! ([`crate::kernel::predicates::dot4`]); when it is negative the second is
+//! negated (the shorter arc), when it is exactly zero (a half turn) it is
+//! kept, so the rotation turns from the first quaternion towards the
+//! second as given. Nothing done afterwards changes the arc. This is
+//! OMPL's rule (`SO3StateSpace::interpolate` negates when its float dot
+//! product is negative) decided exactly: at `180° + 1e-12°` about z
+//! (`w = −8.6e-15`) the motion turns the short way, clockwise, although
+//! the snapped rotation is an exact half turn. (`dymsum.ompl` follows
+//! OMPL's float decision itself, and OMPL's rule of keeping the first
+//! rotation when `|dot| > 1 − 1e-9`; see its module docs.)
+//!
 //! # The answer
 //! [`MotionCheck::Free`]: no contact at any `t` in `[0, 1]`, certified; or
 //! [`MotionCheck::Collides`] with `t_safe < t_contact`, `t_contact − t_safe`
@@ -78,8 +95,26 @@
 
 use super::support::{climb, near_max, Marks};
 use super::{ConvexPair, ConvexUnion, Proximity, QueryError, QueryStats};
+use crate::kernel::predicates::{dot4, Sign};
 use crate::{DVec3, Polytope, Pose, Rotation};
 use glam::DQuat;
+
+/// The default work budget of a motion check ([`MotionChecker::budget`]):
+/// the most intervals the search examines over all piece pairs before it
+/// gives up with [`MotionError::BudgetExhausted`]. Each costs at most a few
+/// near-extreme searches and one exact query, so the default caps a check
+/// at roughly 25–100 ms on this project's 2-core machines; the motion
+/// tests and benchmarks need at most a few hundred (docs/BENCHMARKS.md).
+pub const DEFAULT_BUDGET: u64 = 4096;
+
+/// The smallest tolerance a check accepts: the search halves intervals no
+/// further than [`MIN_WIDTH`], and brackets a contact it keeps ending just
+/// before only once an interval is `1/1024` of the tolerance wide, so a
+/// tolerance below `1024 · MIN_WIDTH = 2⁻³⁸ ≈ 3.6e-12` could never be met.
+pub const MIN_TOLERANCE: f64 = 1024.0 * MIN_WIDTH;
+
+/// How many feature axes [`PieceSearch::feature_gap`] tries.
+const FEATURE_AXES: usize = 4;
 
 /// The narrowest interval (in `t`) the search halves to before declaring
 /// a grazing motion [`MotionError::Undecided`].
@@ -112,9 +147,27 @@ impl MotionCheck {
 /// Why a motion check failed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MotionError {
-    /// The tolerance is not a positive finite number below 1.
-    #[error("the tolerance must be a finite number in (0, 1), got {0}")]
+    /// The tolerance is not a finite number in `[MIN_TOLERANCE, 1)`.
+    #[error(
+        "the tolerance must be a finite number in [{min:e}, 1) (the smallest the search can \
+         bracket: it halves intervals down to 2^-48 of the motion), got {0}",
+        min = MIN_TOLERANCE
+    )]
     Tolerance(f64),
+    /// The search examined its whole budget of intervals
+    /// ([`MotionChecker::budget`]) without a decision: every
+    /// `t ≤ t_safe` is certified free, nothing is known after it.
+    #[error(
+        "undecided: the check used its budget of {steps} intervals; every t <= {t_safe} is \
+         certified free, after it nothing is decided (raise the budget, or treat the motion \
+         as not free)"
+    )]
+    BudgetExhausted {
+        /// The last time certified free (`0` when only the start is).
+        t_safe: f64,
+        /// The budget that was used up.
+        steps: u64,
+    },
     /// An exact query failed (posed coordinates beyond `f64`).
     #[error(transparent)]
     Query(#[from] QueryError),
@@ -147,9 +200,11 @@ pub struct Motion {
 impl Motion {
     /// The motion from `from` to `to`.
     pub fn new(from: Pose, to: Pose) -> Motion {
-        let q0 = from.rotation.quat();
-        let mut q1 = to.rotation.quat();
-        if q0.dot(q1) < 0.0 {
+        let (g0, g1) = (from.rotation.quat_as_given(), to.rotation.quat_as_given());
+        let (q0, mut q1) = (g0.normalize(), g1.normalize());
+        // The arc, from the quaternions as given (module docs, "The arc"):
+        // the exact sign of their dot product, before any rounding.
+        if dot4(g0.to_array(), g1.to_array()) == Sign::Negative {
             q1 = -q1; // the shorter arc
         }
         // The angle between unit quaternions, accurately for small angles.
@@ -258,6 +313,8 @@ pub struct MotionChecker {
     balls: Vec<Vec<(DVec3, f64)>>,
     obstacle_scale: Vec<Vec<f64>>,
     pool: std::sync::Mutex<Vec<Scratch>>,
+    budget: u64,
+    steps: std::sync::atomic::AtomicU64,
 }
 
 impl std::fmt::Debug for MotionChecker {
@@ -335,7 +392,31 @@ impl MotionChecker {
             balls,
             obstacle_scale,
             pool: std::sync::Mutex::new(Vec::new()),
+            budget: DEFAULT_BUDGET,
+            steps: std::sync::atomic::AtomicU64::new(0),
         })
+    }
+
+    /// The same checker with a work budget of `steps` intervals per check
+    /// (at least 1; [`DEFAULT_BUDGET`] unless set): a check that has
+    /// examined that many intervals over all piece pairs without a
+    /// decision ends with [`MotionError::BudgetExhausted`] and its
+    /// certified `t_safe`. The count is deterministic: the same check gives
+    /// the same answer on any machine and under any load.
+    pub fn with_budget(mut self, steps: u64) -> MotionChecker {
+        self.budget = steps.max(1);
+        self
+    }
+
+    /// The work budget of one check, in intervals ([`Self::with_budget`]).
+    pub fn budget(&self) -> u64 {
+        self.budget
+    }
+
+    /// The intervals examined by all checks so far (the work the budget
+    /// counts), for benchmarks and tests.
+    pub fn steps(&self) -> u64 {
+        self.steps.load(std::sync::atomic::Ordering::Relaxed)
     }
 
     /// The exact queries' counters summed over the piece pairs
@@ -375,7 +456,7 @@ impl MotionChecker {
     /// [`MotionError::Undecided`] for a motion grazing an obstacle within
     /// rounding.
     pub fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError> {
-        if !(tolerance > 0.0 && tolerance < 1.0) {
+        if !(MIN_TOLERANCE..1.0).contains(&tolerance) {
             return Err(MotionError::Tolerance(tolerance));
         }
         if self.collides_at(from)? {
@@ -394,17 +475,11 @@ impl MotionChecker {
         let mut best: Option<(f64, f64)> = None;
         let mut frontier = 1.0f64;
         let mut result = Ok(());
-        for (idx, &(i, j, k)) in self.pairs.iter().enumerate() {
-            let search = PieceSearch {
-                pair: &self.prepared[idx],
-                body: &self.body.pieces()[i],
-                obstacle: &self.obstacles[j].pieces()[k],
-                reach: self.reach[i],
-                scales: (self.body_scale[i], self.obstacle_scale[j][k]),
-                obstacle_ball: self.balls[j][k],
-            };
+        let mut steps_left = self.budget;
+        for idx in 0..self.pairs.len() {
+            let search = self.piece_search(idx);
             let limit = best.map_or(1.0, |b| b.1);
-            match search.first_contact(&motion, limit, tolerance, &mut scratch) {
+            match search.first_contact(&motion, limit, tolerance, &mut steps_left, &mut scratch) {
                 Ok(Some((safe, contact))) => {
                     frontier = frontier.min(safe);
                     if best.is_none_or(|b| contact < b.1) {
@@ -412,12 +487,36 @@ impl MotionChecker {
                     }
                 }
                 Ok(None) => {}
-                Err(e) => {
+                Err(Stop::Budget { t_safe }) => {
+                    // The pairs not searched yet: certified up to the same
+                    // time by one interval each, or only at the start.
+                    let mut t_safe = t_safe.min(frontier);
+                    for later in idx + 1..self.pairs.len() {
+                        if t_safe > 0.0
+                            && !self
+                                .piece_search(later)
+                                .certified_free(&motion, 0.0, t_safe, &mut scratch)
+                                .unwrap_or(false)
+                        {
+                            t_safe = 0.0;
+                        }
+                    }
+                    result = Err(MotionError::BudgetExhausted {
+                        t_safe,
+                        steps: self.budget,
+                    });
+                    break;
+                }
+                Err(Stop::Error(e)) => {
                     result = Err(e);
                     break;
                 }
             }
         }
+        self.steps.fetch_add(
+            self.budget - steps_left,
+            std::sync::atomic::Ordering::Relaxed,
+        );
         if let Ok(mut p) = self.pool.lock() {
             p.push(scratch);
         }
@@ -429,6 +528,19 @@ impl MotionChecker {
                 t_contact: contact,
             },
         })
+    }
+
+    /// The search of piece pair `idx`.
+    fn piece_search(&self, idx: usize) -> PieceSearch<'_> {
+        let (i, j, k) = self.pairs[idx];
+        PieceSearch {
+            pair: &self.prepared[idx],
+            body: &self.body.pieces()[i],
+            obstacle: &self.obstacles[j].pieces()[k],
+            reach: self.reach[i],
+            scales: (self.body_scale[i], self.obstacle_scale[j][k]),
+            obstacle_ball: self.balls[j][k],
+        }
     }
 
     /// [`MotionChecker::check`] for many motions `(from, to)`, in parallel
@@ -481,16 +593,24 @@ pub fn check_motions(
 impl PieceSearch<'_> {
     /// The first contact bracket of this piece pair in `[0, limit]`, or
     /// `None` when it is certified free there (module docs).
+    ///
+    /// Each interval examined takes one step of `steps_left`; with none
+    /// left the search stops with the certified prefix `[0, a]`.
     fn first_contact(
         &self,
         motion: &Motion,
         limit: f64,
         tol: f64,
+        steps_left: &mut u64,
         s: &mut Scratch,
-    ) -> Result<Option<(f64, f64)>, MotionError> {
+    ) -> Result<Option<(f64, f64)>, Stop> {
         s.stack.clear();
         s.stack.push((0.0, limit));
         while let Some((a, b)) = s.stack.pop() {
+            if *steps_left == 0 {
+                return Err(Stop::Budget { t_safe: a });
+            }
+            *steps_left -= 1;
             if self.certified_free(motion, a, b, s)? {
                 continue;
             }
@@ -507,7 +627,7 @@ impl PieceSearch<'_> {
                 }
             }
             if b - a <= MIN_WIDTH {
-                return Err(MotionError::Undecided { t_safe: a, t: b });
+                return Err(Stop::Error(MotionError::Undecided { t_safe: a, t: b }));
             }
             let m = 0.5 * (a + b);
             s.stack.push((m, b));
@@ -569,6 +689,12 @@ impl PieceSearch<'_> {
             return Ok(false);
         };
         if self.gap(pa, pb, n, hints, s) > inflate {
+            return Ok(true);
+        }
+        // Nearly touching, GJK's direction is off by about ε·size/distance:
+        // face normals and edge cross products of the features GJK ended
+        // on are exact to rounding whatever the distance.
+        if self.feature_gap(pa, pb, n, hints, inflate, s) {
             return Ok(true);
         }
         // Apart in floats by more than the inflation but not certified
@@ -638,6 +764,55 @@ impl PieceSearch<'_> {
         (len > 0.0 && len.is_finite()).then(|| (v / len, len, [wa, wb, wo]))
     }
 
+    /// Whether the gap along one of the feature axes of GJK's final
+    /// support vertices (the obstacle's face normals around its vertex,
+    /// the body's face normals at both end poses, and cross products of
+    /// their edges), the [`FEATURE_AXES`] nearest GJK's direction `v`,
+    /// exceeds `inflate`. Any unit direction gives a rigorous gap
+    /// ([`Self::gap`]), so only the choice of direction changes here.
+    fn feature_gap(
+        &self,
+        pa: Pose,
+        pb: Pose,
+        v: DVec3,
+        hints: [u32; 3],
+        inflate: f64,
+        s: &mut Scratch,
+    ) -> bool {
+        let (body, obstacle) = (self.body, self.obstacle);
+        let mut best = [(f64::NEG_INFINITY, DVec3::ZERO); FEATURE_AXES];
+        let mut offer = |d: DVec3| {
+            let len = d.length();
+            if !(len > 0.0 && len.is_finite()) {
+                return;
+            }
+            let d = d / len;
+            let score = d.dot(v);
+            if score > best[FEATURE_AXES - 1].0 {
+                best[FEATURE_AXES - 1] = (score, d);
+                best.sort_by(|x, y| y.0.total_cmp(&x.0));
+            }
+        };
+        let o = hints[2] as usize;
+        for r in obstacle.ring(o) {
+            offer(obstacle.unit_normal(r.face as usize));
+        }
+        for (pose, w) in [(pa, hints[0]), (pb, hints[1])] {
+            let rot = pose.rotation.matrix();
+            for r in body.ring(w as usize) {
+                offer(-(rot * body.unit_normal(r.face as usize)));
+                let e = rot * (body.vertex(r.neighbor as usize) - body.vertex(w as usize));
+                for q in obstacle.ring(o) {
+                    let c = e.cross(obstacle.vertex(q.neighbor as usize) - obstacle.vertex(o));
+                    offer(if c.dot(v) < 0.0 { -c } else { c });
+                }
+            }
+        }
+        best.iter()
+            .filter(|(score, _)| *score > 0.0)
+            .any(|&(_, d)| self.gap(pa, pb, d, hints, s) * (1.0 - 4.0 * f64::EPSILON) > inflate)
+    }
+
     /// A rigorous lower bound on `min_{H ⊕ [T]} n · x − max_O n · o`.
     fn gap(&self, pa: Pose, pb: Pose, n: DVec3, hints: [u32; 3], s: &mut Scratch) -> f64 {
         let (body, obstacle) = (self.body, self.obstacle);
@@ -687,6 +862,20 @@ impl PieceSearch<'_> {
         let obstacle_max = bound(obstacle, n, hints[2], so, &mut s.marks_b, &mut s.set);
         // min_H' n · x − max_O n · o = −max_H' (−n · x) − max_O n · o.
         -hull_max - obstacle_max
+    }
+}
+
+/// Why one pair's search stopped without an answer.
+enum Stop {
+    /// The budget ran out; `[0, t_safe]` is certified for this pair.
+    Budget { t_safe: f64 },
+    /// An error to report as it is.
+    Error(MotionError),
+}
+
+impl From<QueryError> for Stop {
+    fn from(e: QueryError) -> Stop {
+        Stop::Error(MotionError::Query(e))
     }
 }
 
