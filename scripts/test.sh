@@ -39,14 +39,14 @@ else
     export DYMSUM_REQUIRE_OMPL=1
 fi
 
-printf '\n=== Python: pip install ./python pytest numpy scipy mypy %s (into %s)\n' "${ompl[*]:+ompl}" "$venv"
+printf '\n=== Python: pip install ./python pytest numpy scipy mypy hypothesis %s (into %s)\n' "${ompl[*]:+ompl}" "$venv"
 if [ ! -x "$venv/bin/python" ]; then
     "$python" -m venv "$venv" || {
         echo "creating a virtual environment failed: install python3's venv module (e.g. apt-get install python3-venv)" >&2
         exit 1
     }
 fi
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy 'dask[distributed]' "${ompl[@]}"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy hypothesis 'dask[distributed]' "${ompl[@]}"
 # cobstacle_map on Dask LocalClusters (threads and processes) must run, and
 # the CLI's map container (built by the cargo tests above) is loaded.
 export DYMSUM_REQUIRE_DASK=1 DYMSUM_CLI="$CARGO_TARGET_DIR/release/dymsum" DYMSUM_REQUIRE_CLI=1
