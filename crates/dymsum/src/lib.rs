@@ -5,6 +5,7 @@
 //!
 //! The crate does no file or terminal I/O. Its parts, in the order data flows:
 //!
+//! * [`error`]: the error types several layers share.
 //! * [`kernel`]: exact predicates (`orient3d`, `det3` with symbolic
 //!   perturbation) and rotations.
 //! * [`hull`]: an exact incremental 3-D convex hull, generic over the point set.
@@ -39,6 +40,7 @@
 #![warn(missing_docs)]
 
 pub mod dynamic;
+pub mod error;
 pub(crate) mod gauss;
 pub mod hull;
 pub mod interop;

@@ -1,9 +1,27 @@
 //! A plain polygon mesh: the exchange type between the core and file formats.
 //!
-//! No validation happens here; [`crate::Polytope::from_mesh`] validates.
+//! No validation happens here; [`crate::polytope::Polytope::from_mesh`] validates.
 
-use crate::polytope::topology::VertexIndex;
 use glam::DVec3;
+
+/// A vertex index as stored in a face list.
+pub(crate) trait VertexIndex: Copy {
+    fn index(self) -> usize;
+}
+
+impl VertexIndex for usize {
+    #[inline]
+    fn index(self) -> usize {
+        self
+    }
+}
+
+impl VertexIndex for u32 {
+    #[inline]
+    fn index(self) -> usize {
+        self as usize
+    }
+}
 
 /// Six times the signed volume enclosed by polygons (positive for an
 /// outward-oriented closed mesh), by the divergence theorem over their fan

@@ -7,7 +7,7 @@
 //! variant names the element where the invariant breaks, so a failing fuzz
 //! case can be pinned as a regression test.
 
-use crate::sum::MeshError;
+use crate::error::MeshError;
 
 /// A broken invariant, with the element where it breaks. Indices are those
 /// of the structure checked (vertices, edges, faces of a polytope; sum
@@ -146,8 +146,9 @@ pub enum SanityError {
 #[cfg(test)]
 mod tests {
     use super::SanityError;
+    use crate::kernel::rotation::Pose;
+    use crate::polytope::Polytope;
     use crate::sum::{minkowski_sum, Method, MinkowskiSum, Operands};
-    use crate::{Polytope, Pose};
 
     fn unit_cube() -> Polytope {
         let pts: Vec<[f64; 3]> = (0..8)

@@ -135,12 +135,13 @@
 
 use crate::kernel::exact::{self, ExactVec};
 use crate::kernel::predicates::{others, sos_terms, ExactVector, SosTerm};
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
 use crate::kernel::Sign;
 use crate::polytope::Polytope;
 use crate::sum::{
     relative_rotation, walk_overlay, Facet, GaussView, MinkowskiSum, Operands, Overlay, SumError,
 };
-use crate::{Pose, Rotation};
 use glam::{DMat3, DVec3};
 
 mod correct_ee;
@@ -513,7 +514,7 @@ impl DynamicSum {
     /// [`crate::sum::MeshError::OutOfRange`] when a vertex of the sum
     /// overflows `f64`; [`crate::sum::MeshError::Merge`] and
     /// [`crate::sum::MeshError::Invalid`] are internal errors.
-    pub fn try_to_mesh(&self) -> Result<crate::PolygonMesh, crate::sum::MeshError> {
+    pub fn try_to_mesh(&self) -> Result<crate::mesh::PolygonMesh, crate::sum::MeshError> {
         self.sum().try_to_mesh()
     }
     /// [`Self::try_to_mesh`] with the coordinates' rounding relative to the
@@ -529,8 +530,8 @@ impl DynamicSum {
     /// sum passes [`MinkowskiSum::sanity_check`].
     ///
     /// # Errors
-    /// The first broken invariant ([`crate::SanityError`]).
-    pub fn sanity_check(&self) -> Result<(), crate::SanityError> {
+    /// The first broken invariant ([`crate::sanity::SanityError`]).
+    pub fn sanity_check(&self) -> Result<(), crate::sanity::SanityError> {
         let mut a: Vec<(u32, u32)> = self.overlay().ee;
         let mut b: Vec<(u32, u32)> = self
             .q
@@ -542,7 +543,7 @@ impl DynamicSum {
         a.sort_unstable();
         b.sort_unstable();
         if a != b {
-            return Err(crate::SanityError::EeIndicesDisagree);
+            return Err(crate::sanity::SanityError::EeIndicesDisagree);
         }
         self.sum().sanity_check()
     }

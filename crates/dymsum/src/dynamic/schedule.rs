@@ -241,7 +241,7 @@ impl Deadlines {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::DVec3;
+    use glam::DVec3;
 
     /// The tests' random numbers (xorshift64; reproducible).
     pub(super) struct R(pub(super) u64);
@@ -401,8 +401,11 @@ mod tests {
 #[cfg(test)]
 mod review_motion_tests {
     use crate::dynamic::{DynamicConfig, DynamicSum};
+    use crate::kernel::rotation::Pose;
+    use crate::kernel::rotation::Rotation;
+    use crate::polytope::Polytope;
     use crate::sum::{minkowski_sum_posed, Method};
-    use crate::{DVec3, Polytope, Pose, Rotation};
+    use glam::DVec3;
 
     use super::tests::R;
 

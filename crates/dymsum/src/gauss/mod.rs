@@ -16,7 +16,7 @@
 //!
 //! Speed: `det[a, b, x]` for an arc `a → b` is `m · x` with the arc's
 //! great-circle normal `m = a × b` precomputed accurately per edge
-//! ([`crate::Polytope::arc_normals`]), so the common case is one dot product
+//! ([`crate::polytope::Polytope::arc_normals`]), so the common case is one dot product
 //! and a certified error bound; only near-ties evaluate the exact normals.
 //!
 //! Exact ties (issue 8 §2: a box turning about a coordinate axis puts every

@@ -106,9 +106,10 @@ impl std::fmt::Debug for TieCache {
 mod tests {
     use super::*;
     use crate::kernel::predicates::sos_det3;
+    use crate::kernel::rotation::Pose;
+    use crate::kernel::rotation::Rotation;
     use crate::polytope::Polytope;
     use crate::sum::Operands;
-    use crate::{Pose, Rotation};
     use glam::DVec3;
 
     fn hull(points: &[[f64; 3]]) -> Polytope {

@@ -2,7 +2,7 @@
 //! that holds its start to the cell that holds its end, reporting every arc
 //! it crosses. Each convex cell is crossed once, so a walk takes at most `E`
 //! steps; an exit that cannot be found is an internal inconsistency, reported
-//! as [`crate::sum::SumError::Inconsistent`].
+//! as [`crate::error::SumError::Inconsistent`].
 
 use super::{edges_cross, GaussView};
 
@@ -20,7 +20,7 @@ impl GaussView<'_> {
         from: u32,
         to: u32,
         cross: impl FnMut(u32),
-    ) -> Result<usize, crate::sum::SumError> {
+    ) -> Result<usize, crate::error::SumError> {
         self.walk_arc_hinted(other, e, from, to, &[], cross)
     }
 
@@ -37,7 +37,7 @@ impl GaussView<'_> {
         to: u32,
         hint: &[u32],
         mut cross: impl FnMut(u32),
-    ) -> Result<usize, crate::sum::SumError> {
+    ) -> Result<usize, crate::error::SumError> {
         let mut u = from;
         let mut came = u32::MAX;
         let mut steps = 0;
@@ -66,7 +66,7 @@ impl GaussView<'_> {
                 }
             }
             let Some(entry) = next else {
-                return Err(crate::sum::SumError::Inconsistent(format!(
+                return Err(crate::error::SumError::Inconsistent(format!(
                     "arc walk found no exit from cell {u}"
                 )));
             };
@@ -79,7 +79,7 @@ impl GaussView<'_> {
             u = entry.neighbor;
             steps += 1;
             if steps > self.poly.edge_count() {
-                return Err(crate::sum::SumError::Inconsistent(
+                return Err(crate::error::SumError::Inconsistent(
                     "arc walk did not terminate".into(),
                 ));
             }

@@ -121,7 +121,7 @@ impl ConvexHull {
     /// let mesh = convex_hull(&FloatPoints(&pts)).unwrap().to_mesh(&FloatPoints(&pts));
     /// assert_eq!((mesh.vertices.len(), mesh.faces.len()), (8, 6)); // the inner point is dropped
     /// ```
-    pub fn to_mesh<P: HullPoints + ?Sized>(&self, points: &P) -> crate::PolygonMesh {
+    pub fn to_mesh<P: HullPoints + ?Sized>(&self, points: &P) -> crate::mesh::PolygonMesh {
         let mut index = std::collections::HashMap::with_capacity(self.vertices.len());
         let vertices = self
             .vertices
@@ -137,7 +137,7 @@ impl ConvexHull {
             .iter()
             .map(|f| f.iter().map(|i| index[i]).collect())
             .collect();
-        crate::PolygonMesh { vertices, faces }
+        crate::mesh::PolygonMesh { vertices, faces }
     }
 }
 

@@ -12,7 +12,7 @@
 //! | `mint::ColumnMatrix4<f64>` | [`Pose`] | `TryFrom` |
 //!
 //! The feature also turns on glam's own `mint` feature, so
-//! [`crate::DVec3`] ⇄ `mint::Vector3<f64>` / `mint::Point3<f64>` and glam's
+//! [`glam::DVec3`] ⇄ `mint::Vector3<f64>` / `mint::Point3<f64>` and glam's
 //! matrices and quaternions convert with glam's `From` impls.
 //!
 //! # Conventions
@@ -48,7 +48,8 @@
 //! ```
 
 use super::{rotation_from_xyzw, InteropError};
-use crate::{Pose, Rotation};
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
 use glam::{DMat3, DMat4};
 
 impl From<Rotation> for ::mint::Quaternion<f64> {

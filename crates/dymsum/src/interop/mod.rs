@@ -4,7 +4,7 @@
 //! # What converts to what
 //! Always available (glam is dymsum's own math crate, re-exported as
 //! [`crate::glam`]; parry3d-f64 0.31 uses the same glam 0.33, so parry's
-//! `Vector` *is* [`crate::DVec3`] and parry's rotation *is* `DQuat`):
+//! `Vector` *is* [`glam::DVec3`] and parry's rotation *is* `DQuat`):
 //!
 //! | from | to | trait |
 //! | --- | --- | --- |
@@ -20,7 +20,7 @@
 //! and `nalgebra` Rust 1.89 for their dependencies):
 //!
 //! * `parry` (module `interop::parry`, parry3d-f64 0.31): [`Pose`] ⇄
-//!   parry's `math::Pose` (its isometry), [`crate::Polytope`] ⇄
+//!   parry's `math::Pose` (its isometry), [`crate::polytope::Polytope`] ⇄
 //!   `shape::ConvexPolyhedron`.
 //! * `mint` (module `interop::mint`, mint 0.5): [`Rotation`] ⇄
 //!   `mint::Quaternion` and `mint::ColumnMatrix3`, [`Pose`] ⇄
@@ -58,8 +58,8 @@
 //! a non-finite translation. A quaternion that is finite and non-zero but
 //! not of unit length is accepted and normalised (as
 //! [`Rotation::from_wxyz`]). Converting a parry shape into a
-//! [`crate::Polytope`] fails with the constructor's own
-//! [`crate::PolytopeError`]. Conversions *out of* dymsum types are `From`,
+//! [`crate::polytope::Polytope`] fails with the constructor's own
+//! [`crate::polytope::PolytopeError`]. Conversions *out of* dymsum types are `From`,
 //! except a polytope into parry's `ConvexPolyhedron`, which parry may
 //! refuse ([`InteropError::ParryOutOfRange`] for shapes its float
 //! arithmetic cannot represent, [`InteropError::ParryRefused`]).
@@ -77,7 +77,8 @@
 //! assert!(Pose::try_from(DMat4::from_scale(DVec3::splat(2.0))).is_err());
 //! ```
 
-use crate::{Pose, Rotation};
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
 use glam::{DMat3, DMat4, DQuat};
 
 #[cfg(feature = "mint")]

@@ -16,7 +16,7 @@
 //! | `Isometry3<f64>` | [`Pose`] | `TryFrom` |
 //!
 //! The feature also turns on nalgebra's own `convert-glam033` feature, so
-//! [`crate::DVec3`] ⇄ `Vector3<f64>` / `Point3<f64>`, `DMat3` ⇄
+//! [`glam::DVec3`] ⇄ `Vector3<f64>` / `Point3<f64>`, `DMat3` ⇄
 //! `Matrix3<f64>` and the other glam types convert with nalgebra's `From`
 //! impls.
 //!
@@ -55,7 +55,8 @@
 //! ```
 
 use super::{pose_from_parts, rotation_from_xyzw, InteropError};
-use crate::{Pose, Rotation};
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
 use ::nalgebra::{Isometry3, Matrix3, Quaternion, Rotation3, Translation3, UnitQuaternion};
 use glam::{DMat3, DVec3};
 

@@ -10,8 +10,8 @@
 //! | `&shape::ConvexPolyhedron` | [`Polytope`] | `TryFrom` |
 //!
 //! Vectors need no conversion: parry's `math::Vector` is glam's `DVec3`, the
-//! same type as [`crate::DVec3`]; parry's `math::Rotation` is glam's `DQuat`,
-//! which converts to and from [`crate::Rotation`] in [`super`].
+//! same type as [`glam::DVec3`]; parry's `math::Rotation` is glam's `DQuat`,
+//! which converts to and from [`crate::kernel::rotation::Rotation`] in [`super`].
 //!
 //! # Conventions
 //! parry's pose maps `p ↦ rotation · p + translation`, as [`Pose::apply`]
@@ -86,8 +86,11 @@
 //! ```
 
 use super::{pose_from_parts, InteropError};
+use crate::kernel::rotation::Pose;
+use crate::mesh::PolygonMesh;
+use crate::polytope::Polytope;
+use crate::polytope::PolytopeError;
 use crate::polytope::{ConvexityReport, MeshPolicy};
-use crate::{PolygonMesh, Polytope, PolytopeError, Pose};
 use parry3d_f64::math::Pose as ParryPose;
 use parry3d_f64::shape::ConvexPolyhedron;
 

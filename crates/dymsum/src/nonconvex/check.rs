@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::PolygonMesh;
+use crate::mesh::PolygonMesh;
 
 /// Why a mesh is not a closed, oriented 2-manifold of positive volume.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

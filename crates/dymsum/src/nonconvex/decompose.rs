@@ -4,9 +4,10 @@
 use super::check::triangles;
 use super::merge::{boolean, to_manifold, volume};
 use super::UnionMeshError;
+use crate::mesh::PolygonMesh;
 use crate::polytope::MeshPolicy;
+use crate::polytope::Polytope;
 use crate::solid::check_solid_mesh;
-use crate::{PolygonMesh, Polytope};
 
 /// How a non-convex closed mesh becomes convex pieces.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -3,9 +3,10 @@
 use glam::DVec3;
 
 use super::{UnionMeshError, UnionSum};
+use crate::kernel::rotation::Pose;
+use crate::polytope::Polytope;
 use crate::query::ConvexUnion;
 use crate::sum::Method;
-use crate::{Polytope, Pose};
 
 /// The penetration depth of two overlapping unions.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,7 +102,7 @@ impl ConvexUnion {
 }
 
 /// The nearest point to `q` on a mesh's triangles, and its distance.
-pub(crate) fn closest_boundary_point(mesh: &crate::PolygonMesh, q: DVec3) -> (DVec3, f64) {
+pub(crate) fn closest_boundary_point(mesh: &crate::mesh::PolygonMesh, q: DVec3) -> (DVec3, f64) {
     let mut best = (DVec3::splat(f64::INFINITY), f64::INFINITY);
     for f in &mesh.faces {
         let a = DVec3::from(mesh.vertices[f[0]]);

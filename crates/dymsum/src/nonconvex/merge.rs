@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::check::{check_triangles, triangles, ClosedMeshInfo};
 use super::UnionMeshError;
-use crate::PolygonMesh;
+use crate::mesh::PolygonMesh;
 
 /// A mesh handed to `boolmesh`.
 pub(crate) fn to_manifold(mesh: &PolygonMesh, what: &str) -> Result<Manifold, UnionMeshError> {

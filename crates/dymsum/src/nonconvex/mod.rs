@@ -3,7 +3,7 @@
 //!
 //! `A ⊕ B` of two unions of convex pieces ([`ConvexUnion`]) is the union,
 //! over every pair of pieces, of the exact convex sums `a_i ⊕ b_j`
-//! ([`crate::minkowski_sum_posed`], or one [`crate::DynamicSum`] per pair
+//! ([`crate::minkowski_sum_posed`], or one [`crate::dynamic::DynamicSum`] per pair
 //! under motion: [`DynamicUnionSum`]). That union is merged into one
 //! closed, oriented 2-manifold by the pure-Rust mesh boolean `boolmesh`
 //! (after the Manifold library; never hand-written here), then validated
@@ -67,9 +67,10 @@ pub use depth::UnionDepth;
 pub use merge::merge_closed_meshes;
 pub use sum::{DynamicUnionSum, UnionSum, UnionSumInfo};
 
+use crate::error::SumError;
+use crate::polytope::PolytopeError;
 use crate::query::QueryError;
 use crate::sum::MeshError;
-use crate::{PolytopeError, SumError};
 
 /// Why a non-convex sum (or its decomposition, or a depth from it) failed.
 #[derive(Debug, thiserror::Error)]

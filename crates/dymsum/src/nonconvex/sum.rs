@@ -6,9 +6,14 @@ use glam::DVec3;
 use super::check::ClosedMeshInfo;
 use super::merge::union_meshes;
 use super::UnionMeshError;
+use crate::dynamic::DynamicSum;
+use crate::dynamic::UpdateReport;
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
+use crate::mesh::PolygonMesh;
 use crate::query::ConvexUnion;
+use crate::sanity::SanityError;
 use crate::sum::{minkowski_sum_posed, Method};
-use crate::{DynamicSum, PolygonMesh, Pose, Rotation, SanityError, UpdateReport};
 
 /// How a [`UnionSum`] was made, and what it measured.
 #[derive(Clone, Debug, PartialEq)]

@@ -33,7 +33,7 @@ use super::topology::{DirectedEdges, Unused};
 use super::{Polytope, PolytopeError};
 use crate::hull::{convex_hull, ConvexHull, FloatPoints};
 use crate::kernel::exact;
-use crate::PolygonMesh;
+use crate::mesh::PolygonMesh;
 use glam::DVec3;
 
 /// How strictly [`Polytope::from_mesh`] treats meshes convex only up to rounding.

@@ -62,7 +62,7 @@
 use super::{Polytope, PolytopeError};
 use crate::kernel::predicates::orient;
 use crate::kernel::Sign;
-use crate::PolygonMesh;
+use crate::mesh::PolygonMesh;
 use glam::DVec3;
 
 /// `2^k` for `k` in the normal range.

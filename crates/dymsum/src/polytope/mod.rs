@@ -77,7 +77,7 @@ pub struct RingEntry {
 ///
 /// A cheap, immutable, shareable handle: the data lives behind an
 /// [`Arc`](std::sync::Arc), so `clone()` costs one reference count and
-/// every structure built from a polytope ([`crate::DynamicSum`],
+/// every structure built from a polytope ([`crate::dynamic::DynamicSum`],
 /// [`crate::query::ConvexPair`], [`crate::query::ContactTracker`],
 /// [`crate::query::CObstacle`], ...) owns its own handle: none of them has
 /// a lifetime parameter, all are `Send + Sync`, and a program can keep them
@@ -141,14 +141,15 @@ struct PolytopeData {
     /// (exact, see [`exact::frame_exponent`]), so it is bit-identical for
     /// the same shape at any scale `2^k`.
     frame: i32,
-    /// What the proximity queries need of this body (its reflection,
-    /// bounds), computed on its first query and shared by every handle.
-    query_prep: QueryPrepCell,
+    /// Data a higher layer derives from this body once and shares between
+    /// its handles ([`Polytope::derived`]): the proximity queries'
+    /// preparation (reflection, bounds), computed on the first query.
+    derived: DerivedCell,
 }
 
-/// The lazily computed [`crate::query::BodyPrep`] of a polytope.
-type QueryPrepCell =
-    std::sync::OnceLock<Result<std::sync::Arc<crate::query::BodyPrep>, crate::query::QueryError>>;
+/// A slot for data a higher layer derives from a polytope, typed by that
+/// layer (this layer never reads it).
+type DerivedCell = std::sync::OnceLock<std::sync::Arc<dyn std::any::Any + Send + Sync>>;
 
 impl Polytope {
     /// Number of vertices.
@@ -246,8 +247,8 @@ impl Polytope {
         (0..self.face_count()).map(move |f| self.face(f))
     }
     /// The polytope as a polygon mesh (maximal faces).
-    pub fn to_mesh(&self) -> crate::PolygonMesh {
-        crate::PolygonMesh {
+    pub fn to_mesh(&self) -> crate::mesh::PolygonMesh {
+        crate::mesh::PolygonMesh {
             vertices: self.data.vertices.iter().map(|v| v.to_array()).collect(),
             faces: self
                 .faces()
@@ -374,7 +375,7 @@ impl Polytope {
             ring_start,
             ring,
             frame,
-            query_prep: Default::default(),
+            derived: Default::default(),
         };
         let mut poly = Polytope {
             data: std::sync::Arc::new(data),
@@ -491,17 +492,24 @@ impl Polytope {
         &self.data.arc_err
     }
 
-    /// The data the proximity queries need of this body, computed on first
-    /// use and kept.
+    /// The data one higher layer derives from this body, computed by `make`
+    /// on first use and kept for every handle (the proximity queries keep
+    /// their preparation here, so this layer does not name their types).
+    /// One type per polytope: the crate has one such user.
     ///
-    /// # Errors
-    /// Those of [`crate::query::Reflected::new`] (internal only).
-    pub(crate) fn query_prep(
+    /// # Panics
+    /// If a value of another type was stored first (a bug in dymsum: one
+    /// user only).
+    pub(crate) fn derived<T: std::any::Any + Send + Sync + Clone>(
         &self,
-    ) -> Result<std::sync::Arc<crate::query::BodyPrep>, crate::query::QueryError> {
-        self.data
-            .query_prep
-            .get_or_init(|| crate::query::BodyPrep::of(self).map(std::sync::Arc::new))
+        make: impl FnOnce() -> T,
+    ) -> T {
+        let slot = self
+            .data
+            .derived
+            .get_or_init(|| std::sync::Arc::new(make()));
+        slot.downcast_ref::<T>()
+            .expect("one type of derived data per polytope")
             .clone()
     }
 

@@ -32,6 +32,7 @@
 //! unused vertices are either skipped or refused ([`Unused`]).
 
 use super::{Edge, RingEntry};
+use crate::mesh::VertexIndex;
 
 /// A topological defect, mapped by each caller to its own error type.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,25 +56,6 @@ pub(crate) enum Unused {
     Skip,
     /// Report [`TopologyDefect::UnusedVertex`].
     Refuse,
-}
-
-/// A vertex index as stored in a face list.
-pub(crate) trait VertexIndex: Copy {
-    fn index(self) -> usize;
-}
-
-impl VertexIndex for usize {
-    #[inline]
-    fn index(self) -> usize {
-        self
-    }
-}
-
-impl VertexIndex for u32 {
-    #[inline]
-    fn index(self) -> usize {
-        self as usize
-    }
 }
 
 /// The directed edges of a polygon mesh, grouped by origin and sorted by

@@ -91,7 +91,7 @@ use super::support::{dot_error, near_max, Marks, NearMax};
 use super::ConvexPair;
 use crate::gauss::edges_cross;
 use crate::kernel::exact::mul_pow2_vec;
-use crate::Pose;
+use crate::kernel::rotation::Pose;
 use glam::DVec3;
 
 /// Spherical caps holding a body's Gaussian cells (one per vertex) and arcs
@@ -116,7 +116,7 @@ const CAP_SLACK: f64 = 1e-9;
 
 impl GaussCaps {
     /// The caps of `p`.
-    pub(crate) fn of(p: &crate::Polytope) -> GaussCaps {
+    pub(crate) fn of(p: &crate::polytope::Polytope) -> GaussCaps {
         let cells = (0..p.vertex_count())
             .map(|v| {
                 let ring = p.ring(v);
@@ -598,7 +598,7 @@ impl Lateral {
     /// from them leave it.
     fn cap_disk(
         &self,
-        poly: &crate::Polytope,
+        poly: &crate::polytope::Polytope,
         at: impl Fn(u32) -> DVec3,
         set: &[u32],
         side: Side,
@@ -669,13 +669,13 @@ pub(super) fn single_facet(
     let distinct = |v: &[u32; 3]| 1 + usize::from(v[1] != v[0]) + usize::from(v[2] != v[1]);
     let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
     let prep = &pair.prep_b;
-    let face_with = |p: &crate::Polytope, v: &[u32; 3]| {
+    let face_with = |p: &crate::polytope::Polytope, v: &[u32; 3]| {
         p.ring(v[0] as usize)
             .iter()
             .map(|r| r.face)
             .find(|&f| v[1..].iter().all(|x| p.face(f as usize).contains(x)))
     };
-    let edge_between = |p: &crate::Polytope, u: u32, w: u32| {
+    let edge_between = |p: &crate::polytope::Polytope, u: u32, w: u32| {
         p.ring(u as usize)
             .iter()
             .find(|r| r.neighbor == w)

@@ -26,9 +26,13 @@
 //! ```
 
 use super::{QueryError, Reflected};
+use crate::dynamic::DynamicSum;
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
+use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
 use crate::sum::{minkowski_sum_posed, Method};
-use crate::{DVec3, DynamicSum, PolygonMesh, Pose, Rotation};
+use glam::DVec3;
 use rayon::prelude::*;
 
 /// `n` rotations about `axis`, by the angles `2πk/n` for `k = 0..n`.
@@ -106,14 +110,14 @@ impl CObstacle {
     /// The slice at one orientation, computed from scratch.
     ///
     /// # Errors
-    /// * [`QueryError::Sum`] wrapping [`crate::SumError::OutOfRange`] when a
+    /// * [`QueryError::Sum`] wrapping [`crate::error::SumError::OutOfRange`] when a
     ///   rotated robot vertex overflows `f64`;
     /// * [`QueryError::Mesh`] when the slice's mesh cannot be produced:
     ///   [`crate::sum::MeshError::PrecisionLost`] (the obstacle is too far
     ///   from the origin for the shapes' size) or
     ///   [`crate::sum::MeshError::OutOfRange`] (a vertex of the slice
     ///   overflows `f64`); other mesh errors are internal;
-    /// * [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] only
+    /// * [`QueryError::Sum`] wrapping [`crate::error::SumError::Inconsistent`] only
     ///   for an internal error.
     pub fn slice(&self, orientation: Rotation) -> Result<PolygonMesh, QueryError> {
         let sum = minkowski_sum_posed(
@@ -172,7 +176,7 @@ impl CObstacle {
     /// Results are in input order and do not depend on the chunking.
     ///
     /// # Errors
-    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if
+    /// [`QueryError::Sum`] wrapping [`crate::error::SumError::Inconsistent`] if
     /// building a chunk's first dynamic sum hits an internal error (a bug;
     /// the updates themselves cannot fail); `f` itself cannot fail
     /// here (return a `Result` from it to report per-slice failures, as
@@ -213,7 +217,7 @@ impl CObstacle {
     ///
     /// # Errors
     /// The first failing slice, in input order:
-    /// [`QueryError::Sum`] wrapping [`crate::SumError::Inconsistent`] if
+    /// [`QueryError::Sum`] wrapping [`crate::error::SumError::Inconsistent`] if
     /// building a chunk's first dynamic sum hits an internal error (a bug);
     /// [`QueryError::Mesh`] when a slice's mesh cannot be produced
     /// ([`crate::sum::MeshError::PrecisionLost`] for an obstacle too far from

@@ -21,8 +21,8 @@ use super::gjk::{
 };
 use super::separation::separation;
 use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Reflected, Separation};
+use crate::kernel::rotation::Pose;
 use crate::sum::{minkowski_sum_posed, Method};
-use crate::Pose;
 use glam::DVec3;
 
 /// Where the facets of `A ⊕ (−B)` that a query evaluates come from.

@@ -32,8 +32,10 @@ use super::{ConvexPair, QueryError, Reflected};
 use crate::gauss::{GaussView, Turn};
 use crate::kernel::dd::DD;
 use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
+use crate::polytope::Polytope;
 use crate::sum::{relative_rotation, turn_of};
-use crate::{Polytope, Pose, Rotation};
 use glam::{DMat3, DVec3};
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 

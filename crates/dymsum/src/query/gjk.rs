@@ -686,8 +686,10 @@ pub(super) fn origin_in_difference_hull(pair: &ConvexPair, posed: &Posed) -> boo
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::kernel::rotation::Pose;
+    use crate::kernel::rotation::Rotation;
+    use crate::polytope::Polytope;
     use crate::query::evaluate::Scratch;
-    use crate::{Polytope, Pose, Rotation};
 
     use crate::query::test_support::{boxed, Lcg};
 

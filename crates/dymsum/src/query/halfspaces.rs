@@ -53,10 +53,12 @@
 use super::frame::{up, BodyBounds};
 use super::support::{dot_error, near_max_upper, Marks};
 use super::{CObstacle, QueryError};
+use crate::dynamic::DynamicSum;
+use crate::kernel::rotation::Rotation;
 use crate::polytope::Polytope;
 use crate::sum::merge::coplanar_groups;
 use crate::sum::{Operands, Overlay};
-use crate::{DVec3, DynamicSum, Rotation};
+use glam::DVec3;
 
 /// A convex region `{x : n_i·x ≤ d_i}`: unit outward normals (floats) and
 /// offsets rounded outward (module docs).
@@ -589,8 +591,8 @@ mod tests {
 mod timing {
     use super::tests::reference_halfspaces;
     use super::*;
+    use crate::kernel::rotation::Pose;
     use crate::query::orientations_about_axis;
-    use crate::Pose;
     use std::time::Instant;
 
     fn read(var: &str) -> Polytope {

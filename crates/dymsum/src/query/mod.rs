@@ -143,7 +143,8 @@ mod union;
 /// Helpers shared by the query modules' unit tests.
 #[cfg(test)]
 pub(crate) mod test_support {
-    use crate::{DVec3, Polytope};
+    use crate::polytope::Polytope;
+    use glam::DVec3;
 
     /// A small deterministic generator (no dev-dependency in unit tests).
     pub(crate) struct Lcg(pub(crate) u64);
@@ -198,9 +199,9 @@ pub use slabs::{
 pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};
 
+use crate::kernel::rotation::Pose;
 use crate::polytope::{Polytope, PolytopeError};
 use crate::sum::SumError;
-use crate::Pose;
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -510,6 +511,15 @@ pub(crate) struct BodyPrep {
 }
 
 impl BodyPrep {
+    /// The data of `p`, computed on its first query and kept with the
+    /// polytope (shared by every handle of it).
+    ///
+    /// # Errors
+    /// Those of [`Reflected::new`] (internal only).
+    pub(crate) fn of_cached(p: &Polytope) -> Result<std::sync::Arc<BodyPrep>, QueryError> {
+        p.derived(|| BodyPrep::of(p).map(std::sync::Arc::new))
+    }
+
     /// Computes the data of `p`.
     ///
     /// # Errors
@@ -602,8 +612,8 @@ impl ConvexPair {
         Ok(ConvexPair {
             a: a.clone(),
             b: b.clone(),
-            prep_a: a.query_prep()?,
-            prep_b: b.query_prep()?,
+            prep_a: BodyPrep::of_cached(a)?,
+            prep_b: BodyPrep::of_cached(b)?,
             stats: std::sync::Arc::new(Counters::default()),
             pool: Default::default(),
         })

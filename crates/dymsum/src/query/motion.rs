@@ -96,8 +96,11 @@
 use super::support::{climb, near_max, Marks};
 use super::{ConvexPair, ConvexUnion, Proximity, QueryError, QueryStats};
 use crate::kernel::predicates::{dot4, Sign};
-use crate::{DVec3, Polytope, Pose, Rotation};
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
+use crate::polytope::Polytope;
 use glam::DQuat;
+use glam::DVec3;
 
 /// The default work budget of a motion check ([`MotionChecker::budget`]):
 /// the most intervals the search examines over all piece pairs before it

@@ -276,8 +276,11 @@ pub(super) fn separation(
 
 #[cfg(test)]
 mod tests {
+    use crate::kernel::rotation::Pose;
+    use crate::kernel::rotation::Rotation;
+    use crate::polytope::Polytope;
     use crate::query::{ConvexPair, Proximity};
-    use crate::{DVec3, Polytope, Pose, Rotation};
+    use glam::DVec3;
 
     use crate::query::test_support::{boxed, Lcg};
 

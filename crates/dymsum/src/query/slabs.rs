@@ -164,10 +164,12 @@ use super::support::{near_max, Marks};
 use super::{CObstacle, QueryError};
 use crate::hull::{convex_hull, FloatPoints};
 use crate::kernel::exact::{self, Dyadic};
+use crate::kernel::rotation::Rotation;
 use crate::kernel::{bounds, Sign};
+use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
 use crate::sum::{validate::check_convex_mesh, MeshError};
-use crate::{DVec3, PolygonMesh, Rotation};
+use glam::DVec3;
 use rayon::prelude::*;
 
 /// The slack `ε = 2⁻⁴⁰` by which every certified range of rotations is

@@ -37,9 +37,10 @@
 use super::candidates::FacetSet;
 use super::evaluate::{evaluate, Facets, Scratch};
 use super::{ConvexPair, Proximity, QueryError, Reflected};
+use crate::dynamic::DynamicSum;
 use crate::dynamic::UpdateReport;
+use crate::kernel::rotation::Pose;
 use crate::sum::Overlay;
-use crate::{DynamicSum, Pose};
 
 /// How a [`ContactTracker`] answers each frame. Every strategy gives the
 /// same answers (the static query's); they differ in speed only.
@@ -144,7 +145,7 @@ impl ContactTracker {
     /// Those of [`ConvexPair::query`]; with
     /// [`TrackerStrategy::DynamicSum`] or [`TrackerStrategy::Auto`], also
     /// [`QueryError::Sum`] wrapping
-    /// [`crate::SumError::Inconsistent`] for an internal error of the
+    /// [`crate::error::SumError::Inconsistent`] for an internal error of the
     /// dynamic sum (a bug: please report the poses).
     pub fn with_strategy(
         pair: &ConvexPair,
@@ -178,9 +179,9 @@ impl ContactTracker {
             poses: (pose_a, pose_b),
             last: Proximity::Penetrating(super::Contact {
                 depth: 0.0,
-                normal: crate::DVec3::X,
-                point_on_a: crate::DVec3::ZERO,
-                point_on_b: crate::DVec3::ZERO,
+                normal: glam::DVec3::X,
+                point_on_a: glam::DVec3::ZERO,
+                point_on_b: glam::DVec3::ZERO,
                 features: super::FeaturePair::FaceVertex {
                     a_face: 0,
                     b_vertex: 0,

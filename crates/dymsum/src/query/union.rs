@@ -21,8 +21,10 @@
 //! on the merged C-obstacle mesh.
 
 use super::{CObstacle, Contact, ConvexPair, Proximity, QueryError, Separation};
+use crate::kernel::rotation::Pose;
+use crate::kernel::rotation::Rotation;
+use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
-use crate::{PolygonMesh, Pose, Rotation};
 
 /// Several convex pieces forming one (possibly non-convex) body.
 ///
@@ -89,7 +91,7 @@ impl ConvexUnion {
     /// # Errors
     /// The first error of a piece pair, as [`ConvexPair::new`] (internal
     /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
-    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// [`crate::error::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
     /// posed vertex or an answer overflows `f64`.
     pub fn query(
         &self,
@@ -123,7 +125,7 @@ impl ConvexUnion {
     /// # Errors
     /// The first error of a piece pair, as [`ConvexPair::new`] (internal
     /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
-    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// [`crate::error::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
     /// posed vertex or an answer overflows `f64`.
     pub fn collides(
         &self,
@@ -146,7 +148,7 @@ impl ConvexUnion {
     /// # Errors
     /// As [`ConvexUnion::query`]: the first error of a piece pair, as [`ConvexPair::new`] (internal
     /// only) and [`ConvexPair::query`]: [`QueryError::Sum`] wrapping
-    /// [`crate::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
+    /// [`crate::error::SumError::OutOfRange`] or [`QueryError::OutOfRange`] when a
     /// posed vertex or an answer overflows `f64`.
     pub fn distance(
         &self,

@@ -88,8 +88,8 @@ mod intersect;
 
 use crate::kernel::exact::{self, Dyadic};
 use crate::kernel::predicates::{orient, Sign};
+use crate::mesh::PolygonMesh;
 use crate::polytope::topology::{DirectedEdges, TopologyDefect, Unused};
-use crate::PolygonMesh;
 use aabb::{Aabb, AabbTree};
 use glam::DVec3;
 use rayon::prelude::*;

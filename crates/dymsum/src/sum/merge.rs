@@ -66,11 +66,12 @@ use super::validate::{
     ExactPoints,
 };
 use super::{Operands, Overlay};
+use crate::error::MeshError;
 use crate::kernel::predicates::{det3, same_direction, sos_det3};
 use crate::kernel::Sign;
+use crate::mesh::PolygonMesh;
 use crate::polytope::topology::DirectedEdges;
 use crate::sanity::SanityError;
-use crate::PolygonMesh;
 use glam::DVec3;
 
 /// A vertex of the sum as `(vertex of P, vertex of Q)`.
@@ -231,7 +232,7 @@ impl FlatFacets {
 struct SignedPermutation([(usize, f64); 3]);
 
 impl SignedPermutation {
-    fn of(pose: &crate::Pose) -> Option<Self> {
+    fn of(pose: &crate::kernel::rotation::Pose) -> Option<Self> {
         let m = pose.rotation.matrix();
         let mut out = [(0, 0.0); 3];
         for (k, slot) in out.iter_mut().enumerate() {
@@ -246,7 +247,7 @@ impl SignedPermutation {
         Some(SignedPermutation(out))
     }
     /// `pose.apply(v)` when it is computed without rounding, else `None`.
-    fn exact_posed(self, pose: &crate::Pose, v: DVec3) -> Option<DVec3> {
+    fn exact_posed(self, pose: &crate::kernel::rotation::Pose, v: DVec3) -> Option<DVec3> {
         let r = DVec3::from_array(self.0.map(|(i, s)| s * v[i]));
         let t = pose.translation;
         let out = r + t;
@@ -550,49 +551,6 @@ pub(crate) fn check_facet_complex(ops: &Operands, overlay: &Overlay) -> Result<(
         }
         TopologyDefect::Euler(chi) => SanityError::FacetComplexEuler { chi },
     })
-}
-
-/// Why the mesh of a sum could not be produced.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum MeshError {
-    /// The sum's vertices cannot be told apart in `f64`: after rounding
-    /// they are all coincident, collinear or coplanar. Cause: the sum lies
-    /// so far from the origin (or is so thin) that the rounding step of its
-    /// coordinates is comparable to its size. Fix: move the operands nearer
-    /// to the origin (subtract a common offset, add it back outside dymsum).
-    #[error(
-        "coordinates lose all precision: rounding step {ulp:.3e} against a size of {size:.3e}; the rounded vertices {collapse} (move the operands nearer to the origin)"
-    )]
-    PrecisionLost {
-        /// The rounding step (ulp) of the largest output coordinate.
-        ulp: f64,
-        /// The size of the sum (sum of the operands' bounding-box diagonals).
-        size: f64,
-        /// How the rounded vertices collapsed.
-        collapse: String,
-    },
-    /// A vertex of the sum overflows `f64` (an exact vertex sum `p + q`
-    /// beyond `±1.8e308`): the sum is outside the supported range.
-    #[error("the sum's coordinates overflow f64 (a vertex sum exceeds 1.8e308 in magnitude); outside the supported range")]
-    OutOfRange,
-    /// The facets could not be merged into faces (a bug: please report the
-    /// input).
-    #[error("internal error: merging the facets failed: {0}")]
-    Merge(String),
-    /// The produced mesh failed the exact validity check (a bug: please
-    /// report the input). Never written silently.
-    #[error("internal error: the merged mesh is invalid: {0}")]
-    Invalid(#[from] super::validate::MeshDefect),
-}
-
-impl MeshError {
-    /// `true` for a bug in dymsum (as opposed to an input beyond `f64`).
-    pub fn is_internal(&self) -> bool {
-        !matches!(
-            self,
-            MeshError::PrecisionLost { .. } | MeshError::OutOfRange
-        )
-    }
 }
 
 /// How faithfully the output coordinates hold the exact sum.
@@ -1182,10 +1140,19 @@ mod tests {
         let (pts, mut faces) = sphere_mesh(40);
         let (a, b) = (faces[0][0], faces[0][1]);
         flip(&mut faces, a, b);
-        let cube =
-            crate::Polytope::from_points(&[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]])
-                .unwrap();
-        let ops = Operands::new(&cube, crate::Pose::IDENTITY, &cube, crate::Pose::IDENTITY);
+        let cube = crate::polytope::Polytope::from_points(&[
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [0., 1., 0.],
+            [0., 0., 1.],
+        ])
+        .unwrap();
+        let ops = Operands::new(
+            &cube,
+            crate::kernel::rotation::Pose::IDENTITY,
+            &cube,
+            crate::kernel::rotation::Pose::IDENTITY,
+        );
         let merged = |shortcut| Merged {
             mesh: PolygonMesh {
                 vertices: as_mesh(&pts),

@@ -40,11 +40,12 @@ pub(crate) mod merge;
 pub mod validate;
 mod walk;
 
-pub use merge::{MeshError, Precision, SumMesh};
+pub use crate::error::{MeshError, SumError};
+pub use merge::{Precision, SumMesh};
 
 pub(crate) use crate::gauss::GaussView;
+use crate::kernel::rotation::Pose;
 use crate::polytope::Polytope;
-use crate::Pose;
 use glam::DVec3;
 
 /// Which static algorithm computes the sum.
@@ -112,29 +113,6 @@ pub enum Facet {
     },
 }
 
-/// Why a sum could not be computed.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum SumError {
-    /// An internal invariant failed (a bug: please report the input).
-    #[error("internal inconsistency: {0}")]
-    Inconsistent(String),
-    /// The hull of rounded pairwise sums disagrees with the exact overlay
-    /// (only [`Method::Hull`]; happens when rotation rounding makes faces of
-    /// P non-planar). Use [`Method::Walk`].
-    #[error("the hull of pairwise sums is inconsistent with the exact overlay: {0} (rounding the rotated vertices bent P's faces; use the walk or brute method)")]
-    HullMismatch(String),
-    /// An operand's posed vertex (`R p + t`) overflows `f64`: outside the
-    /// supported range (every pose whose posed coordinates are finite is
-    /// supported, at any scale).
-    #[error("{operand}'s posed vertex {vertex} overflows f64 (|coordinate| > 1.8e308); outside the supported range")]
-    OutOfRange {
-        /// `"P"` or `"Q"`.
-        operand: &'static str,
-        /// The vertex.
-        vertex: usize,
-    },
-}
-
 /// The overlay state: for every face of P its vertex of Q, for every face of
 /// Q its vertex of P, and the crossing edge pairs (sorted).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -193,7 +171,7 @@ pub(crate) struct Operands {
     /// Q's pose.
     pub pose_q: Pose,
     /// The relative rotation `R_q⁻¹ R_p`.
-    pub relative: crate::Rotation,
+    pub relative: crate::kernel::rotation::Rotation,
     /// P's normals rotated by the relative rotation.
     pub np: Vec<DVec3>,
     /// Q's reference normals.
@@ -247,7 +225,7 @@ pub(crate) fn rotate_arcs(
 }
 
 /// The matrix and cofactor matrix of a rotation, for lazy views.
-pub(crate) fn turn_of(r: crate::Rotation) -> crate::gauss::Turn {
+pub(crate) fn turn_of(r: crate::kernel::rotation::Rotation) -> crate::gauss::Turn {
     let rot = r.matrix();
     crate::gauss::Turn {
         rot,
@@ -264,8 +242,8 @@ fn cofactor(m: &glam::DMat3) -> glam::DMat3 {
 }
 
 /// The relative rotation `R_q⁻¹ R_p` (exactly `R_p` when Q is not rotated).
-pub(crate) fn relative_rotation(pose_p: &Pose, pose_q: &Pose) -> crate::Rotation {
-    if pose_q.rotation == crate::Rotation::IDENTITY {
+pub(crate) fn relative_rotation(pose_p: &Pose, pose_q: &Pose) -> crate::kernel::rotation::Rotation {
+    if pose_q.rotation == crate::kernel::rotation::Rotation::IDENTITY {
         pose_p.rotation
     } else {
         pose_p.rotation.then(&pose_q.rotation.inverse())
@@ -281,7 +259,8 @@ impl Operands {
             q: q.clone(),
             np: p.normals().iter().map(|&n| relative.apply(n)).collect(),
             nq: q.normals().to_vec(),
-            rot_p: (relative != crate::Rotation::IDENTITY).then(|| relative.matrix()),
+            rot_p: (relative != crate::kernel::rotation::Rotation::IDENTITY)
+                .then(|| relative.matrix()),
             arc_p: Vec::new(),
             arc_p_err: Vec::new(),
             ties: crate::gauss::TieCache::new(),
@@ -296,9 +275,9 @@ impl Operands {
     }
     /// Turns P to the relative rotation `new`: its normals, its arcs, and
     /// a fresh tie memo.
-    pub(crate) fn set_relative(&mut self, new: crate::Rotation) {
+    pub(crate) fn set_relative(&mut self, new: crate::kernel::rotation::Rotation) {
         self.relative = new;
-        self.rot_p = (new != crate::Rotation::IDENTITY).then(|| new.matrix());
+        self.rot_p = (new != crate::kernel::rotation::Rotation::IDENTITY).then(|| new.matrix());
         self.ties.clear();
         if self.lazy {
             self.turn = turn_of(new);
@@ -455,7 +434,7 @@ impl MinkowskiSum {
     /// [`MeshError::OutOfRange`] when a vertex of the sum (a posed `p + q`)
     /// overflows `f64`;
     /// [`MeshError::Merge`] / [`MeshError::Invalid`] are internal errors.
-    pub fn try_to_mesh(&self) -> Result<crate::PolygonMesh, MeshError> {
+    pub fn try_to_mesh(&self) -> Result<crate::mesh::PolygonMesh, MeshError> {
         self.mesh_with_precision().map(|m| m.mesh)
     }
     /// [`Self::try_to_mesh`] with the coordinates' rounding relative to the
@@ -471,8 +450,8 @@ impl MinkowskiSum {
     /// Euler `V − E + F = 2`, and the merged mesh closed and convex.
     ///
     /// # Errors
-    /// The first broken invariant ([`crate::SanityError`]).
-    pub fn sanity_check(&self) -> Result<(), crate::SanityError> {
+    /// The first broken invariant ([`crate::sanity::SanityError`]).
+    pub fn sanity_check(&self) -> Result<(), crate::sanity::SanityError> {
         merge::check_facet_complex(&self.operands, &self.overlay)?;
         self.try_to_mesh()?;
         Ok(())

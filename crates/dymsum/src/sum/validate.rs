@@ -33,69 +33,11 @@
 use crate::hull::HullPoints;
 use crate::kernel::exact;
 use crate::kernel::Sign;
+use crate::mesh::PolygonMesh;
 use crate::polytope::topology::{DirectedEdges, TopologyDefect, Unused};
-use crate::PolygonMesh;
 use glam::DVec3;
 
-/// Why a mesh is not the boundary of a convex polytope with maximal faces.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub enum MeshDefect {
-    /// A vertex coordinate is NaN or infinite.
-    #[error("vertex {vertex} is not finite")]
-    NonFinite {
-        /// The vertex.
-        vertex: usize,
-    },
-    /// A face has fewer than three vertices, repeats one, or names a
-    /// vertex that does not exist.
-    #[error("face {face} is not a polygon of at least three distinct vertices")]
-    BadFace {
-        /// The face.
-        face: usize,
-    },
-    /// A directed edge occurs in two faces (inconsistent orientation or a
-    /// non-manifold edge).
-    #[error("edge ({0}, {1}) used twice in the same direction")]
-    EdgeUsedTwice(usize, usize),
-    /// A directed edge has no reverse (a hole).
-    #[error("edge ({0}, {1}) has no opposite face (the mesh is open)")]
-    OpenEdge(usize, usize),
-    /// A vertex belongs to no face.
-    #[error("vertex {0} belongs to no face")]
-    UnusedVertex(usize),
-    /// The faces around a vertex form more than one fan.
-    #[error("vertex {0} is pinched (its faces form more than one fan)")]
-    PinchedVertex(usize),
-    /// `V − E + F ≠ 2`.
-    #[error("Euler characteristic {0} != 2")]
-    Euler(i64),
-    /// A face's corner is off the plane of its first three corners.
-    #[error("face {face} is not planar (vertex {vertex} is off its plane)")]
-    NonPlanarFace {
-        /// The face.
-        face: usize,
-        /// The vertex off the plane.
-        vertex: usize,
-    },
-    /// A face's corner lies on the line of its neighbours (a collinear or
-    /// zero-area corner).
-    #[error("face {face} has a straight or degenerate corner at vertex {vertex}")]
-    CollinearCorner {
-        /// The face.
-        face: usize,
-        /// The corner.
-        vertex: usize,
-    },
-    /// A face turns both ways or winds more than once (a bow-tie).
-    #[error("face {face} is not a convex polygon")]
-    NonConvexFace {
-        /// The face.
-        face: usize,
-    },
-    /// Two faces meet at an edge that is flat, reflex or inward.
-    #[error("edge ({0}, {1}) is not strictly convex and outward")]
-    NonConvexEdge(usize, usize),
-}
+pub use crate::error::MeshDefect;
 
 impl From<TopologyDefect> for MeshDefect {
     fn from(d: TopologyDefect) -> Self {
