@@ -419,7 +419,7 @@ fn every_top_level_module_has_a_layer() {
         .collect();
     for top in tops {
         assert!(
-            layer_of(&[top.clone()]).is_some(),
+            layer_of(std::slice::from_ref(&top)).is_some(),
             "module `{top}` has no layer in tests/layers.rs (and ARCHITECTURE.md)"
         );
     }

@@ -15,7 +15,7 @@
 //! # The bounds
 //! * `tol`, the tie tolerance: `16 ε B` in frame units. Candidates whose
 //!   support values lie within `tol` of each other are tied
-//!   ([`super::candidates::winner`]).
+//!   ([`crate::query::proximity::certificate::candidates::winner`]).
 //! * `eta_a`, `eta_b`: the Euclidean distance between a rounded posed
 //!   vertex and its exact value `R v + t` (with the float matrix `R` taken
 //!   as exact) is at most `16 ε (reach + |t|∞)` (three products and three
@@ -25,23 +25,25 @@
 //!   mean (rounded up; rotation preserves it up to the matrix's rounding,
 //!   covered by a factor `1 + 2^-40`).
 //!
-//! These are the only quantities the certificates of [`super::certify`]
+//! These are the only quantities the certificates of [`crate::query::proximity::certificate`]
 //! need about the rounding; they are rigorous upper bounds.
 
-use super::{ConvexPair, QueryError, Reflected};
 use crate::gauss::{GaussView, Turn};
 use crate::kernel::dd::DD;
 use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
 use crate::kernel::rotation::Pose;
 use crate::kernel::rotation::Rotation;
 use crate::polytope::Polytope;
+use crate::query::error::QueryError;
+use crate::query::pair::ConvexPair;
+use crate::query::pair::Reflected;
 use crate::sum::{relative_rotation, turn_of};
 use glam::{DMat3, DVec3};
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 
 /// Rounds a computed non-negative length up past its rounding error.
 #[inline]
-pub(super) fn up(x: f64) -> f64 {
+pub(in crate::query) fn up(x: f64) -> f64 {
     x * (1.0 + 8.0 * f64::EPSILON)
 }
 
@@ -49,7 +51,7 @@ pub(super) fn up(x: f64) -> f64 {
 /// frame units): the largest `|v|`, the vertex mean and the largest
 /// distance of a vertex from it.
 #[derive(Clone, Debug)]
-pub(super) struct BodyBounds {
+pub(in crate::query) struct BodyBounds {
     /// Largest `|v|` (rounded up; may be infinite for coordinates near
     /// `f64::MAX`).
     pub reach: f64,
@@ -60,7 +62,7 @@ pub(super) struct BodyBounds {
 impl BodyBounds {
     /// The bounds of `p`, computed in its own power-of-two frame (so that
     /// no square underflows or overflows) and scaled back.
-    pub(super) fn of(p: &Polytope) -> BodyBounds {
+    pub(in crate::query) fn of(p: &Polytope) -> BodyBounds {
         let exp = p.frame_exponent();
         let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
         let n = v.len() as f64;
@@ -136,10 +138,10 @@ impl Lazy {
 }
 
 /// The two bodies at their poses, in the query's frame (module docs).
-/// Reused from query to query (a [`super::ContactTracker`] keeps one), so a
+/// Reused from query to query (a [`crate::query::tracker::ContactTracker`] keeps one), so a
 /// query allocates nothing once the buffers have their size.
 #[derive(Clone, Debug, Default)]
-pub(super) struct Posed {
+pub(in crate::query) struct Posed {
     a_body: Option<Polytope>,
     b_body: Option<Polytope>,
     /// A's pose.
@@ -181,7 +183,7 @@ impl Posed {
     ///
     /// # Errors
     /// [`QueryError::OutOfRange`] when a posed coordinate overflows `f64`.
-    pub(super) fn reset(
+    pub(in crate::query) fn reset(
         &mut self,
         pair: &ConvexPair,
         pose_a: Pose,
@@ -251,7 +253,7 @@ impl Posed {
     /// and dynamic overlays of `A ⊕ (−B)` see it (the same rotated normals,
     /// arc normals, error bounds and SoS indices, so every predicate
     /// answers the same), without a tie memo.
-    pub(super) fn view_a<'a>(&'a self, pair: &'a ConvexPair) -> GaussView<'a> {
+    pub(in crate::query) fn view_a<'a>(&'a self, pair: &'a ConvexPair) -> GaussView<'a> {
         let a = &pair.a;
         GaussView {
             poly: a,
@@ -266,7 +268,7 @@ impl Posed {
     }
 
     /// `−B`'s Gaussian map (its own frame; SoS indices after A's faces).
-    pub(super) fn view_neg_b<'a>(&self, pair: &'a ConvexPair) -> GaussView<'a> {
+    pub(in crate::query) fn view_neg_b<'a>(&self, pair: &'a ConvexPair) -> GaussView<'a> {
         let q = &pair.neg_b().polytope;
         GaussView {
             poly: q,
@@ -294,7 +296,7 @@ impl Posed {
 
     /// Posed vertex `v` of A (frame units).
     #[inline]
-    pub(super) fn a(&self, v: u32) -> DVec3 {
+    pub(in crate::query) fn a(&self, v: u32) -> DVec3 {
         self.a.get(v as usize, self.gen, || {
             mul_pow2_vec(self.pose_a.apply(self.body_a().vertex(v as usize)), self.k)
         })
@@ -302,7 +304,7 @@ impl Posed {
 
     /// Posed vertex `w` of B (frame units).
     #[inline]
-    pub(super) fn b(&self, w: u32) -> DVec3 {
+    pub(in crate::query) fn b(&self, w: u32) -> DVec3 {
         self.b.get(w as usize, self.gen, || {
             mul_pow2_vec(self.pose_b.apply(self.body_b().vertex(w as usize)), self.k)
         })
@@ -310,7 +312,7 @@ impl Posed {
 
     /// A's rotated unit normal of face `f`.
     #[inline]
-    pub(super) fn na(&self, f: u32) -> DVec3 {
+    pub(in crate::query) fn na(&self, f: u32) -> DVec3 {
         self.na.get(f as usize, self.gen, || {
             self.pose_a
                 .rotation
@@ -320,7 +322,7 @@ impl Posed {
 
     /// B's rotated unit normal of face `g`.
     #[inline]
-    pub(super) fn nb(&self, g: u32) -> DVec3 {
+    pub(in crate::query) fn nb(&self, g: u32) -> DVec3 {
         self.nb.get(g as usize, self.gen, || {
             self.pose_b
                 .rotation
@@ -330,13 +332,13 @@ impl Posed {
 
     /// A world length or point back from frame units.
     #[inline]
-    pub(super) fn back(&self, x: f64) -> f64 {
+    pub(in crate::query) fn back(&self, x: f64) -> f64 {
         mul_pow2(x, -self.k)
     }
 
     /// A world point back from frame units.
     #[inline]
-    pub(super) fn back_vec(&self, v: DVec3) -> DVec3 {
+    pub(in crate::query) fn back_vec(&self, v: DVec3) -> DVec3 {
         mul_pow2_vec(v, -self.k)
     }
 }
@@ -345,7 +347,7 @@ impl Posed {
 /// (`[row][column]`), in double-double: its columns are
 /// `c1 × c2`, `c2 × c0`, `c0 × c1` for the columns `c_i` of `M`; each entry
 /// a difference of two products, exact to double-double rounding.
-pub(super) fn cofactor_dd(m: &DMat3) -> [[DD; 3]; 3] {
+pub(in crate::query) fn cofactor_dd(m: &DMat3) -> [[DD; 3]; 3] {
     let (c0, c1, c2) = (m.x_axis, m.y_axis, m.z_axis);
     let cross = |a: DVec3, b: DVec3| {
         let d =

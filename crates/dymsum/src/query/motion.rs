@@ -52,7 +52,7 @@
 //! GJK between that set and an obstacle piece `O` proposes a unit direction
 //! `n`; the *gap* `min_{H ⊕ [T]} n · x − max_O n · o` is then bounded
 //! from below rigorously (the near-extreme searches of
-//! [`super::support`], whose maxima are certified, on the unposed piece
+//! [`crate::query::proximity::support`], whose maxima are certified, on the unposed piece
 //! and the obstacle's vertices), and if it exceeds `s`, the distance
 //! between the moving piece and `O` stays positive over the whole
 //! interval. Rounding is covered: the float rotations and translations
@@ -93,12 +93,16 @@
 //! every interval that sweeps through it from being certified, and halving
 //! continues until a queried pose lies inside it.
 
-use super::support::{climb, near_max, Marks};
-use super::{ConvexPair, ConvexUnion, Proximity, QueryError, QueryStats};
 use crate::kernel::predicates::{dot4, Sign};
 use crate::kernel::rotation::Pose;
 use crate::kernel::rotation::Rotation;
 use crate::polytope::Polytope;
+use crate::query::answer::Proximity;
+use crate::query::error::QueryError;
+use crate::query::pair::ConvexPair;
+use crate::query::pair::QueryStats;
+use crate::query::proximity::support::{climb, near_max, Marks};
+use crate::query::union::ConvexUnion;
 use glam::DQuat;
 use glam::DVec3;
 
@@ -744,7 +748,7 @@ impl PieceSearch<'_> {
         if v.length_squared() == 0.0 {
             v = DVec3::X;
         }
-        let mut simplex = super::gjk::Simplex::default();
+        let mut simplex = crate::query::proximity::gjk::Simplex::default();
         for _ in 0..64 {
             let w = support(v);
             let vv = v.dot(v);
@@ -753,7 +757,7 @@ impl PieceSearch<'_> {
             }
             let before = simplex;
             simplex.push_point(w);
-            let (next, nv) = super::gjk::closest(&simplex);
+            let (next, nv) = crate::query::proximity::gjk::closest(&simplex);
             if next.len == 4 || nv.length_squared() == 0.0 {
                 return None;
             }

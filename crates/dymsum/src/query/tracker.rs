@@ -3,7 +3,7 @@
 //!
 //! Two strategies ([`TrackerStrategy`]):
 //! * **certified** (the default): the certified query of
-//!   [`super::ConvexPair::query`], warm-started from the last frame (GJK
+//!   [`crate::query::pair::ConvexPair::query`], warm-started from the last frame (GJK
 //!   from the last support vertices and direction; the searches from
 //!   there), so a frame of coherent motion costs a few support-function
 //!   steps plus the certificates;
@@ -34,12 +34,15 @@
 //! }
 //! ```
 
-use super::candidates::FacetSet;
-use super::evaluate::{evaluate, Facets, Scratch};
-use super::{ConvexPair, Proximity, QueryError, Reflected};
 use crate::dynamic::DynamicSum;
 use crate::dynamic::UpdateReport;
 use crate::kernel::rotation::Pose;
+use crate::query::answer::Proximity;
+use crate::query::error::QueryError;
+use crate::query::pair::ConvexPair;
+use crate::query::pair::Reflected;
+use crate::query::proximity::certificate::candidates::FacetSet;
+use crate::query::proximity::evaluate::{evaluate, Facets, Scratch};
 use crate::sum::Overlay;
 
 /// How a [`ContactTracker`] answers each frame. Every strategy gives the
@@ -55,7 +58,7 @@ pub enum TrackerStrategy {
     /// The certified query, warm-started from the last frame: support
     /// functions, GJK, EPA and exact certificates over the facets near the
     /// answer (every facet when a certificate cannot be made, counted in
-    /// [`super::QueryStats`]).
+    /// [`crate::query::pair::QueryStats`]).
     Certified,
     /// A [`DynamicSum`] of `A ⊕ (−B)` repaired by DYMSUM each frame, every
     /// facet evaluated (the sum is available from [`ContactTracker::sum`]).
@@ -177,12 +180,12 @@ impl ContactTracker {
             phase,
             sum,
             poses: (pose_a, pose_b),
-            last: Proximity::Penetrating(super::Contact {
+            last: Proximity::Penetrating(crate::query::answer::Contact {
                 depth: 0.0,
                 normal: glam::DVec3::X,
                 point_on_a: glam::DVec3::ZERO,
                 point_on_b: glam::DVec3::ZERO,
-                features: super::FeaturePair::FaceVertex {
+                features: crate::query::answer::FeaturePair::FaceVertex {
                     a_face: 0,
                     b_vertex: 0,
                 },
@@ -333,8 +336,8 @@ impl ContactTracker {
     }
 
     /// How the pair's queries were answered so far (this tracker's frames
-    /// included): see [`super::QueryStats`].
-    pub fn stats(&self) -> super::QueryStats {
+    /// included): see [`crate::query::pair::QueryStats`].
+    pub fn stats(&self) -> crate::query::pair::QueryStats {
         self.pair.stats()
     }
 }

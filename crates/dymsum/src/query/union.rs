@@ -20,11 +20,16 @@
 //! `ConvexUnion::penetration_depth_mesh` (module `nonconvex`) measures it
 //! on the merged C-obstacle mesh.
 
-use super::{CObstacle, Contact, ConvexPair, Proximity, QueryError, Separation};
 use crate::kernel::rotation::Pose;
 use crate::kernel::rotation::Rotation;
 use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
+use crate::query::answer::Contact;
+use crate::query::answer::Proximity;
+use crate::query::answer::Separation;
+use crate::query::cobstacle::slices::CObstacle;
+use crate::query::error::QueryError;
+use crate::query::pair::ConvexPair;
 
 /// Several convex pieces forming one (possibly non-convex) body.
 ///

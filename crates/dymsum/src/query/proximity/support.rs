@@ -37,14 +37,14 @@ use glam::DVec3;
 /// Marks over a body's vertices with a generation stamp, so that a search
 /// clears nothing between uses.
 #[derive(Clone, Debug, Default)]
-pub(super) struct Marks {
+pub(in crate::query) struct Marks {
     stamp: Vec<u32>,
     gen: u32,
 }
 
 impl Marks {
     /// Starts a new search over `n` vertices.
-    pub(super) fn start(&mut self, n: usize) {
+    pub(in crate::query) fn start(&mut self, n: usize) {
         if self.stamp.len() != n {
             self.stamp = vec![0; n];
             self.gen = 0;
@@ -58,13 +58,13 @@ impl Marks {
 
     /// Whether `v` is marked.
     #[inline]
-    pub(super) fn is_marked(&self, v: u32) -> bool {
+    pub(in crate::query) fn is_marked(&self, v: u32) -> bool {
         self.stamp[v as usize] == self.gen
     }
 
     /// Marks `v`; `false` if it was marked already.
     #[inline]
-    pub(super) fn mark(&mut self, v: u32) -> bool {
+    pub(in crate::query) fn mark(&mut self, v: u32) -> bool {
         let s = &mut self.stamp[v as usize];
         if *s == self.gen {
             false
@@ -79,7 +79,7 @@ impl Marks {
 /// the first strictly better neighbour until none is better. Returns the
 /// vertex and its value.
 #[inline]
-pub(super) fn climb(
+pub(in crate::query) fn climb(
     poly: &Polytope,
     at: impl Fn(u32) -> DVec3,
     dir: DVec3,
@@ -106,13 +106,13 @@ pub(super) fn climb(
 /// A bound on the rounding of one float dot product `d · v'` with
 /// `|v'_i| ≤ scale` (three products and two sums).
 #[inline]
-pub(super) fn dot_error(d: DVec3, scale: f64) -> f64 {
+pub(in crate::query) fn dot_error(d: DVec3, scale: f64) -> f64 {
     4.0 * f64::EPSILON * (d.x.abs() + d.y.abs() + d.z.abs()) * scale + 1e-300
 }
 
 /// The result of [`near_max`].
 #[derive(Clone, Copy, Debug)]
-pub(super) struct NearMax {
+pub(in crate::query) struct NearMax {
     /// Its float value.
     pub value: f64,
     /// A rigorous upper bound on `max d · v'` over the rounded posed
@@ -129,7 +129,7 @@ pub(super) struct NearMax {
 /// `eta` bounds the rounding of a posed vertex and `scale` its coordinates
 /// (frame units).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn near_max(
+pub(in crate::query) fn near_max(
     poly: &Polytope,
     at: impl Fn(u32) -> DVec3,
     dir: DVec3,
@@ -163,7 +163,7 @@ pub(super) fn near_max(
 /// best less `2(η|d| + err)`, above every threshold of the search, which
 /// only rises to the best less `τ₀`).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn near_max_upper(
+pub(in crate::query) fn near_max_upper(
     poly: &Polytope,
     at: impl Fn(u32) -> DVec3,
     dir: DVec3,

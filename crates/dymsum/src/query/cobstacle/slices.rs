@@ -25,12 +25,13 @@
 //! assert_eq!(slices.len(), 8);
 //! ```
 
-use super::{QueryError, Reflected};
 use crate::dynamic::DynamicSum;
 use crate::kernel::rotation::Pose;
 use crate::kernel::rotation::Rotation;
 use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
+use crate::query::error::QueryError;
+use crate::query::pair::Reflected;
 use crate::sum::{minkowski_sum_posed, Method};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -80,18 +81,21 @@ pub struct CObstacle {
     neg_robot: std::sync::Arc<Reflected>,
     obstacle: Polytope,
     /// The bodies' reach, for the half-space slices.
-    pub(super) reaches: super::halfspaces::Reaches,
+    pub(in crate::query) reaches: crate::query::cobstacle::halfspaces::Reaches,
 }
 
 impl CObstacle {
     /// Prepares `robot` (reflects it: one convex hull) against `obstacle`.
     ///
     /// # Errors
-    /// Only internal errors of the reflection, as [`ConvexPair::new`](super::ConvexPair::new).
+    /// Only internal errors of the reflection, as [`ConvexPair::new`](crate::query::pair::ConvexPair::new).
     pub fn new(robot: &Polytope, obstacle: &Polytope) -> Result<Self, QueryError> {
         let neg_robot = Reflected::new(robot)?;
         Ok(CObstacle {
-            reaches: super::halfspaces::Reaches::of(&neg_robot.polytope, obstacle),
+            reaches: crate::query::cobstacle::halfspaces::Reaches::of(
+                &neg_robot.polytope,
+                obstacle,
+            ),
             neg_robot: std::sync::Arc::new(neg_robot),
             obstacle: obstacle.clone(),
         })
@@ -150,7 +154,7 @@ impl CObstacle {
         })
     }
 
-    pub(super) fn advance<'b>(
+    pub(in crate::query) fn advance<'b>(
         &self,
         sum: &'b mut Option<DynamicSum>,
         r: Rotation,

@@ -159,15 +159,16 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::frame::{up, BodyBounds};
-use super::support::{near_max, Marks};
-use super::{CObstacle, QueryError};
 use crate::hull::{convex_hull, FloatPoints};
 use crate::kernel::exact::{self, Dyadic};
 use crate::kernel::rotation::Rotation;
 use crate::kernel::{bounds, Sign};
 use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
+use crate::query::cobstacle::slices::CObstacle;
+use crate::query::error::QueryError;
+use crate::query::frame::{up, BodyBounds};
+use crate::query::proximity::support::{near_max, Marks};
 use crate::sum::{validate::check_convex_mesh, MeshError};
 use glam::DVec3;
 use rayon::prelude::*;

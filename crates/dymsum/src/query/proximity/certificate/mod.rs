@@ -3,7 +3,7 @@
 //! evaluating every facet gives.
 //!
 //! # What must be shown
-//! The answer from a set of candidates ([`super::depth`]) depends only on
+//! The answer from a set of candidates ([`crate::query::depth`]) depends only on
 //! * for a penetration: the candidates whose support value `h` lies within
 //!   the tie tolerance `tol` of the least one (the *band*);
 //! * for a separation: the facing candidates whose measured feature
@@ -15,7 +15,7 @@
 //! certainly outside the band (certainly farther). Everything below is
 //! such a proof; when a step cannot be made (a bound too weak, a broken
 //! EPA polytope) the query evaluates every facet instead and
-//! [`super::QueryStats::exhaustive_answers`] counts it.
+//! [`crate::query::pair::QueryStats::exhaustive_answers`] counts it.
 //!
 //! # Facts used
 //! Notation: `A'`, `B'` the rounded posed vertices, `D' = A' ⊕ (−B')`;
@@ -23,7 +23,7 @@
 //! [`DIRECTION_ERROR`] + [`OVERLAY_MISMATCH`].
 //! 1. Every candidate's direction `n` lies within `δ` of a direction in
 //!    which its features are supporting features of the exactly posed
-//!    bodies ([`super::candidates`]). By the Lipschitz continuity of the
+//!    bodies ([`crate::query::proximity::certificate::candidates`]). By the Lipschitz continuity of the
 //!    support function (constant `ρ`), its lower bound `h₀` (the value at
 //!    its own features, never above its refined `h`) then satisfies
 //!    `h₀ ≥ h_{D'}(n) − E` with `E = 2δ(ρ_A + ρ_B) + 2(η_A + η_B)` plus
@@ -31,16 +31,16 @@
 //! 2. If a facet's direction `n` lies within chord `c` of a direction `m`,
 //!    its features' vertices lie within `τ = 2(c + δ)ρ` of the extreme of
 //!    their body in `m` (`−m` for B): they are in the near-extreme sets of
-//!    [`super::support::near_max`], which are complete.
+//!    [`crate::query::proximity::support::near_max`], which are complete.
 //! 3. The overlay's facets are found from features exactly as the static
 //!    sums find them: an fv-facet's vertex of `−B` by locating the face's
 //!    normal in `−B`'s Gaussian map, an ee-facet by the crossing test of
 //!    the two arcs, with the same exact predicates, perturbation and
-//!    indices ([`super::frame::Posed::view_a`]). So every facet found is a
+//!    indices ([`crate::query::frame::Posed::view_a`]). So every facet found is a
 //!    facet of the overlay, with the same labels.
 //!
 //! # Penetration: caps around EPA's polytope
-//! EPA ([`super::epa`]) gives a closed triangulated surface `K` whose
+//! EPA ([`crate::query::proximity::epa`]) gives a closed triangulated surface `K` whose
 //! vertices are (float-rounded) points of `D'` and, checked exactly, every
 //! face of which has the origin strictly on its inner side. Then every ray
 //! from the origin crosses some face (the faces' central projections are
@@ -83,15 +83,19 @@
 //! separating axis theorem one of them separates) are tried instead
 //! (`gjk::separating_feature_axis`), before the exhaustive evaluation.
 
-use super::candidates::{FacetSet, DIRECTION_ERROR, OVERLAY_MISMATCH};
-use super::epa::Epa;
-use super::frame::Posed;
-use super::gjk::{CertScratch, Gjk};
-use super::support::{dot_error, near_max, Marks, NearMax};
-use super::ConvexPair;
+pub(in crate::query) mod candidates;
+
 use crate::gauss::edges_cross;
 use crate::kernel::exact::mul_pow2_vec;
 use crate::kernel::rotation::Pose;
+use crate::query::frame::Posed;
+use crate::query::pair::ConvexPair;
+use crate::query::proximity::certificate::candidates::{
+    FacetSet, DIRECTION_ERROR, OVERLAY_MISMATCH,
+};
+use crate::query::proximity::epa::Epa;
+use crate::query::proximity::gjk::{CertScratch, Gjk};
+use crate::query::proximity::support::{dot_error, near_max, Marks, NearMax};
 use glam::DVec3;
 
 /// Spherical caps holding a body's Gaussian cells (one per vertex) and arcs
@@ -185,7 +189,7 @@ const MIN_CAP_COS: f64 = 0.5;
 
 /// Buffers of the local searches (kept from query to query).
 #[derive(Clone, Debug, Default)]
-pub(super) struct LocalScratch {
+pub(in crate::query) struct LocalScratch {
     pub epa: Epa,
     pub facets: FacetSet,
     in_a: Marks,
@@ -202,7 +206,7 @@ pub(super) struct LocalScratch {
 }
 
 /// `E` of fact 1 plus `err_K`, in frame units.
-pub(super) fn value_slack(posed: &Posed) -> f64 {
+pub(in crate::query) fn value_slack(posed: &Posed) -> f64 {
     let delta = DIRECTION_ERROR + OVERLAY_MISMATCH;
     2.0 * delta * (posed.rho_a + posed.rho_b)
         + 2.0 * (posed.eta_a + posed.eta_b)
@@ -213,7 +217,7 @@ pub(super) fn value_slack(posed: &Posed) -> f64 {
 /// Grows EPA's polytope from GJK's enclosing tetrahedron (towards `hint`
 /// first, a tracker's last contact normal) and checks it exactly; `false`
 /// when there is none to use.
-pub(super) fn grow_polytope(
+pub(in crate::query) fn grow_polytope(
     pair: &ConvexPair,
     posed: &Posed,
     g: &Gjk,
@@ -226,7 +230,7 @@ pub(super) fn grow_polytope(
         // No enclosing tetrahedron (the origin on a face or an edge of
         // GJK's simplex): start from the hull of the simplex and the
         // support points along the axes.
-        let mut pts = [super::gjk::Point::default(); 10];
+        let mut pts = [crate::query::proximity::gjk::Point::default(); 10];
         pts[..g.simplex.len].copy_from_slice(&g.simplex.pts[..g.simplex.len]);
         let mut k = g.simplex.len;
         for d in [
@@ -237,10 +241,12 @@ pub(super) fn grow_polytope(
             DVec3::Z,
             DVec3::NEG_Z,
         ] {
-            let (a, _) = super::support::climb(&pair.a, |v| posed.a(v), d, g.warm.0);
-            let (b, _) = super::support::climb(&pair.b, |w| posed.b(w), -d, g.warm.1);
+            let (a, _) =
+                crate::query::proximity::support::climb(&pair.a, |v| posed.a(v), d, g.warm.0);
+            let (b, _) =
+                crate::query::proximity::support::climb(&pair.b, |w| posed.b(w), -d, g.warm.1);
             if !pts[..k].iter().any(|p| p.a == a && p.b == b) {
-                pts[k] = super::gjk::Point {
+                pts[k] = crate::query::proximity::gjk::Point {
                     w: posed.a(a) - posed.b(b),
                     a,
                     b,
@@ -255,13 +261,13 @@ pub(super) fn grow_polytope(
 
 /// The least offset of a face of EPA's polytope (a lower bound on the
 /// depth, up to rounding).
-pub(super) fn polytope_depth(ls: &LocalScratch) -> f64 {
+pub(in crate::query) fn polytope_depth(ls: &LocalScratch) -> f64 {
     ls.epa.nearest().map_or(f64::INFINITY, |f| ls.epa.tris[f].d)
 }
 
 /// The facets of every cap for the support bound `c` (module docs), into
 /// `ls.facets`; `false` when a cap is too wide or there are too many.
-pub(super) fn penetration_facets(
+pub(in crate::query) fn penetration_facets(
     pair: &ConvexPair,
     posed: &Posed,
     c: f64,
@@ -357,7 +363,7 @@ pub(super) fn penetration_facets(
 /// `floor` on `min_{D'} n · x` they give: the separation's certificate
 /// (`floor > 0`) and the slab of its facet search in one search per body.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Slab {
+pub(in crate::query) struct SeparatingSlab {
     /// The unit direction (from the origin towards `D'`).
     n: DVec3,
     /// `min_{D'} n · x ≥ floor`.
@@ -368,15 +374,15 @@ pub(super) struct Slab {
     nb: NearMax,
 }
 
-/// The [`Slab`] of width `tau` along the unit direction `n`.
-pub(super) fn slab(
+/// The [`SeparatingSlab`] of width `tau` along the unit direction `n`.
+pub(in crate::query) fn slab(
     pair: &ConvexPair,
     posed: &Posed,
     n: DVec3,
     tau: f64,
     warm: (u32, u32),
     cs: &mut CertScratch,
-) -> Slab {
+) -> SeparatingSlab {
     let na = near_max(
         &pair.a,
         |v| posed.a(v),
@@ -399,7 +405,7 @@ pub(super) fn slab(
         &mut cs.marks_b,
         &mut cs.set_b,
     );
-    Slab {
+    SeparatingSlab {
         n,
         floor: -(na.upper + nb.upper),
         covered: na.tau.min(nb.tau),
@@ -411,10 +417,10 @@ pub(super) fn slab(
 /// The facets of the slab `s` whose features come within the lateral reach
 /// of each other (module docs), for a separation of measured distance at
 /// most `best`, into `ls.facets`.
-pub(super) fn separation_facets(
+pub(in crate::query) fn separation_facets(
     pair: &ConvexPair,
     posed: &Posed,
-    s: &Slab,
+    s: &SeparatingSlab,
     best: f64,
     cs: &mut CertScratch,
     ls: &mut LocalScratch,
@@ -517,7 +523,7 @@ impl Lateral {
     fn new(
         pair: &ConvexPair,
         posed: &Posed,
-        s: &Slab,
+        s: &SeparatingSlab,
         best: f64,
         cs: &CertScratch,
         ls: &mut LocalScratch,
@@ -528,7 +534,7 @@ impl Lateral {
         // Caps over-approximated: A's minimum is at most its float value
         // plus the dot product's error, B's maximum at least its float value
         // less it; the slab's width on top.
-        let err = super::support::dot_error(n, posed.scale);
+        let err = crate::query::proximity::support::dot_error(n, posed.scale);
         let level_a = -s.na.value + err + s.covered + margin;
         let level_b = s.nb.value - err - s.covered - margin;
         let far = best + err_p;
@@ -648,7 +654,7 @@ impl Lateral {
 /// then no other facet has a point in the lens (facets of a convex
 /// polytope meet only along their boundaries), so `F` alone decides the
 /// separation. Puts `F` into `facets` and returns `true`; else `false`.
-pub(super) fn single_facet(
+pub(in crate::query) fn single_facet(
     pair: &ConvexPair,
     posed: &Posed,
     g: &Gjk,
@@ -776,7 +782,7 @@ pub(super) fn single_facet(
 
 /// The slab width that covers every facet which could measure at most
 /// `best` (module docs).
-pub(super) fn slab_width(posed: &Posed, best: f64, floor: f64) -> f64 {
+pub(in crate::query) fn slab_width(posed: &Posed, best: f64, floor: f64) -> f64 {
     (best - floor).max(0.0) * (1.0 + 4.0 * f64::EPSILON)
         + 4.0 * (posed.eta_a + posed.eta_b)
         + 32.0 * f64::EPSILON * posed.scale

@@ -8,7 +8,7 @@ use glam::DVec3;
 
 /// Closest point to `q` of the convex polygon `verts` (counter-clockwise
 /// about `normal`).
-pub(super) fn closest_on_polygon(verts: &[DVec3], normal: DVec3, q: DVec3) -> DVec3 {
+pub(in crate::query) fn closest_on_polygon(verts: &[DVec3], normal: DVec3, q: DVec3) -> DVec3 {
     let v0 = verts[0];
     let x = q - normal * normal.dot(q - v0) / normal.length_squared();
     let k = verts.len();
@@ -33,7 +33,7 @@ pub(super) fn closest_on_polygon(verts: &[DVec3], normal: DVec3, q: DVec3) -> DV
 }
 
 /// Closest point to `q` of the segment `p r`.
-pub(super) fn closest_on_segment(p: DVec3, r: DVec3, q: DVec3) -> DVec3 {
+pub(in crate::query) fn closest_on_segment(p: DVec3, r: DVec3, q: DVec3) -> DVec3 {
     let d = r - p;
     let l2 = d.length_squared();
     if l2 == 0.0 {
@@ -45,7 +45,12 @@ pub(super) fn closest_on_segment(p: DVec3, r: DVec3, q: DVec3) -> DVec3 {
 
 /// Closest points of the segments `p1 q1` and `p2 q2` (Ericson, *Real-Time
 /// Collision Detection*, §5.1.9).
-pub(super) fn segment_segment(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (DVec3, DVec3) {
+pub(in crate::query) fn segment_segment(
+    p1: DVec3,
+    q1: DVec3,
+    p2: DVec3,
+    q2: DVec3,
+) -> (DVec3, DVec3) {
     let d1 = q1 - p1;
     let d2 = q2 - p2;
     let r = p1 - p2;
@@ -90,7 +95,7 @@ pub(super) fn segment_segment(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (DV
 /// Closest points of the *lines* through `p1 q1` and `p2 q2`, with the
 /// parameters clamped to the segments (for the witness points of an
 /// edge–edge contact, whose facet contains the projection).
-pub(super) fn line_line(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (DVec3, DVec3) {
+pub(in crate::query) fn line_line(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (DVec3, DVec3) {
     let d1 = q1 - p1;
     let d2 = q2 - p2;
     let r = p1 - p2;

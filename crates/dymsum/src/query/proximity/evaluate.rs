@@ -1,5 +1,9 @@
-//! Penetration depth from the candidates of `D = A ⊕ (−B)`
-//! ([`super::candidates`]), and the dispatch to the distance
+//! The steps of one query in order ([`evaluate`]): GJK's exact yes/no, then
+//! the certified facets near the answer (penetration: [`super::depth`];
+//! separation: the slab of [`super::certificate`]), else the exhaustive
+//! facet set; and the answer from any facet set ([`evaluate_in_frame`]):
+//! the penetration depth as the least support value over the candidates of
+//! `D = A ⊕ (−B)` ([`super::certificate::candidates`]), or the distance
 //! ([`super::distance`]) when the origin lies outside `D`.
 //!
 //! The minimum over all candidates' support values is the distance from the
@@ -8,28 +12,36 @@
 //! come from the winning facet's features ([`super::closest`] for an
 //! edge–edge pair). Everything is computed in one power-of-two frame of the
 //! posed vertices (see [`evaluate`]).
-use super::candidates::{candidates, refine, winner, Candidate, FacetSet};
-use super::certify::{
-    grow_polytope, penetration_facets, polytope_depth, separation_facets, single_facet, slab,
-    slab_width, value_slack, LocalScratch,
+use crate::kernel::rotation::Pose;
+use crate::query::answer::Contact;
+use crate::query::answer::FeaturePair;
+use crate::query::answer::Proximity;
+use crate::query::answer::Separation;
+use crate::query::error::QueryError;
+use crate::query::frame::Posed;
+use crate::query::pair::ConvexPair;
+use crate::query::pair::Reflected;
+use crate::query::proximity::certificate::candidates::{
+    candidates, refine, winner, Candidate, FacetSet,
 };
-use super::closest::line_line;
-use super::frame::Posed;
-use super::gjk::{
+use crate::query::proximity::certificate::{
+    separation_facets, single_facet, slab, slab_width, LocalScratch,
+};
+use crate::query::proximity::closest::line_line;
+use crate::query::proximity::depth::penetration;
+use crate::query::proximity::distance::separation;
+use crate::query::proximity::gjk::{
     certify, encloses_origin, gjk, origin_in_difference_hull, separated_on_sets,
     separating_feature_axis, CertScratch, Gjk, Simplex,
 };
-use super::separation::separation;
-use super::{Contact, ConvexPair, FeaturePair, Proximity, QueryError, Reflected, Separation};
-use crate::kernel::rotation::Pose;
 use crate::sum::{minkowski_sum_posed, Method};
 use glam::DVec3;
 
 /// Where the facets of `A ⊕ (−B)` that a query evaluates come from.
 #[derive(Clone, Copy, Debug)]
-pub(super) enum Facets<'a> {
+pub(in crate::query) enum Facets<'a> {
     /// Those near the answer, found by the certificates of
-    /// [`super::certify`]; all of them, from a static `walk` sum, when a
+    /// [`crate::query::proximity::certificate`]; all of them, from a static `walk` sum, when a
     /// certificate cannot be made.
     Certified,
     /// All of them, from a static `walk` sum (the exhaustive reference).
@@ -42,12 +54,12 @@ pub(super) enum Facets<'a> {
 /// Depth or distance of A and B at their poses.
 ///
 /// The yes/no answer is decided exactly on the rounded posed bodies by GJK
-/// and its certificates ([`super::gjk`], the exhaustive exact method when
+/// and its certificates ([`crate::query::proximity::gjk`], the exhaustive exact method when
 /// they cannot decide); the depth or distance, direction, witness points
 /// and features come from the candidates of the facets `facets`.
 ///
 /// Scale: every construction is made in the query's power-of-two frame
-/// ([`super::frame`]) and lengths and points are scaled back by `2^-k`.
+/// ([`crate::query::frame`]) and lengths and points are scaled back by `2^-k`.
 /// Scaling is exact, so the same pair at poses scaled by `2^j` gives
 /// bit-identical frame coordinates and answers scaled by exactly `2^j`;
 /// nothing overflows or underflows at any scale (squared lengths of
@@ -57,7 +69,7 @@ pub(super) enum Facets<'a> {
 /// # Errors
 /// [`QueryError::OutOfRange`] as above; [`QueryError::Sum`] when the
 /// exhaustive sum fails (an internal error).
-pub(super) fn evaluate(
+pub(in crate::query) fn evaluate(
     pair: &ConvexPair,
     pose_a: Pose,
     pose_b: Pose,
@@ -69,7 +81,7 @@ pub(super) fn evaluate(
         Facets::Overlay(f) => (decide(pair, scratch, false), f),
         Facets::Certified => {
             let known = match certified(pair, scratch) {
-                Ok(answer) => {
+                Answer(answer) => {
                     #[cfg(any(test, feature = "check-reference"))]
                     {
                         let mut fresh = Scratch::default();
@@ -83,7 +95,7 @@ pub(super) fn evaluate(
                     }
                     return to_world(&scratch.posed, answer);
                 }
-                Err(known) => known,
+                Uncertified { overlapping } => overlapping,
             };
             pair.stats.count_exhaustive_answer();
             let intersecting = known.unwrap_or_else(|| decide_exhaustively(pair, scratch));
@@ -125,10 +137,25 @@ fn exhaustive_facets(
     Ok(())
 }
 
+/// What the certified path found: the answer, or that a certificate could
+/// not be made (and, when GJK's exact certificate decided it, whether the
+/// bodies overlap), so the exhaustive method must answer.
+pub(in crate::query) enum Certified {
+    /// The certified answer (frame units).
+    Answer(Proximity),
+    /// No certificate for the answer; the yes/no answer when known.
+    Uncertified {
+        /// `Some(true)` overlapping, `Some(false)` apart, `None` unknown.
+        overlapping: Option<bool>,
+    },
+}
+
+use Certified::{Answer, Uncertified};
+
 /// The certified answer (frame units): GJK's exact yes/no, then the facets
-/// near the answer by the certificates of [`super::certify`]. `Err` when a
-/// certificate cannot be made, with the yes/no answer when it is known.
-fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Option<bool>> {
+/// near the answer by the certificates of
+/// [`crate::query::proximity::certificate`].
+fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Certified {
     let warm = scratch.warm.clamp(pair);
     let g = gjk(
         pair,
@@ -141,11 +168,16 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Opti
     scratch.remember(&g);
     let posed = &scratch.posed;
     if encloses_origin(posed, &g) {
-        return penetration(pair, scratch, &g).ok_or(Some(true));
+        return match penetration(pair, scratch, &g) {
+            Some(answer) => Answer(answer),
+            None => Uncertified {
+                overlapping: Some(true),
+            },
+        };
     }
     let len = g.v.length();
     if !(len > 0.0 && len.is_finite()) {
-        return Err(None);
+        return Uncertified { overlapping: None };
     }
     let mut n = g.v / len;
     // One search per body serves the certificate and the slab: its width
@@ -159,10 +191,15 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Opti
         // normal or edge cross product of the simplex's features is exact
         // to rounding, and any separating unit axis bounds the distance
         // from below, so the slab along it serves the same argument.
-        n = separating_feature_axis(pair, posed, &g, &mut scratch.cert).ok_or(None)?;
+        let Some(axis) = separating_feature_axis(pair, posed, &g, &mut scratch.cert) else {
+            return Uncertified { overlapping: None };
+        };
+        n = axis;
         s = slab(pair, posed, n, width, g.warm, &mut scratch.cert);
         if !(s.floor > 0.0 || separated_on_sets(posed, n, &scratch.cert)) {
-            return Err(Some(false));
+            return Uncertified {
+                overlapping: Some(false),
+            };
         }
         along_v = false;
     }
@@ -179,7 +216,7 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Opti
         );
         if let Proximity::Separated(sep) = answer {
             if !measured.is_nan() && sep.distance <= len {
-                return Ok(answer);
+                return Answer(answer);
             }
         }
     }
@@ -202,64 +239,34 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Result<Proximity, Opti
             (&mut scratch.poly, &mut scratch.bounds),
         );
         let Proximity::Separated(sep) = answer else {
-            return Err(Some(false));
+            return Uncertified {
+                overlapping: Some(false),
+            };
         };
         if measured.is_nan() {
-            return Err(Some(false)); // no facet measured
+            return Uncertified {
+                overlapping: Some(false),
+            }; // no facet measured
         }
         // The slab and the lateral reach assumed `best`: they hold if the
         // answer measures at most that.
         let need = slab_width(posed, sep.distance, s.floor);
         if need <= s.covered && sep.distance <= best {
-            return Ok(answer);
+            return Answer(answer);
         }
         best = best.max(sep.distance) * (1.0 + 1e-9);
         let width = slab_width(posed, best, s.floor);
         s = slab(pair, posed, n, width, g.warm, &mut scratch.cert);
     }
-    Err(Some(false))
-}
-
-/// The certified penetration (frame units) from GJK's enclosing
-/// tetrahedron: EPA's polytope, its caps, and the check of the bound the
-/// caps assumed; `None` when a certificate cannot be made.
-fn penetration(pair: &ConvexPair, scratch: &mut Scratch, g: &Gjk) -> Option<Proximity> {
-    let posed = &scratch.posed;
-    let (tol, slack) = (posed.tol, value_slack(posed));
-    let local = &mut scratch.local;
-    if !grow_polytope(pair, posed, g, scratch.normal, local) {
-        return None;
+    Uncertified {
+        overlapping: Some(false),
     }
-    let mut c = polytope_depth(local) + 4.0 * (tol + slack);
-    for _ in 0..2 {
-        if !penetration_facets(pair, posed, c, &mut scratch.cert, local) || local.facets.is_empty()
-        {
-            return None;
-        }
-        let (answer, hmin) = evaluate_in_frame(
-            pair,
-            posed,
-            &local.facets,
-            true,
-            &mut scratch.cands,
-            (&mut scratch.poly, &mut scratch.bounds),
-        );
-        let need = hmin + tol + slack;
-        if need <= c {
-            if let Proximity::Penetrating(contact) = &answer {
-                scratch.normal = Some(contact.normal);
-            }
-            return Some(answer);
-        }
-        c = need * (1.0 + 1e-12);
-    }
-    None
 }
 
 /// The exact yes/no answer at the scratch's poses: GJK from the last
 /// query's support vertices, its certificate, else the exhaustive exact
 /// method (counted).
-pub(super) fn decide(pair: &ConvexPair, scratch: &mut Scratch, yes_no: bool) -> bool {
+pub(in crate::query) fn decide(pair: &ConvexPair, scratch: &mut Scratch, yes_no: bool) -> bool {
     let warm = scratch.warm.clamp(pair);
     let g = gjk(
         pair,
@@ -286,7 +293,10 @@ fn decide_exhaustively(pair: &ConvexPair, scratch: &Scratch) -> bool {
 ///
 /// # Errors
 /// [`QueryError::OutOfRange`] when it overflows.
-pub(super) fn to_world(posed: &Posed, answer: Proximity) -> Result<Proximity, QueryError> {
+pub(in crate::query) fn to_world(
+    posed: &Posed,
+    answer: Proximity,
+) -> Result<Proximity, QueryError> {
     let out = match answer {
         Proximity::Penetrating(c) => Proximity::Penetrating(Contact {
             depth: posed.back(c.depth),
@@ -317,32 +327,32 @@ pub(super) fn to_world(posed: &Posed, answer: Proximity) -> Result<Proximity, Qu
     Ok(out)
 }
 
-/// The buffers of one evaluation, kept by a [`super::ContactTracker`] from
+/// The buffers of one evaluation, kept by a [`crate::query::tracker::ContactTracker`] from
 /// frame to frame so that a frame allocates nothing once they are large
 /// enough.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scratch {
-    pub(super) posed: Posed,
+    pub(in crate::query) posed: Posed,
     /// The last support vertices (GJK's warm start).
     warm: Warm,
     /// The last GJK direction.
-    dir: DVec3,
+    pub(in crate::query) dir: DVec3,
     /// The last GJK run.
-    pub(super) gjk: Option<Gjk>,
+    pub(in crate::query) gjk: Option<Gjk>,
     /// Its final simplex (the next query's start).
-    simplex: Simplex,
+    pub(in crate::query) simplex: Simplex,
     /// The last penetration's contact normal (EPA's first direction).
-    normal: Option<DVec3>,
-    pub(super) cert: CertScratch,
+    pub(in crate::query) normal: Option<DVec3>,
+    pub(in crate::query) cert: CertScratch,
     /// Every facet (the exhaustive evaluation).
-    all: FacetSet,
+    pub(in crate::query) all: FacetSet,
     /// The certificates' local searches.
-    local: LocalScratch,
-    cands: Vec<Candidate>,
+    pub(in crate::query) local: LocalScratch,
+    pub(in crate::query) cands: Vec<Candidate>,
     /// A face's posed corners (the separation).
-    poly: Vec<DVec3>,
+    pub(in crate::query) poly: Vec<DVec3>,
     /// The facing facets' distance bounds (the separation).
-    bounds: Vec<f64>,
+    pub(in crate::query) bounds: Vec<f64>,
 }
 
 impl Scratch {
@@ -357,7 +367,7 @@ impl Scratch {
     }
 
     /// Forgets the warm start (the buffers stay).
-    pub(super) fn cold(&mut self) {
+    pub(in crate::query) fn cold(&mut self) {
         self.warm = Warm::default();
         self.dir = DVec3::ZERO;
         self.gjk = None;
@@ -385,7 +395,7 @@ impl Warm {
 /// [`evaluate`] on frame coordinates, given the exact yes/no answer; with
 /// the least refined candidate value (penetration) or NaN when a separation
 /// measured no facet (else `0`).
-pub(super) fn evaluate_in_frame(
+pub(in crate::query) fn evaluate_in_frame(
     pair: &ConvexPair,
     posed: &Posed,
     facets: &FacetSet,
@@ -402,9 +412,11 @@ pub(super) fn evaluate_in_frame(
         // The pruning (ee-candidates left out, separation by branch and
         // bound) must not change the answer: every candidate, refined.
         let mut all = Vec::new();
-        super::candidates::candidates_unpruned(pair, posed, facets, &mut all);
+        crate::query::proximity::certificate::candidates::candidates_unpruned(
+            pair, posed, facets, &mut all,
+        );
         all.iter_mut().for_each(|c| {
-            c.h = super::candidates::climb(pair, posed, c);
+            c.h = crate::query::proximity::certificate::candidates::climb(pair, posed, c);
             c.refined = true;
         });
         let reference = answer_from(pair, posed, tol, intersecting, &all, (poly, bounds));

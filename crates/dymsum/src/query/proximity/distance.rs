@@ -22,12 +22,14 @@
 //! Complexity: O(facets) for the bounds, plus one feature distance per
 //! facet near the answer.
 
-use super::candidates::{climb, Candidate};
-use super::closest::{closest_on_polygon, segment_segment};
-use super::frame::{up, Posed};
-use super::{ConvexPair, FeaturePair, Separation};
 use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
 use crate::polytope::Polytope;
+use crate::query::answer::FeaturePair;
+use crate::query::answer::Separation;
+use crate::query::frame::{up, Posed};
+use crate::query::pair::ConvexPair;
+use crate::query::proximity::certificate::candidates::{climb, Candidate};
+use crate::query::proximity::closest::{closest_on_polygon, segment_segment};
 use glam::DVec3;
 
 /// For each face of a body, the largest distance from the mean of its
@@ -36,7 +38,7 @@ use glam::DVec3;
 /// (coordinates times `2^exp`, the largest magnitude in `[1, 2)`), so
 /// nothing underflows or overflows at any scale, and rounded up.
 #[derive(Clone, Debug, Default)]
-pub(super) struct FeatureBalls {
+pub(in crate::query) struct FeatureBalls {
     exp: i32,
     /// Each face's corners' mean (body frame).
     face_centre: Vec<DVec3>,
@@ -46,7 +48,7 @@ pub(super) struct FeatureBalls {
 
 impl FeatureBalls {
     /// The balls of `p`'s faces and edges.
-    pub(super) fn of(p: &Polytope) -> FeatureBalls {
+    pub(in crate::query) fn of(p: &Polytope) -> FeatureBalls {
         let exp = frame_exponent(p.vertices().iter().flat_map(|v| v.to_array()));
         let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
         let (face_centre, face_radius) = (0..p.face_count())
@@ -83,19 +85,19 @@ impl FeatureBalls {
     /// The radius of face `f`'s ball (about its corners' mean) in the
     /// query's frame.
     #[inline]
-    pub(super) fn face(&self, f: u32, k: i32) -> f64 {
+    pub(in crate::query) fn face(&self, f: u32, k: i32) -> f64 {
         self.in_frame(self.face_radius[f as usize], k)
     }
 
     /// The centre of face `f`'s ball (body frame).
     #[inline]
-    pub(super) fn face_centre(&self, f: u32) -> DVec3 {
+    pub(in crate::query) fn face_centre(&self, f: u32) -> DVec3 {
         self.face_centre[f as usize]
     }
 
     /// Half the length of edge `e` in the query's frame.
     #[inline]
-    pub(super) fn edge(&self, e: u32, k: i32) -> f64 {
+    pub(in crate::query) fn edge(&self, e: u32, k: i32) -> f64 {
         self.in_frame(self.half_edge[e as usize], k)
     }
 }
@@ -204,7 +206,7 @@ fn feature_points(
 /// `fallback`'s value with zero witness points). `poly` is a reused buffer
 /// for a face's posed corners, `bounds` one for the facets' distance
 /// bounds.
-pub(super) fn separation(
+pub(in crate::query) fn separation(
     pair: &ConvexPair,
     posed: &Posed,
     cands: &[Candidate],

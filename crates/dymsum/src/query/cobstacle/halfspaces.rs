@@ -50,12 +50,13 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::frame::{up, BodyBounds};
-use super::support::{dot_error, near_max_upper, Marks};
-use super::{CObstacle, QueryError};
 use crate::dynamic::DynamicSum;
 use crate::kernel::rotation::Rotation;
 use crate::polytope::Polytope;
+use crate::query::cobstacle::slices::CObstacle;
+use crate::query::error::QueryError;
+use crate::query::frame::{up, BodyBounds};
+use crate::query::proximity::support::{dot_error, near_max_upper, Marks};
 use crate::sum::merge::coplanar_groups;
 use crate::sum::{Operands, Overlay};
 use glam::DVec3;
@@ -150,13 +151,13 @@ fn bits(v: DVec3) -> [u64; 3] {
 
 /// The largest `|v|` of each body, computed once per pair.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Reaches {
+pub(in crate::query) struct Reaches {
     p: f64,
     q: f64,
 }
 
 impl Reaches {
-    pub(super) fn of(p: &Polytope, q: &Polytope) -> Reaches {
+    pub(in crate::query) fn of(p: &Polytope, q: &Polytope) -> Reaches {
         Reaches {
             p: BodyBounds::of(p).reach,
             q: BodyBounds::of(q).reach,
@@ -395,13 +396,13 @@ mod tests {
     //! carried over between slices) against the read-out it replaced, kept
     //! here as the reference: the same planes, bit for bit.
     use super::*;
-    use crate::query::support::near_max;
+    use crate::query::proximity::support::near_max;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
     /// The per-slice read-out before the fast path (every plane's two
     /// searches done in full by `near_max`, nothing carried over).
-    pub(super) fn reference_halfspaces(
+    pub(in crate::query) fn reference_halfspaces(
         sum: &DynamicSum,
         reach: Reaches,
         scratch: &mut Scratch,

@@ -10,7 +10,7 @@
 //! double-double from the exact edge vectors and exactly when that is not
 //! enough ([`ee_direction`]). Every direction is therefore within a few
 //! ulps of the facet's place on the overlay, however nearly parallel the
-//! edges: the certificates of [`super::certify`] rely on it.
+//! edges: the certificates of [`crate::query::proximity::certificate`] rely on it.
 //!
 //! Branch and bound: the value at the facet's own features, `h₀ ≤ h`, costs
 //! two dot products. Only candidates with `h₀` within the tie tolerance of
@@ -26,16 +26,17 @@
 //! Complexity: O(facets) for the lower bounds, plus a hill climb per refined
 //! candidate.
 
-use super::frame::Posed;
-use super::{ConvexPair, FeaturePair};
 use crate::gauss::GaussView;
 use crate::polytope::Polytope;
+use crate::query::answer::FeaturePair;
+use crate::query::frame::Posed;
+use crate::query::pair::ConvexPair;
 use crate::sum::Overlay;
 use glam::DVec3;
 
 /// One candidate direction.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Candidate {
+pub(in crate::query) struct Candidate {
     pub features: FeaturePair,
     /// Unit direction, from A towards B.
     pub n: DVec3,
@@ -48,7 +49,7 @@ pub(super) struct Candidate {
 /// `max dir · v` over the posed vertices of `poly`, by a hill climb from the
 /// best of `starts` (first one wins ties), moving to the first strictly
 /// better neighbour until none is better.
-pub(super) fn support(
+pub(in crate::query) fn support(
     poly: &Polytope,
     posed: impl Fn(u32) -> DVec3,
     dir: DVec3,
@@ -83,7 +84,7 @@ pub(super) fn support(
 /// found by a hill climb from the candidate's own features (so the value
 /// is at least the lower bound `h₀`, exactly: the climbs start at the
 /// features `h₀` is taken at and only move up).
-pub(super) fn climb(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
+pub(in crate::query) fn climb(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
     let (a, b) = (&pair.a, &pair.b);
     let (pa, pb) = (|v| posed.a(v), |w| posed.b(w));
     let (ha, hb) = match c.features {
@@ -107,8 +108,13 @@ pub(super) fn climb(pair: &ConvexPair, posed: &Posed, c: &Candidate) -> f64 {
 /// matter to the depth (within the tie tolerance of the best value) and
 /// keeps those candidates, in order, together with the unrefined ones that
 /// may face the origin (`h₀ ≤ tol`), which the separation refines only
-/// when their distance bound can win ([`super::separation::separation`]).
-pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate>, tol: f64) {
+/// when their distance bound can win ([`crate::query::proximity::distance::separation`]).
+pub(in crate::query) fn refine(
+    pair: &ConvexPair,
+    posed: &Posed,
+    cands: &mut Vec<Candidate>,
+    tol: f64,
+) {
     let Some(first) = (0..cands.len()).min_by(|&i, &j| cands[i].h.total_cmp(&cands[j].h)) else {
         return;
     };
@@ -126,18 +132,18 @@ pub(super) fn refine(pair: &ConvexPair, posed: &Posed, cands: &mut Vec<Candidate
     }
     // A candidate left unrefined with `h₀ ≤ tol` may face the origin; the
     // separation refines it if its distance bound can win
-    // ([`super::separation::separation`]). The others cannot matter.
+    // ([`crate::query::proximity::distance::separation`]). The others cannot matter.
     cands.retain(|c| c.refined || c.h <= tol);
 }
 
 /// The facets of `A ⊕ (−B)` whose candidates a query evaluates: the whole
 /// overlay (the exhaustive reference, or a tracker's dynamic sum), or the
-/// facets a certificate found near the answer ([`super::certify`]).
+/// facets a certificate found near the answer ([`crate::query::proximity::certificate`]).
 /// Indices as in [`Overlay`]: `fv` pairs a face of A with a vertex of `−B`,
 /// `vf` a face of `−B` with a vertex of A, `ee` an edge of A with an edge
 /// of `−B`.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub(super) struct FacetSet {
+pub(in crate::query) struct FacetSet {
     /// `(face of A, vertex of −B)`.
     pub fv: Vec<(u32, u32)>,
     /// `(face of −B, vertex of A)`.
@@ -148,14 +154,14 @@ pub(super) struct FacetSet {
 
 impl FacetSet {
     /// Empties the set, keeping its buffers.
-    pub(super) fn clear(&mut self) {
+    pub(in crate::query) fn clear(&mut self) {
         self.fv.clear();
         self.vf.clear();
         self.ee.clear();
     }
 
     /// Every facet of an overlay.
-    pub(super) fn fill_from(&mut self, overlay: &Overlay) {
+    pub(in crate::query) fn fill_from(&mut self, overlay: &Overlay) {
         self.clear();
         self.fv
             .extend(overlay.fv.iter().enumerate().map(|(f, &w)| (f as u32, w)));
@@ -165,12 +171,12 @@ impl FacetSet {
     }
 
     /// Whether the set holds no facet.
-    pub(super) fn is_empty(&self) -> bool {
+    pub(in crate::query) fn is_empty(&self) -> bool {
         self.fv.is_empty() && self.vf.is_empty() && self.ee.is_empty()
     }
 
     /// Sorts each list and removes repeats (a facet found by two searches).
-    pub(super) fn dedup(&mut self) {
+    pub(in crate::query) fn dedup(&mut self) {
         for l in [&mut self.fv, &mut self.vf, &mut self.ee] {
             l.sort_unstable();
             l.dedup();
@@ -186,7 +192,7 @@ impl FacetSet {
 /// refined first, and an ee-candidate whose value `h₀` is certainly above
 /// the refine bound (by a full tolerance, so that rounding cannot matter)
 /// is left out: it would be dropped by [`refine`] anyway.
-pub(super) fn candidates(
+pub(in crate::query) fn candidates(
     pair: &ConvexPair,
     posed: &Posed,
     facets: &FacetSet,
@@ -211,7 +217,7 @@ pub(super) fn candidates(
 
 /// [`candidates`] without leaving any out, for the tests' reference.
 #[cfg(test)]
-pub(super) fn candidates_unpruned(
+pub(in crate::query) fn candidates_unpruned(
     pair: &ConvexPair,
     posed: &Posed,
     facets: &FacetSet,
@@ -248,7 +254,12 @@ fn lower_bound(posed: &Posed, n: DVec3, a_vertex: u32, b_vertex: u32) -> f64 {
 
 /// The candidate of the fv-facet of face `f` of A and vertex `w` of `−B`.
 #[inline]
-pub(super) fn fv_candidate(pair: &ConvexPair, posed: &Posed, f: u32, w: u32) -> Candidate {
+pub(in crate::query) fn fv_candidate(
+    pair: &ConvexPair,
+    posed: &Posed,
+    f: u32,
+    w: u32,
+) -> Candidate {
     let w = pair.neg_b().vertex_map[w as usize];
     let n = posed.na(f);
     Candidate {
@@ -264,7 +275,12 @@ pub(super) fn fv_candidate(pair: &ConvexPair, posed: &Posed, f: u32, w: u32) -> 
 
 /// The candidate of the vf-facet of vertex `u` of A and face `g` of `−B`.
 #[inline]
-pub(super) fn vf_candidate(pair: &ConvexPair, posed: &Posed, g: u32, u: u32) -> Candidate {
+pub(in crate::query) fn vf_candidate(
+    pair: &ConvexPair,
+    posed: &Posed,
+    g: u32,
+    u: u32,
+) -> Candidate {
     let g = pair.neg_b().face_map[g as usize];
     let n = -posed.nb(g);
     Candidate {
@@ -283,14 +299,14 @@ pub(super) fn vf_candidate(pair: &ConvexPair, posed: &Posed, g: u32, u: u32) -> 
 /// every candidate: fv- and vf-directions are rotated unit normals (a few
 /// ulps, plus [`OVERLAY_MISMATCH`]); ee-directions are chosen below to be
 /// within this bound.
-pub(super) const DIRECTION_ERROR: f64 = 1.0 / (1u64 << 39) as f64;
+pub(in crate::query) const DIRECTION_ERROR: f64 = 1.0 / (1u64 << 39) as f64;
 
 /// A bound on how far the overlay's Gaussian maps (A's normals turned by
 /// the snapped matrix of the relative rotation `R_b⁻¹ R_a`, then by B's
 /// snapped matrix) lie from the Gaussian maps of the bodies posed by their
 /// own snapped matrices: each snap moves a matrix entry by less than
 /// `2^-47`, the quaternion products and matrices round by a few ulps.
-pub(super) const OVERLAY_MISMATCH: f64 = 1.0 / (1u64 << 44) as f64;
+pub(in crate::query) const OVERLAY_MISMATCH: f64 = 1.0 / (1u64 << 44) as f64;
 
 /// Pushes onto `out` the candidate of the ee-facet of edge `e` of A and
 /// edge `e2` of `−B` (whose Gaussian arcs cross); none when the arcs are
@@ -307,7 +323,7 @@ pub(super) const OVERLAY_MISMATCH: f64 = 1.0 / (1u64 << 44) as f64;
 /// vertices and [`OVERLAY_MISMATCH`], divided by the sine of the edges'
 /// angle), and is exactly negated when A and B are swapped; otherwise `X`
 /// itself is computed accurately ([`ee_direction`]).
-pub(super) fn push_ee_candidate(
+pub(in crate::query) fn push_ee_candidate(
     pair: &ConvexPair,
     posed: &Posed,
     (vp, vq): (&GaussView<'_>, &GaussView<'_>),
@@ -400,9 +416,9 @@ pub(super) fn push_ee_candidate(
 /// edges at angle `φ`), and exactly when the cross product is so small that
 /// this could matter, so the direction is within a few ulps of the exact
 /// crossing point whatever the angle between the edges: what the
-/// certificates of [`super::certify`] rely on. `None` for exactly parallel
+/// certificates of [`crate::query::proximity::certificate`] rely on. `None` for exactly parallel
 /// edges.
-pub(super) fn ee_direction(
+pub(in crate::query) fn ee_direction(
     pair: &ConvexPair,
     posed: &Posed,
     e: u32,
@@ -433,7 +449,7 @@ pub(super) fn ee_direction(
     let wa = match &posed.turn {
         None => da,
         Some(t) => {
-            let c = super::frame::cofactor_dd(&t.rot);
+            let c = crate::query::frame::cofactor_dd(&t.rot);
             let row = |r: usize| c[r][0] * da[0] + c[r][1] * da[1] + c[r][2] * da[2];
             [row(0), row(1), row(2)]
         }
@@ -483,7 +499,7 @@ fn exact_crossing(posed: &Posed, a0: DVec3, a1: DVec3, b0: DVec3, b1: DVec3) -> 
 
 /// `n` or `−n`, whichever is lexicographically larger (a key invariant under
 /// negation), and whether `n` itself is that one.
-pub(super) fn sign_free_key(n: DVec3) -> ([f64; 3], bool) {
+pub(in crate::query) fn sign_free_key(n: DVec3) -> ([f64; 3], bool) {
     let pos = if n.x != 0.0 {
         n.x > 0.0
     } else if n.y != 0.0 {
@@ -500,7 +516,7 @@ pub(super) fn sign_free_key(n: DVec3) -> ([f64; 3], bool) {
 /// one with the smallest sign-free key, then the "positive" one, then the
 /// smaller `h`, then the first features in [`FeaturePair`]'s order (so the
 /// choice depends on the set of candidates only, never on their order).
-pub(super) fn winner(cands: &[Candidate], tol: f64) -> (usize, f64) {
+pub(in crate::query) fn winner(cands: &[Candidate], tol: f64) -> (usize, f64) {
     let hmin = cands
         .iter()
         .filter(|c| c.refined)

@@ -17,7 +17,7 @@
 //! `a' − b'` are held exactly (as differences of floats):
 //! * **apart**: a direction `d` (GJK's `v`) with `min_A' d · a > max_B' d · b`.
 //!   Both extremes come from the near-extreme searches of
-//!   [`super::support::near_max`], which bound them rigorously; when the
+//!   [`crate::query::proximity::support::near_max`], which bound them rigorously; when the
 //!   float bounds cannot separate them, the exact values of the vertices in
 //!   the two near-extreme sets (which contain the rounded extremes) are
 //!   compared exactly.
@@ -31,24 +31,24 @@
 //! boundary, where float directions cannot exhibit a separation), the
 //! answer comes from the exhaustive exact method: the exact hull of all
 //! `a' − b'` and the exact side of the origin for each of its faces
-//! ([`origin_in_difference_hull`]); [`super::QueryStats`] counts how often.
+//! ([`origin_in_difference_hull`]); [`crate::query::pair::QueryStats`] counts how often.
 
-use super::frame::Posed;
-use super::support::{climb, near_max, Marks};
-use super::ConvexPair;
 use crate::hull::{convex_hull, PairwiseSums};
 use crate::kernel::exact::{self, Dyadic, ExactVec};
 use crate::kernel::Sign;
+use crate::query::frame::Posed;
+use crate::query::pair::ConvexPair;
+use crate::query::proximity::support::{climb, near_max, Marks};
 use glam::DVec3;
 
 /// The most GJK steps before it stops with what it has (never reached in
 /// the tests: on a polytope GJK ends in finitely many steps).
-pub(super) const MAX_ITERATIONS: usize = 128;
+pub(in crate::query) const MAX_ITERATIONS: usize = 128;
 
 /// A point of `D'`: `w = a − b` (frame units, rounded) for vertex `a` of A
 /// and vertex `b` of B.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(super) struct Point {
+pub(in crate::query) struct Point {
     /// `a' − b'`, rounded.
     pub w: DVec3,
     /// Vertex of A.
@@ -59,7 +59,7 @@ pub(super) struct Point {
 
 /// GJK's simplex: up to four points of `D'`.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Simplex {
+pub(in crate::query) struct Simplex {
     /// The points; the first `len` are used.
     pub pts: [Point; 4],
     /// How many.
@@ -73,7 +73,7 @@ impl Simplex {
     }
 
     /// Adds a point without vertex labels (GJK on other convex sets).
-    pub(super) fn push_point(&mut self, w: DVec3) {
+    pub(in crate::query) fn push_point(&mut self, w: DVec3) {
         self.push(Point { w, a: 0, b: 0 });
     }
 
@@ -95,7 +95,7 @@ impl Simplex {
 
 /// What GJK ended with.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Gjk {
+pub(in crate::query) struct Gjk {
     /// The final simplex.
     pub simplex: Simplex,
     /// Its point nearest the origin (frame units; zero when it encloses the
@@ -116,7 +116,7 @@ pub(super) struct Gjk {
 /// anew, are points of `D'`, and under coherent motion they enclose the
 /// origin again, or nearly). With `yes_no`, it stops at the first
 /// separating support plane.
-pub(super) fn gjk(
+pub(in crate::query) fn gjk(
     pair: &ConvexPair,
     posed: &Posed,
     warm: (u32, u32),
@@ -215,7 +215,7 @@ fn same_sign(a: f64, b: f64) -> bool {
 
 /// The sub-simplex of `s` whose hull holds the point of `hull(s)` nearest
 /// the origin, and that point (signed volumes).
-pub(super) fn closest(s: &Simplex) -> (Simplex, DVec3) {
+pub(in crate::query) fn closest(s: &Simplex) -> (Simplex, DVec3) {
     let (mask, lambda) = match s.len {
         1 => (1, [1.0, 0.0, 0.0, 0.0]),
         2 => segment([s.pts[0].w, s.pts[1].w]),
@@ -354,7 +354,7 @@ fn tetrahedron(s: [DVec3; 4]) -> (u8, [f64; 4]) {
 
 /// The buffers of the certificates.
 #[derive(Clone, Debug, Default)]
-pub(super) struct CertScratch {
+pub(in crate::query) struct CertScratch {
     pub marks_a: Marks,
     pub marks_b: Marks,
     pub set_a: Vec<u32>,
@@ -363,7 +363,7 @@ pub(super) struct CertScratch {
 
 /// The exact answer to "do A' and B' meet?" that GJK's end certifies, or
 /// `None` when neither certificate holds (module docs).
-pub(super) fn certify(
+pub(in crate::query) fn certify(
     pair: &ConvexPair,
     posed: &Posed,
     g: &Gjk,
@@ -396,7 +396,7 @@ const FEATURE_AXES: usize = 3;
 /// `ε` whatever the distance, and by the separating axis theorem one of
 /// them separates two disjoint polytopes (the one of the features nearest
 /// each other, which GJK's simplex holds).
-pub(super) fn separating_feature_axis(
+pub(in crate::query) fn separating_feature_axis(
     pair: &ConvexPair,
     posed: &Posed,
     g: &Gjk,
@@ -463,7 +463,7 @@ pub(super) fn separating_feature_axis(
 /// Exactly whether GJK's final simplex holds the origin (tested when the
 /// simplex is a tetrahedron enclosing it in floats, or when its nearest
 /// point is within rounding of the origin).
-pub(super) fn encloses_origin(posed: &Posed, g: &Gjk) -> bool {
+pub(in crate::query) fn encloses_origin(posed: &Posed, g: &Gjk) -> bool {
     let tiny = g.v.length_squared() <= (posed.scale * 2f64.powi(-30)).powi(2);
     if g.separating || g.simplex.len == 0 || !(g.enclosed || tiny) {
         return false;
@@ -477,7 +477,7 @@ pub(super) fn encloses_origin(posed: &Posed, g: &Gjk) -> bool {
 
 /// Exactly whether `min_A' d · a > max_B' d · b` (a separating direction),
 /// from the near-extreme sets of both bodies (module docs).
-pub(super) fn separated_along(
+pub(in crate::query) fn separated_along(
     pair: &ConvexPair,
     posed: &Posed,
     d: DVec3,
@@ -536,7 +536,7 @@ pub(super) fn separated_along(
 /// Exactly whether the separation along `d` holds, from near-extreme sets
 /// already in `cs` (of A in `−d`, of B in `d`; they contain the rounded
 /// extremes).
-pub(super) fn separated_on_sets(posed: &Posed, d: DVec3, cs: &CertScratch) -> bool {
+pub(in crate::query) fn separated_on_sets(posed: &Posed, d: DVec3, cs: &CertScratch) -> bool {
     let exact_max = |set: &[u32], at: &dyn Fn(u32) -> DVec3, dir: DVec3| {
         let mut best: Option<Dyadic> = None;
         for &u in set {
@@ -590,7 +590,7 @@ fn det3_of_diffs(p: [(DVec3, DVec3); 3]) -> Sign {
 
 /// Exactly whether the origin lies in the closed convex hull of the one to
 /// four exact points `a_i − b_i`.
-pub(super) fn origin_in_hull(p: &[(DVec3, DVec3)]) -> bool {
+pub(in crate::query) fn origin_in_hull(p: &[(DVec3, DVec3)]) -> bool {
     match p.len() {
         4 => {
             let s = |i: usize, j: usize, k: usize| det3_of_diffs([p[i], p[j], p[k]]);
@@ -655,7 +655,7 @@ fn without(p: &[(DVec3, DVec3)], drop: usize) -> [(DVec3, DVec3); 4] {
 /// The exhaustive exact answer: whether the origin lies in the hull of all
 /// `a' − b'` (the exact hull of the pairwise sums of A' and `−B'`, then the
 /// exact side of the origin for each face).
-pub(super) fn origin_in_difference_hull(pair: &ConvexPair, posed: &Posed) -> bool {
+pub(in crate::query) fn origin_in_difference_hull(pair: &ConvexPair, posed: &Posed) -> bool {
     let p: Vec<DVec3> = (0..pair.a.vertex_count() as u32)
         .map(|v| posed.a(v))
         .collect();
@@ -689,7 +689,7 @@ mod tests {
     use crate::kernel::rotation::Pose;
     use crate::kernel::rotation::Rotation;
     use crate::polytope::Polytope;
-    use crate::query::evaluate::Scratch;
+    use crate::query::proximity::evaluate::Scratch;
 
     use crate::query::test_support::{boxed, Lcg};
 

@@ -1,7 +1,7 @@
 //! EPA: a polytope `K` inside `D' = A' ⊕ (−B')` around the origin, grown
 //! towards the boundary of `D'` nearest the origin (van den Bergen's
 //! expanding polytope algorithm), for the penetration-depth certificate of
-//! [`super::certify`].
+//! [`crate::query::proximity::certificate`].
 //!
 //! `K` starts as GJK's final tetrahedron, which encloses the origin. Each
 //! step takes the face of `K` nearest the origin, finds the support point
@@ -20,20 +20,20 @@
 //! construction). A step that would break the surface (a horizon that is
 //! not one loop) ends the expansion with the `K` built so far.
 
-use super::frame::Posed;
-use super::gjk::Point;
-use super::support::climb;
-use super::ConvexPair;
 use crate::kernel::predicates::orient;
 use crate::kernel::Sign;
+use crate::query::frame::Posed;
+use crate::query::pair::ConvexPair;
+use crate::query::proximity::gjk::Point;
+use crate::query::proximity::support::climb;
 use glam::DVec3;
 
 /// The most expansion steps.
-pub(super) const MAX_STEPS: usize = 256;
+pub(in crate::query) const MAX_STEPS: usize = 256;
 
 /// A triangle of `K`, counter-clockwise seen from outside.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Tri {
+pub(in crate::query) struct Tri {
     /// Its corners (indices into [`Epa::pts`]).
     pub v: [u32; 3],
     /// `adj[i]`: the triangle across the edge from `v[i]` to `v[i + 1]`.
@@ -53,7 +53,7 @@ pub(super) struct Tri {
 
 /// The expanding polytope and its buffers (kept from query to query).
 #[derive(Clone, Debug, Default)]
-pub(super) struct Epa {
+pub(in crate::query) struct Epa {
     /// The points of `D'` that are vertices of `K`.
     pub pts: Vec<Point>,
     /// The triangles (dead ones stay, marked).
@@ -69,7 +69,7 @@ impl Epa {
     /// Returns `false` when `K` cannot be used: the tetrahedron is flat, or
     /// a step broke the surface (a horizon that is not one loop, a
     /// degenerate new face).
-    pub(super) fn run(
+    pub(in crate::query) fn run(
         &mut self,
         pair: &ConvexPair,
         posed: &Posed,
@@ -157,7 +157,7 @@ impl Epa {
     }
 
     /// The live face nearest the origin.
-    pub(super) fn nearest(&self) -> Option<usize> {
+    pub(in crate::query) fn nearest(&self) -> Option<usize> {
         (0..self.tris.len())
             .filter(|&i| self.tris[i].alive)
             .min_by(|&i, &j| self.tris[i].d.total_cmp(&self.tris[j].d))
@@ -168,7 +168,7 @@ impl Epa {
     /// an edge of its simplex, typical of axis-aligned boxes): the exact
     /// hull of the points, its faces split into fans. `false` when the
     /// points are flat or a step breaks the surface.
-    pub(super) fn run_from_hull(
+    pub(in crate::query) fn run_from_hull(
         &mut self,
         pair: &ConvexPair,
         posed: &Posed,
@@ -311,8 +311,8 @@ impl Epa {
     /// Exactly whether every face of `K` has the origin strictly on its
     /// inner side (with the faces closing up by construction, the faces
     /// then cover every direction from the origin: see
-    /// [`super::certify`]).
-    pub(super) fn encloses_origin(&self) -> bool {
+    /// [`crate::query::proximity::certificate`]).
+    pub(in crate::query) fn encloses_origin(&self) -> bool {
         self.tris.iter().filter(|t| t.alive).all(|t| {
             // The float offset less its error bound decides most faces.
             t.d - t.dd > 0.0 || {
