@@ -85,6 +85,12 @@ fn finite(v: f64, bound: f64) -> (f64, f64) {
     }
 }
 
+/// Rounds a computed non-negative length up past its rounding error.
+#[inline]
+pub(crate) fn up(x: f64) -> f64 {
+    x * (1.0 + 8.0 * f64::EPSILON)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

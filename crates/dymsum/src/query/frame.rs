@@ -36,46 +36,12 @@ use crate::kernel::rotation::Rotation;
 use crate::polytope::Polytope;
 use crate::query::error::QueryError;
 use crate::query::pair::ConvexPair;
-use crate::query::pair::Reflected;
+use crate::query::prep::Reflected;
 use crate::sum::{relative_rotation, turn_of};
 use glam::{DMat3, DVec3};
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 
-/// Rounds a computed non-negative length up past its rounding error.
-#[inline]
-pub(in crate::query) fn up(x: f64) -> f64 {
-    x * (1.0 + 8.0 * f64::EPSILON)
-}
-
-/// What a query needs to know about one body, computed once per pair (body
-/// frame units): the largest `|v|`, the vertex mean and the largest
-/// distance of a vertex from it.
-#[derive(Clone, Debug)]
-pub(in crate::query) struct BodyBounds {
-    /// Largest `|v|` (rounded up; may be infinite for coordinates near
-    /// `f64::MAX`).
-    pub reach: f64,
-    /// Largest `|v − mean|` (rounded up).
-    pub radius: f64,
-}
-
-impl BodyBounds {
-    /// The bounds of `p`, computed in its own power-of-two frame (so that
-    /// no square underflows or overflows) and scaled back.
-    pub(in crate::query) fn of(p: &Polytope) -> BodyBounds {
-        let exp = p.frame_exponent();
-        let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
-        let n = v.len() as f64;
-        let mean = v.iter().fold(DVec3::ZERO, |s, &x| s + x) / n;
-        let reach = up(v.iter().map(|x| x.length()).fold(0.0, f64::max));
-        let radius = up(v.iter().map(|x| (*x - mean).length()).fold(0.0, f64::max))
-            + 4.0 * f64::EPSILON * reach;
-        BodyBounds {
-            reach: up(mul_pow2(reach, -exp)),
-            radius: up(mul_pow2(radius, -exp)),
-        }
-    }
-}
+pub(in crate::query) use crate::kernel::bounds::up;
 
 /// Values computed on first read in a query and kept for the rest of it:
 /// a value is current when its stamp equals the query's generation.

@@ -116,7 +116,7 @@
 //! witness points by exactly `2^j` (directions unchanged), with no overflow
 //! or underflow of intermediate squared lengths at any scale. A posed
 //! coordinate or an answer beyond `f64` is [`QueryError::OutOfRange`] (or
-//! [`SumError::OutOfRange`] from the sum); never NaN.
+//! [`crate::sum::SumError::OutOfRange`] from the sum); never NaN.
 //!
 //! ```
 //! use dymsum::{Polytope, Pose, Rotation, DVec3};
@@ -139,6 +139,7 @@ mod error;
 mod frame;
 mod motion;
 mod pair;
+mod prep;
 mod proximity;
 mod tracker;
 mod union;
@@ -160,7 +161,9 @@ pub use motion::{
     check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, DEFAULT_BUDGET,
     MIN_TOLERANCE, MIN_WIDTH,
 };
-pub use pair::{distance, intersects, penetration_depth, query, ConvexPair, QueryStats, Reflected};
+pub use pair::{ConvexPair, QueryStats};
+pub use prep::Reflected;
+pub use proximity::{distance, intersects, penetration_depth, query};
 pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};
 

@@ -40,9 +40,10 @@ use crate::kernel::rotation::Pose;
 use crate::query::answer::Proximity;
 use crate::query::error::QueryError;
 use crate::query::pair::ConvexPair;
-use crate::query::pair::Reflected;
+use crate::query::prep::Reflected;
 use crate::query::proximity::certificate::candidates::FacetSet;
-use crate::query::proximity::evaluate::{evaluate, Facets, Scratch};
+use crate::query::proximity::evaluate::{evaluate, Facets};
+use crate::query::proximity::scratch::Scratch;
 use crate::sum::Overlay;
 
 /// How a [`ContactTracker`] answers each frame. Every strategy gives the
@@ -350,4 +351,14 @@ fn new_sum(pair: &ConvexPair, pose_a: Pose, pose_b: Pose) -> Result<DynamicSum, 
         &pair.neg_b().polytope,
         Reflected::pose(pose_b),
     )?)
+}
+
+impl ConvexPair {
+    /// A tracker starting at the given poses.
+    ///
+    /// # Errors
+    /// The same as [`ContactTracker::new`].
+    pub fn tracker(&self, pose_a: Pose, pose_b: Pose) -> Result<ContactTracker, QueryError> {
+        ContactTracker::new(self, pose_a, pose_b)
+    }
 }

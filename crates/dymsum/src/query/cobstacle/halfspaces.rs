@@ -52,10 +52,9 @@
 
 use crate::dynamic::DynamicSum;
 use crate::kernel::rotation::Rotation;
-use crate::polytope::Polytope;
-use crate::query::cobstacle::slices::CObstacle;
+use crate::query::cobstacle::slices::{CObstacle, Reaches};
 use crate::query::error::QueryError;
-use crate::query::frame::{up, BodyBounds};
+use crate::query::frame::up;
 use crate::query::proximity::support::{dot_error, near_max_upper, Marks};
 use crate::sum::merge::coplanar_groups;
 use crate::sum::{Operands, Overlay};
@@ -147,22 +146,6 @@ struct Scratch {
 #[inline]
 fn bits(v: DVec3) -> [u64; 3] {
     v.to_array().map(f64::to_bits)
-}
-
-/// The largest `|v|` of each body, computed once per pair.
-#[derive(Clone, Copy, Debug, Default)]
-pub(in crate::query) struct Reaches {
-    p: f64,
-    q: f64,
-}
-
-impl Reaches {
-    pub(in crate::query) fn of(p: &Polytope, q: &Polytope) -> Reaches {
-        Reaches {
-            p: BodyBounds::of(p).reach,
-            q: BodyBounds::of(q).reach,
-        }
-    }
 }
 
 /// The half-spaces of the sum held by `sum` (module docs).
@@ -396,6 +379,7 @@ mod tests {
     //! carried over between slices) against the read-out it replaced, kept
     //! here as the reference: the same planes, bit for bit.
     use super::*;
+    use crate::polytope::Polytope;
     use crate::query::proximity::support::near_max;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -593,6 +577,7 @@ mod timing {
     use super::tests::reference_halfspaces;
     use super::*;
     use crate::kernel::rotation::Pose;
+    use crate::polytope::Polytope;
     use crate::query::orientations_about_axis;
     use std::time::Instant;
 

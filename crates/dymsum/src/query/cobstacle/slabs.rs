@@ -167,7 +167,8 @@ use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
 use crate::query::cobstacle::slices::CObstacle;
 use crate::query::error::QueryError;
-use crate::query::frame::{up, BodyBounds};
+use crate::query::frame::up;
+use crate::query::prep::BodyBounds;
 use crate::query::proximity::support::{near_max, Marks};
 use crate::sum::{validate::check_convex_mesh, MeshError};
 use glam::DVec3;
@@ -190,62 +191,7 @@ const TINY_COMPONENT: f64 = 6.223_015_277_861_142e-61;
 /// `π` rounded up (the next float above `f64::consts::PI`).
 const PI_UP: f64 = 3.141_592_653_589_793_6;
 
-/// Bad input to a slab computation: each variant names the offending value.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum SlabError {
-    /// The rotation axis is zero or not finite.
-    #[error("the rotation axis {axis:?} is zero or not finite")]
-    BadAxis {
-        /// The axis given.
-        axis: [f64; 3],
-    },
-    /// An angle is NaN or infinite.
-    #[error("angle {index} is {angle}, not a finite number")]
-    NonFiniteAngle {
-        /// Its position in the list.
-        index: usize,
-        /// The angle.
-        angle: f64,
-    },
-    /// An angle does not exceed the one before it.
-    #[error(
-        "angle {index} ({angle}) does not exceed the angle before it ({previous}): \
-         the angles must increase strictly"
-    )]
-    NotIncreasing {
-        /// Its position in the list.
-        index: usize,
-        /// The angle before it.
-        previous: f64,
-        /// The angle.
-        angle: f64,
-    },
-    /// Two consecutive angles are more than `π` apart: the turn between
-    /// them is not a shortest path, and the sagitta bound needs arcs of at
-    /// most a half turn. Add angles in between.
-    #[error(
-        "the step to angle {index} is {step} rad, more than π: a slab covers at most a half \
-         turn (add angles in between)"
-    )]
-    StepTooLarge {
-        /// The position of the step's end in the list.
-        index: usize,
-        /// The step, in radians.
-        step: f64,
-    },
-    /// Fewer than two orientations: a slab lies between two.
-    #[error("{count} orientation(s) given: a slab lies between two, so at least 2 are needed")]
-    TooFewOrientations {
-        /// How many were given.
-        count: usize,
-    },
-    /// The cell radius is negative, NaN, or not below `π`.
-    #[error("the cell radius {radius} is not an angle in [0, π)")]
-    BadRadius {
-        /// The radius given.
-        radius: f64,
-    },
-}
+pub use crate::query::error::SlabError;
 
 /// The orientations a slab is certified for.
 #[derive(Clone, Copy, Debug, PartialEq)]

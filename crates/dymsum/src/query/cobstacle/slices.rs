@@ -31,7 +31,7 @@ use crate::kernel::rotation::Rotation;
 use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
 use crate::query::error::QueryError;
-use crate::query::pair::Reflected;
+use crate::query::prep::Reflected;
 use crate::sum::{minkowski_sum_posed, Method};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -81,7 +81,7 @@ pub struct CObstacle {
     neg_robot: std::sync::Arc<Reflected>,
     obstacle: Polytope,
     /// The bodies' reach, for the half-space slices.
-    pub(in crate::query) reaches: crate::query::cobstacle::halfspaces::Reaches,
+    pub(in crate::query) reaches: Reaches,
 }
 
 impl CObstacle {
@@ -92,10 +92,7 @@ impl CObstacle {
     pub fn new(robot: &Polytope, obstacle: &Polytope) -> Result<Self, QueryError> {
         let neg_robot = Reflected::new(robot)?;
         Ok(CObstacle {
-            reaches: crate::query::cobstacle::halfspaces::Reaches::of(
-                &neg_robot.polytope,
-                obstacle,
-            ),
+            reaches: Reaches::of(&neg_robot.polytope, obstacle),
             neg_robot: std::sync::Arc::new(neg_robot),
             obstacle: obstacle.clone(),
         })
@@ -261,4 +258,20 @@ pub fn cobstacle_slices_par(
     orientations: &[Rotation],
 ) -> Result<Vec<PolygonMesh>, QueryError> {
     CObstacle::new(robot, obstacle)?.slices_par(orientations)
+}
+
+/// The largest `|v|` of each body, computed once per pair.
+#[derive(Clone, Copy, Debug, Default)]
+pub(in crate::query) struct Reaches {
+    pub(in crate::query) p: f64,
+    pub(in crate::query) q: f64,
+}
+
+impl Reaches {
+    pub(in crate::query) fn of(p: &Polytope, q: &Polytope) -> Reaches {
+        Reaches {
+            p: crate::query::prep::BodyBounds::of(p).reach,
+            q: crate::query::prep::BodyBounds::of(q).reach,
+        }
+    }
 }

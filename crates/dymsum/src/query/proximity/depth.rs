@@ -17,8 +17,9 @@ use crate::query::pair::ConvexPair;
 use crate::query::proximity::certificate::{
     grow_polytope, penetration_facets, polytope_depth, value_slack,
 };
-use crate::query::proximity::evaluate::{evaluate_in_frame, Scratch};
+use crate::query::proximity::from_facets::evaluate_in_frame;
 use crate::query::proximity::gjk::Gjk;
+use crate::query::proximity::scratch::Scratch;
 
 /// The certified penetration (frame units) from GJK's enclosing
 /// tetrahedron: EPA's polytope, its caps, and the check of the bound the

@@ -22,91 +22,14 @@
 //! Complexity: O(facets) for the bounds, plus one feature distance per
 //! facet near the answer.
 
-use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
-use crate::polytope::Polytope;
 use crate::query::answer::FeaturePair;
 use crate::query::answer::Separation;
-use crate::query::frame::{up, Posed};
+use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
+use crate::query::prep::mean;
 use crate::query::proximity::certificate::candidates::{climb, Candidate};
 use crate::query::proximity::closest::{closest_on_polygon, segment_segment};
 use glam::DVec3;
-
-/// For each face of a body, the largest distance from the mean of its
-/// corners to a corner; and for each edge, half its length. All in the
-/// body's own power-of-two frame
-/// (coordinates times `2^exp`, the largest magnitude in `[1, 2)`), so
-/// nothing underflows or overflows at any scale, and rounded up.
-#[derive(Clone, Debug, Default)]
-pub(in crate::query) struct FeatureBalls {
-    exp: i32,
-    /// Each face's corners' mean (body frame).
-    face_centre: Vec<DVec3>,
-    face_radius: Vec<f64>,
-    half_edge: Vec<f64>,
-}
-
-impl FeatureBalls {
-    /// The balls of `p`'s faces and edges.
-    pub(in crate::query) fn of(p: &Polytope) -> FeatureBalls {
-        let exp = frame_exponent(p.vertices().iter().flat_map(|v| v.to_array()));
-        let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
-        let (face_centre, face_radius) = (0..p.face_count())
-            .map(|f| {
-                let face = p.face(f);
-                let c = mean(face.iter().map(|&i| v[i as usize]), face.len());
-                let r = up(face
-                    .iter()
-                    .map(|&i| (v[i as usize] - c).length())
-                    .fold(0.0, f64::max));
-                (mul_pow2_vec(c, -exp), r)
-            })
-            .unzip();
-        let half_edge = (0..p.edge_count())
-            .map(|e| {
-                let [x, y] = p.edge(e).vertices;
-                up(0.5 * (v[x as usize] - v[y as usize]).length())
-            })
-            .collect();
-        FeatureBalls {
-            exp,
-            face_centre,
-            face_radius,
-            half_edge,
-        }
-    }
-
-    /// A length of these balls in the query's frame (`2^k` world).
-    #[inline]
-    fn in_frame(&self, r: f64, k: i32) -> f64 {
-        mul_pow2(r, k - self.exp)
-    }
-
-    /// The radius of face `f`'s ball (about its corners' mean) in the
-    /// query's frame.
-    #[inline]
-    pub(in crate::query) fn face(&self, f: u32, k: i32) -> f64 {
-        self.in_frame(self.face_radius[f as usize], k)
-    }
-
-    /// The centre of face `f`'s ball (body frame).
-    #[inline]
-    pub(in crate::query) fn face_centre(&self, f: u32) -> DVec3 {
-        self.face_centre[f as usize]
-    }
-
-    /// Half the length of edge `e` in the query's frame.
-    #[inline]
-    pub(in crate::query) fn edge(&self, e: u32, k: i32) -> f64 {
-        self.in_frame(self.half_edge[e as usize], k)
-    }
-}
-
-/// The mean of `n` points.
-#[inline]
-fn mean(points: impl Iterator<Item = DVec3>, n: usize) -> DVec3 {
-    points.fold(DVec3::ZERO, |s, p| s + p) / n as f64
-}
 
 /// A lower bound on the distance from the origin to the facet of `c`
 /// (frame units), before the rounding safety: the ball bound, and the

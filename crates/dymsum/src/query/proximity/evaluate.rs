@@ -14,28 +14,22 @@
 //! posed vertices (see [`evaluate`]).
 use crate::kernel::rotation::Pose;
 use crate::query::answer::Contact;
-use crate::query::answer::FeaturePair;
 use crate::query::answer::Proximity;
 use crate::query::answer::Separation;
 use crate::query::error::QueryError;
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
-use crate::query::pair::Reflected;
-use crate::query::proximity::certificate::candidates::{
-    candidates, refine, winner, Candidate, FacetSet,
-};
-use crate::query::proximity::certificate::{
-    separation_facets, single_facet, slab, slab_width, LocalScratch,
-};
-use crate::query::proximity::closest::line_line;
+use crate::query::prep::Reflected;
+use crate::query::proximity::certificate::candidates::FacetSet;
+use crate::query::proximity::certificate::{separation_facets, single_facet, slab, slab_width};
 use crate::query::proximity::depth::penetration;
-use crate::query::proximity::distance::separation;
+use crate::query::proximity::from_facets::evaluate_in_frame;
 use crate::query::proximity::gjk::{
     certify, encloses_origin, gjk, origin_in_difference_hull, separated_on_sets,
-    separating_feature_axis, CertScratch, Gjk, Simplex,
+    separating_feature_axis,
 };
+use crate::query::proximity::scratch::Scratch;
 use crate::sum::{minkowski_sum_posed, Method};
-use glam::DVec3;
 
 /// Where the facets of `A ⊕ (−B)` that a query evaluates come from.
 #[derive(Clone, Copy, Debug)]
@@ -325,151 +319,4 @@ pub(in crate::query) fn to_world(
         ));
     }
     Ok(out)
-}
-
-/// The buffers of one evaluation, kept by a [`crate::query::tracker::ContactTracker`] from
-/// frame to frame so that a frame allocates nothing once they are large
-/// enough.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Scratch {
-    pub(in crate::query) posed: Posed,
-    /// The last support vertices (GJK's warm start).
-    warm: Warm,
-    /// The last GJK direction.
-    pub(in crate::query) dir: DVec3,
-    /// The last GJK run.
-    pub(in crate::query) gjk: Option<Gjk>,
-    /// Its final simplex (the next query's start).
-    pub(in crate::query) simplex: Simplex,
-    /// The last penetration's contact normal (EPA's first direction).
-    pub(in crate::query) normal: Option<DVec3>,
-    pub(in crate::query) cert: CertScratch,
-    /// Every facet (the exhaustive evaluation).
-    pub(in crate::query) all: FacetSet,
-    /// The certificates' local searches.
-    pub(in crate::query) local: LocalScratch,
-    pub(in crate::query) cands: Vec<Candidate>,
-    /// A face's posed corners (the separation).
-    pub(in crate::query) poly: Vec<DVec3>,
-    /// The facing facets' distance bounds (the separation).
-    pub(in crate::query) bounds: Vec<f64>,
-}
-
-impl Scratch {
-    /// Keeps GJK's end as the next query's warm start.
-    fn remember(&mut self, g: &Gjk) {
-        self.warm = Warm(g.warm.0, g.warm.1);
-        if g.v.length_squared() > 0.0 {
-            self.dir = g.v;
-        }
-        self.gjk = Some(*g);
-        self.simplex = g.simplex;
-    }
-
-    /// Forgets the warm start (the buffers stay).
-    pub(in crate::query) fn cold(&mut self) {
-        self.warm = Warm::default();
-        self.dir = DVec3::ZERO;
-        self.gjk = None;
-        self.simplex = Simplex::default();
-        self.normal = None;
-    }
-}
-
-/// Support vertices of A and B to start the next GJK from.
-#[derive(Clone, Copy, Debug, Default)]
-struct Warm(u32, u32);
-
-impl Warm {
-    /// The vertices, or vertex 0 where one is out of range (a scratch
-    /// reused with another pair).
-    fn clamp(self, pair: &ConvexPair) -> (u32, u32) {
-        let ok = |v: u32, n: usize| if (v as usize) < n { v } else { 0 };
-        (
-            ok(self.0, pair.a.vertex_count()),
-            ok(self.1, pair.b.vertex_count()),
-        )
-    }
-}
-
-/// [`evaluate`] on frame coordinates, given the exact yes/no answer; with
-/// the least refined candidate value (penetration) or NaN when a separation
-/// measured no facet (else `0`).
-pub(in crate::query) fn evaluate_in_frame(
-    pair: &ConvexPair,
-    posed: &Posed,
-    facets: &FacetSet,
-    intersecting: bool,
-    cands: &mut Vec<Candidate>,
-    (poly, bounds): (&mut Vec<DVec3>, &mut Vec<f64>),
-) -> (Proximity, f64) {
-    let tol = posed.tol;
-    candidates(pair, posed, facets, tol, cands);
-    refine(pair, posed, cands, tol);
-    let answer = answer_from(pair, posed, tol, intersecting, cands, (poly, bounds));
-    #[cfg(test)]
-    {
-        // The pruning (ee-candidates left out, separation by branch and
-        // bound) must not change the answer: every candidate, refined.
-        let mut all = Vec::new();
-        crate::query::proximity::certificate::candidates::candidates_unpruned(
-            pair, posed, facets, &mut all,
-        );
-        all.iter_mut().for_each(|c| {
-            c.h = crate::query::proximity::certificate::candidates::climb(pair, posed, c);
-            c.refined = true;
-        });
-        let reference = answer_from(pair, posed, tol, intersecting, &all, (poly, bounds));
-        assert_eq!(answer.0, reference.0, "the pruning changed the answer");
-    }
-    answer
-}
-
-/// The answer from refined candidates (every one within the tie tolerance
-/// of the least value or of zero among them, in the overlay's order).
-fn answer_from(
-    pair: &ConvexPair,
-    posed: &Posed,
-    tol: f64,
-    intersecting: bool,
-    cands: &[Candidate],
-    (poly, bounds): (&mut Vec<DVec3>, &mut Vec<f64>),
-) -> (Proximity, f64) {
-    let (w, hmin) = winner(cands, tol);
-    if !intersecting {
-        let (s, measured) = separation(pair, posed, cands, tol, cands[w], poly, bounds);
-        return (
-            Proximity::Separated(s),
-            if measured { 0.0 } else { f64::NAN },
-        );
-    }
-    let c = cands[w];
-    // Overlapping or touching (decided exactly): a least value below zero
-    // is rounding, and the depth is zero.
-    let depth = hmin.max(0.0);
-    let (point_on_a, point_on_b) = match c.features {
-        FeaturePair::FaceVertex { b_vertex, .. } => {
-            let b = posed.b(b_vertex);
-            (b + depth * c.n, b)
-        }
-        FeaturePair::VertexFace { a_vertex, .. } => {
-            let a = posed.a(a_vertex);
-            (a, a - depth * c.n)
-        }
-        FeaturePair::EdgeEdge { a_edge, b_edge } => {
-            let [u1, u2] = pair.a.edge(a_edge as usize).vertices;
-            let [w1, w2] = pair.b.edge(b_edge as usize).vertices;
-            line_line(posed.a(u1), posed.a(u2), posed.b(w1), posed.b(w2))
-        }
-    };
-    (
-        Proximity::Penetrating(Contact {
-            depth,
-            normal: c.n,
-            point_on_a,
-            point_on_b,
-            features: c.features,
-        }),
-        hmin,
-    )
 }

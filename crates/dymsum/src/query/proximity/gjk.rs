@@ -689,7 +689,7 @@ mod tests {
     use crate::kernel::rotation::Pose;
     use crate::kernel::rotation::Rotation;
     use crate::polytope::Polytope;
-    use crate::query::proximity::evaluate::Scratch;
+    use crate::query::proximity::scratch::Scratch;
 
     use crate::query::test_support::{boxed, Lcg};
 

@@ -1,0 +1,332 @@
+//! What the queries need of one body, computed once and kept with the
+//! polytope ([`crate::polytope::Polytope`]'s slot for a higher layer's
+//! data): its point reflection `−B` ([`Reflected`]), bounds for the posing
+//! ([`BodyBounds`]), balls around its features ([`FeatureBalls`]) and caps
+//! around its Gaussian cells ([`GaussCaps`]), together [`BodyPrep`].
+
+use crate::kernel::bounds::up;
+use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
+use crate::kernel::rotation::Pose;
+use crate::polytope::Polytope;
+use crate::query::error::QueryError;
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// The point reflection `−B` of a body, with the maps from its features back
+/// to `B`'s (a reflection renumbers vertices, faces and edges).
+#[derive(Clone, Debug)]
+pub struct Reflected {
+    /// `−B` as a polytope.
+    pub polytope: Polytope,
+    /// Vertex of `−B` → vertex of `B`.
+    pub vertex_map: Vec<u32>,
+    /// Face of `−B` → face of `B`.
+    pub face_map: Vec<u32>,
+    /// Edge of `−B` → edge of `B`.
+    pub edge_map: Vec<u32>,
+}
+
+pub(in crate::query) fn bits(v: DVec3) -> [u64; 3] {
+    [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
+}
+
+impl Reflected {
+    /// Reflects `b` through the origin (exact: negation is exact).
+    ///
+    /// # Errors
+    /// Only internal errors, for a polytope built by this crate:
+    /// [`QueryError::Reflect`] if rebuilding the reflected body from the
+    /// negated vertices fails, [`QueryError::Inconsistent`] if its faces or
+    /// edges do not match the original's (a bug in dymsum either way).
+    pub fn new(b: &Polytope) -> Result<Reflected, QueryError> {
+        let neg: Vec<DVec3> = b.vertices().iter().map(|&v| -v).collect();
+        let polytope = Polytope::from_dvec3s(&neg)?;
+        let index: HashMap<[u64; 3], u32> = neg
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| (bits(v), i as u32))
+            .collect();
+        let bad = || QueryError::Inconsistent("the reflected body's vertices differ".into());
+        let vertex_map = polytope
+            .vertices()
+            .iter()
+            .map(|&v| index.get(&bits(v)).copied().ok_or_else(bad))
+            .collect::<Result<Vec<u32>, _>>()?;
+        if polytope.vertex_count() != b.vertex_count()
+            || polytope.face_count() != b.face_count()
+            || polytope.edge_count() != b.edge_count()
+        {
+            return Err(bad());
+        }
+        let key = |vs: &mut Vec<u32>| {
+            vs.sort_unstable();
+            vs.clone()
+        };
+        let faces: HashMap<Vec<u32>, u32> = b
+            .faces()
+            .enumerate()
+            .map(|(f, vs)| (key(&mut vs.to_vec()), f as u32))
+            .collect();
+        let face_map = polytope
+            .faces()
+            .map(|vs| {
+                let mut m: Vec<u32> = vs.iter().map(|&v| vertex_map[v as usize]).collect();
+                faces.get(&key(&mut m)).copied().ok_or_else(bad)
+            })
+            .collect::<Result<Vec<u32>, _>>()?;
+        let edge_key = |[x, y]: [u32; 2]| (x.min(y), x.max(y));
+        let edges: HashMap<(u32, u32), u32> = b
+            .edges()
+            .iter()
+            .enumerate()
+            .map(|(e, ed)| (edge_key(ed.vertices), e as u32))
+            .collect();
+        let edge_map = polytope
+            .edges()
+            .iter()
+            .map(|ed| {
+                let [x, y] = ed.vertices;
+                let k = edge_key([vertex_map[x as usize], vertex_map[y as usize]]);
+                edges.get(&k).copied().ok_or_else(bad)
+            })
+            .collect::<Result<Vec<u32>, _>>()?;
+        Ok(Reflected {
+            polytope,
+            vertex_map,
+            face_map,
+            edge_map,
+        })
+    }
+
+    /// The pose of `−B` for `B` at `pose`: `−(R b + t) = R(−b) − t`.
+    pub fn pose(pose: Pose) -> Pose {
+        Pose::new(pose.rotation, -pose.translation)
+    }
+}
+
+/// What the queries need of one body beyond the body itself, computed once
+/// per body (on its first query) and kept by the body's [`Polytope`]
+/// handle, so preparing a pair costs nothing after the first time.
+#[derive(Debug)]
+pub(crate) struct BodyPrep {
+    /// Balls around the faces and edges (the separation's branch and
+    /// bound).
+    pub(in crate::query) balls: crate::query::prep::FeatureBalls,
+    /// Reach and radius (the query frame's bounds).
+    pub(in crate::query) bounds: crate::query::prep::BodyBounds,
+    /// Error bounds of the arc normals under any rotation, exactly as the
+    /// overlay's operands compute them (the body as A).
+    pub(in crate::query) arc_err: Vec<f64>,
+    /// The reflection `−body` (the body as B).
+    pub(in crate::query) neg: Reflected,
+    /// Vertex, face and edge → the same of the reflection (the inverses of
+    /// [`Reflected`]'s maps).
+    pub(in crate::query) neg_vertex: Vec<u32>,
+    pub(in crate::query) neg_face: Vec<u32>,
+    pub(in crate::query) neg_edge: Vec<u32>,
+    /// Caps holding each vertex's Gaussian cell and each edge's Gaussian
+    /// arc (body frame): the certificates' quick rejections.
+    pub(in crate::query) caps: crate::query::prep::GaussCaps,
+}
+
+impl BodyPrep {
+    /// The data of `p`, computed on its first query and kept with the
+    /// polytope (shared by every handle of it).
+    ///
+    /// # Errors
+    /// Those of [`Reflected::new`] (internal only).
+    pub(crate) fn of_cached(p: &Polytope) -> Result<std::sync::Arc<BodyPrep>, QueryError> {
+        p.derived(|| BodyPrep::of(p).map(std::sync::Arc::new))
+    }
+
+    /// Computes the data of `p`.
+    ///
+    /// # Errors
+    /// Those of [`Reflected::new`] (internal only).
+    pub(crate) fn of(p: &Polytope) -> Result<BodyPrep, QueryError> {
+        let (mut arcs, mut arc_err) = (Vec::new(), Vec::new());
+        crate::sum::rotate_arcs(p, None, &mut arcs, &mut arc_err);
+        let neg = Reflected::new(p)?;
+        let inverse = |map: &[u32]| {
+            let mut inv = vec![0; map.len()];
+            for (i, &j) in map.iter().enumerate() {
+                inv[j as usize] = i as u32;
+            }
+            inv
+        };
+        Ok(BodyPrep {
+            balls: crate::query::prep::FeatureBalls::of(p),
+            bounds: crate::query::prep::BodyBounds::of(p),
+            arc_err,
+            neg_vertex: inverse(&neg.vertex_map),
+            neg_face: inverse(&neg.face_map),
+            neg_edge: inverse(&neg.edge_map),
+            neg,
+            caps: crate::query::prep::GaussCaps::of(p),
+        })
+    }
+}
+
+/// What a query needs to know about one body, computed once per pair (body
+/// frame units): the largest `|v|`, the vertex mean and the largest
+/// distance of a vertex from it.
+#[derive(Clone, Debug)]
+pub(in crate::query) struct BodyBounds {
+    /// Largest `|v|` (rounded up; may be infinite for coordinates near
+    /// `f64::MAX`).
+    pub reach: f64,
+    /// Largest `|v − mean|` (rounded up).
+    pub radius: f64,
+}
+
+impl BodyBounds {
+    /// The bounds of `p`, computed in its own power-of-two frame (so that
+    /// no square underflows or overflows) and scaled back.
+    pub(in crate::query) fn of(p: &Polytope) -> BodyBounds {
+        let exp = p.frame_exponent();
+        let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
+        let n = v.len() as f64;
+        let mean = v.iter().fold(DVec3::ZERO, |s, &x| s + x) / n;
+        let reach = up(v.iter().map(|x| x.length()).fold(0.0, f64::max));
+        let radius = up(v.iter().map(|x| (*x - mean).length()).fold(0.0, f64::max))
+            + 4.0 * f64::EPSILON * reach;
+        BodyBounds {
+            reach: up(mul_pow2(reach, -exp)),
+            radius: up(mul_pow2(radius, -exp)),
+        }
+    }
+}
+
+/// For each face of a body, the largest distance from the mean of its
+/// corners to a corner; and for each edge, half its length. All in the
+/// body's own power-of-two frame
+/// (coordinates times `2^exp`, the largest magnitude in `[1, 2)`), so
+/// nothing underflows or overflows at any scale, and rounded up.
+#[derive(Clone, Debug, Default)]
+pub(in crate::query) struct FeatureBalls {
+    pub(in crate::query) exp: i32,
+    /// Each face's corners' mean (body frame).
+    pub(in crate::query) face_centre: Vec<DVec3>,
+    pub(in crate::query) face_radius: Vec<f64>,
+    pub(in crate::query) half_edge: Vec<f64>,
+}
+
+impl FeatureBalls {
+    /// The balls of `p`'s faces and edges.
+    pub(in crate::query) fn of(p: &Polytope) -> FeatureBalls {
+        let exp = frame_exponent(p.vertices().iter().flat_map(|v| v.to_array()));
+        let v: Vec<DVec3> = p.vertices().iter().map(|&x| mul_pow2_vec(x, exp)).collect();
+        let (face_centre, face_radius) = (0..p.face_count())
+            .map(|f| {
+                let face = p.face(f);
+                let c = mean(face.iter().map(|&i| v[i as usize]), face.len());
+                let r = up(face
+                    .iter()
+                    .map(|&i| (v[i as usize] - c).length())
+                    .fold(0.0, f64::max));
+                (mul_pow2_vec(c, -exp), r)
+            })
+            .unzip();
+        let half_edge = (0..p.edge_count())
+            .map(|e| {
+                let [x, y] = p.edge(e).vertices;
+                up(0.5 * (v[x as usize] - v[y as usize]).length())
+            })
+            .collect();
+        FeatureBalls {
+            exp,
+            face_centre,
+            face_radius,
+            half_edge,
+        }
+    }
+
+    /// A length of these balls in the query's frame (`2^k` world).
+    #[inline]
+    pub(in crate::query) fn in_frame(&self, r: f64, k: i32) -> f64 {
+        mul_pow2(r, k - self.exp)
+    }
+
+    /// The radius of face `f`'s ball (about its corners' mean) in the
+    /// query's frame.
+    #[inline]
+    pub(in crate::query) fn face(&self, f: u32, k: i32) -> f64 {
+        self.in_frame(self.face_radius[f as usize], k)
+    }
+
+    /// The centre of face `f`'s ball (body frame).
+    #[inline]
+    pub(in crate::query) fn face_centre(&self, f: u32) -> DVec3 {
+        self.face_centre[f as usize]
+    }
+
+    /// Half the length of edge `e` in the query's frame.
+    #[inline]
+    pub(in crate::query) fn edge(&self, e: u32, k: i32) -> f64 {
+        self.in_frame(self.half_edge[e as usize], k)
+    }
+}
+
+/// Spherical caps holding a body's Gaussian cells (one per vertex) and arcs
+/// (one per edge), in the body's frame: a cell is the spherical polygon of
+/// its corners, inside any cap (no wider than a hemisphere) holding the
+/// corners; an arc lies in the cap about its midpoint through its ends.
+/// Turned with the body, they let the searches skip a cell that cannot
+/// hold a direction, and pairs of arcs that cannot cross, with one dot
+/// product each; the exact predicates decide the rest.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct GaussCaps {
+    /// Per vertex: the cap's unit centre and the cosine of its angle
+    /// (`-1.0`, no rejection, for a cell wider than a hemisphere).
+    pub(in crate::query) cells: Vec<(DVec3, f64)>,
+    /// Per edge: the unit centre and the cosine of half the arc.
+    pub(in crate::query) arcs: Vec<(DVec3, f64)>,
+}
+
+impl GaussCaps {
+    /// The caps of `p`.
+    pub(crate) fn of(p: &crate::polytope::Polytope) -> GaussCaps {
+        let cells = (0..p.vertex_count())
+            .map(|v| {
+                let ring = p.ring(v);
+                let sum = ring
+                    .iter()
+                    .fold(DVec3::ZERO, |s, r| s + p.unit_normal(r.face as usize));
+                let len = sum.length();
+                if len.is_nan() || len <= 1e-3 {
+                    return (DVec3::X, -1.0);
+                }
+                let c = sum / len;
+                let cos = ring
+                    .iter()
+                    .map(|r| c.dot(p.unit_normal(r.face as usize)))
+                    .fold(1.0, f64::min);
+                (c, if cos > 1e-3 { cos } else { -1.0 })
+            })
+            .collect();
+        let arcs = p
+            .edges()
+            .iter()
+            .map(|e| {
+                let (a, b) = (
+                    p.unit_normal(e.faces[0] as usize),
+                    p.unit_normal(e.faces[1] as usize),
+                );
+                let mid = a + b;
+                let len = mid.length();
+                if len.is_nan() || len <= 1e-6 {
+                    return (DVec3::X, -1.0);
+                }
+                let c = mid / len;
+                (c, c.dot(a).min(c.dot(b)))
+            })
+            .collect();
+        GaussCaps { cells, arcs }
+    }
+}
+
+/// The mean of `n` points.
+#[inline]
+pub(in crate::query) fn mean(points: impl Iterator<Item = DVec3>, n: usize) -> DVec3 {
+    points.fold(DVec3::ZERO, |s, p| s + p) / n as f64
+}

@@ -1,0 +1,178 @@
+//! The penetration certificate: caps around EPA's polytope.
+//!
+//! EPA ([`crate::query::proximity::epa`]) gives a closed triangulated surface `K` whose
+//! vertices are (float-rounded) points of `D'` and, checked exactly, every
+//! face of which has the origin strictly on its inner side. Then every ray
+//! from the origin crosses some face (the faces' central projections are
+//! positively oriented spherical triangles tiling the sphere a positive
+//! number of times), and where the ray in unit direction `n` crosses face
+//! `k` (unit normal `m_k`, offset `d_k > 0`) at distance `t`, the crossing
+//! point is a convex combination of points of `D'`, so
+//! `h_{D'}(n) ≥ t = d_k / (n · m_k)` (less the vertices' rounding,
+//! `err_K`). Hence `h_{D'}(n) ≤ c` forces `n · m_k ≥ d_k / c` for the face
+//! the ray crosses: every direction of support value at most `c` lies in
+//! one of the *caps* `{n : n · m_k ≥ d_k / c}` of the faces with
+//! `d_k ≤ c` (computed with the rounding of `m_k` and `d_k` bounded from
+//! the faces' shapes). With `c = hmin + tol + E + err_K`, fact 1 puts every
+//! candidate outside the caps above the band, and fact 2 finds every facet
+//! whose candidate lies in a cap. After the evaluation the query checks
+//! that its least value `hmin` indeed satisfies the inequality assumed
+//! (one retry with the larger `c`, else the exhaustive evaluation). Caps
+//! wider than 60° (depths within rounding of zero: touching) go to the
+//! exhaustive evaluation.
+
+use super::{arc_meets_cap, collect, Keep, LocalScratch, ANY};
+use crate::query::frame::Posed;
+use crate::query::pair::ConvexPair;
+use crate::query::proximity::certificate::candidates::{DIRECTION_ERROR, OVERLAY_MISMATCH};
+use crate::query::proximity::gjk::{CertScratch, Gjk};
+use crate::query::proximity::support::near_max;
+use glam::DVec3;
+/// The most caps a penetration certificate uses.
+const MAX_CAPS: usize = 16;
+
+/// The widest cap: `cos θ` at least this (60°).
+const MIN_CAP_COS: f64 = 0.5;
+
+/// Buffers of the local searches (kept from query to query).
+/// when there is none to use.
+pub(in crate::query) fn grow_polytope(
+    pair: &ConvexPair,
+    posed: &Posed,
+    g: &Gjk,
+    hint: Option<DVec3>,
+    ls: &mut LocalScratch,
+) -> bool {
+    let grown = if g.enclosed && g.simplex.len == 4 {
+        ls.epa.run(pair, posed, g.simplex.pts, hint)
+    } else {
+        // No enclosing tetrahedron (the origin on a face or an edge of
+        // GJK's simplex): start from the hull of the simplex and the
+        // support points along the axes.
+        let mut pts = [crate::query::proximity::gjk::Point::default(); 10];
+        pts[..g.simplex.len].copy_from_slice(&g.simplex.pts[..g.simplex.len]);
+        let mut k = g.simplex.len;
+        for d in [
+            DVec3::X,
+            DVec3::NEG_X,
+            DVec3::Y,
+            DVec3::NEG_Y,
+            DVec3::Z,
+            DVec3::NEG_Z,
+        ] {
+            let (a, _) =
+                crate::query::proximity::support::climb(&pair.a, |v| posed.a(v), d, g.warm.0);
+            let (b, _) =
+                crate::query::proximity::support::climb(&pair.b, |w| posed.b(w), -d, g.warm.1);
+            if !pts[..k].iter().any(|p| p.a == a && p.b == b) {
+                pts[k] = crate::query::proximity::gjk::Point {
+                    w: posed.a(a) - posed.b(b),
+                    a,
+                    b,
+                };
+                k += 1;
+            }
+        }
+        ls.epa.run_from_hull(pair, posed, &pts[..k], hint)
+    };
+    grown && ls.epa.encloses_origin()
+}
+
+/// The least offset of a face of EPA's polytope (a lower bound on the
+/// depth, up to rounding).
+pub(in crate::query) fn polytope_depth(ls: &LocalScratch) -> f64 {
+    ls.epa.nearest().map_or(f64::INFINITY, |f| ls.epa.tris[f].d)
+}
+
+/// The facets of every cap for the support bound `c` (module docs), into
+/// `ls.facets`; `false` when a cap is too wide or there are too many.
+pub(in crate::query) fn penetration_facets(
+    pair: &ConvexPair,
+    posed: &Posed,
+    c: f64,
+    cs: &mut CertScratch,
+    ls: &mut LocalScratch,
+) -> bool {
+    if !(c > 0.0 && c.is_finite()) {
+        return false;
+    }
+    ls.caps.clear();
+    for t in ls.epa.tris.iter().filter(|t| t.alive) {
+        let (dm, dd) = (t.dm, t.dd);
+        if t.d - dd > c {
+            continue;
+        }
+        if !(dm.is_finite() && dm < 1e-3) {
+            return false;
+        }
+        let cos = (t.d - dd) / c - dm;
+        if cos < MIN_CAP_COS || ls.caps.len() == MAX_CAPS {
+            return false;
+        }
+        ls.caps.push((t.n, cos));
+    }
+    ls.facets.clear();
+    let warm = (
+        ls.epa.pts.first().map_or(0, |p| p.a),
+        ls.epa.pts.first().map_or(0, |p| p.b),
+    );
+    for i in 0..ls.caps.len() {
+        let (m, cos) = ls.caps[i];
+        let chord = (2.0 - 2.0 * cos).max(0.0).sqrt() * (1.0 + 1e-12) + 1e-300;
+        let delta = DIRECTION_ERROR + OVERLAY_MISMATCH;
+        let tau_a = 2.0 * (chord + delta) * posed.rho_a;
+        let tau_b = 2.0 * (chord + delta) * posed.rho_b;
+        near_max(
+            &pair.a,
+            |v| posed.a(v),
+            m,
+            warm.0,
+            tau_a,
+            posed.eta_a,
+            posed.scale,
+            &mut cs.marks_a,
+            &mut cs.set_a,
+        );
+        near_max(
+            &pair.b,
+            |w| posed.b(w),
+            -m,
+            warm.1,
+            tau_b,
+            posed.eta_b,
+            posed.scale,
+            &mut cs.marks_b,
+            &mut cs.set_b,
+        );
+        // Faces in the cap: their candidates' directions are their rotated
+        // unit normals (compared with a few ulps of slack). Edges whose
+        // float arcs come near the cap: an ee-candidate's direction lies
+        // within DIRECTION_ERROR of its place on both overlay arcs, which
+        // lie within OVERLAY_MISMATCH (and rounding) of the float ones.
+        let min_cos = cos - 8.0 * f64::EPSILON;
+        let arc_cos = cos - 2.0 * (DIRECTION_ERROR + OVERLAY_MISMATCH) - 1e-12;
+        let (a, b) = (&pair.a, &pair.b);
+        collect(
+            pair,
+            posed,
+            cs,
+            ls,
+            Keep {
+                face_a: |f| posed.na(f).dot(m) >= min_cos,
+                face_b: |g| -posed.nb(g).dot(m) >= min_cos,
+                edge_a: |e| {
+                    let [f0, f1] = a.edge(e as usize).faces;
+                    arc_meets_cap(posed.na(f0), posed.na(f1), m, arc_cos).then_some(ANY)
+                },
+                edge_b: |e| {
+                    let [g0, g1] = b.edge(e as usize).faces;
+                    arc_meets_cap(-posed.nb(g0), -posed.nb(g1), m, arc_cos).then_some(ANY)
+                },
+                pair: |_, _| true,
+                both: true,
+            },
+        );
+    }
+    ls.facets.dedup();
+    true
+}
