@@ -37,11 +37,12 @@
 mod brute;
 mod hull_method;
 pub(crate) mod merge;
+mod repair;
 pub mod validate;
 mod walk;
 
 pub use crate::error::{MeshError, SumError};
-pub use merge::{Precision, SumMesh};
+pub use repair::{Precision, SumMesh};
 
 pub(crate) use crate::gauss::GaussView;
 use crate::kernel::rotation::Pose;
@@ -426,7 +427,7 @@ impl MinkowskiSum {
     /// collinear vertices dropped, counter-clockwise outward, checked
     /// without tolerance ([`validate::check_convex_mesh`]). Where rounding of
     /// the coordinates breaks the exact faces, it is the exact hull of the
-    /// rounded vertices instead (see `merge::validated_mesh`).
+    /// rounded vertices instead (see `repair::validated_mesh`).
     ///
     /// # Errors
     /// [`MeshError::PrecisionLost`] when the rounded vertices collapse (the
@@ -442,8 +443,8 @@ impl MinkowskiSum {
     ///
     /// # Errors
     /// The same as [`Self::try_to_mesh`].
-    pub fn mesh_with_precision(&self) -> Result<merge::SumMesh, MeshError> {
-        merge::validated_mesh(&self.operands, &self.overlay)
+    pub fn mesh_with_precision(&self) -> Result<repair::SumMesh, MeshError> {
+        repair::validated_mesh(&self.operands, &self.overlay)
     }
     /// Checks the facet complex: every facet edge shared by exactly two facets
     /// in opposite directions (closed, 2-manifold, consistently oriented),
