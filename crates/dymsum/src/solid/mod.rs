@@ -151,7 +151,7 @@ pub enum SolidError {
         vertex: usize,
     },
     /// A directed edge has no reverse: the surface is open there.
-    #[error("edge ({from}, {to}) of face {face} has no opposite edge: the surface is open there")]
+    #[error("open mesh: edge ({from}, {to}) of face {face} has no opposite edge (the surface has a hole there)")]
     OpenEdge {
         /// Its first vertex.
         from: usize,
