@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::anyhow;
 use clap::ValueEnum;
 use dymsum::nonconvex::{convex_pieces, Decomposition, DecompositionInfo, UnionMeshError};
-use dymsum::Polytope;
+use dymsum::{Polytope, SolidError};
 
 use super::query::load_body;
 
@@ -86,6 +86,11 @@ pub fn load_solid(
     let d = decomposition.map_or(Decomposition::Components, Decomposition::from);
     match convex_pieces(&mesh, d) {
         Ok((pieces, info)) => Ok(Solid { pieces, info }),
+        // An open mesh is no solid at all: the convex loader's message
+        // names its open edge.
+        Err(UnionMeshError::Solid(e @ SolidError::OpenEdge { .. })) => {
+            Err(refusal.context(format!("(as a non-convex body: {e})")))
+        }
         // Checked exactly before any shell or decomposition is taken: the
         // problem, where, then the fix.
         Err(UnionMeshError::Solid(e)) => Err(anyhow!(
