@@ -586,8 +586,10 @@ def _boundary_sum(
     if ma is None and mb is None:
         return _union_sum(a, b, pose_a, pose_b, "walk", None, None, cull)
     swap = ma is None
-    (v, f, shells, info_mesh), other, pose_mesh, pose_other = (mb, a, pose_b, pose_a) if swap else (ma, b, pose_a, pose_b)
-    assert v is not None
+    mesh = mb if swap else ma
+    assert mesh is not None
+    v, f, shells, info_mesh = mesh
+    other, pose_mesh, pose_other = (a, pose_b, pose_a) if swap else (b, pose_a, pose_b)
     pieces, info_other = convex_pieces(other, name="a" if swap else "b")
     tm, to = _pose_matrix(pose_mesh), _pose_matrix(pose_other)
     mesh_v = _posed_points(np.asarray(v, dtype=np.float64), tm)
