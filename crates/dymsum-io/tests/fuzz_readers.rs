@@ -187,7 +187,7 @@ fn check_load_error(e: &LoadError) -> Result<(), TestCaseError> {
 // ---------------------------------------------------------------------------
 // Generators
 
-/// Coordinates a writer accepts, with the awkward ones well represented.
+/// Finite coordinates, with the awkward ones well represented.
 fn coordinate() -> impl Strategy<Value = f64> {
     prop_oneof![
         4 => -10.0..10.0f64,
@@ -198,11 +198,13 @@ fn coordinate() -> impl Strategy<Value = f64> {
         1 => Just(-f64::MIN_POSITIVE),
         1 => Just(1e30),
         1 => Just(-3.0e38),
+        1 => Just(1e300),
+        1 => Just(-f64::MAX),
         1 => (-1000i32..1000).prop_map(f64::from),
     ]
 }
 
-/// A small mesh any writer accepts: 1 to 10 vertices, up to 8 faces of 3
+/// A small mesh the writers accept (STL after [`stl_range`]): 1 to 10 vertices, up to 8 faces of 3
 /// to 6 (possibly repeated) vertices.
 fn small_mesh() -> impl Strategy<Value = PolygonMesh> {
     prop::collection::vec(prop::array::uniform3(coordinate()), 1..=10).prop_flat_map(|vertices| {
@@ -210,6 +212,19 @@ fn small_mesh() -> impl Strategy<Value = PolygonMesh> {
         let faces = prop::collection::vec(prop::collection::vec(0..n, 3..=6), 0..=8);
         (Just(vertices), faces).prop_map(|(v, f)| PolygonMesh::new(v, f))
     })
+}
+
+/// The mesh with coordinates clamped into `f32` range for STL (its
+/// writer refuses larger ones), unchanged for the other formats.
+fn stl_range(mut mesh: PolygonMesh, f: Format) -> PolygonMesh {
+    if matches!(f, Format::Stl | Format::StlAscii) {
+        for v in &mut mesh.vertices {
+            for c in v {
+                *c = c.clamp(-3.0e38, 3.0e38);
+            }
+        }
+    }
+    mesh
 }
 
 /// Tokens that stress a reader: huge and negative counts and indices,
@@ -239,6 +254,9 @@ const TOKENS: &[&str] = &[
     "-1e400",
     "1e-400",
     "1.5e308",
+    "1e308",
+    "-1.7976931348623157e308",
+    "1e-320",
     "0x10",
     "1.",
     ".5",
@@ -525,7 +543,9 @@ proptest! {
         f in format(),
         mutations in prop::collection::vec(mutation(), 1..4),
     ) {
-        let bytes = write_mesh_bytes(&mesh, f).expect("the generator makes writable meshes");
+        let bytes = write_mesh_bytes(&stl_range(mesh.clone(), f), f)
+            .expect("the generator makes writable meshes");
+        let mesh = stl_range(mesh, f);
         // Unmutated, the file reads back with the same faces (STL
         // triangulates and merges, so only the triangle count).
         let back = read_mesh_bytes(&bytes, f, "fuzz");
@@ -558,7 +578,7 @@ proptest! {
         f in format(),
         mutations in prop::collection::vec(mutation(), 0..3),
     ) {
-        let mut bytes = write_mesh_bytes(&mesh, f).expect("writable mesh");
+        let mut bytes = write_mesh_bytes(&stl_range(mesh, f), f).expect("writable mesh");
         for m in &mutations {
             apply(&mut bytes, m);
         }
