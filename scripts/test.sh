@@ -61,10 +61,10 @@ if [ ! -x "$venv/bin/python" ]; then
     }
 fi
 # Verbose, with only the build's progress shown (cargo's `Compiling` lines
-# and pip's results): the wheel's first build takes minutes. The whole log is
-# printed if pip fails.
+# and pip's results, as they come: pip unbuffered): the wheel's first build
+# takes a minute or more. The whole log is printed if pip fails.
 pip_log="$run_tmp/pip.log"
-if ! "$venv/bin/python" -m pip install -v --disable-pip-version-check ./python pytest numpy scipy mypy hypothesis 'dask[distributed]' "${ompl[@]}" 2>&1 |
+if ! PYTHONUNBUFFERED=1 "$venv/bin/python" -m pip install -v --disable-pip-version-check ./python pytest numpy scipy mypy hypothesis 'dask[distributed]' "${ompl[@]}" 2>&1 |
     tee "$pip_log" |
     awk '/^ *(Compiling|Finished|Built wheel|Successfully (built|installed))/ { print; fflush() }'; then
     cat "$pip_log" >&2
