@@ -106,7 +106,8 @@ def perturbed_poses(draw):
     elif kind == "reflect":
         m[:3, 0] *= -1
     elif kind == "scale":
-        m[:3, :3] *= draw(floats)
+        with np.errstate(invalid="ignore", over="ignore"):
+            m[:3, :3] *= draw(floats)
     elif kind == "last_row":
         m[3, draw(st.integers(0, 3))] = draw(floats)
     return m
