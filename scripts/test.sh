@@ -12,15 +12,29 @@
 # toolchain and python3 with venv and pip (PyPI and crates.io reachable on
 # the first run). Where OMPL has no wheel (it publishes Linux ones),
 # DYMSUM_NO_OMPL=1 leaves it out and its tests are skipped.
+#
+# Cost: after `cargo run --release -p dymsum-cli -- demo` (the README's first
+# command), no dependency is compiled again: the CLI and dymsum-testkit name
+# the features the workspace's tests turn on in shared dependencies, and the
+# wheel uses the workspace's release profile (issue 29). Every test's
+# temporary files go into one folder made for this run ($TMPDIR below),
+# removed at exit; the run fails if a test left a dymsum-* folder in it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+run_tmp="$(mktemp -d "${TMPDIR:-/tmp}/dymsum-test-run.XXXXXX")"
+trap 'rm -rf "$run_tmp"' EXIT
+trap 'exit 130' INT TERM
+export TMPDIR="$run_tmp"
 
 printf '\n=== cargo test --workspace --release\n'
 cargo test --workspace --release
 
 # The certified queries against their exhaustive reference on every query
 # of the core's suite (the feature makes each certified answer also
-# evaluate every facet and assert that both are equal).
+# evaluate every facet and assert that both are equal). Only dymsum, the
+# testkit and dymsum's tests are compiled again for it: the dependencies are
+# the first pass's (the testkit names their workspace features).
 printf '\n=== cargo test -p dymsum --release --features check-reference\n'
 cargo test -p dymsum --release --features check-reference
 
@@ -46,7 +60,17 @@ if [ ! -x "$venv/bin/python" ]; then
         exit 1
     }
 fi
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest numpy scipy mypy hypothesis 'dask[distributed]' "${ompl[@]}"
+# Verbose, with only the build's progress shown (cargo's `Compiling` lines
+# and pip's results, as they come: pip unbuffered): the wheel's first build
+# takes a minute or more. The whole log is printed if pip fails.
+pip_log="$run_tmp/pip.log"
+if ! PYTHONUNBUFFERED=1 "$venv/bin/python" -m pip install -v --disable-pip-version-check ./python pytest numpy scipy mypy hypothesis 'dask[distributed]' "${ompl[@]}" 2>&1 |
+    tee "$pip_log" |
+    awk '/^ *(Compiling|Finished|Built wheel|Successfully (built|installed))/ { print; fflush() }'; then
+    cat "$pip_log" >&2
+    echo "pip install ./python failed (the log is above)" >&2
+    exit 1
+fi
 # cobstacle_map on Dask LocalClusters (threads and processes) must run, and
 # the CLI's map container (built by the cargo tests above) is loaded.
 export DYMSUM_REQUIRE_DASK=1 DYMSUM_CLI="$CARGO_TARGET_DIR/release/dymsum" DYMSUM_REQUIRE_CLI=1
@@ -63,3 +87,11 @@ printf '\n=== Python: stubtest (the type stubs match the module)\n'
 
 printf '\n=== Python: pytest python/tests\n'
 "$venv/bin/python" -m pytest -q python/tests -p no:cacheprovider
+
+# Every test cleans up after itself: the Rust scratch folders
+# (dymsum_testkit::files::temp_dir, removed at exit) and the Python tests'.
+left="$(cd "$run_tmp" && find . -maxdepth 1 -name 'dymsum-*' | sort)"
+if [ -n "$left" ]; then
+    printf 'the tests left these temporary folders behind (in %s):\n%s\n' "$run_tmp" "$left" >&2
+    exit 1
+fi

@@ -23,6 +23,7 @@
 mod convert;
 mod maps;
 mod motion;
+mod solid;
 
 use convert::{err_for, io_error, value_error, Origin, Shape};
 use dymsum::polytope::MeshPolicy;
@@ -1357,6 +1358,7 @@ fn _dymsum(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(models, m)?)?;
     motion::register(m)?;
     maps::register(m)?;
+    solid::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

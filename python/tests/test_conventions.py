@@ -4,6 +4,7 @@ rotation or a pose accepts a scipy ``Rotation``, a 3×3 matrix, an
 same turn; every shape argument also takes a model name or a path; scipy is
 never imported by dymsum itself."""
 
+import os
 import pathlib
 import subprocess
 import sys
@@ -167,9 +168,14 @@ def test_examples_write_only_where_told(tmp_path):
     # The tour writes into the folder it is given (or a fresh temporary one),
     # never into the caller's working directory.
     script = pathlib.Path(__file__).parent.parent / "examples" / "tour.py"
-    cwd = tmp_path / "cwd"
+    cwd, tmp = tmp_path / "cwd", tmp_path / "tmp"
     cwd.mkdir()
-    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300, cwd=cwd)
+    tmp.mkdir()
+    # Its fresh temporary folder under tmp_path, removed with it (issue 29:
+    # the tests leave no dymsum-* folder in the system's temporary folder).
+    env = {**os.environ, "TMPDIR": str(tmp), "TEMP": str(tmp), "TMP": str(tmp)}
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300, cwd=cwd, env=env)
     assert done.returncode == 0, done.stderr
     assert list(cwd.iterdir()) == []
     assert "wrote" in done.stdout
+    assert [p.name[: len("dymsum-tour-")] for p in tmp.iterdir()] == ["dymsum-tour-"]

@@ -280,12 +280,14 @@ def test_nonconvex_mesh_needs_a_decomposition():
 
 def test_cavity_is_not_taken_as_convex_pieces():
     """A box with an inward box shell inside (a cavity): its outer shell is
-    convex, but taking it alone would fill the cavity; refused without a
-    decomposition."""
+    convex, but taking it alone would fill the cavity. A body is the union
+    of its shells, each of positive volume, so the inward shell is refused
+    (with or without a decomposition)."""
     v, f = two_box_mesh([((0, 0, 0), (4, 4, 4)), ((1, 1, 1), (3, 3, 3))])
     f[12:] = f[12:, ::-1]
-    with pytest.raises(ValueError, match="needs a convex decomposition"):
-        dymsum.minkowski_sum((v, f), cube(0.5))
+    for decomposition in (None, "coacd", "boundary"):
+        with pytest.raises(ValueError, match="^a: not a solid: shell 1 .* encloses a negative volume: it is inward"):
+            dymsum.minkowski_sum((v, f), cube(0.5), decomposition=decomposition)
 
 
 def test_open_mesh_is_refused():
@@ -349,7 +351,7 @@ def test_culling_drops_only_contained_pairs():
 def test_open_mesh_next_to_a_union_is_refused():
     """Through the union path too (the other operand a ConvexUnion)."""
     v2, f2 = L_mesh()
-    with pytest.raises(ValueError, match="open mesh.*has no opposite half-edge"):
+    with pytest.raises(ValueError, match=r"^b: not a solid: open mesh: edge \(\d+, \d+\) of face \d+ has no opposite edge"):
         dymsum.minkowski_sum(L_union(), (v2, f2[:-1]))
 
 
@@ -628,3 +630,116 @@ def test_boundary_method_on_a_curved_mesh_drops_the_unions_slivers():
     assert r.info["shells"] == 1 and r.info["genus"] == 5 == theirs.genus()
     assert r.info["slivers_dropped"] in (0, 1)
     assert r.volume == pytest.approx(theirs.volume(), rel=1e-12)
+
+
+# ------------------------------------------- issue 26: meshes given as solids
+
+
+def _cube_corner_pulled_through():
+    """A cube (12 triangles) with its corner (1, 1, 1) pulled through the
+    bottom face: closed, oriented, manifold, crossing itself."""
+    v, f = box_mesh((0, 0, 0), (1, 1, 1))
+    v = v.copy()
+    v[7] = [1.0, 1.0, -0.5]
+    return v, f
+
+
+def _curl_through_itself():
+    """A prism over a curl that crosses itself: closed, oriented, manifold,
+    of positive volume, winding number 2 in one box and −1 in another."""
+    ring = [(0, 0), (4, 0), (4, 3), (1, 3), (1, 1), (3, 1), (3, 2), (2, 2), (2, -1), (0, -1)]
+    n = len(ring)
+    v = np.array([(x, y, z) for z in (0.0, 1.0) for x, y in ring], float)
+    f = [(0, k + 1, k) for k in range(1, n - 1)] + [(n, n + k, n + k + 1) for k in range(1, n - 1)]
+    for i in range(n):
+        j = (i + 1) % n
+        f += [(i, j, n + j), (i, n + j, n + i)]
+    return v, np.array(f, dtype=np.int64)
+
+
+def test_l_mesh_with_every_triangle_listed_twice_is_refused():
+    """Finding 2: under decomposition='boundary' this L was summed to volume
+    13.188 reported exact (truth 12.375)."""
+    v, f = L_mesh()
+    twice = np.vstack([f, f])
+    for decomposition in (None, "boundary", "coacd", "vhacd"):
+        with pytest.raises(ValueError, match=f"^a: not a solid: faces 0 and {len(f)} have the same corners"):
+            dymsum.minkowski_sum((v, twice), cube(0.5), decomposition=decomposition)
+    assert "same corners" in dymsum.nonconvex.check_solid(v, twice)
+    # The L itself is a solid, and its boundary sum is exact.
+    assert dymsum.nonconvex.check_solid(v, f) is None
+    r = dymsum.minkowski_sum((v, f), cube(0.5), decomposition="boundary")
+    assert r.info["decomposition"]["a"]["exact"] is True
+    assert r.volume == pytest.approx(12.375, rel=1e-12)
+
+
+@pytest.mark.parametrize("decomposition", [None, "boundary", "coacd", "vhacd"])
+@pytest.mark.parametrize("mesh", [_cube_corner_pulled_through, _curl_through_itself])
+def test_self_intersecting_closed_meshes_are_refused(mesh, decomposition):
+    """Finding 3: closed meshes crossing themselves were summed under
+    'boundary' (reported exact) and 'coacd'. Refused before any
+    decomposition library is called, as either operand."""
+    v, f = mesh()
+    assert dymsum.nonconvex.check_closed_mesh(v, f) is None  # closed, oriented, manifold
+    with pytest.raises(ValueError, match=r"^a: not a solid: faces \d+ and \d+ cross"):
+        dymsum.minkowski_sum((v, f), cube(0.5), decomposition=decomposition)
+    with pytest.raises(ValueError, match=r"^b: not a solid: faces \d+ and \d+ cross"):
+        dymsum.minkowski_sum(cube(0.5), (v, f), decomposition=decomposition)
+
+
+def test_self_intersecting_meshes_are_refused_by_every_entry_point():
+    v, f = _curl_through_itself()
+    with pytest.raises(ValueError, match="^a: not a solid"):
+        dymsum.contact((v, f), cube(0.5, (9, 9, 9)))
+    with pytest.raises(ValueError, match="^robot: not a solid"):
+        dymsum.cobstacle_slices((v, f), cube(0.5), [[0, 0, 0, 1.0]])
+    with pytest.raises(ValueError, match="^obstacle: not a solid"):
+        dymsum.cobstacle_slices(cube(0.5), (v, f), [[0, 0, 0, 1.0]])
+    with pytest.raises(ValueError, match="^b: not a solid"):
+        dymsum.DynamicSum(cube(0.5), (v, f))
+    with pytest.raises(ValueError, match="^a: not a solid"):
+        dymsum.nonconvex.convex_pieces((v, f), "coacd", name="a")
+
+
+@pytest.mark.parametrize("decomposition", [None, "boundary"])
+def test_closed_zero_volume_sheet_beside_a_cube_is_refused(decomposition):
+    """Finding 3: a closed sheet of no volume beside a cube was counted as
+    volume."""
+    v, f = box_mesh((0, 0, 0), (1, 1, 1))
+    # Two triangles back to back, and a tetrahedron flattened into a plane.
+    sheet_v = np.array([[2, 0, 0], [3, 0, 0], [2, 1, 0]], float)
+    sheet_f = np.array([[0, 1, 2], [0, 2, 1]])
+    flat_v = np.array([[2, 0, 0], [3, 0, 0], [2, 1, 0], [2.25, 0.25, 0]], float)
+    flat_f = np.array([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])
+    for (sv, sf), why in (((sheet_v, sheet_f), "faces 12 and 13 have the same corners"), ((flat_v, flat_f), r"faces 12 and \d+ cross")):
+        mv, mf = np.vstack([v, sv]), np.vstack([f, sf + len(v)])
+        with pytest.raises(ValueError, match=f"^a: not a solid: {why}"):
+            dymsum.minkowski_sum((mv, mf), cube(0.5), decomposition=decomposition)
+
+
+@pytest.mark.parametrize("decomposition", [None, "boundary", "coacd"])
+def test_non_manifold_input_under_boundary_is_a_value_error_naming_the_argument(decomposition):
+    """Finding 7: under 'boundary' this raised MeshUnionError ("Manifold
+    refused the mesh moved by a vertex of piece 0")."""
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], float)
+    t1 = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]
+    t2 = [[0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]]
+    f = np.array(t1 + t2)
+    with pytest.raises(ValueError, match="^a: not a solid: vertex 0 is non-manifold"):
+        dymsum.minkowski_sum((v, f), cube(0.5), decomposition=decomposition)
+    with pytest.raises(ValueError, match="^b: not a solid: vertex 0 is non-manifold"):
+        dymsum.minkowski_sum(cube(0.5), (v, f), decomposition=decomposition)
+
+
+def test_overlapping_shells_are_a_union_under_boundary():
+    """Shells may overlap: the body is their union, and the boundary method
+    moves each shell on its own (Manifold takes no self-overlapping mesh)."""
+    v, f = L_mesh()
+    bv, bf = box_mesh((0.5, 0.5, 0.5), (1.5, 1.5, 2.0))
+    mv, mf = np.vstack([v, bv]), np.vstack([f, bf + len(v)])
+    assert dymsum.nonconvex.check_solid(mv, mf) is None
+    r = dymsum.minkowski_sum((mv, mf), cube(0.5), decomposition="boundary")
+    assert_valid(*r)
+    boxes = L_BOXES + [((0.5, 0.5, 0.5), (1.5, 1.5, 2.0))]
+    assert r.volume == pytest.approx(box_union_volume(box_sum_boxes(boxes, [((0, 0, 0), (0.5, 0.5, 0.5))])), rel=1e-9)
+    assert r.info["decomposition"]["a"]["exact"] is True

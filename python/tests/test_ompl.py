@@ -438,6 +438,23 @@ def test_half_turn_follows_ompl_direction_se3():
     assert verdicts == [False, True]
 
 
+@pytest.mark.parametrize("qw", [-8.598507252118853e-15, 8.598507252118853e-15, -5e-301, 5e-301])
+def test_regression_half_turn_plus_epsilon_follows_ompl_se3(qw):
+    # Issue 26 §1: 180° ± 1e-12° (or ± 1e-300) about z. OMPL's float dot
+    # product with the identity is qw: negative → the second quaternion is
+    # negated and the arm turns clockwise through a block at y ≈ −1.5.
+    space = se3_space()
+    block = box([-0.1, -1.6, -1], [0.1, -1.4, 1])
+    start, end = (0, 0, 0, 0, 0, 0, 1), (0, 0, 0, 0, 0, 1.0, qw)
+    ts, hit = sampled_hits(Oracle(ARM, [block]), start, end, 20_000)
+    assert hit.any() == (qw < 0)
+    si, v = certified_si(space, ARM, [block])
+    assert si.checkMotion(state(space, *start), state(space, *end)) == (qw > 0)
+    # And dymsum's own check of the same quaternions, outside OMPL.
+    c = dymsum.check_motion(ARM, [block], None, np.array([0.0, 0.0, 1.0, qw]))
+    assert c.free == (qw > 0)
+
+
 def test_tiny_se3_turn_checks_ompl_held_rotation_too():
     # A bar 10 long turning by 8e-5 rad about z while moving down 5e-4: the
     # real motion lifts the tip, but OMPL's interpolation keeps the first

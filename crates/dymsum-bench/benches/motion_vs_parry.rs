@@ -45,8 +45,13 @@ fn motion_vs_parry(c: &mut Criterion) {
         let (pb, po) = parry_shapes(&scene);
         // Agreement first.
         let (mut colliding, mut parry_missed, mut sampling_missed, mut worst) = (0, 0, 0, 0.0f64);
+        let mut most_steps = 0;
         for &(from, to) in &scene.motions {
+            let before = checker.steps();
+            // Unwrapped: an undecided answer (grazing, or the default work
+            // budget used up) fails the bench.
             let ours = checker.check(from, to, TOLERANCE).unwrap();
+            most_steps = most_steps.max(checker.steps() - before);
             let parry = parry_time_of_impact(&pb, &po, from, to);
             if let MotionCheck::Collides { t_safe, t_contact } = ours {
                 colliding += 1;
@@ -65,9 +70,11 @@ fn motion_vs_parry(c: &mut Criterion) {
         eprintln!(
             "{}: {colliding}/{} motions collide (certified); parry's cast calls {parry_missed} \
              of them free, sampling at 1% steps {sampling_missed}; parry's time of impact at most \
-             {worst:.2e} outside dymsum's bracket",
+             {worst:.2e} outside dymsum's bracket; at most {most_steps} intervals per check \
+             (budget {})",
             scene.name,
-            scene.motions.len()
+            scene.motions.len(),
+            checker.budget()
         );
         let n = scene.motions.len();
         let mut k = 0;

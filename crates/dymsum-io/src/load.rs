@@ -365,12 +365,8 @@ mod tests {
     use std::path::PathBuf;
 
     fn temp_file(name: &str, contents: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!(
-            "dymsum-io-load-{}-{}",
-            std::process::id(),
-            name.replace(['.', '/'], "_")
-        ));
-        std::fs::create_dir_all(&dir).unwrap();
+        // Removed when the test process exits (issue 29).
+        let dir = dymsum_testkit::files::temp_dir("io-load", &name.replace(['.', '/'], "_"));
         let path = dir.join(name);
         std::fs::write(&path, contents).unwrap();
         path

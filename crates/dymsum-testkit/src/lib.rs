@@ -603,11 +603,14 @@ pub fn cube_obj(offset: f64, first: usize, grouped: bool) -> String {
 pub mod files {
     use std::path::{Path, PathBuf};
     use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::{Mutex, Once};
 
     /// A fresh, empty directory under the system temp dir, named after
     /// `suite`, the process, a counter and `name` (unique per call, so
     /// parallel tests never share one). A leftover of an earlier run with the
-    /// same name is removed first.
+    /// same name is removed first. Every directory made here is removed when
+    /// the test process exits, passed or failed (an `atexit` handler: a test
+    /// that forgets [`remove_dir`] leaves nothing in the temp dir; issue 29).
     pub fn temp_dir(suite: &str, name: &str) -> PathBuf {
         static COUNTER: AtomicUsize = AtomicUsize::new(0);
         let dir = std::env::temp_dir().join(format!(
@@ -619,7 +622,38 @@ pub mod files {
             std::fs::remove_dir_all(&dir).expect("remove a stale scratch directory");
         }
         std::fs::create_dir_all(&dir).expect("create a scratch directory");
+        remove_at_exit(&dir);
         dir
+    }
+
+    /// The directories [`temp_dir`] made in this process.
+    static MADE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+    /// Registers `dir` for removal when the process exits (the handler is
+    /// installed once).
+    fn remove_at_exit(dir: &Path) {
+        static INSTALL: Once = Once::new();
+        MADE.lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(dir.to_path_buf());
+        INSTALL.call_once(|| {
+            extern "C" fn remove_all() {
+                let dirs = std::mem::take(&mut *MADE.lock().unwrap_or_else(|e| e.into_inner()));
+                for d in dirs {
+                    let _ = std::fs::remove_dir_all(d);
+                }
+            }
+            extern "C" {
+                fn atexit(f: extern "C" fn()) -> std::ffi::c_int;
+            }
+            // SAFETY: `atexit` is the C library's; `remove_all` is a plain
+            // `extern "C" fn` without arguments that does not unwind (it
+            // ignores every error). libtest leaves through `exit` (returning
+            // from `main`, or `process::exit` after a failure), which runs it.
+            unsafe {
+                atexit(remove_all);
+            }
+        });
     }
 
     /// Removes a scratch directory made by [`temp_dir`] (best effort at

@@ -98,19 +98,23 @@ fn self_intersecting_closed_meshes_are_refused() {
         check(&cube),
         Err(SolidError::TrianglesCross { .. })
     ));
-    // The L with its arm bent back through its foot (a closed, oriented
-    // 2-manifold of positive volume, winding number 2 where they overlap).
+    // A prism over a curl that crosses itself: a closed, oriented
+    // 2-manifold of positive volume, winding number 2 in one box and −1 in
+    // another.
     let bent = [
         [0., 0.],
-        [3., 0.],
-        [3., 1.],
-        [1., 1.],
+        [4., 0.],
+        [4., 3.],
         [1., 3.],
-        [2., 3.],
+        [1., 1.],
+        [3., 1.],
+        [3., 2.],
+        [2., 2.],
         [2., -1.],
         [0., -1.],
     ];
     let mesh = prism(&bent, 0.0, 1.0).triangulated();
+    assert!(mesh.signed_volume() > 0.0);
     let err = check(&mesh).unwrap_err();
     assert!(matches!(err, SolidError::TrianglesCross { .. }), "{err}");
     assert!(err

@@ -58,6 +58,7 @@ from .nonconvex import (
     contact as contact,
     MeshUnionError as MeshUnionError,
     UnionSum as UnionSum,
+    check_solid as check_solid,
     convex_pieces as convex_pieces,
     minkowski_sum as minkowski_sum,
 )
@@ -86,6 +87,7 @@ __all__ = [
     "UnionSum",
     "check_motion",
     "check_motions",
+    "check_solid",
     "closest_boundary_point",
     "cobstacle_slices",
     "collides_many",

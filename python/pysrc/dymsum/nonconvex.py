@@ -44,6 +44,7 @@ __all__ = [
     "cobstacle_slices",
     "convex_pieces",
     "check_closed_mesh",
+    "check_solid",
     "closest_boundary_point",
 ]
 
@@ -58,9 +59,10 @@ class _NeedsDecomposition(ValueError):
     """A non-convex mesh that is not a union of exactly convex components,
     given with no decomposition; carries the mesh."""
 
-    def __init__(self, message: str, vertices: np.ndarray, faces: np.ndarray) -> None:
+    def __init__(self, message: str, vertices: np.ndarray, faces: np.ndarray, shells: List[np.ndarray]) -> None:
         super().__init__(message)
         self.mesh = (vertices, faces)
+        self.shells = shells
 
 
 class MeshUnionError(RuntimeError):
@@ -262,8 +264,9 @@ def _decompose(vertices: np.ndarray, faces: np.ndarray, method: str, options: Di
     raise ValueError(f"unknown decomposition {method!r}: use one of {', '.join(map(repr, DECOMPOSITIONS))}")
 
 
-def _volume_error(pieces: Sequence[Any], vertices: np.ndarray, faces: np.ndarray) -> Dict[str, float]:
-    """How far the union of the pieces is from the input mesh (by Manifold)."""
+def _volume_error(pieces: Sequence[Any], vertices: np.ndarray, faces: np.ndarray, shells: Sequence[np.ndarray]) -> Dict[str, float]:
+    """How far the union of the pieces is from the input mesh, the union of
+    its ``shells`` (by Manifold)."""
     m3d = _manifold3d()
     union = m3d.Manifold.batch_boolean(
         [_to_manifold(m3d, p.vertices, p.faces, f"decomposition piece {i}") for i, p in enumerate(pieces)], m3d.OpType.Add
@@ -271,7 +274,15 @@ def _volume_error(pieces: Sequence[Any], vertices: np.ndarray, faces: np.ndarray
     vin = signed_volume(vertices, faces)
     out: Dict[str, float] = {"input_volume": vin, "union_volume": union.volume()}
     try:
-        inp = _to_manifold(m3d, vertices, faces, "the input mesh")
+        if len(shells) == 1:
+            inp = _to_manifold(m3d, vertices, faces, "the input mesh")
+        else:
+            # Overlapping shells: the input is their union.
+            inp = m3d.Manifold.batch_boolean(
+                [_to_manifold(m3d, *_submesh(vertices, faces[s]), f"shell {k} of the input") for k, s in enumerate(shells)],
+                m3d.OpType.Add,
+            )
+            vin = out["input_volume"] = inp.volume()
     except MeshUnionError:
         # The input is not a valid manifold for Manifold: the volumes only.
         out["volume_error"] = abs(union.volume() - vin) / vin
@@ -284,18 +295,50 @@ def _volume_error(pieces: Sequence[Any], vertices: np.ndarray, faces: np.ndarray
     return out
 
 
+def check_solid(vertices: Any, faces: Any) -> Optional[str]:
+    """Why the triangle mesh ``(vertices, faces)`` is not a solid, or
+    ``None`` when it is (dymsum's exact check, in Rust: each shell closed,
+    consistently oriented, edge- and vertex-manifold, crossing itself
+    nowhere, of positive volume; no zero-area triangle; no face listed twice
+    or back to back; shells may overlap each other)."""
+    try:
+        _ext.check_solid(vertices, faces)
+    except ValueError as e:
+        return str(e)
+    return None
+
+
+def _solid_shells(vertices: np.ndarray, faces: np.ndarray, name: Optional[str]) -> List[np.ndarray]:
+    """The shells (face indices) of a mesh given as a solid; ``ValueError``
+    naming the argument when it is not one."""
+    try:
+        return list(_ext.check_solid(vertices, faces))
+    except ValueError as e:
+        prefix = f"{name}: " if name else ""
+        raise ValueError(
+            f"{prefix}not a solid: {e}; a non-convex body must be a closed mesh whose shells each bound a "
+            "region (repair the mesh, or give its convex pieces as dymsum.ConvexUnion([...]))"
+        ) from None
+
+
 def convex_pieces(
-    shape: Any, decomposition: Optional[str] = None, options: Optional[Dict[str, Any]] = None
+    shape: Any,
+    decomposition: Optional[str] = None,
+    options: Optional[Dict[str, Any]] = None,
+    *,
+    name: Optional[str] = None,
 ) -> Tuple[List[Any], Dict[str, Any]]:
     """The convex pieces of a body, and how they were obtained.
 
     A :class:`ConvexUnion` gives its pieces; a convex shape (anything
-    :class:`Polytope` accepts) is one piece; a closed mesh ``(vertices,
-    faces)`` (or an object with ``.vertices`` and ``.faces``) that is not
-    convex is split into connected components, taken as pieces when every
-    one is exactly convex and outward; otherwise it is decomposed by
-    ``decomposition`` (``"coacd"`` or ``"vhacd"``), and the volume error of
-    the union of the parts against the input is reported.
+    :class:`Polytope` accepts) is one piece; a mesh ``(vertices, faces)``
+    (or an object with ``.vertices`` and ``.faces``) that is not convex is
+    first checked exactly to be a solid (:func:`check_solid`; else
+    ``ValueError``, prefixed by ``name``, the argument's name): the body is
+    the union of its shells. The shells are taken as pieces when every one
+    is exactly convex; otherwise the non-convex shells are decomposed, one
+    by one, by ``decomposition`` (``"coacd"`` or ``"vhacd"``), and the
+    volume error of the union of the parts against the input is reported.
     """
     opts = dict(options or {})
     if isinstance(shape, _ext.ConvexUnion):
@@ -307,7 +350,7 @@ def convex_pieces(
         try:
             return [_ext.Polytope(path)], {"method": "convex", "exact": True}
         except ValueError:
-            return _path_pieces(path, decomposition, opts)
+            return _path_pieces(path, decomposition, opts, name)
     mesh = _mesh_of(shape)
     if mesh is None:
         return [_ext.Polytope(shape)], {"method": "convex", "exact": True}
@@ -315,35 +358,20 @@ def convex_pieces(
         return [_ext.Polytope(shape)], {"method": "convex", "exact": True}
     except ValueError as convex_error:
         refusal = str(convex_error)
-    # dymsum's own refusal stands for a mesh that is no solid at all; only a
-    # closed, outward mesh goes on as a non-convex body.
     try:
         vertices, faces = _as_mesh(*mesh)
     except ValueError:
-        raise ValueError(refusal) from None
-    why = check_closed_mesh(vertices, faces)
-    # Shells that overlap or touch (repeated directed edges, pinched
-    # vertices) are accepted: the body is their union. An open, inward or
-    # degenerate mesh is not a solid.
-    if why is not None and not (why.startswith("directed edge") or "pinched" in why):
-        raise ValueError(f"{refusal} (as a non-convex body: {why})")
-    if not signed_volume(vertices, faces) > 0:
-        raise ValueError(f"{refusal} (as a non-convex body: its signed volume is not positive)")
+        raise ValueError(f"{name}: {refusal}" if name else refusal) from None
+    # Exactly a solid, or refused: nothing from an invalid mesh goes on.
+    shells = _solid_shells(vertices, faces, name)
     pieces: List[Any] = []
     rest: List[np.ndarray] = []
-    cavity = False
-    for comp in _components(len(vertices), faces):
-        cv, cf = _submesh(vertices, faces[comp])
-        if check_closed_mesh(cv, cf) is not None or signed_volume(cv, cf) <= 0:
-            # An inward shell (a cavity) or a broken shell: only a
-            # decomposition of the whole mesh can take it into account.
-            cavity = True
-            rest.append(comp)
-            continue
+    for shell in shells:
+        cv, cf = _submesh(vertices, faces[shell])
         try:
             pieces.append(_ext.Polytope((cv, cf), strict=True))
         except ValueError:
-            rest.append(comp)
+            rest.append(shell)
     if not rest:
         return pieces, {"method": "components", "exact": True, "components": len(pieces)}
     if decomposition is None or decomposition == "boundary":
@@ -354,14 +382,14 @@ def convex_pieces(
             "(exact, when the other body is convex or in convex pieces)",
             vertices,
             faces,
+            shells,
         )
     if decomposition not in DECOMPOSITIONS:
         raise ValueError(f"unknown decomposition {decomposition!r}: use one of {', '.join(map(repr, DECOMPOSITIONS))}")
-    if cavity:
-        pieces, rest = [], [np.arange(len(faces))]
-    sel = np.concatenate(rest)
-    dv, df = _submesh(vertices, faces[sel])
-    parts = _decompose(dv, df, decomposition, opts)
+    parts = []
+    for shell in rest:
+        dv, df = _submesh(vertices, faces[shell])
+        parts.extend(_decompose(dv, df, decomposition, opts))
     decomposed = []
     flat = 0
     for p in parts:
@@ -384,7 +412,7 @@ def convex_pieces(
         "flat_parts_dropped": flat,
     }
     pieces = pieces + decomposed
-    info.update(_volume_error(pieces, vertices, faces))
+    info.update(_volume_error(pieces, vertices, faces, shells))
     return pieces, info
 
 
@@ -402,7 +430,7 @@ def _mesh_of(shape: Any) -> Optional[Tuple[Any, Any]]:
 
 
 def _is_nonconvex_solid(shape: Any) -> bool:
-    """A closed, outward triangle mesh that dymsum refuses as a polytope."""
+    """A closed triangle mesh that dymsum refuses as a polytope."""
     if isinstance(shape, (_ext.ConvexUnion, _ext.Polytope)):
         return False
     mesh = _mesh_of(shape)
@@ -417,8 +445,11 @@ def _is_nonconvex_solid(shape: Any) -> bool:
         return False
     except ValueError:
         pass
+    # A closed mesh (every edge paired, however badly) goes on as a
+    # non-convex body, where the exact solid check says what is wrong with
+    # it; an open one keeps the convex loader's refusal.
     why = check_closed_mesh(vertices, faces)
-    return (why is None or why.startswith("directed edge") or "pinched" in why) and signed_volume(vertices, faces) > 0
+    return why is None or "no opposite half-edge" not in why
 
 
 # ---------------------------------------------------------------------- the sum
@@ -437,8 +468,8 @@ def _union_sum(
     m3d = _manifold3d()
     if decomposition == "boundary":
         return _boundary_sum(m3d, a, b, pose_a, pose_b, decomposition_options, cull)
-    pa, info_a = convex_pieces(a, decomposition, decomposition_options)
-    pb, info_b = convex_pieces(b, decomposition, decomposition_options)
+    pa, info_a = convex_pieces(a, decomposition, decomposition_options, name="a")
+    pb, info_b = convex_pieces(b, decomposition, decomposition_options, name="b")
     sums = []
     for i, p in enumerate(pa):
         for j, q in enumerate(pb):
@@ -511,14 +542,14 @@ def _merge(
     return UnionSum(vertices, faces, info)
 
 
-def _boundary_mesh(shape: Any) -> Optional[Tuple[np.ndarray, np.ndarray, Dict[str, Any]]]:
-    """``(vertices, faces, info)`` of a body that is not a union of exactly
-    convex components (it needs a decomposition), else ``None``."""
+def _boundary_mesh(shape: Any, name: str) -> Optional[Tuple[np.ndarray, np.ndarray, List[np.ndarray], Dict[str, Any]]]:
+    """``(vertices, faces, shells, info)`` of a body that is not a union of
+    exactly convex shells (it needs a decomposition), else ``None``."""
     try:
-        convex_pieces(shape, "boundary")
+        convex_pieces(shape, "boundary", name=name)
     except _NeedsDecomposition as e:
         v, f = e.mesh
-        return v, f, {"method": "boundary", "exact": True, "triangles": len(f)}
+        return v, f, e.shells, {"method": "boundary", "exact": True, "triangles": len(f)}
     return None
 
 
@@ -545,7 +576,7 @@ def _boundary_sum(
     """
     if options:
         raise ValueError("decomposition='boundary' takes no decomposition_options")
-    ma, mb = _boundary_mesh(a), _boundary_mesh(b)
+    ma, mb = _boundary_mesh(a, "a"), _boundary_mesh(b, "b")
     if ma is not None and mb is not None:
         raise ValueError(
             "decomposition='boundary' sums a non-convex mesh with a convex body or convex pieces; "
@@ -555,9 +586,11 @@ def _boundary_sum(
     if ma is None and mb is None:
         return _union_sum(a, b, pose_a, pose_b, "walk", None, None, cull)
     swap = ma is None
-    (v, f, info_mesh), other, pose_mesh, pose_other = (mb, a, pose_b, pose_a) if swap else (ma, b, pose_a, pose_b)
-    assert v is not None
-    pieces, info_other = convex_pieces(other)
+    mesh = mb if swap else ma
+    assert mesh is not None
+    v, f, shells, info_mesh = mesh
+    other, pose_mesh, pose_other = (a, pose_b, pose_a) if swap else (b, pose_a, pose_b)
+    pieces, info_other = convex_pieces(other, name="a" if swap else "b")
     tm, to = _pose_matrix(pose_mesh), _pose_matrix(pose_other)
     mesh_v = _posed_points(np.asarray(v, dtype=np.float64), tm)
     tris = mesh_v[np.asarray(f)]
@@ -566,7 +599,11 @@ def _boundary_sum(
     flat = np.ascontiguousarray(tris.reshape(-1, 3))
     for j, piece in enumerate(pieces):
         pv = _posed_points(np.asarray(_ext.Polytope(piece).vertices, dtype=np.float64), to)
-        copies.append((f"the mesh moved by a vertex of piece {j}", mesh_v + pv[0], np.asarray(f)))
+        # One copy per shell: the body is the union of its shells, which
+        # may overlap (Manifold takes no self-overlapping input).
+        for k, shell in enumerate(shells):
+            sv, sf = _submesh(mesh_v, np.asarray(f)[shell])
+            copies.append((f"shell {k} of the mesh moved by a vertex of piece {j}", sv + pv[0], sf))
         for k, (hv, hf) in enumerate(_ext._triangle_sums(flat, np.ascontiguousarray(pv))):
             sums.append((k, j, hv, hf))
     # No culling: a triangle's sum straddles the mesh's boundary, so one
@@ -746,8 +783,8 @@ class DynamicUnionSum:
         decomposition_options: Optional[Dict[str, Any]] = None,
         cull: bool = True,
     ) -> None:
-        self._pa, info_a = convex_pieces(a, decomposition, decomposition_options)
-        self._pb, info_b = convex_pieces(b, decomposition, decomposition_options)
+        self._pa, info_a = convex_pieces(a, decomposition, decomposition_options, name="a")
+        self._pb, info_b = convex_pieces(b, decomposition, decomposition_options, name="b")
         self._decomposition = {"a": info_a, "b": info_b}
         self._cull = cull
         self._sums = [
@@ -798,20 +835,22 @@ def _path_of(shape: Any) -> Optional[str]:
     return None
 
 
-def _path_pieces(path: str, decomposition: Optional[str], options: Optional[Dict[str, Any]]) -> Tuple[List[Any], Dict[str, Any]]:
+def _path_pieces(
+    path: str, decomposition: Optional[str], options: Optional[Dict[str, Any]], name: Optional[str] = None
+) -> Tuple[List[Any], Dict[str, Any]]:
     """Convex pieces of a mesh file that ``Polytope`` refuses: the bodies of
     the file (OBJ objects), each convex or split as :func:`convex_pieces`
     splits a mesh."""
     bodies = _ext.read_mesh_bodies(path)
     if len(bodies) == 1:
         _, v, f = bodies[0]
-        return convex_pieces((v, f), decomposition, options)
+        return convex_pieces((v, f), decomposition, options, name=name)
     pieces: List[Any] = []
     objects = []
-    for name, v, f in bodies:
-        got, how = convex_pieces((v, f) if len(f) else v, decomposition, options)
+    for obj, v, f in bodies:
+        got, how = convex_pieces((v, f) if len(f) else v, decomposition, options, name=f"{name or path} (object {obj!r})")
         pieces.extend(got)
-        objects.append({"name": name, **how})
+        objects.append({"name": obj, **how})
     info: Dict[str, Any] = {"method": "objects", "exact": all(o["exact"] for o in objects), "objects": objects}
     return pieces, info
 
@@ -966,8 +1005,8 @@ def _union_contact(
     decomposition: Optional[str],
     decomposition_options: Optional[Dict[str, Any]],
 ) -> UnionContact:
-    pa, info_a = convex_pieces(a, decomposition, decomposition_options)
-    pb, info_b = convex_pieces(b, decomposition, decomposition_options)
+    pa, info_a = convex_pieces(a, decomposition, decomposition_options, name="a")
+    pb, info_b = convex_pieces(b, decomposition, decomposition_options, name="b")
     ta, tb = _pose_matrix(pose_a), _pose_matrix(pose_b)
     info: Dict[str, Any] = {"pieces": (len(pa), len(pb)), "decomposition": {"a": info_a, "b": info_b}}
     best = None
@@ -1078,8 +1117,8 @@ def cobstacle_slices(
         return out
     if polygons:
         raise ValueError("polygons=True is for convex bodies; a non-convex C-obstacle slice is a triangle mesh")
-    pr, info_r = convex_pieces(robot, decomposition, decomposition_options)
-    po, info_o = convex_pieces(obstacle, decomposition, decomposition_options)
+    pr, info_r = convex_pieces(robot, decomposition, decomposition_options, name="robot")
+    po, info_o = convex_pieces(obstacle, decomposition, decomposition_options, name="obstacle")
     pairs = [(i, j) for i in range(len(pr)) for j in range(len(po))]
     per_pair = [_ext.cobstacle_slices(pr[i], po[j], rotations, False, parallel, certified, cell_radius) for i, j in pairs]
     steps = len(per_pair[0])

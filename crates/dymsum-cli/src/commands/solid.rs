@@ -8,7 +8,7 @@ use std::path::Path;
 use anyhow::anyhow;
 use clap::ValueEnum;
 use dymsum::nonconvex::{convex_pieces, Decomposition, DecompositionInfo, UnionMeshError};
-use dymsum::Polytope;
+use dymsum::{Polytope, SolidError};
 
 use super::query::load_body;
 
@@ -45,12 +45,14 @@ impl Solid {
 
 /// Loads operand `spec` as convex pieces. A convex body or a union of
 /// convex pieces loads as for `dymsum query` ([`load_body`]); a mesh file
-/// refused only for not being convex is split into its exactly convex
-/// connected components, or else by `decomposition`.
+/// refused only for not being convex is checked exactly to be a solid
+/// ([`dymsum::solid::check_solid_mesh`]), then split into its exactly
+/// convex shells, or else by `decomposition`.
 ///
 /// # Errors
-/// Those of [`load_body`] when the operand is no closed solid at all; for a
-/// non-convex closed mesh, the convex loader's message (naming the operand
+/// Those of [`load_body`] when the operand is no mesh at all; for a mesh
+/// that is not a solid, what is wrong and where, then the fix; for a
+/// non-convex solid, the convex loader's message (naming the operand
 /// and where the mesh is not convex) followed by
 /// [`UnionMeshError::NeedsDecomposition`] (naming `--decomposition vhacd`)
 /// or a decomposition failure.
@@ -84,6 +86,19 @@ pub fn load_solid(
     let d = decomposition.map_or(Decomposition::Components, Decomposition::from);
     match convex_pieces(&mesh, d) {
         Ok((pieces, info)) => Ok(Solid { pieces, info }),
+        // An open mesh is no solid at all: the convex loader's message
+        // names its open edge.
+        Err(UnionMeshError::Solid(e @ SolidError::OpenEdge { .. })) => {
+            Err(refusal.context(format!("(as a non-convex body: {e})")))
+        }
+        // Checked exactly before any shell or decomposition is taken: the
+        // problem, where, then the fix.
+        Err(UnionMeshError::Solid(e)) => Err(anyhow!(
+            "{operand} (file {}): not a solid: {e}; fix: repair the mesh so that each shell is \
+             closed, consistently oriented, manifold and crosses itself nowhere, or give its \
+             convex pieces as files joined with `+` or as OBJ objects",
+            super::short_name(spec)
+        )),
         // No closed solid: the convex loader's message says most.
         Err(UnionMeshError::Input { reason }) => {
             Err(refusal.context(format!("(as a non-convex body: {reason})")))

@@ -195,12 +195,12 @@ pub(crate) fn check_triangles(
     }
     let slivers = tris
         .iter()
-        .filter(|f| collinear(vertices[f[0]], vertices[f[1]], vertices[f[2]]))
+        .filter(|f| crate::solid::collinear(vertices[f[0]], vertices[f[1]], vertices[f[2]]))
         .count();
     let used = fans.len();
     let edges = half.len() / 2;
     let chi = used as i64 - edges as i64 + tris.len() as i64;
-    let shells = shells(vertices.len(), tris);
+    let shells = crate::solid::shells(vertices.len(), tris).len();
     let genus = shells as i64 - chi / 2;
     let volume = signed_volume(vertices, tris);
     if volume.is_nan() || volume <= 0.0 {
@@ -214,16 +214,6 @@ pub(crate) fn check_triangles(
         genus,
         slivers,
     })
-}
-
-/// Exactly: are the three points collinear (all three coordinate-plane
-/// projections have zero orientation)?
-fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
-    let o = |i: usize, j: usize| {
-        let p = |v: [f64; 3]| robust::Coord { x: v[i], y: v[j] };
-        robust::orient2d(p(a), p(b), p(c))
-    };
-    o(0, 1) == 0.0 && o(1, 2) == 0.0 && o(0, 2) == 0.0
 }
 
 /// Signed volume of triangles, relative to their centroid (a float
@@ -242,40 +232,4 @@ pub(crate) fn signed_volume(vertices: &[[f64; 3]], tris: &[[usize; 3]]) -> f64 {
         .map(|f| p(f[0]).dot(p(f[1]).cross(p(f[2]))))
         .sum::<f64>()
         / 6.0
-}
-
-/// Connected components of the triangles (through shared vertices).
-pub(crate) fn shells(n: usize, tris: &[[usize; 3]]) -> usize {
-    components(n, tris).iter().filter(|c| !c.is_empty()).count()
-}
-
-/// The triangles of each connected component (through shared vertices).
-pub(crate) fn components(n: usize, tris: &[[usize; 3]]) -> Vec<Vec<usize>> {
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn find(p: &mut [usize], mut x: usize) -> usize {
-        while p[x] != x {
-            p[x] = p[p[x]];
-            x = p[x];
-        }
-        x
-    }
-    for f in tris {
-        for k in 1..3 {
-            let (a, b) = (find(&mut parent, f[0]), find(&mut parent, f[k]));
-            if a != b {
-                parent[a.max(b)] = a.min(b);
-            }
-        }
-    }
-    let mut index: HashMap<usize, usize> = HashMap::new();
-    let mut out: Vec<Vec<usize>> = Vec::new();
-    for (t, f) in tris.iter().enumerate() {
-        let r = find(&mut parent, f[0]);
-        let k = *index.entry(r).or_insert_with(|| {
-            out.push(Vec::new());
-            out.len() - 1
-        });
-        out[k].push(t);
-    }
-    out
 }

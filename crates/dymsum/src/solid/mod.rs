@@ -151,7 +151,7 @@ pub enum SolidError {
         vertex: usize,
     },
     /// A directed edge has no reverse: the surface is open there.
-    #[error("edge ({from}, {to}) of face {face} has no opposite edge: the surface is open there")]
+    #[error("open mesh: edge ({from}, {to}) of face {face} has no opposite edge (the surface has a hole there)")]
     OpenEdge {
         /// Its first vertex.
         from: usize,
@@ -290,7 +290,7 @@ pub fn check_solid_mesh(mesh: &PolygonMesh) -> Result<SolidInfo, SolidError> {
         let k = f.len();
         for i in 1..k - 1 {
             let v = [f[0], f[i], f[i + 1]];
-            if intersect::projection(&v.map(p)).is_none() {
+            if collinear(vertices[v[0]], vertices[v[1]], vertices[v[2]]) {
                 return Err(SolidError::ZeroAreaTriangle { face, corners: v });
             }
             tris.push(Tri {
@@ -335,6 +335,11 @@ pub fn check_solid_mesh(mesh: &PolygonMesh) -> Result<SolidInfo, SolidError> {
         shells,
         triangles: tris.len(),
     })
+}
+
+/// Exactly: are three points collinear (every coordinate projection flat)?
+pub(crate) fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+    intersect::projection(&[a, b, c].map(DVec3::from)).is_none()
 }
 
 /// Rule 2: no two faces with the same corner set.
@@ -386,8 +391,9 @@ fn check_topology(n: usize, faces: &[Vec<usize>]) -> Result<(), SolidError> {
 }
 
 /// The faces of each connected component (through shared vertices),
-/// ascending, in the order of their first face.
-fn shells(n: usize, faces: &[Vec<usize>]) -> Vec<Vec<usize>> {
+/// ascending, in the order of their first face; every index below `n`.
+/// The one copy (also `nonconvex::check`'s shell count).
+pub(crate) fn shells<F: AsRef<[usize]>>(n: usize, faces: &[F]) -> Vec<Vec<usize>> {
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut x: usize) -> usize {
         while p[x] != x {
@@ -397,6 +403,7 @@ fn shells(n: usize, faces: &[Vec<usize>]) -> Vec<Vec<usize>> {
         x
     }
     for f in faces {
+        let f = f.as_ref();
         for &v in &f[1..] {
             let (a, b) = (find(&mut parent, f[0]), find(&mut parent, v));
             if a != b {
@@ -407,7 +414,7 @@ fn shells(n: usize, faces: &[Vec<usize>]) -> Vec<Vec<usize>> {
     let mut index: HashMap<usize, usize> = HashMap::new();
     let mut out: Vec<Vec<usize>> = Vec::new();
     for (face, f) in faces.iter().enumerate() {
-        let root = find(&mut parent, f[0]);
+        let root = find(&mut parent, f.as_ref()[0]);
         let k = *index.entry(root).or_insert_with(|| {
             out.push(Vec::new());
             out.len() - 1
@@ -474,16 +481,23 @@ fn pair_meets(vertices: &[[f64; 3]], t: &Tri, u: &Tri) -> bool {
     }
 }
 
-/// Rule 7: the exact sign of six times the signed volume of a shell.
+/// Rule 7: the exact sign of six times the signed volume of a shell (exact
+/// partial sums over chunks, in parallel; the order does not change an
+/// exact sum).
 fn volume_sign(vertices: &[[f64; 3]], tris: &[Tri]) -> Sign {
     let Some(first) = tris.first() else {
         return Sign::Zero;
     };
     let o = DVec3::from(vertices[first.v[0]]);
-    let mut sum = Dyadic::zero();
-    for t in tris {
-        let [a, b, c] = t.v.map(|i| exact::sub(DVec3::from(vertices[i]), o));
-        sum = sum.add(&exact::det3(&a, &b, &c));
-    }
-    sum.sign()
+    tris.par_chunks(1024)
+        .map(|chunk| {
+            let mut sum = Dyadic::zero();
+            for t in chunk {
+                let [a, b, c] = t.v.map(|i| exact::sub(DVec3::from(vertices[i]), o));
+                sum = sum.add(&exact::det3(&a, &b, &c));
+            }
+            sum
+        })
+        .reduce(Dyadic::zero, |x, y| x.add(&y))
+        .sign()
 }
