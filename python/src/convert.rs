@@ -340,7 +340,7 @@ pub(crate) fn load_shape(
 /// built with the GIL released.
 pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> PyResult<Shape> {
     let py = obj.py();
-    if let Ok(p) = obj.cast::<crate::PyPolytope>() {
+    if let Ok(p) = obj.cast::<crate::polytope::PyPolytope>() {
         let p = p.get();
         return Ok(Shape {
             polytope: p.inner.clone(),
@@ -350,7 +350,7 @@ pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> P
     }
     // A model name or a path (a str or an os.PathLike), as `dymsum.load`.
     if obj.is_instance_of::<PyString>() || obj.hasattr("__fspath__")? {
-        let spec = crate::path_string(obj)?;
+        let spec = crate::io::path_string(obj)?;
         return load_shape(py, &spec, policy, Some(what));
     }
     if let Some((v, f)) = mesh_parts(obj)? {
@@ -858,4 +858,56 @@ pub(crate) fn mesh_tuple<'py>(
     };
     let vertices = vertices_array(py, mesh.vertices)?.into_any();
     PyTuple::new(py, [vertices, faces])
+}
+
+/// An argument PyO3 would extract as a Rust number, with an integer beyond
+/// the number's range reported as a `ValueError` naming the argument (PyO3
+/// raises `OverflowError` there, and passes it on unnamed): `what` is the
+/// argument's name, `range` what it takes.
+fn number_arg<'a, 'py, T>(obj: Borrowed<'a, 'py, PyAny>, what: &str, range: &str) -> PyResult<T>
+where
+    T: for<'b> FromPyObject<'b, 'py, Error = PyErr>,
+{
+    obj.extract::<T>().map_err(|e: PyErr| {
+        let py = obj.py();
+        if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(py) {
+            value_error(format!("{what} must be {range}, got an integer beyond it"))
+        } else {
+            e
+        }
+    })
+}
+
+/// A motion check's `tolerance` (a float; its range is checked where it is
+/// used).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tolerance(pub f64);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Tolerance {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        number_arg(obj, "tolerance", "a finite number in [2**-38, 1)").map(Tolerance)
+    }
+}
+
+/// A motion check's work `budget`, in intervals (`None` the default).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Budget(pub u64);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Budget {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        number_arg(obj, "budget", "an integer in [1, 2**64)").map(Budget)
+    }
+}
+
+/// A pose's `translation`: three floats.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Translation(pub [f64; 3]);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Translation {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        number_arg(obj, "translation", "three finite floats").map(Translation)
+    }
 }

@@ -2,8 +2,8 @@
 //! `check_motion`, `check_motions` and the `MotionUndecided` error (the
 //! Rust `dymsum::query::motion` module).
 
-use crate::convert::{self, err_for, value_error};
-use crate::PyPolytope;
+use crate::convert::{self, err_for, value_error, Budget, Tolerance};
+use crate::polytope::PyPolytope;
 use dymsum::polytope::MeshPolicy;
 use dymsum::query::{
     ConvexUnion, MotionCheck, MotionChecker, MotionError, DEFAULT_BUDGET, MIN_TOLERANCE,
@@ -170,8 +170,8 @@ fn check_tolerance(tolerance: f64) -> PyResult<()> {
 }
 
 /// The work budget: `None` is the default, else at least one interval.
-fn checked_budget(budget: Option<u64>) -> PyResult<u64> {
-    match budget {
+fn checked_budget(budget: Option<Budget>) -> PyResult<u64> {
+    match budget.map(|b| b.0) {
         None => Ok(DEFAULT_BUDGET),
         Some(0) => Err(value_error(
             "budget must be at least 1 (intervals per check; default 4096)",
@@ -429,7 +429,7 @@ impl PyMotionChecker {
         py: Python<'_>,
         body: &Bound<'_, PyAny>,
         obstacles: &Bound<'_, PyAny>,
-        budget: Option<u64>,
+        budget: Option<Budget>,
     ) -> PyResult<Self> {
         let budget = checked_budget(budget)?;
         let body = union_of(body, "body")?;
@@ -459,14 +459,15 @@ impl PyMotionChecker {
     /// ``t_contact - t_safe`` no wider than ``tolerance`` (in ``t``): a
     /// ``MotionCheck``. Raises ``MotionUndecided`` for a motion grazing an
     /// obstacle within rounding or one that used up the budget.
-    #[pyo3(signature = (pose0, pose1, tolerance = 1e-6))]
+    #[pyo3(signature = (pose0, pose1, tolerance = Tolerance(1e-6)))]
     fn check(
         &self,
         py: Python<'_>,
         pose0: Option<&Bound<'_, PyAny>>,
         pose1: Option<&Bound<'_, PyAny>>,
-        tolerance: f64,
+        tolerance: Tolerance,
     ) -> PyResult<PyMotionCheck> {
+        let tolerance = tolerance.0;
         check_tolerance(tolerance)?;
         let p0 = convert::pose(pose0, "pose0")?;
         let p1 = convert::pose(pose1, "pose1")?;
@@ -480,14 +481,15 @@ impl PyMotionChecker {
     /// arrays (or any pose stack ``contact_many`` takes; one pose stands
     /// for all). Returns ``MotionChecks``. Checked in parallel with the GIL
     /// released.
-    #[pyo3(signature = (poses0, poses1, tolerance = 1e-6))]
+    #[pyo3(signature = (poses0, poses1, tolerance = Tolerance(1e-6)))]
     fn check_many(
         &self,
         py: Python<'_>,
         poses0: Option<&Bound<'_, PyAny>>,
         poses1: Option<&Bound<'_, PyAny>>,
-        tolerance: f64,
+        tolerance: Tolerance,
     ) -> PyResult<PyMotionChecks> {
+        let tolerance = tolerance.0;
         check_tolerance(tolerance)?;
         let motions = motion_pairs(poses0, poses1)?;
         check_batch(
@@ -542,16 +544,17 @@ impl PyMotionChecker {
 /// >>> dymsum.check_motion(cube, [wall], None, dymsum.pose(translation=[0, 3, 0])).free
 /// True
 #[pyfunction]
-#[pyo3(signature = (body, obstacles, pose0, pose1, tolerance = 1e-6, budget = None))]
+#[pyo3(signature = (body, obstacles, pose0, pose1, tolerance = Tolerance(1e-6), budget = None))]
 pub fn check_motion(
     py: Python<'_>,
     body: &Bound<'_, PyAny>,
     obstacles: &Bound<'_, PyAny>,
     pose0: Option<&Bound<'_, PyAny>>,
     pose1: Option<&Bound<'_, PyAny>>,
-    tolerance: f64,
-    budget: Option<u64>,
+    tolerance: Tolerance,
+    budget: Option<Budget>,
 ) -> PyResult<PyMotionCheck> {
+    let tolerance = tolerance.0;
     check_tolerance(tolerance)?;
     let budget = checked_budget(budget)?;
     let p0 = convert::pose(pose0, "pose0")?;
@@ -582,16 +585,17 @@ pub fn check_motion(
 /// >>> dymsum.check_motions(cube, [wall], None, ends).free.tolist()
 /// [False, True, True]
 #[pyfunction]
-#[pyo3(signature = (body, obstacles, poses0, poses1, tolerance = 1e-6, budget = None))]
+#[pyo3(signature = (body, obstacles, poses0, poses1, tolerance = Tolerance(1e-6), budget = None))]
 pub fn check_motions(
     py: Python<'_>,
     body: &Bound<'_, PyAny>,
     obstacles: &Bound<'_, PyAny>,
     poses0: Option<&Bound<'_, PyAny>>,
     poses1: Option<&Bound<'_, PyAny>>,
-    tolerance: f64,
-    budget: Option<u64>,
+    tolerance: Tolerance,
+    budget: Option<Budget>,
 ) -> PyResult<PyMotionChecks> {
+    let tolerance = tolerance.0;
     check_tolerance(tolerance)?;
     let budget = checked_budget(budget)?;
     let motions = motion_pairs(poses0, poses1)?;

@@ -167,6 +167,7 @@ tolerances = st.one_of(
     st.sampled_from([1e-6, 1e-3, 0.5, 0.999, 1.0, 0.0, -0.0, -1e-6, 1e-300, 2.0**-38, 2.0**-39, math.nan, math.inf, -math.inf]),
     floats,
     st.integers(min_value=-(2**70), max_value=2**70),
+    st.just(10**400),
     st.just(np.float32(1e-3)),
     st.just(np.float64(1e-4)),
     st.just(np.int64(0)),
@@ -177,7 +178,7 @@ tolerances = st.one_of(
 
 budgets = st.one_of(
     st.none(),
-    st.sampled_from([0, 1, 2, 3, 17, 4096, 2**20, 2**63 - 1, 2**64 - 1]),
+    st.sampled_from([0, 1, 2, 3, 17, 4096, 2**20, 2**63 - 1, 2**64 - 1, -1, -(2**70), 2**64, 2**70]),
     st.integers(min_value=0, max_value=100),
     st.just(np.int64(5)),
     st.just(np.uint8(3)),
@@ -419,19 +420,9 @@ def test_fuzz_mesh_reader_path_arguments(arg):
 # ---------------------------------------------------------------------------
 # Found by this fuzz: integers beyond what the Rust side extracts (a budget
 # below 0 or from 2**64, a tolerance or translation beyond float range)
-# raise PyO3's OverflowError instead of a ValueError. The strategies above
-# leave these values out until python/src converts them; these tests pin
-# the contract (strict xfail: they fail loudly once the fix lands, so the
-# marker and the exclusions above are removed with it).
-
-_OVERFLOW = pytest.mark.xfail(
-    strict=True,
-    raises=OverflowError,
-    reason="python/src extracts budget as u64 and tolerance/translation as f64: PyO3 raises OverflowError, issue 26 asks for ValueError",
-)
+# raised PyO3's OverflowError instead of a ValueError naming the argument.
 
 
-@_OVERFLOW
 @pytest.mark.parametrize("budget", [-1, -(2**70), 2**64, 2**70])
 def test_regression_budget_out_of_u64_range_is_value_error(budget):
     with pytest.raises(ValueError, match="budget"):
@@ -440,13 +431,11 @@ def test_regression_budget_out_of_u64_range_is_value_error(budget):
         dymsum.check_motion(BAR, OBSTACLES, None, None, 1e-6, budget=budget)
 
 
-@_OVERFLOW
 def test_regression_integer_tolerance_beyond_float_is_value_error():
     with pytest.raises(ValueError, match="tolerance"):
         checker().check(None, None, 10**400)
 
 
-@_OVERFLOW
 def test_regression_integer_translation_beyond_float_is_value_error():
     with pytest.raises(ValueError, match="translation"):
         dymsum.pose(None, [10**400, 0, 0])
