@@ -350,7 +350,7 @@ pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> P
     }
     // A model name or a path (a str or an os.PathLike), as `dymsum.load`.
     if obj.is_instance_of::<PyString>() || obj.hasattr("__fspath__")? {
-        let spec = crate::io::path_string(obj)?;
+        let spec = path_string(obj)?;
         return load_shape(py, &spec, policy, Some(what));
     }
     if let Some((v, f)) = mesh_parts(obj)? {
@@ -910,4 +910,9 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Translation {
     fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
         number_arg(obj, "translation", "three finite floats").map(Translation)
     }
+}
+
+pub(crate) fn path_string(path: &Bound<'_, PyAny>) -> PyResult<String> {
+    let os = path.py().import("os")?;
+    os.call_method1("fspath", (path,))?.extract()
 }

@@ -1,7 +1,7 @@
 //! Poses and files: `pose`, `load`, `save`, `read_mesh_bodies`, `models`.
 
 use crate::convert;
-use crate::convert::{io_error, value_error, Translation};
+use crate::convert::{io_error, path_string, value_error, Translation};
 use crate::polytope::{policy, PyPolytope};
 use dymsum::Pose;
 use dymsum_io::formats::FormatError;
@@ -37,11 +37,6 @@ pub(crate) fn pose<'py>(
         return Err(value_error(format!("translation: {t:?} is not finite")));
     }
     convert::pose_array(py, Pose::new(rotation, t.into()))
-}
-
-pub(crate) fn path_string(path: &Bound<'_, PyAny>) -> PyResult<String> {
-    let os = path.py().import("os")?;
-    os.call_method1("fspath", (path,))?.extract()
 }
 
 /// Loads a polytope from a mesh file (``.off``, ``.obj``, ``.ply``,

@@ -20,7 +20,6 @@
 //! points are then `null`.
 
 use std::io::Write;
-use std::path::Path;
 
 use anyhow::{anyhow, Context};
 use clap::Args;
@@ -29,7 +28,6 @@ use dymsum::{DVec3, Polytope, Pose, Rotation};
 use serde::Serialize;
 
 use super::solid::load_pieces;
-use super::{load, policy, short_name};
 use crate::stats::{decimals, fixed, short};
 
 /// Arguments of `dymsum query`.
@@ -107,57 +105,6 @@ pub fn parse_pose(s: &str) -> Result<PoseArg, String> {
     })
 }
 
-/// Loads a body: one convex polytope, or several pieces (`a+b+c`, or an OBJ
-/// file with several objects). Errors name the operand and the piece.
-///
-/// # Errors
-/// An OBJ file that cannot be read or parsed; an object or piece that is
-/// not a valid convex body ([`dymsum::PolytopeError`]); or any error of
-/// [`super::load`] for a single body or a `+`-separated piece.
-pub fn load_body(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Vec<Polytope>> {
-    let path = Path::new(spec);
-    if path.is_file() {
-        let is_obj = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-        if is_obj {
-            let objects = dymsum_io::formats::read_obj_objects(path)
-                .map_err(|e| anyhow!("{operand} (file {}): {e}", short_name(spec)))?;
-            if objects.len() > 1 {
-                return objects
-                    .into_iter()
-                    .map(|(name, mesh)| {
-                        let poly = if mesh.faces.is_empty() {
-                            let pts: Vec<DVec3> =
-                                mesh.vertices.iter().map(|&p| DVec3::from(p)).collect();
-                            Polytope::from_dvec3s(&pts)
-                        } else {
-                            Polytope::from_mesh(&mesh, policy(strict)).map(|(p, _)| p)
-                        };
-                        poly.map_err(|e| {
-                            anyhow!(
-                                "{operand} (file {}, object `{name}`): {e}",
-                                short_name(spec)
-                            )
-                        })
-                    })
-                    .collect();
-            }
-        }
-        return Ok(vec![load(spec, operand, strict)?.polytope]);
-    }
-    if spec.contains('+') {
-        return spec
-            .split('+')
-            .enumerate()
-            .map(|(i, part)| {
-                load(part.trim(), &format!("{operand} piece {}", i + 1), strict).map(|l| l.polytope)
-            })
-            .collect();
-    }
-    Ok(vec![load(spec, operand, strict)?.polytope])
-}
-
 /// One line of `--json` output, in this key order. Every number goes
 /// through [`no_negative_zero`].
 #[derive(Serialize)]
@@ -213,7 +160,7 @@ fn from_proximity(p: &Proximity) -> Answer {
 /// Runs `dymsum query`.
 ///
 /// # Errors
-/// ROBOT or OBSTACLE cannot be loaded ([`load_body`]); a query fails at a
+/// ROBOT or OBSTACLE cannot be loaded ([`super::solid::load_body`]); a query fails at a
 /// pose ([`dymsum::query::QueryError`], naming the pose: coordinates beyond
 /// `f64`, or an internal error); or `out` cannot be written.
 pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {

@@ -8,9 +8,9 @@ use std::path::Path;
 use anyhow::anyhow;
 use clap::ValueEnum;
 use dymsum::nonconvex::{convex_pieces, Decomposition, DecompositionInfo, UnionMeshError};
-use dymsum::{Polytope, SolidError};
+use dymsum::{DVec3, Polytope, SolidError};
 
-use super::query::load_body;
+use super::{load, policy, short_name};
 
 /// A convex decomposition for non-convex meshes, as a command-line value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -147,4 +147,55 @@ pub fn describe(info: &DecompositionInfo) -> String {
             100.0 * info.volume_error.unwrap_or(f64::NAN)
         ),
     }
+}
+
+/// Loads a body: one convex polytope, or several pieces (`a+b+c`, or an OBJ
+/// file with several objects). Errors name the operand and the piece.
+///
+/// # Errors
+/// An OBJ file that cannot be read or parsed; an object or piece that is
+/// not a valid convex body ([`dymsum::PolytopeError`]); or any error of
+/// [`super::load`] for a single body or a `+`-separated piece.
+pub fn load_body(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Vec<Polytope>> {
+    let path = Path::new(spec);
+    if path.is_file() {
+        let is_obj = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+        if is_obj {
+            let objects = dymsum_io::formats::read_obj_objects(path)
+                .map_err(|e| anyhow!("{operand} (file {}): {e}", short_name(spec)))?;
+            if objects.len() > 1 {
+                return objects
+                    .into_iter()
+                    .map(|(name, mesh)| {
+                        let poly = if mesh.faces.is_empty() {
+                            let pts: Vec<DVec3> =
+                                mesh.vertices.iter().map(|&p| DVec3::from(p)).collect();
+                            Polytope::from_dvec3s(&pts)
+                        } else {
+                            Polytope::from_mesh(&mesh, policy(strict)).map(|(p, _)| p)
+                        };
+                        poly.map_err(|e| {
+                            anyhow!(
+                                "{operand} (file {}, object `{name}`): {e}",
+                                short_name(spec)
+                            )
+                        })
+                    })
+                    .collect();
+            }
+        }
+        return Ok(vec![load(spec, operand, strict)?.polytope]);
+    }
+    if spec.contains('+') {
+        return spec
+            .split('+')
+            .enumerate()
+            .map(|(i, part)| {
+                load(part.trim(), &format!("{operand} piece {}", i + 1), strict).map(|l| l.polytope)
+            })
+            .collect();
+    }
+    Ok(vec![load(spec, operand, strict)?.polytope])
 }
