@@ -515,22 +515,7 @@ pub(in crate::query) fn separated_along(
         return false; // certainly not separated along d
     }
     // Exactly: the rounded extremes are in the sets.
-    let exact_max = |set: &[u32], at: &dyn Fn(u32) -> DVec3, dir: DVec3| {
-        let mut best: Option<Dyadic> = None;
-        for &u in set {
-            let x = exact_dot(dir, at(u));
-            if best
-                .as_ref()
-                .is_none_or(|b| x.sub(b).sign() == Sign::Positive)
-            {
-                best = Some(x);
-            }
-        }
-        best.expect("a near-extreme set is never empty")
-    };
-    let ma = exact_max(&cs.set_a, &|v| posed.a(v), -d);
-    let mb = exact_max(&cs.set_b, &|w| posed.b(w), d);
-    ma.add(&mb).sign() == Sign::Negative
+    separated_on_sets(posed, d, cs)
 }
 
 /// Exactly whether the separation along `d` holds, from near-extreme sets
