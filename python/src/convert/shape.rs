@@ -1,0 +1,353 @@
+//! Shapes from Python objects: point arrays, faces, meshes, model names
+//! and files, `Polytope`s.
+
+use super::args::path_string;
+use super::{err_for, io_error, value_error};
+use dymsum::polytope::{ConvexityReport, MeshPolicy};
+use dymsum::{PolygonMesh, Polytope};
+use dymsum_io::formats::FormatError;
+use dymsum_io::load::LoadError;
+use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+
+pub(crate) fn numpy(py: Python<'_>) -> PyResult<Bound<'_, PyModule>> {
+    py.import("numpy")
+}
+
+pub(crate) fn dtype_kind(arr: &Bound<'_, PyAny>) -> PyResult<(char, String)> {
+    let dtype = arr.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    Ok((kind.chars().next().unwrap_or('?'), dtype.str()?.to_string()))
+}
+
+pub(crate) fn shape_of(arr: &Bound<'_, PyAny>) -> PyResult<Vec<usize>> {
+    arr.getattr("shape")?.extract()
+}
+
+pub(crate) fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [n] => format!("({n},)"),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(usize::to_string)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// `obj` as a C-contiguous `float64` array of the given trailing shape
+/// (`tail`) and `rank` dimensions: borrowed in place when it already is one,
+/// else converted once. Rejects non-numeric dtypes (complex, bool, strings,
+/// objects) and wrong shapes with a `ValueError` naming `what`.
+pub(crate) fn float_array<'py>(
+    obj: &Bound<'py, PyAny>,
+    rank: usize,
+    tail: &[usize],
+    what: &str,
+    expected: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let py = obj.py();
+    let np = numpy(py)?;
+    let arr = if obj.is_instance(&np.getattr("ndarray")?)? {
+        obj.clone()
+    } else {
+        np.call_method1("asarray", (obj,))
+            .map_err(|e| err_for(what, format!("expected {expected}: {}", e.value(py))))?
+    };
+    let (kind, dtype) = dtype_kind(&arr)?;
+    if !matches!(kind, 'f' | 'i' | 'u') {
+        return Err(err_for(
+            what,
+            format!("expected {expected} of real numbers, got dtype {dtype}"),
+        ));
+    }
+    let shape = shape_of(&arr)?;
+    if shape.len() != rank || !shape.ends_with(tail) {
+        return Err(err_for(
+            what,
+            format!("expected {expected}, got shape {}", shape_text(&shape)),
+        ));
+    }
+    let contiguous: bool = arr.getattr("flags")?.getattr("c_contiguous")?.extract()?;
+    if dtype == "float64" && contiguous {
+        // Already what dymsum reads: used in place.
+        return Ok(arr);
+    }
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("dtype", np.getattr("float64")?)?;
+    np.call_method("ascontiguousarray", (arr,), Some(&kwargs))
+}
+
+/// An (N, 3) point array, borrowed read-only in place (see [`float_array`]).
+pub(crate) fn points<'py>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<PyReadonlyArray2<'py, f64>> {
+    let arr = float_array(obj, 2, &[3], what, "an (N, 3) array")?;
+    let arr = arr.cast_into::<PyArray2<f64>>()?;
+    arr.try_readonly()
+        .map_err(|e| err_for(what, format!("cannot borrow the array: {e}")))
+}
+
+/// The rows of a C-contiguous (N, 3) array, in place.
+pub(crate) fn rows<'a>(arr: &'a PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<&'a [[f64; 3]]> {
+    let flat = arr
+        .as_slice()
+        .map_err(|e| err_for(what, format!("array not contiguous: {e}")))?;
+    Ok(flat.as_chunks::<3>().0)
+}
+
+/// Face index lists: an (M, k) integer array or a sequence of index
+/// sequences. Indices must be in `0..vertex_count`.
+pub(crate) fn faces(
+    obj: &Bound<'_, PyAny>,
+    vertex_count: usize,
+    what: &str,
+) -> PyResult<Vec<Vec<usize>>> {
+    let py = obj.py();
+    let raw: Vec<Vec<i64>> = if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        let mut out = Vec::new();
+        for (i, item) in obj.try_iter()?.enumerate() {
+            let item = item?;
+            let face: PyResult<Vec<i64>> = if item.hasattr("dtype")? {
+                let (kind, dtype) = dtype_kind(&item)?;
+                if !matches!(kind, 'i' | 'u') {
+                    return Err(err_for(
+                        what,
+                        format!("face {i}: expected integer indices, got dtype {dtype}"),
+                    ));
+                }
+                item.call_method0("tolist")?.extract()
+            } else {
+                item.extract()
+            };
+            let face = face.map_err(|e| {
+                err_for(
+                    what,
+                    format!(
+                        "face {i}: expected a sequence of integer indices ({})",
+                        e.value(py)
+                    ),
+                )
+            })?;
+            out.push(face);
+        }
+        out
+    } else {
+        let np = numpy(py)?;
+        let arr = np.call_method1("asarray", (obj,)).map_err(|e| {
+            err_for(
+                what,
+                format!("expected an (M, k) integer array: {}", e.value(py)),
+            )
+        })?;
+        let (kind, dtype) = dtype_kind(&arr)?;
+        let shape = shape_of(&arr)?;
+        let empty = shape.contains(&0);
+        if !matches!(kind, 'i' | 'u') && !empty {
+            return Err(err_for(
+                what,
+                format!("expected an (M, k) integer array, got dtype {dtype}"),
+            ));
+        }
+        if shape.len() != 2 {
+            return Err(err_for(
+                what,
+                format!(
+                    "expected an (M, k) integer array, got shape {}",
+                    shape_text(&shape)
+                ),
+            ));
+        }
+        if empty {
+            return Ok(Vec::new());
+        }
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("dtype", np.getattr("int64")?)?;
+        let arr = np.call_method("ascontiguousarray", (arr,), Some(&kwargs))?;
+        let arr = arr.cast_into::<PyArray2<i64>>()?;
+        let ro = arr.readonly();
+        let flat = ro
+            .as_slice()
+            .map_err(|e| err_for(what, format!("array not contiguous: {e}")))?;
+        flat.chunks(shape[1]).map(<[i64]>::to_vec).collect()
+    };
+    raw.into_iter()
+        .enumerate()
+        .map(|(i, f)| {
+            f.into_iter()
+                .map(|v| {
+                    usize::try_from(v)
+                        .ok()
+                        .filter(|&u| u < vertex_count)
+                        .ok_or_else(|| {
+                            err_for(
+                                what,
+                                format!(
+                                    "face {i}: vertex index {v} out of range (there are {vertex_count} vertices)"
+                                ),
+                            )
+                        })
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Where a shape came from and what building it changed.
+#[derive(Clone, Debug)]
+pub(crate) enum Origin {
+    /// The exact hull of a point cloud of this many points.
+    Points { count: usize },
+    /// A mesh, validated.
+    Mesh(ConvexityReport),
+}
+
+/// A polytope converted from a Python object.
+pub(crate) struct Shape {
+    pub(crate) polytope: Polytope,
+    pub(crate) origin: Origin,
+    pub(crate) source: String,
+}
+
+/// A `(vertices, faces)` pair, an object with `.vertices` and `.faces`, or
+/// `None` when `obj` is neither.
+pub(crate) fn mesh_parts<'py>(
+    obj: &Bound<'py, PyAny>,
+) -> PyResult<Option<(Bound<'py, PyAny>, Bound<'py, PyAny>)>> {
+    if (obj.is_instance_of::<PyTuple>() || obj.is_instance_of::<PyList>()) && obj.len()? == 2 {
+        let first = obj.get_item(0)?;
+        let np = numpy(obj.py())?;
+        let two_d = np
+            .call_method1("ndim", (&first,))
+            .and_then(|d| d.extract::<usize>())
+            .is_ok_and(|d| d == 2);
+        if two_d {
+            return Ok(Some((first, obj.get_item(1)?)));
+        }
+    }
+    if obj.hasattr("vertices")? && obj.hasattr("faces")? {
+        return Ok(Some((obj.getattr("vertices")?, obj.getattr("faces")?)));
+    }
+    Ok(None)
+}
+
+/// A mesh from its Python parts (vertices copied into the mesh).
+pub(crate) fn mesh_from_parts(
+    vertices: &Bound<'_, PyAny>,
+    faces_obj: &Bound<'_, PyAny>,
+    what: &str,
+) -> PyResult<PolygonMesh> {
+    let v = points(vertices, &format!("{what} vertices"))?;
+    let verts = rows(&v, what)?.to_vec();
+    let f = faces(faces_obj, verts.len(), &format!("{what} faces"))?;
+    Ok(PolygonMesh::new(verts, f))
+}
+
+/// A [`LoadError`] as the matching Python exception: `FileNotFoundError`
+/// for a path that does not exist, `OSError` when a file cannot be read,
+/// `ValueError` otherwise; prefixed by the argument's name when given.
+pub(crate) fn load_error(e: LoadError, what: Option<&str>) -> PyErr {
+    let msg = match what {
+        Some(w) => format!("{w}: {e}"),
+        None => e.to_string(),
+    };
+    match &e {
+        LoadError::NotFound {
+            looks_like_file: true,
+            ..
+        } => io_error(std::io::ErrorKind::NotFound, msg),
+        LoadError::Format {
+            source: FormatError::Io { source, .. },
+            ..
+        } => io_error(source.kind(), msg),
+        _ => value_error(msg),
+    }
+}
+
+/// A polytope from a mesh file or a built-in model name (what `dymsum.load`
+/// takes), loaded with the GIL released; errors as [`load_error`].
+pub(crate) fn load_shape(
+    py: Python<'_>,
+    spec: &str,
+    policy: MeshPolicy,
+    what: Option<&str>,
+) -> PyResult<Shape> {
+    let loaded = py
+        .detach(|| dymsum_io::load_polytope(spec, policy))
+        .map_err(|e| load_error(e, what))?;
+    let origin = match loaded.report {
+        Some(r) => Origin::Mesh(r),
+        None => Origin::Points {
+            count: loaded.input.vertices.len(),
+        },
+    };
+    Ok(Shape {
+        polytope: loaded.polytope,
+        origin,
+        source: loaded.source,
+    })
+}
+
+/// Any accepted shape as a polytope (see the module docs). The hull is
+/// built with the GIL released.
+pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> PyResult<Shape> {
+    let py = obj.py();
+    if let Ok(p) = obj.cast::<crate::polytope::PyPolytope>() {
+        let p = p.get();
+        return Ok(Shape {
+            polytope: p.inner.clone(),
+            origin: p.origin.clone(),
+            source: p.source.clone(),
+        });
+    }
+    // A model name or a path (a str or an os.PathLike), as `dymsum.load`.
+    if obj.is_instance_of::<PyString>() || obj.hasattr("__fspath__")? {
+        let spec = path_string(obj)?;
+        return load_shape(py, &spec, policy, Some(what));
+    }
+    if let Some((v, f)) = mesh_parts(obj)? {
+        let mesh = mesh_from_parts(&v, &f, what)?;
+        if mesh.faces.is_empty() {
+            let count = mesh.vertices.len();
+            let polytope = py
+                .detach(|| Polytope::from_points(&mesh.vertices))
+                .map_err(|e| err_for(what, e))?;
+            return Ok(Shape {
+                polytope,
+                origin: Origin::Points { count },
+                source: "points".into(),
+            });
+        }
+        let (polytope, report) = py
+            .detach(|| Polytope::from_mesh(&mesh, policy))
+            .map_err(|e| err_for(what, e))?;
+        return Ok(Shape {
+            polytope,
+            origin: Origin::Mesh(report),
+            source: "mesh".into(),
+        });
+    }
+    // An object with `.vertices` but no `.faces` (a trimesh.PointCloud) is a
+    // point cloud; anything else must be an (N, 3) array-like.
+    let cloud = if obj.hasattr("vertices")? && !obj.is_instance(&numpy(py)?.getattr("ndarray")?)? {
+        obj.getattr("vertices")?
+    } else {
+        obj.clone()
+    };
+    let arr = points(&cloud, what)?;
+    let pts = rows(&arr, what)?;
+    let count = pts.len();
+    let polytope = py
+        .detach(|| Polytope::from_points(pts))
+        .map_err(|e| err_for(what, e))?;
+    Ok(Shape {
+        polytope,
+        origin: Origin::Points { count },
+        source: "points".into(),
+    })
+}
