@@ -88,15 +88,9 @@ pub struct CobstArgs {
     /// `map.npz`) once the new ones are complete; other files are kept.
     #[arg(long)]
     pub force: bool,
-    /// Refuse meshes that are convex only within tolerance.
-    #[arg(long)]
-    pub strict: bool,
-    /// Take a non-convex mesh whose connected components are not all
-    /// exactly convex apart by this decomposition (approximate: announced
-    /// on standard error with its volume error). Without it such a mesh is
-    /// refused; exactly convex components are always taken as they are.
-    #[arg(long, value_enum, value_name = "METHOD")]
-    pub decomposition: Option<super::solid::DecompositionArg>,
+    /// How meshes are taken: `--strict`, `--decomposition`.
+    #[command(flatten)]
+    pub body: super::solid::BodyOptions,
     /// Write certified slabs instead of slices: slab k contains every slice
     /// for the orientations between orientation k and the next (with
     /// --slices N: the N slabs of the full turn; with --orientations-wxyz:
@@ -296,8 +290,8 @@ struct IndexEntry {
 /// cannot be written; or `out` cannot be written.
 pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = load_pieces(&a.robot, "ROBOT", a.strict, a.decomposition)?;
-    let obstacle = load_pieces(&a.obstacle, "OBSTACLE", a.strict, a.decomposition)?;
+    let robot = load_pieces(&a.robot, "ROBOT", a.body.strict, a.body.decomposition)?;
+    let obstacle = load_pieces(&a.obstacle, "OBSTACLE", a.body.strict, a.body.decomposition)?;
     if a.certified {
         return run_certified(a, (&robot, &obstacle), out);
     }

@@ -61,15 +61,9 @@ pub struct MotionArgs {
     /// `t_contact`: the robot touches or overlaps the obstacle there.
     #[arg(long)]
     pub json: bool,
-    /// Refuse meshes that are convex only within tolerance.
-    #[arg(long)]
-    pub strict: bool,
-    /// Take a non-convex mesh whose connected components are not all
-    /// exactly convex apart by this decomposition (approximate: announced
-    /// on standard error with its volume error). Without it such a mesh is
-    /// refused; exactly convex components are always taken as they are.
-    #[arg(long, value_enum, value_name = "METHOD")]
-    pub decomposition: Option<super::solid::DecompositionArg>,
+    /// How meshes are taken: `--strict`, `--decomposition`.
+    #[command(flatten)]
+    pub body: super::solid::BodyOptions,
 }
 
 /// The `--json` output, in this key order.
@@ -90,13 +84,18 @@ struct JsonAnswer {
 /// written.
 pub fn run(a: &MotionArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = ConvexUnion::new(load_pieces(&a.robot, "ROBOT", a.strict, a.decomposition)?)
-        .ok_or_else(|| anyhow!("ROBOT has no pieces"))?;
+    let robot = ConvexUnion::new(load_pieces(
+        &a.robot,
+        "ROBOT",
+        a.body.strict,
+        a.body.decomposition,
+    )?)
+    .ok_or_else(|| anyhow!("ROBOT has no pieces"))?;
     let obstacle = ConvexUnion::new(load_pieces(
         &a.obstacle,
         "OBSTACLE",
-        a.strict,
-        a.decomposition,
+        a.body.strict,
+        a.body.decomposition,
     )?)
     .ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?;
     let checker = MotionChecker::new(&robot, &[obstacle])

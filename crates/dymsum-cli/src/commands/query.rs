@@ -55,15 +55,9 @@ pub struct QueryArgs {
     /// closest points when apart (in world coordinates).
     #[arg(long)]
     pub json: bool,
-    /// Refuse meshes that are convex only within tolerance.
-    #[arg(long)]
-    pub strict: bool,
-    /// Take a non-convex mesh whose connected components are not all
-    /// exactly convex apart by this decomposition (approximate: announced
-    /// on standard error with its volume error). Without it such a mesh is
-    /// refused; exactly convex components are always taken as they are.
-    #[arg(long, value_enum, value_name = "METHOD")]
-    pub decomposition: Option<super::solid::DecompositionArg>,
+    /// How meshes are taken: `--strict`, `--decomposition`.
+    #[command(flatten)]
+    pub body: super::solid::BodyOptions,
 }
 
 /// A parsed `--pose`: the 7 numbers as given, and the pose.
@@ -165,8 +159,8 @@ fn from_proximity(p: &Proximity) -> Answer {
 /// `f64`, or an internal error); or `out` cannot be written.
 pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = load_pieces(&a.robot, "ROBOT", a.strict, a.decomposition)?;
-    let obstacle = load_pieces(&a.obstacle, "OBSTACLE", a.strict, a.decomposition)?;
+    let robot = load_pieces(&a.robot, "ROBOT", a.body.strict, a.body.decomposition)?;
+    let obstacle = load_pieces(&a.obstacle, "OBSTACLE", a.body.strict, a.body.decomposition)?;
     let answers = if robot.len() == 1 && obstacle.len() == 1 {
         convex_answers(&robot[0], &obstacle[0], &a.poses)?
     } else {

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use anyhow::anyhow;
-use clap::ValueEnum;
+use clap::{Args, ValueEnum};
 use dymsum::nonconvex::{convex_pieces, Decomposition, DecompositionInfo, UnionMeshError};
 use dymsum::{DVec3, Polytope, SolidError};
 
@@ -17,6 +17,23 @@ use super::{load, policy, short_name};
 pub enum DecompositionArg {
     /// parry's V-HACD (approximate: its volume error is reported).
     Vhacd,
+}
+
+/// How the operands given as meshes are taken, the same for every
+/// subcommand that loads bodies (`sum`, `query`, `motion`, `cobst`).
+#[derive(Clone, Copy, Debug, Default, Args)]
+pub struct BodyOptions {
+    /// Refuse meshes that are convex only within tolerance (instead of
+    /// taking the exact hull of their vertices).
+    #[arg(long)]
+    pub strict: bool,
+    /// Take a non-convex mesh whose connected components are not all
+    /// exactly convex apart by this decomposition (approximate: its volume
+    /// error against the input is reported, in `sum`'s summary and on
+    /// standard error elsewhere). Without it such a mesh is refused;
+    /// exactly convex components are always taken as they are.
+    #[arg(long, value_enum, value_name = "METHOD")]
+    pub decomposition: Option<DecompositionArg>,
 }
 
 impl From<DecompositionArg> for Decomposition {

@@ -18,7 +18,7 @@ use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DVec3, Pose, Rotation};
 
 use super::short_name;
-use super::solid::{describe, load_solid, DecompositionArg, Solid};
+use super::solid::{describe, load_solid, Solid};
 use crate::stats::{human_us, micros};
 use crate::values::{parse_output_path, parse_quaternion, parse_vector, MethodArg};
 use dymsum::nonconvex::{DecompositionInfo, UnionSum};
@@ -50,15 +50,9 @@ pub struct SumArgs {
     /// Then translate P by this vector.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_vector, allow_hyphen_values = true)]
     pub translate_p: Option<DVec3>,
-    /// Refuse meshes that are convex only within tolerance (instead of using their exact hull).
-    #[arg(long)]
-    pub strict: bool,
-    /// Take a non-convex mesh whose connected components are not all
-    /// exactly convex apart by this decomposition (approximate: the summary
-    /// reports its volume error against the input). Without it such a mesh
-    /// is refused; exactly convex components are always taken as they are.
-    #[arg(long, value_enum, value_name = "METHOD")]
-    pub decomposition: Option<DecompositionArg>,
+    /// How meshes are taken: `--strict`, `--decomposition`.
+    #[command(flatten)]
+    pub body: super::solid::BodyOptions,
     /// Merge every piece-pair sum, even those certified inside another
     /// (non-convex sums).
     #[arg(long)]
@@ -107,8 +101,8 @@ struct JsonDecomposition<'a> {
 /// or the output cannot be written.
 pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.p, "P"), (&a.q, "Q")])?;
-    let p = load_solid(&a.p, "P", a.strict, a.decomposition)?;
-    let q = load_solid(&a.q, "Q", a.strict, a.decomposition)?;
+    let p = load_solid(&a.p, "P", a.body.strict, a.body.decomposition)?;
+    let q = load_solid(&a.q, "Q", a.body.strict, a.body.decomposition)?;
     let pose_p = Pose::new(
         a.rotate_p.unwrap_or(Rotation::IDENTITY),
         a.translate_p.unwrap_or(DVec3::ZERO),
