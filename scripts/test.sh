@@ -23,7 +23,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 run_tmp="$(mktemp -d "${TMPDIR:-/tmp}/dymsum-test-run.XXXXXX")"
-trap 'rm -rf "$run_tmp"' EXIT
+ticker=
+trap '[ -z "$ticker" ] || kill "$ticker" 2>/dev/null; rm -rf "$run_tmp"' EXIT
 trap 'exit 130' INT TERM
 export TMPDIR="$run_tmp"
 
@@ -60,13 +61,21 @@ if [ ! -x "$venv/bin/python" ]; then
         exit 1
     }
 fi
-# Verbose, with only the build's progress shown (cargo's `Compiling` lines
-# and pip's results, as they come: pip unbuffered): the wheel's first build
-# takes a minute or more. The whole log is printed if pip fails.
+# The wheel's first build takes a minute or more: a line every 15 s says
+# it is still going (maturin hands cargo's output to pip only at the end),
+# then cargo's `Compiling` lines and pip's results are shown. The whole log
+# is printed if pip fails.
 pip_log="$run_tmp/pip.log"
-if ! PYTHONUNBUFFERED=1 "$venv/bin/python" -m pip install -v --disable-pip-version-check ./python pytest numpy scipy mypy hypothesis 'dask[distributed]' "${ompl[@]}" 2>&1 |
+start=$SECONDS
+(while sleep 15; do printf '    ... pip install ./python: %s s\n' "$((SECONDS - start))"; done) &
+ticker=$!
+status=0
+PYTHONUNBUFFERED=1 "$venv/bin/python" -m pip install -v --disable-pip-version-check ./python pytest numpy scipy mypy hypothesis 'dask[distributed]' "${ompl[@]}" 2>&1 |
     tee "$pip_log" |
-    awk '/^ *(Compiling|Finished|Built wheel|Successfully (built|installed))/ { print; fflush() }'; then
+    awk '/^ *(Compiling|Finished|Built wheel|Successfully (built|installed))/ { print; fflush() }' || status=$?
+kill "$ticker" 2>/dev/null || true
+wait "$ticker" 2>/dev/null || true
+if [ "$status" != 0 ]; then
     cat "$pip_log" >&2
     echo "pip install ./python failed (the log is above)" >&2
     exit 1

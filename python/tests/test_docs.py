@@ -271,3 +271,19 @@ def test_the_first_python_example_installs_what_it_needs():
     assert "./python" in given
     for n in _needs(first.group(1)):
         assert n in given, f"the first example needs {n}; the line above installs {given}"
+
+
+def test_the_api_table_lists_every_public_name():
+    """docs/PYTHON.md's API table has a row for every name of
+    ``dymsum.__all__``, and names nothing else (the first cell of each row:
+    the names its code spans start with)."""
+    text = (ROOT / "docs" / "PYTHON.md").read_text()
+    api = text.split("\n## API\n", 1)[1].split("\n## ", 1)[0]
+    listed = set()
+    for row in api.splitlines():
+        if row.startswith("| `"):
+            first = row.split(" | ")[0]
+            listed |= {m.group(1) for s in re.findall(r"`([^`]*)`", first) for m in [re.match(r"([A-Za-z_]\w*)", s)] if m}
+    public = set(dymsum.__all__)
+    assert not public - listed, f"in dymsum.__all__ but not in PYTHON.md's API table: {sorted(public - listed)}"
+    assert not listed - public, f"in PYTHON.md's API table but not in dymsum.__all__: {sorted(listed - public)}"
