@@ -1,8 +1,9 @@
 //! Poses and files: `pose`, `load`, `save`, `read_mesh_bodies`, `models`.
 
 use crate::convert;
+use crate::convert::policy;
 use crate::convert::{io_error, path_string, value_error, Translation};
-use crate::polytope::{policy, PyPolytope};
+use crate::polytope::PyPolytope;
 use dymsum::Pose;
 use dymsum_io::formats::FormatError;
 use numpy::PyArray2;

@@ -3,8 +3,8 @@
 //! boundary method.
 
 use crate::convert;
+use crate::convert::parse_method;
 use crate::convert::{err_for, value_error, Shape};
-use crate::polytope::parse_method;
 use dymsum::polytope::MeshPolicy;
 use dymsum::sum::minkowski_sum_posed;
 use dymsum::{DynamicSum, Polytope, Pose, UpdateReport};

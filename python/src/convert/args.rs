@@ -1,7 +1,10 @@
 //! Scalar arguments whose range PyO3 would report as `OverflowError`
 //! (`Tolerance`, `Budget`, `Translation`), and path arguments.
 
+use super::err_for;
 use super::value_error;
+use dymsum::polytope::MeshPolicy;
+use dymsum::sum::Method;
 use pyo3::prelude::*;
 
 /// An argument PyO3 would extract as a Rust number, with an integer beyond
@@ -63,4 +66,18 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Translation {
 pub(crate) fn path_string(path: &Bound<'_, PyAny>) -> PyResult<String> {
     let os = path.py().import("os")?;
     os.call_method1("fspath", (path,))?.extract()
+}
+
+/// The mesh policy of a `strict` argument.
+pub(crate) fn policy(strict: bool) -> MeshPolicy {
+    if strict {
+        MeshPolicy::strict()
+    } else {
+        MeshPolicy::default()
+    }
+}
+
+/// A static method name (`walk`, `brute`, `hull`).
+pub(crate) fn parse_method(method: &str) -> PyResult<Method> {
+    method.parse::<Method>().map_err(|e| err_for("method", e))
 }

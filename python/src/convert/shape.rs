@@ -3,7 +3,8 @@
 
 use super::args::path_string;
 use super::{err_for, io_error, value_error};
-use dymsum::polytope::{ConvexityReport, MeshPolicy};
+use crate::polytope::Origin;
+use dymsum::polytope::MeshPolicy;
 use dymsum::{PolygonMesh, Polytope};
 use dymsum_io::formats::FormatError;
 use dymsum_io::load::LoadError;
@@ -196,15 +197,6 @@ pub(crate) fn faces(
                 .collect()
         })
         .collect()
-}
-
-/// Where a shape came from and what building it changed.
-#[derive(Clone, Debug)]
-pub(crate) enum Origin {
-    /// The exact hull of a point cloud of this many points.
-    Points { count: usize },
-    /// A mesh, validated.
-    Mesh(ConvexityReport),
 }
 
 /// A polytope converted from a Python object.

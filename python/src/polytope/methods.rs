@@ -1,57 +1,12 @@
-//! `Polytope`: a convex polytope built once from points or a convex mesh,
-//! and the mesh policy and method names the other bindings share.
+//! The methods of `Polytope` (its constructor from any shape argument, its
+//! arrays, sums and queries).
 
+use super::{Origin, PyPolytope};
 use crate::convert;
-use crate::convert::{err_for, Origin, Shape};
-use dymsum::polytope::MeshPolicy;
-use dymsum::sum::Method;
-use dymsum::Polytope;
+use crate::convert::{policy, Shape};
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
-
-pub(crate) fn policy(strict: bool) -> MeshPolicy {
-    if strict {
-        MeshPolicy::strict()
-    } else {
-        MeshPolicy::default()
-    }
-}
-
-pub(crate) fn parse_method(method: &str) -> PyResult<Method> {
-    method.parse::<Method>().map_err(|e| err_for("method", e))
-}
-
-/// A convex polytope: the exact convex hull of a point cloud, or a validated
-/// convex mesh. Build it once and pass it to every function (parsing and
-/// the hull are then done once).
-///
-/// ``Polytope(a, strict=False)`` where ``a`` is an (N, 3) array of points
-/// (their exact convex hull), a ``(vertices, faces)`` pair (faces an (M, k)
-/// integer array or a list of index lists), or any object with
-/// ``.vertices`` and ``.faces`` (a ``trimesh.Trimesh``). A mesh must be
-/// convex; one convex only within a small tolerance is replaced by the exact
-/// hull of its vertices (``strict=True`` refuses it instead), and
-/// ``convexity_report`` says what happened.
-///
-/// Raises ``ValueError`` for a wrong shape or dtype, NaN or infinite
-/// coordinates, fewer than 4 points, flat input, or a non-convex or open
-/// mesh, with dymsum's message.
-///
-/// >>> import numpy as np, dymsum
-/// >>> cube = dymsum.Polytope(np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], float))
-/// >>> cube.vertices.shape, cube.faces.shape, cube.volume
-/// ((8, 3), (12, 3), 1.0)
-/// >>> len(cube.polygons)
-/// 6
-#[pyclass(module = "dymsum", name = "Polytope", frozen)]
-pub struct PyPolytope {
-    pub(crate) inner: Polytope,
-    pub(crate) origin: Origin,
-    pub(crate) source: String,
-    vertices: Py<PyArray2<f64>>,
-    faces: Py<PyArray2<i64>>,
-}
 
 impl PyPolytope {
     pub(crate) fn from_shape(py: Python<'_>, s: Shape) -> PyResult<Self> {
