@@ -505,3 +505,44 @@ fn duplicate_faces_and_zero_volume_sheets_are_refused() {
     let o = common::run(&["sum", &sheet, "cube", "-o", out]);
     assert_fails(&o, 1, "not a solid: faces 6 and 7 have the same corners");
 }
+
+/// Issue 29: `info` and `render` take one convex body; a body of several
+/// pieces is refused with the problem first and the fix last, naming the
+/// subcommands that take unions (was: "mesh is not a topological sphere:
+/// Euler characteristic V - E + F = 4, expected 2"). Pinned word for word.
+#[test]
+fn info_and_render_refuse_a_body_of_pieces_naming_the_subcommands_that_take_it() {
+    let dir = temp_dir("one-body-only");
+    let two = boxes_off(
+        &dir,
+        "two.off",
+        &[([0.0; 3], [1.0; 3]), ([3.0, 0.0, 0.0], [4.0, 1.0, 1.0])],
+    );
+    let fix = "to use the pieces, run `dymsum sum`, `query`, `motion` or `cobst`, which take \
+               unions (pieces joined with `+`, OBJ objects, or a mesh of convex shells), or give \
+               one piece";
+    let o = common::run(&["info", &two]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        common::stderr(&o).trim_end(),
+        format!(
+            "error: input (two.off): a body of 2 convex pieces, and `dymsum info` takes one \
+             convex body; {fix}"
+        )
+    );
+    let svg = dir.join("x.svg");
+    let o = common::run(&["render", &two, "box", "-o", svg.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        common::stderr(&o).trim_end(),
+        format!(
+            "error: P (two.off): a body of 2 convex pieces, and `dymsum render` takes one \
+             convex body; {fix}"
+        )
+    );
+    // The same body is taken by `sum` as a union.
+    let out = dir.join("sum.off");
+    let text = ok(&["sum", &two, "box", "-o", out.to_str().unwrap(), "--json"]);
+    assert_eq!(json(&text)["pieces"][0], 2, "{text}");
+    std::fs::remove_dir_all(&dir).ok();
+}

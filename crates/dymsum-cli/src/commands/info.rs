@@ -8,7 +8,7 @@ use dymsum::polytope::ConvexityReport;
 use dymsum_io::Loaded;
 use serde::Serialize;
 
-use super::load;
+use super::solid::load_single_body;
 use crate::stats::short;
 
 /// `dymsum info`.
@@ -81,7 +81,7 @@ impl Info {
 /// The input cannot be loaded ([`super::load`]), or writing the report to
 /// `out` fails.
 pub fn run(a: &InfoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
-    let loaded = load(&a.spec, "input", a.strict)?;
+    let loaded = load_single_body(&a.spec, "input", a.strict, "info")?;
     let info = Info::new(&a.spec, &loaded);
     if a.json {
         serde_json::to_writer_pretty(&mut *out, &info)?;

@@ -216,3 +216,34 @@ pub fn load_body(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Vec<
     }
     Ok(vec![load(spec, operand, strict)?.polytope])
 }
+
+/// Loads one convex body for a subcommand that takes only one (`info`,
+/// `render`): as [`super::load`], but a body of several pieces (a union
+/// `a+b`, an OBJ file with several objects, a mesh of several convex
+/// shells) is refused with the problem first and the fix last, naming the
+/// subcommands that take unions.
+///
+/// # Errors
+/// Those of [`super::load`]; a body of several pieces.
+pub fn load_single_body(
+    spec: &str,
+    operand: &str,
+    strict: bool,
+    subcommand: &str,
+) -> anyhow::Result<dymsum_io::Loaded> {
+    let error = match load(spec, operand, strict) {
+        Ok(loaded) => return Ok(loaded),
+        Err(e) => e,
+    };
+    match load_solid(spec, operand, strict, None) {
+        Ok(solid) if solid.pieces.len() > 1 => Err(anyhow!(
+            "{operand} ({}): a body of {} convex pieces, and `dymsum {subcommand}` takes one \
+             convex body; to use the pieces, run `dymsum sum`, `query`, `motion` or `cobst`, which \
+             take unions (pieces joined with `+`, OBJ objects, or a mesh of convex shells), or \
+             give one piece",
+            short_name(spec),
+            solid.pieces.len()
+        )),
+        _ => Err(error),
+    }
+}

@@ -28,8 +28,10 @@ use serde::Serialize;
 /// `dymsum sum`.
 #[derive(Debug, Args)]
 pub struct SumArgs {
-    /// First operand P: a mesh file or a built-in model name; `-` reads OFF
-    /// from standard input.
+    /// First operand P: a mesh file or a built-in model name; several convex
+    /// pieces joined with `+` (`a.off+b.off`), an OBJ file with several
+    /// objects, or a mesh of convex shells form a union (a non-convex body);
+    /// `-` reads OFF from standard input.
     #[arg(value_name = "P")]
     pub p: String,
     /// Second operand Q: as P.

@@ -62,7 +62,8 @@ use clap::Args;
 use dymsum::sum::Facet;
 use dymsum::{DVec3, DynamicSum, Pose, Rotation};
 
-use super::{load, short_name};
+use super::short_name;
+use super::solid::load_single_body;
 use crate::values::{parse_quaternion, parse_vector};
 
 pub use scene::{facet_geometry, View, FRONT_EPS};
@@ -181,8 +182,8 @@ pub fn run(a: &RenderArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let format = PictureFormat::from_path(&a.output)
         .with_context(|| format!("{}: not a .svg or .png file", a.output.display()))?;
     super::stdin_for_one_operand(&[(&a.p, "P"), (&a.q, "Q")])?;
-    let p = load(&a.p, "P", a.strict)?;
-    let q = load(&a.q, "Q", a.strict)?;
+    let p = load_single_body(&a.p, "P", a.strict, "render")?;
+    let q = load_single_body(&a.q, "Q", a.strict, "render")?;
     let pose_p = Pose::new(
         a.rotate_p.unwrap_or(Rotation::IDENTITY),
         a.translate_p.unwrap_or(DVec3::ZERO),
