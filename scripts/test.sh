@@ -24,7 +24,7 @@ cd "$(dirname "$0")/.."
 
 run_tmp="$(mktemp -d "${TMPDIR:-/tmp}/dymsum-test-run.XXXXXX")"
 ticker=
-trap '[ -z "$ticker" ] || kill "$ticker" 2>/dev/null; rm -rf "$run_tmp"' EXIT
+trap 'if [ -n "$ticker" ]; then kill "$ticker" 2>/dev/null || true; fi; rm -rf "$run_tmp"' EXIT
 trap 'exit 130' INT TERM
 export TMPDIR="$run_tmp"
 
@@ -67,7 +67,7 @@ fi
 # is printed if pip fails.
 pip_log="$run_tmp/pip.log"
 start=$SECONDS
-(while sleep 15; do printf '    ... pip install ./python: %s s\n' "$((SECONDS - start))"; done) &
+(trap - EXIT INT TERM; while sleep 15; do printf '    ... pip install ./python: %s s\n' "$((SECONDS - start))"; done) &
 ticker=$!
 status=0
 PYTHONUNBUFFERED=1 "$venv/bin/python" -m pip install -v --disable-pip-version-check ./python pytest numpy scipy mypy hypothesis 'dask[distributed]' "${ompl[@]}" 2>&1 |
