@@ -14,16 +14,7 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use dymsum::query::{ConvexUnion, MotionChecker};
 use dymsum::{DVec3, Polytope, Pose, Rotation};
-
-fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polytope {
-    let corners: Vec<[f64; 3]> = (0..8)
-        .map(|i| {
-            let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-            [pick(0), pick(1), pick(2)]
-        })
-        .collect();
-    Polytope::from_points(&corners).unwrap()
-}
+use dymsum_testkit::cuboid;
 
 fn obstacle(kind: &str, gap: f64) -> ConvexUnion {
     let x = (4.0f64 + 0.0025).sqrt() + gap;

@@ -114,6 +114,18 @@ pub fn cube_points(lo: f64, hi: f64) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// The axis-aligned box `[lo, hi]` as a polytope (the motion tests', bench's
+/// and fuzzers' obstacles).
+pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polytope {
+    let corners: Vec<[f64; 3]> = (0..8)
+        .map(|i| {
+            let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
+            [pick(0), pick(1), pick(2)]
+        })
+        .collect();
+    Polytope::from_points(&corners).expect("a box with lo < hi")
+}
+
 pub fn box_points(x: f64, y: f64, z: f64) -> Vec<[f64; 3]> {
     (0..8)
         .map(|i| {

@@ -8,19 +8,9 @@
 
 use dymsum::query::{ConvexUnion, Motion, MotionCheck, MotionChecker, MotionError};
 use dymsum::{DVec3, Polytope, Pose, Rotation};
-use dymsum_testkit::{random_polytope, random_rotation, rng, Kind};
+use dymsum_testkit::{cuboid, random_polytope, random_rotation, rng, Kind};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-
-fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polytope {
-    let corners: Vec<[f64; 3]> = (0..8)
-        .map(|i| {
-            let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-            [pick(0), pick(1), pick(2)]
-        })
-        .collect();
-    Polytope::from_points(&corners).unwrap()
-}
 
 fn unit(r: &mut ChaCha8Rng) -> DVec3 {
     loop {

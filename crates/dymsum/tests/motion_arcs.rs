@@ -11,18 +11,9 @@
 use dymsum::glam::{DMat3, DQuat};
 use dymsum::kernel::predicates::{dot4, Sign};
 use dymsum::query::{ConvexUnion, Motion, MotionChecker};
-use dymsum::{DVec3, Polytope, Pose, Rotation};
+use dymsum::{DVec3, Pose, Rotation};
+use dymsum_testkit::cuboid;
 use std::f64::consts::PI;
-
-fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polytope {
-    let corners: Vec<[f64; 3]> = (0..8)
-        .map(|i| {
-            let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-            [pick(0), pick(1), pick(2)]
-        })
-        .collect();
-    Polytope::from_points(&corners).unwrap()
-}
 
 fn scene() -> MotionChecker {
     let bar = ConvexUnion::from(cuboid([0.0, -0.05, -0.05], [2.0, 0.05, 0.05]));

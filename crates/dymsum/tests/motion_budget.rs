@@ -11,16 +11,7 @@ use dymsum::query::{
     ConvexUnion, Motion, MotionCheck, MotionChecker, MotionError, DEFAULT_BUDGET, MIN_TOLERANCE,
 };
 use dymsum::{DVec3, Polytope, Pose, Rotation};
-
-fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polytope {
-    let corners: Vec<[f64; 3]> = (0..8)
-        .map(|i| {
-            let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-            [pick(0), pick(1), pick(2)]
-        })
-        .collect();
-    Polytope::from_points(&corners).unwrap()
-}
+use dymsum_testkit::cuboid;
 
 fn turn(deg: f64) -> Pose {
     Pose::new(
