@@ -283,13 +283,26 @@ pub(crate) fn pose_stack(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult
             ))
         }
     };
+    stack_of(&probe, &shape, form, what, POSE_STACK_FORMS)
+}
+
+/// The transforms of an array already probed as one item or a stack of
+/// items of `form` (its `shape` read): every item as a pose, named in
+/// errors by its index when a stack.
+fn stack_of(
+    probe: &Bound<'_, PyAny>,
+    shape: &[usize],
+    form: Form,
+    what: &str,
+    forms: &str,
+) -> PyResult<Vec<Pose>> {
     let tail = form.tail();
     let rank = if shape.len() == tail.len() {
         tail.len()
     } else {
         tail.len() + 1
     };
-    let arr = float_array(&probe, rank, tail, what, POSE_STACK_FORMS)?;
+    let arr = float_array(probe, rank, tail, what, forms)?;
     let stack = rank > tail.len();
     transforms(&arr, form, what, |k| item_name(form, stack.then_some(k)))
 }
@@ -359,15 +372,7 @@ pub(crate) fn rotations(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Rota
             ))
         }
     };
-    let tail = form.tail();
-    let rank = if shape.len() == tail.len() {
-        tail.len()
-    } else {
-        tail.len() + 1
-    };
-    let arr = float_array(&probe, rank, tail, what, ROTATIONS_FORMS)?;
-    let stack = rank > tail.len();
-    let poses = transforms(&arr, form, what, |k| item_name(form, stack.then_some(k)))?;
+    let poses = stack_of(&probe, &shape, form, what, ROTATIONS_FORMS)?;
     poses
         .into_iter()
         .enumerate()
