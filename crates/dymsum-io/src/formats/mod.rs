@@ -562,6 +562,24 @@ pub(crate) fn parse_coord(token: &str, source_name: &str, line: usize) -> Result
 
 /// Appends `x y z` with each coordinate in Rust's shortest round-trip
 /// representation (`{}` Display), which parses back to the same bits.
+/// The body shared by the OFF and ASCII PLY writers: one vertex a line
+/// (shortest round-trip coordinates), then one face a line (its corner count
+/// and indices).
+pub(crate) fn push_vertices_and_faces(out: &mut String, mesh: &PolygonMesh) {
+    use std::fmt::Write as _;
+    for v in &mesh.vertices {
+        push_coords(out, v);
+        out.push('\n');
+    }
+    for f in &mesh.faces {
+        let _ = write!(out, "{}", f.len());
+        for i in f {
+            let _ = write!(out, " {i}");
+        }
+        out.push('\n');
+    }
+}
+
 pub(crate) fn push_coords(out: &mut String, v: &[f64; 3]) {
     use std::fmt::Write;
     let _ = write!(out, "{} {} {}", v[0], v[1], v[2]);

@@ -17,7 +17,9 @@ use std::fmt::Write;
 
 use dymsum::PolygonMesh;
 
-use super::{capped, parse_coord, push_coords, text, vertex_index, FormatError, Location};
+use super::{
+    capped, parse_coord, push_vertices_and_faces, text, vertex_index, FormatError, Location,
+};
 
 /// Content lines: 1-based number and text with comments stripped and
 /// surrounding whitespace trimmed; blank lines skipped.
@@ -300,16 +302,6 @@ pub(crate) fn write(mesh: &PolygonMesh) -> Vec<u8> {
         mesh.faces.len(),
         mesh.edge_count()
     );
-    for v in &mesh.vertices {
-        push_coords(&mut out, v);
-        out.push('\n');
-    }
-    for f in &mesh.faces {
-        let _ = write!(out, "{}", f.len());
-        for i in f {
-            let _ = write!(out, " {i}");
-        }
-        out.push('\n');
-    }
+    push_vertices_and_faces(&mut out, mesh);
     out.into_bytes()
 }

@@ -21,7 +21,7 @@ use dymsum::PolygonMesh;
 use ply_rs_bw::parser::{ParseError, Parser, Reader};
 use ply_rs_bw::ply::{Encoding, Header, PropertyAccess, PropertyAccessResult, PropertyType};
 
-use super::{push_coords, vertex_index, FormatError, Location};
+use super::{push_vertices_and_faces, vertex_index, FormatError, Location};
 
 /// One PLY element of any kind: only the properties we use are kept.
 #[derive(Default)]
@@ -446,17 +446,7 @@ fn header(mesh: &PolygonMesh, format: &str) -> (String, bool) {
 pub(crate) fn write_ascii(mesh: &PolygonMesh) -> Vec<u8> {
     let (mut out, _) = header(mesh, "ascii");
     out.reserve(40 * mesh.vertices.len() + 16 * mesh.faces.len());
-    for v in &mesh.vertices {
-        push_coords(&mut out, v);
-        out.push('\n');
-    }
-    for f in &mesh.faces {
-        let _ = write!(out, "{}", f.len());
-        for i in f {
-            let _ = write!(out, " {i}");
-        }
-        out.push('\n');
-    }
+    push_vertices_and_faces(&mut out, mesh);
     out.into_bytes()
 }
 
