@@ -38,7 +38,7 @@ use crate::kernel::exact::{self, Dyadic, ExactVec};
 use crate::kernel::Sign;
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
-use crate::query::proximity::support::{climb, near_max, Marks};
+use crate::query::proximity::support::{climb, near_max, Marks, NearMax};
 use glam::DVec3;
 
 /// The most GJK steps before it stops with what it has (never reached in
@@ -484,28 +484,7 @@ pub(in crate::query) fn separated_along(
     warm: (u32, u32),
     cs: &mut CertScratch,
 ) -> bool {
-    let na = near_max(
-        &pair.a,
-        |v| posed.a(v),
-        -d,
-        warm.0,
-        0.0,
-        posed.eta_a,
-        posed.scale,
-        &mut cs.marks_a,
-        &mut cs.set_a,
-    );
-    let nb = near_max(
-        &pair.b,
-        |w| posed.b(w),
-        d,
-        warm.1,
-        0.0,
-        posed.eta_b,
-        posed.scale,
-        &mut cs.marks_b,
-        &mut cs.set_b,
-    );
+    let (na, nb) = near_max_pair(pair, posed, (-d, 0.0), (d, 0.0), warm, cs);
     // max(−d · a) + max(d · b) < 0 ⟺ min d · a > max d · b.
     if na.upper + nb.upper < 0.0 {
         return true;
@@ -516,6 +495,42 @@ pub(in crate::query) fn separated_along(
     }
     // Exactly: the rounded extremes are in the sets.
     separated_on_sets(posed, d, cs)
+}
+
+/// The near-extreme sets of A in `a.0` covering at least `a.1` and of B in
+/// `b.0` covering at least `b.1` ([`near_max`] on each posed body, into
+/// `cs.set_a` and `cs.set_b`), started from the support vertices `warm`.
+pub(in crate::query) fn near_max_pair(
+    pair: &ConvexPair,
+    posed: &Posed,
+    (dir_a, tau_a): (DVec3, f64),
+    (dir_b, tau_b): (DVec3, f64),
+    warm: (u32, u32),
+    cs: &mut CertScratch,
+) -> (NearMax, NearMax) {
+    let na = near_max(
+        &pair.a,
+        |v| posed.a(v),
+        dir_a,
+        warm.0,
+        tau_a,
+        posed.eta_a,
+        posed.scale,
+        &mut cs.marks_a,
+        &mut cs.set_a,
+    );
+    let nb = near_max(
+        &pair.b,
+        |w| posed.b(w),
+        dir_b,
+        warm.1,
+        tau_b,
+        posed.eta_b,
+        posed.scale,
+        &mut cs.marks_b,
+        &mut cs.set_b,
+    );
+    (na, nb)
 }
 
 /// Exactly whether the separation along `d` holds, from near-extreme sets

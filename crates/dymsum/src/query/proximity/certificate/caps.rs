@@ -25,8 +25,7 @@ use super::{arc_meets_cap, collect, Keep, LocalScratch, ANY};
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
 use crate::query::proximity::certificate::candidates::{DIRECTION_ERROR, OVERLAY_MISMATCH};
-use crate::query::proximity::gjk::{CertScratch, Gjk};
-use crate::query::proximity::support::near_max;
+use crate::query::proximity::gjk::{near_max_pair, CertScratch, Gjk};
 use glam::DVec3;
 /// The most caps a penetration certificate uses.
 const MAX_CAPS: usize = 16;
@@ -122,28 +121,7 @@ pub(in crate::query) fn penetration_facets(
         let delta = DIRECTION_ERROR + OVERLAY_MISMATCH;
         let tau_a = 2.0 * (chord + delta) * posed.rho_a;
         let tau_b = 2.0 * (chord + delta) * posed.rho_b;
-        near_max(
-            &pair.a,
-            |v| posed.a(v),
-            m,
-            warm.0,
-            tau_a,
-            posed.eta_a,
-            posed.scale,
-            &mut cs.marks_a,
-            &mut cs.set_a,
-        );
-        near_max(
-            &pair.b,
-            |w| posed.b(w),
-            -m,
-            warm.1,
-            tau_b,
-            posed.eta_b,
-            posed.scale,
-            &mut cs.marks_b,
-            &mut cs.set_b,
-        );
+        near_max_pair(pair, posed, (m, tau_a), (-m, tau_b), warm, cs);
         // Faces in the cap: their candidates' directions are their rotated
         // unit normals (compared with a few ulps of slack). Edges whose
         // float arcs come near the cap: an ee-candidate's direction lies

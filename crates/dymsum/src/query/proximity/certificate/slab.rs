@@ -28,8 +28,8 @@ use crate::kernel::rotation::Pose;
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
 use crate::query::proximity::certificate::candidates::FacetSet;
-use crate::query::proximity::gjk::{CertScratch, Gjk};
-use crate::query::proximity::support::{near_max, NearMax};
+use crate::query::proximity::gjk::{near_max_pair, CertScratch, Gjk};
+use crate::query::proximity::support::NearMax;
 use glam::DVec3;
 /// The near-extreme sets of A in `−n` and of B in `n` (in `cs.set_a`,
 /// `cs.set_b`), each covering at least `tau`, with the rigorous lower bound
@@ -56,28 +56,7 @@ pub(in crate::query) fn slab(
     warm: (u32, u32),
     cs: &mut CertScratch,
 ) -> SeparatingSlab {
-    let na = near_max(
-        &pair.a,
-        |v| posed.a(v),
-        -n,
-        warm.0,
-        tau,
-        posed.eta_a,
-        posed.scale,
-        &mut cs.marks_a,
-        &mut cs.set_a,
-    );
-    let nb = near_max(
-        &pair.b,
-        |w| posed.b(w),
-        n,
-        warm.1,
-        tau,
-        posed.eta_b,
-        posed.scale,
-        &mut cs.marks_b,
-        &mut cs.set_b,
-    );
+    let (na, nb) = near_max_pair(pair, posed, (-n, tau), (n, tau), warm, cs);
     SeparatingSlab {
         n,
         floor: -(na.upper + nb.upper),
