@@ -92,6 +92,11 @@ impl HalfSpaces {
             .zip(&self.offsets)
             .all(|(n, &d)| n.dot(x) <= d)
     }
+    /// Half-spaces from their normals and offsets (the same length).
+    pub(in crate::query) fn from_parts(normals: Vec<DVec3>, offsets: Vec<f64>) -> HalfSpaces {
+        debug_assert_eq!(normals.len(), offsets.len());
+        HalfSpaces { normals, offsets }
+    }
     /// The normals and offsets, consumed.
     pub fn into_parts(self) -> (Vec<DVec3>, Vec<f64>) {
         (self.normals, self.offsets)

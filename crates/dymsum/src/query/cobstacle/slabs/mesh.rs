@@ -50,7 +50,8 @@ impl Slab {
             ));
         }
         let longest = self
-            .normals
+            .planes
+            .normals()
             .iter()
             .map(|n| up(n.length()))
             .fold(0.0, f64::max);
@@ -81,9 +82,10 @@ impl Slab {
     /// docs), and a bound on their rounding (Euclidean, each vertex).
     fn pushed_vertices(&self, c: DVec3, push: f64) -> Result<(Vec<DVec3>, f64), QueryError> {
         let mut t: Vec<f64> = self
-            .normals
+            .planes
+            .normals()
             .iter()
-            .zip(&self.offsets)
+            .zip(self.planes.offsets())
             .map(|(&n, &d)| {
                 let (v, err) = bounds::dot(n, 0.0, c, 0.0);
                 above(above(d - below(v - err)) + push)
@@ -100,13 +102,13 @@ impl Slab {
         // underflow at any scale; the vertices scale back exactly.
         let k = exact::frame_exponent(t.iter().copied());
         t.iter_mut().for_each(|x| *x = exact::mul_pow2(*x, k));
-        let dual = PolarPoints::new(&self.normals, &t);
+        let dual = PolarPoints::new(self.planes.normals(), &t);
         let hull = convex_hull(&dual)
             .map_err(|e| QueryError::Inconsistent(format!("the slab's dual hull failed: {e}")))?;
         let mut rounding = 0.0f64;
         let mut vertices = Vec::with_capacity(hull.faces.len());
         for f in &hull.faces {
-            let rows = [f[0], f[1], f[2]].map(|i| (self.normals[i], t[i]));
+            let rows = [f[0], f[1], f[2]].map(|i| (self.planes.normals()[i], t[i]));
             let (z, err) = solve_planes(rows)?;
             let (z, err) = (exact::mul_pow2_vec(z, -k), exact::mul_pow2(err, -k));
             let v = c + z;

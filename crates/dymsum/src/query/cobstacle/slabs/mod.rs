@@ -150,6 +150,7 @@ use crate::kernel::rotation::Rotation;
 use crate::kernel::{bounds, Sign};
 use crate::mesh::PolygonMesh;
 use crate::polytope::Polytope;
+use crate::query::cobstacle::halfspaces::HalfSpaces;
 use crate::query::cobstacle::slices::CObstacle;
 use crate::query::error::QueryError;
 use crate::query::frame::up;
@@ -210,8 +211,7 @@ pub enum SlabCover {
 /// and the functions of this module.
 #[derive(Clone, Debug)]
 pub struct Slab {
-    normals: Vec<DVec3>,
-    offsets: Vec<f64>,
+    planes: HalfSpaces,
     hull: Polytope,
     margin: f64,
     cover: SlabCover,
@@ -221,22 +221,27 @@ impl Slab {
     /// The unit outward normals `n_i`, one per face of [`Slab::hull`] (float
     /// constructions; the containment holds for them as they are).
     pub fn normals(&self) -> &[DVec3] {
-        &self.normals
+        self.planes.normals()
     }
 
     /// The offsets `d_i`, rounded outward: the slab is `{x : n_i·x ≤ d_i}`.
     pub fn offsets(&self) -> &[f64] {
-        &self.offsets
+        self.planes.offsets()
+    }
+
+    /// The slab as [`HalfSpaces`] (the same planes).
+    pub fn half_spaces(&self) -> &HalfSpaces {
+        &self.planes
     }
 
     /// The number of half-spaces.
     pub fn len(&self) -> usize {
-        self.normals.len()
+        self.planes.len()
     }
 
     /// `true` when the slab has no half-space (never: a slab is bounded).
     pub fn is_empty(&self) -> bool {
-        self.normals.is_empty()
+        self.planes.is_empty()
     }
 
     /// The exact hull of the slices the slab was built from (the two ends'
@@ -262,9 +267,10 @@ impl Slab {
     pub fn contains(&self, x: DVec3) -> bool {
         x.is_finite()
             && self
-                .normals
+                .planes
+                .normals()
                 .iter()
-                .zip(&self.offsets)
+                .zip(self.planes.offsets())
                 .all(|(&n, &d)| slack_sign(n, d, x) != Sign::Negative)
     }
 }
@@ -410,8 +416,7 @@ fn slab_around(points: &[DVec3], margin: f64, cover: SlabCover) -> Result<Slab, 
         offsets.push(d);
     }
     Ok(Slab {
-        normals,
-        offsets,
+        planes: HalfSpaces::from_parts(normals, offsets),
         hull,
         margin,
         cover,
