@@ -31,6 +31,7 @@ use crate::polytope::Polytope;
 use crate::query::answer::FeaturePair;
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
+use crate::query::proximity::support::climb as hill_climb;
 use crate::sum::Overlay;
 use glam::DVec3;
 
@@ -46,9 +47,9 @@ pub(in crate::query) struct Candidate {
     pub refined: bool,
 }
 
-/// `max dir · v` over the posed vertices of `poly`, by a hill climb from the
-/// best of `starts` (first one wins ties), moving to the first strictly
-/// better neighbour until none is better.
+/// `max dir · v` over the posed vertices of `poly`, by the hill climb of
+/// [`crate::query::proximity::support::climb`] from the best of `starts`
+/// (first one wins ties).
 pub(in crate::query) fn support(
     poly: &Polytope,
     posed: impl Fn(u32) -> DVec3,
@@ -64,20 +65,7 @@ pub(in crate::query) fn support(
             v = s;
         }
     }
-    loop {
-        let mut moved = false;
-        for r in poly.ring(v as usize) {
-            let d = dir.dot(posed(r.neighbor));
-            if d > best {
-                best = d;
-                v = r.neighbor;
-                moved = true;
-            }
-        }
-        if !moved {
-            return best;
-        }
-    }
+    hill_climb(poly, posed, dir, v).1
 }
 
 /// The refined value of a candidate: `h_A(n) + h_B(−n)`, each support
