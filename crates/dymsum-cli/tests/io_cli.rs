@@ -388,7 +388,7 @@ fn obj_point_cloud_object_is_a_body_in_query() {
     assert!(out.contains("\"collides\":false"), "{out}");
     // One body asked for: refused, naming the bodies.
     let o = run(&["info", s(&robot)]);
-    assert_fails(&o, 1, "3 separate bodies (`a`, `b`, `pts`)");
+    assert_fails(&o, 1, "a body of 3 convex pieces (`a`, `b`, `pts`)");
 }
 
 #[test]

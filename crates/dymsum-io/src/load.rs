@@ -172,7 +172,7 @@ fn several_bodies_text(names: &[String]) -> String {
     let list: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
     format!(
         "the OBJ file holds {} separate bodies ({}), but one convex body is needed \
-         (`query` and `cobst` take unions)",
+         (`sum`, `query`, `motion` and `cobst` take unions)",
         names.len(),
         list.join(", ")
     )

@@ -237,13 +237,31 @@ pub fn load_single_body(
     };
     match load_solid(spec, operand, strict, None) {
         Ok(solid) if solid.pieces.len() > 1 => Err(anyhow!(
-            "{operand} ({}): a body of {} convex pieces, and `dymsum {subcommand}` takes one \
+            "{operand} ({}): a body of {} convex pieces{}, and `dymsum {subcommand}` takes one \
              convex body; to use the pieces, run `dymsum sum`, `query`, `motion` or `cobst`, which \
              take unions (pieces joined with `+`, OBJ objects, or a mesh of convex shells), or \
              give one piece",
             short_name(spec),
-            solid.pieces.len()
+            solid.pieces.len(),
+            obj_names(spec)
         )),
         _ => Err(error),
+    }
+}
+
+/// ` (`a`, `b`)`: the object names of an OBJ file of several objects, or
+/// nothing.
+fn obj_names(spec: &str) -> String {
+    let path = Path::new(spec);
+    let is_obj = path.is_file()
+        && path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    match is_obj.then(|| dymsum_io::formats::read_obj_objects(path)) {
+        Some(Ok(objects)) if objects.len() > 1 => {
+            let names: Vec<String> = objects.iter().map(|(n, _)| format!("`{n}`")).collect();
+            format!(" ({})", names.join(", "))
+        }
+        _ => String::new(),
     }
 }
