@@ -92,8 +92,9 @@ impl Sign {
     }
 }
 
+/// A point as `robust`'s coordinate type.
 #[inline]
-fn c3(p: DVec3) -> Coord3D<f64> {
+pub(crate) fn coord3d(p: DVec3) -> Coord3D<f64> {
     Coord3D {
         x: p.x,
         y: p.y,
@@ -181,7 +182,12 @@ pub fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     let xs = [a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, d.x, d.y, d.z];
     if ORIENT3_RANGE.fast(&xs) {
         // robust::orient3d is positive when d is *below* the ccw plane.
-        return Sign::of(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)));
+        return Sign::of(-robust::orient3d(
+            coord3d(a),
+            coord3d(b),
+            coord3d(c),
+            coord3d(d),
+        ));
     }
     orient_wide(xs)
 }
@@ -192,7 +198,12 @@ fn orient_wide(mut xs: [f64; 12]) -> Sign {
     let p = |xs: &[f64; 12], i: usize| DVec3::new(xs[3 * i], xs[3 * i + 1], xs[3 * i + 2]);
     if ORIENT3_RANGE.fit(&mut xs) {
         let (a, b, c, d) = (p(&xs, 0), p(&xs, 1), p(&xs, 2), p(&xs, 3));
-        return Sign::of(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)));
+        return Sign::of(-robust::orient3d(
+            coord3d(a),
+            coord3d(b),
+            coord3d(c),
+            coord3d(d),
+        ));
     }
     let (a, b, c, d) = (p(&xs, 0), p(&xs, 1), p(&xs, 2), p(&xs, 3));
     let e = super::exact::sub;
@@ -206,13 +217,13 @@ fn orient_wide(mut xs: [f64; 12]) -> Sign {
 pub fn orient2(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Sign {
     let xs = [a[0], a[1], b[0], b[1], c[0], c[1]];
     if ORIENT2_RANGE.fast(&xs) {
-        return Sign::of(robust::orient2d(co(a), co(b), co(c)));
+        return Sign::of(robust::orient2d(coord2d(a), coord2d(b), coord2d(c)));
     }
     orient2_wide(xs)
 }
 
 #[inline]
-fn co(p: [f64; 2]) -> Coord<f64> {
+fn coord2d(p: [f64; 2]) -> Coord<f64> {
     Coord { x: p[0], y: p[1] }
 }
 
@@ -221,7 +232,7 @@ fn co(p: [f64; 2]) -> Coord<f64> {
 fn orient2_wide(mut xs: [f64; 6]) -> Sign {
     if ORIENT2_RANGE.fit(&mut xs) {
         let (a, b, c) = ([xs[0], xs[1]], [xs[2], xs[3]], [xs[4], xs[5]]);
-        return Sign::of(robust::orient2d(co(a), co(b), co(c)));
+        return Sign::of(robust::orient2d(coord2d(a), coord2d(b), coord2d(c)));
     }
     use super::exact::Dyadic;
     let d = Dyadic::from_f64;

@@ -48,31 +48,39 @@ fn features_near(poly: &Polytope, set: &[u32]) -> (Vec<u32>, Vec<u32>) {
 /// The hull's exact predicates answer the same either way; its float
 /// heuristics then see bit-identical input for the same pair at any scale
 /// `2^k`, and pairwise sums cannot overflow.
-fn to_common_frame(pp: &mut [glam::DVec3], qq: &mut [glam::DVec3]) {
+fn to_common_frame(p_points: &mut [glam::DVec3], q_points: &mut [glam::DVec3]) {
     use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
-    let k = frame_exponent(pp.iter().chain(qq.iter()).flat_map(|v| v.to_array()));
-    let exact = pp
+    let k = frame_exponent(
+        p_points
+            .iter()
+            .chain(q_points.iter())
+            .flat_map(|v| v.to_array()),
+    );
+    let exact = p_points
         .iter()
-        .chain(qq.iter())
+        .chain(q_points.iter())
         .flat_map(|v| v.to_array())
         .all(|x| mul_pow2(mul_pow2(x, k), -k) == x);
     if k == 0 || !exact {
         return;
     }
-    for v in pp.iter_mut().chain(qq.iter_mut()) {
+    for v in p_points.iter_mut().chain(q_points.iter_mut()) {
         *v = mul_pow2_vec(*v, k);
     }
 }
 
 pub(super) fn overlay(ops: &Operands) -> Result<Overlay, SumError> {
-    let mut pp: Vec<_> = (0..ops.p.vertex_count() as u32)
+    let mut p_points: Vec<_> = (0..ops.p.vertex_count() as u32)
         .map(|u| ops.p_vertex(u))
         .collect();
-    let mut qq: Vec<_> = (0..ops.q.vertex_count() as u32)
+    let mut q_points: Vec<_> = (0..ops.q.vertex_count() as u32)
         .map(|w| ops.q_vertex(w))
         .collect();
-    to_common_frame(&mut pp, &mut qq);
-    let sums = PairwiseSums { p: &pp, q: &qq };
+    to_common_frame(&mut p_points, &mut q_points);
+    let sums = PairwiseSums {
+        p: &p_points,
+        q: &q_points,
+    };
     let hull = convex_hull(&sums).map_err(|e| SumError::HullMismatch(e.to_string()))?;
     let (vp, vq) = (ops.view_p(), ops.view_q());
     let mut fv = vec![u32::MAX; ops.p.face_count()];

@@ -32,6 +32,7 @@
 
 use crate::hull::HullPoints;
 use crate::kernel::exact;
+use crate::kernel::predicates::coord3d;
 use crate::kernel::Sign;
 use crate::mesh::PolygonMesh;
 use crate::polytope::topology::{DirectedEdges, TopologyDefect, Unused};
@@ -133,7 +134,7 @@ impl ExactPoints {
     pub fn orient3(&self, a: usize, b: usize, c: usize, d: usize) -> Sign {
         if self.scaled_exact {
             let s = &self.scaled;
-            let r = -robust::orient3d(c3(s[a]), c3(s[b]), c3(s[c]), c3(s[d]));
+            let r = -robust::orient3d(coord3d(s[a]), coord3d(s[b]), coord3d(s[c]), coord3d(s[d]));
             if self.tame || (r.is_finite() && r.abs() > UNDERFLOW_GUARD) {
                 return Sign::of(r);
             }
@@ -166,14 +167,6 @@ impl ExactPoints {
         let u = exact::sub(o[b], o[a]);
         let v = exact::sub(o[c], o[a]);
         exact::det2(&u[i], &u[j], &v[i], &v[j]).sign()
-    }
-}
-
-fn c3(p: DVec3) -> robust::Coord3D<f64> {
-    robust::Coord3D {
-        x: p.x,
-        y: p.y,
-        z: p.z,
     }
 }
 

@@ -194,7 +194,7 @@ fn sum_halfspaces(
         scratch.q_key.0.clone_from(&scratch.posed_q);
         scratch.q_key.1 = q_bounds;
     }
-    let (pp, pq) = (&scratch.posed_p, &scratch.posed_q);
+    let (posed_p, posed_q) = (&scratch.posed_p, &scratch.posed_q);
     let mut out = HalfSpaces {
         normals: Vec::with_capacity(overlay.len()),
         offsets: Vec::with_capacity(overlay.len()),
@@ -220,8 +220,8 @@ fn sum_halfspaces(
             let qe = ops.q.edge(e2 as usize);
             let [u1, u2] = pe.vertices;
             let [w1, w2] = qe.vertices;
-            let c = (pp[u2 as usize] - pp[u1 as usize])
-                .cross(pq[w2 as usize] - pq[w1 as usize])
+            let c = (posed_p[u2 as usize] - posed_p[u1 as usize])
+                .cross(posed_q[w2 as usize] - posed_q[w1 as usize])
                 .normalize_or_zero();
             // Outward: towards the normals of P's faces at the edge.
             let [f0, f1] = pe.faces;
@@ -236,7 +236,7 @@ fn sum_halfspaces(
         };
         let sp = near_max_upper(
             &ops.p,
-            |v| pp[v as usize],
+            |v| posed_p[v as usize],
             n,
             u,
             bp.eta,
@@ -247,7 +247,7 @@ fn sum_halfspaces(
         let mut search_q = || {
             near_max_upper(
                 &ops.q,
-                |v| pq[v as usize],
+                |v| posed_q[v as usize],
                 n,
                 w,
                 bq.eta,
@@ -412,7 +412,7 @@ mod tests {
         scratch
             .posed_q
             .extend((0..ops.q.vertex_count() as u32).map(|v| ops.q_vertex(v)));
-        let (pp, pq) = (&scratch.posed_p, &scratch.posed_q);
+        let (posed_p, posed_q) = (&scratch.posed_p, &scratch.posed_q);
         let mut out = HalfSpaces {
             normals: Vec::with_capacity(overlay.len()),
             offsets: Vec::with_capacity(overlay.len()),
@@ -438,8 +438,8 @@ mod tests {
                 let qe = ops.q.edge(e2 as usize);
                 let [u1, u2] = pe.vertices;
                 let [w1, w2] = qe.vertices;
-                let c = (pp[u2 as usize] - pp[u1 as usize])
-                    .cross(pq[w2 as usize] - pq[w1 as usize])
+                let c = (posed_p[u2 as usize] - posed_p[u1 as usize])
+                    .cross(posed_q[w2 as usize] - posed_q[w1 as usize])
                     .normalize_or_zero();
                 // Outward: towards the normals of P's faces at the edge.
                 let [f0, f1] = pe.faces;
@@ -454,7 +454,7 @@ mod tests {
             };
             let sp = near_max(
                 &ops.p,
-                |v| pp[v as usize],
+                |v| posed_p[v as usize],
                 n,
                 u,
                 0.0,
@@ -465,7 +465,7 @@ mod tests {
             );
             let sq = near_max(
                 &ops.q,
-                |v| pq[v as usize],
+                |v| posed_q[v as usize],
                 n,
                 w,
                 0.0,

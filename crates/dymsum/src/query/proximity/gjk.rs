@@ -367,14 +367,14 @@ pub(in crate::query) fn certify(
     pair: &ConvexPair,
     posed: &Posed,
     g: &Gjk,
-    cs: &mut CertScratch,
+    cert: &mut CertScratch,
 ) -> Option<bool> {
     if encloses_origin(posed, g) {
         return Some(true);
     }
     if g.v.length_squared() > 0.0
-        && (separated_along(pair, posed, g.v, g.warm, cs)
-            || separating_feature_axis(pair, posed, g, cs).is_some())
+        && (separated_along(pair, posed, g.v, g.warm, cert)
+            || separating_feature_axis(pair, posed, g, cert).is_some())
     {
         return Some(false);
     }
@@ -400,7 +400,7 @@ pub(in crate::query) fn separating_feature_axis(
     pair: &ConvexPair,
     posed: &Posed,
     g: &Gjk,
-    cs: &mut CertScratch,
+    cert: &mut CertScratch,
 ) -> Option<DVec3> {
     let v = g.v.normalize();
     if !v.is_finite() {
@@ -456,7 +456,7 @@ pub(in crate::query) fn separating_feature_axis(
     }
     best.iter()
         .filter(|(score, _, _)| *score > 0.0)
-        .find(|&&(_, d, warm)| separated_along(pair, posed, d, warm, cs))
+        .find(|&&(_, d, warm)| separated_along(pair, posed, d, warm, cert))
         .map(|&(_, d, _)| d)
 }
 
@@ -482,9 +482,9 @@ pub(in crate::query) fn separated_along(
     posed: &Posed,
     d: DVec3,
     warm: (u32, u32),
-    cs: &mut CertScratch,
+    cert: &mut CertScratch,
 ) -> bool {
-    let (na, nb) = near_max_pair(pair, posed, (-d, 0.0), (d, 0.0), warm, cs);
+    let (na, nb) = near_max_pair(pair, posed, (-d, 0.0), (d, 0.0), warm, cert);
     // max(−d · a) + max(d · b) < 0 ⟺ min d · a > max d · b.
     if na.upper + nb.upper < 0.0 {
         return true;
@@ -494,19 +494,19 @@ pub(in crate::query) fn separated_along(
         return false; // certainly not separated along d
     }
     // Exactly: the rounded extremes are in the sets.
-    separated_on_sets(posed, d, cs)
+    separated_on_sets(posed, d, cert)
 }
 
 /// The near-extreme sets of A in `a.0` covering at least `a.1` and of B in
 /// `b.0` covering at least `b.1` ([`near_max`] on each posed body, into
-/// `cs.set_a` and `cs.set_b`), started from the support vertices `warm`.
+/// `cert.set_a` and `cert.set_b`), started from the support vertices `warm`.
 pub(in crate::query) fn near_max_pair(
     pair: &ConvexPair,
     posed: &Posed,
     (dir_a, tau_a): (DVec3, f64),
     (dir_b, tau_b): (DVec3, f64),
     warm: (u32, u32),
-    cs: &mut CertScratch,
+    cert: &mut CertScratch,
 ) -> (NearMax, NearMax) {
     let na = near_max(
         &pair.a,
@@ -516,8 +516,8 @@ pub(in crate::query) fn near_max_pair(
         tau_a,
         posed.eta_a,
         posed.scale,
-        &mut cs.marks_a,
-        &mut cs.set_a,
+        &mut cert.marks_a,
+        &mut cert.set_a,
     );
     let nb = near_max(
         &pair.b,
@@ -527,16 +527,16 @@ pub(in crate::query) fn near_max_pair(
         tau_b,
         posed.eta_b,
         posed.scale,
-        &mut cs.marks_b,
-        &mut cs.set_b,
+        &mut cert.marks_b,
+        &mut cert.set_b,
     );
     (na, nb)
 }
 
 /// Exactly whether the separation along `d` holds, from near-extreme sets
-/// already in `cs` (of A in `−d`, of B in `d`; they contain the rounded
+/// already in `cert` (of A in `−d`, of B in `d`; they contain the rounded
 /// extremes).
-pub(in crate::query) fn separated_on_sets(posed: &Posed, d: DVec3, cs: &CertScratch) -> bool {
+pub(in crate::query) fn separated_on_sets(posed: &Posed, d: DVec3, cert: &CertScratch) -> bool {
     let exact_max = |set: &[u32], at: &dyn Fn(u32) -> DVec3, dir: DVec3| {
         let mut best: Option<Dyadic> = None;
         for &u in set {
@@ -550,8 +550,8 @@ pub(in crate::query) fn separated_on_sets(posed: &Posed, d: DVec3, cs: &CertScra
         }
         best.expect("a near-extreme set is never empty")
     };
-    let ma = exact_max(&cs.set_a, &|v| posed.a(v), -d);
-    let mb = exact_max(&cs.set_b, &|w| posed.b(w), d);
+    let ma = exact_max(&cert.set_a, &|v| posed.a(v), -d);
+    let mb = exact_max(&cert.set_b, &|w| posed.b(w), d);
     ma.add(&mb).sign() == Sign::Negative
 }
 

@@ -40,10 +40,10 @@ pub(in crate::query) fn grow_polytope(
     posed: &Posed,
     g: &Gjk,
     hint: Option<DVec3>,
-    ls: &mut LocalScratch,
+    local: &mut LocalScratch,
 ) -> bool {
     let grown = if g.enclosed && g.simplex.len == 4 {
-        ls.epa.run(pair, posed, g.simplex.pts, hint)
+        local.epa.run(pair, posed, g.simplex.pts, hint)
     } else {
         // No enclosing tetrahedron (the origin on a face or an edge of
         // GJK's simplex): start from the hull of the simplex and the
@@ -72,31 +72,34 @@ pub(in crate::query) fn grow_polytope(
                 k += 1;
             }
         }
-        ls.epa.run_from_hull(pair, posed, &pts[..k], hint)
+        local.epa.run_from_hull(pair, posed, &pts[..k], hint)
     };
-    grown && ls.epa.encloses_origin()
+    grown && local.epa.encloses_origin()
 }
 
 /// The least offset of a face of EPA's polytope (a lower bound on the
 /// depth, up to rounding).
-pub(in crate::query) fn polytope_depth(ls: &LocalScratch) -> f64 {
-    ls.epa.nearest().map_or(f64::INFINITY, |f| ls.epa.tris[f].d)
+pub(in crate::query) fn polytope_depth(local: &LocalScratch) -> f64 {
+    local
+        .epa
+        .nearest()
+        .map_or(f64::INFINITY, |f| local.epa.tris[f].d)
 }
 
 /// The facets of every cap for the support bound `c` (module docs), into
-/// `ls.facets`; `false` when a cap is too wide or there are too many.
+/// `local.facets`; `false` when a cap is too wide or there are too many.
 pub(in crate::query) fn penetration_facets(
     pair: &ConvexPair,
     posed: &Posed,
     c: f64,
-    cs: &mut CertScratch,
-    ls: &mut LocalScratch,
+    cert: &mut CertScratch,
+    local: &mut LocalScratch,
 ) -> bool {
     if !(c > 0.0 && c.is_finite()) {
         return false;
     }
-    ls.caps.clear();
-    for t in ls.epa.tris.iter().filter(|t| t.alive) {
+    local.caps.clear();
+    for t in local.epa.tris.iter().filter(|t| t.alive) {
         let (dm, dd) = (t.dm, t.dd);
         if t.d - dd > c {
             continue;
@@ -105,23 +108,23 @@ pub(in crate::query) fn penetration_facets(
             return false;
         }
         let cos = (t.d - dd) / c - dm;
-        if cos < MIN_CAP_COS || ls.caps.len() == MAX_CAPS {
+        if cos < MIN_CAP_COS || local.caps.len() == MAX_CAPS {
             return false;
         }
-        ls.caps.push((t.n, cos));
+        local.caps.push((t.n, cos));
     }
-    ls.facets.clear();
+    local.facets.clear();
     let warm = (
-        ls.epa.pts.first().map_or(0, |p| p.a),
-        ls.epa.pts.first().map_or(0, |p| p.b),
+        local.epa.pts.first().map_or(0, |p| p.a),
+        local.epa.pts.first().map_or(0, |p| p.b),
     );
-    for i in 0..ls.caps.len() {
-        let (m, cos) = ls.caps[i];
+    for i in 0..local.caps.len() {
+        let (m, cos) = local.caps[i];
         let chord = (2.0 - 2.0 * cos).max(0.0).sqrt() * (1.0 + 1e-12) + 1e-300;
         let delta = DIRECTION_ERROR + OVERLAY_MISMATCH;
         let tau_a = 2.0 * (chord + delta) * posed.rho_a;
         let tau_b = 2.0 * (chord + delta) * posed.rho_b;
-        near_max_pair(pair, posed, (m, tau_a), (-m, tau_b), warm, cs);
+        near_max_pair(pair, posed, (m, tau_a), (-m, tau_b), warm, cert);
         // Faces in the cap: their candidates' directions are their rotated
         // unit normals (compared with a few ulps of slack). Edges whose
         // float arcs come near the cap: an ee-candidate's direction lies
@@ -133,8 +136,8 @@ pub(in crate::query) fn penetration_facets(
         collect(
             pair,
             posed,
-            cs,
-            ls,
+            cert,
+            local,
             Keep {
                 face_a: |f| posed.na(f).dot(m) >= min_cos,
                 face_b: |g| -posed.nb(g).dot(m) >= min_cos,
@@ -151,6 +154,6 @@ pub(in crate::query) fn penetration_facets(
             },
         );
     }
-    ls.facets.dedup();
+    local.facets.dedup();
     true
 }

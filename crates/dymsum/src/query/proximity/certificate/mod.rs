@@ -133,8 +133,8 @@ pub(in crate::query) struct Keep<FA, FB, EA, EB, P> {
     both: bool,
 }
 
-/// Pushes onto `ls.facets` the overlay facets whose features touch the
-/// near-extreme sets `cs.set_a` (of A) and `cs.set_b` (of B) and pass
+/// Pushes onto `local.facets` the overlay facets whose features touch the
+/// near-extreme sets `cert.set_a` (of A) and `cert.set_b` (of B) and pass
 /// `keep`: fv-facets of A's faces at a vertex of the set, with their vertex
 /// of `−B` located; vf-facets of B's faces likewise; and ee-facets of the
 /// edges with both ends in the sets (`keep.both`) or one, tested for
@@ -142,8 +142,8 @@ pub(in crate::query) struct Keep<FA, FB, EA, EB, P> {
 pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
     pair: &ConvexPair,
     posed: &Posed,
-    cs: &mut CertScratch,
-    ls: &mut LocalScratch,
+    cert: &mut CertScratch,
+    local: &mut LocalScratch,
     keep: Keep<FA, FB, EA, EB, P>,
 ) where
     FA: Fn(u32) -> bool,
@@ -155,13 +155,13 @@ pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
     let (a, b) = (&pair.a, &pair.b);
     let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
     let prep = &pair.prep_b;
-    ls.in_a.start(a.vertex_count());
-    ls.in_b.start(b.vertex_count());
-    for &v in &cs.set_a {
-        ls.in_a.mark(v);
+    local.in_a.start(a.vertex_count());
+    local.in_b.start(b.vertex_count());
+    for &v in &cert.set_a {
+        local.in_a.mark(v);
     }
-    for &w in &cs.set_b {
-        ls.in_b.mark(w);
+    for &w in &cert.set_b {
+        local.in_b.mark(w);
     }
     // fv: A's faces at the set, with the vertex of −B their normal lies
     // in. That vertex (B's support opposite the normal) must be in B's set
@@ -170,35 +170,35 @@ pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
     // there, and kept if the vertex found is in the set.
     let (caps_a, caps_b) = (&pair.prep_a.caps, &pair.prep_b.caps);
     let (rot_a, rot_b) = (posed.pose_a.rotation, posed.pose_b.rotation);
-    ls.faces_a.start(a.face_count());
-    for &v in &cs.set_a {
+    local.faces_a.start(a.face_count());
+    for &v in &cert.set_a {
         for r in a.ring(v as usize) {
-            if !ls.faces_a.mark(r.face) || !(keep.face_a)(r.face) {
+            if !local.faces_a.mark(r.face) || !(keep.face_a)(r.face) {
                 continue;
             }
             let n = posed.na(r.face);
-            let Some(&w) = cs.set_b.iter().find(|&&w| {
+            let Some(&w) = cert.set_b.iter().find(|&&w| {
                 let (c, cos) = caps_b.cells[w as usize];
                 in_cap(n, (-rot_b.apply(c), cos))
             }) else {
                 continue;
             };
             let (wq, _) = vq.locate(&vp.normal(r.face), prep.neg_vertex[w as usize]);
-            if ls.in_b.is_marked(pair.neg_b().vertex_map[wq as usize]) {
-                ls.facets.fv.push((r.face, wq));
+            if local.in_b.is_marked(pair.neg_b().vertex_map[wq as usize]) {
+                local.facets.fv.push((r.face, wq));
             }
         }
     }
     // vf: B's faces at the set, as faces of −B, with the vertex of A (which
     // must be in A's set likewise).
-    ls.faces_b.start(b.face_count());
-    for &w in &cs.set_b {
+    local.faces_b.start(b.face_count());
+    for &w in &cert.set_b {
         for r in b.ring(w as usize) {
-            if !ls.faces_b.mark(r.face) || !(keep.face_b)(r.face) {
+            if !local.faces_b.mark(r.face) || !(keep.face_b)(r.face) {
                 continue;
             }
             let n = -posed.nb(r.face);
-            let Some(&u) = cs.set_a.iter().find(|&&u| {
+            let Some(&u) = cert.set_a.iter().find(|&&u| {
                 let (c, cos) = caps_a.cells[u as usize];
                 in_cap(n, (rot_a.apply(c), cos))
             }) else {
@@ -206,8 +206,8 @@ pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
             };
             let g = prep.neg_face[r.face as usize];
             let (ua, _) = vp.locate(&vq.normal(g), u);
-            if ls.in_a.is_marked(ua) {
-                ls.facets.vf.push((g, ua));
+            if local.in_a.is_marked(ua) {
+                local.facets.vf.push((g, ua));
             }
         }
     }
@@ -221,35 +221,42 @@ pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
             m.is_marked(ends[0]) || m.is_marked(ends[1])
         }
     };
-    ls.edges_a.clear();
-    ls.edge_marks_a.start(a.edge_count());
-    for &v in &cs.set_a {
+    local.edges_a.clear();
+    local.edge_marks_a.start(a.edge_count());
+    for &v in &cert.set_a {
         for r in a.ring(v as usize) {
-            if ls.edge_marks_a.mark(r.edge) && touches(&ls.in_a, a.edge(r.edge as usize).vertices) {
+            if local.edge_marks_a.mark(r.edge)
+                && touches(&local.in_a, a.edge(r.edge as usize).vertices)
+            {
                 if let Some(c) = (keep.edge_a)(r.edge) {
                     let (ac, cos) = caps_a.arcs[r.edge as usize];
-                    ls.edges_a.push((r.edge, c, (rot_a.apply(ac), cos)));
+                    local.edges_a.push((r.edge, c, (rot_a.apply(ac), cos)));
                 }
             }
         }
     }
-    ls.edges_b.clear();
-    ls.edge_marks_b.start(b.edge_count());
-    for &w in &cs.set_b {
+    local.edges_b.clear();
+    local.edge_marks_b.start(b.edge_count());
+    for &w in &cert.set_b {
         for r in b.ring(w as usize) {
-            if ls.edge_marks_b.mark(r.edge) && touches(&ls.in_b, b.edge(r.edge as usize).vertices) {
+            if local.edge_marks_b.mark(r.edge)
+                && touches(&local.in_b, b.edge(r.edge as usize).vertices)
+            {
                 if let Some(c) = (keep.edge_b)(r.edge) {
                     let (ac, cos) = caps_b.arcs[r.edge as usize];
-                    ls.edges_b
-                        .push((prep.neg_edge[r.edge as usize], c, (-rot_b.apply(ac), cos)));
+                    local.edges_b.push((
+                        prep.neg_edge[r.edge as usize],
+                        c,
+                        (-rot_b.apply(ac), cos),
+                    ));
                 }
             }
         }
     }
-    for &(e, ca, arc_a) in &ls.edges_a {
-        for &(e2, cb, arc_b) in &ls.edges_b {
+    for &(e, ca, arc_a) in &local.edges_a {
+        for &(e2, cb, arc_b) in &local.edges_b {
             if caps_meet(arc_a, arc_b) && (keep.pair)(ca, cb) && edges_cross(&vp, e, &vq, e2) {
-                ls.facets.ee.push((e, e2));
+                local.facets.ee.push((e, e2));
             }
         }
     }

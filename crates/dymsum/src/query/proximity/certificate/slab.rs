@@ -31,8 +31,8 @@ use crate::query::proximity::certificate::candidates::FacetSet;
 use crate::query::proximity::gjk::{near_max_pair, CertScratch, Gjk};
 use crate::query::proximity::support::NearMax;
 use glam::DVec3;
-/// The near-extreme sets of A in `−n` and of B in `n` (in `cs.set_a`,
-/// `cs.set_b`), each covering at least `tau`, with the rigorous lower bound
+/// The near-extreme sets of A in `−n` and of B in `n` (in `cert.set_a`,
+/// `cert.set_b`), each covering at least `tau`, with the rigorous lower bound
 /// `floor` on `min_{D'} n · x` they give: the separation's certificate
 /// (`floor > 0`) and the slab of its facet search in one search per body.
 #[derive(Clone, Copy, Debug)]
@@ -54,9 +54,9 @@ pub(in crate::query) fn slab(
     n: DVec3,
     tau: f64,
     warm: (u32, u32),
-    cs: &mut CertScratch,
+    cert: &mut CertScratch,
 ) -> SeparatingSlab {
-    let (na, nb) = near_max_pair(pair, posed, (-n, tau), (n, tau), warm, cs);
+    let (na, nb) = near_max_pair(pair, posed, (-n, tau), (n, tau), warm, cert);
     SeparatingSlab {
         n,
         floor: -(na.upper + nb.upper),
@@ -68,22 +68,22 @@ pub(in crate::query) fn slab(
 
 /// The facets of the slab `s` whose features come within the lateral reach
 /// of each other (module docs), for a separation of measured distance at
-/// most `best`, into `ls.facets`.
+/// most `best`, into `local.facets`.
 pub(in crate::query) fn separation_facets(
     pair: &ConvexPair,
     posed: &Posed,
     s: &SeparatingSlab,
     best: f64,
-    cs: &mut CertScratch,
-    ls: &mut LocalScratch,
+    cert: &mut CertScratch,
+    local: &mut LocalScratch,
 ) {
-    ls.facets.clear();
+    local.facets.clear();
     // With one vertex in each set every facet found touches the closest
     // pair of vertices, so the lateral bound would keep them all: skip it.
-    let lat = if cs.set_a.len() == 1 && cs.set_b.len() == 1 {
+    let lat = if cert.set_a.len() == 1 && cert.set_b.len() == 1 {
         Lateral::everywhere(s.n)
     } else {
-        Lateral::new(pair, posed, s, best, cs, ls)
+        Lateral::new(pair, posed, s, best, cert, local)
     };
     let (a, b) = (&pair.a, &pair.b);
     let (balls_a, balls_b) = (&pair.prep_a.balls, &pair.prep_b.balls);
@@ -134,8 +134,8 @@ pub(in crate::query) fn separation_facets(
     collect(
         pair,
         posed,
-        cs,
-        ls,
+        cert,
+        local,
         Keep {
             face_a,
             face_b,
@@ -145,7 +145,7 @@ pub(in crate::query) fn separation_facets(
             both: false,
         },
     );
-    ls.facets.dedup();
+    local.facets.dedup();
 }
 
 /// Which body a cap piece belongs to.
@@ -177,8 +177,8 @@ impl Lateral {
         posed: &Posed,
         s: &SeparatingSlab,
         best: f64,
-        cs: &CertScratch,
-        ls: &mut LocalScratch,
+        cert: &CertScratch,
+        local: &mut LocalScratch,
     ) -> Lateral {
         let n = s.n;
         let err_p = 4.0 * (posed.eta_a + posed.eta_b) + 32.0 * f64::EPSILON * posed.scale;
@@ -205,8 +205,8 @@ impl Lateral {
             disk_a: (DVec3::ZERO, 0.0),
             disk_b: (DVec3::ZERO, 0.0),
         };
-        lat.disk_a = lat.cap_disk(&pair.a, |v| posed.a(v), &cs.set_a, Side::A, ls);
-        lat.disk_b = lat.cap_disk(&pair.b, |w| posed.b(w), &cs.set_b, Side::B, ls);
+        lat.disk_a = lat.cap_disk(&pair.a, |v| posed.a(v), &cert.set_a, Side::A, local);
+        lat.disk_b = lat.cap_disk(&pair.b, |w| posed.b(w), &cert.set_b, Side::B, local);
         lat
     }
 
@@ -260,27 +260,27 @@ impl Lateral {
         at: impl Fn(u32) -> DVec3,
         set: &[u32],
         side: Side,
-        ls: &mut LocalScratch,
+        local: &mut LocalScratch,
     ) -> (DVec3, f64) {
-        ls.points.clear();
+        local.points.clear();
         for &v in set {
             let p = at(v);
             if !self.in_cap(side, p) {
                 continue;
             }
-            ls.points.push(self.project(p));
+            local.points.push(self.project(p));
             for r in poly.ring(v as usize) {
                 let q = at(r.neighbor);
                 if !self.in_cap(side, q) {
-                    ls.points.push(self.project(self.cut(side, p, q)));
+                    local.points.push(self.project(self.cut(side, p, q)));
                 }
             }
         }
-        if ls.points.is_empty() {
+        if local.points.is_empty() {
             return (DVec3::ZERO, f64::INFINITY);
         }
-        let c = ls.points.iter().fold(DVec3::ZERO, |s, &x| s + x) / ls.points.len() as f64;
-        let r = ls
+        let c = local.points.iter().fold(DVec3::ZERO, |s, &x| s + x) / local.points.len() as f64;
+        let r = local
             .points
             .iter()
             .map(|&x| (x - c).length())
