@@ -459,7 +459,10 @@ impl PyMotionChecker {
     /// ``t_contact - t_safe`` no wider than ``tolerance`` (in ``t``): a
     /// ``MotionCheck``. Raises ``MotionUndecided`` for a motion grazing an
     /// obstacle within rounding or one that used up the budget.
-    #[pyo3(signature = (pose0, pose1, tolerance = Tolerance(1e-6)))]
+    #[pyo3(
+        signature = (pose0, pose1, tolerance = Tolerance(1e-6)),
+        text_signature = "($self, pose0, pose1, tolerance=1e-6)"
+    )]
     fn check(
         &self,
         py: Python<'_>,
@@ -481,7 +484,10 @@ impl PyMotionChecker {
     /// arrays (or any pose stack ``contact_many`` takes; one pose stands
     /// for all). Returns ``MotionChecks``. Checked in parallel with the GIL
     /// released.
-    #[pyo3(signature = (poses0, poses1, tolerance = Tolerance(1e-6)))]
+    #[pyo3(
+        signature = (poses0, poses1, tolerance = Tolerance(1e-6)),
+        text_signature = "($self, poses0, poses1, tolerance=1e-6)"
+    )]
     fn check_many(
         &self,
         py: Python<'_>,
@@ -544,7 +550,10 @@ impl PyMotionChecker {
 /// >>> dymsum.check_motion(cube, [wall], None, dymsum.pose(translation=[0, 3, 0])).free
 /// True
 #[pyfunction]
-#[pyo3(signature = (body, obstacles, pose0, pose1, tolerance = Tolerance(1e-6), budget = None))]
+#[pyo3(
+    signature = (body, obstacles, pose0, pose1, tolerance = Tolerance(1e-6), budget = None),
+    text_signature = "(body, obstacles, pose0, pose1, tolerance=1e-6, budget=None)"
+)]
 pub fn check_motion(
     py: Python<'_>,
     body: &Bound<'_, PyAny>,
@@ -585,7 +594,10 @@ pub fn check_motion(
 /// >>> dymsum.check_motions(cube, [wall], None, ends).free.tolist()
 /// [False, True, True]
 #[pyfunction]
-#[pyo3(signature = (body, obstacles, poses0, poses1, tolerance = Tolerance(1e-6), budget = None))]
+#[pyo3(
+    signature = (body, obstacles, poses0, poses1, tolerance = Tolerance(1e-6), budget = None),
+    text_signature = "(body, obstacles, poses0, poses1, tolerance=1e-6, budget=None)"
+)]
 pub fn check_motions(
     py: Python<'_>,
     body: &Bound<'_, PyAny>,

@@ -243,10 +243,31 @@ pub(crate) fn _triangle_sums<'py>(
     Ok(out)
 }
 
+/// The indices, in order, of the convex pair sums ``meshes`` (a list of
+/// ``(vertices, triangles)``, outward) to keep for their union: every one
+/// not certified inside a kept one (`dymsum::sum::contained::uncontained`:
+/// exact `orient3d`, the rule Rust's non-convex sums use). The GIL is
+/// released while deciding.
+#[pyfunction]
+pub(crate) fn _uncontained(py: Python<'_>, meshes: &Bound<'_, PyAny>) -> PyResult<Vec<usize>> {
+    let mut owned = Vec::new();
+    for (k, item) in meshes.try_iter()?.enumerate() {
+        let item = item?;
+        let what = format!("meshes[{k}]");
+        let Some((v, f)) = convert::mesh_parts(&item)? else {
+            return Err(value_error(format!("{what}: expected (vertices, faces)")));
+        };
+        owned.push(convert::mesh_from_parts(&v, &f, &what)?);
+    }
+    let refs: Vec<&dymsum::PolygonMesh> = owned.iter().collect();
+    Ok(py.detach(|| dymsum::sum::contained::uncontained(&refs)))
+}
+
 /// Registers this module's classes and functions on the module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyDynamicSum>()?;
     m.add_function(wrap_pyfunction!(minkowski_sum, m)?)?;
     m.add_function(wrap_pyfunction!(_triangle_sums, m)?)?;
+    m.add_function(wrap_pyfunction!(_uncontained, m)?)?;
     Ok(())
 }

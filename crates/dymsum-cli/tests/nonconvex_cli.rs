@@ -223,6 +223,16 @@ fn an_open_mesh_is_still_refused_as_before() {
         out.to_str().unwrap(),
     ]);
     assert_fails(&o, 1, "open mesh");
+    // The problem first, the fix last (issue 29), word for word.
+    assert_eq!(
+        common::stderr(&o).trim_end(),
+        format!(
+            "error: P (file {}): open mesh: edge (4, 7) borders only one face; fix: close the \
+             mesh (every edge must border exactly two faces), or give the body's convex pieces as \
+             files joined with `+` or as OBJ objects",
+            common::fixture("cube_open.off")
+        )
+    );
 }
 
 #[test]

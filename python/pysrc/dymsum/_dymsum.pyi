@@ -44,6 +44,7 @@ __all__ = [
     "__version__",
     "_rotations_xyzw",
     "_triangle_sums",
+    "_uncontained",
     "_cobstacle_block",
     "check_solid",
 ]
@@ -493,6 +494,9 @@ def _triangle_sums(
     triangles: npt.ArrayLike, points: npt.ArrayLike
 ) -> list[Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]]:
     """``t ⊕ P`` for every triangle (three rows each): exact hulls of pairwise sums, in parallel."""
+
+def _uncontained(meshes: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]]) -> list[int]:
+    """Indices of the convex meshes to keep: every one not certified inside a kept one (exact)."""
 
 def models() -> list[str]:
     """Names of the built-in models and model families."""

@@ -104,10 +104,11 @@ pub fn load_solid(
     match convex_pieces(&mesh, d) {
         Ok((pieces, info)) => Ok(Solid { pieces, info }),
         // An open mesh is no solid at all: the convex loader's message
-        // names its open edge.
-        Err(UnionMeshError::Solid(e @ SolidError::OpenEdge { .. })) => {
-            Err(refusal.context(format!("(as a non-convex body: {e})")))
-        }
+        // names its open edge; the fix comes last.
+        Err(UnionMeshError::Solid(SolidError::OpenEdge { .. })) => Err(anyhow!(
+            "{refusal}; fix: close the mesh (every edge must border exactly two faces), or give \
+             the body's convex pieces as files joined with `+` or as OBJ objects"
+        )),
         // Checked exactly before any shell or decomposition is taken: the
         // problem, where, then the fix.
         Err(UnionMeshError::Solid(e)) => Err(anyhow!(
@@ -116,10 +117,12 @@ pub fn load_solid(
              convex pieces as files joined with `+` or as OBJ objects",
             super::short_name(spec)
         )),
-        // No closed solid: the convex loader's message says most.
-        Err(UnionMeshError::Input { reason }) => {
-            Err(refusal.context(format!("(as a non-convex body: {reason})")))
-        }
+        // No closed solid: the convex loader's message says most, the
+        // non-convex reading's reason after it, the fix last.
+        Err(UnionMeshError::Input { reason }) => Err(anyhow!(
+            "{refusal}; as a non-convex body: {reason}; fix: give a closed mesh, or the body's \
+             convex pieces as files joined with `+` or as OBJ objects"
+        )),
         // Why it is not convex, then what to do about it.
         Err(e) => Err(anyhow!("{refusal}; {e}")),
     }

@@ -13,6 +13,7 @@ use crate::kernel::rotation::Rotation;
 use crate::mesh::PolygonMesh;
 use crate::query::ConvexUnion;
 use crate::sanity::SanityError;
+use crate::sum::contained::uncontained;
 use crate::sum::{minkowski_sum_posed, Method};
 
 /// How a [`UnionSum`] was made, and what it measured.
@@ -158,66 +159,18 @@ fn merge_pair_sums(
     })
 }
 
-/// Bounding box of a mesh's vertices.
-fn bbox(m: &PolygonMesh) -> (DVec3, DVec3) {
-    m.vertices.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(DVec3::from(p)), hi.max(DVec3::from(p))),
-    )
-}
-
-/// Drops convex pair sums certified inside another kept one: every vertex
-/// strictly inside every triangle plane of the other (exact `orient3d` on
-/// the float coordinates, so inside the other's kernel, hence inside it).
-/// Bounding boxes filter first; larger boxes are kept first.
+/// Drops convex pair sums certified inside another kept one
+/// ([`crate::sum::contained::uncontained`]).
 fn cull_contained(sums: Vec<((usize, usize), PolygonMesh)>) -> Vec<((usize, usize), PolygonMesh)> {
-    let boxes: Vec<(DVec3, DVec3)> = sums.iter().map(|(_, m)| bbox(m)).collect();
-    let mut order: Vec<usize> = (0..sums.len()).collect();
-    let size = |k: usize| (boxes[k].1 - boxes[k].0).element_product();
-    order.sort_by(|&x, &y| size(y).total_cmp(&size(x)).then(x.cmp(&y)));
-    let mut kept: Vec<usize> = Vec::new();
-    for &k in &order {
-        let (lo, hi) = boxes[k];
-        let inside = kept.iter().any(|&o| {
-            let (olo, ohi) = boxes[o];
-            lo.cmpge(olo).all() && hi.cmple(ohi).all() && strictly_inside(&sums[k].1, &sums[o].1)
-        });
-        if !inside {
-            kept.push(k);
-        }
-    }
-    kept.sort_unstable();
+    let meshes: Vec<&PolygonMesh> = sums.iter().map(|(_, m)| m).collect();
     let mut keep = vec![false; sums.len()];
-    for k in kept {
+    for k in uncontained(&meshes) {
         keep[k] = true;
     }
     sums.into_iter()
         .zip(keep)
         .filter_map(|(s, k)| k.then_some(s))
         .collect()
-}
-
-/// Every vertex of `inner` strictly on the inner side of every face plane
-/// of the outward mesh `outer` (exact predicates).
-pub(crate) fn strictly_inside(inner: &PolygonMesh, outer: &PolygonMesh) -> bool {
-    let c = |p: [f64; 3]| robust::Coord3D {
-        x: p[0],
-        y: p[1],
-        z: p[2],
-    };
-    outer.faces.iter().all(|f| {
-        f[1..].windows(2).all(|w| {
-            let (a, b, d) = (
-                outer.vertices[f[0]],
-                outer.vertices[w[0]],
-                outer.vertices[w[1]],
-            );
-            inner
-                .vertices
-                .iter()
-                .all(|&p| robust::orient3d(c(a), c(b), c(d), c(p)) > 0.0)
-        })
-    })
 }
 
 /// `A ⊕ B` of unions kept up to date while they move: one [`DynamicSum`]

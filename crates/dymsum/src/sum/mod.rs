@@ -35,6 +35,7 @@
 //! ```
 
 mod brute;
+pub mod contained;
 mod hull_method;
 pub(crate) mod merge;
 mod repair;

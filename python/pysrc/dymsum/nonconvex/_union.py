@@ -183,35 +183,9 @@ def _planes(v: np.ndarray, f: np.ndarray) -> np.ndarray:
 
 
 def _cull(sums: list) -> list:
-    """Drop pair sums certified inside another kept one.
-
-    A convex sum lies inside a convex sum ``S`` when all its vertices do:
-    tested against the planes of ``S``'s triangles with a margin of 1e-9 of
-    the size, far above the rounding of the planes, so a pair is dropped
-    only when it is clearly inside. Bounding boxes filter first (one
-    vectorised test against every kept box).
-    """
-    lo = np.array([v.min(axis=0) for _, _, v, _ in sums])
-    hi = np.array([v.max(axis=0) for _, _, v, _ in sums])
-    size = max(float(np.abs(np.concatenate([lo, hi])).max()), 1e-300)
-    margin = 1e-9 * size
-    order = np.argsort(-np.prod(hi - lo, axis=1), kind="stable")
-    kept = np.empty(len(sums), dtype=np.int64)
-    n_kept = 0
-    planes: Dict[int, np.ndarray] = {}
-    for k in order:
-        k = int(k)
-        ks = kept[:n_kept]
-        boxed = ks[np.all(lo[k] >= lo[ks], axis=1) & np.all(hi[k] <= hi[ks], axis=1)]
-        inside = False
-        for o in boxed.tolist():
-            if o not in planes:
-                planes[o] = _planes(sums[o][2], sums[o][3])
-            pl = planes[o]
-            if (sums[k][2] @ pl[:, :3].T + pl[:, 3]).max() < -margin:
-                inside = True
-                break
-        if not inside:
-            kept[n_kept] = k
-            n_kept += 1
-    return [sums[k] for k in sorted(kept[:n_kept].tolist())]
+    """Drop pair sums certified inside another kept one: Rust's rule
+    (``dymsum::sum::contained::uncontained``: every vertex strictly inside
+    every face plane of the other by exact ``orient3d``; bounding boxes
+    first, larger kept first), the same as for Rust's non-convex sums."""
+    keep = _ext._uncontained([(v, f) for _, _, v, f in sums])
+    return [sums[k] for k in keep]
