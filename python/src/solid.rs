@@ -1,4 +1,5 @@
-//! `check_solid`: the core's exact check of a mesh given as a solid
+//! `check_solid`: the core's exact check of a mesh given as a solid, and
+//! `_check_closed_mesh`, its check of every merged mesh
 //! (`dymsum::solid`), called by `dymsum.nonconvex` before any non-convex
 //! sum or decomposition takes a mesh.
 
@@ -46,7 +47,26 @@ fn check_solid<'py>(
     Ok(out)
 }
 
+/// Why ``(vertices, faces)`` is not a closed, oriented 2-manifold of
+/// positive volume, or ``None`` when it is: the core's tolerance-free check
+/// of every merged mesh (`dymsum::solid::closed::check_closed_mesh`), the
+/// one rule for Rust's and Python's non-convex sums.
+#[pyfunction]
+fn _check_closed_mesh(
+    py: Python<'_>,
+    vertices: &Bound<'_, PyAny>,
+    faces: &Bound<'_, PyAny>,
+) -> PyResult<Option<String>> {
+    let mesh = convert::mesh_from_parts(vertices, faces, "mesh")?;
+    Ok(py
+        .detach(|| dymsum::solid::closed::check_closed_mesh(&mesh))
+        .err()
+        .map(|e| e.to_string()))
+}
+
+/// Registers the solid checks on the module.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check_solid, m)?)?;
+    m.add_function(wrap_pyfunction!(_check_closed_mesh, m)?)?;
     Ok(())
 }

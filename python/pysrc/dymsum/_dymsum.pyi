@@ -45,6 +45,7 @@ __all__ = [
     "_rotations_xyzw",
     "_triangle_sums",
     "_uncontained",
+    "_check_closed_mesh",
     "_cobstacle_block",
     "check_solid",
 ]
@@ -494,6 +495,9 @@ def _triangle_sums(
     triangles: npt.ArrayLike, points: npt.ArrayLike
 ) -> list[Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]]:
     """``t ⊕ P`` for every triangle (three rows each): exact hulls of pairwise sums, in parallel."""
+
+def _check_closed_mesh(vertices: npt.ArrayLike, faces: Any) -> Optional[str]:
+    """Why the mesh is not a closed, oriented 2-manifold of positive volume, or ``None`` (exact)."""
 
 def _uncontained(meshes: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]]) -> list[int]:
     """Indices of the convex meshes to keep: every one not certified inside a kept one (exact)."""

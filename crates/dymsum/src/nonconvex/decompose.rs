@@ -1,13 +1,13 @@
 //! The convex pieces of a closed mesh: its exactly convex components, or a
 //! decomposition (parry's V-HACD under the `parry` feature).
 
-use super::check::triangles;
 use super::merge::{boolean, to_manifold, volume};
 use super::UnionMeshError;
 use crate::mesh::PolygonMesh;
 use crate::polytope::MeshPolicy;
 use crate::polytope::Polytope;
 use crate::solid::check_solid_mesh;
+use crate::solid::closed::triangles;
 
 /// How a non-convex closed mesh becomes convex pieces.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

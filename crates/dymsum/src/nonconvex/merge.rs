@@ -5,9 +5,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use boolmesh::prelude::{compute_boolean, Manifold, OpType};
 use rayon::prelude::*;
 
-use super::check::{check_triangles, triangles, ClosedMeshInfo};
 use super::UnionMeshError;
 use crate::mesh::PolygonMesh;
+use crate::solid::closed::{check_triangles, triangles, ClosedMeshInfo};
 
 /// A mesh handed to `boolmesh`.
 pub(crate) fn to_manifold(mesh: &PolygonMesh, what: &str) -> Result<Manifold, UnionMeshError> {
@@ -92,7 +92,7 @@ pub(crate) fn from_manifold(m: &Manifold) -> PolygonMesh {
 pub(crate) fn volume(m: &Manifold) -> f64 {
     let mesh = from_manifold(m);
     match triangles(&mesh) {
-        Ok(t) => super::check::signed_volume(&mesh.vertices, &t),
+        Ok(t) => crate::solid::closed::signed_volume(&mesh.vertices, &t),
         Err(_) => 0.0,
     }
 }

@@ -54,14 +54,13 @@
 //! # Ok::<(), dymsum::nonconvex::UnionMeshError>(())
 //! ```
 
-mod check;
 mod decompose;
 mod depth;
 mod merge;
 mod sum;
 
 pub use crate::query::ConvexUnion;
-pub use check::{check_closed_mesh, ClosedMeshError, ClosedMeshInfo};
+pub use crate::solid::closed::{check_closed_mesh, ClosedMeshError, ClosedMeshInfo};
 pub use decompose::{convex_pieces, Decomposition, DecompositionInfo};
 pub use depth::UnionDepth;
 pub use merge::merge_closed_meshes;

@@ -3,7 +3,6 @@
 
 use glam::DVec3;
 
-use super::check::ClosedMeshInfo;
 use super::merge::union_meshes;
 use super::UnionMeshError;
 use crate::dynamic::DynamicSum;
@@ -13,6 +12,7 @@ use crate::kernel::rotation::Rotation;
 use crate::mesh::PolygonMesh;
 use crate::query::ConvexUnion;
 use crate::sanity::SanityError;
+use crate::solid::closed::ClosedMeshInfo;
 use crate::sum::contained::uncontained;
 use crate::sum::{minkowski_sum_posed, Method};
 

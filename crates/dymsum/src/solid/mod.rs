@@ -84,6 +84,7 @@
 //! ```
 
 mod aabb;
+pub mod closed;
 mod intersect;
 
 use crate::kernel::exact::{self, Dyadic};

@@ -287,7 +287,7 @@ struct IndexEntry {
 /// Runs `dymsum cobst`.
 ///
 /// # Errors
-/// ROBOT or OBSTACLE cannot be loaded ([`super::query::load_body`]); the
+/// ROBOT or OBSTACLE cannot be loaded ([`crate::commands::solid::load_body`]); the
 /// orientations are missing or invalid ([`read_orientations`], a zero
 /// axis, neither `--orientations-wxyz` nor `--axis` with `--slices`); `--out`
 /// is not a directory, is not empty (without `--force`), or cannot be

@@ -1,5 +1,7 @@
 //! Tolerance-free validation of a closed triangle mesh: the check every
-//! merged mesh passes before it is returned.
+//! merged mesh passes before it is returned (Rust's `nonconvex` sums,
+//! merged by boolmesh, and Python's, merged by Manifold, through
+//! `_dymsum._check_closed_mesh`).
 
 use std::collections::HashMap;
 
@@ -195,12 +197,12 @@ pub(crate) fn check_triangles(
     }
     let slivers = tris
         .iter()
-        .filter(|f| crate::solid::collinear(vertices[f[0]], vertices[f[1]], vertices[f[2]]))
+        .filter(|f| super::collinear(vertices[f[0]], vertices[f[1]], vertices[f[2]]))
         .count();
     let used = fans.len();
     let edges = half.len() / 2;
     let chi = used as i64 - edges as i64 + tris.len() as i64;
-    let shells = crate::solid::shells(vertices.len(), tris).len();
+    let shells = super::shells(vertices.len(), tris).len();
     let genus = shells as i64 - chi / 2;
     let volume = signed_volume(vertices, tris);
     if volume.is_nan() || volume <= 0.0 {
