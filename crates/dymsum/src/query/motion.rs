@@ -101,7 +101,7 @@ use crate::query::answer::Proximity;
 use crate::query::error::QueryError;
 use crate::query::pair::ConvexPair;
 use crate::query::pair::QueryStats;
-use crate::query::proximity::support::{climb, near_max, Marks};
+use crate::query::proximity::support::{climb, near_max, Marks, NearestAxes};
 use crate::query::union::ConvexUnion;
 use glam::DQuat;
 use glam::DVec3;
@@ -787,19 +787,8 @@ impl PieceSearch<'_> {
         s: &mut Scratch,
     ) -> bool {
         let (body, obstacle) = (self.body, self.obstacle);
-        let mut best = [(f64::NEG_INFINITY, DVec3::ZERO); FEATURE_AXES];
-        let mut offer = |d: DVec3| {
-            let len = d.length();
-            if !(len > 0.0 && len.is_finite()) {
-                return;
-            }
-            let d = d / len;
-            let score = d.dot(v);
-            if score > best[FEATURE_AXES - 1].0 {
-                best[FEATURE_AXES - 1] = (score, d);
-                best.sort_by(|x, y| y.0.total_cmp(&x.0));
-            }
-        };
+        let mut best = NearestAxes::<(), FEATURE_AXES>::new(v);
+        let mut offer = |d: DVec3| best.offer(d, ());
         let o = hints[2] as usize;
         for r in obstacle.ring(o) {
             offer(obstacle.unit_normal(r.face as usize));
@@ -815,9 +804,10 @@ impl PieceSearch<'_> {
                 }
             }
         }
-        best.iter()
-            .filter(|(score, _)| *score > 0.0)
-            .any(|&(_, d)| self.gap(pa, pb, d, hints, s) * (1.0 - 4.0 * f64::EPSILON) > inflate)
+        let certified = best
+            .facing()
+            .any(|(d, ())| self.gap(pa, pb, d, hints, s) * (1.0 - 4.0 * f64::EPSILON) > inflate);
+        certified
     }
 
     /// A rigorous lower bound on `min_{H ⊕ [T]} n · x − max_O n · o`.

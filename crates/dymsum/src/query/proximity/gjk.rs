@@ -38,7 +38,7 @@ use crate::kernel::exact::{self, Dyadic, ExactVec};
 use crate::kernel::Sign;
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
-use crate::query::proximity::support::{climb, near_max, Marks, NearMax};
+use crate::query::proximity::support::{climb, near_max, Marks, NearMax, NearestAxes};
 use glam::DVec3;
 
 /// The most GJK steps before it stops with what it has (never reached in
@@ -407,19 +407,8 @@ pub(in crate::query) fn separating_feature_axis(
         return None;
     }
     let pts = &g.simplex.pts[..g.simplex.len];
-    let mut best = [(f64::NEG_INFINITY, DVec3::ZERO, (0u32, 0u32)); FEATURE_AXES];
-    let mut offer = |d: DVec3, warm: (u32, u32)| {
-        let len = d.length();
-        if !(len > 0.0 && len.is_finite()) {
-            return;
-        }
-        let d = d / len;
-        let score = d.dot(v);
-        if score > best[FEATURE_AXES - 1].0 {
-            best[FEATURE_AXES - 1] = (score, d, warm);
-            best.sort_by(|x, y| y.0.total_cmp(&x.0));
-        }
-    };
+    let mut best = NearestAxes::<(u32, u32), FEATURE_AXES>::new(v);
+    let mut offer = |d: DVec3, warm: (u32, u32)| best.offer(d, warm);
     for (i, p) in pts.iter().enumerate() {
         if pts[..i].iter().any(|q| q.a == p.a) {
             continue;
@@ -454,10 +443,11 @@ pub(in crate::query) fn separating_feature_axis(
             }
         }
     }
-    best.iter()
-        .filter(|(score, _, _)| *score > 0.0)
-        .find(|&&(_, d, warm)| separated_along(pair, posed, d, warm, cert))
-        .map(|&(_, d, _)| d)
+    let separating = best
+        .facing()
+        .find(|&(d, warm)| separated_along(pair, posed, d, warm, cert))
+        .map(|(d, _)| d);
+    separating
 }
 
 /// Exactly whether GJK's final simplex holds the origin (tested when the

@@ -245,3 +245,45 @@ fn near_search(
     let best = near_set(poly, at, dir, top, value, tau0, marks, set);
     (best, tau0, err)
 }
+
+/// The `K` unit axes nearest a unit direction `v` among those offered (by
+/// `axis · v`, largest first; ties keep the earlier), each with a payload:
+/// the candidate separating axes tried when GJK's own direction is too
+/// coarse (the exact query's and the motion search's feature axes).
+pub(in crate::query) struct NearestAxes<T, const K: usize> {
+    v: DVec3,
+    best: [(f64, DVec3, T); K],
+}
+
+impl<T: Copy + Default, const K: usize> NearestAxes<T, K> {
+    /// None kept yet.
+    pub(in crate::query) fn new(v: DVec3) -> Self {
+        NearestAxes {
+            v,
+            best: [(f64::NEG_INFINITY, DVec3::ZERO, T::default()); K],
+        }
+    }
+
+    /// Offers the axis along `d` (any length; a zero or non-finite one is
+    /// ignored).
+    pub(in crate::query) fn offer(&mut self, d: DVec3, payload: T) {
+        let len = d.length();
+        if !(len > 0.0 && len.is_finite()) {
+            return;
+        }
+        let d = d / len;
+        let score = d.dot(self.v);
+        if score > self.best[K - 1].0 {
+            self.best[K - 1] = (score, d, payload);
+            self.best.sort_by(|x, y| y.0.total_cmp(&x.0));
+        }
+    }
+
+    /// The kept axes facing `v` (`axis · v > 0`), nearest first.
+    pub(in crate::query) fn facing(&self) -> impl Iterator<Item = (DVec3, T)> + '_ {
+        self.best
+            .iter()
+            .filter(|(score, _, _)| *score > 0.0)
+            .map(|&(_, d, t)| (d, t))
+    }
+}
