@@ -111,7 +111,7 @@ pub(crate) fn triangles(mesh: &PolygonMesh) -> Result<Vec<[usize; 3]>, ClosedMes
 /// collinear, by exact predicates), which are allowed.
 ///
 /// ```
-/// use dymsum::nonconvex::{check_closed_mesh, ClosedMeshError};
+/// use dymsum::solid::closed::{check_closed_mesh, ClosedMeshError};
 /// use dymsum::PolygonMesh;
 /// let v = vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
 /// let tetra = PolygonMesh::new(v.clone(), vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3], vec![0, 3, 2]]);
