@@ -86,6 +86,7 @@
 mod aabb;
 pub mod closed;
 mod intersect;
+pub mod soup;
 
 use crate::kernel::exact::{self, Dyadic};
 use crate::kernel::predicates::{orient, Sign};
