@@ -141,6 +141,7 @@ mod motion;
 mod pair;
 mod prep;
 mod proximity;
+mod scene;
 mod tracker;
 mod union;
 
@@ -164,6 +165,7 @@ pub use motion::{
 pub use pair::{ConvexPair, QueryStats};
 pub use prep::Reflected;
 pub use proximity::{distance, intersects, penetration_depth, query};
+pub use scene::surfaces_touch;
 pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};
 

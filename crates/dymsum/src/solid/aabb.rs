@@ -9,7 +9,7 @@
 
 /// A closed axis-aligned box.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Aabb {
+pub(crate) struct Aabb {
     pub lo: [f64; 3],
     pub hi: [f64; 3],
 }
@@ -58,7 +58,7 @@ enum Node {
 }
 
 /// The tree over boxes `0..n`.
-pub(super) struct AabbTree {
+pub(crate) struct AabbTree {
     boxes: Vec<Aabb>,
     bounds: Vec<Aabb>,
     nodes: Vec<Node>,

@@ -101,6 +101,49 @@ pub(super) fn disjoint_triangles_meet(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
         || (0..3).any(|k| segment_meets_triangle(u[k], u[(k + 1) % 3], t))
 }
 
+/// The closed segments `[a, b]` and `[c, d]` (either possibly a point)
+/// meet: coplanar (exact `orient3d`), then on a coordinate projection that
+/// is one-to-one on their plane (or on their line).
+pub(crate) fn segments_meet(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
+    if orient(a, b, c, d) != Sign::Zero {
+        return false;
+    }
+    // A projection where some three of the points are not flat maps their
+    // plane one to one; when all four are collinear, one where their line
+    // is not a point does (between-ness is then per coordinate).
+    let planar = [[a, b, c], [a, b, d], [a, c, d], [b, c, d]]
+        .iter()
+        .find_map(projection);
+    let (i, j) = planar.unwrap_or_else(|| {
+        let spread = |k: usize| [a, b, c, d].iter().any(|p| p[k] != a[k]);
+        match (0..3).find(|&k| spread(k)) {
+            Some(0) | None => (0, 1),
+            Some(1) => (1, 2),
+            Some(_) => (0, 2),
+        }
+    });
+    segments_meet_2d(pr(a, i, j), pr(b, i, j), pr(c, i, j), pr(d, i, j))
+}
+
+/// The closed triangles `t` and `u` meet, whatever their degeneracy (a flat
+/// triangle is the union of its edges, a point the point): every decision
+/// exact.
+pub(crate) fn triangles_meet(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
+    let edges = |x: &[DVec3; 3]| [(x[0], x[1]), (x[1], x[2]), (x[2], x[0])];
+    match (projection(t).is_some(), projection(u).is_some()) {
+        (true, true) => disjoint_triangles_meet(t, u),
+        (false, true) => edges(t)
+            .iter()
+            .any(|&(a, b)| segment_meets_triangle(a, b, u)),
+        (true, false) => edges(u)
+            .iter()
+            .any(|&(a, b)| segment_meets_triangle(a, b, t)),
+        (false, false) => edges(t)
+            .iter()
+            .any(|&(a, b)| edges(u).iter().any(|&(c, d)| segments_meet(a, b, c, d))),
+    }
+}
+
 /// Triangles `(v, p₁, p₂)` and `(v, q₁, q₂)` (not flat) sharing only the
 /// corner `v` meet elsewhere: `p = [p₁, p₂]`, `q = [q₁, q₂]`.
 pub(super) fn vertex_sharing_triangles_meet(

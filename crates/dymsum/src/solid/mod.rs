@@ -83,9 +83,9 @@
 //! # Ok::<(), SolidError>(())
 //! ```
 
-mod aabb;
+pub(crate) mod aabb;
 pub mod closed;
-mod intersect;
+pub(crate) mod intersect;
 pub mod soup;
 
 use crate::kernel::exact::{self, Dyadic};
