@@ -77,6 +77,11 @@ fn double_sided_and_degenerate_triangles_are_surfaces_too() {
     // Bad input.
     let bad = PolygonMesh::new(vec![[0.0; 3]], vec![vec![0, 1, 2]]);
     assert!(surfaces_touch(&bad, Pose::IDENTITY, &s, Pose::IDENTITY).is_err());
+    // A face of fewer than three corners is refused, never skipped.
+    for face in [vec![], vec![0], vec![0, 1]] {
+        let short = PolygonMesh::new(vec![[0.5, 0.5, 0.0], [0.6, 0.5, 0.0]], vec![face]);
+        assert!(surfaces_touch(&short, Pose::IDENTITY, &s, Pose::IDENTITY).is_err());
+    }
     let far = PolygonMesh::new(
         vec![[1e308, 0.0, 0.0], [1e308, 1.0, 0.0], [1e308, 0.0, 1.0]],
         vec![vec![0, 1, 2]],

@@ -234,7 +234,8 @@ impl Rotation {
 
     /// `self` followed by `other` (i.e. `other ∘ self`).
     pub fn then(&self, other: &Rotation) -> Rotation {
-        let given = scaled_pow2(other.given * self.given).unwrap_or(other.given * self.given);
+        let product = other.given * self.given;
+        let given = scaled_pow2(product).unwrap_or(product);
         if *other == Rotation::IDENTITY {
             return Rotation { given, ..*self };
         }

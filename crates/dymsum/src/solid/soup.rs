@@ -280,20 +280,15 @@ fn solid_orientation(vertices: &[[f64; 3]], tris: &[[usize; 3]]) -> Option<bool>
             })
         })
         .collect();
-    let mesh = |flip: bool| {
-        PolygonMesh::new(
-            points.clone(),
-            compact
-                .iter()
-                .map(|&t| flipped_if(t, flip).to_vec())
-                .collect(),
-        )
-    };
-    match check_solid_mesh(&mesh(false)) {
+    let mesh = PolygonMesh::new(points, compact.iter().map(|t| t.to_vec()).collect());
+    // The component is one shell (connected through shared vertices, as
+    // the check counts shells), and the volume sign is the check's last
+    // rule: a negative volume means every other rule held, and flipping
+    // every triangle keeps them and negates the volume exactly, so the
+    // flipped component is a solid without checking it again.
+    match check_solid_mesh(&mesh) {
         Ok(_) => Some(true),
-        Err(SolidError::NonPositiveVolume { negative: true, .. }) => {
-            check_solid_mesh(&mesh(true)).is_ok().then_some(false)
-        }
+        Err(SolidError::NonPositiveVolume { negative: true, .. }) => Some(false),
         Err(_) => None,
     }
 }

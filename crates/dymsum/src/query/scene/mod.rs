@@ -42,7 +42,7 @@ use glam::DVec3;
 ///
 /// # Errors
 /// [`QueryError::OutOfRange`] when a posed coordinate is not finite, or a
-/// face names a vertex out of range.
+/// face has fewer than three corners or names a vertex out of range.
 pub fn surfaces_touch(
     a: &PolygonMesh,
     pose_a: Pose,
@@ -91,18 +91,14 @@ fn posed_triangles(
     }
     let mut out = Vec::new();
     for (face, f) in mesh.faces.iter().enumerate() {
-        if f.iter().any(|&v| v >= posed.len()) {
+        if f.len() < 3 || f.iter().any(|&v| v >= posed.len()) {
             return Err(QueryError::OutOfRange(format!(
-                "mesh {which}: face {face} names a vertex out of range"
+                "mesh {which}: face {face} has fewer than three corners or names a vertex out \
+                 of range"
             )));
         }
-        if let Some((&first, rest)) = f.split_first() {
-            if rest.len() == 1 {
-                out.push([posed[first], posed[rest[0]], posed[rest[0]]]);
-            }
-            for w in rest.windows(2) {
-                out.push([posed[first], posed[w[0]], posed[w[1]]]);
-            }
+        for w in f[1..].windows(2) {
+            out.push([posed[f[0]], posed[w[0]], posed[w[1]]]);
         }
     }
     Ok(out)
