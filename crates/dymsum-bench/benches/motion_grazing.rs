@@ -13,20 +13,15 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use dymsum::query::{ConvexUnion, MotionChecker};
-use dymsum::{DVec3, Polytope, Pose, Rotation};
-use dymsum_testkit::cuboid;
+use dymsum::{DVec3, Pose, Rotation};
+use dymsum_testkit::grazing;
 
 fn obstacle(kind: &str, gap: f64) -> ConvexUnion {
-    let x = (4.0f64 + 0.0025).sqrt() + gap;
-    if kind == "plate" {
-        return ConvexUnion::from(cuboid([x, -1.0, -1.0], [x + 0.01, 1.0, 1.0]));
-    }
-    let h = 0.05;
-    let pts: Vec<[f64; 3]> = [[x, 0.0], [x + h, h], [x + 2.0 * h, 0.0], [x + h, -h]]
-        .iter()
-        .flat_map(|&[px, py]| [[px, py, -1.0], [px, py, 1.0]])
-        .collect();
-    ConvexUnion::from(Polytope::from_points(&pts).unwrap())
+    ConvexUnion::from(if kind == "plate" {
+        grazing::plate(gap)
+    } else {
+        grazing::rod_edge(gap)
+    })
 }
 
 fn turn(deg: f64) -> Pose {
@@ -37,7 +32,7 @@ fn turn(deg: f64) -> Pose {
 }
 
 fn bench(c: &mut Criterion) {
-    let bar = ConvexUnion::from(cuboid([0.0, -0.05, -0.05], [2.0, 0.05, 0.05]));
+    let bar = ConvexUnion::from(grazing::bar());
     let mut group = c.benchmark_group("grazing");
     group
         .sample_size(20)

@@ -126,6 +126,42 @@ pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polytope {
     Polytope::from_points(&corners).expect("a box with lo < hi")
 }
 
+/// The grazing family of issue 26 §4, shared by the motion tests and the
+/// `motion_grazing` bench: a bar `[0, 2] × [−.05, .05]²` turning about z,
+/// and obstacles `gap` beyond the reach of its corners.
+pub mod grazing {
+    use super::cuboid;
+    use dymsum::Polytope;
+
+    /// The turning bar.
+    pub fn bar() -> Polytope {
+        cuboid([0.0, -0.05, -0.05], [2.0, 0.05, 0.05])
+    }
+
+    /// The largest x the bar's corners reach while turning about z.
+    pub fn reach() -> f64 {
+        (4.0f64 + 0.0025).sqrt()
+    }
+
+    /// A thin plate facing the bar's tip (face against corner).
+    pub fn plate(gap: f64) -> Polytope {
+        let x = reach() + gap;
+        cuboid([x, -1.0, -1.0], [x + 0.01, 1.0, 1.0])
+    }
+
+    /// A square rod along z with one edge towards the bar's tip (edge
+    /// against the bar's corner and edges).
+    pub fn rod_edge(gap: f64) -> Polytope {
+        let x = reach() + gap;
+        let h = 0.05;
+        let pts: Vec<[f64; 3]> = [[x, 0.0], [x + h, h], [x + 2.0 * h, 0.0], [x + h, -h]]
+            .iter()
+            .flat_map(|&[px, py]| [[px, py, -1.0], [px, py, 1.0]])
+            .collect();
+        Polytope::from_points(&pts).expect("a square rod")
+    }
+}
+
 pub fn box_points(x: f64, y: f64, z: f64) -> Vec<[f64; 3]> {
     (0..8)
         .map(|i| {

@@ -10,8 +10,8 @@
 use dymsum::query::{
     ConvexUnion, Motion, MotionCheck, MotionChecker, MotionError, DEFAULT_BUDGET, MIN_TOLERANCE,
 };
-use dymsum::{DVec3, Polytope, Pose, Rotation};
-use dymsum_testkit::cuboid;
+use dymsum::{DVec3, Pose, Rotation};
+use dymsum_testkit::{cuboid, grazing};
 
 fn turn(deg: f64) -> Pose {
     Pose::new(
@@ -21,30 +21,18 @@ fn turn(deg: f64) -> Pose {
 }
 
 fn bar() -> ConvexUnion {
-    ConvexUnion::from(cuboid([0.0, -0.05, -0.05], [2.0, 0.05, 0.05]))
-}
-
-/// The largest x the bar's corners reach while turning about z.
-fn reach() -> f64 {
-    (4.0f64 + 0.0025).sqrt()
+    ConvexUnion::from(grazing::bar())
 }
 
 /// A plate facing the turning bar's tip, `gap` beyond its reach.
 fn plate_at(gap: f64) -> ConvexUnion {
-    let x = reach() + gap;
-    ConvexUnion::from(cuboid([x, -1.0, -1.0], [x + 0.01, 1.0, 1.0]))
+    ConvexUnion::from(grazing::plate(gap))
 }
 
-/// A square rod along z with one edge towards the bar's tip, `gap` beyond
-/// its reach (edge against the bar's corner and edges).
+/// A square rod with one edge towards the bar's tip, `gap` beyond its
+/// reach.
 fn rod_edge_at(gap: f64) -> ConvexUnion {
-    let x = reach() + gap;
-    let h = 0.05;
-    let pts: Vec<[f64; 3]> = [[x, 0.0], [x + h, h], [x + 2.0 * h, 0.0], [x + h, -h]]
-        .iter()
-        .flat_map(|&[px, py]| [[px, py, -1.0], [px, py, 1.0]])
-        .collect();
-    ConvexUnion::from(Polytope::from_points(&pts).unwrap())
+    ConvexUnion::from(grazing::rod_edge(gap))
 }
 
 #[test]
