@@ -1,5 +1,8 @@
-//! A small bounding-box tree for [`super::check_solid_mesh`]: the pairs of
-//! triangles whose closed boxes meet.
+//! A small bounding-box tree for [`super::check_solid_mesh`] (the pairs of
+//! triangles whose closed boxes meet) and for the scenes' broad phase
+//! ([`crate::query`]'s mesh bodies: a body's tree is built once in its own
+//! frame and its bounds refitted to the posed boxes, [`AabbTree::refit`];
+//! two trees are walked against each other, [`AabbTree::for_each_pair`]).
 //!
 //! Boxes are the exact `f64` minimum and maximum of the corners (no
 //! rounding, no padding is needed), and two boxes meet when they overlap or
@@ -30,7 +33,15 @@ impl Aabb {
         b
     }
 
-    fn join(&self, o: &Aabb) -> Aabb {
+    /// The empty box (meets nothing; the identity of [`Aabb::join`]).
+    pub const EMPTY: Aabb = Aabb {
+        lo: [f64::INFINITY; 3],
+        hi: [f64::NEG_INFINITY; 3],
+    };
+
+    /// The smallest box holding both.
+    #[inline]
+    pub fn join(&self, o: &Aabb) -> Aabb {
         Aabb {
             lo: std::array::from_fn(|k| self.lo[k].min(o.lo[k])),
             hi: std::array::from_fn(|k| self.hi[k].max(o.hi[k])),
@@ -43,6 +54,29 @@ impl Aabb {
         (0..3).all(|k| self.lo[k] <= o.hi[k] && o.lo[k] <= self.hi[k])
     }
 
+    /// The closed boxes come within `slack` of each other on every axis:
+    /// `false` proves a gap larger than `slack` along some axis, hence a
+    /// distance larger than `slack` between anything inside them (each
+    /// comparison is of `fl(lo − slack)` with a coordinate, and rounding
+    /// is monotone, so `fl(x − s) > y` implies `x − s > y`).
+    #[inline]
+    pub fn within(&self, o: &Aabb, slack: f64) -> bool {
+        (0..3).all(|k| self.lo[k] - slack <= o.hi[k] && o.lo[k] - slack <= self.hi[k])
+    }
+
+    /// Whether the closed box holds `p`.
+    #[inline]
+    pub fn holds(&self, p: [f64; 3]) -> bool {
+        (0..3).all(|k| self.lo[k] <= p[k] && p[k] <= self.hi[k])
+    }
+
+    /// Half the length of the longest side (for choosing which tree to
+    /// descend).
+    #[inline]
+    fn size(&self) -> f64 {
+        (0..3).map(|k| self.hi[k] - self.lo[k]).fold(0.0, f64::max)
+    }
+
     fn centre(&self, k: usize) -> f64 {
         // Halves first: no overflow near f64::MAX.
         0.5 * self.lo[k] + 0.5 * self.hi[k]
@@ -52,17 +86,28 @@ impl Aabb {
 /// At most this many items per leaf.
 const LEAF: usize = 4;
 
+#[derive(Clone, Copy)]
 enum Node {
     Leaf { start: u32, end: u32 },
     Inner { left: u32, right: u32 },
 }
 
 /// The tree over boxes `0..n`.
+#[derive(Clone)]
 pub(crate) struct AabbTree {
     boxes: Vec<Aabb>,
     bounds: Vec<Aabb>,
     nodes: Vec<Node>,
     items: Vec<u32>,
+}
+
+impl std::fmt::Debug for AabbTree {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("AabbTree")
+            .field("items", &self.boxes.len())
+            .field("nodes", &self.nodes.len())
+            .finish()
+    }
 }
 
 impl AabbTree {
@@ -114,20 +159,135 @@ impl AabbTree {
         id
     }
 
+    /// The bounds of every node for new item boxes (item `i`'s box
+    /// `boxes[i]`, e.g. a body's triangles at a pose): children are built
+    /// after their parent, so one pass from the last node up suffices.
+    pub fn refit(&self, boxes: &[Aabb], bounds: &mut Vec<Aabb>) {
+        bounds.clear();
+        bounds.resize(self.nodes.len(), Aabb::EMPTY);
+        for n in (0..self.nodes.len()).rev() {
+            bounds[n] = match self.nodes[n] {
+                Node::Leaf { start, end } => self.items[start as usize..end as usize]
+                    .iter()
+                    .fold(Aabb::EMPTY, |b, &i| b.join(&boxes[i as usize])),
+                Node::Inner { left, right } => bounds[left as usize].join(&bounds[right as usize]),
+            };
+        }
+    }
+
+    /// The bounds of the boxes the tree was built from.
+    pub fn bounds(&self) -> &[Aabb] {
+        &self.bounds
+    }
+
+    /// The boxes the tree was built from.
+    pub fn boxes(&self) -> &[Aabb] {
+        &self.boxes
+    }
+
+    /// The box of everything (the empty box for an empty tree).
+    pub fn root(&self) -> Aabb {
+        self.bounds.first().copied().unwrap_or(Aabb::EMPTY)
+    }
+
+    /// Walks this tree (item boxes `boxes`, node bounds `bounds`, as from
+    /// [`AabbTree::refit`]) against `other` (with its own), calling `f(i,
+    /// j)` for every pair of items whose boxes come within `slack`
+    /// ([`Aabb::within`]) until `f` returns `true`; returns whether it did.
+    /// No pair within `slack` is skipped: a node pair is dropped only when
+    /// its bounds are farther apart than `slack`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn for_each_pair(
+        &self,
+        boxes: &[Aabb],
+        bounds: &[Aabb],
+        other: &AabbTree,
+        other_boxes: &[Aabb],
+        other_bounds: &[Aabb],
+        slack: f64,
+        stack: &mut Vec<(u32, u32)>,
+        mut f: impl FnMut(usize, usize) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() || other.nodes.is_empty() {
+            return false;
+        }
+        stack.clear();
+        stack.push((0, 0));
+        while let Some((a, b)) = stack.pop() {
+            let (ba, bb) = (&bounds[a as usize], &other_bounds[b as usize]);
+            if !ba.within(bb, slack) {
+                continue;
+            }
+            match (&self.nodes[a as usize], &other.nodes[b as usize]) {
+                (Node::Leaf { start, end }, Node::Leaf { start: s2, end: e2 }) => {
+                    for &i in &self.items[*start as usize..*end as usize] {
+                        let bi = &boxes[i as usize];
+                        if !bi.within(bb, slack) {
+                            continue;
+                        }
+                        for &j in &other.items[*s2 as usize..*e2 as usize] {
+                            if bi.within(&other_boxes[j as usize], slack)
+                                && f(i as usize, j as usize)
+                            {
+                                return true;
+                            }
+                        }
+                    }
+                }
+                (Node::Inner { left, right }, Node::Leaf { .. }) => {
+                    stack.push((*right, b));
+                    stack.push((*left, b));
+                }
+                (Node::Leaf { .. }, Node::Inner { left, right }) => {
+                    stack.push((a, *right));
+                    stack.push((a, *left));
+                }
+                (
+                    Node::Inner { left, right },
+                    Node::Inner {
+                        left: l2,
+                        right: r2,
+                    },
+                ) => {
+                    if ba.size() >= bb.size() {
+                        stack.push((*right, b));
+                        stack.push((*left, b));
+                    } else {
+                        stack.push((a, *r2));
+                        stack.push((a, *l2));
+                    }
+                }
+            }
+        }
+        false
+    }
+
     /// Calls `f` with every item whose box meets `query`.
-    pub fn for_each_meeting(&self, query: &Aabb, mut f: impl FnMut(usize)) {
+    pub fn for_each_meeting(&self, query: &Aabb, f: impl FnMut(usize)) {
+        self.for_each_meeting_in(&self.boxes, &self.bounds, query, f);
+    }
+
+    /// [`AabbTree::for_each_meeting`] with the item boxes `boxes` and node
+    /// bounds `bounds` of a pose ([`AabbTree::refit`]).
+    pub fn for_each_meeting_in(
+        &self,
+        boxes: &[Aabb],
+        bounds: &[Aabb],
+        query: &Aabb,
+        mut f: impl FnMut(usize),
+    ) {
         if self.nodes.is_empty() {
             return;
         }
         let mut stack = vec![0u32];
         while let Some(n) = stack.pop() {
-            if !self.bounds[n as usize].meets(query) {
+            if !bounds[n as usize].meets(query) {
                 continue;
             }
             match self.nodes[n as usize] {
                 Node::Leaf { start, end } => {
                     for &i in &self.items[start as usize..end as usize] {
-                        if self.boxes[i as usize].meets(query) {
+                        if boxes[i as usize].meets(query) {
                             f(i as usize);
                         }
                     }

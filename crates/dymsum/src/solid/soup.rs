@@ -10,7 +10,10 @@
 //! 3. of triangles with the same corners, the first is kept: a copy with
 //!    the same orientation is a duplicate, one with the opposite
 //!    orientation the back of a double-sided face (exports write every face
-//!    twice, back to back);
+//!    twice, back to back); a polygon of more than three corners that
+//!    repeats a kept polygon's cycle, either way round, is dropped whole
+//!    first (a double-sided quad fans into other triangles from its other
+//!    side);
 //! 4. each connected component (through shared vertices) is a
 //!    [`ComponentKind::Solid`] when it can be oriented consistently (every
 //!    edge in exactly two of its triangles, the orientation propagated
@@ -129,9 +132,27 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
     let mut triangles: Vec<[usize; 3]> = Vec::new();
     let mut by_corners: HashMap<[usize; 3], usize> = HashMap::new();
     let (mut dropped_zero_area, mut dropped_duplicates, mut dropped_back_to_back) = (0, 0, 0);
+    let mut polygons: HashMap<Vec<usize>, ()> = HashMap::new();
     for (face, f) in mesh.faces.iter().enumerate() {
         if f.len() < 3 || f.iter().any(|&v| v >= remap.len()) {
             return Err(SolidError::BadFace { face });
+        }
+        if f.len() > 3 {
+            // A polygon repeated, or listed again the other way round (a
+            // double-sided quad), is dropped whole: fanned from another
+            // corner its triangles would not repeat the first copy's.
+            let cycle: Vec<usize> = f.iter().map(|&v| remap[v]).collect();
+            let reversed: Vec<usize> = cycle.iter().rev().copied().collect();
+            let (fwd, back) = (canonical_cycle(&cycle), canonical_cycle(&reversed));
+            if polygons.contains_key(&fwd) {
+                dropped_duplicates += f.len() - 2;
+                continue;
+            }
+            if polygons.contains_key(&back) {
+                dropped_back_to_back += f.len() - 2;
+                continue;
+            }
+            polygons.insert(fwd, ());
         }
         for w in f[1..].windows(2) {
             let t = [remap[f[0]], remap[w[0]], remap[w[1]]];
@@ -198,6 +219,17 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         flipped,
         components,
     })
+}
+
+/// A vertex cycle rotated to start at its smallest index (the same cycle
+/// from any start gives the same key).
+fn canonical_cycle(cycle: &[usize]) -> Vec<usize> {
+    let start = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
+    cycle[start..]
+        .iter()
+        .chain(&cycle[..start])
+        .copied()
+        .collect()
 }
 
 /// Whether two triangles with the same corners run the same way round.

@@ -1,5 +1,8 @@
 //! Contact between bodies given as triangle meshes of any topology (issue
-//! 28, the first step): whether two meshes at their poses touch as
+//! 28): [`MeshBody`] (a mesh cleaned exactly, its components solids or
+//! surfaces), [`SceneChecker`] (exact state checks and certified motion
+//! checks of a body against a scene, with a box-tree broad phase), and
+//! [`surfaces_touch`], whether two meshes at their poses touch as
 //! *surfaces* (some triangle of one meets some triangle of the other, as
 //! FCL's mesh–mesh `collide` answers), decided exactly on the posed
 //! vertices as computed (`R p + t` rounded once per coordinate, as every
@@ -13,6 +16,14 @@
 //! other without their surfaces meeting are not reported here: that is
 //! the solid semantics, for the scenes issue's next step (see
 //! [`crate::solid::soup`] for the classification).
+
+mod body;
+mod checker;
+mod gap;
+mod inside;
+
+pub use body::{MeshBody, MeshReport};
+pub use checker::SceneChecker;
 
 use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;

@@ -1,0 +1,293 @@
+//! A body given as triangles, prepared for the scenes' queries
+//! ([`MeshBody`]): the cleaned mesh (or the boundaries of convex pieces),
+//! which component each triangle belongs to and what that component is,
+//! and a box tree over the triangles in the body's own frame.
+
+use glam::DVec3;
+
+use crate::mesh::PolygonMesh;
+use crate::query::union::ConvexUnion;
+use crate::solid::aabb::{Aabb, AabbTree};
+use crate::solid::soup::{clean_soup, ComponentKind};
+use crate::solid::SolidError;
+
+/// What cleaning a body's mesh changed ([`crate::solid::soup::clean_soup`]'s
+/// counts), and what its components are.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MeshReport {
+    /// Triangles kept.
+    pub triangles: usize,
+    /// Vertices kept (after merging identical ones).
+    pub vertices: usize,
+    /// Vertices merged into an identical one.
+    pub merged_vertices: usize,
+    /// Triangles dropped as exactly collinear or repeating a vertex.
+    pub dropped_zero_area: usize,
+    /// Triangles dropped as a copy of a kept one.
+    pub dropped_duplicates: usize,
+    /// Triangles dropped as the back of a kept one (double-sided faces).
+    pub dropped_back_to_back: usize,
+    /// Triangles of solid components flipped to face outward.
+    pub flipped: usize,
+    /// Components that are solids (contact includes being inside them).
+    pub solids: usize,
+    /// Components that are surfaces (contact means touching a triangle).
+    pub surfaces: usize,
+}
+
+/// A body as triangles, of any topology (open, double-sided, non-manifold,
+/// several components), prepared for exact collision and motion checks
+/// ([`super::SceneChecker`]).
+///
+/// Each connected component of the cleaned mesh is a *solid* (closed,
+/// manifold, oriented outward, not crossing itself, of positive volume) or
+/// a *surface* (anything else), as [`clean_soup`] decides exactly. Contact
+/// with a surface means touching one of its triangles; contact with a
+/// solid also means lying inside it.
+///
+/// ```
+/// use dymsum::query::MeshBody;
+/// use dymsum::PolygonMesh;
+/// // A square exported double-sided (both faces, back to back), and a
+/// // closed tetrahedron: one surface, one solid.
+/// let mut faces = vec![vec![0, 1, 2, 3], vec![3, 2, 1, 0]];
+/// faces.extend([[4, 6, 5], [4, 5, 7], [5, 6, 7], [4, 7, 6]].map(|f| f.to_vec()));
+/// let v = vec![
+///     [0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.],
+///     [5., 0., 0.], [6., 0., 0.], [5., 1., 0.], [5., 0., 1.],
+/// ];
+/// let body = MeshBody::new(&PolygonMesh::new(v, faces))?;
+/// let r = body.report();
+/// assert_eq!((r.triangles, r.dropped_back_to_back, r.solids, r.surfaces), (6, 2, 1, 1));
+/// # Ok::<(), dymsum::SolidError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct MeshBody {
+    pub(crate) vertices: Vec<DVec3>,
+    pub(crate) triangles: Vec<[u32; 3]>,
+    /// The component of each triangle.
+    pub(crate) component_of: Vec<u32>,
+    /// Each component's kind and one of its vertices.
+    pub(crate) components: Vec<(ComponentKind, u32)>,
+    pub(crate) tree: AabbTree,
+    /// The largest vertex norm (rounded up): how far a point of the body
+    /// lies from its origin.
+    pub(crate) reach: f64,
+    report: MeshReport,
+}
+
+impl MeshBody {
+    /// Cleans `mesh` exactly and classifies its components
+    /// ([`clean_soup`]), then builds the box tree.
+    ///
+    /// # Errors
+    /// Those of [`clean_soup`]: no faces, a coordinate that is not finite,
+    /// a face of fewer than three corners or naming a missing vertex; and
+    /// [`SolidError::Empty`] when every triangle is dropped (all of zero
+    /// area).
+    pub fn new(mesh: &PolygonMesh) -> Result<MeshBody, SolidError> {
+        let soup = clean_soup(mesh)?;
+        if soup.mesh.faces.is_empty() {
+            return Err(SolidError::Empty);
+        }
+        let mut component_of = vec![0u32; soup.mesh.faces.len()];
+        let mut components = Vec::with_capacity(soup.components.len());
+        for (c, comp) in soup.components.iter().enumerate() {
+            for &t in &comp.triangles {
+                component_of[t] = c as u32;
+            }
+            components.push((comp.kind, soup.mesh.faces[comp.triangles[0]][0] as u32));
+        }
+        let triangles = soup
+            .mesh
+            .faces
+            .iter()
+            .map(|f| [f[0] as u32, f[1] as u32, f[2] as u32])
+            .collect();
+        let vertices = soup.mesh.vertices.iter().map(|&p| DVec3::from(p)).collect();
+        let report = MeshReport {
+            triangles: soup.mesh.faces.len(),
+            vertices: soup.mesh.vertices.len(),
+            merged_vertices: soup.merged_vertices,
+            dropped_zero_area: soup.dropped_zero_area,
+            dropped_duplicates: soup.dropped_duplicates,
+            dropped_back_to_back: soup.dropped_back_to_back,
+            flipped: soup.flipped,
+            solids: soup.solids(),
+            surfaces: soup.components.len() - soup.solids(),
+        };
+        Ok(MeshBody::assemble(
+            vertices,
+            triangles,
+            component_of,
+            components,
+            report,
+        ))
+    }
+
+    /// The boundaries of convex pieces as one body, each piece a solid
+    /// component of its own (pieces may overlap or share vertices).
+    pub fn from_union(union: &ConvexUnion) -> MeshBody {
+        let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+        let (mut component_of, mut components) = (Vec::new(), Vec::new());
+        for (c, piece) in union.pieces().iter().enumerate() {
+            let base = vertices.len() as u32;
+            vertices.extend_from_slice(piece.vertices());
+            components.push((ComponentKind::Solid, base));
+            for f in piece.faces() {
+                for w in f[1..].windows(2) {
+                    triangles.push([base + f[0], base + w[0], base + w[1]]);
+                    component_of.push(c as u32);
+                }
+            }
+        }
+        let report = MeshReport {
+            triangles: triangles.len(),
+            vertices: vertices.len(),
+            solids: components.len(),
+            ..MeshReport::default()
+        };
+        MeshBody::assemble(vertices, triangles, component_of, components, report)
+    }
+
+    /// Several bodies as one (their components side by side), e.g. a
+    /// scene's obstacles placed in the world frame.
+    pub fn join(bodies: &[MeshBody]) -> MeshBody {
+        let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+        let (mut component_of, mut components) = (Vec::new(), Vec::new());
+        let mut report = MeshReport::default();
+        for b in bodies {
+            let (vb, cb) = (vertices.len() as u32, components.len() as u32);
+            vertices.extend_from_slice(&b.vertices);
+            triangles.extend(b.triangles.iter().map(|t| t.map(|v| v + vb)));
+            component_of.extend(b.component_of.iter().map(|c| c + cb));
+            components.extend(b.components.iter().map(|&(k, v)| (k, v + vb)));
+            let r = b.report;
+            report = MeshReport {
+                triangles: report.triangles + r.triangles,
+                vertices: report.vertices + r.vertices,
+                merged_vertices: report.merged_vertices + r.merged_vertices,
+                dropped_zero_area: report.dropped_zero_area + r.dropped_zero_area,
+                dropped_duplicates: report.dropped_duplicates + r.dropped_duplicates,
+                dropped_back_to_back: report.dropped_back_to_back + r.dropped_back_to_back,
+                flipped: report.flipped + r.flipped,
+                solids: report.solids + r.solids,
+                surfaces: report.surfaces + r.surfaces,
+            };
+        }
+        MeshBody::assemble(vertices, triangles, component_of, components, report)
+    }
+
+    fn assemble(
+        vertices: Vec<DVec3>,
+        triangles: Vec<[u32; 3]>,
+        component_of: Vec<u32>,
+        components: Vec<(ComponentKind, u32)>,
+        report: MeshReport,
+    ) -> MeshBody {
+        let boxes = triangle_boxes(&vertices, &triangles);
+        let tree = AabbTree::new(&boxes);
+        let reach =
+            vertices.iter().map(|v| v.length()).fold(0.0, f64::max) * (1.0 + 1e-12) + 1e-300;
+        MeshBody {
+            vertices,
+            triangles,
+            component_of,
+            components,
+            tree,
+            reach,
+            report,
+        }
+    }
+
+    /// What cleaning changed and what the components are.
+    pub fn report(&self) -> MeshReport {
+        self.report
+    }
+
+    /// The vertices (body frame).
+    pub fn vertices(&self) -> &[DVec3] {
+        &self.vertices
+    }
+
+    /// The triangles (solid components' oriented outward).
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// The kind of each connected component.
+    pub fn component_kinds(&self) -> impl Iterator<Item = ComponentKind> + '_ {
+        self.components.iter().map(|c| c.0)
+    }
+
+    /// Checks the invariants the queries rely on: indices in range, one
+    /// component per triangle, each component's vertex one of its
+    /// triangles' corners, finite coordinates, the tree's bounds holding
+    /// every triangle.
+    ///
+    /// # Panics
+    /// When an invariant is broken (a bug), naming it.
+    pub fn sanity_check(&self) {
+        let n = self.vertices.len() as u32;
+        assert!(
+            self.vertices.iter().all(|v| v.is_finite()),
+            "a vertex is not finite"
+        );
+        assert_eq!(
+            self.triangles.len(),
+            self.component_of.len(),
+            "one component per triangle"
+        );
+        let mut seen = vec![false; self.components.len()];
+        for (t, tri) in self.triangles.iter().enumerate() {
+            assert!(
+                tri.iter().all(|&v| v < n),
+                "triangle {t} names a missing vertex"
+            );
+            let c = self.component_of[t] as usize;
+            assert!(
+                c < self.components.len(),
+                "triangle {t}: component out of range"
+            );
+            if tri.contains(&self.components[c].1) {
+                seen[c] = true;
+            }
+        }
+        assert!(
+            seen.iter().all(|&s| s),
+            "a component's vertex is not on its triangles"
+        );
+        let root = self.tree.root();
+        for tri in &self.triangles {
+            for &v in tri {
+                assert!(
+                    root.holds(self.vertices[v as usize].to_array()),
+                    "the tree misses a corner"
+                );
+            }
+        }
+        assert!(
+            self.vertices.iter().all(|v| v.length() <= self.reach),
+            "the reach is below a vertex norm"
+        );
+    }
+}
+
+/// The exact boxes of triangles over `vertices`.
+pub(crate) fn triangle_boxes(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<Aabb> {
+    let mut out = Vec::with_capacity(triangles.len());
+    triangle_boxes_into(vertices, triangles, &mut out);
+    out
+}
+
+/// [`triangle_boxes`] into a buffer.
+pub(crate) fn triangle_boxes_into(vertices: &[DVec3], triangles: &[[u32; 3]], out: &mut Vec<Aabb>) {
+    out.clear();
+    out.extend(triangles.iter().map(|t| {
+        let [a, b, c] = t.map(|v| vertices[v as usize]);
+        Aabb {
+            lo: a.min(b).min(c).to_array(),
+            hi: a.max(b).max(c).to_array(),
+        }
+    }));
+}

@@ -1,0 +1,520 @@
+//! Exact state checks and certified motion checks of a body against a
+//! scene, both given as triangles of any topology ([`SceneChecker`]).
+//!
+//! # Contact
+//! The body at a pose *collides* when a triangle of it meets a triangle of
+//! the scene (closed sets), or a component of one lies inside a solid
+//! component of the other ([`MeshBody`]'s semantics). The posed vertices
+//! are `R p + t` rounded once per coordinate, as in every query of this
+//! crate; everything after that is exact: the broad phase drops a pair of
+//! triangles only when their exact boxes are apart, the narrow phase is
+//! the exact closed triangle–triangle test, and containment the exact
+//! parity of a ray's crossings ([`super::inside`]). When no triangles meet,
+//! a component is inside a solid exactly when any one of its points is
+//! (it is connected and does not meet the solid's boundary), so one corner
+//! per component is tested.
+//!
+//! # Motions: why "free" is certain
+//! The motion is [`Motion`]'s (linear translation, slerp rotation, the
+//! arc decided exactly). Over an interval `[a, b]` the rotation turns by
+//! `δ = Θ (b − a)` about one fixed axis (`Θ` the whole angle: slerp turns
+//! at a constant rate), so a body point `p` (`|p| ≤ r`, the body's reach)
+//! moves on a circle arc of angle `δ ≤ π` and radius at most `r`, within
+//! the sagitta `s = r (1 − cos(δ/2))` of the chord between `R(a) p` and
+//! `R(b) p`; the translation moves on the segment `[T(a), T(b)]`. So a
+//! body triangle `P`, at every `t` in `[a, b]`, lies in
+//!
+//! `conv(R(a) P ∪ R(b) P) ⊕ [T(a), T(b)] ⊕ ball(s)`,
+//!
+//! the hull of twelve points (each corner turned as at `a` and at `b`,
+//! moved as at `a` and at `b`) grown by `s`: the motion search's
+//! *swept hull* (the convex checker's bound, [`crate::query::MotionChecker`],
+//! per triangle). If every pair of a swept hull and a scene triangle is
+//! more than `s` (plus the rounding of the poses and of the points,
+//! `2⁻⁴⁰ (r + |T|)`, far above both) apart, no triangles meet anywhere in
+//! `[a, b]`. Pairs whose boxes are more than that apart on an axis are
+//! dropped by the broad phase (an exact comparison after a monotone
+//! rounding), the others are certified by [`super::gap`]: floats propose
+//! an axis, and the gap along it is bounded below rigorously. A slide
+//! along a wall certifies in one interval (the hull stays on its side);
+//! the sagitta is second order in the interval's width. Containment
+//! cannot begin without triangles meeting, and the body is not inside
+//! anything at `t = 0` (checked first), so the certified intervals,
+//! examined left to right from `0`, are free of every contact.
+//!
+//! # The search
+//! Intervals are examined left to right from `[0, 1]`: one that is
+//! certified is done; one that is not is halved, and once it is no wider
+//! than the tolerance its right end is checked exactly, and a contact
+//! there ends the check with the bracket `(t_safe, t_contact)`. A thin
+//! wall is not stepped over: an interval sweeping through it is never
+//! certified. An interval narrower than [`MIN_WIDTH`] that is neither
+//! certified nor colliding at its end (a grazing motion) is
+//! [`MotionError::Undecided`]; past the budget of intervals,
+//! [`MotionError::BudgetExhausted`]. Neither is ever a guess.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
+
+use glam::DVec3;
+
+use super::body::{triangle_boxes_into, MeshBody};
+use super::gap::apart_by_more_than;
+use super::inside::inside_solid;
+use crate::kernel::rotation::Pose;
+use crate::query::error::QueryError;
+use crate::query::motion::{
+    Motion, MotionCheck, MotionError, DEFAULT_BUDGET, MIN_TOLERANCE, MIN_WIDTH,
+};
+use crate::solid::aabb::{Aabb, AabbTree};
+use crate::solid::intersect::triangles_meet;
+
+/// The buffers of one query (kept between queries by the checker).
+#[derive(Default)]
+struct Scratch {
+    posed: Vec<DVec3>,
+    /// The body's vertices at an interval's far end.
+    posed_b: Vec<DVec3>,
+    boxes: Vec<Aabb>,
+    bounds: Vec<Aabb>,
+    stack: Vec<(u32, u32)>,
+    parity: Vec<bool>,
+    intervals: Vec<(f64, f64)>,
+    /// The pair that last kept an interval from being certified (tried
+    /// first next time).
+    blocker: Option<(usize, usize)>,
+}
+
+/// A body and a scene prepared for many state and motion checks (a
+/// planner's validators), both as triangles of any topology
+/// ([`MeshBody`]): contact and the motion bound as in the module docs.
+///
+/// A rod swinging past a thin open plate (a surface, one square):
+///
+/// ```
+/// use dymsum::query::{MeshBody, MotionCheck, SceneChecker};
+/// use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
+/// let plate = PolygonMesh::new(
+///     vec![[1.5, -1.0, 0.5], [1.5, 1.0, 0.5], [1.5, 1.0, 2.5], [1.5, -1.0, 2.5]],
+///     vec![vec![0, 1, 2, 3]],
+/// );
+/// // A rod: a long thin triangle from the origin along x.
+/// let rod = PolygonMesh::new(
+///     vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 0.0, 0.01]],
+///     vec![vec![0, 1, 2]],
+/// );
+/// let checker = SceneChecker::new(&MeshBody::new(&rod)?, &[MeshBody::new(&plate)?])?;
+/// let pitch = |deg: f64| {
+///     Pose::new(Rotation::from_axis_angle(DVec3::Y, -deg.to_radians()).unwrap(), DVec3::ZERO)
+/// };
+/// // Level and straight up are free; the swing between passes the plate.
+/// assert!(!checker.collides_at(pitch(0.0))? && !checker.collides_at(pitch(90.0))?);
+/// match checker.check(pitch(0.0), pitch(90.0), 1e-6)? {
+///     MotionCheck::Collides { t_safe, t_contact } => {
+///         assert!(t_contact - t_safe.unwrap() <= 1e-6);
+///         assert!(checker.collides_at(pitch(90.0 * t_contact))?);
+///     }
+///     MotionCheck::Free => panic!("the rod swings through the plate"),
+/// }
+/// // Swinging the other way, down and back, misses it.
+/// assert_eq!(checker.check(pitch(0.0), pitch(-90.0), 1e-6)?, MotionCheck::Free);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct SceneChecker {
+    body: MeshBody,
+    scene: MeshBody,
+    /// The scene components' corners (one each), as point boxes.
+    scene_corners: AabbTree,
+    budget: u64,
+    steps: AtomicU64,
+    pool: Mutex<Vec<Scratch>>,
+}
+
+impl std::fmt::Debug for SceneChecker {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SceneChecker")
+            .field("body", &self.body.report())
+            .field("scene", &self.scene.report())
+            .field("budget", &self.budget)
+            .finish()
+    }
+}
+
+impl SceneChecker {
+    /// Prepares `body` (in its own frame) against `scene` (bodies placed in
+    /// the world frame, joined into one).
+    ///
+    /// # Errors
+    /// [`QueryError::OutOfRange`] when the body or the scene has no
+    /// triangles.
+    pub fn new(body: &MeshBody, scene: &[MeshBody]) -> Result<SceneChecker, QueryError> {
+        let scene = MeshBody::join(scene);
+        if body.triangles.is_empty() {
+            return Err(QueryError::OutOfRange("the body has no triangles".into()));
+        }
+        let corners: Vec<Aabb> = scene
+            .components
+            .iter()
+            .map(|&(_, v)| {
+                let p = scene.vertices[v as usize].to_array();
+                Aabb { lo: p, hi: p }
+            })
+            .collect();
+        Ok(SceneChecker {
+            body: body.clone(),
+            scene,
+            scene_corners: AabbTree::new(&corners),
+            budget: DEFAULT_BUDGET,
+            steps: AtomicU64::new(0),
+            pool: Mutex::new(Vec::new()),
+        })
+    }
+
+    /// The same checker with a work budget of `steps` intervals per motion
+    /// check (at least 1; [`DEFAULT_BUDGET`] unless set).
+    pub fn with_budget(mut self, steps: u64) -> SceneChecker {
+        self.budget = steps.max(1);
+        self
+    }
+
+    /// The work budget of one motion check, in intervals.
+    pub fn budget(&self) -> u64 {
+        self.budget
+    }
+
+    /// The intervals examined by all motion checks so far.
+    pub fn steps(&self) -> u64 {
+        self.steps.load(Ordering::Relaxed)
+    }
+
+    /// The body, as prepared.
+    pub fn body(&self) -> &MeshBody {
+        &self.body
+    }
+
+    /// The scene, as prepared (all obstacles joined).
+    pub fn scene(&self) -> &MeshBody {
+        &self.scene
+    }
+
+    fn scratch(&self) -> Scratch {
+        self.pool
+            .lock()
+            .ok()
+            .and_then(|mut p| p.pop())
+            .unwrap_or_default()
+    }
+
+    fn give_back(&self, s: Scratch) {
+        if let Ok(mut p) = self.pool.lock() {
+            p.push(s);
+        }
+    }
+
+    /// Whether the body at `pose` touches or overlaps the scene (exact;
+    /// module docs).
+    ///
+    /// # Errors
+    /// [`QueryError::OutOfRange`] when a posed coordinate is not finite, or
+    /// (never seen) when no ray decides a containment.
+    pub fn collides_at(&self, pose: Pose) -> Result<bool, QueryError> {
+        let mut s = self.scratch();
+        let out = self.collides_with(pose, &mut s);
+        self.give_back(s);
+        out
+    }
+
+    /// [`SceneChecker::collides_at`] for many poses, in parallel, in order.
+    ///
+    /// # Errors
+    /// The first error of [`SceneChecker::collides_at`].
+    pub fn collides_many(&self, poses: &[Pose]) -> Result<Vec<bool>, QueryError> {
+        use rayon::prelude::*;
+        poses.par_iter().map(|&p| self.collides_at(p)).collect()
+    }
+
+    fn collides_with(&self, pose: Pose, s: &mut Scratch) -> Result<bool, QueryError> {
+        self.pose_body(pose, s)?;
+        Ok(self.surfaces_meet(s) || self.one_inside_the_other(s)?)
+    }
+
+    /// The posed vertices, triangle boxes and tree bounds of the body.
+    fn pose_body(&self, pose: Pose, s: &mut Scratch) -> Result<(), QueryError> {
+        self.pose_into(pose, &mut s.posed)?;
+        triangle_boxes_into(&s.posed, &self.body.triangles, &mut s.boxes);
+        self.body.tree.refit(&s.boxes, &mut s.bounds);
+        Ok(())
+    }
+
+    /// The body's vertices at `pose`.
+    fn pose_into(&self, pose: Pose, out: &mut Vec<DVec3>) -> Result<(), QueryError> {
+        out.clear();
+        out.extend(self.body.vertices.iter().map(|&p| pose.apply(p)));
+        match out.iter().position(|p| !p.is_finite()) {
+            Some(v) => Err(QueryError::OutOfRange(format!(
+                "the body's vertex {v} at the pose is not finite"
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    fn body_triangle(&self, s: &Scratch, i: usize) -> [DVec3; 3] {
+        self.body.triangles[i].map(|v| s.posed[v as usize])
+    }
+
+    fn scene_triangle(&self, j: usize) -> [DVec3; 3] {
+        self.scene.triangles[j].map(|v| self.scene.vertices[v as usize])
+    }
+
+    /// Some posed body triangle meets some scene triangle.
+    fn surfaces_meet(&self, s: &mut Scratch) -> bool {
+        let tree = &self.scene.tree;
+        let mut stack = std::mem::take(&mut s.stack);
+        let hit = self.body.tree.for_each_pair(
+            &s.boxes,
+            &s.bounds,
+            tree,
+            tree.boxes(),
+            tree.bounds(),
+            0.0,
+            &mut stack,
+            |i, j| triangles_meet(&self.body_triangle(s, i), &self.scene_triangle(j)),
+        );
+        s.stack = stack;
+        hit
+    }
+
+    /// A body component inside a scene solid, or a scene component inside
+    /// a body solid (when no triangles meet; module docs).
+    fn one_inside_the_other(&self, s: &mut Scratch) -> Result<bool, QueryError> {
+        let scene_tree = &self.scene.tree;
+        let mut parity = std::mem::take(&mut s.parity);
+        let mut out = Ok(false);
+        if self.scene.report().solids > 0 {
+            for &(_, v) in &self.body.components {
+                let p = s.posed[v as usize];
+                match inside_solid(
+                    &self.scene,
+                    &self.scene.vertices,
+                    scene_tree.boxes(),
+                    scene_tree.bounds(),
+                    p,
+                    &mut parity,
+                ) {
+                    Ok(false) => {}
+                    other => {
+                        out = other;
+                        break;
+                    }
+                }
+            }
+        }
+        if matches!(out, Ok(false)) && self.body.report().solids > 0 {
+            // The scene components with a corner inside the body's box.
+            let root = s.bounds[0];
+            let mut candidates = Vec::new();
+            self.scene_corners
+                .for_each_meeting(&root, |k| candidates.push(k));
+            for k in candidates {
+                let p = self.scene.vertices[self.scene.components[k].1 as usize];
+                match inside_solid(&self.body, &s.posed, &s.boxes, &s.bounds, p, &mut parity) {
+                    Ok(false) => {}
+                    other => {
+                        out = other;
+                        break;
+                    }
+                }
+            }
+        }
+        s.parity = parity;
+        out
+    }
+
+    /// The twelve points of body triangle `i`'s swept hull (module docs):
+    /// its corners posed at both ends, and each moved by the other end's
+    /// translation.
+    fn swept_points(&self, s: &Scratch, i: usize, shift: DVec3) -> [DVec3; 12] {
+        let t = self.body.triangles[i];
+        std::array::from_fn(|k| {
+            let v = t[k % 3] as usize;
+            match k / 3 {
+                0 => s.posed[v],
+                1 => s.posed_b[v],
+                2 => s.posed[v] + shift,
+                _ => s.posed_b[v] - shift,
+            }
+        })
+    }
+
+    /// Whether no swept hull of a body triangle over `[from, to]` (poses
+    /// at the interval's ends) comes within `reach` of a scene triangle,
+    /// certified (module docs); `false` means "not proved".
+    fn certified_apart(
+        &self,
+        from: Pose,
+        to: Pose,
+        reach: f64,
+        s: &mut Scratch,
+    ) -> Result<bool, QueryError> {
+        let shift = to.translation - from.translation;
+        self.pose_into(to, &mut s.posed_b)?;
+        self.pose_into(from, &mut s.posed)?;
+        s.boxes.clear();
+        for t in &self.body.triangles {
+            let [a0, a1, a2] = t.map(|v| s.posed[v as usize]);
+            let [b0, b1, b2] = t.map(|v| s.posed_b[v as usize]);
+            let (lo_a, hi_a) = (a0.min(a1).min(a2), a0.max(a1).max(a2));
+            let (lo_b, hi_b) = (b0.min(b1).min(b2), b0.max(b1).max(b2));
+            // Rounding is monotone: the shifted bounds hold the shifted
+            // points as computed.
+            let lo = lo_a.min(lo_b).min(lo_a + shift).min(lo_b - shift);
+            let hi = hi_a.max(hi_b).max(hi_a + shift).max(hi_b - shift);
+            s.boxes.push(Aabb {
+                lo: lo.to_array(),
+                hi: hi.to_array(),
+            });
+        }
+        self.body.tree.refit(&s.boxes, &mut s.bounds);
+        let near = |s: &Scratch, i: usize, j: usize| {
+            let hull = self.swept_points(s, i, shift);
+            let ends = [[hull[0], hull[1], hull[2]], [hull[3], hull[4], hull[5]]];
+            !apart_by_more_than(&hull, &ends, &self.scene_triangle(j), reach)
+        };
+        if let Some((i, j)) = s.blocker {
+            if near(s, i, j) {
+                return Ok(false);
+            }
+        }
+        let tree = &self.scene.tree;
+        let mut stack = std::mem::take(&mut s.stack);
+        let mut blocker = None;
+        let blocked = self.body.tree.for_each_pair(
+            &s.boxes,
+            &s.bounds,
+            tree,
+            tree.boxes(),
+            tree.bounds(),
+            reach,
+            &mut stack,
+            |i, j| {
+                let hit = near(s, i, j);
+                if hit {
+                    blocker = Some((i, j));
+                }
+                hit
+            },
+        );
+        s.stack = stack;
+        if blocked {
+            s.blocker = blocker;
+        }
+        Ok(!blocked)
+    }
+
+    /// Checks the straight motion from `from` to `to` (module docs) with
+    /// the bracket no wider than `tolerance` (in `t`).
+    ///
+    /// # Errors
+    /// [`MotionError::Tolerance`] for a tolerance outside
+    /// `[MIN_TOLERANCE, 1)`; [`MotionError::Query`] when a posed coordinate
+    /// is not finite; [`MotionError::Undecided`] for a grazing motion;
+    /// [`MotionError::BudgetExhausted`] past the budget.
+    pub fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError> {
+        if !(MIN_TOLERANCE..1.0).contains(&tolerance) {
+            return Err(MotionError::Tolerance(tolerance));
+        }
+        let mut s = self.scratch();
+        let out = self.search(from, to, tolerance, &mut s);
+        self.give_back(s);
+        out
+    }
+
+    fn search(
+        &self,
+        from: Pose,
+        to: Pose,
+        tolerance: f64,
+        s: &mut Scratch,
+    ) -> Result<MotionCheck, MotionError> {
+        if self.collides_with(from, s)? {
+            return Ok(MotionCheck::Collides {
+                t_safe: None,
+                t_contact: 0.0,
+            });
+        }
+        let motion = Motion::new(from, to);
+        let r = self.body.reach;
+        let angle = motion.angle() * (1.0 + 1e-12) + 1e-15;
+        let far = r + from
+            .translation
+            .abs()
+            .max(to.translation.abs())
+            .max_element();
+        let margin = far * (1.0 / (1u64 << 40) as f64);
+        let mut intervals = std::mem::take(&mut s.intervals);
+        intervals.clear();
+        intervals.push((0.0, 1.0));
+        let mut steps = 0u64;
+        let mut known_free_end = f64::NAN;
+        let out = loop {
+            let Some((a, b)) = intervals.pop() else {
+                break Ok(MotionCheck::Free);
+            };
+            if steps == self.budget {
+                break Err(MotionError::BudgetExhausted {
+                    t_safe: a,
+                    steps: self.budget,
+                });
+            }
+            steps += 1;
+            let w = b - a;
+            let mid = a + w / 2.0;
+            // The sagitta r (1 - cos(δ/2)) = 2 r sin²(δ/4), rounded up.
+            let quarter = (angle * w / 4.0).min(std::f64::consts::FRAC_PI_2);
+            let sagitta = 2.0 * r * quarter.sin().powi(2) * (1.0 + 1e-12);
+            let reach = sagitta + margin;
+            match self.certified_apart(motion.at(a), motion.at(b), reach, s) {
+                Ok(true) => continue,
+                Ok(false) => {}
+                Err(e) => break Err(e.into()),
+            }
+            if w <= tolerance && b != known_free_end {
+                match self.collides_with(motion.at(b), s) {
+                    Ok(true) => {
+                        break Ok(MotionCheck::Collides {
+                            t_safe: Some(a),
+                            t_contact: b,
+                        })
+                    }
+                    Ok(false) => known_free_end = b,
+                    Err(e) => break Err(e.into()),
+                }
+            }
+            if w < MIN_WIDTH {
+                break Err(MotionError::Undecided { t_safe: a, t: b });
+            }
+            intervals.push((mid, b));
+            intervals.push((a, mid));
+        };
+        s.intervals = intervals;
+        self.steps.fetch_add(steps, Ordering::Relaxed);
+        out
+    }
+
+    /// [`SceneChecker::check`] for many motions `(from, to)`, in parallel,
+    /// in order.
+    ///
+    /// # Errors
+    /// The first error of [`SceneChecker::check`].
+    pub fn check_many(
+        &self,
+        motions: &[(Pose, Pose)],
+        tolerance: f64,
+    ) -> Result<Vec<MotionCheck>, MotionError> {
+        use rayon::prelude::*;
+        motions
+            .par_iter()
+            .map(|&(a, b)| self.check(a, b, tolerance))
+            .collect()
+    }
+}

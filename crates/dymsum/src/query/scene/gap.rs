@@ -1,0 +1,224 @@
+//! A certified lower bound on the distance between the convex hull of some
+//! points and a triangle, for the scenes' motion search
+//! ([`super::checker`]: the hull of a body triangle's corners at both ends
+//! of an interval): floats propose an axis, and the bound along it is
+//! rigorous.
+//!
+//! For any nonzero direction `n`, `(min_{y ∈ U} n·y − max_{x ∈ H} n·x) / |n|`
+//! is at most the distance between the hull `H` and the triangle `U` (the
+//! two sets lie in half-spaces that far apart). The directions proposed
+//! are `c_U − c_T` for the closest points of triangles `T` (the body
+//! triangle at either end) and `U` found in floating point (the usual
+//! vertex–triangle and edge–edge candidates), so the bound is the
+//! distance up to rounding when the hull is one triangle; a bad proposal
+//! only makes it smaller, never wrong. The dot products are rounded, and
+//! the bound subtracts their error: each is off by at most
+//! `γ₃ Σₖ |nₖ| |xₖ|` (`γ₃ = 3u/(1 − 3u)`, `u = 2⁻⁵³`), bounded here by
+//! `4u · S`, `S = Σₖ |nₖ| maxᵢ |xᵢₖ|` over all the points, and the two
+//! subtractions by `u` of their size each; `|n|` is rounded up by a
+//! relative `8u`.
+
+use glam::DVec3;
+
+/// `2⁻⁵³`, the unit roundoff of `f64`.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// Whether the distance between the hull of `hull` and triangle `u`
+/// certainly exceeds `reach`, trying the axes proposed by the triangles
+/// `near` (module docs). `false` means only "not proved".
+pub(crate) fn apart_by_more_than(
+    hull: &[DVec3],
+    near: &[[DVec3; 3]],
+    u: &[DVec3; 3],
+    reach: f64,
+) -> bool {
+    near.iter().any(|t| {
+        let (ct, cu) = closest_points(t, u);
+        let n = cu - ct;
+        gap_along(hull, u, n) > reach_times_norm(reach, n)
+    })
+}
+
+/// `reach · |n|`, rounded up.
+fn reach_times_norm(reach: f64, n: DVec3) -> f64 {
+    reach * n.length() * (1.0 + 8.0 * U)
+}
+
+/// A lower bound on `min_{y ∈ u} n·y − max_{x ∈ t} n·x` (module docs):
+/// `−∞` for a zero or non-finite `n`.
+fn gap_along(t: &[DVec3], u: &[DVec3; 3], n: DVec3) -> f64 {
+    if !n.is_finite() || n == DVec3::ZERO {
+        return f64::NEG_INFINITY;
+    }
+    let max_t = t
+        .iter()
+        .map(|p| n.dot(*p))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let min_u = u.iter().map(|p| n.dot(*p)).fold(f64::INFINITY, f64::min);
+    let m = t
+        .iter()
+        .chain(u.iter())
+        .fold(DVec3::ZERO, |m, p| m.max(p.abs()));
+    let s = n.abs().dot(m);
+    let gap = min_u - max_t;
+    gap - (8.0 * U * s + 2.0 * U * gap.abs()) * (1.0 + 8.0 * U)
+}
+
+/// Closest points of two triangles, in floating point (a proposal only):
+/// the best of the vertex–triangle and edge–edge candidates, which contain
+/// the closest pair of disjoint triangles.
+fn closest_points(t: &[DVec3; 3], u: &[DVec3; 3]) -> (DVec3, DVec3) {
+    let mut best = (t[0], u[0]);
+    let mut best_d = f64::INFINITY;
+    let mut consider = |a: DVec3, b: DVec3| {
+        let d = (b - a).length_squared();
+        if d < best_d {
+            best_d = d;
+            best = (a, b);
+        }
+    };
+    for p in t {
+        consider(*p, closest_on_triangle(*p, u));
+    }
+    for q in u {
+        consider(closest_on_triangle(*q, t), *q);
+    }
+    for i in 0..3 {
+        for j in 0..3 {
+            let (a, b) = closest_on_segments(t[i], t[(i + 1) % 3], u[j], u[(j + 1) % 3]);
+            consider(a, b);
+        }
+    }
+    best
+}
+
+/// The point of triangle `t` closest to `p` (Ericson, *Real-Time
+/// Collision Detection*, 5.1.5), in floating point.
+fn closest_on_triangle(p: DVec3, t: &[DVec3; 3]) -> DVec3 {
+    let [a, b, c] = *t;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = va + vb + vc;
+    if denom == 0.0 || !denom.is_finite() {
+        return a; // flat triangle: any corner is a valid proposal
+    }
+    let (v, w) = (vb / denom, vc / denom);
+    a + ab * v + ac * w
+}
+
+/// Closest points of segments `[p1, q1]` and `[p2, q2]` (Ericson 5.1.9),
+/// in floating point.
+fn closest_on_segments(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (DVec3, DVec3) {
+    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
+    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
+    if a == 0.0 && e == 0.0 {
+        return (p1, p2);
+    }
+    let (s, t) = if a == 0.0 {
+        (0.0, (f / e).clamp(0.0, 1.0))
+    } else {
+        let c = d1.dot(r);
+        if e == 0.0 {
+            ((-c / a).clamp(0.0, 1.0), 0.0)
+        } else {
+            let b = d1.dot(d2);
+            let denom = a * e - b * b;
+            let mut s = if denom > 0.0 {
+                ((b * f - c * e) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let mut t = (b * s + f) / e;
+            if t < 0.0 {
+                t = 0.0;
+                s = (-c / a).clamp(0.0, 1.0);
+            } else if t > 1.0 {
+                t = 1.0;
+                s = ((b - c) / a).clamp(0.0, 1.0);
+            }
+            (s, t)
+        }
+    };
+    (p1 + d1 * s, p2 + d2 * t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [DVec3; 3] {
+        [a.into(), b.into(), c.into()]
+    }
+
+    fn apart(t: &[DVec3; 3], u: &[DVec3; 3], reach: f64) -> bool {
+        apart_by_more_than(t, &[*t], u, reach)
+    }
+
+    #[test]
+    fn a_hull_of_two_places_is_bounded_too() {
+        // A triangle slid along above a floor: its two places' hull stays
+        // 0.5 above it, although the places are far apart.
+        let t = tri([0., 0., 0.5], [1., 0., 0.5], [0., 1., 0.5]);
+        let moved = t.map(|p| p + DVec3::new(50.0, 0.0, 0.0));
+        let floor = tri([-100., -100., 0.], [100., -100., 0.], [0., 100., 0.]);
+        let hull: Vec<DVec3> = t.iter().chain(moved.iter()).copied().collect();
+        assert!(apart_by_more_than(&hull, &[t, moved], &floor, 0.4999));
+        assert!(!apart_by_more_than(&hull, &[t, moved], &floor, 0.5));
+        // A wall crossed by the slide: never certified.
+        let wall = tri([20., -100., -100.], [20., 100., -100.], [20., 0., 100.]);
+        assert!(!apart_by_more_than(&hull, &[t, moved], &wall, 0.0));
+    }
+
+    #[test]
+    fn bound_is_the_distance_up_to_rounding_and_never_above_it() {
+        let t = tri([0., 0., 0.], [1., 0., 0.], [0., 1., 0.]);
+        // Parallel above, at distance 0.5: certified for 0.4999, not 0.5.
+        let u = tri([0., 0., 0.5], [1., 0., 0.5], [0., 1., 0.5]);
+        assert!(apart(&t, &u, 0.4999));
+        assert!(!apart(&t, &u, 0.5));
+        // Edge to edge, crossing skew lines 1 apart.
+        let v = tri([0.25, -1., 1.], [0.25, 1., 1.], [0.25, 0., 3.]);
+        assert!(apart(&t, &v, 0.999_999));
+        assert!(!apart(&t, &v, 1.0));
+        // Touching and crossing triangles are never certified apart.
+        let w = tri([0.2, 0.2, -1.], [0.2, 0.2, 1.], [3., 3., 0.]);
+        assert!(!apart(&t, &w, 0.0));
+        assert!(!apart(&t, &t, 0.0));
+    }
+
+    #[test]
+    fn far_from_the_origin_the_bound_stays_sound() {
+        let off = 1e8;
+        let t = tri([off, 0., 0.], [off + 1., 0., 0.], [off, 1., 0.]);
+        let u = tri([off, 0., 1e-6], [off + 1., 0., 1e-6], [off, 1., 1e-6]);
+        // 1e-6 apart, but the coordinates' rounding is about 1e-8: the
+        // bound is below the distance and above zero.
+        assert!(!apart(&t, &u, 1e-6));
+        assert!(apart(&t, &u, 0.9e-6));
+    }
+}

@@ -1,0 +1,213 @@
+//! Whether a point lies inside a solid component of a body, exactly: the
+//! parity of a ray's crossings with each solid component's triangles.
+//!
+//! Precondition: the point is on no triangle of the body (the scenes'
+//! checker asks only after finding that no triangles of the two bodies
+//! meet, and the point is a corner of one of them).
+//!
+//! The ray is the segment from `p` to `q = p + L d`, `L` large enough that
+//! `q` lies outside the body's box. It *crosses* triangle `abc` when `p`
+//! and `q` lie strictly on opposite sides of its plane
+//! (`orient3d(a, b, c, ·)` of opposite nonzero signs) and the line `pq`
+//! passes strictly inside it (`orient3d(p, q, a, b)`, `(p, q, b, c)`,
+//! `(p, q, c, a)` of one nonzero sign). It misses when the plane's signs
+//! agree or one is zero (`p` in the plane but off the triangle, by the
+//! precondition; `q` in the plane but outside the box), or when the edge
+//! signs disagree strictly. Anything else (the segment in the plane, or
+//! through an edge or a corner) is *degenerate*, and the next of a fixed
+//! list of directions is tried. For a closed, oriented, manifold component
+//! a ray that is not degenerate crosses its boundary an odd number of
+//! times exactly when `p` is inside (Jordan–Brouwer), so with every sign
+//! exact the answer is exact. A point for which all directions are
+//! degenerate gets [`QueryError::OutOfRange`] naming it, never a guess.
+
+use glam::DVec3;
+
+use super::body::MeshBody;
+use crate::kernel::predicates::{orient, Sign};
+use crate::query::error::QueryError;
+use crate::solid::aabb::Aabb;
+use crate::solid::soup::ComponentKind;
+
+/// The ray directions, tried in turn: nearly along each axis (thin ray
+/// boxes for the tree), skewed by irrational-looking amounts so that
+/// axis-aligned models rarely make a ray degenerate.
+const DIRECTIONS: [[f64; 3]; 12] = [
+    [1.0, 0.001_236_067_977, 0.000_707_106_781],
+    [-1.0, 0.000_577_350_269, -0.001_414_213_562],
+    [0.000_866_025_403, 1.0, 0.001_118_033_988],
+    [-0.001_316_074_012, -1.0, 0.000_543_516_413],
+    [0.000_693_147_180, -0.000_301_029_995, 1.0],
+    [-0.000_271_828_182, 0.001_732_050_807, -1.0],
+    [1.0, 0.618_033_988_749, 0.414_213_562_373],
+    [-0.723_606_797_749, 1.0, -0.302_775_637_731],
+    [0.267_949_192_431, -0.577_350_269_189, 1.0],
+    [-1.0, -0.381_966_011_250, 0.732_050_807_568],
+    [0.449_489_742_783, -1.0, -0.645_751_311_064],
+    [-0.162_277_660_168, 0.236_067_977_499, -1.0],
+];
+
+/// The outcome of one ray against one triangle.
+#[derive(PartialEq)]
+enum Crossing {
+    Crosses,
+    Misses,
+    Degenerate,
+}
+
+fn crossing(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Crossing {
+    let (sp, sq) = (orient(t[0], t[1], t[2], p), orient(t[0], t[1], t[2], q));
+    if sp == Sign::Zero && sq == Sign::Zero {
+        return Crossing::Degenerate; // the segment lies in the plane
+    }
+    if sp == sq || sp == Sign::Zero || sq == Sign::Zero {
+        return Crossing::Misses;
+    }
+    let e = [
+        orient(p, q, t[0], t[1]),
+        orient(p, q, t[1], t[2]),
+        orient(p, q, t[2], t[0]),
+    ];
+    let has = |s: Sign| e.contains(&s);
+    if has(Sign::Positive) && has(Sign::Negative) {
+        Crossing::Misses
+    } else if has(Sign::Zero) {
+        Crossing::Degenerate
+    } else {
+        Crossing::Crosses
+    }
+}
+
+/// Whether `p` lies inside a solid component of `body`, whose vertices are
+/// `vertices` (posed) and whose tree's bounds are `bounds` over triangle
+/// boxes `boxes` (module docs; `p` on no triangle of the body).
+/// `parity` is a scratch buffer.
+pub(crate) fn inside_solid(
+    body: &MeshBody,
+    vertices: &[DVec3],
+    boxes: &[Aabb],
+    bounds: &[Aabb],
+    p: DVec3,
+    parity: &mut Vec<bool>,
+) -> Result<bool, QueryError> {
+    let Some(&root) = bounds.first() else {
+        return Ok(false);
+    };
+    if !root.holds(p.to_array()) {
+        return Ok(false);
+    }
+    let span = (0..3)
+        .map(|k| (root.hi[k] - root.lo[k]).max((p[k] - root.lo[k]).abs()))
+        .fold(0.0, f64::max);
+    let length = 4.0 * span + 1.0;
+    'directions: for d in DIRECTIONS {
+        let q = p + DVec3::from(d) * length;
+        if root.holds(q.to_array()) {
+            continue; // not far enough (only at the limits of f64)
+        }
+        let ray = Aabb {
+            lo: p.min(q).to_array(),
+            hi: p.max(q).to_array(),
+        };
+        parity.clear();
+        parity.resize(body.components.len(), false);
+        let mut degenerate = false;
+        body.tree.for_each_meeting_in(boxes, bounds, &ray, |t| {
+            if degenerate {
+                return;
+            }
+            let c = body.component_of[t] as usize;
+            if body.components[c].0 != ComponentKind::Solid {
+                return;
+            }
+            let tri = body.triangles[t].map(|v| vertices[v as usize]);
+            match crossing(p, q, tri) {
+                Crossing::Crosses => parity[c] = !parity[c],
+                Crossing::Misses => {}
+                Crossing::Degenerate => degenerate = true,
+            }
+        });
+        if degenerate {
+            continue 'directions;
+        }
+        return Ok(parity.iter().any(|&odd| odd));
+    }
+    Err(QueryError::OutOfRange(format!(
+        "whether the point {:?} lies inside a solid could not be decided: every ray from it \
+         passes through an edge or lies in a face's plane",
+        p.to_array()
+    )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::PolygonMesh;
+
+    fn cube(lo: f64, hi: f64) -> PolygonMesh {
+        let v = (0..8)
+            .map(|i| {
+                let pick = |k: usize| if i >> k & 1 == 0 { lo } else { hi };
+                [pick(0), pick(1), pick(2)]
+            })
+            .collect();
+        let f = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        PolygonMesh::new(v, f.iter().map(|f| f.to_vec()).collect())
+    }
+
+    fn inside(body: &MeshBody, p: [f64; 3]) -> bool {
+        let boxes = body.tree.boxes().to_vec();
+        let bounds = body.tree.bounds().to_vec();
+        inside_solid(
+            body,
+            &body.vertices,
+            &boxes,
+            &bounds,
+            p.into(),
+            &mut Vec::new(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn nested_cubes_and_points_on_their_axes() {
+        // Two nested solid cubes (each a solid): inside either counts.
+        let mut m = cube(0.0, 4.0);
+        let inner = cube(1.0, 3.0);
+        let base = m.vertices.len();
+        m.vertices.extend(inner.vertices);
+        m.faces.extend(
+            inner
+                .faces
+                .iter()
+                .map(|f| f.iter().map(|v| v + base).collect()),
+        );
+        let body = MeshBody::new(&m).unwrap();
+        assert_eq!(body.report().solids, 2);
+        // Points level with edges and corners (axis-aligned rays would be
+        // degenerate for many of them).
+        for p in [
+            [0.5, 0.5, 0.5],
+            [2.0, 2.0, 2.0],
+            [0.5, 1.0, 3.0],
+            [3.5, 2.0, 1.0],
+        ] {
+            assert!(inside(&body, p), "{p:?}");
+        }
+        for p in [
+            [-1.0, 1.0, 1.0],
+            [5.0, 0.0, 0.0],
+            [2.0, 2.0, 4.5],
+            [4.0 + 1e-12, 1.0, 1.0],
+        ] {
+            assert!(!inside(&body, p), "{p:?}");
+        }
+    }
+}
