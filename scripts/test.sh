@@ -90,6 +90,11 @@ export DYMSUM_REQUIRE_DASK=1 DYMSUM_CLI="$CARGO_TARGET_DIR/release/dymsum" DYMSU
 # rather than skip.
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check manifold3d coacd vhacdx
 export DYMSUM_REQUIRE_MANIFOLD=1
+# Real scenes (issue 28): trimesh and pycollada load meshes as planning
+# suites ship them (dymsum.omplapp), python-fcl is the peer the scene tests
+# compare every state with; installed and required here.
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check trimesh pycollada python-fcl
+export DYMSUM_REQUIRE_SCENES=1
 
 printf '\n=== Python: stubtest (the type stubs match the module)\n'
 (cd "$venv" && bin/python -m mypy.stubtest dymsum._dymsum)

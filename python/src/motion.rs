@@ -6,14 +6,15 @@ use crate::convert::{self, err_for, value_error, Budget, Tolerance};
 use crate::polytope::PyPolytope;
 use dymsum::polytope::MeshPolicy;
 use dymsum::query::{
-    ConvexUnion, MotionCheck, MotionChecker, MotionError, DEFAULT_BUDGET, MIN_TOLERANCE,
+    Body, ConvexUnion, MeshReport, MotionCheck, MotionError, Validator, DEFAULT_BUDGET,
+    MIN_TOLERANCE,
 };
 use dymsum::Pose;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
-use pyo3::types::PyList;
+use pyo3::types::{PyDict, PyList};
 
 create_exception!(
     dymsum,
@@ -135,27 +136,86 @@ fn is_index_array(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
     Ok(first.is_ok_and(|i| i.is_instance_of::<pyo3::types::PyInt>()))
 }
 
-/// A body or obstacle argument: a `ConvexUnion`, or one shape (a union of
-/// one piece).
-fn union_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<ConvexUnion> {
+/// A body or obstacle argument: a `ConvexUnion`; a mesh with faces (a
+/// `(vertices, faces)` pair, an object with `.vertices` and `.faces`, or a
+/// mesh file), taken as it comes ([`Body::from_mesh`]: cleaned exactly,
+/// exactly convex solids on the convex path, anything else as triangles
+/// of any topology); or another shape (a `Polytope`, a point cloud, a
+/// model name: convex).
+fn body_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Body> {
+    let py = obj.py();
     if let Ok(u) = obj.cast::<PyConvexUnion>() {
-        return Ok(u.get().inner.clone());
+        return Ok(Body::Convex(u.get().inner.clone()));
     }
-    Ok(ConvexUnion::from(
+    if obj.cast::<PyPolytope>().is_err() {
+        let mesh = if let Some((v, f)) = convert::mesh_parts(obj)? {
+            Some(convert::mesh_from_parts(&v, &f, what)?)
+        } else if obj.is_instance_of::<pyo3::types::PyString>() || obj.hasattr("__fspath__")? {
+            let spec = convert::path_string(obj)?;
+            let path = std::path::PathBuf::from(&spec);
+            if path.is_file() {
+                Some(
+                    py.detach(|| dymsum_io::formats::read_mesh(&path))
+                        .map_err(|e| err_for(what, format!("{spec}: {e}")))?,
+                )
+            } else {
+                None // a model name
+            }
+        } else {
+            None
+        };
+        if let Some(mesh) = mesh.filter(|m| !m.faces.is_empty()) {
+            return py
+                .detach(|| Body::from_mesh(&mesh))
+                .map_err(|e| err_for(what, e));
+        }
+    }
+    Ok(Body::Convex(ConvexUnion::from(
         convert::shape(obj, what, MeshPolicy::default())?.polytope,
-    ))
+    )))
 }
 
-/// The obstacles argument: a sequence of shapes or unions, or one of them.
-fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<ConvexUnion>> {
+/// The obstacles argument: a sequence of bodies, or one.
+fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
     if is_single_shape(obj)? {
-        return Ok(vec![union_of(obj, "obstacles")?]);
+        return Ok(vec![body_of(obj, "obstacles")?]);
     }
     let mut out = Vec::new();
     for (i, item) in obj.try_iter()?.enumerate() {
-        out.push(union_of(&item?, &format!("obstacles[{i}]"))?);
+        out.push(body_of(&item?, &format!("obstacles[{i}]"))?);
     }
     Ok(out)
+}
+
+/// The validator of `body` against `obstacles`, with its budget.
+fn validator(
+    py: Python<'_>,
+    body: &Bound<'_, PyAny>,
+    obstacles: &Bound<'_, PyAny>,
+    budget: u64,
+    what: &str,
+) -> PyResult<Validator> {
+    let body = body_of(body, "body")?;
+    let obstacles = obstacles_of(obstacles)?;
+    Ok(py
+        .detach(|| Validator::new(&body, &obstacles))
+        .map_err(|e| err_for(what, e))?
+        .with_budget(budget))
+}
+
+/// A mesh report as a dict.
+fn report_dict<'py>(py: Python<'py>, r: MeshReport) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("triangles", r.triangles)?;
+    d.set_item("vertices", r.vertices)?;
+    d.set_item("merged_vertices", r.merged_vertices)?;
+    d.set_item("dropped_zero_area", r.dropped_zero_area)?;
+    d.set_item("dropped_duplicates", r.dropped_duplicates)?;
+    d.set_item("dropped_back_to_back", r.dropped_back_to_back)?;
+    d.set_item("flipped", r.flipped)?;
+    d.set_item("solids", r.solids)?;
+    d.set_item("surfaces", r.surfaces)?;
+    Ok(d)
 }
 
 fn check_tolerance(tolerance: f64) -> PyResult<()> {
@@ -361,7 +421,7 @@ fn motion_pairs(
 /// Checks many motions, reporting the first failure with its index.
 fn check_batch(
     py: Python<'_>,
-    checker: &MotionChecker,
+    checker: &Validator,
     motions: &[(Pose, Pose)],
     tolerance: f64,
     what: &str,
@@ -418,7 +478,7 @@ fn check_batch(
 /// True
 #[pyclass(module = "dymsum", name = "MotionChecker", frozen)]
 pub struct PyMotionChecker {
-    inner: MotionChecker,
+    inner: Validator,
 }
 
 #[pymethods]
@@ -432,13 +492,45 @@ impl PyMotionChecker {
         budget: Option<Budget>,
     ) -> PyResult<Self> {
         let budget = checked_budget(budget)?;
-        let body = union_of(body, "body")?;
-        let obstacles = obstacles_of(obstacles)?;
-        let inner = py
-            .detach(|| MotionChecker::new(&body, &obstacles))
-            .map_err(|e| err_for("MotionChecker", e))?
-            .with_budget(budget);
+        let inner = validator(py, body, obstacles, budget, "MotionChecker")?;
         Ok(PyMotionChecker { inner })
+    }
+
+    /// How the bodies were taken: ``{"path": "convex"}`` when every body is
+    /// convex pieces, else ``{"path": "triangles", "body": {...},
+    /// "obstacles": {...}}`` with what the exact cleaning changed and found
+    /// (``triangles``, ``vertices``, ``merged_vertices``,
+    /// ``dropped_zero_area``, ``dropped_duplicates``,
+    /// ``dropped_back_to_back``, ``flipped``, ``solids``, ``surfaces``).
+    #[getter]
+    fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        match &self.inner {
+            Validator::Convex(_) => d.set_item("path", "convex")?,
+            Validator::Mesh(c) => {
+                d.set_item("path", "triangles")?;
+                d.set_item("body", report_dict(py, c.body().report())?)?;
+                d.set_item("obstacles", report_dict(py, c.scene().report())?)?;
+            }
+        }
+        Ok(d)
+    }
+
+    /// Whether the body collides at each of K poses ((K, 4, 4) homogeneous
+    /// rigid transforms, or any pose stack ``contact_many`` takes): a (K,)
+    /// ``bool`` array, each exactly ``collides_at``. Checked in parallel
+    /// with the GIL released.
+    fn collides_many<'py>(
+        &self,
+        py: Python<'py>,
+        poses: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<bool>>> {
+        let poses = convert::pose_stack(Some(poses), "poses")?;
+        let inner = &self.inner;
+        let hits = py
+            .detach(|| inner.collides_many(&poses))
+            .map_err(|e| err_for("MotionChecker.collides_many", e))?;
+        Ok(hits.into_pyarray(py))
     }
 
     /// The most intervals one check examines (``budget=`` at construction).
@@ -568,14 +660,8 @@ pub fn check_motion(
     let budget = checked_budget(budget)?;
     let p0 = convert::pose(pose0, "pose0")?;
     let p1 = convert::pose(pose1, "pose1")?;
-    let body = union_of(body, "body")?;
-    let obstacles = obstacles_of(obstacles)?;
-    let answer = py.detach(|| -> Result<MotionCheck, MotionError> {
-        MotionChecker::new(&body, &obstacles)?
-            .with_budget(budget)
-            .check(p0, p1, tolerance)
-    });
-    answer
+    let checker = validator(py, body, obstacles, budget, "check_motion")?;
+    py.detach(|| checker.check(p0, p1, tolerance))
         .map(PyMotionCheck::from_check)
         .map_err(|e| motion_error(py, "check_motion", e, None))
 }
@@ -611,13 +697,35 @@ pub fn check_motions(
     check_tolerance(tolerance)?;
     let budget = checked_budget(budget)?;
     let motions = motion_pairs(poses0, poses1)?;
-    let body = union_of(body, "body")?;
-    let obstacles = obstacles_of(obstacles)?;
-    let checker = py
-        .detach(|| MotionChecker::new(&body, &obstacles))
-        .map_err(|e| err_for("check_motions", e))?
-        .with_budget(budget);
+    let checker = validator(py, body, obstacles, budget, "check_motions")?;
     check_batch(py, &checker, &motions, tolerance, "check_motions")
+}
+
+/// Whether the triangles of meshes ``a`` at ``pose_a`` and ``b`` at
+/// ``pose_b`` touch (exact, surfaces only: no containment), as FCL's
+/// mesh–mesh ``collide`` answers: the tests' referee between dymsum's
+/// contact and FCL's. Private.
+#[pyfunction]
+#[pyo3(signature = (a, pose_a, b, pose_b))]
+fn _surfaces_touch(
+    py: Python<'_>,
+    a: &Bound<'_, PyAny>,
+    pose_a: Option<&Bound<'_, PyAny>>,
+    b: &Bound<'_, PyAny>,
+    pose_b: Option<&Bound<'_, PyAny>>,
+) -> PyResult<bool> {
+    let mesh = |obj: &Bound<'_, PyAny>, what: &str| -> PyResult<dymsum::PolygonMesh> {
+        let (v, f) = convert::mesh_parts(obj)?
+            .ok_or_else(|| value_error(format!("{what}: expected (vertices, faces)")))?;
+        convert::mesh_from_parts(&v, &f, what)
+    };
+    let (ma, mb) = (mesh(a, "a")?, mesh(b, "b")?);
+    let (pa, pb) = (
+        convert::pose(pose_a, "pose_a")?,
+        convert::pose(pose_b, "pose_b")?,
+    );
+    py.detach(|| dymsum::query::surfaces_touch(&ma, pa, &mb, pb))
+        .map_err(|e| err_for("_surfaces_touch", e))
 }
 
 /// Registers the motion classes and functions on the module.
@@ -629,5 +737,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MotionUndecided", m.py().get_type::<MotionUndecided>())?;
     m.add_function(wrap_pyfunction!(check_motion, m)?)?;
     m.add_function(wrap_pyfunction!(check_motions, m)?)?;
+    m.add_function(wrap_pyfunction!(_surfaces_touch, m)?)?;
     Ok(())
 }

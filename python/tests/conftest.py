@@ -127,3 +127,18 @@ def rng(request):
     # One seed per test, from its name: reproducible and independent.
     seed = zlib.crc32(request.node.name.encode())
     return np.random.default_rng(seed)
+
+
+def need(module: str, reason: str = ""):
+    """The optional module, imported; the test is skipped without it,
+    unless DYMSUM_REQUIRE_SCENES=1 (the README's test command installs the
+    scene packages, trimesh, pycollada and python-fcl, and sets it), where
+    a missing module fails the test instead of hiding it."""
+    import importlib
+    import os
+
+    import pytest
+
+    if os.environ.get("DYMSUM_REQUIRE_SCENES") == "1":
+        return importlib.import_module(module)
+    return pytest.importorskip(module, reason=reason or None)

@@ -10,7 +10,7 @@ rotations about the origin; a rotation is a
 """
 
 import os
-from typing import Any, Literal, Optional, Protocol, Sequence, Tuple, Union, final, overload
+from typing import Any, Dict, Literal, Optional, Protocol, Sequence, Tuple, Union, final, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -46,6 +46,7 @@ __all__ = [
     "_triangle_sums",
     "_uncontained",
     "_check_closed_mesh",
+    "_surfaces_touch",
     "_cobstacle_block",
     "check_solid",
 ]
@@ -451,6 +452,11 @@ class MotionChecker:
         """``check`` for K motions ((K, 4, 4) pose arrays), in parallel."""
     def collides_at(self, pose: _PoseLike = None) -> bool:
         """Whether the body at ``pose`` touches or overlaps an obstacle (exact)."""
+    def collides_many(self, poses: _PosesLike) -> npt.NDArray[np.bool_]:
+        """``collides_at`` for K poses ((K, 4, 4)): a (K,) bool array, in parallel."""
+    @property
+    def info(self) -> Dict[str, Any]:
+        """How the bodies were taken: the convex path, or triangles with the cleaning's counts."""
 
 def check_motion(
     body: _BodyLike,
@@ -512,3 +518,6 @@ def _cobstacle_block(
     robot: _ShapeLike, obstacle: _ShapeLike, rotations: _Rotations, form: str, certified: bool
 ) -> Tuple[npt.NDArray[Any], ...]:
     """One task of :func:`dymsum.cobstacle_map`: one piece pair, one block of rotations."""
+
+def _surfaces_touch(a: Any, pose_a: _PoseLike, b: Any, pose_b: _PoseLike) -> bool:
+    """Whether the triangles of two meshes at their poses touch (exact, no containment). Private."""

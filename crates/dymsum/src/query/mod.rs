@@ -165,7 +165,7 @@ pub use motion::{
 pub use pair::{ConvexPair, QueryStats};
 pub use prep::Reflected;
 pub use proximity::{distance, intersects, penetration_depth, query};
-pub use scene::{surfaces_touch, MeshBody, MeshReport, SceneChecker};
+pub use scene::{surfaces_touch, Body, MeshBody, MeshReport, SceneChecker, Validator};
 pub use tracker::{ContactTracker, TrackerStrategy};
 pub use union::{ConvexUnion, UnionProximity};
 

@@ -74,6 +74,9 @@ pub struct MeshBody {
     /// lies from its origin.
     pub(crate) reach: f64,
     report: MeshReport,
+    /// The body as one convex polytope, when it is one solid component
+    /// that is exactly convex.
+    convex: Option<crate::polytope::Polytope>,
 }
 
 impl MeshBody {
@@ -116,13 +119,34 @@ impl MeshBody {
             solids: soup.solids(),
             surfaces: soup.components.len() - soup.solids(),
         };
-        Ok(MeshBody::assemble(
-            vertices,
-            triangles,
-            component_of,
-            components,
-            report,
-        ))
+        let mut body = MeshBody::assemble(vertices, triangles, component_of, components, report);
+        body.convex = body.exactly_convex();
+        Ok(body)
+    }
+
+    /// The body as one polytope when it is one solid component and exactly
+    /// convex ([`crate::polytope::MeshPolicy::strict`]).
+    fn exactly_convex(&self) -> Option<crate::polytope::Polytope> {
+        if self.components.len() != 1 || self.components[0].0 != ComponentKind::Solid {
+            return None;
+        }
+        let mesh = PolygonMesh::new(
+            self.vertices.iter().map(|v| v.to_array()).collect(),
+            self.triangles
+                .iter()
+                .map(|t| t.iter().map(|&v| v as usize).collect())
+                .collect(),
+        );
+        crate::polytope::Polytope::from_mesh(&mesh, crate::polytope::MeshPolicy::strict())
+            .ok()
+            .map(|(p, _)| p)
+    }
+
+    /// The body as one convex polytope, when it is one solid component
+    /// that is exactly convex (checked by [`MeshBody::new`]; a mesh convex
+    /// only within rounding is not): the convex fast path's input.
+    pub fn as_convex(&self) -> Option<&crate::polytope::Polytope> {
+        self.convex.as_ref()
     }
 
     /// The boundaries of convex pieces as one body, each piece a solid
@@ -197,6 +221,7 @@ impl MeshBody {
             tree,
             reach,
             report,
+            convex: None,
         }
     }
 

@@ -1,7 +1,9 @@
 //! Contact between bodies given as triangle meshes of any topology (issue
 //! 28): [`MeshBody`] (a mesh cleaned exactly, its components solids or
 //! surfaces), [`SceneChecker`] (exact state checks and certified motion
-//! checks of a body against a scene, with a box-tree broad phase), and
+//! checks of a body against a scene, with a box-tree broad phase),
+//! [`Body`] and [`Validator`] (one entry for convex pieces and triangles),
+//! and
 //! [`surfaces_touch`], whether two meshes at their poses touch as
 //! *surfaces* (some triangle of one meets some triangle of the other, as
 //! FCL's mesh–mesh `collide` answers), decided exactly on the posed
@@ -21,9 +23,11 @@ mod body;
 mod checker;
 mod gap;
 mod inside;
+mod validator;
 
 pub use body::{MeshBody, MeshReport};
 pub use checker::SceneChecker;
+pub use validator::{Body, Validator};
 
 use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;
