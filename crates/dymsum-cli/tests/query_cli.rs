@@ -1102,3 +1102,476 @@ fn regression_motion_half_turn_takes_the_arc_of_the_quaternions_as_given() {
     assert_fails(&o, 1, "3.637978807091713e-12");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+// Issue 28, "Bodies as they come": `query --collision-only` and `motion`
+// take a mesh file of any topology (open, double-sided, non-manifold,
+// non-convex, unwelded) as triangles, say on standard error what the
+// cleaning did, and `query` without `--collision-only` refuses it.
+
+/// A polygon mesh as an OFF file.
+fn mesh_off(dir: &Path, name: &str, v: &[[f64; 3]], f: &[Vec<usize>]) -> String {
+    let mut text = format!("OFF\n{} {} 0\n", v.len(), f.len());
+    for p in v {
+        text.push_str(&format!("{} {} {}\n", p[0], p[1], p[2]));
+    }
+    for face in f {
+        let ids: Vec<String> = face.iter().map(|i| i.to_string()).collect();
+        text.push_str(&format!("{} {}\n", face.len(), ids.join(" ")));
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_string()
+}
+
+/// A box 4 wide (x and y in [-2, 2]) and 2 high (z in [0, 2]): its corners
+/// and its faces, outward, the floor first and the lid last.
+fn box_4x4x2() -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
+    let v = vec![
+        [-2.0, -2.0, 0.0],
+        [2.0, -2.0, 0.0],
+        [2.0, 2.0, 0.0],
+        [-2.0, 2.0, 0.0],
+        [-2.0, -2.0, 2.0],
+        [2.0, -2.0, 2.0],
+        [2.0, 2.0, 2.0],
+        [-2.0, 2.0, 2.0],
+    ];
+    let f = [
+        [0, 3, 2, 1],
+        [0, 1, 5, 4],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 0, 4, 7],
+        [4, 5, 6, 7],
+    ];
+    (v, f.iter().map(|q| q.to_vec()).collect())
+}
+
+/// Every face followed by its back (as double-sided exports write them).
+fn double_sided(faces: &[Vec<usize>]) -> Vec<Vec<usize>> {
+    faces
+        .iter()
+        .flat_map(|f| [f.clone(), f.iter().rev().copied().collect()])
+        .collect()
+}
+
+/// The answers of `query --collision-only`: each line's last word.
+fn answers(o: &std::process::Output) -> Vec<String> {
+    common::stdout(o)
+        .lines()
+        .map(|l| l.rsplit(": ").next().unwrap().to_string())
+        .collect()
+}
+
+/// `dymsum motion ARGS --json`, parsed.
+fn motion_json(args: &[&str]) -> serde_json::Value {
+    let mut all = vec!["motion"];
+    all.extend_from_slice(args);
+    all.push("--json");
+    serde_json::from_str(ok(&all).trim()).unwrap()
+}
+
+#[test]
+fn triangle_bodies_a_double_sided_open_box_in_query_and_motion() {
+    let dir = temp_dir("open-box");
+    let (v, f) = box_4x4x2();
+    let open = mesh_off(&dir, "open_box.off", &v, &double_sided(&f[..5]));
+    let note = "note: OBSTACLE (open_box.off) taken as triangles (1 surface, 10 triangles; 10 \
+                back-to-back triangles dropped)\n";
+    // A cube of side 0.5 inside (a surface has no inside: apart), resting
+    // on the floor (touching: collides), a hair above it, against a wall,
+    // and above the open top.
+    let o = run(&[
+        "query",
+        "box:0.5",
+        &open,
+        "--collision-only",
+        "--pose-xyz-wxyz",
+        "0,0,1,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "0,0,0.25,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "0,0,0.2500001,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "1.75,0,1,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "0,0,3,1,0,0,0",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        common::stdout(&o),
+        "t = (0, 0, 1), q = (1, 0, 0, 0): apart\n\
+         t = (0, 0, 0.25), q = (1, 0, 0, 0): collides\n\
+         t = (0, 0, 0.2500001), q = (1, 0, 0, 0): apart\n\
+         t = (1.75, 0, 1), q = (1, 0, 0, 0): collides\n\
+         t = (0, 0, 3), q = (1, 0, 0, 0): apart\n"
+    );
+    assert_eq!(stderr(&o), note);
+    // JSON: the pose and the answer only.
+    let text = ok(&[
+        "query",
+        "box:0.5",
+        &open,
+        "--collision-only",
+        "--json",
+        "--pose-xyz-wxyz",
+        "0,0,0.25,1,0,0,0",
+    ]);
+    assert_eq!(
+        text,
+        "{\"pose_xyz_wxyz\":[0.0,0.0,0.25,1.0,0.0,0.0,0.0],\"collides\":true}\n"
+    );
+    // The box as the robot, the cube fixed: the same contacts.
+    let o = run(&[
+        "query",
+        &open,
+        "box:0.5",
+        "--collision-only",
+        "--pose-xyz-wxyz",
+        "0,0,-1,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "0,0,-0.25,1,0,0,0",
+    ]);
+    assert_eq!(answers(&o), ["apart", "collides"], "{}", stderr(&o));
+    // Depth and distance of triangles: refused, the problem first, the fix
+    // last, after the note.
+    let o = run(&[
+        "query",
+        "box:0.5",
+        &open,
+        "--pose-xyz-wxyz",
+        "0,0,1,1,0,0,0",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "{note}error: OBSTACLE (open_box.off) is a triangle mesh (1 surface: not a closed \
+             solid): distance and penetration depth need bodies given as convex pieces; fix: add \
+             `--collision-only` for the exact collision yes/no, or give the body's convex pieces \
+             as files joined with `+` or as OBJ objects\n"
+        )
+    );
+    assert!(common::stdout(&o).is_empty());
+    // A decomposition asked for keeps its meaning: the open box is refused
+    // as before, never taken as triangles.
+    let o = run(&[
+        "query",
+        "box:0.5",
+        &open,
+        "--collision-only",
+        "--decomposition",
+        "vhacd",
+        "--pose-xyz-wxyz",
+        "0,0,1,1,0,0,0",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("triangles"), "{}", stderr(&o));
+    // Out through the open top: certified free.
+    let up = [
+        "box:0.5",
+        &open,
+        "--from-xyz-wxyz",
+        "0,0,1,1,0,0,0",
+        "--to-xyz-wxyz",
+        "0,0,4,1,0,0,0",
+    ];
+    let o = run(&[&["motion"][..], &up[..]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        common::stdout(&o),
+        "free: no contact at any t in [0, 1] (certified)\n"
+    );
+    assert_eq!(stderr(&o), note);
+    // Through a wall: the first contact, x + 0.25 = 2 at t = 1.75 / 4,
+    // bracketed within the tolerance.
+    let wall = [
+        "box:0.5",
+        &open,
+        "--from-xyz-wxyz",
+        "0,0,1,1,0,0,0",
+        "--to-xyz-wxyz",
+        "4,0,1,1,0,0,0",
+    ];
+    let text = ok(&[&["motion"][..], &wall[..]].concat());
+    assert!(
+        text.starts_with("collides: certified free up to t = 0.43749")
+            && text.contains(", in contact at t = 0.437500000\n")
+            && text.ends_with(
+                "pose at contact (x,y,z,w,qx,qy,qz): 1.750000,0.000000,1.000000,1.000000,0.000000,\
+                 0.000000,0.000000\n"
+            ),
+        "{text}"
+    );
+    let j = motion_json(&wall);
+    let (t_safe, t_contact) = (
+        j["t_safe"].as_f64().unwrap(),
+        j["t_contact"].as_f64().unwrap(),
+    );
+    assert!(t_safe < t_contact && t_contact - t_safe <= 1e-6, "{j}");
+    assert!((t_contact - 0.4375).abs() <= 1e-6, "{j}");
+    // A budget of one interval decides nothing: an error, never a guess.
+    let o = run(&[&["motion"][..], &wall[..], &["--budget", "1"][..]].concat());
+    assert_fails(&o, 1, "budget of 1 intervals");
+    // With its lid the double-sided box is a solid, and exactly convex: the
+    // cube inside it collides, and the depth is known (the convex path).
+    let closed = mesh_off(&dir, "closed_box.off", &v, &double_sided(&f));
+    let o = run(&[
+        "query",
+        "box:0.5",
+        &closed,
+        "--pose-xyz-wxyz",
+        "0,0,1,1,0,0,0",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        common::stdout(&o).contains(": collides, depth 1.250000000"),
+        "{}",
+        common::stdout(&o)
+    );
+    assert_eq!(
+        stderr(&o),
+        "note: OBSTACLE (closed_box.off) cleaned as triangles (1 solid, 12 triangles; 12 \
+         back-to-back triangles dropped): exactly convex, taken as one convex piece\n"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A closed non-convex mesh (the L of `examples/data/Lmesh.off`) is a
+/// solid: contact includes lying inside it.
+#[test]
+fn triangle_bodies_a_non_convex_solid_holds_its_inside() {
+    let l = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/data/Lmesh.off")
+        .to_str()
+        .unwrap()
+        .to_string();
+    // Deep inside the L's corner, in its notch, and touching its inner wall.
+    let o = run(&[
+        "query",
+        "box:0.2",
+        &l,
+        "--collision-only",
+        "--pose-xyz-wxyz",
+        "0.5,0.5,0.5,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "2,2,0.5,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "2,1.1,0.5,1,0,0,0",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(answers(&o), ["collides", "apart", "collides"]);
+    assert_eq!(
+        stderr(&o),
+        "note: OBSTACLE (Lmesh.off) taken as triangles (1 solid, 20 triangles; nothing to \
+         clean)\n"
+    );
+    // From the notch diagonally into the corner: contact at x = y = 1.1.
+    let v = motion_json(&[
+        "box:0.2",
+        &l,
+        "--from-xyz-wxyz",
+        "2,2,0.5,1,0,0,0",
+        "--to-xyz-wxyz",
+        "0.5,0.5,0.5,1,0,0,0",
+    ]);
+    assert_eq!(v["free"], false, "{v}");
+    assert!(
+        (v["t_contact"].as_f64().unwrap() - 0.6).abs() <= 1e-6,
+        "{v}"
+    );
+    // A solid may also be taken apart for the depth (named in the fix).
+    let o = run(&["query", &l, "box", "--pose-xyz-wxyz", "5,5,5,1,0,0,0"]);
+    assert_fails(
+        &o,
+        1,
+        "error: ROBOT (Lmesh.off) is a triangle mesh (1 solid, not convex): distance and \
+         penetration depth need bodies given as convex pieces; fix: add `--collision-only` for \
+         the exact collision yes/no, give the body's convex pieces as files joined with `+` or \
+         as OBJ objects, or take it apart with `--decomposition vhacd` (approximate)\n",
+    );
+}
+
+/// A non-manifold soup: three pages sharing one edge (a book), one page
+/// listed twice, a zero-area sliver and a loose triangle away from it.
+#[test]
+fn triangle_bodies_a_non_manifold_soup() {
+    let dir = temp_dir("soup");
+    let v = [
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 0.0, 1.0],
+        [-1.0, 0.0, 0.0],
+        [-1.0, 0.0, 1.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 1.0, 1.0],
+        [5.0, 0.0, 0.0],
+        [6.0, 0.0, 0.0],
+        [5.0, 1.0, 0.0],
+        [0.0, 0.0, 0.5],
+    ];
+    let f = vec![
+        vec![0, 2, 3, 1],
+        vec![0, 4, 5, 1],
+        vec![0, 6, 7, 1],
+        vec![0, 6, 7, 1],
+        vec![0, 11, 1],
+        vec![8, 9, 10],
+    ];
+    let soup = mesh_off(&dir, "soup.off", &v, &f);
+    let o = run(&[
+        "query",
+        "box:0.2",
+        &soup,
+        "--collision-only",
+        "--json",
+        "--pose-xyz-wxyz",
+        "0.5,0.5,0.5,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "0.5,0.1,0.5,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "0.5,0.1000001,0.5,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "5.2,0.2,0.1,1,0,0,0",
+        "--pose-xyz-wxyz",
+        "5.2,0.2,0.1000001,1,0,0,0",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let collides: Vec<bool> = common::stdout(&o)
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap()["collides"] == true)
+        .collect();
+    assert_eq!(collides, [false, true, false, true, false]);
+    assert_eq!(
+        stderr(&o),
+        "note: OBSTACLE (soup.off) taken as triangles (2 surfaces, 7 triangles; 2 duplicate \
+         triangles dropped, 1 zero-area triangle dropped)\n"
+    );
+    // Between two pages, parallel to them: free; across the third page:
+    // contact when the cube's face reaches x = 0.
+    let between = [
+        "box:0.2",
+        &soup,
+        "--from-xyz-wxyz",
+        "0.5,0.5,0.5,1,0,0,0",
+        "--to-xyz-wxyz",
+        "0.5,0.5,3,1,0,0,0",
+    ];
+    assert_eq!(motion_json(&between)["free"], true);
+    let across = [
+        "box:0.2",
+        &soup,
+        "--from-xyz-wxyz",
+        "0.5,0.5,0.5,1,0,0,0",
+        "--to-xyz-wxyz",
+        "-0.5,0.5,0.5,1,0,0,0",
+    ];
+    let v = motion_json(&across);
+    assert!(
+        (v["t_contact"].as_f64().unwrap() - 0.4).abs() <= 1e-6,
+        "{v}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The triangles of `faces` (fans), each followed by its back (a
+/// double-sided export), each with its own three corners (unwelded, as STL
+/// stores them).
+fn double_sided_triangles(v: &[[f64; 3]], faces: &[Vec<usize>]) -> Vec<[[f64; 3]; 3]> {
+    faces
+        .iter()
+        .flat_map(|f| (1..f.len() - 1).map(move |k| [v[f[0]], v[f[k]], v[f[k + 1]]]))
+        .flat_map(|[a, b, c]| [[a, b, c], [a, c, b]])
+        .collect()
+}
+
+#[test]
+fn triangle_bodies_from_unwelded_stl_and_off_files() {
+    let dir = temp_dir("unwelded");
+    let (v, f) = box_4x4x2();
+    let tris = double_sided_triangles(&v, &f[..5]);
+    // ASCII STL.
+    let mut ascii = String::from("solid open_box\n");
+    for t in &tris {
+        ascii.push_str("facet normal 0 0 0\nouter loop\n");
+        for p in t {
+            ascii.push_str(&format!("vertex {} {} {}\n", p[0], p[1], p[2]));
+        }
+        ascii.push_str("endloop\nendfacet\n");
+    }
+    ascii.push_str("endsolid open_box\n");
+    std::fs::write(dir.join("ascii.stl"), ascii).unwrap();
+    // Binary STL.
+    let mut binary = vec![0u8; 80];
+    binary.extend_from_slice(&(tris.len() as u32).to_le_bytes());
+    for t in &tris {
+        binary.extend_from_slice(&[0u8; 12]);
+        for p in t {
+            for c in p {
+                binary.extend_from_slice(&(*c as f32).to_le_bytes());
+            }
+        }
+        binary.extend_from_slice(&[0u8; 2]);
+    }
+    std::fs::write(dir.join("binary.stl"), binary).unwrap();
+    // OFF with every triangle's corners listed again.
+    let corners: Vec<[f64; 3]> = tris.iter().flatten().copied().collect();
+    let faces: Vec<Vec<usize>> = (0..tris.len())
+        .map(|k| vec![3 * k, 3 * k + 1, 3 * k + 2])
+        .collect();
+    mesh_off(&dir, "unwelded.off", &corners, &faces);
+    assert_eq!(tris.len(), 20);
+    let poses = [
+        "0,0,1,1,0,0,0",
+        "0,0,0.25,1,0,0,0",
+        "1.75,0,1,1,0,0,0",
+        "1.7,0,1,1,0,0,0",
+    ];
+    for (file, cleaned) in [
+        ("ascii.stl", "10 back-to-back triangles dropped"),
+        ("binary.stl", "10 back-to-back triangles dropped"),
+        (
+            "unwelded.off",
+            "10 back-to-back triangles dropped, 52 vertices merged",
+        ),
+    ] {
+        let path = dir.join(file);
+        let mut args = vec![
+            "query",
+            "box:0.5",
+            path.to_str().unwrap(),
+            "--collision-only",
+        ];
+        for p in &poses {
+            args.extend(["--pose-xyz-wxyz", p]);
+        }
+        let o = run(&args);
+        assert!(o.status.success(), "{file}: {}", stderr(&o));
+        assert_eq!(
+            answers(&o),
+            ["apart", "collides", "collides", "apart"],
+            "{file}"
+        );
+        assert_eq!(
+            stderr(&o),
+            format!(
+                "note: OBSTACLE ({file}) taken as triangles (1 surface, 10 triangles; \
+                 {cleaned})\n"
+            )
+        );
+        let v = motion_json(&[
+            "box:0.5",
+            path.to_str().unwrap(),
+            "--from-xyz-wxyz",
+            "0,0,1,1,0,0,0",
+            "--to-xyz-wxyz",
+            "4,0,1,1,0,0,0",
+        ]);
+        assert!(
+            (v["t_contact"].as_f64().unwrap() - 0.4375).abs() <= 1e-6,
+            "{file}: {v}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

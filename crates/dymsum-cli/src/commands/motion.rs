@@ -12,24 +12,30 @@
 //! with the certified `t_safe`).
 //!
 //! A body may be a union of convex pieces (`a.off+b.off`, or an OBJ file
-//! with several objects). The obstacle stays put.
+//! with several objects), or a mesh file of any topology taken as
+//! triangles ([`super::solid::load_contact_body`]: contact with a solid
+//! component includes lying inside it, with a surface touching a
+//! triangle); bodies of convex pieces keep the convex checker
+//! ([`Validator`]). The obstacle stays put.
 
 use std::io::Write;
 
-use anyhow::{anyhow, Context};
+use anyhow::Context;
 use clap::Args;
-use dymsum::query::{ConvexUnion, Motion, MotionCheck, MotionChecker};
+use dymsum::query::{Motion, MotionCheck, Validator};
 use serde::Serialize;
 
 use super::query::{parse_pose, PoseArg};
-use super::solid::load_pieces;
+use super::solid::load_contact_body;
 use crate::stats::decimals;
 
 /// Arguments of `dymsum motion`.
 #[derive(Debug, Args)]
 pub struct MotionArgs {
     /// The robot: a mesh file or built-in model name; several convex pieces
-    /// joined with `+`, or an OBJ file with several objects, form a union.
+    /// joined with `+`, or an OBJ file with several objects, form a union;
+    /// any other mesh file (open, double-sided, non-manifold, non-convex) is
+    /// taken as triangles.
     #[arg(value_name = "ROBOT")]
     pub robot: String,
     /// The obstacle (fixed in the world): as ROBOT.
@@ -84,21 +90,9 @@ struct JsonAnswer {
 /// written.
 pub fn run(a: &MotionArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = ConvexUnion::new(load_pieces(
-        &a.robot,
-        "ROBOT",
-        a.body.strict,
-        a.body.decomposition,
-    )?)
-    .ok_or_else(|| anyhow!("ROBOT has no pieces"))?;
-    let obstacle = ConvexUnion::new(load_pieces(
-        &a.obstacle,
-        "OBSTACLE",
-        a.body.strict,
-        a.body.decomposition,
-    )?)
-    .ok_or_else(|| anyhow!("OBSTACLE has no pieces"))?;
-    let checker = MotionChecker::new(&robot, &[obstacle])
+    let robot = load_contact_body(&a.robot, "ROBOT", a.body)?;
+    let obstacle = load_contact_body(&a.obstacle, "OBSTACLE", a.body)?;
+    let checker = Validator::new(&robot, &[obstacle])
         .context("preparing the check")?
         .with_budget(a.budget);
     let answer = checker

@@ -18,23 +18,35 @@
 //! mesh ([`ConvexUnion::penetration_depth_mesh`]: exact piece-pair sums,
 //! their union by `boolmesh` in floats), with the direction; the witness
 //! points are then `null`.
+//!
+//! A body may also be a mesh file of any topology (open, double-sided,
+//! non-manifold, non-convex, several components), taken as triangles
+//! ([`super::solid::load_contact_body`]). For such a body only collision
+//! is exact so far: `--collision-only` answers it (contact with a solid
+//! component includes lying inside it; with a surface, touching a
+//! triangle), and without that flag the query is refused, the problem
+//! first and the fix last, as no exact depth or distance of triangles
+//! exists yet. `--collision-only` takes every body (convex pieces on the
+//! convex fast path).
 
 use std::io::Write;
 
 use anyhow::{anyhow, Context};
 use clap::Args;
-use dymsum::query::{ConvexPair, ConvexUnion, Proximity, UnionProximity};
+use dymsum::query::{Body, ConvexPair, ConvexUnion, Proximity, UnionProximity, Validator};
 use dymsum::{DVec3, Polytope, Pose, Rotation};
 use serde::Serialize;
 
-use super::solid::load_pieces;
+use super::short_name;
+use super::solid::{body_pieces, load_contact_body, triangle_components};
 use crate::stats::{decimals, fixed, short};
 
 /// Arguments of `dymsum query`.
 #[derive(Debug, Args)]
 pub struct QueryArgs {
     /// The robot: a mesh file or built-in model name; several convex pieces
-    /// joined with `+`, or an OBJ file with several objects, form a union.
+    /// joined with `+`, or an OBJ file with several objects, form a union;
+    /// any other mesh file is taken as triangles (for `--collision-only`).
     #[arg(value_name = "ROBOT")]
     pub robot: String,
     /// The obstacle (fixed at the origin): as ROBOT.
@@ -55,6 +67,13 @@ pub struct QueryArgs {
     /// closest points when apart (in world coordinates).
     #[arg(long)]
     pub json: bool,
+    /// Only whether the robot touches or overlaps the obstacle at each pose
+    /// (exact), without depth or distance: the query that bodies given as
+    /// triangles (open, double-sided, non-manifold or non-convex meshes)
+    /// take. Prints `collides` or `apart` per pose; with `--json`,
+    /// `{"pose_xyz_wxyz":[..7],"collides":b}`.
+    #[arg(long)]
+    pub collision_only: bool,
     /// How meshes are taken: `--strict`, `--decomposition`.
     #[command(flatten)]
     pub body: super::solid::BodyOptions,
@@ -112,6 +131,13 @@ struct JsonLine {
     point_on_obstacle: Option<[f64; 3]>,
 }
 
+/// One line of `--collision-only --json` output.
+#[derive(Serialize)]
+struct JsonCollision {
+    pose_xyz_wxyz: [f64; 7],
+    collides: bool,
+}
+
 /// One pose's answer.
 struct Answer {
     collides: bool,
@@ -154,13 +180,44 @@ fn from_proximity(p: &Proximity) -> Answer {
 /// Runs `dymsum query`.
 ///
 /// # Errors
-/// ROBOT or OBSTACLE cannot be loaded ([`super::solid::load_body`]); a query fails at a
-/// pose ([`dymsum::query::QueryError`], naming the pose: coordinates beyond
-/// `f64`, or an internal error); or `out` cannot be written.
+/// ROBOT or OBSTACLE cannot be loaded ([`load_contact_body`]); a body
+/// taken as triangles without `--collision-only` ([`depth_pieces`]); a
+/// query fails at a pose ([`dymsum::query::QueryError`], naming the pose:
+/// coordinates beyond `f64`, or an internal error); or `out` cannot be
+/// written.
 pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = load_pieces(&a.robot, "ROBOT", a.body.strict, a.body.decomposition)?;
-    let obstacle = load_pieces(&a.obstacle, "OBSTACLE", a.body.strict, a.body.decomposition)?;
+    let robot = load_contact_body(&a.robot, "ROBOT", a.body)?;
+    let obstacle = load_contact_body(&a.obstacle, "OBSTACLE", a.body)?;
+    if a.collision_only {
+        let validator = Validator::new(&robot, std::slice::from_ref(&obstacle))
+            .context("preparing the query")?;
+        let answers = a
+            .poses
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                validator
+                    .collides_at(p.pose)
+                    .with_context(|| format!("pose {}", k + 1))
+            })
+            .collect::<anyhow::Result<Vec<bool>>>()?;
+        for (p, &collides) in a.poses.iter().zip(&answers) {
+            if a.json {
+                let line = JsonCollision {
+                    pose_xyz_wxyz: p.values.map(no_negative_zero),
+                    collides,
+                };
+                writeln!(out, "{}", serde_json::to_string(&line)?)?;
+            } else {
+                let answer = if collides { "collides" } else { "apart" };
+                writeln!(out, "{}: {answer}", pose_text(p))?;
+            }
+        }
+        return Ok(());
+    }
+    let robot = depth_pieces(&robot, &a.robot, "ROBOT")?;
+    let obstacle = depth_pieces(&obstacle, &a.obstacle, "OBSTACLE")?;
     let answers = if robot.len() == 1 && obstacle.len() == 1 {
         convex_answers(&robot[0], &obstacle[0], &a.poses)?
     } else {
@@ -174,6 +231,41 @@ pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// The convex pieces of a body for the depth and distance ([`body_pieces`]).
+///
+/// # Errors
+/// A body taken as triangles: what it is, that depth and distance need
+/// convex pieces, then the fix (`--collision-only`, the pieces, or for
+/// solids a decomposition).
+fn depth_pieces(body: &Body, spec: &str, operand: &str) -> anyhow::Result<Vec<Polytope>> {
+    if let Some(pieces) = body_pieces(body) {
+        return Ok(pieces);
+    }
+    let Body::Mesh(mesh) = body else {
+        return Err(anyhow!("{operand} has no pieces"));
+    };
+    let r = mesh.report();
+    let what = match (r.solids, r.surfaces) {
+        (0, 1) => ": not a closed solid",
+        (0, _) => ": not closed solids",
+        (_, 0) => ", not convex",
+        _ => "",
+    };
+    let pieces = if r.surfaces == 0 {
+        "give the body's convex pieces as files joined with `+` or as OBJ objects, or take it \
+         apart with `--decomposition vhacd` (approximate)"
+    } else {
+        "or give the body's convex pieces as files joined with `+` or as OBJ objects"
+    };
+    Err(anyhow!(
+        "{operand} ({}) is a triangle mesh ({}{what}): distance and penetration depth need \
+         bodies given as convex pieces; fix: add `--collision-only` for the exact collision \
+         yes/no, {pieces}",
+        short_name(spec),
+        triangle_components(&r)
+    ))
 }
 
 /// Answers for two convex bodies: one tracker carried from pose to pose.
@@ -290,13 +382,18 @@ fn write_json_answer(out: &mut dyn Write, p: &PoseArg, ans: &Answer) -> anyhow::
     Ok(())
 }
 
-/// One answer as a line of text.
-fn write_text_answer(out: &mut dyn Write, p: &PoseArg, ans: &Answer) -> std::io::Result<()> {
+/// A pose as text: `t = (x, y, z), q = (w, qx, qy, qz)`.
+fn pose_text(p: &PoseArg) -> String {
     let v = p.values.map(short);
-    let pose = format!(
+    format!(
         "t = ({}, {}, {}), q = ({}, {}, {}, {})",
         v[0], v[1], v[2], v[3], v[4], v[5], v[6]
-    );
+    )
+}
+
+/// One answer as a line of text.
+fn write_text_answer(out: &mut dyn Write, p: &PoseArg, ans: &Answer) -> std::io::Result<()> {
+    let pose = pose_text(p);
     let dir = |d: Option<DVec3>| match d {
         Some(d) => format!(
             "({}, {}, {})",

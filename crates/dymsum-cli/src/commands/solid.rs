@@ -1,14 +1,17 @@
 //! Loading an operand that may be non-convex: one convex body, a union of
 //! convex pieces (`a.off+b.off`, an OBJ file with several objects), or a
 //! closed non-convex mesh taken apart into convex pieces (its exactly convex
-//! components, or a decomposition chosen with `--decomposition`).
+//! components, or a decomposition chosen with `--decomposition`); for the
+//! contact checks (`query`, `motion`), any other mesh file as triangles of
+//! any topology ([`load_contact_body`]).
 
 use std::path::Path;
 
 use anyhow::anyhow;
 use clap::{Args, ValueEnum};
 use dymsum::nonconvex::{convex_pieces, Decomposition, DecompositionInfo, UnionMeshError};
-use dymsum::{DVec3, Polytope, SolidError};
+use dymsum::query::{Body, ConvexUnion, MeshBody, MeshReport};
+use dymsum::{DVec3, PolygonMesh, Polytope, SolidError};
 
 use super::{load, policy, short_name};
 
@@ -90,16 +93,9 @@ pub fn load_solid(
         }
         Err(e) => e,
     };
-    let path = Path::new(spec);
-    if spec.contains('+') || !path.is_file() {
-        return Err(refusal);
-    }
-    let Ok(mesh) = dymsum_io::formats::read_mesh(path) else {
+    let Some(mesh) = mesh_file(spec) else {
         return Err(refusal);
     };
-    if mesh.faces.is_empty() {
-        return Err(refusal);
-    }
     let d = decomposition.map_or(Decomposition::Components, Decomposition::from);
     match convex_pieces(&mesh, d) {
         Ok((pieces, info)) => Ok(Solid { pieces, info }),
@@ -150,6 +146,126 @@ pub fn load_pieces(
         );
     }
     Ok(solid.pieces)
+}
+
+/// The mesh of operand `spec` when it is one mesh file with faces (not a
+/// union joined with `+`, a model name, standard input or a point cloud).
+fn mesh_file(spec: &str) -> Option<PolygonMesh> {
+    let path = Path::new(spec);
+    if spec.contains('+') || !path.is_file() {
+        return None;
+    }
+    let mesh = dymsum_io::formats::read_mesh(path).ok()?;
+    (!mesh.faces.is_empty()).then_some(mesh)
+}
+
+/// Loads operand `spec` for the contact checks (`query`, `motion`): as
+/// convex pieces when it is some ([`load_pieces`]: a convex body, a union,
+/// a mesh of exactly convex shells, or the decomposition asked for with
+/// `decomposition`); otherwise, when it is one mesh file, as triangles of
+/// any topology, cleaned exactly ([`MeshBody::new`]: open, double-sided,
+/// non-manifold, non-convex, several components, each a solid or a
+/// surface), announced on standard error with what the cleaning did
+/// ([`describe_triangles`]). Nothing is approximated that the user did not
+/// ask for: with `decomposition` a mesh is taken apart or refused as
+/// before, never taken as triangles.
+///
+/// # Errors
+/// Those of [`load_pieces`] when the operand is not one mesh file, a
+/// decomposition was asked for, or the mesh has no triangles left to take
+/// (every face of zero area, a coordinate that is not finite).
+pub fn load_contact_body(spec: &str, operand: &str, options: BodyOptions) -> anyhow::Result<Body> {
+    let refusal = match load_pieces(spec, operand, options.strict, options.decomposition) {
+        Ok(pieces) => {
+            return ConvexUnion::new(pieces)
+                .map(Body::Convex)
+                .ok_or_else(|| anyhow!("{operand} has no pieces"))
+        }
+        Err(e) => e,
+    };
+    if options.decomposition.is_some() {
+        return Err(refusal);
+    }
+    let Some(mesh) = mesh_file(spec) else {
+        return Err(refusal);
+    };
+    let Ok(body) = MeshBody::new(&mesh) else {
+        return Err(refusal);
+    };
+    let (name, what) = (short_name(spec), describe_triangles(&body.report()));
+    if body.as_convex().is_some() {
+        eprintln!(
+            "note: {operand} ({name}) cleaned as triangles ({what}): exactly convex, taken as \
+             one convex piece"
+        );
+    } else {
+        eprintln!("note: {operand} ({name}) taken as triangles ({what})");
+    }
+    Ok(Body::Mesh(body))
+}
+
+/// `1 vertex`, `2 vertices`.
+fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// What a body of triangles is made of: `2 surfaces, 1 solid`.
+pub fn triangle_components(r: &MeshReport) -> String {
+    let mut parts = Vec::new();
+    if r.surfaces > 0 {
+        parts.push(count(r.surfaces, "surface", "surfaces"));
+    }
+    if r.solids > 0 {
+        parts.push(count(r.solids, "solid", "solids"));
+    }
+    parts.join(", ")
+}
+
+/// What a body of triangles is and what cleaning it did, for the note on
+/// standard error: `1 surface, 10 triangles; 10 back-to-back triangles
+/// dropped, 8 vertices merged` (or `; nothing to clean`).
+pub fn describe_triangles(r: &MeshReport) -> String {
+    let mut done = Vec::new();
+    for (n, what) in [
+        (r.dropped_back_to_back, "back-to-back"),
+        (r.dropped_duplicates, "duplicate"),
+        (r.dropped_zero_area, "zero-area"),
+    ] {
+        if n > 0 {
+            let triangles = count(n, &format!("{what} triangle"), &format!("{what} triangles"));
+            done.push(format!("{triangles} dropped"));
+        }
+    }
+    if r.merged_vertices > 0 {
+        done.push(format!(
+            "{} merged",
+            count(r.merged_vertices, "vertex", "vertices")
+        ));
+    }
+    if r.flipped > 0 {
+        done.push(format!(
+            "{} turned outward",
+            count(r.flipped, "triangle", "triangles")
+        ));
+    }
+    if done.is_empty() {
+        done.push("nothing to clean".to_string());
+    }
+    format!(
+        "{}, {}; {}",
+        triangle_components(r),
+        count(r.triangles, "triangle", "triangles"),
+        done.join(", ")
+    )
+}
+
+/// The convex pieces of a contact body ([`load_contact_body`]), or `None`
+/// for triangles (a mesh that is one exactly convex solid is its polytope).
+pub fn body_pieces(body: &Body) -> Option<Vec<Polytope>> {
+    match body {
+        Body::Convex(u) => Some(u.pieces().to_vec()),
+        Body::Mesh(m) => m.as_convex().map(|p| vec![p.clone()]),
+    }
 }
 
 /// How an operand's pieces were obtained, for the summary line: `as
