@@ -7,12 +7,15 @@
 //!   sees the same poses.
 //! * [`random_rotation`]: one seeded, uniformly random orientation.
 //! * [`contact`]: the contact-tracking workload and its parry3d-f64 twin.
+//! * [`scenes`]: triangle-mesh scenes (OMPL.app's problems or a built-in
+//!   room) for dymsum's scene checker and parry's BVH mesh–mesh test.
 //! * [`collect_results`] / [`markdown_report`]: read
 //!   `target/criterion/**/new/{benchmark,estimates}.json` and print tables.
 #![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 
 pub mod contact;
 pub mod motion;
+pub mod scenes;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

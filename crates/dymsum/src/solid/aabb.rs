@@ -64,6 +64,25 @@ impl Aabb {
         (0..3).all(|k| self.lo[k] - slack <= o.hi[k] && o.lo[k] - slack <= self.hi[k])
     }
 
+    /// A box holding the image of this one under `x ↦ m x + t`, grown by
+    /// `pad` on every side (the caller's bound on the rounding of the
+    /// centre's image and of the posed points themselves).
+    #[inline]
+    pub fn transformed(&self, m: &glam::DMat3, t: glam::DVec3, pad: f64) -> Aabb {
+        let (lo, hi) = (glam::DVec3::from(self.lo), glam::DVec3::from(self.hi));
+        let (c, h) = (0.5 * lo + 0.5 * hi, 0.5 * hi - 0.5 * lo);
+        let c2 = *m * c + t;
+        let h2 = glam::DVec3::new(
+            m.row(0).abs().dot(h),
+            m.row(1).abs().dot(h),
+            m.row(2).abs().dot(h),
+        ) + glam::DVec3::splat(pad);
+        Aabb {
+            lo: (c2 - h2).to_array(),
+            hi: (c2 + h2).to_array(),
+        }
+    }
+
     /// Whether the closed box holds `p`.
     #[inline]
     pub fn holds(&self, p: [f64; 3]) -> bool {
@@ -73,7 +92,7 @@ impl Aabb {
     /// Half the length of the longest side (for choosing which tree to
     /// descend).
     #[inline]
-    fn size(&self) -> f64 {
+    pub fn size(&self) -> f64 {
         (0..3).map(|k| self.hi[k] - self.lo[k]).fold(0.0, f64::max)
     }
 
@@ -81,6 +100,108 @@ impl Aabb {
         // Halves first: no overflow near f64::MAX.
         0.5 * self.lo[k] + 0.5 * self.hi[k]
     }
+}
+
+/// The bins of the surface-area split.
+const BINS: usize = 16;
+
+/// Half the surface area of a box (the chance a random ray or box meets
+/// it grows with it).
+fn half_area(b: &Aabb) -> f64 {
+    let d: [f64; 3] = std::array::from_fn(|k| (b.hi[k] - b.lo[k]).max(0.0));
+    d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
+}
+
+/// The best bin boundary on axis `k`: `(cost, last bin of the left side,
+/// lowest centre, bins per unit)`, or `None` when every centre coincides
+/// on this axis.
+fn best_split_on(items: &[u32], boxes: &[Aabb], k: usize) -> Option<(f64, usize, f64, f64)> {
+    let n = items.len();
+    let (lo, hi) = items
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &i| {
+            let c = boxes[i as usize].centre(k);
+            (l.min(c), h.max(c))
+        });
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let scale = BINS as f64 / (hi - lo);
+    let mut count = [0usize; BINS];
+    let mut bound = [Aabb::EMPTY; BINS];
+    for &i in items {
+        let b = bin_of(boxes[i as usize].centre(k), lo, scale);
+        count[b] += 1;
+        bound[b] = bound[b].join(&boxes[i as usize]);
+    }
+    // Right sides' costs from the right, then the left sides from the left.
+    let mut right_cost = [0.0f64; BINS];
+    let (mut acc, mut c) = (Aabb::EMPTY, 0usize);
+    for b in (1..BINS).rev() {
+        acc = acc.join(&bound[b]);
+        c += count[b];
+        right_cost[b] = c as f64 * half_area(&acc);
+    }
+    let (mut acc, mut c) = (Aabb::EMPTY, 0usize);
+    let mut best: Option<(f64, usize, f64, f64)> = None;
+    for b in 0..BINS - 1 {
+        acc = acc.join(&bound[b]);
+        c += count[b];
+        if c == 0 || c == n {
+            continue;
+        }
+        let cost = c as f64 * half_area(&acc) + right_cost[b + 1];
+        if best.is_none_or(|x| cost < x.0) {
+            best = Some((cost, b, lo, scale));
+        }
+    }
+    best
+}
+
+/// The bin of centre `x`.
+fn bin_of(x: f64, lo: f64, scale: f64) -> usize {
+    (((x - lo) * scale) as usize).min(BINS - 1)
+}
+
+/// Reorders `items` so that `items[..mid]` and `items[mid..]` are the two
+/// children, and returns `mid` (strictly inside): the binned surface-area
+/// heuristic over the box centres on each axis (the split minimising
+/// `count · area` summed over both sides), or the median of the widest
+/// axis when every centre coincides. Any split is correct; this one makes
+/// the boxes of a node overlap less, so fewer pairs are visited.
+fn split_by_area(items: &mut [u32], boxes: &[Aabb]) -> usize {
+    let n = items.len();
+    let best = (0..3)
+        .filter_map(|k| best_split_on(items, boxes, k).map(|b| (k, b)))
+        .min_by(|x, y| x.1 .0.total_cmp(&y.1 .0));
+    if let Some((k, (_, last, lo, scale))) = best {
+        let mut mid = 0;
+        for j in 0..n {
+            if bin_of(boxes[items[j] as usize].centre(k), lo, scale) <= last {
+                items.swap(mid, j);
+                mid += 1;
+            }
+        }
+        if mid > 0 && mid < n {
+            return mid;
+        }
+    }
+    let bound = items
+        .iter()
+        .fold(Aabb::EMPTY, |b, &i| b.join(&boxes[i as usize]));
+    let axis = (0..3)
+        .max_by(|&a, &b| {
+            let w = |k: usize| bound.hi[k] - bound.lo[k];
+            w(a).total_cmp(&w(b))
+        })
+        .unwrap_or(0);
+    let mid = n / 2;
+    items.select_nth_unstable_by(mid, |&a, &b| {
+        boxes[a as usize]
+            .centre(axis)
+            .total_cmp(&boxes[b as usize].centre(axis))
+    });
+    mid
 }
 
 /// At most this many items per leaf.
@@ -140,18 +261,7 @@ impl AabbTree {
             });
             return id;
         }
-        let axis = (0..3)
-            .max_by(|&a, &b| {
-                let w = |k: usize| bound.hi[k] - bound.lo[k];
-                w(a).total_cmp(&w(b))
-            })
-            .unwrap_or(0);
-        let mid = (end - start) / 2;
-        items.select_nth_unstable_by(mid, |&a, &b| {
-            boxes[a as usize]
-                .centre(axis)
-                .total_cmp(&boxes[b as usize].centre(axis))
-        });
+        let mid = split_by_area(items, boxes);
         self.nodes.push(Node::Leaf { start: 0, end: 0 });
         let left = self.build(boxes, start, start + mid);
         let right = self.build(boxes, start + mid, end);
@@ -206,6 +316,36 @@ impl AabbTree {
         other_bounds: &[Aabb],
         slack: f64,
         stack: &mut Vec<(u32, u32)>,
+        f: impl FnMut(usize, usize) -> bool,
+    ) -> bool {
+        self.for_each_pair_with(
+            |n, o| bounds[n].within(o, slack),
+            |n| bounds[n].size(),
+            |i, o| boxes[i].within(o, slack),
+            other,
+            other_boxes,
+            other_bounds,
+            stack,
+            f,
+        )
+    }
+
+    /// [`AabbTree::for_each_pair`] with this tree's tests given by
+    /// functions: `node_meets(n, b)` and `item_meets(i, b)` say whether node
+    /// `n` or item `i` may come within reach of the other tree's box `b`
+    /// (`false` must prove it does not; e.g. the body-frame bounds carried
+    /// to a pose, computed only for the nodes visited), `node_size(n)`
+    /// which tree to descend first.
+    #[allow(clippy::too_many_arguments)]
+    pub fn for_each_pair_with(
+        &self,
+        node_meets: impl Fn(usize, &Aabb) -> bool,
+        node_size: impl Fn(usize) -> f64,
+        item_meets: impl Fn(usize, &Aabb) -> bool,
+        other: &AabbTree,
+        other_boxes: &[Aabb],
+        other_bounds: &[Aabb],
+        stack: &mut Vec<(u32, u32)>,
         mut f: impl FnMut(usize, usize) -> bool,
     ) -> bool {
         if self.nodes.is_empty() || other.nodes.is_empty() {
@@ -214,19 +354,18 @@ impl AabbTree {
         stack.clear();
         stack.push((0, 0));
         while let Some((a, b)) = stack.pop() {
-            let (ba, bb) = (&bounds[a as usize], &other_bounds[b as usize]);
-            if !ba.within(bb, slack) {
+            let bb = &other_bounds[b as usize];
+            if !node_meets(a as usize, bb) {
                 continue;
             }
             match (&self.nodes[a as usize], &other.nodes[b as usize]) {
                 (Node::Leaf { start, end }, Node::Leaf { start: s2, end: e2 }) => {
                     for &i in &self.items[*start as usize..*end as usize] {
-                        let bi = &boxes[i as usize];
-                        if !bi.within(bb, slack) {
+                        if !item_meets(i as usize, bb) {
                             continue;
                         }
                         for &j in &other.items[*s2 as usize..*e2 as usize] {
-                            if bi.within(&other_boxes[j as usize], slack)
+                            if item_meets(i as usize, &other_boxes[j as usize])
                                 && f(i as usize, j as usize)
                             {
                                 return true;
@@ -249,7 +388,7 @@ impl AabbTree {
                         right: r2,
                     },
                 ) => {
-                    if ba.size() >= bb.size() {
+                    if node_size(a as usize) >= bb.size() {
                         stack.push((*right, b));
                         stack.push((*left, b));
                     } else {

@@ -70,6 +70,13 @@ pub struct MeshBody {
     /// Each component's kind and one of its vertices.
     pub(crate) components: Vec<(ComponentKind, u32)>,
     pub(crate) tree: AabbTree,
+    /// Each component's box (body frame).
+    pub(crate) component_boxes: Vec<Aabb>,
+    /// The solid components (their indices).
+    pub(crate) solid_components: Vec<u32>,
+    /// A tree over the solid components' boxes (item `k` is
+    /// `solid_components[k]`).
+    solid_tree: AabbTree,
     /// The largest vertex norm (rounded up): how far a point of the body
     /// lies from its origin.
     pub(crate) reach: f64,
@@ -211,6 +218,19 @@ impl MeshBody {
     ) -> MeshBody {
         let boxes = triangle_boxes(&vertices, &triangles);
         let tree = AabbTree::new(&boxes);
+        let mut component_boxes = vec![Aabb::EMPTY; components.len()];
+        for (t, b) in boxes.iter().enumerate() {
+            let c = component_of[t] as usize;
+            component_boxes[c] = component_boxes[c].join(b);
+        }
+        let solid_components: Vec<u32> = (0..components.len() as u32)
+            .filter(|&c| components[c as usize].0 == ComponentKind::Solid)
+            .collect();
+        let solid_boxes: Vec<Aabb> = solid_components
+            .iter()
+            .map(|&c| component_boxes[c as usize])
+            .collect();
+        let solid_tree = AabbTree::new(&solid_boxes);
         let reach =
             vertices.iter().map(|v| v.length()).fold(0.0, f64::max) * (1.0 + 1e-12) + 1e-300;
         MeshBody {
@@ -219,10 +239,39 @@ impl MeshBody {
             component_of,
             components,
             tree,
+            component_boxes,
+            solid_components,
+            solid_tree,
             reach,
             report,
             convex: None,
         }
+    }
+
+    /// Whether `p` (in the body's frame, on none of its triangles) lies
+    /// inside one of its solid components, exactly ([`super::inside`]).
+    /// `parity` is a scratch buffer.
+    pub(crate) fn inside_solid(
+        &self,
+        p: DVec3,
+        parity: &mut Vec<u8>,
+    ) -> Result<bool, crate::query::error::QueryError> {
+        let mut candidates = Vec::new();
+        let at = p.to_array();
+        self.solid_tree
+            .for_each_meeting(&Aabb { lo: at, hi: at }, |k| {
+                candidates.push(self.solid_components[k])
+            });
+        super::inside::inside_solid(
+            self,
+            &self.vertices,
+            self.tree.boxes(),
+            self.tree.bounds(),
+            &self.component_boxes,
+            &candidates,
+            p,
+            parity,
+        )
     }
 
     /// What cleaning changed and what the components are.

@@ -72,13 +72,23 @@ use crate::solid::intersect::triangles_meet;
 /// The buffers of one query (kept between queries by the checker).
 #[derive(Default)]
 struct Scratch {
+    /// Body vertices posed on demand: `lazy[v]` is current when
+    /// `stamp[v] == epoch`.
+    lazy: Vec<DVec3>,
+    stamp: Vec<u32>,
+    epoch: u32,
     posed: Vec<DVec3>,
+    /// The body's node bounds at the pose (carried from its frame), each
+    /// computed once per query: current when the stamp is `epoch`.
+    node_world: Vec<std::cell::Cell<(u32, Aabb)>>,
+    /// The body's component boxes at a pose.
+    component_boxes: Vec<Aabb>,
     /// The body's vertices at an interval's far end.
     posed_b: Vec<DVec3>,
     boxes: Vec<Aabb>,
     bounds: Vec<Aabb>,
     stack: Vec<(u32, u32)>,
-    parity: Vec<bool>,
+    parity: Vec<u8>,
     intervals: Vec<(f64, f64)>,
     /// The pair that last kept an interval from being certified (tried
     /// first next time).
@@ -234,8 +244,88 @@ impl SceneChecker {
     }
 
     fn collides_with(&self, pose: Pose, s: &mut Scratch) -> Result<bool, QueryError> {
-        self.pose_body(pose, s)?;
-        Ok(self.surfaces_meet(s) || self.one_inside_the_other(s)?)
+        // Every posed coordinate is at most |t| + reach in size: finite
+        // when that is, else find the vertex that is not.
+        let size = self.body.reach + pose.translation.abs().max_element();
+        if size.is_nan() || size >= 1e300 {
+            self.pose_into(pose, &mut s.posed)?;
+        }
+        s.epoch = s.epoch.wrapping_add(1);
+        if s.epoch == 0 || s.stamp.len() != self.body.vertices.len() {
+            s.stamp.clear();
+            s.stamp.resize(self.body.vertices.len(), 0);
+            s.lazy.resize(self.body.vertices.len(), DVec3::ZERO);
+            s.epoch = 1;
+        }
+        Ok(self.surfaces_meet_lazily(pose, s) || self.one_inside_the_other(pose, s)?)
+    }
+
+    /// Body vertex `v` at `pose`, posed once per query.
+    #[inline]
+    fn lazy_vertex(&self, s: &mut Scratch, pose: &Pose, v: u32) -> DVec3 {
+        let v = v as usize;
+        if s.stamp[v] != s.epoch {
+            s.stamp[v] = s.epoch;
+            s.lazy[v] = pose.apply(self.body.vertices[v]);
+        }
+        s.lazy[v]
+    }
+
+    /// Whether some body triangle at `pose` meets some scene triangle: the
+    /// body's tree is walked with its body-frame boxes carried to the pose
+    /// (each grown by a bound on the rounding of the points it holds, so
+    /// no touching pair is dropped), and only the corners of the triangles
+    /// reached are posed.
+    fn surfaces_meet_lazily(&self, pose: Pose, s: &mut Scratch) -> bool {
+        let m = pose.rotation.matrix();
+        let t = pose.translation;
+        let size = self.body.reach + t.abs().max_element();
+        let pad = 64.0 * f64::EPSILON * size;
+        // The scene's boxes carried back into the body's frame: `Mᵀ` undoes
+        // `M` up to its distance from a rotation (at most 2⁻⁴⁷ an entry
+        // after snapping), far inside `2⁻⁴⁰` of the sizes involved.
+        let (mi, ti) = (m.transpose(), -(m.transpose() * t));
+        let back_pad = size * (1.0 / (1u64 << 40) as f64);
+        let (bounds, boxes) = (self.body.tree.bounds(), self.body.tree.boxes());
+        // Nodes are compared in the world; a pair of triangles is kept only
+        // when their boxes meet both in the world and in the body's frame
+        // (the six face axes of a separating-axis test).
+        let meets = |own: &Aabb, other: &Aabb| {
+            own.transformed(&m, t, pad).within(other, 0.0)
+                && other.transformed(&mi, ti, back_pad).within(own, 0.0)
+        };
+        let mut cache = std::mem::take(&mut s.node_world);
+        if cache.len() != bounds.len() {
+            cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); bounds.len()];
+        }
+        let epoch = s.epoch;
+        let world = |n: usize| {
+            let (stamp, b) = cache[n].get();
+            if stamp == epoch {
+                return b;
+            }
+            let b = bounds[n].transformed(&m, t, pad);
+            cache[n].set((epoch, b));
+            b
+        };
+        let scene = &self.scene.tree;
+        let mut stack = std::mem::take(&mut s.stack);
+        let hit = self.body.tree.for_each_pair_with(
+            |n, o| world(n).within(o, 0.0),
+            |n| bounds[n].size(),
+            |i, o| meets(&boxes[i], o),
+            scene,
+            scene.boxes(),
+            scene.bounds(),
+            &mut stack,
+            |i, j| {
+                let tri = self.body.triangles[i].map(|v| self.lazy_vertex(s, &pose, v));
+                triangles_meet(&tri, &self.scene_triangle(j))
+            },
+        );
+        s.stack = stack;
+        s.node_world = cache;
+        hit
     }
 
     /// The posed vertices, triangle boxes and tree bounds of the body.
@@ -258,76 +348,79 @@ impl SceneChecker {
         }
     }
 
-    fn body_triangle(&self, s: &Scratch, i: usize) -> [DVec3; 3] {
-        self.body.triangles[i].map(|v| s.posed[v as usize])
-    }
-
     fn scene_triangle(&self, j: usize) -> [DVec3; 3] {
         self.scene.triangles[j].map(|v| self.scene.vertices[v as usize])
     }
 
-    /// Some posed body triangle meets some scene triangle.
-    fn surfaces_meet(&self, s: &mut Scratch) -> bool {
-        let tree = &self.scene.tree;
-        let mut stack = std::mem::take(&mut s.stack);
-        let hit = self.body.tree.for_each_pair(
-            &s.boxes,
-            &s.bounds,
-            tree,
-            tree.boxes(),
-            tree.bounds(),
-            0.0,
-            &mut stack,
-            |i, j| triangles_meet(&self.body_triangle(s, i), &self.scene_triangle(j)),
-        );
-        s.stack = stack;
-        hit
-    }
-
     /// A body component inside a scene solid, or a scene component inside
     /// a body solid (when no triangles meet; module docs).
-    fn one_inside_the_other(&self, s: &mut Scratch) -> Result<bool, QueryError> {
-        let scene_tree = &self.scene.tree;
+    fn one_inside_the_other(&self, pose: Pose, s: &mut Scratch) -> Result<bool, QueryError> {
         let mut parity = std::mem::take(&mut s.parity);
-        let mut out = Ok(false);
-        if self.scene.report().solids > 0 {
-            for &(_, v) in &self.body.components {
-                let p = s.posed[v as usize];
-                match inside_solid(
-                    &self.scene,
-                    &self.scene.vertices,
-                    scene_tree.boxes(),
-                    scene_tree.bounds(),
-                    p,
-                    &mut parity,
-                ) {
-                    Ok(false) => {}
-                    other => {
-                        out = other;
-                        break;
-                    }
-                }
-            }
-        }
-        if matches!(out, Ok(false)) && self.body.report().solids > 0 {
-            // The scene components with a corner inside the body's box.
-            let root = s.bounds[0];
-            let mut candidates = Vec::new();
-            self.scene_corners
-                .for_each_meeting(&root, |k| candidates.push(k));
-            for k in candidates {
-                let p = self.scene.vertices[self.scene.components[k].1 as usize];
-                match inside_solid(&self.body, &s.posed, &s.boxes, &s.bounds, p, &mut parity) {
-                    Ok(false) => {}
-                    other => {
-                        out = other;
-                        break;
-                    }
-                }
-            }
-        }
+        let out = self.inside_either(pose, s, &mut parity);
         s.parity = parity;
         out
+    }
+
+    fn inside_either(
+        &self,
+        pose: Pose,
+        s: &mut Scratch,
+        parity: &mut Vec<u8>,
+    ) -> Result<bool, QueryError> {
+        if !self.scene.solid_components.is_empty() {
+            for &(_, v) in &self.body.components {
+                let p = self.lazy_vertex(s, &pose, v);
+                if self.scene.inside_solid(p, parity)? {
+                    return Ok(true);
+                }
+            }
+        }
+        if self.body.solid_components.is_empty() {
+            return Ok(false);
+        }
+        // The scene components with a corner in the body's box at the pose.
+        let m = pose.rotation.matrix();
+        let pad = 64.0 * f64::EPSILON * (self.body.reach + pose.translation.abs().max_element());
+        let reach = self.body.tree.root().transformed(&m, pose.translation, pad);
+        let mut corners = Vec::new();
+        self.scene_corners
+            .for_each_meeting(&reach, |k| corners.push(k));
+        if corners.is_empty() {
+            return Ok(false);
+        }
+        // Pose the whole body once: its triangle, node and component boxes.
+        self.pose_body(pose, s)?;
+        s.component_boxes.clear();
+        s.component_boxes
+            .resize(self.body.components.len(), Aabb::EMPTY);
+        for (t, b) in s.boxes.iter().enumerate() {
+            let c = self.body.component_of[t] as usize;
+            s.component_boxes[c] = s.component_boxes[c].join(b);
+        }
+        let mut candidates = Vec::new();
+        for k in corners {
+            let p = self.scene.vertices[self.scene.components[k].1 as usize];
+            candidates.clear();
+            candidates.extend(
+                self.body
+                    .solid_components
+                    .iter()
+                    .filter(|&&c| s.component_boxes[c as usize].holds(p.to_array())),
+            );
+            if inside_solid(
+                &self.body,
+                &s.posed,
+                &s.boxes,
+                &s.bounds,
+                &s.component_boxes,
+                &candidates,
+                p,
+                parity,
+            )? {
+                return Ok(true);
+            }
+        }
+        Ok(false)
     }
 
     /// The twelve points of body triangle `i`'s swept hull (module docs):

@@ -27,7 +27,6 @@ use super::body::MeshBody;
 use crate::kernel::predicates::{orient, Sign};
 use crate::query::error::QueryError;
 use crate::solid::aabb::Aabb;
-use crate::solid::soup::ComponentKind;
 
 /// The ray directions, tried in turn: nearly along each axis (thin ray
 /// boxes for the tree), skewed by irrational-looking amounts so that
@@ -78,65 +77,91 @@ fn crossing(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Crossing {
     }
 }
 
-/// Whether `p` lies inside a solid component of `body`, whose vertices are
-/// `vertices` (posed) and whose tree's bounds are `bounds` over triangle
-/// boxes `boxes` (module docs; `p` on no triangle of the body).
-/// `parity` is a scratch buffer.
+/// Whether `p` lies inside one of the solid components `candidates` of
+/// `body` (those whose box, `component_boxes[c]`, holds `p`; the others
+/// cannot contain it), whose vertices are `vertices` (posed) and whose
+/// tree's bounds are `bounds` over triangle boxes `boxes` (module docs; `p`
+/// on no triangle of the body). The ray leaves the candidates' joint box
+/// the shortest way first. `parity` is a scratch buffer (all zero between
+/// calls).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn inside_solid(
     body: &MeshBody,
     vertices: &[DVec3],
     boxes: &[Aabb],
     bounds: &[Aabb],
+    component_boxes: &[Aabb],
+    candidates: &[u32],
     p: DVec3,
-    parity: &mut Vec<bool>,
+    parity: &mut Vec<u8>,
 ) -> Result<bool, QueryError> {
-    let Some(&root) = bounds.first() else {
-        return Ok(false);
-    };
-    if !root.holds(p.to_array()) {
+    if candidates.is_empty() {
         return Ok(false);
     }
+    let joint = candidates
+        .iter()
+        .fold(Aabb::EMPTY, |b, &c| b.join(&component_boxes[c as usize]));
     let span = (0..3)
-        .map(|k| (root.hi[k] - root.lo[k]).max((p[k] - root.lo[k]).abs()))
+        .map(|k| joint.hi[k] - joint.lo[k])
         .fold(0.0, f64::max);
-    let length = 4.0 * span + 1.0;
-    'directions: for d in DIRECTIONS {
-        let q = p + DVec3::from(d) * length;
-        if root.holds(q.to_array()) {
-            continue; // not far enough (only at the limits of f64)
+    // The distance to leave the joint box along each direction's main axis.
+    let exit = |d: &[f64; 3]| {
+        let k = (0..3)
+            .max_by(|&i, &j| d[i].abs().total_cmp(&d[j].abs()))
+            .unwrap_or(0);
+        if d[k] > 0.0 {
+            joint.hi[k] - p[k]
+        } else {
+            p[k] - joint.lo[k]
         }
-        let ray = Aabb {
-            lo: p.min(q).to_array(),
-            hi: p.max(q).to_array(),
-        };
-        parity.clear();
-        parity.resize(body.components.len(), false);
-        let mut degenerate = false;
-        body.tree.for_each_meeting_in(boxes, bounds, &ray, |t| {
-            if degenerate {
-                return;
-            }
-            let c = body.component_of[t] as usize;
-            if body.components[c].0 != ComponentKind::Solid {
-                return;
-            }
-            let tri = body.triangles[t].map(|v| vertices[v as usize]);
-            match crossing(p, q, tri) {
-                Crossing::Crosses => parity[c] = !parity[c],
-                Crossing::Misses => {}
-                Crossing::Degenerate => degenerate = true,
-            }
-        });
-        if degenerate {
-            continue 'directions;
-        }
-        return Ok(parity.iter().any(|&odd| odd));
+    };
+    let mut order = DIRECTIONS;
+    order.sort_by(|a, b| exit(a).total_cmp(&exit(b)));
+    if parity.len() < body.components.len() {
+        parity.resize(body.components.len(), 0);
     }
-    Err(QueryError::OutOfRange(format!(
-        "whether the point {:?} lies inside a solid could not be decided: every ray from it \
-         passes through an edge or lies in a face's plane",
-        p.to_array()
-    )))
+    let out = 'directions: {
+        for d in order {
+            let length = 2.0 * (exit(&d) + span * 0.002) + 1e-300;
+            let q = p + DVec3::from(d) * length;
+            if joint.holds(q.to_array()) {
+                continue; // not far enough (only at the limits of f64)
+            }
+            let ray = Aabb {
+                lo: p.min(q).to_array(),
+                hi: p.max(q).to_array(),
+            };
+            for &c in candidates {
+                parity[c as usize] = 1;
+            }
+            let mut degenerate = false;
+            body.tree.for_each_meeting_in(boxes, bounds, &ray, |t| {
+                let c = body.component_of[t] as usize;
+                if degenerate || parity[c] == 0 {
+                    return;
+                }
+                let tri = body.triangles[t].map(|v| vertices[v as usize]);
+                match crossing(p, q, tri) {
+                    Crossing::Crosses => parity[c] ^= 3, // 1 <-> 2
+                    Crossing::Misses => {}
+                    Crossing::Degenerate => degenerate = true,
+                }
+            });
+            let odd = candidates.iter().any(|&c| parity[c as usize] == 2);
+            for &c in candidates {
+                parity[c as usize] = 0;
+            }
+            if !degenerate {
+                break 'directions Ok(odd);
+            }
+        }
+        Err(QueryError::OutOfRange(format!(
+            "whether the point {:?} lies inside a solid could not be decided: every ray from \
+             it passes through an edge or lies in a face's plane",
+            p.to_array()
+        )))
+    };
+    out
 }
 
 #[cfg(test)]
@@ -163,17 +188,7 @@ mod tests {
     }
 
     fn inside(body: &MeshBody, p: [f64; 3]) -> bool {
-        let boxes = body.tree.boxes().to_vec();
-        let bounds = body.tree.bounds().to_vec();
-        inside_solid(
-            body,
-            &body.vertices,
-            &boxes,
-            &bounds,
-            p.into(),
-            &mut Vec::new(),
-        )
-        .unwrap()
+        body.inside_solid(p.into(), &mut Vec::new()).unwrap()
     }
 
     #[test]

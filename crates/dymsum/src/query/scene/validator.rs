@@ -16,6 +16,7 @@ use crate::solid::SolidError;
 /// A body for collision and motion checks: convex pieces, or triangles of
 /// any topology.
 #[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)] // one per body, built once: a box gains nothing
 pub enum Body {
     /// A union of convex pieces (the fast path).
     Convex(ConvexUnion),
@@ -88,6 +89,7 @@ impl From<MeshBody> for Body {
 /// the triangle checker with the convex pieces as solid components (the
 /// same contact semantics).
 #[derive(Debug)]
+#[allow(clippy::large_enum_variant)] // one per checker, built once
 pub enum Validator {
     /// Every body convex pieces.
     Convex(MotionChecker),
