@@ -300,44 +300,16 @@ impl AabbTree {
         self.bounds.first().copied().unwrap_or(Aabb::EMPTY)
     }
 
-    /// Walks this tree (item boxes `boxes`, node bounds `bounds`, as from
-    /// [`AabbTree::refit`]) against `other` (with its own), calling `f(i,
-    /// j)` for every pair of items whose boxes come within `slack`
-    /// ([`Aabb::within`]) until `f` returns `true`; returns whether it did.
-    /// No pair within `slack` is skipped: a node pair is dropped only when
-    /// its bounds are farther apart than `slack`.
+    /// Walks this tree against `other`, calling `f(i, j)` for every pair of
+    /// items that may come within reach of each other until `f` returns
+    /// `true`; returns whether it did. This tree's tests are functions:
+    /// `node_meets(n, b)` and `item_meets(i, b)` say whether node `n` or
+    /// item `i` may come within reach of the other tree's box `b` (`false`
+    /// must prove it does not; e.g. the body-frame bounds carried to a
+    /// pose, computed only for the nodes visited), `node_size(n)` which
+    /// tree to descend first; `other`'s boxes and bounds are given.
     #[allow(clippy::too_many_arguments)]
     pub fn for_each_pair(
-        &self,
-        boxes: &[Aabb],
-        bounds: &[Aabb],
-        other: &AabbTree,
-        other_boxes: &[Aabb],
-        other_bounds: &[Aabb],
-        slack: f64,
-        stack: &mut Vec<(u32, u32)>,
-        f: impl FnMut(usize, usize) -> bool,
-    ) -> bool {
-        self.for_each_pair_with(
-            |n, o| bounds[n].within(o, slack),
-            |n| bounds[n].size(),
-            |i, o| boxes[i].within(o, slack),
-            other,
-            other_boxes,
-            other_bounds,
-            stack,
-            f,
-        )
-    }
-
-    /// [`AabbTree::for_each_pair`] with this tree's tests given by
-    /// functions: `node_meets(n, b)` and `item_meets(i, b)` say whether node
-    /// `n` or item `i` may come within reach of the other tree's box `b`
-    /// (`false` must prove it does not; e.g. the body-frame bounds carried
-    /// to a pose, computed only for the nodes visited), `node_size(n)`
-    /// which tree to descend first.
-    #[allow(clippy::too_many_arguments)]
-    pub fn for_each_pair_with(
         &self,
         node_meets: impl Fn(usize, &Aabb) -> bool,
         node_size: impl Fn(usize) -> f64,

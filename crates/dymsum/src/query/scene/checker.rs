@@ -69,22 +69,77 @@ use crate::query::motion::{
 use crate::solid::aabb::{Aabb, AabbTree};
 use crate::solid::intersect::triangles_meet;
 
+/// Body vertices posed on demand, each once per query: `pts[v]` is
+/// current when `stamp[v] == epoch`.
+#[derive(Default)]
+struct Lazy {
+    pts: Vec<DVec3>,
+    stamp: Vec<u32>,
+    epoch: u32,
+}
+
+impl Lazy {
+    /// A new query over `n` vertices.
+    fn start(&mut self, n: usize) {
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 || self.stamp.len() != n {
+            self.stamp.clear();
+            self.stamp.resize(n, 0);
+            self.pts.resize(n, DVec3::ZERO);
+            self.epoch = 1;
+        }
+    }
+
+    /// Vertex `v` of `vertices` at `pose`.
+    #[inline]
+    fn get(&mut self, vertices: &[DVec3], pose: &Pose, v: u32) -> DVec3 {
+        let v = v as usize;
+        if self.stamp[v] != self.epoch {
+            self.stamp[v] = self.epoch;
+            self.pts[v] = pose.apply(vertices[v]);
+        }
+        self.pts[v]
+    }
+}
+
+/// Node bounds computed on demand, each once per query (stamped with the
+/// query's epoch).
+type NodeCache = Vec<std::cell::Cell<(u32, Aabb)>>;
+
+/// The value of node `n` from the cache, or computed and kept.
+#[inline]
+fn cached(cache: &NodeCache, epoch: u32, n: usize, compute: impl Fn() -> Aabb) -> Aabb {
+    let (stamp, b) = cache[n].get();
+    if stamp == epoch {
+        return b;
+    }
+    let b = compute();
+    cache[n].set((epoch, b));
+    b
+}
+
+/// A box moved by `shift` (monotone rounding: it holds the moved points
+/// as computed).
+#[inline]
+fn shifted(b: &Aabb, shift: DVec3) -> Aabb {
+    Aabb {
+        lo: (DVec3::from(b.lo) + shift).to_array(),
+        hi: (DVec3::from(b.hi) + shift).to_array(),
+    }
+}
+
 /// The buffers of one query (kept between queries by the checker).
 #[derive(Default)]
 struct Scratch {
-    /// Body vertices posed on demand: `lazy[v]` is current when
-    /// `stamp[v] == epoch`.
-    lazy: Vec<DVec3>,
-    stamp: Vec<u32>,
-    epoch: u32,
+    /// The body's vertices at the pose (at an interval's start).
+    at: Lazy,
+    /// The body's vertices at an interval's end.
+    at_b: Lazy,
+    /// The body's node bounds at the pose, or swept over an interval.
+    node_cache: NodeCache,
     posed: Vec<DVec3>,
-    /// The body's node bounds at the pose (carried from its frame), each
-    /// computed once per query: current when the stamp is `epoch`.
-    node_world: Vec<std::cell::Cell<(u32, Aabb)>>,
     /// The body's component boxes at a pose.
     component_boxes: Vec<Aabb>,
-    /// The body's vertices at an interval's far end.
-    posed_b: Vec<DVec3>,
     boxes: Vec<Aabb>,
     bounds: Vec<Aabb>,
     stack: Vec<(u32, u32)>,
@@ -243,32 +298,36 @@ impl SceneChecker {
         poses.par_iter().map(|&p| self.collides_at(p)).collect()
     }
 
-    fn collides_with(&self, pose: Pose, s: &mut Scratch) -> Result<bool, QueryError> {
-        // Every posed coordinate is at most |t| + reach in size: finite
-        // when that is, else find the vertex that is not.
+    /// Every posed coordinate is at most `|t| + reach` in size: that must
+    /// stay far below `f64::MAX` (no bound, box or sum overflows).
+    fn check_range(&self, pose: &Pose) -> Result<(), QueryError> {
         let size = self.body.reach + pose.translation.abs().max_element();
         if size.is_nan() || size >= 1e300 {
-            self.pose_into(pose, &mut s.posed)?;
+            return Err(QueryError::OutOfRange(format!(
+                "the body at translation {:?} reaches {size:e}, beyond 1e300",
+                pose.translation.to_array()
+            )));
         }
-        s.epoch = s.epoch.wrapping_add(1);
-        if s.epoch == 0 || s.stamp.len() != self.body.vertices.len() {
-            s.stamp.clear();
-            s.stamp.resize(self.body.vertices.len(), 0);
-            s.lazy.resize(self.body.vertices.len(), DVec3::ZERO);
-            s.epoch = 1;
-        }
+        Ok(())
+    }
+
+    fn collides_with(&self, pose: Pose, s: &mut Scratch) -> Result<bool, QueryError> {
+        self.check_range(&pose)?;
+        s.at.start(self.body.vertices.len());
+        self.fit_node_cache(s);
         Ok(self.surfaces_meet_lazily(pose, s) || self.one_inside_the_other(pose, s)?)
     }
 
-    /// Body vertex `v` at `pose`, posed once per query.
-    #[inline]
-    fn lazy_vertex(&self, s: &mut Scratch, pose: &Pose, v: u32) -> DVec3 {
-        let v = v as usize;
-        if s.stamp[v] != s.epoch {
-            s.stamp[v] = s.epoch;
-            s.lazy[v] = pose.apply(self.body.vertices[v]);
+    fn fit_node_cache(&self, s: &mut Scratch) {
+        let n = self.body.tree.bounds().len();
+        if s.node_cache.len() != n || s.at.epoch == 1 {
+            s.node_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); n];
         }
-        s.lazy[v]
+    }
+
+    /// The rounding bound of posing the body at `pose` (module docs).
+    fn pad(&self, pose: &Pose) -> f64 {
+        64.0 * f64::EPSILON * (self.body.reach + pose.translation.abs().max_element())
     }
 
     /// Whether some body triangle at `pose` meets some scene triangle: the
@@ -280,7 +339,7 @@ impl SceneChecker {
         let m = pose.rotation.matrix();
         let t = pose.translation;
         let size = self.body.reach + t.abs().max_element();
-        let pad = 64.0 * f64::EPSILON * size;
+        let pad = self.pad(&pose);
         // The scene's boxes carried back into the body's frame: `Mᵀ` undoes
         // `M` up to its distance from a rotation (at most 2⁻⁴⁷ an entry
         // after snapping), far inside `2⁻⁴⁰` of the sizes involved.
@@ -294,23 +353,12 @@ impl SceneChecker {
             own.transformed(&m, t, pad).within(other, 0.0)
                 && other.transformed(&mi, ti, back_pad).within(own, 0.0)
         };
-        let mut cache = std::mem::take(&mut s.node_world);
-        if cache.len() != bounds.len() {
-            cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); bounds.len()];
-        }
-        let epoch = s.epoch;
-        let world = |n: usize| {
-            let (stamp, b) = cache[n].get();
-            if stamp == epoch {
-                return b;
-            }
-            let b = bounds[n].transformed(&m, t, pad);
-            cache[n].set((epoch, b));
-            b
-        };
+        let cache = std::mem::take(&mut s.node_cache);
+        let epoch = s.at.epoch;
+        let world = |n: usize| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad));
         let scene = &self.scene.tree;
         let mut stack = std::mem::take(&mut s.stack);
-        let hit = self.body.tree.for_each_pair_with(
+        let hit = self.body.tree.for_each_pair(
             |n, o| world(n).within(o, 0.0),
             |n| bounds[n].size(),
             |i, o| meets(&boxes[i], o),
@@ -319,12 +367,12 @@ impl SceneChecker {
             scene.bounds(),
             &mut stack,
             |i, j| {
-                let tri = self.body.triangles[i].map(|v| self.lazy_vertex(s, &pose, v));
+                let tri = self.body.triangles[i].map(|v| s.at.get(&self.body.vertices, &pose, v));
                 triangles_meet(&tri, &self.scene_triangle(j))
             },
         );
         s.stack = stack;
-        s.node_world = cache;
+        s.node_cache = cache;
         hit
     }
 
@@ -369,7 +417,7 @@ impl SceneChecker {
     ) -> Result<bool, QueryError> {
         if !self.scene.solid_components.is_empty() {
             for &(_, v) in &self.body.components {
-                let p = self.lazy_vertex(s, &pose, v);
+                let p = s.at.get(&self.body.vertices, &pose, v);
                 if self.scene.inside_solid(p, parity)? {
                     return Ok(true);
                 }
@@ -426,82 +474,94 @@ impl SceneChecker {
     /// The twelve points of body triangle `i`'s swept hull (module docs):
     /// its corners posed at both ends, and each moved by the other end's
     /// translation.
-    fn swept_points(&self, s: &Scratch, i: usize, shift: DVec3) -> [DVec3; 12] {
+    fn swept_points(&self, s: &mut Scratch, i: usize, from: &Pose, to: &Pose) -> [DVec3; 12] {
+        let shift = to.translation - from.translation;
         let t = self.body.triangles[i];
-        std::array::from_fn(|k| {
-            let v = t[k % 3] as usize;
-            match k / 3 {
-                0 => s.posed[v],
-                1 => s.posed_b[v],
-                2 => s.posed[v] + shift,
-                _ => s.posed_b[v] - shift,
-            }
+        let a = t.map(|v| s.at.get(&self.body.vertices, from, v));
+        let b = t.map(|v| s.at_b.get(&self.body.vertices, to, v));
+        std::array::from_fn(|k| match k / 3 {
+            0 => a[k % 3],
+            1 => b[k % 3],
+            2 => a[k % 3] + shift,
+            _ => b[k % 3] - shift,
         })
+    }
+
+    /// Whether swept hull `i` comes within `reach` of scene triangle `j`
+    /// (not certified apart).
+    fn swept_near(
+        &self,
+        s: &mut Scratch,
+        i: usize,
+        j: usize,
+        from: &Pose,
+        to: &Pose,
+        reach: f64,
+    ) -> bool {
+        let hull = self.swept_points(s, i, from, to);
+        let ends = [[hull[0], hull[1], hull[2]], [hull[3], hull[4], hull[5]]];
+        !apart_by_more_than(&hull, &ends, &self.scene_triangle(j), reach)
     }
 
     /// Whether no swept hull of a body triangle over `[from, to]` (poses
     /// at the interval's ends) comes within `reach` of a scene triangle,
-    /// certified (module docs); `false` means "not proved".
-    fn certified_apart(
-        &self,
-        from: Pose,
-        to: Pose,
-        reach: f64,
-        s: &mut Scratch,
-    ) -> Result<bool, QueryError> {
-        let shift = to.translation - from.translation;
-        self.pose_into(to, &mut s.posed_b)?;
-        self.pose_into(from, &mut s.posed)?;
-        s.boxes.clear();
-        for t in &self.body.triangles {
-            let [a0, a1, a2] = t.map(|v| s.posed[v as usize]);
-            let [b0, b1, b2] = t.map(|v| s.posed_b[v as usize]);
-            let (lo_a, hi_a) = (a0.min(a1).min(a2), a0.max(a1).max(a2));
-            let (lo_b, hi_b) = (b0.min(b1).min(b2), b0.max(b1).max(b2));
-            // Rounding is monotone: the shifted bounds hold the shifted
-            // points as computed.
-            let lo = lo_a.min(lo_b).min(lo_a + shift).min(lo_b - shift);
-            let hi = hi_a.max(hi_b).max(hi_a + shift).max(hi_b - shift);
-            s.boxes.push(Aabb {
-                lo: lo.to_array(),
-                hi: hi.to_array(),
-            });
-        }
-        self.body.tree.refit(&s.boxes, &mut s.bounds);
-        let near = |s: &Scratch, i: usize, j: usize| {
-            let hull = self.swept_points(s, i, shift);
-            let ends = [[hull[0], hull[1], hull[2]], [hull[3], hull[4], hull[5]]];
-            !apart_by_more_than(&hull, &ends, &self.scene_triangle(j), reach)
-        };
+    /// certified (module docs); `false` means "not proved". The body's
+    /// tree is walked with each node's box carried to both poses, joined
+    /// with both moved by the other end's translation (which holds the
+    /// swept hulls of its triangles), computed once per interval for the
+    /// nodes reached; only the corners of the triangles reached are posed.
+    fn certified_apart(&self, from: Pose, to: Pose, reach: f64, s: &mut Scratch) -> bool {
+        let n = self.body.vertices.len();
+        s.at.start(n);
+        s.at_b.start(n);
+        self.fit_node_cache(s);
         if let Some((i, j)) = s.blocker {
-            if near(s, i, j) {
-                return Ok(false);
+            if self.swept_near(s, i, j, &from, &to, reach) {
+                return false;
             }
         }
-        let tree = &self.scene.tree;
+        let (ma, ta, mb, tb) = (
+            from.rotation.matrix(),
+            from.translation,
+            to.rotation.matrix(),
+            to.translation,
+        );
+        let pad = self.pad(&from).max(self.pad(&to));
+        let shift = tb - ta;
+        let swept = |b: &Aabb| {
+            let (a, z) = (b.transformed(&ma, ta, pad), b.transformed(&mb, tb, pad));
+            a.join(&z)
+                .join(&shifted(&a, shift))
+                .join(&shifted(&z, -shift))
+        };
+        let (bounds, boxes) = (self.body.tree.bounds(), self.body.tree.boxes());
+        let cache = std::mem::take(&mut s.node_cache);
+        let epoch = s.at.epoch;
+        let scene = &self.scene.tree;
         let mut stack = std::mem::take(&mut s.stack);
         let mut blocker = None;
         let blocked = self.body.tree.for_each_pair(
-            &s.boxes,
-            &s.bounds,
-            tree,
-            tree.boxes(),
-            tree.bounds(),
-            reach,
+            |k, o| cached(&cache, epoch, k, || swept(&bounds[k])).within(o, reach),
+            |k| bounds[k].size(),
+            |i, o| swept(&boxes[i]).within(o, reach),
+            scene,
+            scene.boxes(),
+            scene.bounds(),
             &mut stack,
             |i, j| {
-                let hit = near(s, i, j);
-                if hit {
+                let near = self.swept_near(s, i, j, &from, &to, reach);
+                if near {
                     blocker = Some((i, j));
                 }
-                hit
+                near
             },
         );
         s.stack = stack;
+        s.node_cache = cache;
         if blocked {
             s.blocker = blocker;
         }
-        Ok(!blocked)
+        !blocked
     }
 
     /// Checks the straight motion from `from` to `to` (module docs) with
@@ -529,6 +589,7 @@ impl SceneChecker {
         tolerance: f64,
         s: &mut Scratch,
     ) -> Result<MotionCheck, MotionError> {
+        self.check_range(&to)?;
         if self.collides_with(from, s)? {
             return Ok(MotionCheck::Collides {
                 t_safe: None,
@@ -566,10 +627,8 @@ impl SceneChecker {
             let quarter = (angle * w / 4.0).min(std::f64::consts::FRAC_PI_2);
             let sagitta = 2.0 * r * quarter.sin().powi(2) * (1.0 + 1e-12);
             let reach = sagitta + margin;
-            match self.certified_apart(motion.at(a), motion.at(b), reach, s) {
-                Ok(true) => continue,
-                Ok(false) => {}
-                Err(e) => break Err(e.into()),
+            if self.certified_apart(motion.at(a), motion.at(b), reach, s) {
+                continue;
             }
             if w <= tolerance && b != known_free_end {
                 match self.collides_with(motion.at(b), s) {
