@@ -46,7 +46,12 @@
 //! Intervals are examined left to right from `[0, 1]`: one that is
 //! certified is done; one that is not is halved, and once it is no wider
 //! than the tolerance its right end is checked exactly, and a contact
-//! there ends the check with the bracket `(t_safe, t_contact)`. A thin
+//! there ends the check with the bracket `(t_safe, t_contact)`. When
+//! halving keeps ending just before a contact (an interval a thousand
+//! times narrower than the tolerance, its end free but not certified: the
+//! body within the rounding margin of an obstacle it is about to enter),
+//! the times `a + tol/128`, …, `a + tol` are checked, and a contact at any
+//! of them is a valid bracket, since `[0, a]` is certified. A thin
 //! wall is not stepped over: an interval sweeping through it is never
 //! certified. An interval narrower than [`MIN_WIDTH`] that is neither
 //! certified nor colliding at its end (a grazing motion) is
@@ -610,6 +615,7 @@ impl SceneChecker {
         intervals.push((0.0, 1.0));
         let mut steps = 0u64;
         let mut known_free_end = f64::NAN;
+        let mut probed_from = f64::NAN;
         let out = loop {
             let Some((a, b)) = intervals.pop() else {
                 break Ok(MotionCheck::Free);
@@ -642,6 +648,23 @@ impl SceneChecker {
                     Err(e) => break Err(e.into()),
                 }
             }
+            // Halving keeps ending just before a contact (the body within
+            // the rounding margin of an obstacle it is about to enter):
+            // `[0, a]` is certified, so a contact at any later time within
+            // the tolerance is a valid bracket. Probed once per `a`.
+            if w * 1024.0 < tolerance && a != probed_from {
+                probed_from = a;
+                match self.probe_after(&motion, a, tolerance, s) {
+                    Ok(Some(t)) => {
+                        break Ok(MotionCheck::Collides {
+                            t_safe: Some(a),
+                            t_contact: t,
+                        })
+                    }
+                    Ok(None) => {}
+                    Err(e) => break Err(e.into()),
+                }
+            }
             if w < MIN_WIDTH {
                 break Err(MotionError::Undecided { t_safe: a, t: b });
             }
@@ -651,6 +674,24 @@ impl SceneChecker {
         s.intervals = intervals;
         self.steps.fetch_add(steps, Ordering::Relaxed);
         out
+    }
+
+    /// The first of `a + tolerance / 2^k` (`k` = 7 down to 0, at most 1) at
+    /// which the body collides, if any.
+    fn probe_after(
+        &self,
+        motion: &Motion,
+        a: f64,
+        tolerance: f64,
+        s: &mut Scratch,
+    ) -> Result<Option<f64>, QueryError> {
+        for k in (0..8).rev() {
+            let t = (a + tolerance / f64::from(1u32 << k)).min(1.0);
+            if self.collides_with(motion.at(t), s)? {
+                return Ok(Some(t));
+            }
+        }
+        Ok(None)
     }
 
     /// [`SceneChecker::check`] for many motions `(from, to)`, in parallel,

@@ -7,7 +7,8 @@
 //! For any nonzero direction `n`, `(min_{y ∈ U} n·y − max_{x ∈ H} n·x) / |n|`
 //! is at most the distance between the hull `H` and the triangle `U` (the
 //! two sets lie in half-spaces that far apart). The directions proposed
-//! are `c_U − c_T` for the closest points of triangles `T` (the body
+//! are the triangle's normal (both ways; a cheap proposal that separates
+//! whatever lies beside a large face), then `c_U − c_T` for the closest points of triangles `T` (the body
 //! triangle at either end) and `U` found in floating point (the usual
 //! vertex–triangle and edge–edge candidates), so the bound is the
 //! distance up to rounding when the hull is one triangle; a bad proposal
@@ -32,11 +33,16 @@ pub(crate) fn apart_by_more_than(
     u: &[DVec3; 3],
     reach: f64,
 ) -> bool {
-    near.iter().any(|t| {
-        let (ct, cu) = closest_points(t, u);
-        let n = cu - ct;
-        gap_along(hull, u, n) > reach_times_norm(reach, n)
-    })
+    // The triangle's normal first (cheap, and it separates whatever lies
+    // beside a large face), either way round; then the closest points.
+    let normal = (u[1] - u[0]).cross(u[2] - u[0]);
+    let along = |n: DVec3| gap_along(hull, u, n) > reach_times_norm(reach, n);
+    along(normal)
+        || along(-normal)
+        || near.iter().any(|t| {
+            let (ct, cu) = closest_points(t, u);
+            along(cu - ct)
+        })
 }
 
 /// `reach · |n|`, rounded up.
