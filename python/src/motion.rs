@@ -516,6 +516,19 @@ impl PyMotionChecker {
         Ok(d)
     }
 
+    /// The clearance of the body at ``pose`` from the obstacles (for
+    /// OMPL's clearance objectives): ``0.0`` when it touches or overlaps
+    /// one; else the exact distance on the convex path, or, for triangles,
+    /// the least triangle–triangle distance rounded down (a certified
+    /// lower bound within rounding of it). GIL released.
+    #[pyo3(signature = (pose = None))]
+    fn distance_at(&self, py: Python<'_>, pose: Option<&Bound<'_, PyAny>>) -> PyResult<f64> {
+        let p = convert::pose(pose, "pose")?;
+        let inner = &self.inner;
+        py.detach(|| inner.distance_at(p))
+            .map_err(|e| err_for("MotionChecker.distance_at", e))
+    }
+
     /// Whether the body collides at each of K poses ((K, 4, 4) homogeneous
     /// rigid transforms, or any pose stack ``contact_many`` takes): a (K,)
     /// ``bool`` array, each exactly ``collides_at``. Checked in parallel

@@ -53,6 +53,10 @@ def test_open_and_double_sided_meshes_are_taken_as_they_come():
     side = c.check(_t(5, 5, 5), _t(30, 5, 5))
     assert not side.free and side.t_contact - side.t_safe <= 1e-6
     assert abs(side.t_contact - 4.5 / 25) <= 1e-6
+    # Clearance: 4.5 from the floor (and walls) at the centre, 0 in contact.
+    assert c.distance_at(_t(5, 5, 5)) == pytest.approx(4.5, rel=1e-12)
+    assert c.distance_at(_t(5, 5, 0.5)) == 0.0
+    assert c.distance_at(_t(5, 5, 2)) == pytest.approx(1.5, rel=1e-12)
     # A solid scene: inside it is a contact.
     solid = dymsum.MotionChecker(robot, [_double_sided(*_box([0, 0, 0], [10, 10, 10]))])
     assert solid.collides_at(_t(5, 5, 5))
@@ -63,6 +67,7 @@ def test_convex_meshes_keep_the_convex_path():
     cube = _box([-0.5] * 3, [0.5] * 3)
     c = dymsum.MotionChecker(cube, [_box([2, -1, -1], [3, 1, 1])])
     assert c.info == {"path": "convex"}
+    assert c.distance_at(_t(0, 0, 0)) == pytest.approx(1.5, rel=1e-12)
     assert c.collides_at(_t(1.5, 0, 0)) and not c.collides_at(_t(1.4, 0, 0))
     poses = np.stack([_t(x, 0, 0) for x in np.linspace(0, 3, 31)])
     assert c.collides_many(poses).tolist() == [c.collides_at(p) for p in poses]

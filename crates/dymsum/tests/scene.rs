@@ -309,6 +309,13 @@ proptest! {
         for &p in &poses {
             prop_assert_eq!(tri.collides_at(p).unwrap(), convex.collides_at(p).unwrap(), "{:?}", p);
             prop_assert_eq!(meshes.collides_at(p).unwrap(), first.collides_at(p).unwrap(), "{:?}", p);
+            // Clearance: the triangles' certified lower bound against the
+            // exact convex distance (disjoint convex bodies are closest on
+            // their boundaries).
+            let (lower, exact) = (tri.distance_at(p).unwrap(), convex.distance_at(p).unwrap());
+            prop_assert!(lower <= exact * (1.0 + 1e-12) + 1e-300, "{} > {}", lower, exact);
+            prop_assert!(lower >= exact - 1e-9 * (1.0 + exact), "{} << {}", lower, exact);
+            prop_assert_eq!(lower == 0.0, exact == 0.0);
         }
         prop_assert_eq!(
             tri.collides_many(&poses).unwrap(),

@@ -452,6 +452,8 @@ class MotionChecker:
         """``check`` for K motions ((K, 4, 4) pose arrays), in parallel."""
     def collides_at(self, pose: _PoseLike = None) -> bool:
         """Whether the body at ``pose`` touches or overlaps an obstacle (exact)."""
+    def distance_at(self, pose: _PoseLike = None) -> float:
+        """Clearance at ``pose``: 0 in contact; exact (convex) or a certified lower bound within rounding (triangles)."""
     def collides_many(self, poses: _PosesLike) -> npt.NDArray[np.bool_]:
         """``collides_at`` for K poses ((K, 4, 4)): a (K,) bool array, in parallel."""
     @property

@@ -454,6 +454,23 @@ impl MotionChecker {
         Ok(false)
     }
 
+    /// The clearance of the body at `pose` from the obstacles: `0` when it
+    /// touches or overlaps one, else the least exact distance over the
+    /// piece pairs ([`ConvexPair::query`]). For clearance objectives.
+    ///
+    /// # Errors
+    /// [`QueryError::OutOfRange`] when a posed coordinate overflows.
+    pub fn distance_at(&self, pose: Pose) -> Result<f64, QueryError> {
+        let mut best = f64::INFINITY;
+        for pair in &self.prepared {
+            match pair.query(pose, Pose::IDENTITY)? {
+                Proximity::Penetrating(_) => return Ok(0.0),
+                Proximity::Separated(s) => best = best.min(s.distance),
+            }
+        }
+        Ok(best)
+    }
+
     /// Checks the straight motion from `from` to `to` (module docs) with the
     /// bracket no wider than `tolerance` (in `t`).
     ///

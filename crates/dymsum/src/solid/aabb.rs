@@ -83,6 +83,14 @@ impl Aabb {
         }
     }
 
+    /// The distance between the boxes (`0` when they meet), in floating
+    /// point.
+    #[inline]
+    pub fn distance(&self, o: &Aabb) -> f64 {
+        let gap = |k: usize| (self.lo[k] - o.hi[k]).max(o.lo[k] - self.hi[k]).max(0.0);
+        (gap(0) * gap(0) + gap(1) * gap(1) + gap(2) * gap(2)).sqrt()
+    }
+
     /// Whether the closed box holds `p`.
     #[inline]
     pub fn holds(&self, p: [f64; 3]) -> bool {
@@ -371,6 +379,71 @@ impl AabbTree {
             }
         }
         false
+    }
+
+    /// The least of `dist(i, j)` over item pairs, with this tree's boxes
+    /// given by functions (as in [`AabbTree::for_each_pair`]): node pairs
+    /// whose boxes are farther apart than the best so far (by more than a
+    /// relative `1e-12`, so rounding of the box distance drops nothing that
+    /// could matter) are skipped. `f64::INFINITY` when either tree is
+    /// empty.
+    pub fn nearest_pair(
+        &self,
+        node_box: impl Fn(usize) -> Aabb,
+        item_box: impl Fn(usize) -> Aabb,
+        other: &AabbTree,
+        stack: &mut Vec<(u32, u32)>,
+        mut dist: impl FnMut(usize, usize) -> f64,
+    ) -> f64 {
+        let mut best = f64::INFINITY;
+        if self.nodes.is_empty() || other.nodes.is_empty() {
+            return best;
+        }
+        let far = |a: &Aabb, b: &Aabb, best: f64| a.distance(b) * (1.0 - 1e-12) > best;
+        stack.clear();
+        stack.push((0, 0));
+        while let Some((a, b)) = stack.pop() {
+            let (ba, bb) = (node_box(a as usize), other.bounds[b as usize]);
+            if far(&ba, &bb, best) {
+                continue;
+            }
+            match (&self.nodes[a as usize], &other.nodes[b as usize]) {
+                (Node::Leaf { start, end }, Node::Leaf { start: s2, end: e2 }) => {
+                    for &i in &self.items[*start as usize..*end as usize] {
+                        let bi = item_box(i as usize);
+                        for &j in &other.items[*s2 as usize..*e2 as usize] {
+                            if !far(&bi, &other.boxes[j as usize], best) {
+                                best = best.min(dist(i as usize, j as usize));
+                            }
+                        }
+                    }
+                }
+                (Node::Inner { left, right }, Node::Leaf { .. }) => {
+                    stack.push((*right, b));
+                    stack.push((*left, b));
+                }
+                (Node::Leaf { .. }, Node::Inner { left, right }) => {
+                    stack.push((a, *right));
+                    stack.push((a, *left));
+                }
+                (
+                    Node::Inner { left, right },
+                    Node::Inner {
+                        left: l2,
+                        right: r2,
+                    },
+                ) => {
+                    if ba.size() >= bb.size() {
+                        stack.push((*right, b));
+                        stack.push((*left, b));
+                    } else {
+                        stack.push((a, *r2));
+                        stack.push((a, *l2));
+                    }
+                }
+            }
+        }
+        best
     }
 
     /// Calls `f` with every item whose box meets `query`.

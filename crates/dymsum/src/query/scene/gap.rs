@@ -45,6 +45,20 @@ pub(crate) fn apart_by_more_than(
         })
 }
 
+/// A lower bound on the distance between triangles `t` and `u`, within
+/// rounding of it (`0` when they meet or nearly): the gap along the
+/// direction of their closest points found in floating point, divided by
+/// `|n|` rounded up, rounded down.
+pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
+    let (ct, cu) = closest_points(t, u);
+    let n = cu - ct;
+    let gap = gap_along(t, u, n);
+    if gap <= 0.0 || !gap.is_finite() {
+        return 0.0;
+    }
+    gap / (n.length() * (1.0 + 8.0 * U)) * (1.0 - 4.0 * U)
+}
+
 /// `reach · |n|`, rounded up.
 fn reach_times_norm(reach: f64, n: DVec3) -> f64 {
     reach * n.length() * (1.0 + 8.0 * U)
@@ -215,6 +229,15 @@ mod tests {
         let w = tri([0.2, 0.2, -1.], [0.2, 0.2, 1.], [3., 3., 0.]);
         assert!(!apart(&t, &w, 0.0));
         assert!(!apart(&t, &t, 0.0));
+    }
+
+    #[test]
+    fn the_distance_bound_is_below_the_distance_and_close_to_it() {
+        let t = tri([0., 0., 0.], [1., 0., 0.], [0., 1., 0.]);
+        let v = tri([0.25, -1., 1.], [0.25, 1., 1.], [0.25, 0., 3.]);
+        let d = distance_lower_bound(&t, &v);
+        assert!(d <= 1.0 && d > 1.0 - 1e-14, "{d}");
+        assert_eq!(distance_lower_bound(&t, &t), 0.0);
     }
 
     #[test]

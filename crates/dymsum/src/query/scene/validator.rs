@@ -155,6 +155,20 @@ impl Validator {
         }
     }
 
+    /// The clearance of the body at `pose` from the obstacles (`0` in
+    /// contact): [`MotionChecker::distance_at`] (exact) or
+    /// [`SceneChecker::distance_at`] (certified from below, within
+    /// rounding).
+    ///
+    /// # Errors
+    /// Those of [`Validator::collides_at`].
+    pub fn distance_at(&self, pose: Pose) -> Result<f64, QueryError> {
+        match self {
+            Validator::Convex(c) => c.distance_at(pose),
+            Validator::Mesh(c) => c.distance_at(pose),
+        }
+    }
+
     /// [`Validator::collides_at`] for many poses, in parallel, in order.
     ///
     /// # Errors
