@@ -76,7 +76,7 @@ pub struct MeshBody {
     pub(crate) solid_components: Vec<u32>,
     /// A tree over the solid components' boxes (item `k` is
     /// `solid_components[k]`).
-    solid_tree: AabbTree,
+    pub(crate) solid_tree: AabbTree,
     /// The largest vertex norm (rounded up): how far a point of the body
     /// lies from its origin.
     pub(crate) reach: f64,
@@ -246,32 +246,6 @@ impl MeshBody {
             report,
             convex: None,
         }
-    }
-
-    /// Whether `p` (in the body's frame, on none of its triangles) lies
-    /// inside one of its solid components, exactly ([`super::inside`]).
-    /// `parity` is a scratch buffer.
-    pub(crate) fn inside_solid(
-        &self,
-        p: DVec3,
-        parity: &mut Vec<u8>,
-    ) -> Result<bool, crate::query::error::QueryError> {
-        let mut candidates = Vec::new();
-        let at = p.to_array();
-        self.solid_tree
-            .for_each_meeting(&Aabb { lo: at, hi: at }, |k| {
-                candidates.push(self.solid_components[k])
-            });
-        super::inside::inside_solid(
-            self,
-            &self.vertices,
-            self.tree.boxes(),
-            self.tree.bounds(),
-            &self.component_boxes,
-            &candidates,
-            p,
-            parity,
-        )
     }
 
     /// What cleaning changed and what the components are.

@@ -77,6 +77,30 @@ fn crossing(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Crossing {
     }
 }
 
+impl MeshBody {
+    /// Whether `p` (in the body's frame, on none of its triangles) lies
+    /// inside one of its solid components, exactly ([`super::inside`]).
+    /// `parity` is a scratch buffer.
+    pub(crate) fn inside_solid(&self, p: DVec3, parity: &mut Vec<u8>) -> Result<bool, QueryError> {
+        let mut candidates = Vec::new();
+        let at = p.to_array();
+        self.solid_tree
+            .for_each_meeting(&Aabb { lo: at, hi: at }, |k| {
+                candidates.push(self.solid_components[k])
+            });
+        inside_solid(
+            self,
+            &self.vertices,
+            self.tree.boxes(),
+            self.tree.bounds(),
+            &self.component_boxes,
+            &candidates,
+            p,
+            parity,
+        )
+    }
+}
+
 /// Whether `p` lies inside one of the solid components `candidates` of
 /// `body` (those whose box, `component_boxes[c]`, holds `p`; the others
 /// cannot contain it), whose vertices are `vertices` (posed) and whose
