@@ -68,6 +68,9 @@ OPTIONAL = {
     "manifold3d": "DYMSUM_REQUIRE_MANIFOLD",
     "coacd": "DYMSUM_REQUIRE_MANIFOLD",
     "vhacdx": "DYMSUM_REQUIRE_MANIFOLD",
+    "trimesh": "DYMSUM_REQUIRE_SCENES",
+    "collada": "DYMSUM_REQUIRE_SCENES",
+    "fcl": "DYMSUM_REQUIRE_SCENES",
 }
 
 # Installed in each block's interpreter (and in every process it starts:
