@@ -308,7 +308,7 @@ impl SceneChecker {
     /// between a body triangle and a scene triangle, rounded down: a
     /// certified lower bound within rounding of it (each pair's bound is
     /// the gap along the direction of its closest points found in floating
-    /// point, [`super::gap`]; the broad phase skips only pairs whose boxes
+    /// point, `query::scene::gap`; the broad phase skips only pairs whose boxes
     /// are farther apart than the best so far). For clearance objectives.
     ///
     /// # Errors
