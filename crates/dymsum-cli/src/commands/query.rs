@@ -181,7 +181,7 @@ fn from_proximity(p: &Proximity) -> Answer {
 ///
 /// # Errors
 /// ROBOT or OBSTACLE cannot be loaded ([`load_contact_body`]); a body
-/// taken as triangles without `--collision-only` ([`depth_pieces`]); a
+/// taken as triangles without `--collision-only` (`depth_pieces`); a
 /// query fails at a pose ([`dymsum::query::QueryError`], naming the pose:
 /// coordinates beyond `f64`, or an internal error); or `out` cannot be
 /// written.
