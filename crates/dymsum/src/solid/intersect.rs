@@ -129,6 +129,12 @@ pub(crate) fn segments_meet(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
 /// triangle is the union of its edges, a point the point): every decision
 /// exact.
 pub(crate) fn triangles_meet(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
+    // The cheap rejection first (Guigue–Devillers' first step): all of
+    // one triangle strictly on one side of the other's plane. A flat
+    // triangle has no plane (every sign zero) and is never rejected here.
+    if strictly_one_side(u, t) || strictly_one_side(t, u) {
+        return false;
+    }
     let edges = |x: &[DVec3; 3]| [(x[0], x[1]), (x[1], x[2]), (x[2], x[0])];
     match (projection(t).is_some(), projection(u).is_some()) {
         (true, true) => disjoint_triangles_meet(t, u),
@@ -142,6 +148,14 @@ pub(crate) fn triangles_meet(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
             .iter()
             .any(|&(a, b)| edges(u).iter().any(|&(c, d)| segments_meet(a, b, c, d))),
     }
+}
+
+/// Every corner of `pts` strictly on one side of the plane of `plane`
+/// (exact signs; `false` for a flat `plane`).
+fn strictly_one_side(plane: &[DVec3; 3], pts: &[DVec3; 3]) -> bool {
+    let side = |p: DVec3| orient(plane[0], plane[1], plane[2], p);
+    let s0 = side(pts[0]);
+    s0 != Sign::Zero && side(pts[1]) == s0 && side(pts[2]) == s0
 }
 
 /// Triangles `(v, p₁, p₂)` and `(v, q₁, q₂)` (not flat) sharing only the
