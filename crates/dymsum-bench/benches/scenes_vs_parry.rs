@@ -1,7 +1,8 @@
 //! State checks on triangle-mesh scenes (issue 28): dymsum's exact
 //! `SceneChecker::collides_at` against parry3d-f64's BVH mesh–mesh
-//! `intersection_test` on the same 1,000 seeded random states per scene
-//! (one call per state, as a planner makes them). The scenes: OMPL.app's
+//! `intersection_test` on the same 1,000 seeded random states per scene,
+//! and on up to 200 states within 2⁻⁴⁰ of contact (bisected from free to
+//! colliding), one call per state, as a planner makes them. The scenes: OMPL.app's
 //! problems exported as OBJ into the folder `DYMSUM_SCENES` names
 //! (`python/benchmarks/export_scenes.py`; `DYMSUM_SCENES_ONLY=a,b` picks
 //! some), else a built-in room. Before timing, the answers are compared
@@ -15,7 +16,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use dymsum_bench::scenes::{dymsum_checker, parry_collides, parry_mesh, scenes};
+use dymsum_bench::scenes::{dymsum_checker, near_contact, parry_collides, parry_mesh, scenes};
 
 const STATES: usize = 1000;
 
@@ -54,20 +55,42 @@ fn scenes_vs_parry(c: &mut Criterion) {
             STATES,
             ours.iter().filter(|&&h| h).count()
         );
-        group.bench_with_input(BenchmarkId::new("dymsum", &scene.name), &scene, |b, s| {
-            b.iter(|| {
-                for &p in &s.states {
-                    black_box(checker.collides_at(p).unwrap());
-                }
-            })
-        });
-        group.bench_with_input(BenchmarkId::new("parry", &scene.name), &scene, |b, s| {
-            b.iter(|| {
-                for &p in &s.states {
-                    black_box(parry_collides(&robot, &env, p));
-                }
-            })
-        });
+        let near = near_contact(&checker, &scene.states, 200);
+        let near_ours: Vec<bool> = near
+            .iter()
+            .map(|&p| checker.collides_at(p).unwrap())
+            .collect();
+        let near_theirs: Vec<bool> = near
+            .iter()
+            .map(|&p| parry_collides(&robot, &env, p))
+            .collect();
+        eprintln!(
+            "{} near contact: {} states; disagreements {}",
+            scene.name,
+            near.len(),
+            near_ours
+                .iter()
+                .zip(&near_theirs)
+                .filter(|(a, b)| a != b)
+                .count()
+        );
+        for (kind, states) in [("random", &scene.states), ("near", &near)] {
+            let id = format!("{}/{kind}", scene.name);
+            group.bench_with_input(BenchmarkId::new("dymsum", &id), states, |b, s| {
+                b.iter(|| {
+                    for &p in s {
+                        black_box(checker.collides_at(p).unwrap());
+                    }
+                })
+            });
+            group.bench_with_input(BenchmarkId::new("parry", &id), states, |b, s| {
+                b.iter(|| {
+                    for &p in s {
+                        black_box(parry_collides(&robot, &env, p));
+                    }
+                })
+            });
+        }
     }
     group.finish();
 }

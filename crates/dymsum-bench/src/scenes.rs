@@ -145,6 +145,37 @@ pub fn room(states: usize) -> Scene {
     }
 }
 
+/// States within `2⁻⁴⁰` of contact: from each free state towards a
+/// colliding one (the next in the list, with the free state's rotation),
+/// bisected on the translation; both ends kept, up to `n` states.
+///
+/// # Panics
+/// When a state check fails (not expected: finite states).
+pub fn near_contact(checker: &SceneChecker, states: &[Pose], n: usize) -> Vec<Pose> {
+    let mut out = Vec::new();
+    for w in states.windows(2) {
+        if out.len() >= n {
+            break;
+        }
+        let (mut free, far) = (w[0], Pose::new(w[0].rotation, w[1].translation));
+        if checker.collides_at(free).unwrap() || !checker.collides_at(far).unwrap() {
+            continue;
+        }
+        let mut hit = far;
+        for _ in 0..40 {
+            let mid = Pose::new(free.rotation, (free.translation + hit.translation) * 0.5);
+            if checker.collides_at(mid).unwrap() {
+                hit = mid;
+            } else {
+                free = mid;
+            }
+        }
+        out.push(free);
+        out.push(hit);
+    }
+    out
+}
+
 /// dymsum's checker of a scene.
 ///
 /// # Panics

@@ -150,9 +150,36 @@ pub(crate) fn triangles_meet(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
     }
 }
 
+/// Shewchuk's first error bound of `orient3d`, `(7 + 56ε)ε` with
+/// `ε = 2⁻⁵³`, rounded up.
+const ORIENT3D_BOUND: f64 = 7.771_561_172_376_103e-16;
+
 /// Every corner of `pts` strictly on one side of the plane of `plane`
-/// (exact signs; `false` for a flat `plane`).
+/// (exact signs; `false` for a flat `plane`). The three signs are first
+/// read from one floating-point evaluation sharing the plane's normal,
+/// each certified by Shewchuk's static bound for `orient3d` (the same
+/// minors, the same order of operations, so the same bound; far from
+/// underflow and overflow); when any is not certified, all three are
+/// decided by the exact `orient3d`.
 fn strictly_one_side(plane: &[DVec3; 3], pts: &[DVec3; 3]) -> bool {
+    let (ba, ca) = (plane[1] - plane[0], plane[2] - plane[0]);
+    let normal = ba.cross(ca);
+    let minors = DVec3::new(
+        (ba.y * ca.z).abs() + (ba.z * ca.y).abs(),
+        (ba.z * ca.x).abs() + (ba.x * ca.z).abs(),
+        (ba.x * ca.y).abs() + (ba.y * ca.x).abs(),
+    );
+    let filtered = |p: DVec3| -> Option<bool> {
+        let pa = p - plane[0];
+        let det = pa.dot(normal);
+        let permanent = pa.abs().dot(minors);
+        let certain =
+            permanent > 1e-280 && permanent < 1e280 && det.abs() > ORIENT3D_BOUND * permanent;
+        certain.then_some(det > 0.0)
+    };
+    if let (Some(a), Some(b), Some(c)) = (filtered(pts[0]), filtered(pts[1]), filtered(pts[2])) {
+        return a == b && b == c;
+    }
     let side = |p: DVec3| orient(plane[0], plane[1], plane[2], p);
     let s0 = side(pts[0]);
     s0 != Sign::Zero && side(pts[1]) == s0 && side(pts[2]) == s0
@@ -208,6 +235,44 @@ mod tests {
         // Coplanar, apart.
         let u = [v(3., 3., 0.), v(4., 3., 0.), v(3., 4., 0.)];
         assert!(!disjoint_triangles_meet(&t, &u));
+    }
+
+    #[test]
+    fn the_filtered_side_test_is_the_exact_one() {
+        // Grid points (many exactly coplanar), tiny and huge scales, and
+        // points one ulp off a plane: the filter never decides otherwise
+        // than the exact signs.
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let exact = |plane: &[DVec3; 3], pts: &[DVec3; 3]| {
+            let side = |p: DVec3| orient(plane[0], plane[1], plane[2], p);
+            let s0 = side(pts[0]);
+            s0 != Sign::Zero && side(pts[1]) == s0 && side(pts[2]) == s0
+        };
+        for scale in [1e-200, 1e-8, 1.0, 1e8, 1e200] {
+            for _ in 0..20_000 {
+                let mut p = || {
+                    let c = |r: u64| ((r % 7) as f64 - 3.0) * scale;
+                    let mut q = v(c(next()), c(next()), c(next()));
+                    if next() % 5 == 0 {
+                        q.z = f64::from_bits(q.z.to_bits() + 1); // one ulp off
+                    }
+                    q
+                };
+                let plane = [p(), p(), p()];
+                let pts = [p(), p(), p()];
+                assert_eq!(
+                    strictly_one_side(&plane, &pts),
+                    exact(&plane, &pts),
+                    "{plane:?} {pts:?}"
+                );
+            }
+        }
     }
 
     #[test]
