@@ -547,6 +547,19 @@ impl SceneChecker {
         reach: f64,
     ) -> bool {
         let hull = self.swept_points(s, i, from, to);
+        // The hull's exact box first: more than `reach` from the scene
+        // triangle's box on an axis is apart (the tree's boxes, carried
+        // from the body's frame, are looser for thin slanted triangles).
+        let (lo, hi) = hull[1..]
+            .iter()
+            .fold((hull[0], hull[0]), |(l, h), p| (l.min(*p), h.max(*p)));
+        let own = Aabb {
+            lo: lo.to_array(),
+            hi: hi.to_array(),
+        };
+        if !own.within(&self.scene.tree.boxes()[j], reach) {
+            return false;
+        }
         let ends = [[hull[0], hull[1], hull[2]], [hull[3], hull[4], hull[5]]];
         !apart_by_more_than(&hull, &ends, &self.scene_triangle(j), reach)
     }
