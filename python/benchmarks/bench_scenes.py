@@ -77,7 +77,7 @@ import tempfile
 import time
 import traceback
 import zlib
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, List, Optional
 
 import numpy as np
 
@@ -107,9 +107,9 @@ def log(*args: Any) -> None:
     print(*args, file=sys.stderr, flush=True)
 
 
-def median(xs) -> Optional[float]:
+def median(xs) -> float:
     xs = list(xs)
-    return statistics.median(xs) if xs else None
+    return float(statistics.median(xs)) if xs else math.nan
 
 
 def mesh_args(p: Problem):
@@ -240,7 +240,7 @@ def near_contact_poses(checker: dymsum.MotionChecker, p: Problem, rng: np.random
     them (dymsum's exact check decides). Rotations where 64 translations
     give no free or no colliding one are drawn again."""
     low, high = p.bounds
-    out = []
+    out: List[np.ndarray] = []
     tries = 0
     while len(out) < n and tries < 50 * n:
         tries += 1
@@ -427,10 +427,10 @@ def part_motions(p: Problem, checker: dymsum.MotionChecker, f: Fcl, args) -> dic
             continue
         if not r.free:
             misses.append((i, r.t_contact))
-            confirmed += fcl_confirms(f, acc0[i], acc1[i], r.t_contact)
+            confirmed += fcl_confirms(f, acc0[i], acc1[i], float(r.t_contact or 0.0))
     out["accepted"] = dict(
         n=len(acc0), done=done, contact=len(misses), undecided=undecided, fcl_confirmed=confirmed,
-        t_contact=[float(t) for _, t in misses[:10]],
+        t_contact=[float(t or 0.0) for _, t in misses[:10]],
         length=[float(np.linalg.norm(acc1[i][:3, 3] - acc0[i][:3, 3])) for i, _ in misses[:10]],
     )
     n = len(s0)
@@ -508,13 +508,13 @@ def part_motions(p: Problem, checker: dymsum.MotionChecker, f: Fcl, args) -> dic
     trans_free = [on_ccd_motion(i) for i in range(len(ccd_res))]
 
     # Undecided motions: what the discrete validator said, and the check from the other end.
-    undecided_notes = []
+    undecided_notes: List[str] = []
     for i, (kind, t) in enumerate(dym):
         if kind != "undecided" or len(undecided_notes) >= 10:
             continue
         try:
             r = check(poses1[i], poses0[i], 1e-6)
-            back = "free" if r.free else f"contact at t = {1 - r.t_contact:.6f}"
+            back = "free" if r.free else f"contact at t = {1 - (r.t_contact or 0.0):.6f}"
         except dymsum.MotionUndecided as e:
             back = f"undecided after t = {1 - e.t_safe:.6f}"
         disc = "—" if i >= len(disc_valid) else ("valid" if disc_valid[i] else "invalid")
@@ -580,7 +580,7 @@ def part_planning(p: Problem, checker: dymsum.MotionChecker, runs: int, cap: flo
                         continue
                     if not c.free:
                         bad += 1
-                        confirmed += fcl_confirms(Fcl(p) if fcl_objects is None else fcl_objects, x, y, c.t_contact)
+                        confirmed += fcl_confirms(Fcl(p) if fcl_objects is None else fcl_objects, x, y, float(c.t_contact or 0.0))
                 row["uncertified_motions"] = bad
                 row["fcl_confirmed"] = confirmed
                 row["length"] = r["length"]
