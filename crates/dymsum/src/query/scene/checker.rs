@@ -394,9 +394,10 @@ impl SceneChecker {
         let (mi, ti) = (m.transpose(), -(m.transpose() * t));
         let back_pad = size * (1.0 / (1u64 << 40) as f64);
         let (bounds, boxes) = (self.body.tree.bounds(), self.body.tree.boxes());
-        // Nodes are compared in the world; a pair of triangles is kept only
-        // when their boxes meet both in the world and in the body's frame
-        // (the six face axes of a separating-axis test).
+        // A pair of nodes or of triangles is kept only when their boxes meet
+        // both in the world and in the body's frame (the six face axes of a
+        // separating-axis test); the body's node boxes at the pose are
+        // computed once per query.
         let meets = |own: &Aabb, other: &Aabb| {
             own.transformed(&m, t, pad).within(other, 0.0)
                 && other.transformed(&mi, ti, back_pad).within(own, 0.0)
@@ -407,7 +408,9 @@ impl SceneChecker {
         let scene = &self.scene.tree;
         let mut stack = std::mem::take(&mut s.stack);
         let hit = self.body.tree.for_each_pair(
-            |n, o| world(n).within(o, 0.0),
+            |n, o| {
+                world(n).within(o, 0.0) && o.transformed(&mi, ti, back_pad).within(&bounds[n], 0.0)
+            },
             |n| bounds[n].size(),
             |i, o| meets(&boxes[i], o),
             scene,
