@@ -148,6 +148,29 @@ def test_motions_on_soups_are_never_free_through_a_contact():
     assert frees > 0
 
 
+def _near_contact(checker, poses, translation, steps):
+    """States near contact: from each free pose towards a colliding one
+    with the same rotation (its translation drawn by ``translation()``),
+    bisected ``steps`` times on the translation; both ends kept."""
+    near = []
+    for free in poses:
+        if checker.collides_at(free):
+            continue
+        hit = free.copy()
+        hit[:3, 3] = translation()
+        if not checker.collides_at(hit):
+            continue
+        for _ in range(steps):
+            mid = free.copy()
+            mid[:3, 3] = (free[:3, 3] + hit[:3, 3]) / 2
+            if checker.collides_at(mid):
+                hit = mid
+            else:
+                free = mid
+        near += [free, hit]
+    return near
+
+
 def _fcl_model(fcl_mod, v, f):
     m = fcl_mod.BVHModel()
     m.beginModel(len(v), len(f))
@@ -193,22 +216,7 @@ def test_agrees_with_fcl_on_random_and_near_contact_states():
     poses = [dymsum.pose(r, rng.uniform([-5, -5, -0.5], [5, 5, 3.5])) for r in rots]
     # Near contact: bisect the translation from a free pose towards a
     # colliding one (the rotation kept) down to 2^-30.
-    near = []
-    for p in poses[:80]:
-        if checker.collides_at(p):
-            continue
-        q = p.copy()
-        q[:3, 3] = rng.uniform([-5, -5, -0.5], [5, 5, 3.5])
-        if not checker.collides_at(q):
-            continue
-        for _ in range(30):
-            m = p.copy()
-            m[:3, 3] = (p[:3, 3] + q[:3, 3]) / 2
-            if checker.collides_at(m):
-                q = m
-            else:
-                p = m
-        near += [p, q]
+    near = _near_contact(checker, poses[:80], lambda: rng.uniform([-5, -5, -0.5], [5, 5, 3.5]), 30)
     assert len(near) >= 20
     poses += near
     ours = checker.collides_many(np.stack(poses))
@@ -254,22 +262,7 @@ def test_the_window_scene_against_fcl():
     rng = np.random.default_rng(2)
     lo, hi = np.asarray(p.bounds[0], float), np.asarray(p.bounds[1], float)
     poses = [dymsum.pose(r, rng.uniform(lo, hi)) for r in Rotation.random(1500, random_state=4)]
-    near = []
-    for q in poses[:200]:
-        if checker.collides_at(q):
-            continue
-        z = q.copy()
-        z[:3, 3] = rng.uniform(lo, hi)
-        if not checker.collides_at(z):
-            continue
-        for _ in range(40):
-            m = q.copy()
-            m[:3, 3] = (q[:3, 3] + z[:3, 3]) / 2
-            if checker.collides_at(m):
-                z = m
-            else:
-                q = m
-        near += [q, z]
+    near = _near_contact(checker, poses[:200], lambda: rng.uniform(lo, hi), 40)
     assert len(near) >= 40
     poses += near
     ours = checker.collides_many(np.stack(poses))

@@ -84,23 +84,22 @@ pub fn random_states(n: usize, lo: DVec3, hi: DVec3, seed: u64) -> Vec<Pose> {
         .collect()
 }
 
+/// A cuboid's boundary appended to `v`, `f` as triangles, each listed twice,
+/// back to back (as exporters write double-sided faces).
 fn cuboid_triangles(lo: [f64; 3], hi: [f64; 3], v: &mut Vec<[f64; 3]>, f: &mut Vec<Vec<usize>>) {
+    let corners: Vec<[f64; 3]> = (0..8)
+        .map(|i| std::array::from_fn(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+        .collect();
+    let mesh = dymsum::Polytope::from_points(&corners)
+        .expect("a cuboid")
+        .to_mesh();
     let base = v.len();
-    for i in 0..8 {
-        let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-        v.push([pick(0), pick(1), pick(2)]);
-    }
-    for q in [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ] {
-        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
-            f.push(t.iter().map(|&k| base + k).collect());
-            f.push(t.iter().rev().map(|&k| base + k).collect()); // double-sided
+    v.extend(mesh.vertices);
+    for face in &mesh.faces {
+        for w in face[1..].windows(2) {
+            let t = [base + face[0], base + w[0], base + w[1]];
+            f.push(t.to_vec());
+            f.push(vec![t[2], t[1], t[0]]);
         }
     }
 }

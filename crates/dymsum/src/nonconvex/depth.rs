@@ -1,5 +1,6 @@
 //! The penetration depth of two unions from their merged C-obstacle mesh.
 
+use crate::query::scene::gap::closest_on_triangle;
 use glam::DVec3;
 
 use super::{UnionMeshError, UnionSum};
@@ -109,9 +110,11 @@ pub(crate) fn closest_boundary_point(mesh: &crate::mesh::PolygonMesh, q: DVec3) 
         for w in f[1..].windows(2) {
             let p = closest_on_triangle(
                 q,
-                a,
-                DVec3::from(mesh.vertices[w[0]]),
-                DVec3::from(mesh.vertices[w[1]]),
+                &[
+                    a,
+                    DVec3::from(mesh.vertices[w[0]]),
+                    DVec3::from(mesh.vertices[w[1]]),
+                ],
             );
             let d = (p - q).length();
             if d < best.1 {
@@ -120,43 +123,4 @@ pub(crate) fn closest_boundary_point(mesh: &crate::mesh::PolygonMesh, q: DVec3) 
         }
     }
     best
-}
-
-/// The point of triangle `abc` nearest `p` (Ericson, Real-Time Collision
-/// Detection, 5.1.5).
-fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
-    let ab = b - a;
-    let ac = c - a;
-    let ap = p - a;
-    let d1 = ab.dot(ap);
-    let d2 = ac.dot(ap);
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = p - b;
-    let d3 = ab.dot(bp);
-    let d4 = ac.dot(bp);
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = p - c;
-    let d5 = ab.dot(cp);
-    let d6 = ac.dot(cp);
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    a + ab * (vb * denom) + ac * (vc * denom)
 }

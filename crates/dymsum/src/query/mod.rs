@@ -141,7 +141,7 @@ mod motion;
 mod pair;
 mod prep;
 mod proximity;
-mod scene;
+pub(crate) mod scene;
 mod tracker;
 mod union;
 

@@ -353,29 +353,7 @@ impl AabbTree {
                         }
                     }
                 }
-                (Node::Inner { left, right }, Node::Leaf { .. }) => {
-                    stack.push((*right, b));
-                    stack.push((*left, b));
-                }
-                (Node::Leaf { .. }, Node::Inner { left, right }) => {
-                    stack.push((a, *right));
-                    stack.push((a, *left));
-                }
-                (
-                    Node::Inner { left, right },
-                    Node::Inner {
-                        left: l2,
-                        right: r2,
-                    },
-                ) => {
-                    if node_size(a as usize) >= bb.size() {
-                        stack.push((*right, b));
-                        stack.push((*left, b));
-                    } else {
-                        stack.push((a, *r2));
-                        stack.push((a, *l2));
-                    }
-                }
+                _ => self.descend(other, a, b, node_size(a as usize) >= bb.size(), stack),
             }
         }
         false
@@ -418,32 +396,38 @@ impl AabbTree {
                         }
                     }
                 }
-                (Node::Inner { left, right }, Node::Leaf { .. }) => {
-                    stack.push((*right, b));
-                    stack.push((*left, b));
-                }
-                (Node::Leaf { .. }, Node::Inner { left, right }) => {
-                    stack.push((a, *right));
-                    stack.push((a, *left));
-                }
-                (
-                    Node::Inner { left, right },
-                    Node::Inner {
-                        left: l2,
-                        right: r2,
-                    },
-                ) => {
-                    if ba.size() >= bb.size() {
-                        stack.push((*right, b));
-                        stack.push((*left, b));
-                    } else {
-                        stack.push((a, *r2));
-                        stack.push((a, *l2));
-                    }
-                }
+                _ => self.descend(other, a, b, ba.size() >= bb.size(), stack),
             }
         }
         best
+    }
+
+    /// Pushes the child pairs of node pair `(a, b)` (not both leaves):
+    /// this tree's children when `b` is a leaf or when `split_self` (its
+    /// node is the larger), else `other`'s; the left child on top.
+    fn descend(
+        &self,
+        other: &AabbTree,
+        a: u32,
+        b: u32,
+        split_self: bool,
+        stack: &mut Vec<(u32, u32)>,
+    ) {
+        match (&self.nodes[a as usize], &other.nodes[b as usize]) {
+            (Node::Inner { left, right }, Node::Leaf { .. }) => {
+                stack.push((*right, b));
+                stack.push((*left, b));
+            }
+            (Node::Inner { left, right }, Node::Inner { .. }) if split_self => {
+                stack.push((*right, b));
+                stack.push((*left, b));
+            }
+            (_, Node::Inner { left, right }) => {
+                stack.push((a, *right));
+                stack.push((a, *left));
+            }
+            (Node::Leaf { .. }, Node::Leaf { .. }) => {}
+        }
     }
 
     /// Calls `f` with every item whose box meets `query`.

@@ -113,8 +113,9 @@ fn closest_points(t: &[DVec3; 3], u: &[DVec3; 3]) -> (DVec3, DVec3) {
 }
 
 /// The point of triangle `t` closest to `p` (Ericson, *Real-Time
-/// Collision Detection*, 5.1.5), in floating point.
-fn closest_on_triangle(p: DVec3, t: &[DVec3; 3]) -> DVec3 {
+/// Collision Detection*, 5.1.5), in floating point (a corner for a flat
+/// triangle).
+pub(crate) fn closest_on_triangle(p: DVec3, t: &[DVec3; 3]) -> DVec3 {
     let [a, b, c] = *t;
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));

@@ -194,21 +194,15 @@ mod tests {
     use crate::mesh::PolygonMesh;
 
     fn cube(lo: f64, hi: f64) -> PolygonMesh {
-        let v = (0..8)
+        let corners: Vec<[f64; 3]> = (0..8)
             .map(|i| {
                 let pick = |k: usize| if i >> k & 1 == 0 { lo } else { hi };
                 [pick(0), pick(1), pick(2)]
             })
             .collect();
-        let f = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        PolygonMesh::new(v, f.iter().map(|f| f.to_vec()).collect())
+        crate::polytope::Polytope::from_points(&corners)
+            .unwrap()
+            .to_mesh()
     }
 
     fn inside(body: &MeshBody, p: [f64; 3]) -> bool {

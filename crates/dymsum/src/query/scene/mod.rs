@@ -21,7 +21,7 @@
 
 mod body;
 mod checker;
-mod gap;
+pub(crate) mod gap;
 mod inside;
 mod validator;
 
