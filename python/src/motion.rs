@@ -446,7 +446,14 @@ fn check_batch(
 ///
 /// ``MotionChecker(body, obstacles)``: ``body`` a ``ConvexUnion`` or one
 /// shape, in its own frame; ``obstacles`` a sequence of ``ConvexUnion``s or
-/// shapes (or one), placed in the world frame. ``check(pose0, pose1)``
+/// shapes (or one), placed in the world frame. A triangle mesh of any
+/// topology (a ``(vertices, faces)`` pair, a trimesh object or a mesh file:
+/// open, double-sided, non-manifold, unwelded) is taken as it comes,
+/// cleaned exactly: each connected component a solid (closed and
+/// consistently oriented: contact includes lying inside it) or a surface
+/// (contact means touching a triangle); ``info`` says which path was taken
+/// and what the cleaning did, ``collides_many`` and ``distance_at`` check
+/// many poses and give the clearance. ``check(pose0, pose1)``
 /// checks the straight motion between two poses: translation linear,
 /// rotation by slerp along the shorter arc (exactly OMPL's SE(2) and SE(3)
 /// interpolation). The arc is decided from the rotations as given: the

@@ -242,6 +242,92 @@ fn the_budget_is_reported() {
     assert!((0.0..1.0).contains(&t_safe));
 }
 
+/// Regression tests from a review of the soundness arguments, each a case
+/// that once went wrong.
+#[test]
+fn review_a_scene_box_far_from_the_origin_is_not_dropped_by_rounding() {
+    // Carrying a scene box back to the body's frame rounded in the box's
+    // own (huge) coordinates: a touching pair was dropped.
+    let far = 2f64.powi(53) + 2.0;
+    let body = PolygonMesh::new(
+        vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]],
+        vec![vec![0, 1, 2]],
+    );
+    let scene = PolygonMesh::new(
+        vec![[1., 0., 0.], [far, 1., 0.], [far, -1., 1.]],
+        vec![vec![0, 1, 2]],
+    );
+    let checker = SceneChecker::new(&mesh_body(&body), &[mesh_body(&scene)]).unwrap();
+    assert!(checker.collides_at(Pose::IDENTITY).unwrap());
+    // The same at moderate sizes, a far corner drawn anywhere in [1e3, 1e6].
+    let small = PolygonMesh::new(
+        vec![[0., 0., 0.], [0.1, 0., 0.], [0., 0.1, 0.]],
+        vec![vec![0, 1, 2]],
+    );
+    for k in 0..200 {
+        let x = 1e3 * (1.0 + f64::from(k) * 5.0);
+        let scene = PolygonMesh::new(
+            vec![[0.1, 0., 0.], [x, 1., 0.], [x, -1., 1.]],
+            vec![vec![0, 1, 2]],
+        );
+        let checker = SceneChecker::new(&mesh_body(&small), &[mesh_body(&scene)]).unwrap();
+        assert!(checker.collides_at(Pose::IDENTITY).unwrap(), "{x}");
+    }
+}
+
+#[test]
+fn review_a_pose_that_is_not_finite_is_refused() {
+    let body = mesh_body(&cuboid([0., 0., 0.], [1., 1., 1.]).to_mesh());
+    let checker = SceneChecker::new(
+        &body,
+        &[mesh_body(&open_box([-5., -5., -5.], [5., 5., 5.]))],
+    )
+    .unwrap();
+    let nan = at(f64::NAN, 0.0, 0.0);
+    assert!(checker.collides_at(nan).is_err());
+    assert!(checker.check(at(0.0, 0.0, 0.0), nan, 1e-6).is_err());
+    assert!(checker.distance_at(nan).is_err());
+}
+
+#[test]
+fn review_slivers_and_tiny_bodies_are_not_certified_by_an_underflowing_norm() {
+    // A sliver whose normal's length underflows to 0: the rod's swing
+    // crosses its edge at t = 0.5.
+    let rod = PolygonMesh::new(
+        vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 0.0, 0.01]],
+        vec![vec![0, 1, 2]],
+    );
+    let sliver = PolygonMesh::new(
+        vec![
+            [1.625, 0.625, 0.0],
+            [0.625, 1.625, 0.0],
+            [1.125, 1.125, 2f64.powi(-565)],
+        ],
+        vec![vec![0, 1, 2]],
+    );
+    let checker = SceneChecker::new(&mesh_body(&rod), &[mesh_body(&sliver)]).unwrap();
+    let yaw = |deg: f64| turned(DVec3::Z, deg, DVec3::ZERO);
+    assert!(checker.collides_at(yaw(45.0)).unwrap());
+    assert!(!checker.check(yaw(0.0), yaw(90.0), 1e-6).unwrap().is_free());
+    // A rod 1e-200 long turning past a plate: the reach must not underflow.
+    let s = 1e-200;
+    let tiny = PolygonMesh::new(
+        vec![[0., 0., 0.], [s, 0., 0.], [s, 0., 0.01 * s]],
+        vec![vec![0, 1, 2]],
+    );
+    let plate = PolygonMesh::new(
+        vec![
+            [-2. * s, 0.5 * s, -s],
+            [2. * s, 0.5 * s, -s],
+            [0., 0.5 * s, s],
+        ],
+        vec![vec![0, 1, 2]],
+    );
+    let checker = SceneChecker::new(&mesh_body(&tiny), &[mesh_body(&plate)]).unwrap();
+    assert!(!checker.collides_at(yaw(0.0)).unwrap());
+    assert!(!checker.check(yaw(0.0), yaw(179.0), 1e-6).unwrap().is_free());
+}
+
 /// A random convex piece near the origin, of 4 to 12 points on a coarse
 /// grid (coplanar faces and shared coordinates are common).
 fn piece() -> impl Strategy<Value = Polytope> {

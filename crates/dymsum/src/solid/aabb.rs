@@ -88,7 +88,14 @@ impl Aabb {
     #[inline]
     pub fn distance(&self, o: &Aabb) -> f64 {
         let gap = |k: usize| (self.lo[k] - o.hi[k]).max(o.lo[k] - self.hi[k]).max(0.0);
-        (gap(0) * gap(0) + gap(1) * gap(1) + gap(2) * gap(2)).sqrt()
+        let g = [gap(0), gap(1), gap(2)];
+        let m = g[0].max(g[1]).max(g[2]);
+        if m == 0.0 || !m.is_finite() {
+            return m;
+        }
+        // Scaled by the largest gap: no overflow or underflow in squaring.
+        let (a, b, c) = (g[0] / m, g[1] / m, g[2] / m);
+        m * (a * a + b * b + c * c).sqrt()
     }
 
     /// Whether the closed box holds `p`.
@@ -97,7 +104,7 @@ impl Aabb {
         (0..3).all(|k| self.lo[k] <= p[k] && p[k] <= self.hi[k])
     }
 
-    /// Half the length of the longest side (for choosing which tree to
+    /// The length of the longest side (for choosing which tree to
     /// descend).
     #[inline]
     pub fn size(&self) -> f64 {

@@ -158,8 +158,9 @@ const ORIENT3D_BOUND: f64 = 7.771_561_172_376_103e-16;
 /// (exact signs; `false` for a flat `plane`). The three signs are first
 /// read from one floating-point evaluation sharing the plane's normal,
 /// each certified by Shewchuk's static bound for `orient3d` (the same
-/// minors, the same order of operations, so the same bound; far from
-/// underflow and overflow); when any is not certified, all three are
+/// minors, the same order of operations, so the same bound), used only
+/// when every nonzero difference lies within `1e±80` (no product
+/// underflows or overflows); when any is not certified, all three are
 /// decided by the exact `orient3d`.
 fn strictly_one_side(plane: &[DVec3; 3], pts: &[DVec3; 3]) -> bool {
     let (ba, ca) = (plane[1] - plane[0], plane[2] - plane[0]);
@@ -169,8 +170,18 @@ fn strictly_one_side(plane: &[DVec3; 3], pts: &[DVec3; 3]) -> bool {
         (ba.z * ca.x).abs() + (ba.x * ca.z).abs(),
         (ba.x * ca.y).abs() + (ba.y * ca.x).abs(),
     );
+    // Shewchuk's bound assumes no underflow: every nonzero difference
+    // within 1e±80 keeps every product of three and every sum normal.
+    let in_range = |v: DVec3| {
+        v.to_array()
+            .iter()
+            .all(|&x| x == 0.0 || (1e-80..=1e80).contains(&x.abs()))
+    };
     let filtered = |p: DVec3| -> Option<bool> {
         let pa = p - plane[0];
+        if !(in_range(ba) && in_range(ca) && in_range(pa)) {
+            return None;
+        }
         let det = pa.dot(normal);
         let permanent = pa.abs().dot(minors);
         let certain =
@@ -273,6 +284,26 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn the_filter_stands_aside_where_products_underflow() {
+        // A review's counterexample: a product of differences underflows
+        // to zero, and the float signs all agree while the exact one does
+        // not; the point (2¹⁹⁸, 2⁻⁵⁴⁰, 0) lies on both triangles.
+        let p2 = |e: i32| 2f64.powi(e);
+        let u = [
+            v(0., 0., 0.),
+            v(p2(200), p2(-538), 0.),
+            v(p2(200), 0., p2(-538)),
+        ];
+        let t = [
+            v(p2(197), p2(-540), 0.),
+            v(p2(199), p2(-540), 0.),
+            v(p2(198), p2(-540), 1.),
+        ];
+        assert!(!strictly_one_side(&u, &t));
+        assert!(triangles_meet(&t, &u));
     }
 
     #[test]

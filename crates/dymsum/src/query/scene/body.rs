@@ -231,8 +231,14 @@ impl MeshBody {
             .map(|&c| component_boxes[c as usize])
             .collect();
         let solid_tree = AabbTree::new(&solid_boxes);
-        let reach =
-            vertices.iter().map(|v| v.length()).fold(0.0, f64::max) * (1.0 + 1e-12) + 1e-300;
+        // √3 times the largest coordinate bounds every norm without
+        // squaring (no underflow for tiny bodies, no overflow for huge ones).
+        let reach = vertices
+            .iter()
+            .map(|v| v.abs().max_element())
+            .fold(0.0, f64::max)
+            * (3f64.sqrt() * (1.0 + 1e-12))
+            + 1e-300;
         MeshBody {
             vertices,
             triangles,

@@ -349,6 +349,12 @@ impl SceneChecker {
     /// Every posed coordinate is at most `|t| + reach` in size: that must
     /// stay far below `f64::MAX` (no bound, box or sum overflows).
     fn check_range(&self, pose: &Pose) -> Result<(), QueryError> {
+        if !pose.translation.is_finite() || !pose.rotation.matrix().is_finite() {
+            return Err(QueryError::OutOfRange(format!(
+                "the pose is not finite (translation {:?})",
+                pose.translation.to_array()
+            )));
+        }
         let size = self.body.reach + pose.translation.abs().max_element();
         if size.is_nan() || size >= 1e300 {
             return Err(QueryError::OutOfRange(format!(
@@ -393,14 +399,24 @@ impl SceneChecker {
         // after snapping), far inside `2⁻⁴⁰` of the sizes involved.
         let (mi, ti) = (m.transpose(), -(m.transpose() * t));
         let back_pad = size * (1.0 / (1u64 << 40) as f64);
+        // Carrying a scene box back also rounds in the box's own
+        // coordinates (its centre and half-size, then the sums): grow it by
+        // a bound on that too.
+        let tmax = t.abs().max_element();
+        let back = |o: &Aabb| {
+            let mag =
+                o.lo.iter()
+                    .chain(o.hi.iter())
+                    .fold(0.0f64, |m, x| m.max(x.abs()));
+            o.transformed(&mi, ti, back_pad + 16.0 * f64::EPSILON * (2.0 * mag + tmax))
+        };
         let (bounds, boxes) = (self.body.tree.bounds(), self.body.tree.boxes());
         // A pair of nodes or of triangles is kept only when their boxes meet
         // both in the world and in the body's frame (the six face axes of a
         // separating-axis test); the body's node boxes at the pose are
         // computed once per query.
         let meets = |own: &Aabb, other: &Aabb| {
-            own.transformed(&m, t, pad).within(other, 0.0)
-                && other.transformed(&mi, ti, back_pad).within(own, 0.0)
+            own.transformed(&m, t, pad).within(other, 0.0) && back(other).within(own, 0.0)
         };
         let cache = std::mem::take(&mut s.node_cache);
         let epoch = s.at.epoch;
@@ -408,9 +424,7 @@ impl SceneChecker {
         let scene = &self.scene.tree;
         let mut stack = std::mem::take(&mut s.stack);
         let hit = self.body.tree.for_each_pair(
-            |n, o| {
-                world(n).within(o, 0.0) && o.transformed(&mi, ti, back_pad).within(&bounds[n], 0.0)
-            },
+            |n, o| world(n).within(o, 0.0) && back(o).within(&bounds[n], 0.0),
             |n| bounds[n].size(),
             |i, o| meets(&boxes[i], o),
             scene,
@@ -746,6 +760,9 @@ impl SceneChecker {
     ) -> Result<Option<f64>, QueryError> {
         for k in (0..8).rev() {
             let t = (a + tolerance / f64::from(1u32 << k)).min(1.0);
+            if t - a > tolerance {
+                continue; // rounded past the tolerance
+            }
             if self.collides_with(motion.at(t), s)? {
                 return Ok(Some(t));
             }

@@ -16,8 +16,10 @@
 //! the bound subtracts their error: each is off by at most
 //! `γ₃ Σₖ |nₖ| |xₖ|` (`γ₃ = 3u/(1 − 3u)`, `u = 2⁻⁵³`), bounded here by
 //! `4u · S`, `S = Σₖ |nₖ| maxᵢ |xᵢₖ|` over all the points, and the two
-//! subtractions by `u` of their size each; `|n|` is rounded up by a
-//! relative `8u`.
+//! subtractions by `u` of their size each, plus `1e-300` for products
+//! below the normal range; `n` is first scaled by a power of two to
+//! components near 1 (no underflow of `|n|`), and `|n|` is rounded up by
+//! a relative `8u`.
 
 use glam::DVec3;
 
@@ -36,7 +38,10 @@ pub(crate) fn apart_by_more_than(
     // The triangle's normal first (cheap, and it separates whatever lies
     // beside a large face), either way round; then the closest points.
     let normal = (u[1] - u[0]).cross(u[2] - u[0]);
-    let along = |n: DVec3| gap_along(hull, u, n) > reach_times_norm(reach, n);
+    let along = |n: DVec3| {
+        let n = normalised_scale(n);
+        gap_along(hull, u, n) > reach_times_norm(reach, n)
+    };
     along(normal)
         || along(-normal)
         || near.iter().any(|t| {
@@ -51,12 +56,25 @@ pub(crate) fn apart_by_more_than(
 /// `|n|` rounded up, rounded down.
 pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
     let (ct, cu) = closest_points(t, u);
-    let n = cu - ct;
+    let n = normalised_scale(cu - ct);
     let gap = gap_along(t, u, n);
     if gap <= 0.0 || !gap.is_finite() {
         return 0.0;
     }
     gap / (n.length() * (1.0 + 8.0 * U)) * (1.0 - 4.0 * U)
+}
+
+/// `n` scaled by a power of two (exactly, up to the last bits of components
+/// far smaller than the largest: any axis is valid) so that its largest
+/// component is near 1: its length neither underflows nor overflows. Zero
+/// and non-finite `n` stay as they are (refused by [`gap_along`]).
+fn normalised_scale(n: DVec3) -> DVec3 {
+    let m = n.abs().max_element();
+    if m == 0.0 || !m.is_finite() {
+        return n;
+    }
+    let e = (m.log2().floor() as i32).clamp(-1000, 1000);
+    n * 2f64.powi(-e)
 }
 
 /// `reach · |n|`, rounded up.
@@ -81,7 +99,9 @@ fn gap_along(t: &[DVec3], u: &[DVec3; 3], n: DVec3) -> f64 {
         .fold(DVec3::ZERO, |m, p| m.max(p.abs()));
     let s = n.abs().dot(m);
     let gap = min_u - max_t;
-    gap - (8.0 * U * s + 2.0 * U * gap.abs()) * (1.0 + 8.0 * U)
+    // The relative bounds, and an absolute one for products that fall
+    // below the normal range (each off by at most 2⁻¹⁰⁷⁵).
+    gap - (8.0 * U * s + 2.0 * U * gap.abs() + 1e-300) * (1.0 + 8.0 * U)
 }
 
 /// Closest points of two triangles, in floating point (a proposal only):
