@@ -401,15 +401,16 @@ impl SceneChecker {
         let back_pad = size * (1.0 / (1u64 << 40) as f64);
         // Carrying a scene box back also rounds in the box's own
         // coordinates (its centre and half-size, then the sums): grow it by
-        // a bound on that too.
-        let tmax = t.abs().max_element();
-        let back = |o: &Aabb| {
-            let mag =
-                o.lo.iter()
-                    .chain(o.hi.iter())
-                    .fold(0.0f64, |m, x| m.max(x.abs()));
-            o.transformed(&mi, ti, back_pad + 16.0 * f64::EPSILON * (2.0 * mag + tmax))
-        };
+        // a bound on that too, taken once for the whole scene (its box's
+        // largest coordinate bounds every box's).
+        let root = self.scene.tree.root();
+        let mag = root
+            .lo
+            .iter()
+            .chain(root.hi.iter())
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        let back_pad = back_pad + 16.0 * f64::EPSILON * (2.0 * mag + t.abs().max_element());
+        let back = |o: &Aabb| o.transformed(&mi, ti, back_pad);
         let (bounds, boxes) = (self.body.tree.bounds(), self.body.tree.boxes());
         // A pair of nodes or of triangles is kept only when their boxes meet
         // both in the world and in the body's frame (the six face axes of a
