@@ -1,7 +1,8 @@
 //! Meshes as they come (issue 28 §1, the first step): `clean_soup` merges
 //! identical vertices, drops zero-area triangles, duplicates and the backs
-//! of double-sided faces, and classifies each component as a solid
-//! (oriented outward) or a surface. Oracles: counts known by construction,
+//! of double-sided faces, and says which triangles enclose (solid
+//! components, oriented outward) and which are surface (issue 33: by the
+//! balance of their edges; tests/winding.rs probes what they enclose). Oracles: counts known by construction,
 //! the exact solid check on every component called solid, and the signed
 //! volume of the oriented solids.
 
@@ -161,12 +162,14 @@ fn nested_and_overlapping_boxes_are_solids_each() {
 }
 
 #[test]
-fn a_closed_mesh_crossing_itself_is_a_surface() {
-    // A box whose top vertex is pulled through the bottom face.
+fn a_closed_mesh_crossing_itself_encloses() {
+    // A box whose top vertex is pulled through the bottom face: a closed
+    // cycle, so it encloses its points of non-zero winding number
+    // (tests/winding.rs probes them).
     let mut v = box_vertices([0.0; 3], [1.0; 3]);
     v[7] = [0.5, 0.5, -2.0];
     let soup = clean_soup(&PolygonMesh::new(v, box_triangles(0))).unwrap();
-    assert_eq!(soup.components[0].kind, ComponentKind::Surface);
+    assert_eq!(soup.components[0].kind, ComponentKind::Solid);
 }
 
 #[test]

@@ -324,7 +324,8 @@ pub fn check_solid_mesh(mesh: &PolygonMesh) -> Result<SolidInfo, SolidError> {
         if let Some((a, b)) = first_crossing(vertices, &shell_tris) {
             return Err(SolidError::TrianglesCross { a, b });
         }
-        let sign = volume_sign(vertices, &shell_tris);
+        let corners: Vec<[usize; 3]> = shell_tris.iter().map(|t| t.v).collect();
+        let sign = volume_sign(vertices, &corners);
         if sign != Sign::Positive {
             return Err(SolidError::NonPositiveVolume {
                 shell: s,
@@ -486,16 +487,16 @@ fn pair_meets(vertices: &[[f64; 3]], t: &Tri, u: &Tri) -> bool {
 /// Rule 7: the exact sign of six times the signed volume of a shell (exact
 /// partial sums over chunks, in parallel; the order does not change an
 /// exact sum).
-fn volume_sign(vertices: &[[f64; 3]], tris: &[Tri]) -> Sign {
+pub(crate) fn volume_sign(vertices: &[[f64; 3]], tris: &[[usize; 3]]) -> Sign {
     let Some(first) = tris.first() else {
         return Sign::Zero;
     };
-    let o = DVec3::from(vertices[first.v[0]]);
+    let o = DVec3::from(vertices[first[0]]);
     tris.par_chunks(1024)
         .map(|chunk| {
             let mut sum = Dyadic::zero();
             for t in chunk {
-                let [a, b, c] = t.v.map(|i| exact::sub(DVec3::from(vertices[i]), o));
+                let [a, b, c] = t.map(|i| exact::sub(DVec3::from(vertices[i]), o));
                 sum = sum.add(&exact::det3(&a, &b, &c));
             }
             sum

@@ -1,48 +1,93 @@
-//! Triangle meshes as they come out of CAD and planning suites (issue 28,
-//! "Bodies as they come"): open, double-sided, non-manifold, several
-//! components, float32 coordinates. [`clean_soup`] cleans such a mesh
-//! exactly and says what each connected component is:
+//! Triangle meshes as they come out of CAD and planning suites: open,
+//! double-sided, non-manifold, several touching parts, cavities,
+//! T-junctions, float32 coordinates. [`clean_soup`] cleans such a mesh
+//! exactly and says which of its triangles *enclose* and which are only
+//! *surface*.
 //!
-//! 1. identical vertices (bit-equal coordinates, `-0.0` as `0.0`) are
-//!    merged;
-//! 2. faces are taken as their fan triangles; a triangle whose corners are
-//!    exactly collinear (exact predicates) or repeat a vertex is dropped;
-//! 3. of triangles with the same corners, the first is kept: a copy with
-//!    the same orientation is a duplicate, one with the opposite
-//!    orientation the back of a double-sided face (exports write every face
-//!    twice, back to back); a polygon of more than three corners that
-//!    repeats a kept polygon's cycle, either way round, is dropped whole
-//!    first (a double-sided quad fans into other triangles from its other
-//!    side);
-//! 4. each connected component (through shared vertices) is a
-//!    [`ComponentKind::Solid`] when it can be oriented consistently (every
-//!    edge in exactly two of its triangles, the orientation propagated
-//!    across them without a contradiction) and then passes the exact solid
-//!    check ([`super::check_solid_mesh`]: manifold at every vertex, no two
-//!    triangles crossing, positive volume, with the whole component flipped
-//!    when its volume is negative): its triangles come back oriented
-//!    outward. Anything else is a [`ComponentKind::Surface`], its triangles
-//!    as given.
+//! # What a mesh means (one rule: the winding number)
 //!
-//! Every decision is exact; the counts say what was changed.
+//! A body given as triangles is the set of points on its triangles together
+//! with the points of non-zero winding number of its *enclosing* part, the
+//! largest part of it that is closed as a cycle. Contact with a body means
+//! touching one of its triangles or lying where its winding number is not
+//! zero. So touching solids (a shared corner, edge or face), nested shells,
+//! a cavity (an inward shell inside an outward one: its winding number is
+//! `1 − 1 = 0`, outside), T-junctions and shells that cross themselves all
+//! mean what their winding number says, and non-manifold vertices and edges
+//! are no reason to give up the inside.
+//!
+//! # The cleaning, in order (every decision exact)
+//!
+//! 1. Identical vertices (bit-equal coordinates, `-0.0` as `0.0`) are
+//!    merged.
+//! 2. Faces are taken as their fan triangles. A triangle repeating a vertex
+//!    is dropped. A triangle whose distinct corners are exactly collinear
+//!    (zero area) is dropped from the body but kept for the balance of
+//!    edges below (a T-junction's fill), where, after the splitting of
+//!    edges, it balances itself.
+//! 3. Of triangles with the same corners, a copy with the same orientation
+//!    is dropped (a duplicate), and one with the opposite orientation is
+//!    dropped as the back of the first (exports write double-sided faces
+//!    back to back); the kept copy is then *paired*. A polygon of more than
+//!    three corners that repeats a kept polygon's cycle, either way round,
+//!    is treated so whole first (fanned from another corner its triangles
+//!    would not repeat the first copy's).
+//! 4. Each connected part (through shared vertices) whose triangles (paired
+//!    ones once) use every edge exactly twice and can be oriented
+//!    consistently is a closed shell: it encloses. Where it is not
+//!    consistent as given (a few faces flipped, or a double-sided export
+//!    whose first copies point either way), the fewer triangles of each
+//!    edge-connected piece are flipped. A shell consistent as given keeps
+//!    its orientation: an inward shell inside an outward one is a cavity.
+//! 5. Every other part is taken as a chain of oriented triangles, its paired
+//!    triangles left out (a face and its back cancel in the winding number:
+//!    two solids sharing a face) and its zero-area triangles in. An edge is
+//!    *balanced* when, after splitting edges at the vertices lying exactly
+//!    on them (exact collinearity and order), every piece is run as often in
+//!    one direction as in the other. Triangles with an unbalanced edge are
+//!    set aside one at a time until none is left: first any whose
+//!    unbalanced piece no other kept triangle runs along (such a triangle
+//!    is in no balanced part), then the one with the most unbalanced edges
+//!    (the lowest index on a tie). What remains is a cycle and encloses
+//!    (a closed box with an open fin glued to one edge: the box encloses,
+//!    the fin is surface); what was set aside, and the paired triangles, are
+//!    surface.
+//! 6. Inward input as a whole (every shell inverted) is turned outward: when
+//!    the exact signed volume of the enclosing triangles is negative, they
+//!    are all flipped, and [`CleanSoup::inverted`] says so.
+//!
+//! The enclosing triangles are grouped into [`ComponentKind::Solid`]
+//! components (connected through shared vertices; each is a cycle by itself,
+//! so its winding number is zero outside its box), the surface triangles
+//! into [`ComponentKind::Surface`] components. The counts say what was
+//! changed.
+//!
+//! Cost: hashing for steps 1–4; step 5 only for parts that are not closed
+//! shells, with a box tree over the vertices for the splitting, built only
+//! when an unbalanced edge is met.
 
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap, HashSet};
 
-use super::{check_solid_mesh, collinear, shells, SolidError};
+use super::aabb::{Aabb, AabbTree};
+use super::{collinear, shells, volume_sign, SolidError};
+use crate::kernel::predicates::Sign;
 use crate::mesh::PolygonMesh;
 
-/// What a connected component of a cleaned mesh is.
+/// What a component of a cleaned mesh is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ComponentKind {
-    /// Closed, manifold, consistently oriented (outward), not crossing
-    /// itself, of positive volume: contact includes being inside it.
+    /// Triangles that enclose (a cycle: every edge, split at the vertices
+    /// on it, run as often each way): contact includes lying where their
+    /// winding number is not zero.
     Solid,
-    /// Anything else (open, non-manifold, non-orientable, crossing
-    /// itself): contact means touching one of its triangles.
+    /// Triangles that do not enclose (open, set aside by the balance of
+    /// edges, or one side of a double-sided face): contact means touching
+    /// one of them.
     Surface,
 }
 
-/// One connected component of a cleaned mesh.
+/// One component of a cleaned mesh: triangles of one kind, connected
+/// through shared vertices.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Component {
     /// Its triangles (indices into [`CleanSoup::mesh`]'s faces), ascending.
@@ -54,8 +99,8 @@ pub struct Component {
 /// A mesh cleaned by [`clean_soup`], with what the cleaning changed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CleanSoup {
-    /// The cleaned triangles (solids oriented outward) over the merged
-    /// vertices.
+    /// The cleaned triangles (enclosing ones oriented so that their signed
+    /// volume is positive) over the merged vertices.
     pub mesh: PolygonMesh,
     /// Vertices merged into an identical one.
     pub merged_vertices: usize,
@@ -65,14 +110,23 @@ pub struct CleanSoup {
     pub dropped_duplicates: usize,
     /// Triangles dropped as the back of a kept one (double-sided faces).
     pub dropped_back_to_back: usize,
-    /// Triangles of solid components flipped to face outward.
+    /// Triangles flipped: to orient a closed shell consistently, or all
+    /// enclosing ones when the input was inward as a whole.
     pub flipped: usize,
-    /// The connected components, in the order of their first triangle.
+    /// Whether the enclosing triangles were given inward as a whole
+    /// (negative exact volume) and turned.
+    pub inverted: bool,
+    /// Triangles of parts that are not closed shells set aside as surface
+    /// because of an unbalanced edge.
+    pub set_aside: usize,
+    /// Edges split at vertices lying exactly on them (T-junctions).
+    pub split_edges: usize,
+    /// The components, in the order of their first triangle.
     pub components: Vec<Component>,
 }
 
 impl CleanSoup {
-    /// How many components are solids.
+    /// How many components enclose.
     pub fn solids(&self) -> usize {
         self.components
             .iter()
@@ -81,8 +135,8 @@ impl CleanSoup {
     }
 }
 
-/// Cleans a triangle (or polygon) mesh exactly and classifies its
-/// components (module docs).
+/// Cleans a triangle (or polygon) mesh exactly and says which triangles
+/// enclose (module docs).
 ///
 /// ```
 /// use dymsum::solid::soup::{clean_soup, ComponentKind};
@@ -128,18 +182,22 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         })
         .collect();
     let merged_vertices = mesh.vertices.len() - vertices.len();
-    // 2. Fan triangles, degenerate ones dropped; 3. duplicates and backs.
+    // 2. Fan triangles, degenerate ones set apart; 3. duplicates and backs.
     let mut triangles: Vec<[usize; 3]> = Vec::new();
+    let mut paired: Vec<bool> = Vec::new();
+    let mut fills: Vec<[usize; 3]> = Vec::new();
+    let mut fill_seen: HashSet<[usize; 3]> = HashSet::new();
     let mut by_corners: HashMap<[usize; 3], usize> = HashMap::new();
     let (mut dropped_zero_area, mut dropped_duplicates, mut dropped_back_to_back) = (0, 0, 0);
-    let mut polygons: HashMap<Vec<usize>, ()> = HashMap::new();
+    let mut polygons: HashMap<Vec<usize>, Vec<usize>> = HashMap::new();
     for (face, f) in mesh.faces.iter().enumerate() {
         if f.len() < 3 || f.iter().any(|&v| v >= remap.len()) {
             return Err(SolidError::BadFace { face });
         }
+        let mut cycle_key = None;
         if f.len() > 3 {
             // A polygon repeated, or listed again the other way round (a
-            // double-sided quad), is dropped whole: fanned from another
+            // double-sided quad), is taken whole: fanned from another
             // corner its triangles would not repeat the first copy's.
             let cycle: Vec<usize> = f.iter().map(|&v| remap[v]).collect();
             let reversed: Vec<usize> = cycle.iter().rev().copied().collect();
@@ -148,67 +206,142 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
                 dropped_duplicates += f.len() - 2;
                 continue;
             }
-            if polygons.contains_key(&back) {
+            if let Some(kept) = polygons.get(&back) {
+                for &t in kept {
+                    paired[t] = true;
+                }
                 dropped_back_to_back += f.len() - 2;
                 continue;
             }
-            polygons.insert(fwd, ());
+            cycle_key = Some(fwd);
         }
+        let mut produced = Vec::new();
         for w in f[1..].windows(2) {
             let t = [remap[f[0]], remap[w[0]], remap[w[1]]];
-            if t[0] == t[1]
-                || t[1] == t[2]
-                || t[0] == t[2]
-                || collinear(vertices[t[0]], vertices[t[1]], vertices[t[2]])
-            {
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
                 dropped_zero_area += 1;
+                continue;
+            }
+            if collinear(vertices[t[0]], vertices[t[1]], vertices[t[2]]) {
+                dropped_zero_area += 1;
+                if fill_seen.insert(rotated_to_least(t)) {
+                    fills.push(t);
+                }
                 continue;
             }
             let mut key = t;
             key.sort_unstable();
             match by_corners.get(&key) {
                 Some(&kept) if same_orientation(triangles[kept], t) => dropped_duplicates += 1,
-                Some(_) => dropped_back_to_back += 1,
+                Some(&kept) => {
+                    paired[kept] = true;
+                    dropped_back_to_back += 1;
+                }
                 None => {
                     by_corners.insert(key, triangles.len());
+                    produced.push(triangles.len());
                     triangles.push(t);
+                    paired.push(false);
                 }
             }
         }
+        if let Some(key) = cycle_key {
+            polygons.insert(key, produced);
+        }
     }
-    // 4. Components.
-    let mut flipped = 0;
-    let mut components = Vec::new();
-    for comp in shells(vertices.len(), &triangles) {
-        let kind = match oriented(&triangles, &comp) {
+    // 4. Closed shells; 5. the rest as a chain.
+    let mut flip = vec![false; triangles.len()];
+    let mut encloses = vec![false; triangles.len()];
+    let mut chain: Vec<usize> = Vec::new();
+    for part in shells(vertices.len(), &triangles) {
+        match shell_flips(&triangles, &part) {
             Some(flips) => {
-                let mut tris: Vec<[usize; 3]> = comp
-                    .iter()
-                    .zip(&flips)
-                    .map(|(&k, &flip)| flipped_if(triangles[k], flip))
-                    .collect();
-                match solid_orientation(&vertices, &tris) {
-                    Some(outward) => {
-                        if !outward {
-                            tris.iter_mut().for_each(|t| *t = flipped_if(*t, true));
-                        }
-                        for (&k, t) in comp.iter().zip(&tris) {
-                            if triangles[k] != *t {
-                                flipped += 1;
-                            }
-                            triangles[k] = *t;
-                        }
-                        ComponentKind::Solid
-                    }
-                    None => ComponentKind::Surface,
+                for (&k, f) in part.iter().zip(flips) {
+                    flip[k] = f;
+                    encloses[k] = true;
                 }
             }
-            None => ComponentKind::Surface,
+            None => chain.extend(part.iter().copied().filter(|&k| !paired[k])),
+        }
+    }
+    let mut set_aside = 0;
+    let mut split_edges = 0;
+    let mut chain_survivors = Vec::new();
+    if !chain.is_empty() {
+        let tris: Vec<[usize; 3]> = chain
+            .iter()
+            .map(|&k| triangles[k])
+            .chain(fills.iter().copied())
+            .collect();
+        let mut c = Chain::new(&vertices, tris);
+        c.peel();
+        split_edges = c.pieces.values().filter(|p| p.len() > 2).count();
+        for (i, &k) in chain.iter().enumerate() {
+            if c.alive[i] {
+                encloses[k] = true;
+                chain_survivors.push(k);
+            } else {
+                set_aside += 1;
+            }
+        }
+    }
+    for (k, t) in triangles.iter_mut().enumerate() {
+        *t = flipped_if(*t, flip[k]);
+    }
+    // 6. Inward as a whole.
+    let enclosing: Vec<[usize; 3]> = (0..triangles.len())
+        .filter(|&k| encloses[k])
+        .map(|k| triangles[k])
+        .collect();
+    let inverted = volume_sign(&vertices, &enclosing) == Sign::Negative;
+    if inverted {
+        for k in 0..triangles.len() {
+            if encloses[k] {
+                triangles[k] = flipped_if(triangles[k], true);
+                flip[k] = !flip[k];
+            }
+        }
+    }
+    let flipped = flip.iter().filter(|&&f| f).count();
+    // Components: enclosing triangles grouped through shared vertices (the
+    // chain's survivors as one group when an edge was split: each group is
+    // then a cycle by itself), surface triangles likewise.
+    let mut solid_sets = Dsu::new(vertices.len());
+    let mut surface_sets = Dsu::new(vertices.len());
+    for (k, t) in triangles.iter().enumerate() {
+        let sets = if encloses[k] {
+            &mut solid_sets
+        } else {
+            &mut surface_sets
         };
-        components.push(Component {
-            triangles: comp,
-            kind,
+        sets.union(t[0], t[1]);
+        sets.union(t[0], t[2]);
+    }
+    if split_edges > 0 {
+        for w in chain_survivors.windows(2) {
+            solid_sets.union(triangles[w[0]][0], triangles[w[1]][0]);
+        }
+    }
+    let mut index: HashMap<(bool, usize), usize> = HashMap::new();
+    let mut components: Vec<Component> = Vec::new();
+    for (k, t) in triangles.iter().enumerate() {
+        let key = if encloses[k] {
+            (true, solid_sets.find(t[0]))
+        } else {
+            (false, surface_sets.find(t[0]))
+        };
+        let c = *index.entry(key).or_insert_with(|| {
+            components.push(Component {
+                triangles: Vec::new(),
+                kind: if key.0 {
+                    ComponentKind::Solid
+                } else {
+                    ComponentKind::Surface
+                },
+            });
+            components.len() - 1
         });
+        components[c].triangles.push(k);
     }
     Ok(CleanSoup {
         mesh: PolygonMesh::new(vertices, triangles.iter().map(|t| t.to_vec()).collect()),
@@ -217,8 +350,42 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         dropped_duplicates,
         dropped_back_to_back,
         flipped,
+        inverted,
+        set_aside,
+        split_edges,
         components,
     })
+}
+
+/// Disjoint sets over `0..n` (path halving, the smaller root kept).
+struct Dsu(Vec<usize>);
+
+impl Dsu {
+    fn new(n: usize) -> Dsu {
+        Dsu((0..n).collect())
+    }
+
+    fn find(&mut self, mut x: usize) -> usize {
+        while self.0[x] != x {
+            self.0[x] = self.0[self.0[x]];
+            x = self.0[x];
+        }
+        x
+    }
+
+    fn union(&mut self, a: usize, b: usize) {
+        let (a, b) = (self.find(a), self.find(b));
+        if a != b {
+            self.0[a.max(b)] = a.min(b);
+        }
+    }
+}
+
+/// An oriented triangle rotated to start at its smallest corner (the same
+/// oriented triangle from any start gives the same key).
+fn rotated_to_least(t: [usize; 3]) -> [usize; 3] {
+    let r = (0..3).min_by_key(|&i| t[i]).unwrap_or(0);
+    [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
 }
 
 /// A vertex cycle rotated to start at its smallest index (the same cycle
@@ -246,81 +413,285 @@ fn flipped_if(t: [usize; 3], flip: bool) -> [usize; 3] {
     }
 }
 
-/// Per triangle of the component, whether to flip it so that every edge is
-/// used once in each direction; `None` when an edge lies in other than two
-/// of its triangles or the orientation cannot be made consistent (a Möbius
-/// band).
-fn oriented(triangles: &[[usize; 3]], comp: &[usize]) -> Option<Vec<bool>> {
-    // Undirected edge → (position in comp, runs from the smaller vertex).
+/// Per triangle of the part, whether to flip it so that every edge is run
+/// once each way, when the part is a closed shell: every edge in exactly
+/// two of its triangles and no contradiction in propagating the
+/// orientation across them (no Möbius band); `None` otherwise. Each
+/// edge-connected piece flips the fewer of its triangles (none when it is
+/// consistent as given).
+fn shell_flips(triangles: &[[usize; 3]], part: &[usize]) -> Option<Vec<bool>> {
+    // Undirected edge → (position in part, runs from the smaller vertex).
     let mut edges: HashMap<(usize, usize), Vec<(usize, bool)>> = HashMap::new();
-    for (i, &k) in comp.iter().enumerate() {
+    for (i, &k) in part.iter().enumerate() {
         let t = triangles[k];
         for e in 0..3 {
             let (a, b) = (t[e], t[(e + 1) % 3]);
-            edges
-                .entry((a.min(b), a.max(b)))
-                .or_default()
-                .push((i, a < b));
+            let users = edges.entry((a.min(b), a.max(b))).or_default();
+            if users.len() == 2 {
+                return None;
+            }
+            users.push((i, a < b));
         }
     }
     if edges.values().any(|users| users.len() != 2) {
         return None;
     }
-    let mut flip: Vec<Option<bool>> = vec![None; comp.len()];
-    let mut stack = vec![0];
-    flip[0] = Some(false);
-    while let Some(i) = stack.pop() {
-        let t = triangles[comp[i]];
-        let fi = flip[i].expect("set before pushed");
-        for e in 0..3 {
-            let (a, b) = (t[e], t[(e + 1) % 3]);
-            let users = &edges[&(a.min(b), a.max(b))];
-            let (j, j_forward) = if users[0].0 == i { users[1] } else { users[0] };
-            // Consistent: the two run the edge in opposite directions after
-            // their flips.
-            let i_forward = (a < b) != fi;
-            let want = j_forward == i_forward; // flip j iff it runs the same way
-            match flip[j] {
-                None => {
-                    flip[j] = Some(want);
-                    stack.push(j);
+    let mut flip: Vec<Option<bool>> = vec![None; part.len()];
+    let mut out = vec![false; part.len()];
+    for seed in 0..part.len() {
+        if flip[seed].is_some() {
+            continue;
+        }
+        flip[seed] = Some(false);
+        let mut piece = vec![seed];
+        let mut stack = vec![seed];
+        while let Some(i) = stack.pop() {
+            let t = triangles[part[i]];
+            let fi = flip[i].expect("set before pushed");
+            for e in 0..3 {
+                let (a, b) = (t[e], t[(e + 1) % 3]);
+                let users = &edges[&(a.min(b), a.max(b))];
+                let (j, j_forward) = if users[0].0 == i { users[1] } else { users[0] };
+                // Consistent: the two run the edge in opposite directions
+                // after their flips.
+                let i_forward = (a < b) != fi;
+                let want = j_forward == i_forward; // flip j iff it runs the same way
+                match flip[j] {
+                    None => {
+                        flip[j] = Some(want);
+                        piece.push(j);
+                        stack.push(j);
+                    }
+                    Some(f) if f != want => return None,
+                    Some(_) => {}
                 }
-                Some(f) if f != want => return None,
-                Some(_) => {}
+            }
+        }
+        // The fewer triangles of the piece are the ones flipped.
+        let flips = piece.iter().filter(|&&i| flip[i] == Some(true)).count();
+        let invert = 2 * flips > piece.len();
+        for &i in &piece {
+            out[i] = flip[i] == Some(true) && !invert || flip[i] == Some(false) && invert;
+        }
+    }
+    Some(out)
+}
+
+/// An undirected edge's key: its smaller vertex first.
+fn edge_key(a: usize, b: usize) -> (usize, usize) {
+    (a.min(b), a.max(b))
+}
+
+/// The oriented triangles of the parts that are not closed shells, and the
+/// balance of their edges split at the vertices lying on them (module docs,
+/// step 5).
+///
+/// An edge's *net* is how often its alive triangles run it from its smaller
+/// vertex to its larger, less the other way. An edge whose net is not zero
+/// (now or once) is cut into *pieces* at the vertices lying exactly inside
+/// it; a piece's net sums the nets of the edges it lies in. Edges whose net
+/// was always zero add nothing to any piece, so they need no cutting: the
+/// chain is balanced exactly when every piece's net is zero.
+struct Chain<'a> {
+    vertices: &'a [[f64; 3]],
+    tris: Vec<[usize; 3]>,
+    alive: Vec<bool>,
+    /// Edge → the triangles that run it (alive or not).
+    users: HashMap<(usize, usize), Vec<u32>>,
+    /// Edge → net over its alive triangles.
+    net: HashMap<(usize, usize), i32>,
+    /// Edge → its vertices in order from the smaller vertex to the larger,
+    /// both included (cut once its net is not zero).
+    pieces: HashMap<(usize, usize), Vec<usize>>,
+    /// Piece → (net, the cut edges it lies in).
+    piece_net: HashMap<(usize, usize), (i32, Vec<(usize, usize)>)>,
+    /// Point boxes of the vertices (built when first needed).
+    points: Option<AabbTree>,
+}
+
+impl<'a> Chain<'a> {
+    fn new(vertices: &'a [[f64; 3]], tris: Vec<[usize; 3]>) -> Chain<'a> {
+        let mut users: HashMap<(usize, usize), Vec<u32>> = HashMap::new();
+        let mut net: HashMap<(usize, usize), i32> = HashMap::new();
+        for (i, t) in tris.iter().enumerate() {
+            for e in 0..3 {
+                let (a, b) = (t[e], t[(e + 1) % 3]);
+                users.entry(edge_key(a, b)).or_default().push(i as u32);
+                *net.entry(edge_key(a, b)).or_default() += if a < b { 1 } else { -1 };
+            }
+        }
+        let mut chain = Chain {
+            vertices,
+            alive: vec![true; tris.len()],
+            tris,
+            users,
+            net: HashMap::new(),
+            pieces: HashMap::new(),
+            piece_net: HashMap::new(),
+            points: None,
+        };
+        let mut keys: Vec<((usize, usize), i32)> = net.into_iter().collect();
+        keys.sort_unstable();
+        for (key, n) in keys {
+            chain.net.insert(key, 0);
+            chain.set_net(key, n);
+        }
+        chain
+    }
+
+    /// Sets an edge's net, cutting it first when it was never cut.
+    fn set_net(&mut self, key: (usize, usize), new: i32) {
+        let old = self.net.get(&key).copied().unwrap_or(0);
+        if old == new {
+            return;
+        }
+        self.net.insert(key, new);
+        if !self.pieces.contains_key(&key) {
+            let cut = self.cut(key);
+            for w in cut.windows(2) {
+                self.piece_net
+                    .entry(edge_key(w[0], w[1]))
+                    .or_insert((0, Vec::new()))
+                    .1
+                    .push(key);
+            }
+            self.pieces.insert(key, cut);
+        }
+        for w in self.pieces[&key].windows(2) {
+            let along = if w[0] < w[1] { 1 } else { -1 };
+            if let Some(p) = self.piece_net.get_mut(&edge_key(w[0], w[1])) {
+                p.0 += (new - old) * along;
             }
         }
     }
-    flip.into_iter().collect()
-}
 
-/// For a consistently oriented closed component: `Some(true)` when it
-/// passes the exact solid check as it is, `Some(false)` when it does once
-/// flipped (negative volume), `None` when it is no solid either way.
-fn solid_orientation(vertices: &[[f64; 3]], tris: &[[usize; 3]]) -> Option<bool> {
-    // The component alone, its vertices renumbered (the check's cost
-    // follows the component, not the whole mesh).
-    let mut local: HashMap<usize, usize> = HashMap::new();
-    let mut points: Vec<[f64; 3]> = Vec::new();
-    let compact: Vec<[usize; 3]> = tris
-        .iter()
-        .map(|t| {
-            t.map(|v| {
-                *local.entry(v).or_insert_with(|| {
-                    points.push(vertices[v]);
-                    points.len() - 1
-                })
-            })
-        })
-        .collect();
-    let mesh = PolygonMesh::new(points, compact.iter().map(|t| t.to_vec()).collect());
-    // The component is one shell (connected through shared vertices, as
-    // the check counts shells), and the volume sign is the check's last
-    // rule: a negative volume means every other rule held, and flipping
-    // every triangle keeps them and negates the volume exactly, so the
-    // flipped component is a solid without checking it again.
-    match check_solid_mesh(&mesh) {
-        Ok(_) => Some(true),
-        Err(SolidError::NonPositiveVolume { negative: true, .. }) => Some(false),
-        Err(_) => None,
+    /// The edge's vertices from its smaller vertex to its larger, with every
+    /// vertex lying exactly inside it (exact collinearity, then the order
+    /// along a coordinate in which the ends differ).
+    fn cut(&mut self, (a, b): (usize, usize)) -> Vec<usize> {
+        let vertices = self.vertices;
+        let (pa, pb) = (vertices[a], vertices[b]);
+        let k = (0..3).find(|&k| pa[k] != pb[k]).unwrap_or(0);
+        let points = self.points.get_or_insert_with(|| {
+            let boxes: Vec<Aabb> = vertices.iter().map(|&p| Aabb { lo: p, hi: p }).collect();
+            AabbTree::new(&boxes)
+        });
+        let mut inside = Vec::new();
+        points.for_each_meeting(&Aabb::of([pa, pb]), |v| {
+            let p = vertices[v];
+            let (lo, hi) = (pa[k].min(pb[k]), pa[k].max(pb[k]));
+            if v != a && v != b && lo < p[k] && p[k] < hi && collinear(pa, p, pb) {
+                inside.push(v);
+            }
+        });
+        let rising = pa[k] < pb[k];
+        inside.sort_by(|&u, &v| {
+            let o = vertices[u][k].total_cmp(&vertices[v][k]);
+            if rising {
+                o
+            } else {
+                o.reverse()
+            }
+        });
+        let mut out = Vec::with_capacity(inside.len() + 2);
+        out.push(a);
+        out.extend(inside);
+        out.push(b);
+        out
+    }
+
+    /// How many of a triangle's edges have a piece whose net is not zero,
+    /// and whether one of those pieces is run by no other alive triangle.
+    fn state(&self, i: usize) -> (usize, bool) {
+        let t = self.tris[i];
+        let (mut unbalanced, mut alone) = (0, false);
+        for e in 0..3 {
+            let key = edge_key(t[e], t[(e + 1) % 3]);
+            let Some(cut) = self.pieces.get(&key) else {
+                continue;
+            };
+            let mut edge_unbalanced = false;
+            for w in cut.windows(2) {
+                let (n, covering) = &self.piece_net[&edge_key(w[0], w[1])];
+                if *n == 0 {
+                    continue;
+                }
+                edge_unbalanced = true;
+                let runs: usize = covering
+                    .iter()
+                    .map(|k| {
+                        self.users[k]
+                            .iter()
+                            .filter(|&&u| self.alive[u as usize])
+                            .count()
+                    })
+                    .sum();
+                alone |= runs == 1;
+            }
+            unbalanced += usize::from(edge_unbalanced);
+        }
+        (unbalanced, alone)
+    }
+
+    /// Sets triangle `i` aside; the alive triangles whose balance it may
+    /// have changed go onto `touched`.
+    fn set_aside(&mut self, i: usize, touched: &mut Vec<u32>) {
+        self.alive[i] = false;
+        let t = self.tris[i];
+        for e in 0..3 {
+            let (a, b) = (t[e], t[(e + 1) % 3]);
+            let key = edge_key(a, b);
+            let n = self.net[&key] - if a < b { 1 } else { -1 };
+            self.set_net(key, n);
+            for w in self.pieces[&key].windows(2) {
+                for k in &self.piece_net[&edge_key(w[0], w[1])].1 {
+                    touched.extend(
+                        self.users[k]
+                            .iter()
+                            .copied()
+                            .filter(|&u| self.alive[u as usize]),
+                    );
+                }
+            }
+        }
+    }
+
+    /// Sets triangles aside until every piece is balanced (module docs).
+    fn peel(&mut self) {
+        let mut stack: Vec<u32> = (0..self.tris.len() as u32).rev().collect();
+        let mut pending: BTreeSet<u32> = BTreeSet::new();
+        loop {
+            while let Some(i) = stack.pop() {
+                let i = i as usize;
+                if !self.alive[i] {
+                    continue;
+                }
+                let (unbalanced, alone) = self.state(i);
+                if unbalanced == 0 {
+                    pending.remove(&(i as u32));
+                } else if alone {
+                    pending.remove(&(i as u32));
+                    self.set_aside(i, &mut stack);
+                } else {
+                    pending.insert(i as u32);
+                }
+            }
+            let mut best: Option<(usize, u32)> = None;
+            pending.retain(|&i| {
+                if !self.alive[i as usize] {
+                    return false;
+                }
+                let (unbalanced, _) = self.state(i as usize);
+                if unbalanced > best.map_or(0, |b| b.0) {
+                    best = Some((unbalanced, i));
+                }
+                unbalanced > 0
+            });
+            let Some((_, i)) = best else {
+                break;
+            };
+            pending.remove(&i);
+            self.set_aside(i as usize, &mut stack);
+        }
     }
 }

@@ -27,9 +27,19 @@ pub struct MeshReport {
     pub dropped_duplicates: usize,
     /// Triangles dropped as the back of a kept one (double-sided faces).
     pub dropped_back_to_back: usize,
-    /// Triangles of solid components flipped to face outward.
+    /// Triangles flipped (a closed shell oriented consistently, or every
+    /// enclosing triangle when the input was inward as a whole).
     pub flipped: usize,
-    /// Components that are solids (contact includes being inside them).
+    /// Whether the enclosing triangles were given inward as a whole and
+    /// turned (an exact negative volume).
+    pub inverted: bool,
+    /// Triangles set aside as surface for an unbalanced edge (parts that
+    /// are not closed shells: a fin on a box, an open box).
+    pub set_aside: usize,
+    /// Edges split at vertices lying exactly on them (T-junctions).
+    pub split_edges: usize,
+    /// Components that enclose (contact includes lying where their winding
+    /// number is not zero).
     pub solids: usize,
     /// Components that are surfaces (contact means touching a triangle).
     pub surfaces: usize,
@@ -39,11 +49,12 @@ pub struct MeshReport {
 /// several components), prepared for exact collision and motion checks
 /// ([`super::SceneChecker`]).
 ///
-/// Each connected component of the cleaned mesh is a *solid* (closed,
-/// manifold, oriented outward, not crossing itself, of positive volume) or
-/// a *surface* (anything else), as [`clean_soup`] decides exactly. Contact
-/// with a surface means touching one of its triangles; contact with a
-/// solid also means lying inside it.
+/// Its triangles *enclose* (solid components: the largest part that is
+/// closed as a cycle) or are *surface* (the rest), as [`clean_soup`]
+/// decides exactly. Contact with the body means touching one of its
+/// triangles, or lying where the winding number of its enclosing triangles
+/// is not zero: touching solids, nested shells and T-junctions enclose, a
+/// cavity is outside ([`crate::solid::soup`]).
 ///
 /// ```
 /// use dymsum::query::MeshBody;
@@ -123,6 +134,9 @@ impl MeshBody {
             dropped_duplicates: soup.dropped_duplicates,
             dropped_back_to_back: soup.dropped_back_to_back,
             flipped: soup.flipped,
+            inverted: soup.inverted,
+            set_aside: soup.set_aside,
+            split_edges: soup.split_edges,
             solids: soup.solids(),
             surfaces: soup.components.len() - soup.solids(),
         };
@@ -202,6 +216,9 @@ impl MeshBody {
                 dropped_duplicates: report.dropped_duplicates + r.dropped_duplicates,
                 dropped_back_to_back: report.dropped_back_to_back + r.dropped_back_to_back,
                 flipped: report.flipped + r.flipped,
+                inverted: report.inverted || r.inverted,
+                set_aside: report.set_aside + r.set_aside,
+                split_edges: report.split_edges + r.split_edges,
                 solids: report.solids + r.solids,
                 surfaces: report.surfaces + r.surfaces,
             };

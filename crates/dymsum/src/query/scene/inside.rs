@@ -1,5 +1,6 @@
-//! Whether a point lies inside a solid component of a body, exactly: the
-//! parity of a ray's crossings with each solid component's triangles.
+//! Whether a point lies inside a body, exactly: the winding number of its
+//! enclosing triangles about the point (the signed count of a ray's
+//! crossings with them) is not zero.
 //!
 //! Precondition: the point is on no triangle of the body (the scenes'
 //! checker asks only after finding that no triangles of the two bodies
@@ -15,11 +16,17 @@
 //! precondition; `q` in the plane but outside the box), or when the edge
 //! signs disagree strictly. Anything else (the segment in the plane, or
 //! through an edge or a corner) is *degenerate*, and the next of a fixed
-//! list of directions is tried. For a closed, oriented, manifold component
-//! a ray that is not degenerate crosses its boundary an odd number of
-//! times exactly when `p` is inside (Jordan–Brouwer), so with every sign
-//! exact the answer is exact. A point for which all directions are
-//! degenerate gets [`QueryError::OutOfRange`] naming it, never a guess.
+//! list of directions is tried. A crossing counts `+1` when `p` lies on the
+//! triangle's inner side (`orient3d(a, b, c, p) > 0` for an outward
+//! triangle, as on the positive side of its plane in this convention) and
+//! `−1` otherwise. Each solid component is a cycle (every edge, split at the
+//! vertices on it, run as often each way: [`crate::solid::soup`]), so the
+//! signed count of a ray that is not degenerate and ends outside the
+//! component's box is its winding number about `p`, the same for every such
+//! ray; a component whose box does not hold `p` has winding number zero
+//! there and is not counted. With every sign exact the answer is exact. A
+//! point for which all directions are degenerate gets
+//! [`QueryError::OutOfRange`] naming it, never a guess.
 
 use glam::DVec3;
 
@@ -49,7 +56,8 @@ const DIRECTIONS: [[f64; 3]; 12] = [
 /// The outcome of one ray against one triangle.
 #[derive(PartialEq)]
 enum Crossing {
-    Crosses,
+    /// Crosses, with `p` on the triangle's positive side (`true`) or not.
+    Crosses(bool),
     Misses,
     Degenerate,
 }
@@ -73,14 +81,14 @@ fn crossing(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Crossing {
     } else if has(Sign::Zero) {
         Crossing::Degenerate
     } else {
-        Crossing::Crosses
+        Crossing::Crosses(sp == Sign::Positive)
     }
 }
 
 impl MeshBody {
     /// Whether `p` (in the body's frame, on none of its triangles) lies
-    /// inside one of its solid components, exactly ([`super::inside`]).
-    /// `parity` is a scratch buffer.
+    /// where the winding number of its enclosing triangles is not zero,
+    /// exactly ([`super::inside`]). `parity` is a scratch buffer.
     pub(crate) fn inside_solid(&self, p: DVec3, parity: &mut Vec<u8>) -> Result<bool, QueryError> {
         let mut candidates = Vec::new();
         let at = p.to_array();
@@ -101,12 +109,13 @@ impl MeshBody {
     }
 }
 
-/// Whether `p` lies inside one of the solid components `candidates` of
-/// `body` (those whose box, `component_boxes[c]`, holds `p`; the others
-/// cannot contain it), whose vertices are `vertices` (posed) and whose
-/// tree's bounds are `bounds` over triangle boxes `boxes` (module docs; `p`
-/// on no triangle of the body). The ray leaves the candidates' joint box
-/// the shortest way first. `parity` is a scratch buffer (all zero between
+/// Whether the winding number about `p` of the solid components
+/// `candidates` of `body` (those whose box, `component_boxes[c]`, holds
+/// `p`; the others wind zero times about it) is not zero, whose vertices
+/// are `vertices` (posed) and whose tree's bounds are `bounds` over
+/// triangle boxes `boxes` (module docs; `p` on no triangle of the body).
+/// The ray leaves the candidates' joint box the shortest way first.
+/// `parity` is a scratch buffer marking the candidates (all zero between
 /// calls).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn inside_solid(
@@ -159,6 +168,7 @@ pub(crate) fn inside_solid(
                 parity[c as usize] = 1;
             }
             let mut degenerate = false;
+            let mut winding: i64 = 0;
             body.tree.for_each_meeting_in(boxes, bounds, &ray, |t| {
                 let c = body.component_of[t] as usize;
                 if degenerate || parity[c] == 0 {
@@ -166,17 +176,16 @@ pub(crate) fn inside_solid(
                 }
                 let tri = body.triangles[t].map(|v| vertices[v as usize]);
                 match crossing(p, q, tri) {
-                    Crossing::Crosses => parity[c] ^= 3, // 1 <-> 2
+                    Crossing::Crosses(positive) => winding += if positive { 1 } else { -1 },
                     Crossing::Misses => {}
                     Crossing::Degenerate => degenerate = true,
                 }
             });
-            let odd = candidates.iter().any(|&c| parity[c as usize] == 2);
             for &c in candidates {
                 parity[c as usize] = 0;
             }
             if !degenerate {
-                break 'directions Ok(odd);
+                break 'directions Ok(winding != 0);
             }
         }
         Err(QueryError::OutOfRange(format!(
