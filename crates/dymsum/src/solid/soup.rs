@@ -477,8 +477,11 @@ fn shell_flips(triangles: &[[usize; 3]], part: &[usize]) -> Option<Vec<bool>> {
     Some(out)
 }
 
+/// An undirected edge (or piece of one): its smaller vertex first.
+type Edge = (usize, usize);
+
 /// An undirected edge's key: its smaller vertex first.
-fn edge_key(a: usize, b: usize) -> (usize, usize) {
+fn edge_key(a: usize, b: usize) -> Edge {
     (a.min(b), a.max(b))
 }
 
@@ -504,7 +507,7 @@ struct Chain<'a> {
     /// both included (cut once its net is not zero).
     pieces: HashMap<(usize, usize), Vec<usize>>,
     /// Piece → (net, the cut edges it lies in).
-    piece_net: HashMap<(usize, usize), (i32, Vec<(usize, usize)>)>,
+    piece_net: HashMap<Edge, (i32, Vec<Edge>)>,
     /// Point boxes of the vertices (built when first needed).
     points: Option<AabbTree>,
 }
