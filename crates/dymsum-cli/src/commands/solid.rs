@@ -27,9 +27,18 @@ pub enum DecompositionArg {
 #[derive(Clone, Copy, Debug, Default, Args)]
 pub struct BodyOptions {
     /// Refuse meshes that are convex only within tolerance (instead of
-    /// taking the exact hull of their vertices).
+    /// taking the exact hull of their vertices). `query` and `motion` take
+    /// mesh files exactly anyway (see `--hull`).
     #[arg(long)]
     pub strict: bool,
+    /// `query` and `motion`: take a mesh file that is convex only within
+    /// tolerance (1e-5 of its box's diagonal) as the exact hull of its
+    /// vertices, reporting the deviation on standard error. Without it such
+    /// a mesh is taken exactly, as the triangles it is (as Python and Rust
+    /// take it). `sum`, `info` and `cobst` need convex operands and take
+    /// the hull unless `--strict`.
+    #[arg(long, conflicts_with = "strict")]
+    pub hull: bool,
     /// Take a non-convex mesh whose connected components are not all
     /// exactly convex apart by this decomposition (approximate: its volume
     /// error against the input is reported, in `sum`'s summary and on
@@ -79,7 +88,7 @@ impl Solid {
 pub fn load_solid(
     spec: &str,
     operand: &str,
-    strict: bool,
+    strict: Strictness,
     decomposition: Option<DecompositionArg>,
 ) -> anyhow::Result<Solid> {
     let refusal = match load_body(spec, operand, strict) {
@@ -134,7 +143,7 @@ pub fn load_solid(
 pub fn load_pieces(
     spec: &str,
     operand: &str,
-    strict: bool,
+    strict: Strictness,
     decomposition: Option<DecompositionArg>,
 ) -> anyhow::Result<Vec<Polytope>> {
     let solid = load_solid(spec, operand, strict, decomposition)?;
@@ -159,23 +168,85 @@ fn mesh_file(spec: &str) -> Option<PolygonMesh> {
     (!mesh.faces.is_empty()).then_some(mesh)
 }
 
-/// Loads operand `spec` for the contact checks (`query`, `motion`): as
-/// convex pieces when it is some ([`load_pieces`]: a convex body, a union,
-/// a mesh of exactly convex shells, or the decomposition asked for with
-/// `decomposition`); otherwise, when it is one mesh file, as triangles of
-/// any topology, cleaned exactly ([`MeshBody::new`]: open, double-sided,
-/// non-manifold, non-convex, several components, each a solid or a
-/// surface), announced on standard error with what the cleaning did
-/// ([`describe_triangles`]). Nothing is approximated that the user did not
-/// ask for: with `decomposition` a mesh is taken apart or refused as
-/// before, never taken as triangles.
+/// Loads operand `spec` for the contact checks (`query`, `motion`), taking
+/// a mesh file as Python's `MotionChecker` and Rust's
+/// [`Body::from_mesh`] take it: cleaned exactly ([`MeshBody::new`]: open,
+/// double-sided, non-manifold, touching parts, cavities; what encloses is
+/// what has a non-zero winding number), on the convex path when it is one
+/// exactly convex solid, as triangles otherwise, announced on standard
+/// error with what the cleaning did ([`describe_triangles`]). A mesh convex
+/// only within rounding is taken exactly too; with `--hull` it is replaced
+/// by the exact hull of its vertices and the deviation is announced.
+/// Model names, unions (`a+b`, OBJ objects) and point clouds are convex
+/// pieces ([`load_pieces`], mesh files among them taken exactly unless
+/// `--hull`); with `--decomposition` a mesh is taken apart or refused,
+/// never taken as triangles.
 ///
 /// # Errors
-/// Those of [`load_pieces`] when the operand is not one mesh file, a
-/// decomposition was asked for, or the mesh has no triangles left to take
-/// (every face of zero area, a coordinate that is not finite).
+/// Those of [`load_pieces`] when the operand is not one mesh file or a
+/// decomposition was asked for; a mesh file that cannot be read; a mesh
+/// with no triangle left to take (every face of zero area).
 pub fn load_contact_body(spec: &str, operand: &str, options: BodyOptions) -> anyhow::Result<Body> {
-    let refusal = match load_pieces(spec, operand, options.strict, options.decomposition) {
+    let strict = if options.strict {
+        Strictness::Strict
+    } else if options.hull {
+        Strictness::Tolerant
+    } else {
+        Strictness::ExactFiles
+    };
+    let name = short_name(spec);
+    if options.decomposition.is_none() && !is_multi_object_obj(spec) {
+        if let Some(mesh) = mesh_file(spec) {
+            if options.hull {
+                if let Ok((hull, r)) = Polytope::from_mesh(&mesh, policy(false)) {
+                    if r.replaced_by_hull {
+                        eprintln!(
+                            "note: {operand} ({name}) replaced by the exact hull of its vertices \
+                             (--hull): convex within tolerance, largest deviation {:.3e} \
+                             (tolerance {:.3e})",
+                            r.max_deviation, r.tolerance
+                        );
+                    }
+                    return Ok(Body::Convex(ConvexUnion::from(hull)));
+                }
+            }
+            let body = MeshBody::new(&mesh).map_err(|e| match e {
+                SolidError::Empty => anyhow!(
+                    "{operand} (file {name}): no triangle is left after cleaning: all {} faces \
+                     have zero area (or repeat a vertex)",
+                    mesh.faces.len()
+                ),
+                e => anyhow!("{operand} (file {name}): {e}"),
+            })?;
+            let what = describe_triangles(&body.report());
+            if body.as_convex().is_none() {
+                // A solid of several exactly convex shells is their union
+                // (the same set: the convex path, with depth and distance).
+                if let Ok((pieces, info)) = convex_pieces(&mesh, Decomposition::Components) {
+                    if info.exact && pieces.len() > 1 {
+                        eprintln!(
+                            "note: {operand} ({name}) taken as {} exactly convex shells (their \
+                             union: the same solid as its triangles)",
+                            pieces.len()
+                        );
+                        if let Some(union) = ConvexUnion::new(pieces) {
+                            return Ok(Body::Convex(union));
+                        }
+                    }
+                }
+            }
+            if body.as_convex().is_some() {
+                eprintln!(
+                    "note: {operand} ({name}) cleaned as triangles ({what}): exactly convex, \
+                     taken as one convex piece"
+                );
+            } else {
+                eprintln!("note: {operand} ({name}) taken as triangles ({what})");
+            }
+            return Ok(Body::Mesh(body));
+        }
+    }
+    let refusal = match load_pieces(spec, operand, strict, options.decomposition) {
         Ok(pieces) => {
             return ConvexUnion::new(pieces)
                 .map(Body::Convex)
@@ -192,16 +263,16 @@ pub fn load_contact_body(spec: &str, operand: &str, options: BodyOptions) -> any
     let Ok(body) = MeshBody::new(&mesh) else {
         return Err(refusal);
     };
-    let (name, what) = (short_name(spec), describe_triangles(&body.report()));
-    if body.as_convex().is_some() {
-        eprintln!(
-            "note: {operand} ({name}) cleaned as triangles ({what}): exactly convex, taken as \
-             one convex piece"
-        );
-    } else {
-        eprintln!("note: {operand} ({name}) taken as triangles ({what})");
-    }
+    eprintln!(
+        "note: {operand} ({name}) taken as triangles ({})",
+        describe_triangles(&body.report())
+    );
     Ok(Body::Mesh(body))
+}
+
+/// Whether `spec` is an OBJ file of several objects (each a convex piece).
+fn is_multi_object_obj(spec: &str) -> bool {
+    !obj_names(spec).is_empty()
 }
 
 /// `1 vertex`, `2 vertices`.
@@ -292,9 +363,10 @@ pub fn describe(info: &DecompositionInfo) -> String {
 /// An OBJ file that cannot be read or parsed; an object or piece that is
 /// not a valid convex body ([`dymsum::PolytopeError`]); or any error of
 /// [`super::load`] for a single body or a `+`-separated piece.
-pub fn load_body(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Vec<Polytope>> {
+pub fn load_body(spec: &str, operand: &str, strict: Strictness) -> anyhow::Result<Vec<Polytope>> {
     let path = Path::new(spec);
     if path.is_file() {
+        let strict = strict.for_part(spec);
         let is_obj = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
@@ -329,11 +401,50 @@ pub fn load_body(spec: &str, operand: &str, strict: bool) -> anyhow::Result<Vec<
             .split('+')
             .enumerate()
             .map(|(i, part)| {
-                load(part.trim(), &format!("{operand} piece {}", i + 1), strict).map(|l| l.polytope)
+                let part = part.trim();
+                load(
+                    part,
+                    &format!("{operand} piece {}", i + 1),
+                    strict.for_part(part),
+                )
+                .map(|l| l.polytope)
             })
             .collect();
     }
-    Ok(vec![load(spec, operand, strict)?.polytope])
+    Ok(vec![load(spec, operand, strict.for_part(spec))?.polytope])
+}
+
+/// Which meshes must be exactly convex to be taken as one convex piece.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strictness {
+    /// None: a mesh convex within tolerance is the exact hull of its
+    /// vertices (`sum`, `info`, `cobst` without `--strict`).
+    Tolerant,
+    /// Every mesh (`--strict`).
+    Strict,
+    /// Mesh files (the contact checks without `--hull`); the built-in
+    /// models are what their definitions say (hulls).
+    ExactFiles,
+}
+
+impl Strictness {
+    /// The `--strict` flag of the subcommands that need convex operands.
+    pub fn from_flag(strict: bool) -> Strictness {
+        if strict {
+            Strictness::Strict
+        } else {
+            Strictness::Tolerant
+        }
+    }
+
+    /// The strict flag for one operand or `+` piece `spec`.
+    fn for_part(self, spec: &str) -> bool {
+        match self {
+            Strictness::Tolerant => false,
+            Strictness::Strict => true,
+            Strictness::ExactFiles => Path::new(spec).is_file(),
+        }
+    }
 }
 
 /// Loads one convex body for a subcommand that takes only one (`info`,
@@ -354,7 +465,7 @@ pub fn load_single_body(
         Ok(loaded) => return Ok(loaded),
         Err(e) => e,
     };
-    match load_solid(spec, operand, strict, None) {
+    match load_solid(spec, operand, Strictness::from_flag(strict), None) {
         Ok(solid) if solid.pieces.len() > 1 => Err(anyhow!(
             "{operand} ({}): a body of {} convex pieces{}, and `dymsum {subcommand}` takes one \
              convex body; to use the pieces, run `dymsum sum`, `query`, `motion` or `cobst`, which \

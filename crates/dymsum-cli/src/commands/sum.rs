@@ -18,7 +18,7 @@ use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DVec3, Pose, Rotation};
 
 use super::short_name;
-use super::solid::{describe, load_solid, Solid};
+use super::solid::{describe, load_solid, Solid, Strictness};
 use crate::stats::{human_us, micros};
 use crate::values::{parse_output_path, parse_quaternion, parse_vector, MethodArg};
 use dymsum::nonconvex::{DecompositionInfo, UnionSum};
@@ -103,8 +103,18 @@ struct JsonDecomposition<'a> {
 /// or the output cannot be written.
 pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.p, "P"), (&a.q, "Q")])?;
-    let p = load_solid(&a.p, "P", a.body.strict, a.body.decomposition)?;
-    let q = load_solid(&a.q, "Q", a.body.strict, a.body.decomposition)?;
+    let p = load_solid(
+        &a.p,
+        "P",
+        Strictness::from_flag(a.body.strict),
+        a.body.decomposition,
+    )?;
+    let q = load_solid(
+        &a.q,
+        "Q",
+        Strictness::from_flag(a.body.strict),
+        a.body.decomposition,
+    )?;
     let pose_p = Pose::new(
         a.rotate_p.unwrap_or(Rotation::IDENTITY),
         a.translate_p.unwrap_or(DVec3::ZERO),

@@ -49,7 +49,7 @@ use dymsum::{DVec3, Rotation};
 use serde::Serialize;
 
 use super::short_name;
-use super::solid::load_pieces;
+use super::solid::{load_pieces, Strictness};
 use crate::stats::{human_us, micros};
 use dymsum_io::cmap::Form;
 use dymsum_io::staging::{is_temp_name, StagedDir};
@@ -295,8 +295,18 @@ struct IndexEntry {
 /// cannot be written; or `out` cannot be written.
 pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
-    let robot = load_pieces(&a.robot, "ROBOT", a.body.strict, a.body.decomposition)?;
-    let obstacle = load_pieces(&a.obstacle, "OBSTACLE", a.body.strict, a.body.decomposition)?;
+    let robot = load_pieces(
+        &a.robot,
+        "ROBOT",
+        Strictness::from_flag(a.body.strict),
+        a.body.decomposition,
+    )?;
+    let obstacle = load_pieces(
+        &a.obstacle,
+        "OBSTACLE",
+        Strictness::from_flag(a.body.strict),
+        a.body.decomposition,
+    )?;
     if a.certified {
         return run_certified(a, (&robot, &obstacle), out);
     }
