@@ -315,8 +315,25 @@ pub fn describe_triangles(r: &MeshReport) -> String {
     }
     if r.flipped > 0 {
         done.push(format!(
-            "{} turned outward",
-            count(r.flipped, "triangle", "triangles")
+            "{} turned{}",
+            count(r.flipped, "triangle", "triangles"),
+            if r.inverted {
+                " (the input was inward as a whole)"
+            } else {
+                " outward"
+            }
+        ));
+    }
+    if r.split_edges > 0 {
+        done.push(format!(
+            "{} split at vertices lying on them (T-junctions)",
+            count(r.split_edges, "edge", "edges")
+        ));
+    }
+    if r.set_aside > 0 {
+        done.push(format!(
+            "{} set aside as surface (an edge not closed)",
+            count(r.set_aside, "triangle", "triangles")
         ));
     }
     if done.is_empty() {
