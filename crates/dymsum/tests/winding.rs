@@ -362,3 +362,49 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn sums_refuse_what_only_the_winding_number_gives_a_meaning() {
+    // Sums and decompositions need solids in the strict sense
+    // (`check_solid_mesh`) and refuse these with a typed error, never
+    // reinterpreting them.
+    let welded_touching = clean_soup(&boxes_mesh(
+        &[
+            Cell::new([0.0; 3], [1.0; 3]),
+            Cell::new([1.0, 0.0, 0.0], [2.0, 1.0, 1.0]),
+        ],
+        &[true, true],
+    ))
+    .unwrap()
+    .mesh;
+    let cavity = boxes_mesh(
+        &[Cell::new([0.0; 3], [4.0; 3]), Cell::new([1.0; 3], [3.0; 3])],
+        &[true, false],
+    );
+    let mut crossing = boxes_mesh(&[Cell::new([0.0; 3], [1.0; 3])], &[true]);
+    crossing.vertices[7] = [0.5, 0.5, -2.0];
+    for (name, m) in [
+        ("welded touching boxes", welded_touching),
+        ("a cavity", cavity),
+        ("a T-junction", t_junction_box(false)),
+        ("a mesh crossing itself", crossing),
+    ] {
+        assert!(dymsum::check_solid_mesh(&m).is_err(), "{name}");
+    }
+}
+
+#[test]
+fn a_box_inside_another_sharing_faces_the_same_way_round_encloses() {
+    // Found by the grid-union proptest: a face two coincident solids share
+    // the same way round was dropped as a duplicate, which opened both.
+    let cells = [
+        Cell::new([0.0, 0.0, 1.0], [1.0, 2.0, 2.0]),
+        Cell::new([0.0, 0.0, 1.0], [2.0, 2.0, 2.0]),
+    ];
+    let m = boxes_mesh(&cells, &[true, true]);
+    let soup = clean_soup(&m).unwrap();
+    assert!(soup.weights.contains(&2), "the shared faces count twice");
+    for c in [[0.0625, 0.0625, 1.0625], [0.5, 1.0, 1.5], [1.5, 1.0, 1.5]] {
+        assert!(collides(&m, c, 1.0 / 32.0), "{c:?}");
+    }
+}

@@ -25,23 +25,27 @@
 //!    (zero area) is dropped from the body but kept for the balance of
 //!    edges below (a T-junction's fill), where, after the splitting of
 //!    edges, it balances itself.
-//! 3. Of triangles with the same corners, a copy with the same orientation
-//!    is dropped (a duplicate), and one with the opposite orientation is
-//!    dropped as the back of the first (exports write double-sided faces
-//!    back to back); the kept copy is then *paired*. A polygon of more than
-//!    three corners that repeats a kept polygon's cycle, either way round,
-//!    is treated so whole first (fanned from another corner its triangles
+//! 3. Of triangles with the same corners one is kept, counted as often as
+//!    its copies run its way less the other way: a copy the same way round
+//!    (a duplicate, or a face two coincident solids share) adds one, a copy
+//!    the other way (the back of a double-sided face, or a face two
+//!    touching solids share) takes one away. A kept triangle whose count is
+//!    zero is *paired*; a negative count turns it round. A polygon of more
+//!    than three corners that repeats a kept polygon's cycle, either way
+//!    round, is counted so whole (fanned from another corner its triangles
 //!    would not repeat the first copy's).
-//! 4. Each connected part (through shared vertices) whose triangles (paired
-//!    ones once) use every edge exactly twice and can be oriented
+//! 4. Each connected part (through shared vertices) whose kept triangles
+//!    (once each, paired ones either way) use every edge exactly twice and
+//!    can be oriented
 //!    consistently is a closed shell: it encloses. Where it is not
 //!    consistent as given (a few faces flipped, or a double-sided export
 //!    whose first copies point either way), the fewer triangles of each
 //!    edge-connected piece are flipped. A shell consistent as given keeps
 //!    its orientation: an inward shell inside an outward one is a cavity.
-//! 5. Every other part is taken as a chain of oriented triangles, its paired
-//!    triangles left out (a face and its back cancel in the winding number:
-//!    two solids sharing a face) and its zero-area triangles in. An edge is
+//! 5. Every other part is taken as a chain of oriented triangles, each kept
+//!    triangle as often as its count (paired ones not at all: a face and its
+//!    back cancel in the winding number, as where two solids share a face)
+//!    and its zero-area triangles in. An edge is
 //!    *balanced* when, after splitting edges at the vertices lying exactly
 //!    on them (exact collinearity and order), every piece is run as often in
 //!    one direction as in the other. Triangles with an unbalanced edge are
@@ -121,6 +125,10 @@ pub struct CleanSoup {
     pub set_aside: usize,
     /// Edges split at vertices lying exactly on them (T-junctions).
     pub split_edges: usize,
+    /// Each triangle's weight in the winding number: how many copies of it
+    /// enclose (one for a closed shell's triangle; a face two coincident
+    /// solids share counts twice), `0` for a surface triangle.
+    pub weights: Vec<u32>,
     /// The components, in the order of their first triangle.
     pub components: Vec<Component>,
 }
@@ -184,7 +192,8 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
     let merged_vertices = mesh.vertices.len() - vertices.len();
     // 2. Fan triangles, degenerate ones set apart; 3. duplicates and backs.
     let mut triangles: Vec<[usize; 3]> = Vec::new();
-    let mut paired: Vec<bool> = Vec::new();
+    // How often each kept triangle is listed as kept, less the other way.
+    let mut net: Vec<i32> = Vec::new();
     let mut fills: Vec<[usize; 3]> = Vec::new();
     let mut fill_seen: HashSet<[usize; 3]> = HashSet::new();
     let mut by_corners: HashMap<[usize; 3], usize> = HashMap::new();
@@ -202,13 +211,16 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
             let cycle: Vec<usize> = f.iter().map(|&v| remap[v]).collect();
             let reversed: Vec<usize> = cycle.iter().rev().copied().collect();
             let (fwd, back) = (canonical_cycle(&cycle), canonical_cycle(&reversed));
-            if polygons.contains_key(&fwd) {
+            if let Some(kept) = polygons.get(&fwd) {
+                for &t in kept {
+                    net[t] += 1;
+                }
                 dropped_duplicates += f.len() - 2;
                 continue;
             }
             if let Some(kept) = polygons.get(&back) {
                 for &t in kept {
-                    paired[t] = true;
+                    net[t] -= 1;
                 }
                 dropped_back_to_back += f.len() - 2;
                 continue;
@@ -232,16 +244,19 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
             let mut key = t;
             key.sort_unstable();
             match by_corners.get(&key) {
-                Some(&kept) if same_orientation(triangles[kept], t) => dropped_duplicates += 1,
+                Some(&kept) if same_orientation(triangles[kept], t) => {
+                    net[kept] += 1;
+                    dropped_duplicates += 1;
+                }
                 Some(&kept) => {
-                    paired[kept] = true;
+                    net[kept] -= 1;
                     dropped_back_to_back += 1;
                 }
                 None => {
                     by_corners.insert(key, triangles.len());
                     produced.push(triangles.len());
                     triangles.push(t);
-                    paired.push(false);
+                    net.push(1);
                 }
             }
         }
@@ -249,22 +264,31 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
             polygons.insert(key, produced);
         }
     }
-    // 4. Closed shells; 5. the rest as a chain.
+    // Each kept triangle as its copies net: turned to the way more copies
+    // run; paired (a face and its back) when they cancel.
+    for (t, n) in triangles.iter_mut().zip(&net) {
+        *t = flipped_if(*t, *n < 0);
+    }
+    // 4. Closed shells; 5. the rest as a chain, each triangle as often as
+    // its copies net.
     let mut flip = vec![false; triangles.len()];
-    let mut encloses = vec![false; triangles.len()];
+    let mut weight = vec![0u32; triangles.len()];
     let mut chain: Vec<usize> = Vec::new();
     for part in shells(vertices.len(), &triangles) {
         match shell_flips(&triangles, &part) {
             Some(flips) => {
                 for (&k, f) in part.iter().zip(flips) {
                     flip[k] = f;
-                    encloses[k] = true;
+                    weight[k] = 1;
                 }
             }
-            None => chain.extend(part.iter().copied().filter(|&k| !paired[k])),
+            None => {
+                for &k in &part {
+                    chain.extend(std::iter::repeat_n(k, net[k].unsigned_abs() as usize));
+                }
+            }
         }
     }
-    let mut set_aside = 0;
     let mut split_edges = 0;
     let mut chain_survivors = Vec::new();
     if !chain.is_empty() {
@@ -278,20 +302,23 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         split_edges = c.pieces.values().filter(|p| p.len() > 2).count();
         for (i, &k) in chain.iter().enumerate() {
             if c.alive[i] {
-                encloses[k] = true;
+                weight[k] += 1;
                 chain_survivors.push(k);
-            } else {
-                set_aside += 1;
             }
         }
     }
+    let set_aside = chain
+        .iter()
+        .enumerate()
+        .filter(|&(i, &k)| (i == 0 || chain[i - 1] != k) && weight[k] == 0)
+        .count();
+    let encloses: Vec<bool> = weight.iter().map(|&w| w > 0).collect();
     for (k, t) in triangles.iter_mut().enumerate() {
         *t = flipped_if(*t, flip[k]);
     }
-    // 6. Inward as a whole.
+    // 6. Inward as a whole (each triangle as often as its weight).
     let enclosing: Vec<[usize; 3]> = (0..triangles.len())
-        .filter(|&k| encloses[k])
-        .map(|k| triangles[k])
+        .flat_map(|k| std::iter::repeat_n(triangles[k], weight[k] as usize))
         .collect();
     let inverted = volume_sign(&vertices, &enclosing) == Sign::Negative;
     if inverted {
@@ -353,6 +380,7 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         inverted,
         set_aside,
         split_edges,
+        weights: weight,
         components,
     })
 }

@@ -78,6 +78,9 @@ pub struct MeshBody {
     pub(crate) triangles: Vec<[u32; 3]>,
     /// The component of each triangle.
     pub(crate) component_of: Vec<u32>,
+    /// Each triangle's weight in the winding number (`0` for surface
+    /// triangles; [`crate::solid::soup::CleanSoup::weights`]).
+    pub(crate) weights: Vec<u32>,
     /// Each component's kind and one of its vertices.
     pub(crate) components: Vec<(ComponentKind, u32)>,
     pub(crate) tree: AabbTree,
@@ -140,7 +143,14 @@ impl MeshBody {
             solids: soup.solids(),
             surfaces: soup.components.len() - soup.solids(),
         };
-        let mut body = MeshBody::assemble(vertices, triangles, component_of, components, report);
+        let mut body = MeshBody::assemble(
+            vertices,
+            triangles,
+            component_of,
+            soup.weights,
+            components,
+            report,
+        );
         body.convex = body.exactly_convex();
         Ok(body)
     }
@@ -175,6 +185,7 @@ impl MeshBody {
     pub fn from_union(union: &ConvexUnion) -> MeshBody {
         let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
         let (mut component_of, mut components) = (Vec::new(), Vec::new());
+        let mut weights = Vec::new();
         for (c, piece) in union.pieces().iter().enumerate() {
             let base = vertices.len() as u32;
             vertices.extend_from_slice(piece.vertices());
@@ -183,6 +194,7 @@ impl MeshBody {
                 for w in f[1..].windows(2) {
                     triangles.push([base + f[0], base + w[0], base + w[1]]);
                     component_of.push(c as u32);
+                    weights.push(1);
                 }
             }
         }
@@ -192,7 +204,14 @@ impl MeshBody {
             solids: components.len(),
             ..MeshReport::default()
         };
-        MeshBody::assemble(vertices, triangles, component_of, components, report)
+        MeshBody::assemble(
+            vertices,
+            triangles,
+            component_of,
+            weights,
+            components,
+            report,
+        )
     }
 
     /// Several bodies as one (their components side by side), e.g. a
@@ -200,12 +219,14 @@ impl MeshBody {
     pub fn join(bodies: &[MeshBody]) -> MeshBody {
         let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
         let (mut component_of, mut components) = (Vec::new(), Vec::new());
+        let mut weights = Vec::new();
         let mut report = MeshReport::default();
         for b in bodies {
             let (vb, cb) = (vertices.len() as u32, components.len() as u32);
             vertices.extend_from_slice(&b.vertices);
             triangles.extend(b.triangles.iter().map(|t| t.map(|v| v + vb)));
             component_of.extend(b.component_of.iter().map(|c| c + cb));
+            weights.extend_from_slice(&b.weights);
             components.extend(b.components.iter().map(|&(k, v)| (k, v + vb)));
             let r = b.report;
             report = MeshReport {
@@ -223,13 +244,21 @@ impl MeshBody {
                 surfaces: report.surfaces + r.surfaces,
             };
         }
-        MeshBody::assemble(vertices, triangles, component_of, components, report)
+        MeshBody::assemble(
+            vertices,
+            triangles,
+            component_of,
+            weights,
+            components,
+            report,
+        )
     }
 
     fn assemble(
         vertices: Vec<DVec3>,
         triangles: Vec<[u32; 3]>,
         component_of: Vec<u32>,
+        weights: Vec<u32>,
         components: Vec<(ComponentKind, u32)>,
         report: MeshReport,
     ) -> MeshBody {
@@ -260,6 +289,7 @@ impl MeshBody {
             vertices,
             triangles,
             component_of,
+            weights,
             components,
             tree,
             component_boxes,
@@ -309,6 +339,11 @@ impl MeshBody {
             self.component_of.len(),
             "one component per triangle"
         );
+        assert_eq!(
+            self.triangles.len(),
+            self.weights.len(),
+            "one weight per triangle"
+        );
         let mut seen = vec![false; self.components.len()];
         for (t, tri) in self.triangles.iter().enumerate() {
             assert!(
@@ -319,6 +354,12 @@ impl MeshBody {
             assert!(
                 c < self.components.len(),
                 "triangle {t}: component out of range"
+            );
+            let solid = self.components[c].0 == ComponentKind::Solid;
+            assert_eq!(
+                self.weights[t] > 0,
+                solid,
+                "triangle {t}: a weight in the winding number exactly when it encloses"
             );
             if tri.contains(&self.components[c].1) {
                 seen[c] = true;

@@ -16,10 +16,10 @@
 //! precondition; `q` in the plane but outside the box), or when the edge
 //! signs disagree strictly. Anything else (the segment in the plane, or
 //! through an edge or a corner) is *degenerate*, and the next of a fixed
-//! list of directions is tried. A crossing counts `+1` when `p` lies on the
-//! triangle's inner side (`orient3d(a, b, c, p) > 0` for an outward
-//! triangle, as on the positive side of its plane in this convention) and
-//! `−1` otherwise. Each solid component is a cycle (every edge, split at the
+//! list of directions is tried. A crossing counts the triangle's weight
+//! (how many coincident copies of it enclose) with a `+` sign when `p` lies
+//! on its positive side (`orient3d(a, b, c, p) > 0`) and a `−` sign
+//! otherwise. Each solid component is a cycle (every edge, split at the
 //! vertices on it, run as often each way: [`crate::solid::soup`]), so the
 //! signed count of a ray that is not degenerate and ends outside the
 //! component's box is its winding number about `p`, the same for every such
@@ -176,7 +176,10 @@ pub(crate) fn inside_solid(
                 }
                 let tri = body.triangles[t].map(|v| vertices[v as usize]);
                 match crossing(p, q, tri) {
-                    Crossing::Crosses(positive) => winding += if positive { 1 } else { -1 },
+                    Crossing::Crosses(positive) => {
+                        let w = i64::from(body.weights[t]);
+                        winding += if positive { w } else { -w };
+                    }
                     Crossing::Misses => {}
                     Crossing::Degenerate => degenerate = true,
                 }
