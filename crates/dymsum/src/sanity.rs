@@ -141,6 +141,22 @@ pub enum SanityError {
         /// The check that failed.
         reason: String,
     },
+    /// A body of triangles (`query::MeshBody`) breaks an invariant the
+    /// queries rely on.
+    #[error("mesh body: {reason}")]
+    MeshBody {
+        /// The invariant, and where it breaks.
+        reason: String,
+    },
+    /// A box tree's node does not hold what lies below it, or its items are
+    /// not listed once each.
+    #[error("box tree node {node}: {reason}")]
+    BoxTree {
+        /// The node.
+        node: usize,
+        /// The invariant broken.
+        reason: String,
+    },
 }
 
 #[cfg(test)]

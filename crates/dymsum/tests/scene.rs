@@ -69,7 +69,7 @@ fn open_box(lo: [f64; 3], hi: [f64; 3]) -> PolygonMesh {
 
 fn mesh_body(m: &PolygonMesh) -> MeshBody {
     let b = MeshBody::new(m).unwrap();
-    b.sanity_check();
+    b.sanity_check().unwrap();
     b
 }
 
@@ -385,8 +385,8 @@ proptest! {
             &MeshBody::from_union(&union),
             &obstacles.iter().map(MeshBody::from_union).collect::<Vec<_>>(),
         ).unwrap();
-        tri.body().sanity_check();
-        tri.scene().sanity_check();
+        tri.body().sanity_check().unwrap();
+        tri.scene().sanity_check().unwrap();
         let meshes = SceneChecker::new(
             &MeshBody::new(&body[0].to_mesh()).unwrap(),
             &scene.iter().map(|p| MeshBody::new(&double_sided(p)).unwrap()).collect::<Vec<_>>(),
@@ -470,8 +470,8 @@ proptest! {
         let (Ok(ba), Ok(bb)) = (MeshBody::new(&ma), MeshBody::new(&mb)) else {
             return Ok(()); // every triangle flat
         };
-        ba.sanity_check();
-        bb.sanity_check();
+        ba.sanity_check().unwrap();
+        bb.sanity_check().unwrap();
         if ba.report().solids > 0 || bb.report().solids > 0 {
             return Ok(());
         }

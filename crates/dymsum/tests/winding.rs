@@ -107,7 +107,7 @@ impl<T> Pipe for T {}
 
 fn body(m: &PolygonMesh) -> MeshBody {
     let b = MeshBody::new(m).unwrap();
-    b.sanity_check();
+    b.sanity_check().unwrap();
     b
 }
 

@@ -10,6 +10,8 @@
 //! Built by median splits of the box centres along the widest axis (the
 //! centres only choose the split; any split is correct).
 
+use crate::sanity::SanityError;
+
 /// A closed axis-aligned box.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Aabb {
@@ -308,6 +310,61 @@ impl AabbTree {
     /// The boxes the tree was built from.
     pub fn boxes(&self) -> &[Aabb] {
         &self.boxes
+    }
+
+    /// Checks the tree's invariants exactly: every item listed once, every
+    /// leaf at most `LEAF` items, every node's bound holding its children's
+    /// bounds or its items' boxes, children built after their parent.
+    pub fn sanity_check(&self) -> Result<(), SanityError> {
+        let bad = |node: usize, reason: &str| {
+            Err(SanityError::BoxTree {
+                node,
+                reason: reason.to_string(),
+            })
+        };
+        let holds = |outer: &Aabb, inner: &Aabb| {
+            (0..3).all(|k| outer.lo[k] <= inner.lo[k] && inner.hi[k] <= outer.hi[k])
+        };
+        let mut seen = vec![false; self.boxes.len()];
+        for &i in &self.items {
+            let i = i as usize;
+            if i >= seen.len() || std::mem::replace(&mut seen[i], true) {
+                return bad(0, "an item is out of range or listed twice");
+            }
+        }
+        if seen.iter().any(|&s| !s) {
+            return bad(0, "an item is missing");
+        }
+        if self.bounds.len() != self.nodes.len() {
+            return bad(0, "one bound per node");
+        }
+        for (n, node) in self.nodes.iter().enumerate() {
+            let b = &self.bounds[n];
+            match *node {
+                Node::Leaf { start, end } => {
+                    let (start, end) = (start as usize, end as usize);
+                    if start >= end || end > self.items.len() || end - start > LEAF {
+                        return bad(n, "a leaf's item range is empty, too long or out of range");
+                    }
+                    if self.items[start..end]
+                        .iter()
+                        .any(|&i| !holds(b, &self.boxes[i as usize]))
+                    {
+                        return bad(n, "a leaf's bound misses one of its items' boxes");
+                    }
+                }
+                Node::Inner { left, right } => {
+                    let (l, r) = (left as usize, right as usize);
+                    if l <= n || r <= n || l >= self.nodes.len() || r >= self.nodes.len() {
+                        return bad(n, "a child is not built after its parent");
+                    }
+                    if !holds(b, &self.bounds[l]) || !holds(b, &self.bounds[r]) {
+                        return bad(n, "a bound misses a child's bound");
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The box of everything (the empty box for an empty tree).

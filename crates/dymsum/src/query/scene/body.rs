@@ -7,6 +7,7 @@ use glam::DVec3;
 
 use crate::mesh::PolygonMesh;
 use crate::query::union::ConvexUnion;
+use crate::sanity::SanityError;
 use crate::solid::aabb::{Aabb, AabbTree};
 use crate::solid::soup::{clean_soup, ComponentKind};
 use crate::solid::SolidError;
@@ -322,66 +323,71 @@ impl MeshBody {
     }
 
     /// Checks the invariants the queries rely on: indices in range, one
-    /// component per triangle, each component's vertex one of its
-    /// triangles' corners, finite coordinates, the tree's bounds holding
-    /// every triangle.
+    /// component and one weight per triangle (a weight exactly for the
+    /// enclosing ones), each component's vertex one of its triangles'
+    /// corners, finite coordinates, the trees sound
+    /// ([`AabbTree::sanity_check`]) over exactly the triangles' and the
+    /// solid components' boxes, the reach above every vertex norm.
     ///
-    /// # Panics
-    /// When an invariant is broken (a bug), naming it.
-    pub fn sanity_check(&self) {
+    /// # Errors
+    /// [`SanityError::MeshBody`] naming the broken invariant and where (a
+    /// bug, or a body assembled from inconsistent parts), or the trees'
+    /// [`SanityError::BoxTree`].
+    pub fn sanity_check(&self) -> Result<(), SanityError> {
+        let bad = |reason: String| Err(SanityError::MeshBody { reason });
         let n = self.vertices.len() as u32;
-        assert!(
-            self.vertices.iter().all(|v| v.is_finite()),
-            "a vertex is not finite"
-        );
-        assert_eq!(
-            self.triangles.len(),
-            self.component_of.len(),
-            "one component per triangle"
-        );
-        assert_eq!(
-            self.triangles.len(),
-            self.weights.len(),
-            "one weight per triangle"
-        );
+        if let Some(v) = self.vertices.iter().position(|v| !v.is_finite()) {
+            return bad(format!("vertex {v} is not finite"));
+        }
+        if self.triangles.len() != self.component_of.len()
+            || self.triangles.len() != self.weights.len()
+        {
+            return bad("not one component and one weight per triangle".into());
+        }
         let mut seen = vec![false; self.components.len()];
         for (t, tri) in self.triangles.iter().enumerate() {
-            assert!(
-                tri.iter().all(|&v| v < n),
-                "triangle {t} names a missing vertex"
-            );
+            if !tri.iter().all(|&v| v < n) {
+                return bad(format!("triangle {t} names a missing vertex"));
+            }
             let c = self.component_of[t] as usize;
-            assert!(
-                c < self.components.len(),
-                "triangle {t}: component out of range"
-            );
-            let solid = self.components[c].0 == ComponentKind::Solid;
-            assert_eq!(
-                self.weights[t] > 0,
-                solid,
-                "triangle {t}: a weight in the winding number exactly when it encloses"
-            );
-            if tri.contains(&self.components[c].1) {
-                seen[c] = true;
+            let Some(&(kind, corner)) = self.components.get(c) else {
+                return bad(format!("triangle {t}: component {c} out of range"));
+            };
+            if (self.weights[t] > 0) != (kind == ComponentKind::Solid) {
+                return bad(format!(
+                    "triangle {t}: a weight in the winding number but no solid, or the reverse"
+                ));
             }
+            seen[c] |= tri.contains(&corner);
         }
-        assert!(
-            seen.iter().all(|&s| s),
-            "a component's vertex is not on its triangles"
-        );
-        let root = self.tree.root();
-        for tri in &self.triangles {
-            for &v in tri {
-                assert!(
-                    root.holds(self.vertices[v as usize].to_array()),
-                    "the tree misses a corner"
-                );
-            }
+        if let Some(c) = seen.iter().position(|&s| !s) {
+            return bad(format!("component {c}'s vertex is not on its triangles"));
         }
-        assert!(
-            self.vertices.iter().all(|v| v.length() <= self.reach),
-            "the reach is below a vertex norm"
-        );
+        self.tree.sanity_check()?;
+        self.solid_tree.sanity_check()?;
+        let boxes = triangle_boxes(&self.vertices, &self.triangles);
+        let same = |a: &Aabb, b: &Aabb| a.lo == b.lo && a.hi == b.hi;
+        if boxes.len() != self.tree.boxes().len()
+            || boxes
+                .iter()
+                .zip(self.tree.boxes())
+                .any(|(a, b)| !same(a, b))
+        {
+            return bad("the tree's boxes are not the triangles' boxes".into());
+        }
+        if self.solid_components.len() != self.solid_tree.boxes().len()
+            || self
+                .solid_components
+                .iter()
+                .zip(self.solid_tree.boxes())
+                .any(|(&c, b)| !same(&self.component_boxes[c as usize], b))
+        {
+            return bad("the solid tree's boxes are not the solid components' boxes".into());
+        }
+        if let Some(v) = self.vertices.iter().position(|v| v.length() > self.reach) {
+            return bad(format!("the reach is below vertex {v}'s norm"));
+        }
+        Ok(())
     }
 }
 
