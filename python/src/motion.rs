@@ -56,9 +56,15 @@ impl PyConvexUnion {
                  Polytopes, ...), got a single shape; wrap it in a list",
             ));
         }
+        let items = pieces.try_iter().map_err(|_| {
+            value_error(format!(
+                "ConvexUnion: pieces must be a sequence of shapes, got {}",
+                type_name(pieces)
+            ))
+        })?;
         let mut polys = Vec::new();
         let mut objects = Vec::new();
-        for (i, item) in pieces.try_iter()?.enumerate() {
+        for (i, item) in items.enumerate() {
             let s = convert::shape(&item?, &format!("pieces[{i}]"), MeshPolicy::default())?;
             polys.push(s.polytope.clone());
             objects.push(Py::new(py, PyPolytope::from_shape(py, s)?)?);
@@ -96,6 +102,16 @@ impl PyConvexUnion {
     }
 }
 
+/// `obj`'s type name for error messages (`None` for `None`).
+fn type_name(obj: &Bound<'_, PyAny>) -> String {
+    if obj.is_none() {
+        return "None".into();
+    }
+    obj.get_type()
+        .name()
+        .map_or_else(|_| "an object".into(), |n| n.to_string())
+}
+
 /// Whether `obj` is one shape rather than a sequence of shapes: a
 /// `Polytope`, a `ConvexUnion`, a model name or path, a NumPy array (a
 /// point cloud), a `(vertices, faces)` pair of arrays, or an object with
@@ -124,7 +140,9 @@ fn is_index_array(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
     let np = obj.py().import("numpy")?;
     if let Ok(arr) = np.call_method1("asarray", (obj,)) {
         let kind: String = arr.getattr("dtype")?.getattr("kind")?.extract()?;
-        if kind == "i" || kind == "u" {
+        // An empty array is no shape: empty faces (refused as such).
+        let size: usize = arr.getattr("size")?.extract()?;
+        if kind == "i" || kind == "u" || size == 0 {
             return Ok(true);
         }
         if kind != "O" {
@@ -144,12 +162,13 @@ fn is_index_array(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
 /// model name: convex).
 fn body_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Body> {
     let py = obj.py();
+    convert::not_none(obj, what, BODY_FORMS)?;
     if let Ok(u) = obj.cast::<PyConvexUnion>() {
         return Ok(Body::Convex(u.get().inner.clone()));
     }
     if obj.cast::<PyPolytope>().is_err() {
         let mesh = if let Some((v, f)) = convert::mesh_parts(obj)? {
-            Some(convert::mesh_from_parts(&v, &f, what)?)
+            Some(convert::solid_from_parts(&v, &f, what)?)
         } else if obj.is_instance_of::<pyo3::types::PyString>() || obj.hasattr("__fspath__")? {
             let spec = convert::path_string(obj)?;
             let path = std::path::PathBuf::from(&spec);
@@ -165,9 +184,17 @@ fn body_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Body> {
             None
         };
         if let Some(mesh) = mesh.filter(|m| !m.faces.is_empty()) {
-            return py
-                .detach(|| Body::from_mesh(&mesh))
-                .map_err(|e| err_for(what, e));
+            return py.detach(|| Body::from_mesh(&mesh)).map_err(|e| match e {
+                dymsum::SolidError::Empty => err_for(
+                    what,
+                    format!(
+                        "no triangle is left after cleaning: all {} faces have zero area \
+                             (or repeat a vertex)",
+                        mesh.faces.len()
+                    ),
+                ),
+                e => err_for(what, e),
+            });
         }
     }
     Ok(Body::Convex(ConvexUnion::from(
@@ -175,13 +202,31 @@ fn body_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Body> {
     )))
 }
 
+/// What a body argument accepts (error messages).
+const BODY_FORMS: &str = "a ConvexUnion or a shape (an (N, 3) point array, a (vertices, faces) \
+     pair, an object with .vertices and .faces, a Polytope, or a model name or mesh path)";
+
 /// The obstacles argument: a sequence of bodies, or one.
 fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
+    convert::not_none(
+        obj,
+        "obstacles",
+        "a sequence of ConvexUnions or shapes, or one (give [] for none)",
+    )?;
     if is_single_shape(obj)? {
         return Ok(vec![body_of(obj, "obstacles")?]);
     }
     let mut out = Vec::new();
-    for (i, item) in obj.try_iter()?.enumerate() {
+    let items = obj.try_iter().map_err(|_| {
+        err_for(
+            "obstacles",
+            format!(
+                "expected a sequence of ConvexUnions or shapes, or one; got {}",
+                type_name(obj)
+            ),
+        )
+    })?;
+    for (i, item) in items.enumerate() {
         out.push(body_of(&item?, &format!("obstacles[{i}]"))?);
     }
     Ok(out)
@@ -213,6 +258,9 @@ fn report_dict<'py>(py: Python<'py>, r: MeshReport) -> PyResult<Bound<'py, PyDic
     d.set_item("dropped_duplicates", r.dropped_duplicates)?;
     d.set_item("dropped_back_to_back", r.dropped_back_to_back)?;
     d.set_item("flipped", r.flipped)?;
+    d.set_item("inverted", r.inverted)?;
+    d.set_item("set_aside", r.set_aside)?;
+    d.set_item("split_edges", r.split_edges)?;
     d.set_item("solids", r.solids)?;
     d.set_item("surfaces", r.surfaces)?;
     Ok(d)
@@ -737,7 +785,7 @@ fn _surfaces_touch(
     let mesh = |obj: &Bound<'_, PyAny>, what: &str| -> PyResult<dymsum::PolygonMesh> {
         let (v, f) = convert::mesh_parts(obj)?
             .ok_or_else(|| value_error(format!("{what}: expected (vertices, faces)")))?;
-        convert::mesh_from_parts(&v, &f, what)
+        convert::solid_from_parts(&v, &f, what)
     };
     let (ma, mb) = (mesh(a, "a")?, mesh(b, "b")?);
     let (pa, pb) = (

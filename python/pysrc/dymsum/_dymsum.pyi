@@ -7,6 +7,16 @@ poses are 4×4 homogeneous rigid transforms (``None`` is the identity) or
 rotations about the origin; a rotation is a
 ``scipy.spatial.transform.Rotation``, a 3×3 matrix, or a quaternion
 ``(x, y, z, w)``, scalar last, as scipy.
+
+Any memory layout is accepted wherever an array is taken (C- or
+Fortran-ordered, transposed, negatively strided, sliced, broadcast,
+big-endian, ``np.matrix``, nested lists): arrays are read by their logical
+indices, so the answer never depends on the layout. Errors are
+``ValueError`` naming the argument: among them an empty face array (a
+``(vertices, faces)`` pair with no face is never the hull of its vertices),
+a mesh with no triangle left after cleaning, a face index out of range
+(quoted as given, unsigned included) and ``None`` where a body or the
+obstacles are expected.
 """
 
 import os
@@ -58,7 +68,9 @@ class _MeshLike(Protocol):
     def faces(self) -> Any: ...
 
 _Faces = Union[npt.ArrayLike, Sequence[Sequence[int]]]
-"""An (M, k) integer array, or a list of index lists (polygons of any size)."""
+"""An (M, k) integer array (any integer dtype and memory layout), or a list
+of index lists (polygons of any size); at least one face (an empty one is a
+``ValueError``)."""
 
 _ShapeLike = Union["Polytope", str, os.PathLike[str], npt.ArrayLike, Tuple[npt.ArrayLike, _Faces], _MeshLike]
 """An (N, 3) point array (its exact convex hull), a ``(vertices, faces)`` pair,
@@ -81,7 +93,9 @@ _PoseLike = Optional[_Rotation]
 column, last row ``0 0 0 1``); a rotation about the origin (a
 ``scipy.spatial.transform.Rotation``, a (4,) quaternion ``(x, y, z, w)``,
 scalar last as scipy, or a 3×3 rotation matrix); or ``None`` (the identity;
-in ``update`` methods: the body stays)."""
+in ``update`` methods: the body stays). Any memory layout: a Fortran-ordered
+(column-major, as Eigen-based bindings hand out) or transposed 4×4 reads as
+the same matrix C-ordered."""
 
 _Rotations = Union[_RotationLike, npt.ArrayLike]
 """A ``scipy.spatial.transform.Rotation`` (one or a stack), (K, 4) quaternions
@@ -328,6 +342,11 @@ class Slab:
         """The number of half-spaces."""
 
 _PosesLike = Union[None, npt.ArrayLike, _RotationLike]
+"""K poses: a (K, 4, 4) array of homogeneous rigid transforms (any memory
+layout: a Fortran-ordered, per-pose transposed, sliced or reversed stack is
+read by its strides, no copy), (K, 4) quaternions ``(x, y, z, w)``, (K, 3, 3)
+rotation matrices, a scipy ``Rotation`` stack; or one pose for all
+(``None``: the identity)."""
 
 def contact_many(a: _ShapeLike, b: _ShapeLike, poses_a: _PosesLike = None, poses_b: _PosesLike = None) -> Contacts:
     """``contact`` at K poses ((K, 4, 4) arrays, or one pose for all), in parallel."""

@@ -36,9 +36,12 @@ class CObstacleMapError(RuntimeError):
     pair and block of orientations, and the cause is chained."""
 
 
-def _pieces(body: Any, prefix: str) -> Tuple[List[str], List[np.ndarray]]:
+def _pieces(body: Any, prefix: str, what: str = "body") -> Tuple[List[str], List[np.ndarray]]:
     """Piece names and vertex arrays of a body: a ``ConvexUnion``, a mapping
-    name → shape, a list of shapes, or one shape."""
+    name → shape, a list of shapes, or one shape (``None``: a ``ValueError``
+    naming ``what``, the argument)."""
+    if body is None:
+        raise ValueError(f"cobstacle_map: {what}: expected a ConvexUnion, a mapping name → shape, a list of shapes or one shape, got None")
     if isinstance(body, Mapping):
         names = [str(k) for k in body]
         shapes = list(body.values())
@@ -702,8 +705,8 @@ def cobstacle_map(
     k = len(quats)
     if certified and k < 2:
         raise ValueError("cobstacle_map: certified slabs need at least two rotations")
-    rnames, rverts = _pieces(robot, "r")
-    onames, overts = _pieces(obstacles, "o")
+    rnames, rverts = _pieces(robot, "r", "robot")
+    onames, overts = _pieces(obstacles, "o", "obstacles")
     per_pair = k - 1 if certified else k
     # Blocks of orientations; certified blocks share their end orientation
     # with the next block's first, so the slabs tile the turn.

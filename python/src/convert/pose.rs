@@ -5,7 +5,8 @@ use super::err_for;
 use super::shape::{dtype_kind, float_array, numpy, shape_of, shape_text};
 use dymsum::glam::{DMat3, DMat4};
 use dymsum::{Pose, Rotation};
-use numpy::{PyArray2, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::ndarray::ArrayView2;
+use numpy::{PyArray2, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 /// What a pose argument accepts (error messages).
@@ -83,10 +84,21 @@ pub(crate) fn transforms(
     what: &str,
     name: impl Fn(usize) -> String,
 ) -> PyResult<Vec<Pose>> {
-    let flat: Vec<f64> = arr
-        .call_method0("ravel")?
-        .call_method0("tolist")?
-        .extract()?;
+    let arr = arr
+        .cast::<PyArrayDyn<f64>>()
+        .map_err(|e| err_for(what, format!("internal error: not a float64 array: {e}")))?
+        .try_readonly()
+        .map_err(|e| err_for(what, format!("cannot borrow the array: {e}")))?;
+    // Read by logical index (C order), whatever the memory layout: in place
+    // when the array is C-contiguous, else copied once by its strides.
+    let copied: Vec<f64>;
+    let flat: &[f64] = match arr.as_slice() {
+        Ok(s) if arr.is_c_contiguous() => s,
+        _ => {
+            copied = arr.as_array().iter().copied().collect();
+            &copied
+        }
+    };
     let size: usize = form.tail().iter().product();
     let turn = |r: Rotation| Pose::new(r, dymsum::DVec3::ZERO);
     flat.chunks_exact(size)
@@ -209,22 +221,27 @@ pub(crate) fn pose(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Pose>
     one_transform(&probe, form, what, POSE_FORMS)
 }
 
-/// The common case read directly from the array's memory: a C-contiguous
-/// (4, 4) `float64` array holding a valid rigid transform (`None`
-/// otherwise, and the general path reads it, with its error messages).
+/// The common case read directly from the array: a (4, 4) `float64` array
+/// (any memory layout: C- or Fortran-ordered, transposed, sliced or
+/// negatively strided, read by its strides) holding a valid rigid
+/// transform (`None` otherwise, and the general path reads it, with its
+/// error messages).
 pub(crate) fn rigid_4x4(obj: &Bound<'_, PyAny>) -> Option<Pose> {
-    let arr = obj.cast::<PyArray2<f64>>().ok()?.readonly();
-    let flat = arr.as_slice().ok()?;
-    (arr.shape() == [4, 4]).then_some(())?;
-    rigid_from_rows(flat)
+    let arr = obj.cast::<PyArray2<f64>>().ok()?.try_readonly().ok()?;
+    rigid_from_view(arr.as_array())
 }
 
-/// A rigid transform from 16 row-major values, if it is one.
-pub(crate) fn rigid_from_rows(flat: &[f64]) -> Option<Pose> {
+/// A rigid transform from a (4, 4) view indexed `[row, column]` (by its
+/// strides, never its raw memory order), if it is one.
+pub(crate) fn rigid_from_view(m: ArrayView2<'_, f64>) -> Option<Pose> {
+    (m.shape() == [4, 4]).then_some(())?;
     let mut rows = [[0.0; 4]; 4];
     for (r, row) in rows.iter_mut().enumerate() {
-        row.copy_from_slice(&flat[4 * r..4 * r + 4]);
+        for (c, x) in row.iter_mut().enumerate() {
+            *x = m[[r, c]];
+        }
     }
+    // glam is column-major: the transpose of the row-major rows.
     Pose::from_mat4(DMat4::from_cols_array_2d(&rows).transpose())
 }
 
@@ -246,14 +263,18 @@ pub(crate) fn pose_stack(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult
     let Some(obj) = obj.filter(|o| !o.is_none()) else {
         return Ok(vec![Pose::IDENTITY]);
     };
-    // The common case read directly: a C-contiguous (K, 4, 4) float64
-    // array of valid rigid transforms.
+    // The common case read directly: a (K, 4, 4) float64 array of valid
+    // rigid transforms, in any memory layout (read by its strides: a
+    // Fortran-ordered, transposed, sliced or reversed stack is no copy and
+    // no list).
     if let Ok(arr) = obj.cast::<numpy::PyArray3<f64>>() {
-        let ro = arr.readonly();
-        if let (Ok(flat), [_, 4, 4]) = (ro.as_slice(), ro.shape()) {
-            let poses: Option<Vec<Pose>> = flat.chunks_exact(16).map(rigid_from_rows).collect();
-            if let Some(p) = poses {
-                return Ok(p);
+        if let Ok(ro) = arr.try_readonly() {
+            let view = ro.as_array();
+            if view.shape()[1..] == [4, 4] {
+                let poses: Option<Vec<Pose>> = view.outer_iter().map(rigid_from_view).collect();
+                if let Some(p) = poses {
+                    return Ok(p);
+                }
             }
         }
     }

@@ -8,7 +8,7 @@ use dymsum::polytope::MeshPolicy;
 use dymsum::{PolygonMesh, Polytope};
 use dymsum_io::formats::FormatError;
 use dymsum_io::load::LoadError;
-use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2};
+use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
@@ -94,27 +94,83 @@ pub(crate) fn points<'py>(
         .map_err(|e| err_for(what, format!("cannot borrow the array: {e}")))
 }
 
-/// The rows of a C-contiguous (N, 3) array, in place.
+/// The rows of a C-contiguous (N, 3) array (as [`points`] gives), in
+/// place. Any other layout is refused (`as_slice` alone would take a
+/// Fortran-ordered array's raw memory as rows).
 pub(crate) fn rows<'a>(arr: &'a PyReadonlyArray2<'_, f64>, what: &str) -> PyResult<&'a [[f64; 3]]> {
+    if !arr.is_c_contiguous() {
+        return Err(err_for(what, "internal error: array not C-contiguous"));
+    }
     let flat = arr
         .as_slice()
         .map_err(|e| err_for(what, format!("array not contiguous: {e}")))?;
     Ok(flat.as_chunks::<3>().0)
 }
 
-/// Face index lists: an (M, k) integer array or a sequence of index
-/// sequences. Indices must be in `0..vertex_count`.
+/// A face's vertex index as given (any integer, unsigned beyond `i64`
+/// included), checked against `0..vertex_count`: the error quotes it as
+/// given, never wrapped to another integer.
+fn vertex_index(v: i128, face: usize, vertex_count: usize, what: &str) -> PyResult<usize> {
+    usize::try_from(v)
+        .ok()
+        .filter(|&u| u < vertex_count)
+        .ok_or_else(|| {
+            err_for(
+                what,
+                format!(
+                    "face {face}: vertex index {v} out of range (there are {vertex_count} vertices)"
+                ),
+            )
+        })
+}
+
+/// The faces of an (M, k) integer array of any dtype and memory layout:
+/// read by logical index after one conversion to a C-contiguous array of
+/// `T` (`int64`, or `uint64` for unsigned dtypes, so that an index beyond
+/// `2**63` is quoted as given).
+fn faces_of_array<T>(
+    arr: &Bound<'_, PyAny>,
+    dtype: &str,
+    vertex_count: usize,
+    what: &str,
+) -> PyResult<Vec<Vec<usize>>>
+where
+    T: numpy::Element + Copy + Into<i128>,
+{
+    let py = arr.py();
+    let np = numpy(py)?;
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("dtype", np.getattr(dtype)?)?;
+    let arr = np.call_method("ascontiguousarray", (arr,), Some(&kwargs))?;
+    let arr = arr.cast_into::<PyArray2<T>>()?;
+    let ro = arr
+        .try_readonly()
+        .map_err(|e| err_for(what, format!("cannot borrow the array: {e}")))?;
+    ro.as_array()
+        .outer_iter()
+        .enumerate()
+        .map(|(i, row)| {
+            row.iter()
+                .map(|&v| vertex_index(v.into(), i, vertex_count, what))
+                .collect()
+        })
+        .collect()
+}
+
+/// Face index lists: an (M, k) integer array (any integer dtype and memory
+/// layout) or a sequence of index sequences. Indices must be in
+/// `0..vertex_count`; an index out of range is quoted as given.
 pub(crate) fn faces(
     obj: &Bound<'_, PyAny>,
     vertex_count: usize,
     what: &str,
 ) -> PyResult<Vec<Vec<usize>>> {
     let py = obj.py();
-    let raw: Vec<Vec<i64>> = if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
         let mut out = Vec::new();
         for (i, item) in obj.try_iter()?.enumerate() {
             let item = item?;
-            let face: PyResult<Vec<i64>> = if item.hasattr("dtype")? {
+            let face: PyResult<Vec<i128>> = if item.hasattr("dtype")? {
                 let (kind, dtype) = dtype_kind(&item)?;
                 if !matches!(kind, 'i' | 'u') {
                     return Err(err_for(
@@ -135,68 +191,47 @@ pub(crate) fn faces(
                     ),
                 )
             })?;
-            out.push(face);
+            out.push(
+                face.into_iter()
+                    .map(|v| vertex_index(v, i, vertex_count, what))
+                    .collect::<PyResult<Vec<usize>>>()?,
+            );
         }
-        out
+        return Ok(out);
+    }
+    let np = numpy(py)?;
+    let arr = np.call_method1("asarray", (obj,)).map_err(|e| {
+        err_for(
+            what,
+            format!("expected an (M, k) integer array: {}", e.value(py)),
+        )
+    })?;
+    let (kind, dtype) = dtype_kind(&arr)?;
+    let shape = shape_of(&arr)?;
+    let empty = shape.contains(&0);
+    if !matches!(kind, 'i' | 'u') && !empty {
+        return Err(err_for(
+            what,
+            format!("expected an (M, k) integer array, got dtype {dtype}"),
+        ));
+    }
+    if shape.len() != 2 {
+        return Err(err_for(
+            what,
+            format!(
+                "expected an (M, k) integer array, got shape {}",
+                shape_text(&shape)
+            ),
+        ));
+    }
+    if empty {
+        return Ok(Vec::new());
+    }
+    if kind == 'u' {
+        faces_of_array::<u64>(&arr, "uint64", vertex_count, what)
     } else {
-        let np = numpy(py)?;
-        let arr = np.call_method1("asarray", (obj,)).map_err(|e| {
-            err_for(
-                what,
-                format!("expected an (M, k) integer array: {}", e.value(py)),
-            )
-        })?;
-        let (kind, dtype) = dtype_kind(&arr)?;
-        let shape = shape_of(&arr)?;
-        let empty = shape.contains(&0);
-        if !matches!(kind, 'i' | 'u') && !empty {
-            return Err(err_for(
-                what,
-                format!("expected an (M, k) integer array, got dtype {dtype}"),
-            ));
-        }
-        if shape.len() != 2 {
-            return Err(err_for(
-                what,
-                format!(
-                    "expected an (M, k) integer array, got shape {}",
-                    shape_text(&shape)
-                ),
-            ));
-        }
-        if empty {
-            return Ok(Vec::new());
-        }
-        let kwargs = PyDict::new(py);
-        kwargs.set_item("dtype", np.getattr("int64")?)?;
-        let arr = np.call_method("ascontiguousarray", (arr,), Some(&kwargs))?;
-        let arr = arr.cast_into::<PyArray2<i64>>()?;
-        let ro = arr.readonly();
-        let flat = ro
-            .as_slice()
-            .map_err(|e| err_for(what, format!("array not contiguous: {e}")))?;
-        flat.chunks(shape[1]).map(<[i64]>::to_vec).collect()
-    };
-    raw.into_iter()
-        .enumerate()
-        .map(|(i, f)| {
-            f.into_iter()
-                .map(|v| {
-                    usize::try_from(v)
-                        .ok()
-                        .filter(|&u| u < vertex_count)
-                        .ok_or_else(|| {
-                            err_for(
-                                what,
-                                format!(
-                                    "face {i}: vertex index {v} out of range (there are {vertex_count} vertices)"
-                                ),
-                            )
-                        })
-                })
-                .collect()
-        })
-        .collect()
+        faces_of_array::<i64>(&arr, "int64", vertex_count, what)
+    }
 }
 
 /// A polytope converted from a Python object.
@@ -239,6 +274,44 @@ pub(crate) fn mesh_from_parts(
     let f = faces(faces_obj, verts.len(), &format!("{what} faces"))?;
     Ok(PolygonMesh::new(verts, f))
 }
+
+/// A mesh that stands for a body (a solid or a surface) from its Python
+/// parts: as [`mesh_from_parts`], and an empty face array (shape (0, 3),
+/// or an empty list) is a `ValueError` naming `what`, never the convex hull
+/// of the vertices.
+pub(crate) fn solid_from_parts(
+    vertices: &Bound<'_, PyAny>,
+    faces_obj: &Bound<'_, PyAny>,
+    what: &str,
+) -> PyResult<PolygonMesh> {
+    let mesh = mesh_from_parts(vertices, faces_obj, what)?;
+    if mesh.faces.is_empty() {
+        let given = shape_of(faces_obj)
+            .map(|s| format!(" (shape {})", shape_text(&s)))
+            .unwrap_or_default();
+        return Err(err_for(
+            &format!("{what} faces"),
+            format!(
+                "the face array is empty{given}: a (vertices, faces) mesh needs at least one \
+                 face (pass the (N, 3) vertices alone for their convex hull)"
+            ),
+        ));
+    }
+    Ok(mesh)
+}
+
+/// `ValueError` naming `what` when `obj` is `None` where a shape is
+/// expected.
+pub(crate) fn not_none(obj: &Bound<'_, PyAny>, what: &str, expected: &str) -> PyResult<()> {
+    if obj.is_none() {
+        return Err(err_for(what, format!("expected {expected}, got None")));
+    }
+    Ok(())
+}
+
+/// What a shape argument accepts (error messages).
+pub(crate) const SHAPE_FORMS: &str = "a shape: an (N, 3) point array, a (vertices, faces) pair, \
+     an object with .vertices and .faces, a Polytope, or a model name or mesh path";
 
 /// A [`LoadError`] as the matching Python exception: `FileNotFoundError`
 /// for a path that does not exist, `OSError` when a file cannot be read,
@@ -289,6 +362,7 @@ pub(crate) fn load_shape(
 /// built with the GIL released.
 pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> PyResult<Shape> {
     let py = obj.py();
+    not_none(obj, what, SHAPE_FORMS)?;
     if let Ok(p) = obj.cast::<crate::polytope::PyPolytope>() {
         let p = p.get();
         return Ok(Shape {
@@ -303,18 +377,7 @@ pub(crate) fn shape(obj: &Bound<'_, PyAny>, what: &str, policy: MeshPolicy) -> P
         return load_shape(py, &spec, policy, Some(what));
     }
     if let Some((v, f)) = mesh_parts(obj)? {
-        let mesh = mesh_from_parts(&v, &f, what)?;
-        if mesh.faces.is_empty() {
-            let count = mesh.vertices.len();
-            let polytope = py
-                .detach(|| Polytope::from_points(&mesh.vertices))
-                .map_err(|e| err_for(what, e))?;
-            return Ok(Shape {
-                polytope,
-                origin: Origin::Points { count },
-                source: "points".into(),
-            });
-        }
+        let mesh = solid_from_parts(&v, &f, what)?;
         let (polytope, report) = py
             .detach(|| Polytope::from_mesh(&mesh, policy))
             .map_err(|e| err_for(what, e))?;

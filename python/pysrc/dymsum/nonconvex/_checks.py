@@ -19,11 +19,14 @@ def _as_mesh(vertices: Any, faces: Any) -> Tuple[np.ndarray, np.ndarray]:
     if not np.issubdtype(f.dtype, np.integer):
         if not np.all(np.asarray(f, dtype=np.float64) == np.round(np.asarray(f, dtype=np.float64))):
             raise ValueError("mesh faces must be integer vertex indices")
-    f = np.ascontiguousarray(f, dtype=np.int64)
     if not np.all(np.isfinite(v)):
         raise ValueError("mesh vertices must be finite")
-    if f.min() < 0 or f.max() >= len(v):
-        raise ValueError(f"mesh faces index vertex {int(f.max()) if f.max() >= len(v) else int(f.min())}, out of range 0..{len(v) - 1}")
+    # The range is checked in the given dtype, before any conversion: an
+    # index beyond int64 (a uint64 2**63) is quoted as given, not wrapped.
+    lo, hi = f.min(), f.max()
+    if lo < 0 or hi >= len(v):
+        raise ValueError(f"mesh faces index vertex {int(hi) if hi >= len(v) else int(lo)}, out of range 0..{len(v) - 1}")
+    f = np.ascontiguousarray(f, dtype=np.int64)
     return v, f
 
 
