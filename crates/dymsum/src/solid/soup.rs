@@ -22,9 +22,9 @@
 //!    merged.
 //! 2. Faces are taken as their fan triangles. A triangle repeating a vertex
 //!    is dropped. A triangle whose distinct corners are exactly collinear
-//!    (zero area) is dropped from the body but kept for the balance of
-//!    edges below (a T-junction's fill), where, after the splitting of
-//!    edges, it balances itself.
+//!    (zero area) is dropped: once edges are split at the vertices on them
+//!    (below), its edges balance each other, so for the balance it changes
+//!    nothing (a T-junction's fill).
 //! 3. Of triangles with the same corners one is kept, counted as often as
 //!    its copies run its way less the other way: a copy the same way round
 //!    (a duplicate, or a face two coincident solids share) adds one, a copy
@@ -55,7 +55,10 @@
 //!    (the lowest index on a tie). What remains is a cycle and encloses
 //!    (a closed box with an open fin glued to one edge: the box encloses,
 //!    the fin is surface); what was set aside, and the paired triangles, are
-//!    surface.
+//!    surface. The enclosing triangles are then split at the vertices lying
+//!    on their edges (the same region exactly), so that the enclosing part
+//!    is closed edge for edge and stays a cycle when its vertices are posed
+//!    and rounded.
 //! 6. Inward input as a whole (every shell inverted) is turned outward: when
 //!    the exact signed volume of the enclosing triangles is negative, they
 //!    are all flipped, and [`CleanSoup::inverted`] says so.
@@ -70,7 +73,7 @@
 //! shells, with a box tree over the vertices for the splitting, built only
 //! when an unbalanced edge is met.
 
-use std::collections::{BTreeSet, HashMap, HashSet};
+use std::collections::{BTreeSet, HashMap};
 
 use super::aabb::{Aabb, AabbTree};
 use super::{collinear, shells, volume_sign, SolidError};
@@ -194,8 +197,6 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
     let mut triangles: Vec<[usize; 3]> = Vec::new();
     // How often each kept triangle is listed as kept, less the other way.
     let mut net: Vec<i32> = Vec::new();
-    let mut fills: Vec<[usize; 3]> = Vec::new();
-    let mut fill_seen: HashSet<[usize; 3]> = HashSet::new();
     let mut by_corners: HashMap<[usize; 3], usize> = HashMap::new();
     let (mut dropped_zero_area, mut dropped_duplicates, mut dropped_back_to_back) = (0, 0, 0);
     let mut polygons: HashMap<Vec<usize>, Vec<usize>> = HashMap::new();
@@ -235,10 +236,9 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
                 continue;
             }
             if collinear(vertices[t[0]], vertices[t[1]], vertices[t[2]]) {
+                // Zero area: once edges are split at the vertices on them,
+                // its edges balance each other, so it changes nothing.
                 dropped_zero_area += 1;
-                if fill_seen.insert(rotated_to_least(t)) {
-                    fills.push(t);
-                }
                 continue;
             }
             let mut key = t;
@@ -290,32 +290,42 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         }
     }
     let mut split_edges = 0;
-    let mut chain_survivors = Vec::new();
+    let mut pieces = HashMap::new();
     if !chain.is_empty() {
-        let tris: Vec<[usize; 3]> = chain
-            .iter()
-            .map(|&k| triangles[k])
-            .chain(fills.iter().copied())
-            .collect();
+        let tris: Vec<[usize; 3]> = chain.iter().map(|&k| triangles[k]).collect();
         let mut c = Chain::new(&vertices, tris);
         c.peel();
         split_edges = c.pieces.values().filter(|p| p.len() > 2).count();
         for (i, &k) in chain.iter().enumerate() {
             if c.alive[i] {
                 weight[k] += 1;
-                chain_survivors.push(k);
             }
         }
+        pieces = c.pieces;
     }
     let set_aside = chain
         .iter()
         .enumerate()
         .filter(|&(i, &k)| (i == 0 || chain[i - 1] != k) && weight[k] == 0)
         .count();
-    let encloses: Vec<bool> = weight.iter().map(|&w| w > 0).collect();
-    for (k, t) in triangles.iter_mut().enumerate() {
-        *t = flipped_if(*t, flip[k]);
+    // The enclosing triangles of the chain split where a vertex lies on
+    // their edges (the same region exactly), so that the enclosing part is
+    // closed edge for edge and stays a cycle wherever its vertices are moved
+    // (a posed body's rounded coordinates no longer lie on the edge).
+    let (mut split, mut split_weight, mut split_flip) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, &t) in triangles.iter().enumerate() {
+        let t = flipped_if(t, flip[k]);
+        let start = split.len();
+        if weight[k] > 0 && !pieces.is_empty() {
+            split_at_vertices_on_edges(t, &pieces, &mut split);
+        } else {
+            split.push(t);
+        }
+        split_weight.extend(std::iter::repeat_n(weight[k], split.len() - start));
+        split_flip.extend(std::iter::repeat_n(flip[k], split.len() - start));
     }
+    let (mut triangles, weight, mut flip) = (split, split_weight, split_flip);
+    let encloses: Vec<bool> = weight.iter().map(|&w| w > 0).collect();
     // 6. Inward as a whole (each triangle as often as its weight).
     let enclosing: Vec<[usize; 3]> = (0..triangles.len())
         .flat_map(|k| std::iter::repeat_n(triangles[k], weight[k] as usize))
@@ -330,9 +340,9 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         }
     }
     let flipped = flip.iter().filter(|&&f| f).count();
-    // Components: enclosing triangles grouped through shared vertices (the
-    // chain's survivors as one group when an edge was split: each group is
-    // then a cycle by itself), surface triangles likewise.
+    // Components: enclosing triangles grouped through shared vertices (each
+    // group is then closed edge for edge: a cycle by itself), surface
+    // triangles likewise.
     let mut solid_sets = Dsu::new(vertices.len());
     let mut surface_sets = Dsu::new(vertices.len());
     for (k, t) in triangles.iter().enumerate() {
@@ -343,11 +353,6 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         };
         sets.union(t[0], t[1]);
         sets.union(t[0], t[2]);
-    }
-    if split_edges > 0 {
-        for w in chain_survivors.windows(2) {
-            solid_sets.union(triangles[w[0]][0], triangles[w[1]][0]);
-        }
     }
     let mut index: HashMap<(bool, usize), usize> = HashMap::new();
     let mut components: Vec<Component> = Vec::new();
@@ -385,6 +390,33 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
     })
 }
 
+/// Triangle `t` split at the vertices lying on its edges (`pieces`: each
+/// cut edge's vertices in order from its smaller vertex), into `out`: the
+/// same region, each part with `t`'s orientation and nonzero area (a fan
+/// from the corner opposite a cut edge, then the parts' own cut edges).
+fn split_at_vertices_on_edges(
+    t: [usize; 3],
+    pieces: &HashMap<Edge, Vec<usize>>,
+    out: &mut Vec<[usize; 3]>,
+) {
+    for e in 0..3 {
+        let (u, v, x) = (t[e], t[(e + 1) % 3], t[(e + 2) % 3]);
+        let Some(cut) = pieces.get(&edge_key(u, v)).filter(|p| p.len() > 2) else {
+            continue;
+        };
+        let along: Vec<usize> = if u < v {
+            cut.clone()
+        } else {
+            cut.iter().rev().copied().collect()
+        };
+        for w in along.windows(2) {
+            split_at_vertices_on_edges([w[0], w[1], x], pieces, out);
+        }
+        return;
+    }
+    out.push(t);
+}
+
 /// Disjoint sets over `0..n` (path halving, the smaller root kept).
 struct Dsu(Vec<usize>);
 
@@ -407,13 +439,6 @@ impl Dsu {
             self.0[a.max(b)] = a.min(b);
         }
     }
-}
-
-/// An oriented triangle rotated to start at its smallest corner (the same
-/// oriented triangle from any start gives the same key).
-fn rotated_to_least(t: [usize; 3]) -> [usize; 3] {
-    let r = (0..3).min_by_key(|&i| t[i]).unwrap_or(0);
-    [t[r], t[(r + 1) % 3], t[(r + 2) % 3]]
 }
 
 /// A vertex cycle rotated to start at its smallest index (the same cycle
