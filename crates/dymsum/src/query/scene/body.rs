@@ -5,7 +5,9 @@
 
 use glam::DVec3;
 
+use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;
+use crate::query::error::QueryError;
 use crate::query::union::ConvexUnion;
 use crate::sanity::SanityError;
 use crate::solid::aabb::{Aabb, AabbTree};
@@ -302,6 +304,36 @@ impl MeshBody {
         }
     }
 
+    /// The body placed at `pose` ([`super::Body::placed`]): its vertices
+    /// posed once in floats, the trees built again, what the cleaning
+    /// decided kept.
+    ///
+    /// # Errors
+    /// [`QueryError::OutOfRange`] when a posed coordinate is not finite.
+    pub fn placed(&self, pose: Pose) -> Result<MeshBody, QueryError> {
+        let vertices: Vec<DVec3> = self.vertices.iter().map(|&v| pose.apply(v)).collect();
+        if vertices.iter().any(|v| !v.is_finite()) {
+            return Err(QueryError::OutOfRange(format!(
+                "a vertex placed at the pose is not finite (translation {:?})",
+                pose.translation.to_array()
+            )));
+        }
+        let mut body = MeshBody::assemble(
+            vertices,
+            self.triangles.clone(),
+            self.component_of.clone(),
+            self.weights.clone(),
+            self.components.clone(),
+            self.report,
+        );
+        // Exactly convex again only if the posed triangles still are (as
+        // for the same mesh moved by hand).
+        if self.convex.is_some() {
+            body.convex = body.exactly_convex();
+        }
+        Ok(body)
+    }
+
     /// What cleaning changed and what the components are.
     pub fn report(&self) -> MeshReport {
         self.report
@@ -408,4 +440,27 @@ pub(crate) fn triangle_boxes_into(vertices: &[DVec3], triangles: &[[u32; 3]], ou
             hi: a.max(b).max(c).to_array(),
         }
     }));
+}
+
+/// A convex polytope placed at `pose`: the hull of its posed vertices.
+pub(crate) fn placed_polytope(
+    p: &crate::polytope::Polytope,
+    pose: Pose,
+) -> Result<crate::polytope::Polytope, QueryError> {
+    let posed: Vec<[f64; 3]> = p
+        .vertices()
+        .iter()
+        .map(|&v| pose.apply(v).to_array())
+        .collect();
+    if posed.iter().flatten().any(|x| !x.is_finite()) {
+        return Err(QueryError::OutOfRange(format!(
+            "a vertex placed at the pose is not finite (translation {:?})",
+            pose.translation.to_array()
+        )));
+    }
+    crate::polytope::Polytope::from_points(&posed).map_err(|e| {
+        QueryError::OutOfRange(format!(
+            "a convex piece placed at the pose is no polytope: {e}"
+        ))
+    })
 }

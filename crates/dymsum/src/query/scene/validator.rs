@@ -4,7 +4,7 @@
 //! fast path ([`MotionChecker`]) and takes everything else as triangles
 //! ([`SceneChecker`]).
 
-use super::body::MeshBody;
+use super::body::{placed_polytope, MeshBody};
 use super::checker::SceneChecker;
 use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;
@@ -47,6 +47,47 @@ impl Body {
     /// Those of [`MeshBody::new`].
     pub fn from_mesh(mesh: &PolygonMesh) -> Result<Body, SolidError> {
         Ok(Body::Mesh(MeshBody::new(mesh)?))
+    }
+
+    /// The body placed at `pose` (an obstacle given in its own frame): its
+    /// vertices posed once, in floats (`R p + t`, rounded to the nearest
+    /// `f64`), and everything built from them again; the checks are then
+    /// exact for those coordinates. What the cleaning decided (which
+    /// triangles enclose, their weights) is kept: it does not depend on
+    /// where the body is, and the enclosing part is closed edge for edge.
+    ///
+    /// ```
+    /// use dymsum::query::{Body, ConvexUnion, Validator};
+    /// use dymsum::{DVec3, Polytope, Pose, Rotation};
+    /// let cube = |h: f64| {
+    ///     let c: Vec<[f64; 3]> = (0..8)
+    ///         .map(|i| std::array::from_fn(|k| if i >> k & 1 == 0 { -h } else { h }))
+    ///         .collect();
+    ///     Body::Convex(ConvexUnion::from(Polytope::from_points(&c).unwrap()))
+    /// };
+    /// let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
+    /// let wall = cube(1.0).placed(at(10.0))?;
+    /// let checker = Validator::new(&cube(0.5), &[wall])?;
+    /// assert!(checker.collides_at(at(8.5))? && !checker.collides_at(at(8.0))?);
+    /// # Ok::<(), dymsum::query::QueryError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`QueryError::OutOfRange`] when a posed coordinate is not finite, or
+    /// a convex piece flattens under rounding (no longer a polytope).
+    pub fn placed(&self, pose: Pose) -> Result<Body, QueryError> {
+        Ok(match self {
+            Body::Convex(u) => Body::Convex(
+                ConvexUnion::new(
+                    u.pieces()
+                        .iter()
+                        .map(|p| placed_polytope(p, pose))
+                        .collect::<Result<_, _>>()?,
+                )
+                .ok_or_else(|| QueryError::OutOfRange("a union without pieces".into()))?,
+            ),
+            Body::Mesh(m) => Body::Mesh(m.placed(pose)?),
+        })
     }
 
     /// Whether the body takes the convex fast path: convex pieces, or a
