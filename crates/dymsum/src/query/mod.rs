@@ -141,6 +141,7 @@ mod motion;
 mod pair;
 mod prep;
 mod proximity;
+mod rounding;
 pub(crate) mod scene;
 mod tracker;
 mod union;

@@ -55,11 +55,20 @@
 //! [`crate::query::proximity::support`], whose maxima are certified, on the unposed piece
 //! and the obstacle's vertices), and if it exceeds `s`, the distance
 //! between the moving piece and `O` stays positive over the whole
-//! interval. Rounding is covered: the float rotations and translations
-//! differ from the exact interpolation by less than `2⁻⁴⁴ (r + |T|)`
-//! (the snaps of the rotation matrices, 2⁻⁴⁷ per entry, dominate), which is
-//! added to `s` with the rounding of every dot product, and `δ` and `s` are
-//! rounded up.
+//! interval. Rounding is covered: the float poses ([`Motion::at`]: `R̃`,
+//! `T̃`) differ from the exact motion's by at most
+//! `e = 2⁻⁴³ r + 6u (M + D)` (`u = 2⁻⁵³`, `M` the largest end translation
+//! coordinate, `D` the largest of their difference; derived in
+//! `query::rounding`: the rotation's error is relative to the reach, the
+//! translation's a few ulps of the coordinates), which is added to `s`;
+//! `δ` is rounded up from the float angle plus its error bound
+//! (`2⁻⁴⁶`), and `s` up. The gap is taken about the obstacle ball's
+//! centre `c` (the same difference about any point): the translations and
+//! the obstacle's vertices less `c`, rounded (an exact translate of the
+//! obstacle within `2u` of its scale per vertex, which the near-extreme
+//! search allows for), so every dot product and sum rounds by a few ulps of
+//! the local sizes, not of the coordinates, and those roundings are
+//! subtracted from the gap.
 //!
 //! GJK's direction is off by about `ε · size / distance`, so when the
 //! pieces come within about `√ε · size` of each other the gap along it can
@@ -70,8 +79,9 @@
 //! (`|(R(t) − R(a)) p| ≤ 2 r sin(δ/2) ≤ r δ`, and the translation is
 //! linear), so the interval is free when the exact distance at `a`
 //! ([`ConvexPair::query`]) exceeds that, plus the rounding of the
-//! distance (far below `10⁻¹²` of the coordinates' scale) and twice the
-//! pose error above.
+//! distance (taken as `10⁻¹²` of the coordinates' scale, far above it:
+//! far from the origin this bound rarely helps, the gap does) and three
+//! times the pose error above (the pose at `a`, and both translations).
 //!
 //! # The search
 //! For each piece of the body and each obstacle piece, intervals are
@@ -101,7 +111,8 @@ use crate::query::answer::Proximity;
 use crate::query::error::QueryError;
 use crate::query::pair::ConvexPair;
 use crate::query::pair::QueryStats;
-use crate::query::proximity::support::{climb, near_max, Marks, NearestAxes};
+use crate::query::proximity::support::{climb, dot_error, near_max, Marks, NearestAxes};
+use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
 use crate::query::union::ConvexUnion;
 use glam::DQuat;
 use glam::DVec3;
@@ -246,6 +257,15 @@ impl Motion {
     pub fn angle(&self) -> f64 {
         2.0 * self.half
     }
+
+    /// `(M, D)`: the largest absolute coordinate of the two end
+    /// translations, and of their float difference (the sizes of the
+    /// rounding bound of the float poses, `query::rounding`).
+    pub(crate) fn translation_extent(&self) -> (f64, f64) {
+        let m = self.t0.abs().max(self.t1.abs()).max_element();
+        let d = (self.t1 - self.t0).abs().max_element();
+        (m, d)
+    }
 }
 
 /// What the search needs of one piece pair.
@@ -258,8 +278,12 @@ struct PieceSearch<'a> {
     /// The largest absolute vertex coordinate of the body piece and of the
     /// obstacle piece (for the dot products' error bounds).
     scales: (f64, f64),
-    /// The obstacle's bounding ball: centre and radius (world).
+    /// The obstacle's bounding ball: centre and radius (world). The centre
+    /// is also the local origin the gap is computed about.
     obstacle_ball: (DVec3, f64),
+    /// The largest absolute coordinate of the obstacle piece's vertices
+    /// less the ball's centre, as rounded.
+    obstacle_local_scale: f64,
 }
 
 /// The buffers of a check (kept by a [`MotionChecker`] between checks).
@@ -319,6 +343,7 @@ pub struct MotionChecker {
     body_scale: Vec<f64>,
     balls: Vec<Vec<(DVec3, f64)>>,
     obstacle_scale: Vec<Vec<f64>>,
+    obstacle_local_scale: Vec<Vec<f64>>,
     pool: std::sync::Mutex<Vec<Scratch>>,
     budget: u64,
     steps: std::sync::atomic::AtomicU64,
@@ -376,7 +401,7 @@ impl MotionChecker {
             .iter()
             .map(|o| o.pieces().iter().map(scale).collect())
             .collect();
-        let balls = obstacles
+        let balls: Vec<Vec<(DVec3, f64)>> = obstacles
             .iter()
             .map(|o| {
                 o.pieces()
@@ -385,6 +410,22 @@ impl MotionChecker {
                         let n = q.vertex_count() as f64;
                         let c = q.vertices().iter().fold(DVec3::ZERO, |s, &v| s + v) / n;
                         (c, radius_about(q, c))
+                    })
+                    .collect()
+            })
+            .collect();
+        let obstacle_local_scale = obstacles
+            .iter()
+            .zip(&balls)
+            .map(|(o, b)| {
+                o.pieces()
+                    .iter()
+                    .zip(b)
+                    .map(|(q, &(c, _))| {
+                        q.vertices()
+                            .iter()
+                            .map(|&v| (v - c).abs().max_element())
+                            .fold(0.0, f64::max)
                     })
                     .collect()
             })
@@ -398,6 +439,7 @@ impl MotionChecker {
             body_scale,
             balls,
             obstacle_scale,
+            obstacle_local_scale,
             pool: std::sync::Mutex::new(Vec::new()),
             budget: DEFAULT_BUDGET,
             steps: std::sync::atomic::AtomicU64::new(0),
@@ -564,6 +606,7 @@ impl MotionChecker {
             reach: self.reach[i],
             scales: (self.body_scale[i], self.obstacle_scale[j][k]),
             obstacle_ball: self.balls[j][k],
+            obstacle_local_scale: self.obstacle_local_scale[j][k],
         }
     }
 
@@ -671,7 +714,11 @@ impl PieceSearch<'_> {
     ) -> Result<Option<f64>, QueryError> {
         let mut step = tol;
         for _ in 0..8 {
-            let c = (a + step).min(limit);
+            let mut c = (a + step).min(limit);
+            if c - a > step {
+                // Rounded past the tolerance: one ulp back (`c > a ≥ 0`).
+                c = f64::from_bits(c.to_bits() - 1);
+            }
             if c > a && self.pair.intersects(motion.at(c), Pose::IDENTITY)? {
                 return Ok(Some(c));
             }
@@ -692,18 +739,24 @@ impl PieceSearch<'_> {
     ) -> Result<bool, QueryError> {
         let (pa, pb) = (motion.at(a), motion.at(b));
         let r = self.reach;
-        // Rounding of the interpolated poses against the exact motion, and
-        // the sagitta of the turn over [a, b] (δ rounded up).
-        let t_mag = pa.translation.abs().max_element() + pb.translation.abs().max_element();
-        let pose_err = 2f64.powi(-44) * (r + t_mag) + 1e-300;
-        let delta = (motion.angle() * (b - a)) * (1.0 + 1e-12) + 1e-15;
+        // Rounding of the interpolated poses against the exact motion
+        // (`query::rounding`), and the sagitta of the turn over [a, b] (δ
+        // rounded up: the float angle is within ANGLE_ROUNDING of it).
+        let pose_err = pose_rounding_bound(r, motion.translation_extent());
+        let delta = ((motion.angle() + ANGLE_ROUNDING) * (b - a)) * (1.0 + 1e-12);
         let q = (delta / 4.0).min(std::f64::consts::FRAC_PI_4).sin();
         let sagitta = 2.0 * r * q * q * (1.0 + 1e-12);
         let inflate = sagitta + pose_err;
         // The balls first: the piece stays within r of the segment
-        // [T(a), T(b)] (any rotation).
+        // [T(a), T(b)] (any rotation). About the ball's centre `c`: the
+        // float distance (the differences, the nearest point's parameter
+        // and coordinates, its length) is within 12u (|a'| + |b'|) of the
+        // exact distance from `c` to the float segment, taken as 16u.
         let (c, ro) = self.obstacle_ball;
-        if segment_distance(pa.translation, pb.translation, c) > r + ro + inflate + 1e-12 * (r + ro)
+        let (la, lb) = (pa.translation - c, pb.translation - c);
+        let seg_err = 8.0 * f64::EPSILON * (la.length() + lb.length());
+        if segment_distance(la, lb, DVec3::ZERO) - seg_err
+            > (r + ro + inflate) * (1.0 + 1e-12) + 1e-300
         {
             return Ok(true);
         }
@@ -727,6 +780,7 @@ impl PieceSearch<'_> {
         // of the piece moves over [a, b]. Not tried when GJK's estimate is
         // within the inflation: the swept set really is that near, and
         // halving is what helps.
+        let t_mag = pa.translation.abs().max_element() + pb.translation.abs().max_element();
         let scale = r + t_mag + self.scales.1;
         if estimate <= inflate {
             return Ok(false);
@@ -735,7 +789,11 @@ impl PieceSearch<'_> {
             return Ok(false);
         };
         let moved = (pb.translation - pa.translation).length() + r * delta;
-        let margin = 1e-12 * scale + 2.0 * pose_err;
+        // The query's distance is within rounding of the posed bodies' (far
+        // below 1e-12 of the coordinates' scale; module docs); the pose at
+        // `a` and both translations are within `pose_err` of the exact
+        // motion's.
+        let margin = 1e-12 * scale + 3.0 * pose_err;
         Ok(sep.distance > moved * (1.0 + 1e-12) + margin)
     }
 
@@ -745,6 +803,10 @@ impl PieceSearch<'_> {
     fn separating_direction(&self, pa: Pose, pb: Pose) -> Option<(DVec3, f64, [u32; 3])> {
         let (body, obstacle) = (self.body, self.obstacle);
         let (ra, rb) = (pa.rotation.matrix(), pb.rotation.matrix());
+        // About the obstacle's centre: the differences stay accurate when
+        // both are far from the origin.
+        let c = self.obstacle_ball.0;
+        let (ta, tb) = (pa.translation - c, pb.translation - c);
         let (mut wa, mut wb, mut wo) = (0u32, 0u32, 0u32);
         // The point of the swept hull ⊖ obstacle minimising d · x.
         let mut support = |d: DVec3| -> DVec3 {
@@ -754,14 +816,10 @@ impl PieceSearch<'_> {
             (wa, wb, wo) = (u, w, o);
             let (ha, hb) = (ra * body.vertex(u as usize), rb * body.vertex(w as usize));
             let h = if (-d).dot(ha) >= (-d).dot(hb) { ha } else { hb };
-            let t = if (-d).dot(pa.translation) >= (-d).dot(pb.translation) {
-                pa.translation
-            } else {
-                pb.translation
-            };
-            h + t - obstacle.vertex(o as usize)
+            let t = if (-d).dot(ta) >= (-d).dot(tb) { ta } else { tb };
+            h + t - (obstacle.vertex(o as usize) - c)
         };
-        let mut v = (pa.translation + pb.translation) * 0.5 - obstacle.vertices()[0];
+        let mut v = (ta + tb) * 0.5 - (obstacle.vertices()[0] - c);
         if v.length_squared() == 0.0 {
             v = DVec3::X;
         }
@@ -827,55 +885,68 @@ impl PieceSearch<'_> {
         certified
     }
 
-    /// A rigorous lower bound on `min_{H ⊕ [T]} n · x − max_O n · o`.
+    /// A rigorous lower bound on `min_{H ⊕ [T]} n · x − max_O n · o`
+    /// (for `|n| ≤ 1 + 4ε`), computed about the obstacle ball's centre `c`
+    /// (the difference is the same about any point): the translations and
+    /// the obstacle's vertices less `c`, rounded, and every rounding
+    /// bounded in the local coordinates' size, not in the world's.
     fn gap(&self, pa: Pose, pb: Pose, n: DVec3, hints: [u32; 3], s: &mut Scratch) -> f64 {
         let (body, obstacle) = (self.body, self.obstacle);
         let r = self.reach;
-        let bound = |poly: &Polytope,
-                     d: DVec3,
-                     start: u32,
-                     scale: f64,
-                     marks: &mut Marks,
-                     set: &mut Vec<u32>| {
+        let c = self.obstacle_ball.0;
+        // max over the swept hull of −n · x: the body's max along Rᵀ(−n)
+        // (the float Rᵀ(−n) off by at most 4ε, times r) plus the
+        // translations'.
+        let (sb, _) = self.scales;
+        let mut body_max = |d: DVec3, start: u32| {
             near_max(
-                poly,
-                |v| poly.vertex(v as usize),
+                body,
+                |v| body.vertex(v as usize),
                 d,
                 start,
                 0.0,
                 0.0,
-                scale,
-                marks,
-                set,
+                sb,
+                &mut s.marks_a,
+                &mut s.set,
             )
             .upper
         };
-        // max over the swept hull of −n · x: the body's max along Rᵀ(−n)
-        // (the float Rᵀ(−n) off by at most 4ε, times r) plus the
-        // translations'.
-        let (sb, so) = self.scales;
-        let ua = bound(
-            body,
-            pa.rotation.matrix().transpose() * -n,
-            hints[0],
-            sb,
-            &mut s.marks_a,
+        let ua = body_max(pa.rotation.matrix().transpose() * -n, hints[0]);
+        let ub = body_max(pb.rotation.matrix().transpose() * -n, hints[1]);
+        // fl(T − c) is within u|T − c| a coordinate of T − c, and the dot
+        // product rounds by γ₃ Σ|nₖ||xₖ|: 8u Σ|nₖ| max|xₖ| covers both.
+        let (ta, tb) = (pa.translation - c, pb.translation - c);
+        let local = ta.abs().max(tb.abs()).max_element();
+        let ut = (-n).dot(ta).max((-n).dot(tb)) + dot_error(n, local);
+        let turned = ua.max(ub);
+        let hull_max = turned + 8.0 * f64::EPSILON * r + ut;
+        // The obstacle's vertices less c, each within η = 2u·scale of the
+        // exact difference (an exact translate of the obstacle): the
+        // near-extreme search bounds the rounded ones' maximum, and η|n|
+        // more bounds the exact ones'.
+        let so = self.obstacle_local_scale;
+        let eta = f64::EPSILON * so;
+        let obstacle_max = near_max(
+            obstacle,
+            |v| obstacle.vertex(v as usize) - c,
+            n,
+            hints[2],
+            0.0,
+            eta,
+            so,
+            &mut s.marks_b,
             &mut s.set,
-        );
-        let ub = bound(
-            body,
-            pb.rotation.matrix().transpose() * -n,
-            hints[1],
-            sb,
-            &mut s.marks_a,
-            &mut s.set,
-        );
-        let ut = (-n).dot(pa.translation).max((-n).dot(pb.translation))
-            + 4.0 * f64::EPSILON * (pa.translation.length() + pb.translation.length());
-        let hull_max = ua.max(ub) + 8.0 * f64::EPSILON * r + ut;
-        let obstacle_max = bound(obstacle, n, hints[2], so, &mut s.marks_b, &mut s.set);
-        // min_H' n · x − max_O n · o = −max_H' (−n · x) − max_O n · o.
-        -hull_max - obstacle_max
+        )
+        .upper
+            + eta * (1.0 + 4.0 * f64::EPSILON);
+        // min_H' n · x − max_O n · o = −max_H' (−n · x) − max_O n · o,
+        // less the rounding of the sums above (two for the hull's, one for
+        // the difference, one for this subtraction, and the additions of
+        // the error terms to `ut`, the near-extreme maxima and `η`: each at
+        // most u of the terms' sizes, nine in all, taken as 16u).
+        let sizes = turned.abs() + 8.0 * f64::EPSILON * r + ut.abs() + obstacle_max.abs();
+        -hull_max - obstacle_max - 8.0 * f64::EPSILON * sizes - 1e-300
     }
 }
 

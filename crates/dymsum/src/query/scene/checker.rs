@@ -30,12 +30,20 @@
 //! moved as at `a` and at `b`) grown by `s`: the motion search's
 //! *swept hull* (the convex checker's bound, [`crate::query::MotionChecker`],
 //! per triangle). If every pair of a swept hull and a scene triangle is
-//! more than `s` (plus the rounding of the poses and of the points,
-//! `2⁻⁴⁰ (r + |T|)`, far above both) apart, no triangles meet anywhere in
-//! `[a, b]`. Pairs whose boxes are more than that apart on an axis are
+//! more than `s` plus `e` apart, no triangles meet anywhere in `[a, b]`:
+//! `e = 2⁻⁴³ r + 6u (M + D)` (`u = 2⁻⁵³`, `M` the largest end translation
+//! coordinate, `D` the largest of their difference) bounds the distance
+//! between each of the twelve points as computed (posed in floats, then
+//! moved by the float difference of the translations) and its exact
+//! value on the exact motion (`query::rounding`: the rotation's error is
+//! relative to the reach, the translation's a few ulps of the
+//! coordinates), and `δ` is rounded up from the float angle plus its
+//! error bound (`2⁻⁴⁶`). Pairs whose boxes are more than that apart on an axis are
 //! dropped by the broad phase (an exact comparison after a monotone
 //! rounding), the others are certified by [`super::gap`]: floats propose
-//! an axis, and the gap along it is bounded below rigorously. A slide
+//! an axis, and the gap along it is bounded below rigorously, about the
+//! scene triangle's first corner (so its rounding is a few ulps of the
+//! local sizes, not of the coordinates). A slide
 //! along a wall certifies in one interval (the hull stays on its side);
 //! the sagitta is second order in the interval's width. Containment
 //! cannot begin without triangles meeting, and the body is not inside
@@ -71,6 +79,7 @@ use crate::query::error::QueryError;
 use crate::query::motion::{
     Motion, MotionCheck, MotionError, DEFAULT_BUDGET, MIN_TOLERANCE, MIN_WIDTH,
 };
+use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
 use crate::solid::aabb::{Aabb, AabbTree};
 use crate::solid::intersect::triangles_meet;
 
@@ -677,13 +686,11 @@ impl SceneChecker {
         }
         let motion = Motion::new(from, to);
         let r = self.body.reach;
-        let angle = motion.angle() * (1.0 + 1e-12) + 1e-15;
-        let far = r + from
-            .translation
-            .abs()
-            .max(to.translation.abs())
-            .max_element();
-        let margin = far * (1.0 / (1u64 << 40) as f64);
+        // The float angle is within ANGLE_ROUNDING of the exact one, and
+        // every posed and swept point within `margin` of the exact motion's
+        // (`query::rounding`): a few ulps of the coordinates.
+        let angle = (motion.angle() + ANGLE_ROUNDING) * (1.0 + 1e-12);
+        let margin = pose_rounding_bound(r, motion.translation_extent());
         let mut intervals = std::mem::take(&mut s.intervals);
         intervals.clear();
         intervals.push((0.0, 1.0));

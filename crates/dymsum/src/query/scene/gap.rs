@@ -20,6 +20,14 @@
 //! below the normal range; `n` is first scaled by a power of two to
 //! components near 1 (no underflow of `|n|`), and `|n|` is rounded up by
 //! a relative `8u`.
+//!
+//! The gap is the same about any origin, so [`apart_by_more_than`] takes
+//! it about the triangle's first corner `c`: far from the origin the
+//! points' coordinates are large but their differences from `c` small, and
+//! the dot products' error is then a few ulps of those differences, not
+//! of the coordinates. Each `fl(x − c)` is within `u |fl(x − c)|ₖ/(1 − u)`
+//! of `x − c` per coordinate, which moves each side's extreme dot product
+//! by at most `1.01u S`: `2.02u S` more, covered by `11u S` in all.
 
 use glam::DVec3;
 
@@ -35,12 +43,33 @@ pub(crate) fn apart_by_more_than(
     u: &[DVec3; 3],
     reach: f64,
 ) -> bool {
+    // About the triangle's first corner (module docs), for hulls of at
+    // most twelve points (the motion search's).
+    const MAX: usize = 12;
+    let c = u[0];
+    let mut buf = [DVec3::ZERO; MAX];
+    let (hull, u, near_buf, slack) = if hull.len() <= MAX && near.len() <= 2 {
+        for (b, p) in buf.iter_mut().zip(hull) {
+            *b = *p - c;
+        }
+        let mut nb = [[DVec3::ZERO; 3]; 2];
+        for (b, t) in nb.iter_mut().zip(near) {
+            *b = t.map(|p| p - c);
+        }
+        (&buf[..hull.len()], &u.map(|p| p - c), Some(nb), 3.0)
+    } else {
+        (hull, u, None, 0.0)
+    };
+    let near = match &near_buf {
+        Some(nb) => &nb[..near.len()],
+        None => near,
+    };
     // The triangle's normal first (cheap, and it separates whatever lies
     // beside a large face), either way round; then the closest points.
     let normal = (u[1] - u[0]).cross(u[2] - u[0]);
     let along = |n: DVec3| {
         let n = normalised_scale(n);
-        gap_along(hull, u, n) > reach_times_norm(reach, n)
+        gap_along(hull, u, n, slack) > reach_times_norm(reach, n)
     };
     along(normal)
         || along(-normal)
@@ -57,7 +86,7 @@ pub(crate) fn apart_by_more_than(
 pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
     let (ct, cu) = closest_points(t, u);
     let n = normalised_scale(cu - ct);
-    let gap = gap_along(t, u, n);
+    let gap = gap_along(t, u, n, 0.0);
     if gap <= 0.0 || !gap.is_finite() {
         return 0.0;
     }
@@ -83,8 +112,9 @@ fn reach_times_norm(reach: f64, n: DVec3) -> f64 {
 }
 
 /// A lower bound on `min_{y ∈ u} n·y − max_{x ∈ t} n·x` (module docs):
-/// `−∞` for a zero or non-finite `n`.
-fn gap_along(t: &[DVec3], u: &[DVec3; 3], n: DVec3) -> f64 {
+/// `−∞` for a zero or non-finite `n`. `shift` more `u S` is subtracted for
+/// points that are rounded differences from an origin (module docs).
+fn gap_along(t: &[DVec3], u: &[DVec3; 3], n: DVec3, shift: f64) -> f64 {
     if !n.is_finite() || n == DVec3::ZERO {
         return f64::NEG_INFINITY;
     }
@@ -101,7 +131,7 @@ fn gap_along(t: &[DVec3], u: &[DVec3; 3], n: DVec3) -> f64 {
     let gap = min_u - max_t;
     // The relative bounds, and an absolute one for products that fall
     // below the normal range (each off by at most 2⁻¹⁰⁷⁵).
-    gap - (8.0 * U * s + 2.0 * U * gap.abs() + 1e-300) * (1.0 + 8.0 * U)
+    gap - ((8.0 + shift) * U * s + 2.0 * U * gap.abs() + 1e-300) * (1.0 + 8.0 * U)
 }
 
 /// Closest points of two triangles, in floating point (a proposal only):
