@@ -213,6 +213,9 @@ fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
         "obstacles",
         "a sequence of ConvexUnions or shapes, or one (give [] for none)",
     )?;
+    if let Some(placed) = placed_obstacle(obj, "obstacles")? {
+        return Ok(vec![placed]);
+    }
     if is_single_shape(obj)? {
         return Ok(vec![body_of(obj, "obstacles")?]);
     }
@@ -227,9 +230,51 @@ fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
         )
     })?;
     for (i, item) in items.enumerate() {
-        out.push(body_of(&item?, &format!("obstacles[{i}]"))?);
+        let (item, what) = (item?, format!("obstacles[{i}]"));
+        match placed_obstacle(&item, &what)? {
+            Some(placed) => out.push(placed),
+            None => out.push(body_of(&item, &what)?),
+        }
     }
     Ok(out)
+}
+
+/// An obstacle given in its own frame with its pose: a `(body, pose)` pair
+/// whose second item is a pose (a float 4×4 rigid transform, as
+/// `dymsum.pose` makes, or a scipy `Rotation`), placed once
+/// ([`Body::placed`]); `None` when `obj` is no such pair (a `(vertices,
+/// faces)` pair has integer faces).
+fn placed_obstacle(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Option<Body>> {
+    let is_pair = (obj.is_instance_of::<pyo3::types::PyTuple>()
+        || obj.is_instance_of::<pyo3::types::PyList>())
+        && obj.len().is_ok_and(|n| n == 2);
+    if !is_pair {
+        return Ok(None);
+    }
+    let second = obj.get_item(1)?;
+    if !is_pose_like(&second)? {
+        return Ok(None);
+    }
+    let body = body_of(&obj.get_item(0)?, &format!("{what}[0]"))?;
+    let pose = convert::pose(Some(&second), &format!("{what}[1]"))?;
+    body.placed(pose)
+        .map(Some)
+        .map_err(|e| err_for(&format!("{what}[1]"), e))
+}
+
+/// Whether `obj` is a pose rather than faces: a scipy `Rotation`, or an
+/// array of floats of shape (4, 4).
+fn is_pose_like(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
+    if obj.hasattr("as_quat")? {
+        return Ok(true);
+    }
+    let np = obj.py().import("numpy")?;
+    let Ok(arr) = np.call_method1("asarray", (obj,)) else {
+        return Ok(false);
+    };
+    let kind: String = arr.getattr("dtype")?.getattr("kind")?.extract()?;
+    let shape: Vec<usize> = arr.getattr("shape")?.extract()?;
+    Ok(kind == "f" && shape == [4, 4])
 }
 
 /// The validator of `body` against `obstacles`, with its budget.

@@ -257,3 +257,74 @@ fn a_dent_is_kept_unless_hull_is_asked_for() {
     assert_eq!(both.status.code(), Some(2));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn an_obstacle_is_placed_by_its_pose() {
+    // The touching boxes given in their own frame, placed by a quarter turn
+    // about z and a translation (exact: the same as moving the vertices by
+    // hand), in query and motion alike.
+    let dir = temp_dir("front-doors-placed");
+    let (_, mesh) = family().swap_remove(0);
+    let file = mesh_off(&dir, "own_frame.off", &mesh);
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let pose = Pose::new(
+        Rotation::from_wxyz(h, 0.0, 0.0, h).unwrap(),
+        DVec3::new(10.0, 0.0, 0.0),
+    );
+    let moved = PolygonMesh::new(
+        mesh.vertices
+            .iter()
+            .map(|&v| pose.apply(DVec3::from(v)).to_array())
+            .collect(),
+        mesh.faces.clone(),
+    );
+    let by_hand = mesh_off(&dir, "moved.off", &moved);
+    let place = format!("10,0,0,{h:?},0,0,{h:?}");
+    for p in [
+        [9.0, 1.0, 1.0],
+        [9.0, 3.0, 1.0],
+        [9.0, 5.0, 1.0],
+        [11.0, 1.0, 1.0],
+    ] {
+        let at = pose_arg(p);
+        let placed = run(&[
+            "query",
+            "box:0.25",
+            &file,
+            "--collision-only",
+            "--obstacle-xyz-wxyz",
+            &place,
+            "--pose-xyz-wxyz",
+            &at,
+        ]);
+        let moved = run(&[
+            "query",
+            "box:0.25",
+            &by_hand,
+            "--collision-only",
+            "--pose-xyz-wxyz",
+            &at,
+        ]);
+        assert!(placed.status.success(), "{}", stderr(&placed));
+        assert_eq!(stdout(&placed), stdout(&moved), "{p:?}");
+    }
+    let motion = |obstacle: &str, extra: &[&str]| {
+        let (from, to) = (pose_arg([9.0, 8.0, 1.0]), pose_arg([9.0, -8.0, 1.0]));
+        let mut args = vec![
+            "motion",
+            "box:0.25",
+            obstacle,
+            "--from-xyz-wxyz",
+            &from,
+            "--to-xyz-wxyz",
+            &to,
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        stdout(&run(&args))
+    };
+    let placed = motion(&file, &["--obstacle-xyz-wxyz", &place]);
+    assert!(placed.contains("\"free\":false"), "{placed}");
+    assert_eq!(placed, motion(&by_hand, &[]));
+    std::fs::remove_dir_all(&dir).ok();
+}

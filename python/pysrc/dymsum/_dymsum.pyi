@@ -420,7 +420,8 @@ class ConvexUnion:
         """Pickles as ``ConvexUnion(pieces)``."""
 
 _BodyLike = Union[ConvexUnion, _ShapeLike]
-_ObstaclesLike = Union[ConvexUnion, _ShapeLike, Sequence[Union[ConvexUnion, _ShapeLike]]]
+_PlacedLike = Tuple[_BodyLike, _PoseLike]
+_ObstaclesLike = Union[ConvexUnion, _ShapeLike, _PlacedLike, Sequence[Union[ConvexUnion, _ShapeLike, _PlacedLike]]]
 
 class MotionUndecided(RuntimeError):
     """A motion grazing an obstacle within rounding, or one that used up its
@@ -439,9 +440,14 @@ class MotionCheck:
     @property
     def free(self) -> bool: ...
     @property
-    def t_safe(self) -> Optional[float]: ...
+    def t_safe(self) -> Optional[float]:
+        """Every ``t <= t_safe`` is certified free: ``1.0`` for a free motion;
+        ``None`` when the body collides at the start pose (no instant is free)."""
     @property
-    def t_contact(self) -> Optional[float]: ...
+    def t_contact(self) -> Optional[float]:
+        """A time at which the body touches or overlaps an obstacle
+        (``t_contact - t_safe <= tolerance``; ``0.0`` when colliding at the start);
+        ``None`` for a free motion."""
     def __bool__(self) -> bool: ...
 
 @final
@@ -451,9 +457,11 @@ class MotionChecks:
     @property
     def free(self) -> npt.NDArray[np.bool_]: ...
     @property
-    def t_safe(self) -> npt.NDArray[np.float64]: ...
+    def t_safe(self) -> npt.NDArray[np.float64]:
+        """(K,) last times certified free (``nan``: colliding at the start)."""
     @property
-    def t_contact(self) -> npt.NDArray[np.float64]: ...
+    def t_contact(self) -> npt.NDArray[np.float64]:
+        """(K,) times of contact (``nan``: free)."""
     def __len__(self) -> int: ...
 
 @final

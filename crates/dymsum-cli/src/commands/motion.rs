@@ -70,6 +70,13 @@ pub struct MotionArgs {
     /// How meshes are taken: `--strict`, `--decomposition`.
     #[command(flatten)]
     pub body: super::solid::BodyOptions,
+    /// Where the obstacle stands: translation X,Y,Z, then the unit
+    /// quaternion W,QX,QY,QZ (scalar first), applied once to its vertices
+    /// (an obstacle given in its own frame); without it the obstacle is
+    /// taken as given, in the world frame.
+    #[arg(long = "obstacle-xyz-wxyz", value_name = "X,Y,Z,W,QX,QY,QZ",
+          value_parser = parse_pose, allow_hyphen_values = true)]
+    pub obstacle_pose: Option<PoseArg>,
 }
 
 /// The `--json` output, in this key order.
@@ -91,7 +98,10 @@ struct JsonAnswer {
 pub fn run(a: &MotionArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
     let robot = load_contact_body(&a.robot, "ROBOT", a.body)?;
-    let obstacle = load_contact_body(&a.obstacle, "OBSTACLE", a.body)?;
+    let obstacle = super::solid::placed(
+        load_contact_body(&a.obstacle, "OBSTACLE", a.body)?,
+        a.obstacle_pose.map(|p| p.pose),
+    )?;
     let checker = Validator::new(&robot, &[obstacle])
         .context("preparing the check")?
         .with_budget(a.budget);

@@ -77,6 +77,13 @@ pub struct QueryArgs {
     /// How meshes are taken: `--strict`, `--decomposition`.
     #[command(flatten)]
     pub body: super::solid::BodyOptions,
+    /// Where the obstacle stands: translation X,Y,Z, then the unit
+    /// quaternion W,QX,QY,QZ (scalar first), applied once to its vertices
+    /// (an obstacle given in its own frame); without it the obstacle is
+    /// taken as given, in the world frame.
+    #[arg(long = "obstacle-xyz-wxyz", value_name = "X,Y,Z,W,QX,QY,QZ",
+          value_parser = parse_pose, allow_hyphen_values = true)]
+    pub obstacle_pose: Option<PoseArg>,
 }
 
 /// A parsed `--pose`: the 7 numbers as given, and the pose.
@@ -188,7 +195,10 @@ fn from_proximity(p: &Proximity) -> Answer {
 pub fn run(a: &QueryArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.robot, "ROBOT"), (&a.obstacle, "OBSTACLE")])?;
     let robot = load_contact_body(&a.robot, "ROBOT", a.body)?;
-    let obstacle = load_contact_body(&a.obstacle, "OBSTACLE", a.body)?;
+    let obstacle = super::solid::placed(
+        load_contact_body(&a.obstacle, "OBSTACLE", a.body)?,
+        a.obstacle_pose.map(|p| p.pose),
+    )?;
     if a.collision_only {
         let validator = Validator::new(&robot, std::slice::from_ref(&obstacle))
             .context("preparing the query")?;

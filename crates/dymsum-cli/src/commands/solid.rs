@@ -270,6 +270,19 @@ pub fn load_contact_body(spec: &str, operand: &str, options: BodyOptions) -> any
     Ok(Body::Mesh(body))
 }
 
+/// The obstacle placed at `pose` (`--obstacle-xyz-wxyz`), or as given.
+///
+/// # Errors
+/// A pose under which a coordinate is not finite ([`Body::placed`]).
+pub fn placed(body: Body, pose: Option<dymsum::Pose>) -> anyhow::Result<Body> {
+    match pose {
+        None => Ok(body),
+        Some(p) => body
+            .placed(p)
+            .map_err(|e| anyhow!("OBSTACLE at --obstacle-xyz-wxyz: {e}")),
+    }
+}
+
 /// Whether `spec` is an OBJ file of several objects (each a convex piece).
 fn is_multi_object_obj(spec: &str) -> bool {
     !obj_names(spec).is_empty()
