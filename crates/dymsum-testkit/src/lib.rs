@@ -737,3 +737,155 @@ pub fn proptest_cases(default: u32) -> u32 {
         .and_then(|s| s.parse().ok())
         .unwrap_or(default)
 }
+
+/// Small bodies far from the origin (issue 33 §4): the family of motions
+/// the test `far_small_motions` checks and the bench of the same name
+/// counts and times (one generator, one seed).
+pub mod far_small {
+    use dymsum::{DVec3, Polytope, Pose, Rotation};
+    use rand::Rng;
+    use rand_chacha::ChaCha8Rng;
+
+    use super::{cuboid, random_polytope, random_rotation, rng, Kind};
+
+    pub const TOL: f64 = 1e-6;
+    /// The body's and the obstacles' size.
+    pub const SIZE: f64 = 1e-3;
+    pub const OFFSETS: [f64; 4] = [1e3, 1e4, 1e5, 1e6];
+
+    /// One case of the family: a body, one obstacle, and a motion.
+    pub struct Case {
+        pub kind: &'static str,
+        pub offset: f64,
+        pub body: Polytope,
+        pub obstacle: Polytope,
+        pub from: Pose,
+        pub to: Pose,
+    }
+
+    fn scaled(p: &Polytope, s: f64, shift: DVec3) -> Polytope {
+        let pts: Vec<DVec3> = p.vertices().iter().map(|&v| v * s + shift).collect();
+        Polytope::from_dvec3s(&pts).unwrap()
+    }
+
+    fn unit(r: &mut ChaCha8Rng) -> DVec3 {
+        loop {
+            let v = DVec3::new(
+                r.random_range(-1.0..1.0),
+                r.random_range(-1.0..1.0),
+                r.random_range(-1.0..1.0),
+            );
+            let l = v.length();
+            if l > 0.1 && l <= 1.0 {
+                return v / l;
+            }
+        }
+    }
+
+    /// A small random turn (at most `max` radians about a random axis).
+    fn small_turn(r: &mut ChaCha8Rng, max: f64) -> Rotation {
+        Rotation::from_axis_angle(unit(r), r.random_range(-max..max)).unwrap()
+    }
+
+    /// The family: `per_kind` motions of each kind at each offset.
+    pub fn family(seed: u64, per_kind: usize) -> Vec<Case> {
+        let mut r = rng(seed);
+        let mut out = Vec::new();
+        for &offset in &OFFSETS {
+            for kind in ["into", "along", "past"] {
+                for _ in 0..per_kind {
+                    let centre = unit(&mut r) * offset;
+                    let body = scaled(
+                        &random_polytope(Kind::Ball, 12, &mut r),
+                        SIZE / 2.0,
+                        DVec3::ZERO,
+                    );
+                    let case = match kind {
+                        "into" => {
+                            // From 2–4 sizes away to overlapping the obstacle.
+                            let obstacle = scaled(
+                                &random_polytope(Kind::Ball, 12, &mut r),
+                                SIZE / 2.0,
+                                centre,
+                            );
+                            let start = centre + unit(&mut r) * (SIZE * r.random_range(2.0..4.0));
+                            let end = centre + unit(&mut r) * (SIZE * r.random_range(0.0..0.3));
+                            let q0 = random_rotation(&mut r);
+                            let q1 = q0.then(&small_turn(&mut r, 1.0));
+                            Case {
+                                kind,
+                                offset,
+                                body,
+                                obstacle,
+                                from: Pose::new(q0, start),
+                                to: Pose::new(q1, end),
+                            }
+                        }
+                        "along" => {
+                            // A slide of six sizes over a box's top face, with
+                            // a clearance of 1e-8 to 1e-5, turning about the
+                            // vertical (which keeps the clearance: a tilt would
+                            // dip the body into the face tangentially, a
+                            // contact approached within rounding, docs/LIMITS.md).
+                            let h = SIZE / 2.0;
+                            let lo = [centre.x - h * 4.0, centre.y - h, centre.z - h];
+                            let hi = [centre.x + h * 4.0, centre.y + h, centre.z + h];
+                            let obstacle = cuboid(lo, hi);
+                            let q0 = random_rotation(&mut r);
+                            let lowest = body
+                                .vertices()
+                                .iter()
+                                .map(|&v| q0.apply(v).z)
+                                .fold(f64::INFINITY, f64::min);
+                            let clearance = 10f64.powf(r.random_range(-8.0..-5.0));
+                            let z = hi[2] + clearance - lowest;
+                            let y = centre.y + r.random_range(-h..h);
+                            let from = DVec3::new(centre.x - h * 6.0, y, z);
+                            let to = DVec3::new(centre.x + h * 6.0, y + r.random_range(-h..h), z);
+                            let yaw = r.random_range(-1.0..1.0);
+                            let q1 = q0.then(&Rotation::from_axis_angle(DVec3::Z, yaw).unwrap());
+                            Case {
+                                kind,
+                                offset,
+                                body,
+                                obstacle,
+                                from: Pose::new(q0, from),
+                                to: Pose::new(q1, to),
+                            }
+                        }
+                        _ => {
+                            // Past the obstacle on a line missing its centre by
+                            // 0.5–1.5 times the sum of the reaches (some hit).
+                            let obstacle = scaled(
+                                &random_polytope(Kind::Ball, 12, &mut r),
+                                SIZE / 2.0,
+                                centre,
+                            );
+                            let dir = unit(&mut r);
+                            let w = unit(&mut r);
+                            let side = w - dir * dir.dot(w);
+                            let side = if side.length() > 0.1 {
+                                side.normalize()
+                            } else {
+                                dir.any_orthonormal_vector()
+                            };
+                            let miss = SIZE * r.random_range(0.5..1.5);
+                            let q0 = random_rotation(&mut r);
+                            let q1 = q0.then(&small_turn(&mut r, 1.5));
+                            Case {
+                                kind,
+                                offset,
+                                body,
+                                obstacle,
+                                from: Pose::new(q0, centre + side * miss - dir * (SIZE * 4.0)),
+                                to: Pose::new(q1, centre + side * miss + dir * (SIZE * 4.0)),
+                            }
+                        }
+                    };
+                    out.push(case);
+                }
+            }
+        }
+        out
+    }
+}
