@@ -99,7 +99,7 @@ pub fn random_rotation(seed: u64) -> Rotation {
 /// each of the `steps` steps, starting from the identity (so entry 0 is one
 /// step away from [`Rotation::IDENTITY`], and entry `i` one step from entry
 /// `i - 1`). Deterministic: ChaCha8 seeded with `seed`. The steps are
-/// those of the CLI's [`dymsum_cli::motion::PaperMotion`] (one definition
+/// those of the CLI's [`dymsum_cli::random_motion::PaperMotion`] (one definition
 /// of the motion for the CLI's experiments and the benchmarks).
 ///
 /// # Panics
@@ -110,7 +110,7 @@ pub fn paper_motion(steps_per_rev: f64, steps: usize, seed: u64) -> Vec<Rotation
         steps_per_rev.is_finite() && steps_per_rev > 0.0,
         "steps_per_rev must be positive"
     );
-    let mut motion = dymsum_cli::motion::PaperMotion::new(steps_per_rev, seed);
+    let mut motion = dymsum_cli::random_motion::PaperMotion::new(steps_per_rev, seed);
     let mut current = Rotation::IDENTITY;
     (0..steps)
         .map(|_| {

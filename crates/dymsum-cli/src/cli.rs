@@ -53,7 +53,7 @@ pub enum Command {
     /// Collision, penetration depth and distance of a robot at given poses.
     Query(query::QueryArgs),
     /// Whether a robot moving straight between two poses touches the obstacle (certified).
-    Motion(motion::MotionArgs),
+    Motion(Box<motion::MotionArgs>),
 }
 
 impl Command {
@@ -124,8 +124,10 @@ mod tests {
                 "render --highlight-after-wxyz",
                 "cobst --orientations-wxyz",
                 "query --pose-xyz-wxyz",
+                "query --obstacle-xyz-wxyz",
                 "motion --from-xyz-wxyz",
-                "motion --to-xyz-wxyz"
+                "motion --to-xyz-wxyz",
+                "motion --obstacle-xyz-wxyz"
             ]
         );
     }

@@ -1,18 +1,49 @@
 //! The `dymsum` command-line tool, as a library so its parts can be tested
 //! and reused (the binary in `main.rs` only calls [`main`]).
 //!
-//! * [`cli`]: the clap definitions and value parsers (usage errors exit 2).
-//! * [`commands`]: one module per subcommand (`sum`, `info`, `models`,
-//!   `animate`, `demo`); bad inputs exit 1 with a message naming the operand.
-//! * [`motion`]: the paper's random motion of P.
-//! * [`stats`]: timing summaries.
+//! Its subcommands, one module each under [`commands`] (each owns its
+//! clap arguments; bad inputs exit 1 with a message naming the operand):
+//!
+//! * `dymsum sum` ([`commands::sum`]): P ⊕ Q, written as a mesh (unions and
+//!   non-convex meshes as one closed mesh).
+//! * `dymsum info` ([`commands::info`]): a polytope's counts, volume, and
+//!   what validation changed.
+//! * `dymsum models` ([`commands::models`]): the built-in models, listed or
+//!   written to a file.
+//! * `dymsum completions` ([`commands::completions`]): a shell completion
+//!   script.
+//! * `dymsum animate` ([`commands::animate`]): P turned by the paper's
+//!   random motion, P ⊕ Q kept up to date by DYMSUM.
+//! * `dymsum demo` ([`commands::demo`]): DYMSUM against the static sums on
+//!   built-in models.
+//! * `dymsum bench` ([`commands::bench`]): the paper's experiments (Table 1,
+//!   Fig. 4, Fig. 5).
+//! * `dymsum render` ([`commands::render`]): a picture of P ⊕ Q (SVG or
+//!   PNG), optionally with the facets a further turn changes.
+//! * `dymsum cobst` ([`commands::cobst`]): C-obstacle slices, one per
+//!   orientation, or certified slabs ([`commands::cobst::slabs`]).
+//! * `dymsum query` ([`commands::query`]): collision, penetration depth and
+//!   distance of a robot at given poses.
+//! * `dymsum motion` ([`commands::motion`]): whether a straight motion
+//!   touches the obstacle, certified.
+//!
+//! The other modules:
+//!
+//! * [`cli`]: the top-level parser, the subcommand list and its dispatch
+//!   (usage errors exit 2).
+//! * [`values`]: the flag value parsers several subcommands share.
+//! * [`commands::solid`]: the one loader of bodies (convex, unions, meshes
+//!   of convex shells, decompositions, triangles).
+//! * [`random_motion`]: the paper's random motion of P, for `bench`, `demo`
+//!   and `animate` (not the `motion` subcommand).
+//! * [`progress`]: the progress bar; [`stats`]: timing summaries.
 #![forbid(unsafe_code)]
 #![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 
 pub mod cli;
 pub mod commands;
-pub mod motion;
 pub mod progress;
+pub mod random_motion;
 pub mod stats;
 pub mod values;
 

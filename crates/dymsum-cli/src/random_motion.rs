@@ -1,11 +1,14 @@
 //! The paper's motion (§5): P turns about a random unit axis, held for a
 //! random number of steps (1 to 50), then a new axis is drawn; every step
-//! turns P by `2π / steps_per_rev`.
+//! turns P by `2π / steps_per_rev`. It drives `dymsum bench`, `dymsum demo`
+//! and `dymsum animate` (and the benchmarks, through `dymsum-bench`); the
+//! `dymsum motion` subcommand, a certified straight motion, is
+//! [`crate::commands::motion`].
 //!
 //! Deterministic for a seed on every platform (ChaCha8).
 //!
 //! ```
-//! use dymsum_cli::motion::PaperMotion;
+//! use dymsum_cli::random_motion::PaperMotion;
 //! let mut a = PaperMotion::new(500.0, 7);
 //! let mut b = PaperMotion::new(500.0, 7);
 //! for _ in 0..100 {

@@ -13,6 +13,7 @@ use std::path::Path;
 use common::{model, run, stderr, stdout, temp_dir};
 use dymsum::query::{Body, ConvexUnion, MotionCheck, Validator};
 use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
+use dymsum_testkit::{box_corners, BOX_QUADS};
 
 /// A mesh as an OFF file (coordinates written exactly: Rust's shortest
 /// round-trip text).
@@ -30,27 +31,14 @@ fn mesh_off(dir: &Path, name: &str, m: &PolygonMesh) -> String {
     path.to_str().unwrap().to_string()
 }
 
-/// The six outward quads of a box over its corners (bit k of a corner's
-/// index picks `hi[k]`).
-const QUADS: [[usize; 4]; 6] = [
-    [0, 2, 3, 1],
-    [4, 5, 7, 6],
-    [0, 1, 5, 4],
-    [2, 6, 7, 3],
-    [0, 4, 6, 2],
-    [1, 3, 7, 5],
-];
-
 /// Boxes in one mesh, each closed with its own corners; `outward[i]` false
 /// makes box `i` an inward shell (a cavity).
 fn boxes(cells: &[([f64; 3], [f64; 3])], outward: &[bool]) -> PolygonMesh {
     let mut m = PolygonMesh::new(Vec::new(), Vec::new());
     for (i, (lo, hi)) in cells.iter().enumerate() {
         let base = m.vertices.len();
-        m.vertices.extend((0..8).map(|c| -> [f64; 3] {
-            std::array::from_fn(|k| if c >> k & 1 == 0 { lo[k] } else { hi[k] })
-        }));
-        for q in QUADS {
+        m.vertices.extend(box_corners(*lo, *hi));
+        for q in BOX_QUADS {
             let q: Vec<usize> = q.iter().map(|v| v + base).collect();
             m.faces.push(if outward[i] {
                 q

@@ -9,7 +9,7 @@
 use dymsum::query::{MeshBody, SceneChecker};
 use dymsum::solid::soup::{clean_soup, ComponentKind};
 use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
-use dymsum_testkit::proptest_cases;
+use dymsum_testkit::{box_corners, proptest_cases, BOX_QUADS};
 use proptest::prelude::*;
 
 /// An axis-aligned box `[lo, hi]` (closed).
@@ -39,27 +39,14 @@ impl Cell {
     }
 }
 
-/// The box's eight corners (bit k of the index picks `hi[k]`).
 fn corners(c: &Cell) -> Vec<[f64; 3]> {
-    (0..8)
-        .map(|i| std::array::from_fn(|k| if i >> k & 1 == 0 { c.lo[k] } else { c.hi[k] }))
-        .collect()
+    box_corners(c.lo, c.hi)
 }
-
-/// The six outward quads of a box over `corners`' numbering.
-const QUADS: [[usize; 4]; 6] = [
-    [0, 2, 3, 1],
-    [4, 5, 7, 6],
-    [0, 1, 5, 4],
-    [2, 6, 7, 3],
-    [0, 4, 6, 2],
-    [1, 3, 7, 5],
-];
 
 /// The twelve triangles of a box, vertices from `offset`, outward or
 /// inward.
 fn box_triangles(offset: usize, outward: bool) -> Vec<Vec<usize>> {
-    QUADS
+    BOX_QUADS
         .iter()
         .flat_map(|q| {
             let q = q.map(|v| v + offset);
@@ -244,7 +231,7 @@ fn a_box_in_a_cavity_touching_the_inner_wall() {
 fn t_junction_box(fill: bool) -> PolygonMesh {
     let mut v = corners(&Cell::new([0.0; 3], [2.0, 1.0, 1.0]));
     v.push([1.0, 0.0, 1.0]);
-    let mut faces: Vec<Vec<usize>> = QUADS
+    let mut faces: Vec<Vec<usize>> = BOX_QUADS
         .iter()
         .filter(|q| **q != [4, 5, 7, 6])
         .map(|q| q.to_vec())

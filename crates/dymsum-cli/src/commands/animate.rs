@@ -28,7 +28,7 @@ use indicatif::ProgressBar;
 
 use super::solid::{load_solid, Strictness};
 use super::{load, short_name};
-use crate::motion::PaperMotion;
+use crate::random_motion::PaperMotion;
 use crate::stats::{human_us, mean, median, micros};
 use crate::values::parse_steps_per_rev;
 use dymsum::nonconvex::DynamicUnionSum;

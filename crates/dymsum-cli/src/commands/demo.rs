@@ -21,7 +21,7 @@ use dymsum::{DynamicSum, Polytope, Pose};
 use dymsum_io::formats::{write_mesh_with, Format};
 
 use super::load;
-use crate::motion::PaperMotion;
+use crate::random_motion::PaperMotion;
 use crate::stats::{mean, median, micros};
 use crate::values::parse_seconds;
 

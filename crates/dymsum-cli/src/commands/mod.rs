@@ -12,7 +12,6 @@ pub mod models;
 pub mod motion;
 pub mod query;
 pub mod render;
-pub mod slabs;
 pub mod solid;
 pub mod sum;
 

@@ -343,9 +343,9 @@ pub fn describe_triangles(r: &MeshReport) -> String {
             count(r.split_edges, "edge", "edges")
         ));
     }
-    if r.set_aside > 0 {
+    if r.set_aside > 0 && r.solids > 0 {
         done.push(format!(
-            "{} set aside as surface (an edge not closed)",
+            "{} set aside as surface beside the solids (an edge not closed)",
             count(r.set_aside, "triangle", "triangles")
         ));
     }

@@ -126,7 +126,8 @@ pub struct CleanSoup {
     /// Triangles of parts that are not closed shells set aside as surface
     /// because of an unbalanced edge.
     pub set_aside: usize,
-    /// Edges split at vertices lying exactly on them (T-junctions).
+    /// Edges of enclosing triangles split at vertices lying exactly on them
+    /// (T-junctions).
     pub split_edges: usize,
     /// Each triangle's weight in the winding number: how many copies of it
     /// enclose (one for a closed shell's triangle; a face two coincident
@@ -295,13 +296,25 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
         let tris: Vec<[usize; 3]> = chain.iter().map(|&k| triangles[k]).collect();
         let mut c = Chain::new(&vertices, tris);
         c.peel();
-        split_edges = c.pieces.values().filter(|p| p.len() > 2).count();
         for (i, &k) in chain.iter().enumerate() {
             if c.alive[i] {
                 weight[k] += 1;
             }
         }
         pieces = c.pieces;
+        // The edges split under enclosing triangles (T-junctions that
+        // mattered).
+        let mut split = std::collections::HashSet::new();
+        for &k in &chain {
+            let t = triangles[k];
+            for e in 0..3 {
+                let key = edge_key(t[e], t[(e + 1) % 3]);
+                if weight[k] > 0 && pieces.get(&key).is_some_and(|p| p.len() > 2) {
+                    split.insert(key);
+                }
+            }
+        }
+        split_edges = split.len();
     }
     let set_aside = chain
         .iter()

@@ -18,7 +18,7 @@ use dymsum::sum::{minkowski_sum_posed, Facet, Method, SumError};
 use dymsum::{DVec3, DynamicSum, Polytope, Pose, Rotation};
 
 use super::num;
-use crate::motion::PaperMotion;
+use crate::random_motion::PaperMotion;
 use crate::stats::{mean, median, micros};
 
 /// What to measure.

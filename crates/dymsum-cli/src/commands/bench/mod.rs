@@ -8,7 +8,7 @@
 //!   ([`size`]).
 //!
 //! Every experiment turns P under the paper's motion
-//! ([`crate::motion::PaperMotion`]: a random axis held 1 to 50 steps, each
+//! ([`crate::random_motion::PaperMotion`]: a random axis held 1 to 50 steps, each
 //! step 2π/X) with Q fixed, times every DYMSUM update, and times the static
 //! methods afterwards on the same poses ([`measure`]). Results go to
 //! stdout and to CSV (and Markdown or plots) in `--out DIR`.

@@ -1,10 +1,10 @@
 //! `dymsum cobst --certified`: certified slabs between consecutive
 //! orientations or in cells, as meshes, half-spaces or a map container.
 
+use super::slabs::{write_slabs, Cells, SlabFormat};
 use super::write::piece_names;
 use super::{commit_out_dir, prepare_out_dir, read_orientations, CobstArgs, CobstFormat, MAP_FILE};
 use crate::commands::short_name;
-use crate::commands::slabs::{write_slabs, Cells, SlabFormat};
 use crate::stats::{human_us, micros};
 use anyhow::{anyhow, bail, Context};
 use dymsum::query::{full_turn_angles, orientations_about_axis, rotations_about_axis, CObstacle};

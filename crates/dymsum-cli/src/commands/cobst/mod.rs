@@ -27,7 +27,7 @@
 //! With `--certified`, certified slabs are written instead of slices: each
 //! contains every slice between two consecutive orientations, or with
 //! `--cell-radius RHO` every slice within angle `RHO` of one orientation
-//! (see [`super::slabs`]).
+//! (see [`slabs`]).
 //!
 //! With a union of convex pieces as robot or obstacle (`a.off+b.off`, or an
 //! OBJ file with several objects), a slice is the union of the piece-pair
@@ -55,6 +55,7 @@ use dymsum_io::cmap::Form;
 use dymsum_io::staging::{is_temp_name, StagedDir};
 
 mod certified;
+pub mod slabs;
 mod write;
 
 use certified::run_certified;
