@@ -358,14 +358,35 @@ impl std::fmt::Debug for MotionChecker {
     }
 }
 
-/// The largest distance of a vertex from `c`, rounded up.
+/// The largest distance of a vertex from `c`, rounded up: the lengths are
+/// taken after scaling by a power of two (exact), so that no square
+/// underflows (a 1e-162 body's lengths did, and its reach came out below
+/// its vertices' norms) or overflows.
 fn radius_about(p: &Polytope, c: DVec3) -> f64 {
+    let m = p
+        .vertices()
+        .iter()
+        .map(|&v| (v - c).abs().max_element())
+        .fold(0.0, f64::max);
+    let (down, up) = power_of_two_scale(m);
     let r = p
         .vertices()
         .iter()
-        .map(|&v| (v - c).length())
+        .map(|&v| ((v - c) * down).length())
         .fold(0.0, f64::max);
-    r * (1.0 + 1e-12) + 1e-300
+    r * up * (1.0 + 1e-12) + 1e-300
+}
+
+/// `(2^-e, 2^e)` with `2^e` near `m` (`e` within ±1000, so both are normal
+/// numbers): multiplying by the first brings coordinates of magnitude up
+/// to `m` near 1 exactly (a power of two), where squares neither overflow
+/// nor underflow; `(1, 1)` for a zero or non-finite `m`.
+fn power_of_two_scale(m: f64) -> (f64, f64) {
+    if m == 0.0 || !m.is_finite() {
+        return (1.0, 1.0);
+    }
+    let e = (m.log2().floor() as i32).clamp(-1000, 1000);
+    (2f64.powi(-e), 2f64.powi(e))
 }
 
 impl MotionChecker {
@@ -842,8 +863,13 @@ impl PieceSearch<'_> {
             simplex = next;
             v = nv;
         }
-        let len = v.length();
-        (len > 0.0 && len.is_finite()).then(|| (v / len, len, [wa, wb, wo]))
+        // Normalised after scaling by a power of two: the length of a
+        // vector whose squares are subnormal is off by far more than the
+        // unit length `gap` assumes.
+        let (down, up) = power_of_two_scale(v.abs().max_element());
+        let scaled = v * down;
+        let len = scaled.length();
+        (len > 0.0 && len.is_finite()).then(|| (scaled / len, len * up, [wa, wb, wo]))
     }
 
     /// Whether the gap along one of the feature axes of GJK's final
@@ -964,16 +990,27 @@ impl From<QueryError> for Stop {
     }
 }
 
-/// Distance from `p` to the segment `[a, b]`.
+/// Distance from `p` to the segment `[a, b]`, computed about `p` after
+/// scaling by a power of two (exact), so that no square overflows (with
+/// `|b − a|²` infinite the nearest point was taken as `a`: a motion
+/// through the obstacle at 1e154 was certified free) or underflows; `0.0`
+/// (nothing proved) for coordinates that are not finite.
 fn segment_distance(a: DVec3, b: DVec3, p: DVec3) -> f64 {
+    let (a, b) = (a - p, b - p);
+    let m = a.abs().max_element().max(b.abs().max_element());
+    if !m.is_finite() {
+        return 0.0;
+    }
+    let (down, up) = power_of_two_scale(m);
+    let (a, b) = (a * down, b * down);
     let d = b - a;
     let l2 = d.length_squared();
     let t = if l2 > 0.0 {
-        ((p - a).dot(d) / l2).clamp(0.0, 1.0)
+        ((-a).dot(d) / l2).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    (a + t * d - p).length()
+    (a + t * d).length() * up
 }
 
 impl From<Polytope> for ConvexUnion {

@@ -65,6 +65,25 @@
 //! `2⁻⁴⁰ (r + |T|)` was `9.1e-7`. A body whose vertices are themselves far
 //! from its own origin has a large `r`: its rotation moves them by that
 //! much, an honest limit.
+//!
+//! # Second reading (2026-11-28)
+//! An independent review of this bound and of its uses found the tally
+//! above sound for coordinates in the normal range, and two ways to break
+//! the convex search's promises, both mended and pinned by tests that
+//! failed before: the ball test's segment distance overflowed once an
+//! interval's translations differed by more than about 1.3e154 (a motion
+//! through the obstacle was certified free;
+//! `tests/review_segment_overflow.rs`), and the reach of a body below about
+//! 1e-162 came out under its vertices' norms because the squares
+//! underflowed (`tests/review_tiny_reach.rs`); lengths are now taken after
+//! scaling by a power of two. Gaps in the written argument it noted, none
+//! giving a wrong answer: the renormalisation threshold tests the computed
+//! squared length, so the quaternion's error is up to 12u, not 8u (about
+//! 705u in all, still under `2⁻⁴³ = 1024u`); the convex gap is compared
+//! without dividing by `|n|` (up to `1 + 2u`), which the slack of its sizes
+//! covers; the scene search checks containment at the start's float pose
+//! while its intervals bound `Motion::at(0)`, the same quaternion within
+//! about `180u r`, inside `e`.
 
 /// `2⁻⁵³`, the unit roundoff of `f64`.
 const U: f64 = f64::EPSILON / 2.0;

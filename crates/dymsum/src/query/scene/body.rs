@@ -86,6 +86,10 @@ pub struct MeshBody {
     pub(crate) weights: Vec<u32>,
     /// Each component's kind and one of its vertices.
     pub(crate) components: Vec<(ComponentKind, u32)>,
+    /// The body each component came from, when bodies were joined
+    /// ([`MeshBody::join`]; `0` otherwise): winding numbers are summed per
+    /// body.
+    pub(crate) source_of: Vec<u32>,
     pub(crate) tree: AabbTree,
     /// Each component's box (body frame).
     pub(crate) component_boxes: Vec<Aabb>,
@@ -224,11 +228,13 @@ impl MeshBody {
         let (mut component_of, mut components) = (Vec::new(), Vec::new());
         let mut weights = Vec::new();
         let mut report = MeshReport::default();
-        for b in bodies {
+        let mut sources = Vec::new();
+        for (source, b) in bodies.iter().enumerate() {
             let (vb, cb) = (vertices.len() as u32, components.len() as u32);
             vertices.extend_from_slice(&b.vertices);
             triangles.extend(b.triangles.iter().map(|t| t.map(|v| v + vb)));
             component_of.extend(b.component_of.iter().map(|c| c + cb));
+            sources.extend(std::iter::repeat_n(source as u32, b.components.len()));
             weights.extend_from_slice(&b.weights);
             components.extend(b.components.iter().map(|&(k, v)| (k, v + vb)));
             let r = b.report;
@@ -247,14 +253,16 @@ impl MeshBody {
                 surfaces: report.surfaces + r.surfaces,
             };
         }
-        MeshBody::assemble(
+        let mut joined = MeshBody::assemble(
             vertices,
             triangles,
             component_of,
             weights,
             components,
             report,
-        )
+        );
+        joined.source_of = sources;
+        joined
     }
 
     fn assemble(
@@ -293,6 +301,7 @@ impl MeshBody {
             triangles,
             component_of,
             weights,
+            source_of: vec![0; components.len()],
             components,
             tree,
             component_boxes,
@@ -326,6 +335,7 @@ impl MeshBody {
             self.components.clone(),
             self.report,
         );
+        body.source_of = self.source_of.clone();
         // Exactly convex again only if the posed triangles still are (as
         // for the same mesh moved by hand).
         if self.convex.is_some() {
@@ -358,7 +368,7 @@ impl MeshBody {
     /// component and one weight per triangle (a weight exactly for the
     /// enclosing ones), each component's vertex one of its triangles'
     /// corners, finite coordinates, the trees sound
-    /// ([`AabbTree::sanity_check`]) over exactly the triangles' and the
+    /// (the box tree's own `sanity_check`) over exactly the triangles' and the
     /// solid components' boxes, the reach above every vertex norm.
     ///
     /// # Errors
@@ -373,6 +383,7 @@ impl MeshBody {
         }
         if self.triangles.len() != self.component_of.len()
             || self.triangles.len() != self.weights.len()
+            || self.source_of.len() != self.components.len()
         {
             return bad("not one component and one weight per triangle".into());
         }

@@ -9,10 +9,12 @@
 //! crate; everything after that is exact: the broad phase drops a pair of
 //! triangles only when their exact boxes are apart, the narrow phase is
 //! the exact closed triangle–triangle test, and containment the exact
-//! parity of a ray's crossings ([`super::inside`]). When no triangles meet,
-//! a component is inside a solid exactly when any one of its points is
-//! (it is connected and does not meet the solid's boundary), so one corner
-//! per component is tested.
+//! winding number of the other body's enclosing triangles about a point,
+//! by signed ray crossings ([`super::inside`]; per obstacle in a scene).
+//! When no triangles meet, a component lies where that winding number is
+//! not zero exactly when any one of its points does (it is connected and
+//! meets no triangle, and the winding number changes only across
+//! triangles), so one corner per component is tested.
 //!
 //! # Motions: why "free" is certain
 //! The motion is [`Motion`]'s (linear translation, slerp rotation, the

@@ -24,9 +24,24 @@
 //! signed count of a ray that is not degenerate and ends outside the
 //! component's box is its winding number about `p`, the same for every such
 //! ray; a component whose box does not hold `p` has winding number zero
-//! there and is not counted. With every sign exact the answer is exact. A
+//! there and is not counted. The point is inside when the winding number
+//! of some body is not zero: a scene joins its obstacles into one body, and
+//! each obstacle's components are summed by themselves (one obstacle's
+//! inward shell, winding `−1` and inside it, must not cancel another
+//! obstacle's solid around the same point). With every sign exact the answer is exact. A
 //! point for which all directions are degenerate gets
 //! [`QueryError::OutOfRange`] naming it, never a guess.
+//!
+//! # Second reading (2026-11-28)
+//! An independent review found the cycle argument sound (every solid
+//! component closed edge for edge, weights included, so posing keeps it a
+//! cycle; `tests/review_cycle_balance.rs` checks it on 100,000 random grid
+//! soups) and one wrong answer, mended: a scene joins its obstacles, and a
+//! sum over all of them let one obstacle's inward shell (winding `−1`,
+//! inside it) cancel another's solid around the same point
+//! (`tests/review_joined_winding.rs`); each obstacle is now summed by
+//! itself. A triangle that posing rounds to collinear corners no longer
+//! makes every ray through its box degenerate.
 
 use glam::DVec3;
 
@@ -34,6 +49,7 @@ use super::body::MeshBody;
 use crate::kernel::predicates::{orient, Sign};
 use crate::query::error::QueryError;
 use crate::solid::aabb::Aabb;
+use crate::solid::collinear;
 
 /// The ray directions, tried in turn: nearly along each axis (thin ray
 /// boxes for the tree), skewed by irrational-looking amounts so that
@@ -65,7 +81,14 @@ enum Crossing {
 fn crossing(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Crossing {
     let (sp, sq) = (orient(t[0], t[1], t[2], p), orient(t[0], t[1], t[2], q));
     if sp == Sign::Zero && sq == Sign::Zero {
-        return Crossing::Degenerate; // the segment lies in the plane
+        // A triangle that posing rounded to collinear corners has no
+        // inside to cross (its edges are other triangles' too, and they
+        // still flag a ray through them); else the segment lies in the
+        // plane.
+        if collinear(t[0].to_array(), t[1].to_array(), t[2].to_array()) {
+            return Crossing::Misses;
+        }
+        return Crossing::Degenerate;
     }
     if sp == sq || sp == Sign::Zero || sq == Sign::Zero {
         return Crossing::Misses;
@@ -168,7 +191,10 @@ pub(crate) fn inside_solid(
                 parity[c as usize] = 1;
             }
             let mut degenerate = false;
-            let mut winding: i64 = 0;
+            // The winding number of each body the candidates came from
+            // (a joined scene's obstacles each count by themselves: one's
+            // inward shell must not cancel another's solid).
+            let mut winding: Vec<(u32, i64)> = Vec::new();
             body.tree.for_each_meeting_in(boxes, bounds, &ray, |t| {
                 let c = body.component_of[t] as usize;
                 if degenerate || parity[c] == 0 {
@@ -178,7 +204,15 @@ pub(crate) fn inside_solid(
                 match crossing(p, q, tri) {
                     Crossing::Crosses(positive) => {
                         let w = i64::from(body.weights[t]);
-                        winding += if positive { w } else { -w };
+                        let source = body.source_of[c];
+                        let at = match winding.iter().position(|e| e.0 == source) {
+                            Some(i) => i,
+                            None => {
+                                winding.push((source, 0));
+                                winding.len() - 1
+                            }
+                        };
+                        winding[at].1 += if positive { w } else { -w };
                     }
                     Crossing::Misses => {}
                     Crossing::Degenerate => degenerate = true,
@@ -188,7 +222,7 @@ pub(crate) fn inside_solid(
                 parity[c as usize] = 0;
             }
             if !degenerate {
-                break 'directions Ok(winding != 0);
+                break 'directions Ok(winding.iter().any(|e| e.1 != 0));
             }
         }
         Err(QueryError::OutOfRange(format!(
