@@ -39,6 +39,7 @@
 #![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 #![warn(missing_docs)]
 
+pub mod body;
 pub mod dynamic;
 pub mod error;
 pub(crate) mod gauss;

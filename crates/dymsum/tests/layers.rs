@@ -4,7 +4,7 @@
 //! and
 //!
 //! * no module imports a module of a higher layer (the layers, bottom up:
-//!   `kernel`, `error`, `sanity`, `mesh` → `hull` → `polytope` → `solid` → `gauss`
+//!   `kernel`, `error`, `sanity`, `mesh` → `hull` → `polytope` → `solid` → `body` → `gauss`
 //!   → `sum` → `dynamic` → `query`, `interop` → `nonconvex`), and nothing
 //!   imports through the crate root (`lib.rs`);
 //! * no files import each other in a circle (judged file by file, also
@@ -22,6 +22,7 @@ const LAYERS: &[&[&str]] = &[
     &["hull"],
     &["polytope"],
     &["solid"],
+    &["body"],
     &["gauss"],
     &["sum"],
     &["dynamic"],

@@ -4,9 +4,9 @@ use crate::query::scene::gap::closest_on_triangle;
 use glam::DVec3;
 
 use super::{UnionMeshError, UnionSum};
+use crate::body::ConvexUnion;
 use crate::kernel::rotation::Pose;
 use crate::polytope::Polytope;
-use crate::query::ConvexUnion;
 use crate::sum::Method;
 
 /// The penetration depth of two overlapping unions.

@@ -59,7 +59,7 @@ mod depth;
 mod merge;
 mod sum;
 
-pub use crate::query::ConvexUnion;
+pub use crate::body::ConvexUnion;
 pub use crate::solid::closed::{check_closed_mesh, ClosedMeshError, ClosedMeshInfo};
 pub use decompose::{convex_pieces, Decomposition, DecompositionInfo};
 pub use depth::UnionDepth;

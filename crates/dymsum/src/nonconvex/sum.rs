@@ -5,12 +5,12 @@ use glam::DVec3;
 
 use super::merge::union_meshes;
 use super::UnionMeshError;
+use crate::body::ConvexUnion;
 use crate::dynamic::DynamicSum;
 use crate::dynamic::UpdateReport;
 use crate::kernel::rotation::Pose;
 use crate::kernel::rotation::Rotation;
 use crate::mesh::PolygonMesh;
-use crate::query::ConvexUnion;
 use crate::sanity::SanityError;
 use crate::solid::closed::ClosedMeshInfo;
 use crate::sum::contained::uncontained;

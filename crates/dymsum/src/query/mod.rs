@@ -148,6 +148,7 @@ mod union;
 
 pub use cobstacle::slabs;
 
+pub use crate::body::ConvexUnion;
 pub use answer::{Contact, FeaturePair, Proximity, Separation};
 pub use cobstacle::halfspaces::HalfSpaces;
 pub use cobstacle::slabs::{
@@ -168,7 +169,7 @@ pub use prep::Reflected;
 pub use proximity::{distance, intersects, penetration_depth, query};
 pub use scene::{surfaces_touch, Body, MeshBody, MeshReport, SceneChecker, Validator};
 pub use tracker::{ContactTracker, TrackerStrategy};
-pub use union::{ConvexUnion, UnionProximity};
+pub use union::UnionProximity;
 
 /// Helpers shared by the query modules' unit tests.
 #[cfg(test)]

@@ -103,6 +103,7 @@
 //! every interval that sweeps through it from being certified, and halving
 //! continues until a queried pose lies inside it.
 
+use crate::body::ConvexUnion;
 use crate::kernel::predicates::{dot4, Sign};
 use crate::kernel::rotation::Pose;
 use crate::kernel::rotation::Rotation;
@@ -113,7 +114,6 @@ use crate::query::pair::ConvexPair;
 use crate::query::pair::QueryStats;
 use crate::query::proximity::support::{climb, dot_error, near_max, Marks, NearestAxes};
 use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
-use crate::query::union::ConvexUnion;
 use glam::DQuat;
 use glam::DVec3;
 
@@ -1011,10 +1011,4 @@ fn segment_distance(a: DVec3, b: DVec3, p: DVec3) -> f64 {
         0.0
     };
     (a + t * d).length() * up
-}
-
-impl From<Polytope> for ConvexUnion {
-    fn from(p: Polytope) -> ConvexUnion {
-        ConvexUnion::new(vec![p]).expect("one piece")
-    }
 }

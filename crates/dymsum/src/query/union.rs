@@ -20,55 +20,16 @@
 //! `ConvexUnion::penetration_depth_mesh` (module `nonconvex`) measures it
 //! on the merged C-obstacle mesh.
 
+use crate::body::ConvexUnion;
 use crate::kernel::rotation::Pose;
 use crate::kernel::rotation::Rotation;
 use crate::mesh::PolygonMesh;
-use crate::polytope::Polytope;
 use crate::query::answer::Contact;
 use crate::query::answer::Proximity;
 use crate::query::answer::Separation;
 use crate::query::cobstacle::slices::CObstacle;
 use crate::query::error::QueryError;
 use crate::query::pair::ConvexPair;
-
-/// Several convex pieces forming one (possibly non-convex) body.
-///
-/// An L of two boxes against a unit cube: collision and distance are
-/// exact, the penetration depth of a union is refused.
-///
-/// ```
-/// use dymsum::{ConvexUnion, DVec3, Polytope, Pose, QueryError, Rotation};
-/// let cuboid = |lo: [f64; 3], hi: [f64; 3]| {
-///     let corners: Vec<[f64; 3]> = (0..8)
-///         .map(|i| {
-///             let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-///             [pick(0), pick(1), pick(2)]
-///         })
-///         .collect();
-///     Polytope::from_points(&corners)
-/// };
-/// let l_shape = ConvexUnion::new(vec![
-///     cuboid([0., 0., 0.], [3., 1., 1.])?,
-///     cuboid([0., 1., 0.], [1., 3., 1.])?,
-/// ])
-/// .ok_or("no pieces")?;
-/// let cube = ConvexUnion::new(vec![cuboid([0., 0., 0.], [1., 1., 1.])?]).ok_or("no pieces")?;
-/// let at = |x: f64, y: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, y, 0.0));
-/// // In the L's inner corner the cube touches nothing...
-/// assert!(!l_shape.collides(Pose::IDENTITY, &cube, at(1.5, 1.5))?);
-/// assert_eq!(l_shape.distance(Pose::IDENTITY, &cube, at(1.5, 1.5))?, 0.5);
-/// // ...moved onto the long arm it collides.
-/// assert!(l_shape.collides(Pose::IDENTITY, &cube, at(2.0, 0.5))?);
-/// assert_eq!(
-///     l_shape.penetration_depth(Pose::IDENTITY, &cube, at(2.0, 0.5)),
-///     Err(QueryError::UnionDepthUnsupported)
-/// );
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-#[derive(Clone, Debug)]
-pub struct ConvexUnion {
-    pieces: Vec<Polytope>,
-}
 
 /// The answer of a union query.
 #[derive(Clone, Debug, PartialEq)]
@@ -82,15 +43,6 @@ pub enum UnionProximity {
 }
 
 impl ConvexUnion {
-    /// A union of the given pieces (at least one).
-    pub fn new(pieces: Vec<Polytope>) -> Option<ConvexUnion> {
-        (!pieces.is_empty()).then_some(ConvexUnion { pieces })
-    }
-    /// The pieces.
-    pub fn pieces(&self) -> &[Polytope] {
-        &self.pieces
-    }
-
     /// Collision and distance against `other`, checking every piece pair.
     ///
     /// # Errors
@@ -106,8 +58,8 @@ impl ConvexUnion {
     ) -> Result<UnionProximity, QueryError> {
         let mut hits = Vec::new();
         let mut nearest: Option<((usize, usize), Separation)> = None;
-        for (i, a) in self.pieces.iter().enumerate() {
-            for (j, b) in other.pieces.iter().enumerate() {
+        for (i, a) in self.pieces().iter().enumerate() {
+            for (j, b) in other.pieces().iter().enumerate() {
                 match ConvexPair::new(a, b)?.query(pose, other_pose)? {
                     Proximity::Penetrating(c) => hits.push(((i, j), c)),
                     Proximity::Separated(s) => {
@@ -138,8 +90,8 @@ impl ConvexUnion {
         other: &ConvexUnion,
         other_pose: Pose,
     ) -> Result<bool, QueryError> {
-        for a in &self.pieces {
-            for b in &other.pieces {
+        for a in self.pieces() {
+            for b in other.pieces() {
                 if ConvexPair::new(a, b)?.intersects(pose, other_pose)? {
                     return Ok(true);
                 }
@@ -182,10 +134,10 @@ impl ConvexUnion {
         other: &ConvexUnion,
         other_pose: Pose,
     ) -> Result<Option<Contact>, QueryError> {
-        if self.pieces.len() != 1 || other.pieces.len() != 1 {
+        if self.pieces().len() != 1 || other.pieces().len() != 1 {
             return Err(QueryError::UnionDepthUnsupported);
         }
-        ConvexPair::new(&self.pieces[0], &other.pieces[0])?.penetration_depth(pose, other_pose)
+        ConvexPair::new(&self.pieces()[0], &other.pieces()[0])?.penetration_depth(pose, other_pose)
     }
 
     /// C-obstacle slices of this union as a robot among `obstacle`: for each
@@ -202,8 +154,8 @@ impl ConvexUnion {
         orientations: &[Rotation],
     ) -> Result<Vec<Vec<PolygonMesh>>, QueryError> {
         let mut out: Vec<Vec<PolygonMesh>> = orientations.iter().map(|_| Vec::new()).collect();
-        for a in &self.pieces {
-            for o in &obstacle.pieces {
+        for a in self.pieces() {
+            for o in obstacle.pieces() {
                 let slices = CObstacle::new(a, o)?.slices_par(orientations)?;
                 for (k, m) in slices.into_iter().enumerate() {
                     out[k].push(m);

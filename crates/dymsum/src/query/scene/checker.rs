@@ -73,9 +73,10 @@ use std::sync::Mutex;
 
 use glam::DVec3;
 
-use super::body::{triangle_boxes_into, MeshBody};
 use super::gap::{apart_by_more_than, distance_lower_bound};
 use super::inside::inside_solid;
+use crate::body::mesh::triangle_boxes_into;
+use crate::body::MeshBody;
 use crate::kernel::rotation::Pose;
 use crate::query::error::QueryError;
 use crate::query::motion::{

@@ -45,7 +45,7 @@
 
 use glam::DVec3;
 
-use super::body::MeshBody;
+use crate::body::MeshBody;
 use crate::kernel::predicates::{orient, Sign};
 use crate::query::error::QueryError;
 use crate::solid::aabb::Aabb;

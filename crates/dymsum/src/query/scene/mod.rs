@@ -19,15 +19,14 @@
 //! the solid semantics, for the scenes issue's next step (see
 //! [`crate::solid::soup`] for the classification).
 
-mod body;
 mod checker;
 pub(crate) mod gap;
 mod inside;
 mod validator;
 
-pub use body::{MeshBody, MeshReport};
+pub use crate::body::{Body, MeshBody, MeshReport};
 pub use checker::SceneChecker;
-pub use validator::{Body, Validator};
+pub use validator::Validator;
 
 use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;

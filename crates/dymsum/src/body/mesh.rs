@@ -5,10 +5,10 @@
 
 use glam::DVec3;
 
+use super::error::BodyError;
+use super::union::ConvexUnion;
 use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;
-use crate::query::error::QueryError;
-use crate::query::union::ConvexUnion;
 use crate::sanity::SanityError;
 use crate::solid::aabb::{Aabb, AabbTree};
 use crate::solid::soup::{clean_soup, ComponentKind};
@@ -50,7 +50,7 @@ pub struct MeshReport {
 
 /// A body as triangles, of any topology (open, double-sided, non-manifold,
 /// several components), prepared for exact collision and motion checks
-/// ([`super::SceneChecker`]).
+/// (the scenes' checker, `query::SceneChecker`).
 ///
 /// Its triangles *enclose* (solid components: the largest part that is
 /// closed as a cycle) or are *surface* (the rest), as [`clean_soup`]
@@ -313,19 +313,18 @@ impl MeshBody {
         }
     }
 
-    /// The body placed at `pose` ([`super::Body::placed`]): its vertices
+    /// The body placed at `pose` (`Body::placed`): its vertices
     /// posed once in floats, the trees built again, what the cleaning
     /// decided kept.
     ///
     /// # Errors
-    /// [`QueryError::OutOfRange`] when a posed coordinate is not finite.
-    pub fn placed(&self, pose: Pose) -> Result<MeshBody, QueryError> {
+    /// [`BodyError::NotFinite`] when a posed coordinate is not finite.
+    pub fn placed(&self, pose: Pose) -> Result<MeshBody, BodyError> {
         let vertices: Vec<DVec3> = self.vertices.iter().map(|&v| pose.apply(v)).collect();
         if vertices.iter().any(|v| !v.is_finite()) {
-            return Err(QueryError::OutOfRange(format!(
-                "a vertex placed at the pose is not finite (translation {:?})",
-                pose.translation.to_array()
-            )));
+            return Err(BodyError::NotFinite {
+                translation: pose.translation.to_array(),
+            });
         }
         let mut body = MeshBody::assemble(
             vertices,
@@ -457,21 +456,16 @@ pub(crate) fn triangle_boxes_into(vertices: &[DVec3], triangles: &[[u32; 3]], ou
 pub(crate) fn placed_polytope(
     p: &crate::polytope::Polytope,
     pose: Pose,
-) -> Result<crate::polytope::Polytope, QueryError> {
+) -> Result<crate::polytope::Polytope, BodyError> {
     let posed: Vec<[f64; 3]> = p
         .vertices()
         .iter()
         .map(|&v| pose.apply(v).to_array())
         .collect();
     if posed.iter().flatten().any(|x| !x.is_finite()) {
-        return Err(QueryError::OutOfRange(format!(
-            "a vertex placed at the pose is not finite (translation {:?})",
-            pose.translation.to_array()
-        )));
+        return Err(BodyError::NotFinite {
+            translation: pose.translation.to_array(),
+        });
     }
-    crate::polytope::Polytope::from_points(&posed).map_err(|e| {
-        QueryError::OutOfRange(format!(
-            "a convex piece placed at the pose is no polytope: {e}"
-        ))
-    })
+    crate::polytope::Polytope::from_points(&posed).map_err(|e| BodyError::Flattened(e.to_string()))
 }
