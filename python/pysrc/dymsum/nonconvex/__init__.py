@@ -24,7 +24,7 @@ used; without them a clear ``ImportError`` names the package to install.
 """
 
 
-from ._types import UnionSum as UnionSum, MeshUnionError as MeshUnionError, DECOMPOSITIONS as DECOMPOSITIONS
+from ._types import UnionSum as UnionSum, MeshUnionError as MeshUnionError, NeedsDecompositionError as NeedsDecompositionError, DECOMPOSITIONS as DECOMPOSITIONS
 from ._checks import check_closed_mesh as check_closed_mesh, signed_volume as signed_volume, _components as _components
 from ._decompose import convex_pieces as convex_pieces, check_solid as check_solid
 from ._front import UnionContact as UnionContact, DynamicSum as DynamicSum, DynamicUnionSum as DynamicUnionSum, minkowski_sum as minkowski_sum, contact as contact, cobstacle_slices as cobstacle_slices, closest_boundary_point as closest_boundary_point
@@ -33,6 +33,7 @@ __all__ = [
     "UnionSum",
     "UnionContact",
     "MeshUnionError",
+    "NeedsDecompositionError",
     "DynamicSum",
     "DynamicUnionSum",
     "minkowski_sum",

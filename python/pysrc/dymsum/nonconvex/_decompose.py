@@ -132,11 +132,13 @@ def convex_pieces(
             return _path_pieces(path, decomposition, opts, name)
     mesh = _mesh_of(shape)
     if mesh is None:
-        return [_ext.Polytope(shape)], {"method": "convex", "exact": True}
+        return [_named_polytope(shape, name)], {"method": "convex", "exact": True}
     try:
         return [_ext.Polytope(shape)], {"method": "convex", "exact": True}
     except ValueError as convex_error:
         refusal = str(convex_error)
+        if refusal.startswith("a: "):  # the constructor's own name for its argument
+            refusal = refusal[3:]
     try:
         vertices, faces = _as_mesh(*mesh)
     except ValueError:
@@ -155,7 +157,7 @@ def convex_pieces(
         return pieces, {"method": "components", "exact": True, "components": len(pieces)}
     if decomposition is None or decomposition == "boundary":
         raise _NeedsDecomposition(
-            f"a non-convex mesh ({refusal}) needs a convex decomposition: pass decomposition='coacd' "
+            f"{name + ': ' if name else ''}a non-convex mesh ({refusal}) needs a convex decomposition: pass decomposition='coacd' "
             "or decomposition='vhacd' (optional packages coacd / vhacdx), or give its convex pieces "
             "as dymsum.ConvexUnion([...]); minkowski_sum also takes decomposition='boundary' "
             "(exact, when the other body is convex or in convex pieces)",
@@ -229,6 +231,18 @@ def _is_nonconvex_solid(shape: Any) -> bool:
     # it; an open one keeps the convex loader's refusal.
     why = check_closed_mesh(vertices, faces)
     return why is None or "no opposite half-edge" not in why
+
+
+def _named_polytope(shape: Any, name: Optional[str]) -> Any:
+    """``Polytope(shape)``, its error said of the argument ``name`` (the
+    constructor names its own argument ``a``)."""
+    try:
+        return _ext.Polytope(shape)
+    except (ValueError, OSError) as e:
+        text = str(e)
+        if name and name != "a" and text.startswith("a: "):
+            raise type(e)(f"{name}: {text[3:]}") from None
+        raise
 
 
 def _path_of(shape: Any) -> Optional[str]:

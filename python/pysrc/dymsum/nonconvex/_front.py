@@ -8,7 +8,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .. import _dymsum as _ext
-from ._types import UnionSum, _convex_sum, _manifold3d, _pose_matrix, _reflected
+from ._types import NeedsDecompositionError, UnionSum, _convex_sum, _manifold3d, _pose_matrix, _reflected
 from ._decompose import _is_union_operand, convex_pieces
 from ._union import _cull, _merge, _planes, _union_sum
 
@@ -29,10 +29,57 @@ def _convex_path(call: Any, operands: Sequence[Any], union_asked: bool) -> Any:
         return _NOT_CONVEX
     try:
         return call()
-    except ValueError:
+    except ValueError as e:
         if not any(_is_union_operand(x) for x in operands):
-            raise
+            raise _what_the_mesh_is(e, operands) from e
     return _NOT_CONVEX
+
+
+def _what_the_mesh_is(error: ValueError, operands: Sequence[Any]) -> ValueError:
+    """The convex loader's refusal, said of the operand it concerns: a mesh
+    of several closed shells is named as such (not "not a topological
+    sphere"), with what to do."""
+    text = str(error)
+    for name, x in zip("ab", operands):
+        if not text.startswith(f"{name}: ") or "topological sphere" not in text:
+            continue
+        mesh = _mesh_parts(x)
+        if mesh is None:
+            continue
+        try:
+            shells = _ext.check_solid(*mesh)
+        except ValueError:
+            continue
+        if len(shells) > 1:
+            return ValueError(
+                f"{name}: a mesh of {len(shells)} closed shells, not one convex body; give them as "
+                "dymsum.ConvexUnion([...]) of their meshes (or as one triangle mesh to the "
+                "non-convex path), or check one shell at a time"
+            )
+    return error
+
+
+def _mesh_parts(x: Any) -> Any:
+    """``(vertices, faces)`` of a mesh operand (a pair, or an object with
+    ``.vertices`` and ``.faces``), else ``None``."""
+    if hasattr(x, "vertices") and hasattr(x, "faces"):
+        return x.vertices, x.faces
+    if isinstance(x, (tuple, list)) and len(x) == 2 and not isinstance(x[0], (str, bytes)):
+        return x[0], x[1]
+    return None
+
+
+def _pieces_of_both(a: Any, b: Any, decomposition: Optional[str], options: Optional[Dict[str, Any]]) -> Any:
+    """The convex pieces of both operands. When A needs a decomposition and
+    B cannot be read at all (a misspelt path), B's error is the one raised:
+    each error comes from the body it concerns."""
+    try:
+        pa, info_a = convex_pieces(a, decomposition, options, name="a")
+    except NeedsDecompositionError:
+        convex_pieces(b, decomposition, options, name="b")  # B's own error, if any
+        raise
+    pb, info_b = convex_pieces(b, decomposition, options, name="b")
+    return pa, info_a, pb, info_b
 
 
 @overload
@@ -288,8 +335,7 @@ def _union_contact(
     decomposition: Optional[str],
     decomposition_options: Optional[Dict[str, Any]],
 ) -> UnionContact:
-    pa, info_a = convex_pieces(a, decomposition, decomposition_options, name="a")
-    pb, info_b = convex_pieces(b, decomposition, decomposition_options, name="b")
+    pa, info_a, pb, info_b = _pieces_of_both(a, b, decomposition, decomposition_options)
     ta, tb = _pose_matrix(pose_a), _pose_matrix(pose_b)
     info: Dict[str, Any] = {"pieces": (len(pa), len(pb)), "decomposition": {"a": info_a, "b": info_b}}
     best = None

@@ -17,14 +17,19 @@ DECOMPOSITIONS = ("coacd", "vhacd")
 _convex_sum: Any = _ext.minkowski_sum
 
 
-class _NeedsDecomposition(ValueError):
+class NeedsDecompositionError(ValueError):
     """A non-convex mesh that is not a union of exactly convex components,
-    given with no decomposition; carries the mesh."""
+    given with no decomposition (its message names the argument and the
+    fix); carries the mesh (``.mesh``) and its shells (``.shells``)."""
 
     def __init__(self, message: str, vertices: np.ndarray, faces: np.ndarray, shells: List[np.ndarray]) -> None:
         super().__init__(message)
         self.mesh = (vertices, faces)
         self.shells = shells
+
+
+# The name it had before it was public.
+_NeedsDecomposition = NeedsDecompositionError
 
 
 class MeshUnionError(RuntimeError):
