@@ -908,3 +908,134 @@ pub mod far_small {
         out
     }
 }
+
+/// Bodies of triangles built from arbitrary bytes, and the properties every
+/// one must have: the stable proptest `crates/dymsum/tests/fuzz_bodies.rs`
+/// (in CI) and the cargo-fuzz target `fuzz/fuzz_targets/bodies.rs` (off
+/// CI) both run [`fuzz_bodies::check`].
+pub mod fuzz_bodies {
+    use dymsum::query::{surfaces_touch, MeshBody, SceneChecker};
+    use dymsum::solid::soup::clean_soup;
+    use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
+
+    /// A soup on a coarse grid (coordinates 0..=4, so coplanar faces,
+    /// shared edges, T-junctions and touching parts are common): a first
+    /// byte of 128 or more makes closed boxes and fins (`boxes`); else it
+    /// sets the vertex count, three bytes each vertex, then three bytes
+    /// each triangle.
+    pub fn soup(data: &[u8]) -> PolygonMesh {
+        let Some((&n, rest)) = data.split_first() else {
+            return PolygonMesh::new(Vec::new(), Vec::new());
+        };
+        if n >= 128 {
+            return boxes(n, rest);
+        }
+        let n = 4 + usize::from(n % 12);
+        let mut bytes = rest.iter().copied();
+        let mut next = || bytes.next().unwrap_or(0);
+        let vertices: Vec<[f64; 3]> = (0..n)
+            .map(|_| std::array::from_fn(|_| f64::from(next() % 5)))
+            .collect();
+        let faces = rest
+            .get(3 * n..)
+            .unwrap_or(&[])
+            .chunks_exact(3)
+            .take(48)
+            .map(|t| t.iter().map(|&b| usize::from(b) % n).collect())
+            .collect();
+        PolygonMesh::new(vertices, faces)
+    }
+
+    /// Closed boxes on the grid (1 to 4; each outward or inward, some
+    /// listed double-sided, so touching solids, nested shells and cavities
+    /// are common), then a few loose triangles over their corners (fins).
+    fn boxes(n: u8, rest: &[u8]) -> PolygonMesh {
+        let mut bytes = rest.iter().copied();
+        let mut next = || bytes.next().unwrap_or(0);
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        for _ in 0..1 + n % 4 {
+            let (lo, size, how) = (
+                [next(), next(), next()].map(|b| f64::from(b % 4)),
+                [next(), next(), next()].map(|b| f64::from(1 + b % 2)),
+                next(),
+            );
+            let base = m.vertices.len();
+            m.vertices.extend(super::box_corners(
+                lo,
+                std::array::from_fn(|k| lo[k] + size[k]),
+            ));
+            for q in super::BOX_QUADS {
+                let q: Vec<usize> = q.iter().map(|v| v + base).collect();
+                let back: Vec<usize> = q.iter().rev().copied().collect();
+                match how % 8 {
+                    0..=4 => m.faces.push(q),
+                    5 => m.faces.push(back),
+                    6 => m.faces.extend([q, back]),
+                    _ => m.faces.extend([back.clone(), q, back]),
+                }
+            }
+        }
+        let count = m.vertices.len();
+        for _ in 0..next() % 4 {
+            m.faces
+                .push((0..3).map(|_| usize::from(next()) % count).collect());
+        }
+        m
+    }
+
+    /// The generalised winding number of the weighted triangles about `p`
+    /// (solid angles summed in floats): an oracle independent of the ray
+    /// test, accurate away from the triangles.
+    fn winding_number(mesh: &PolygonMesh, weights: &[u32], p: DVec3) -> f64 {
+        let mut sum = 0.0;
+        for (f, &w) in mesh.faces.iter().zip(weights) {
+            let [a, b, c] = [f[0], f[1], f[2]].map(|v| DVec3::from(mesh.vertices[v]) - p);
+            let (la, lb, lc) = (a.length(), b.length(), c.length());
+            let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+            sum += f64::from(w) * 2.0 * a.dot(b.cross(c)).atan2(den);
+        }
+        sum / (4.0 * std::f64::consts::PI)
+    }
+
+    /// Every property (panics naming the one broken): the body is built or
+    /// refused with a typed error, passes its sanity check, answers the
+    /// same in both roles, collides whenever its triangles touch a probe,
+    /// and otherwise collides exactly when the winding number about the
+    /// probe's centre is not zero.
+    pub fn check(data: &[u8]) {
+        let mesh = soup(data);
+        let Ok(body) = MeshBody::new(&mesh) else {
+            return; // a typed error (no faces, none left)
+        };
+        body.sanity_check().expect("sanity");
+        let soup = clean_soup(&mesh).expect("cleaned as the body was");
+        let h = 1.0 / 16.0;
+        let probe_mesh = super::cuboid([-h; 3], [h; 3]).to_mesh();
+        let probe = MeshBody::new(&probe_mesh).expect("a cube");
+        let among = SceneChecker::new(&probe, std::slice::from_ref(&body)).expect("checker");
+        let around = SceneChecker::new(&body, std::slice::from_ref(&probe)).expect("checker");
+        let tail = data.iter().rev().take(3).copied().collect::<Vec<u8>>();
+        let c: [f64; 3] = std::array::from_fn(|k| {
+            f64::from(tail.get(k).copied().unwrap_or(0) % 20) / 4.0 + 0.125
+        });
+        let at = Pose::new(Rotation::IDENTITY, DVec3::from(c));
+        let back = Pose::new(Rotation::IDENTITY, -DVec3::from(c));
+        let collides = among.collides_at(at).expect("decided");
+        assert_eq!(
+            collides,
+            around.collides_at(back).expect("decided"),
+            "roles at {c:?}"
+        );
+        let touch = surfaces_touch(&probe_mesh, at, &soup.mesh, Pose::IDENTITY).expect("touch");
+        if touch {
+            assert!(collides, "touching but free at {c:?}");
+            return;
+        }
+        let w = winding_number(&soup.mesh, &soup.weights, DVec3::from(c));
+        assert!(
+            (w - w.round()).abs() < 1e-6,
+            "the winding number {w} at {c:?} is not an integer: the enclosing part is no cycle"
+        );
+        assert_eq!(collides, w.round() != 0.0, "winding number {w} at {c:?}");
+    }
+}
