@@ -20,8 +20,11 @@
 //! [`crate::solid::soup`] for the classification).
 
 mod checker;
+mod clearance;
 pub(crate) mod gap;
 mod inside;
+mod state;
+mod sweep;
 mod validator;
 
 pub use crate::body::{Body, MeshBody, MeshReport};
