@@ -787,18 +787,9 @@ pub mod far_small {
         Polytope::from_dvec3s(&pts).unwrap()
     }
 
+    /// A random unit vector (the sphere kind of [`super::points`]).
     fn unit(r: &mut ChaCha8Rng) -> DVec3 {
-        loop {
-            let v = DVec3::new(
-                r.random_range(-1.0..1.0),
-                r.random_range(-1.0..1.0),
-                r.random_range(-1.0..1.0),
-            );
-            let l = v.length();
-            if l > 0.1 && l <= 1.0 {
-                return v / l;
-            }
-        }
+        super::points(Kind::Sphere, 1, r)[0]
     }
 
     /// A small random turn (at most `max` radians about a random axis).
