@@ -5,7 +5,9 @@ vertex sums: the same volume and the same set of face planes (unit normal
 and offset), matched both ways.
 """
 
+import os
 import zlib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -142,3 +144,14 @@ def need(module: str, reason: str = ""):
     if os.environ.get("DYMSUM_REQUIRE_SCENES") == "1":
         return importlib.import_module(module)
     return pytest.importorskip(module, reason=reason or None)
+
+
+def cli():
+    """The dymsum command line the tests run: $DYMSUM_CLI, else the release
+    build; skipped when absent, failed when DYMSUM_REQUIRE_CLI=1."""
+    exe = os.environ.get("DYMSUM_CLI") or str(Path(__file__).resolve().parents[2] / "target" / "release" / "dymsum")
+    if not os.path.isfile(exe):
+        if os.environ.get("DYMSUM_REQUIRE_CLI") == "1":
+            pytest.fail(f"DYMSUM_REQUIRE_CLI=1 but no CLI at {exe}")
+        pytest.skip("the dymsum CLI is not built (cargo build --release -p dymsum-cli)")
+    return exe

@@ -9,11 +9,10 @@ and of processes, pickling, and a failing task."""
 import os
 import pickle
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import CUBE
+from conftest import CUBE, cli
 from scipy.spatial.transform import Rotation
 
 import dymsum
@@ -116,15 +115,6 @@ def test_a_failing_task_names_its_pair_and_block_and_writes_nothing(tmp_path):
     with pytest.raises(OSError):
         m.save(tmp_path / "missing" / "map.npz")
     assert os.listdir(tmp_path) == []
-
-
-def cli():
-    exe = os.environ.get("DYMSUM_CLI") or str(Path(__file__).resolve().parents[2] / "target" / "release" / "dymsum")
-    if not os.path.isfile(exe):
-        if os.environ.get("DYMSUM_REQUIRE_CLI") == "1":
-            pytest.fail(f"DYMSUM_REQUIRE_CLI=1 but no CLI at {exe}")
-        pytest.skip("the dymsum CLI is not built (cargo build --release -p dymsum-cli)")
-    return exe
 
 
 def test_the_cli_container_loads_with_numpy_and_matches_the_library(tmp_path):

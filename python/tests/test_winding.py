@@ -9,14 +9,12 @@ case is judged by an oracle written from the boxes the mesh was made of
 line (`dymsum query --collision-only`), which must answer the same.
 """
 
-import os
 import subprocess
-from pathlib import Path
 
 import numpy as np
-import pytest
 
 import dymsum
+from conftest import cli
 
 QUADS = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]]
 
@@ -127,15 +125,6 @@ def test_a_random_grid_union_against_its_boxes():
             c = (rng.integers(-2, 48, 3) / 8 + 1 / 16).tolist()
             h = 1 / 16 if rng.integers(2) else 1 / 32
             assert collides(mesh, c, h) == any(meets(b, around(c, h)) for b in cells), (cells, c, h)
-
-
-def cli():
-    exe = os.environ.get("DYMSUM_CLI") or str(Path(__file__).resolve().parents[2] / "target" / "release" / "dymsum")
-    if not os.path.isfile(exe):
-        if os.environ.get("DYMSUM_REQUIRE_CLI") == "1":
-            pytest.fail(f"DYMSUM_REQUIRE_CLI=1 but no CLI at {exe}")
-        pytest.skip("the dymsum CLI is not built (cargo build --release -p dymsum-cli)")
-    return exe
 
 
 def write_off(path, mesh):

@@ -13,7 +13,7 @@ use std::path::Path;
 use common::{model, run, stderr, stdout, temp_dir};
 use dymsum::query::{Body, ConvexUnion, MotionCheck, Validator};
 use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
-use dymsum_testkit::{box_corners, BOX_QUADS};
+use dymsum_testkit::{box_corners, CUBE_QUADS};
 
 /// A mesh as an OFF file (coordinates written exactly: Rust's shortest
 /// round-trip text).
@@ -38,7 +38,7 @@ fn boxes(cells: &[([f64; 3], [f64; 3])], outward: &[bool]) -> PolygonMesh {
     for (i, (lo, hi)) in cells.iter().enumerate() {
         let base = m.vertices.len();
         m.vertices.extend(box_corners(*lo, *hi));
-        for q in BOX_QUADS {
+        for q in CUBE_QUADS {
             let q: Vec<usize> = q.iter().map(|v| v + base).collect();
             m.faces.push(if outward[i] {
                 q

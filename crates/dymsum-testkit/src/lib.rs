@@ -115,34 +115,17 @@ pub fn cube_points(lo: f64, hi: f64) -> Vec<[f64; 3]> {
 }
 
 /// The eight corners of the box `[lo, hi]`: bit `k` of a corner's index
-/// picks `hi[k]` (the numbering [`BOX_QUADS`] uses).
+/// picks `hi[k]` (the numbering [`CUBE_QUADS`] uses).
 pub fn box_corners(lo: [f64; 3], hi: [f64; 3]) -> Vec<[f64; 3]> {
     (0..8)
         .map(|i| std::array::from_fn(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
         .collect()
 }
 
-/// The six outward quads of a box over [`box_corners`]' numbering (bottom,
-/// top, front, back, left, right).
-pub const BOX_QUADS: [[usize; 4]; 6] = [
-    [0, 2, 3, 1],
-    [4, 5, 7, 6],
-    [0, 1, 5, 4],
-    [2, 6, 7, 3],
-    [0, 4, 6, 2],
-    [1, 3, 7, 5],
-];
-
 /// The axis-aligned box `[lo, hi]` as a polytope (the motion tests', bench's
 /// and fuzzers' obstacles).
 pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polytope {
-    let corners: Vec<[f64; 3]> = (0..8)
-        .map(|i| {
-            let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-            [pick(0), pick(1), pick(2)]
-        })
-        .collect();
-    Polytope::from_points(&corners).expect("a box with lo < hi")
+    Polytope::from_points(&box_corners(lo, hi)).expect("a box with lo < hi")
 }
 
 /// The grazing family of issue 26 §4, shared by the motion tests and the
@@ -955,7 +938,7 @@ pub mod fuzz_bodies {
                 lo,
                 std::array::from_fn(|k| lo[k] + size[k]),
             ));
-            for q in super::BOX_QUADS {
+            for q in super::CUBE_QUADS {
                 let q: Vec<usize> = q.iter().map(|v| v + base).collect();
                 let back: Vec<usize> = q.iter().rev().copied().collect();
                 match how % 8 {

@@ -9,7 +9,7 @@
 use dymsum::query::{MeshBody, SceneChecker};
 use dymsum::solid::soup::{clean_soup, ComponentKind};
 use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
-use dymsum_testkit::{box_corners, proptest_cases, BOX_QUADS};
+use dymsum_testkit::{box_corners, proptest_cases, CUBE_QUADS};
 use proptest::prelude::*;
 
 /// An axis-aligned box `[lo, hi]` (closed).
@@ -46,7 +46,7 @@ fn corners(c: &Cell) -> Vec<[f64; 3]> {
 /// The twelve triangles of a box, vertices from `offset`, outward or
 /// inward.
 fn box_triangles(offset: usize, outward: bool) -> Vec<Vec<usize>> {
-    BOX_QUADS
+    CUBE_QUADS
         .iter()
         .flat_map(|q| {
             let q = q.map(|v| v + offset);
@@ -231,7 +231,7 @@ fn a_box_in_a_cavity_touching_the_inner_wall() {
 fn t_junction_box(fill: bool) -> PolygonMesh {
     let mut v = corners(&Cell::new([0.0; 3], [2.0, 1.0, 1.0]));
     v.push([1.0, 0.0, 1.0]);
-    let mut faces: Vec<Vec<usize>> = BOX_QUADS
+    let mut faces: Vec<Vec<usize>> = CUBE_QUADS
         .iter()
         .filter(|q| **q != [4, 5, 7, 6])
         .map(|q| q.to_vec())
