@@ -1,7 +1,8 @@
-//! Why a query failed ([`QueryError`]), and bad input to a slab
-//! computation ([`SlabError`]).
+//! Why a query failed ([`QueryError`]), why a motion check failed
+//! ([`MotionError`]), and bad input to a slab computation ([`SlabError`]).
 
 use crate::polytope::PolytopeError;
+use crate::query::interval_search::{Stop, MIN_TOLERANCE};
 use crate::sum::SumError;
 
 /// Why a query failed.
@@ -38,6 +39,74 @@ pub enum QueryError {
     /// Bad input to a certified slab ([`crate::query::Slab`]): the variant names it.
     #[error(transparent)]
     Slab(#[from] SlabError),
+}
+
+/// Why a motion check failed ([`crate::query::Checker::check`]): never a
+/// guess, each says what is known.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MotionError {
+    /// The tolerance is not a finite number in `[MIN_TOLERANCE, 1)`.
+    #[error(
+        "the tolerance must be a finite number in [{min:e}, 1) (the smallest the search can \
+         bracket: it halves intervals down to 2^-48 of the motion), got {0}",
+        min = MIN_TOLERANCE
+    )]
+    Tolerance(f64),
+    /// The search examined its whole budget of intervals
+    /// ([`crate::query::Checker::budget`]) without a decision: every
+    /// `t ≤ t_safe` is certified free, nothing is known after it.
+    #[error(
+        "undecided: the check used its budget of {steps} intervals; every t <= {t_safe} is \
+         certified free, after it nothing is decided (raise the budget, or treat the motion \
+         as not free)"
+    )]
+    BudgetExhausted {
+        /// The last time certified free (`0` when only the start is).
+        t_safe: f64,
+        /// The budget that was used up.
+        steps: u64,
+    },
+    /// An exact query failed (posed coordinates beyond `f64`).
+    #[error(transparent)]
+    Query(#[from] QueryError),
+    /// Between `t_safe` and `t` the body comes within rounding of an
+    /// obstacle without a decidable contact (a grazing motion): neither
+    /// free nor colliding can be certified.
+    #[error(
+        "undecided: between t = {t_safe} and t = {t} the body comes within rounding of an \
+         obstacle without touching it at a checked time (a grazing motion)"
+    )]
+    Undecided {
+        /// The last time certified free.
+        t_safe: f64,
+        /// The end of the undecided interval.
+        t: f64,
+    },
+}
+
+impl MotionError {
+    /// [`MotionError::Tolerance`] unless `tolerance` is in
+    /// `[MIN_TOLERANCE, 1)` (a NaN is not).
+    pub(crate) fn check_tolerance(tolerance: f64) -> Result<(), MotionError> {
+        if (MIN_TOLERANCE..1.0).contains(&tolerance) {
+            Ok(())
+        } else {
+            Err(MotionError::Tolerance(tolerance))
+        }
+    }
+
+    /// What a stopped interval search (`query::interval_search`) reports,
+    /// for a check of budget `budget`.
+    pub(crate) fn from_stop(stop: Stop<QueryError>, budget: u64) -> MotionError {
+        match stop {
+            Stop::Budget { t_safe } => MotionError::BudgetExhausted {
+                t_safe,
+                steps: budget,
+            },
+            Stop::Undecided { t_safe, t } => MotionError::Undecided { t_safe, t },
+            Stop::Failed(e) => MotionError::Query(e),
+        }
+    }
 }
 
 /// Bad input to a slab computation: each variant names the offending value.

@@ -62,12 +62,18 @@
 //!   one convex slice per orientation by DYMSUM), `halfspaces` (slices as
 //!   half-spaces), [`slabs`] (certified slabs over ranges of orientations);
 //! * `union`: [`ConvexUnion`], bodies made of convex pieces;
-//! * `motion`: **how a motion is certified** ([`MotionChecker`]).
+//! * `motion`: **how a motion is certified** ([`MotionChecker`]);
+//!   `interval_search`: the interval search both motion checkers run (left
+//!   to right, halving, probes, budget, undecided) and the margin both add
+//!   (its soundness argument); [`Checker`] (`checker`): what the convex
+//!   checker, the triangle checker ([`SceneChecker`]) and [`Validator`]
+//!   answer alike, the batches written once.
 //!
 //! Every soundness argument is written where it is used: the near-extreme
 //! sets in `support`, the yes/no certificates in `gjk`, the caps, the slab
 //! and the one-facet shortcut in `certificate`, the candidates' directions
-//! in `certificate::candidates`, the motion bound in `motion`. Where a certificate cannot be made (the origin within
+//! in `certificate::candidates`, the motion search in `interval_search`, the
+//! motion bounds in `motion` and `scene::sweep`. Where a certificate cannot be made (the origin within
 //! rounding of `D`'s boundary, a degenerate EPA polytope), the whole sum
 //! is evaluated instead and [`QueryStats`] counts it; on the benchmark
 //! workloads this never happens. With the `check-reference` feature every
@@ -134,9 +140,11 @@
 //! ```
 
 mod answer;
+mod checker;
 mod cobstacle;
 mod error;
 mod frame;
+mod interval_search;
 mod motion;
 mod pair;
 mod prep;
@@ -150,6 +158,7 @@ pub use cobstacle::slabs;
 
 pub use crate::body::ConvexUnion;
 pub use answer::{Contact, FeaturePair, Proximity, Separation};
+pub use checker::{Checker, MotionCheck};
 pub use cobstacle::halfspaces::HalfSpaces;
 pub use cobstacle::slabs::{
     certified_slab_in_cell, certified_slabs_about_axis, certified_slabs_about_axis_par,
@@ -159,11 +168,9 @@ pub use cobstacle::slabs::{
 pub use cobstacle::slices::{
     cobstacle_slices, cobstacle_slices_par, orientations_about_axis, CObstacle,
 };
-pub use error::QueryError;
-pub use motion::{
-    check_motion, check_motions, Motion, MotionCheck, MotionChecker, MotionError, DEFAULT_BUDGET,
-    MIN_TOLERANCE, MIN_WIDTH,
-};
+pub use error::{MotionError, QueryError};
+pub use interval_search::{DEFAULT_BUDGET, MIN_TOLERANCE, MIN_WIDTH};
+pub use motion::{check_motion, check_motions, Motion, MotionChecker};
 pub use pair::{ConvexPair, QueryStats};
 pub use prep::Reflected;
 pub use proximity::{distance, intersects, penetration_depth, query};

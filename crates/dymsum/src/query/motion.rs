@@ -36,16 +36,13 @@
 //! `t_safe = None`, `t_contact = 0`.
 //!
 //! # Why "free" is certain (the bound)
-//! Over an interval `[a, b]` the rotation turns by `δ = Θ (b − a)` about
-//! one axis (`Θ` the whole motion's angle: slerp turns at a constant rate
-//! about a fixed axis of the body), so a point `p` with `|p| ≤ r` (`r` the
-//! piece's largest vertex norm about the body's origin) moves on a circle
-//! arc of angle `δ ≤ π` and radius at most `r`, whose points lie within the
-//! sagitta `s = r (1 − cos(δ/2))` of the chord between its ends; the
-//! translation moves on the segment `[T(a), T(b)]`. Hence the piece, at
-//! every `t` in `[a, b]`, lies in
+//! Over an interval `[a, b]` every point of a body piece `P` (`r` its
+//! largest vertex norm about the body's origin) stays within the margin
+//! `s + e` of `query::interval_search` (`s` the sagitta of the turn over
+//! the interval, `e` the float poses' rounding, both rounded up; derived
+//! there, once for both motion checkers) of
 //!
-//! `H ⊕ [T(a), T(b)] ⊕ ball(s)`, `H = conv(R(a) P ∪ R(b) P)`,
+//! `H ⊕ [T(a), T(b)]`, `H = conv(R(a) P ∪ R(b) P)`,
 //!
 //! a convex set given by its support function
 //! `h(d) = max(h_P(R(a)ᵀ d), h_P(R(b)ᵀ d)) + max(d · T(a), d · T(b))`.
@@ -53,16 +50,11 @@
 //! `n`; the *gap* `min_{H ⊕ [T]} n · x − max_O n · o` is then bounded
 //! from below rigorously (the near-extreme searches of
 //! [`crate::query::proximity::support`], whose maxima are certified, on the unposed piece
-//! and the obstacle's vertices), and if it exceeds `s`, the distance
+//! and the obstacle's vertices), and if it exceeds `s + e`, the distance
 //! between the moving piece and `O` stays positive over the whole
-//! interval. Rounding is covered: the float poses ([`Motion::at`]: `R̃`,
-//! `T̃`) differ from the exact motion's by at most
-//! `e = 2⁻⁴³ r + 6u (M + D)` (`u = 2⁻⁵³`, `M` the largest end translation
-//! coordinate, `D` the largest of their difference; derived in
-//! `query::rounding`: the rotation's error is relative to the reach, the
-//! translation's a few ulps of the coordinates), which is added to `s`;
-//! `δ` is rounded up from the float angle plus its error bound
-//! (`2⁻⁴⁶`), and `s` up. The gap is taken about the obstacle ball's
+//! interval (`R̃`, `T̃` the float poses of [`Motion::at`] are what `H` and
+//! the translations are built from; `e` covers their distance from the
+//! exact motion's). The gap is taken about the obstacle ball's
 //! centre `c` (the same difference about any point): the translations and
 //! the obstacle's vertices less `c`, rounded (an exact translate of the
 //! obstacle within `2u` of its scale per vertex, which the near-extreme
@@ -77,31 +69,28 @@
 //! tried (conservative advancement): over `[a, b]` a point `p` of the piece
 //! moves by at most `|T(b) − T(a)| + r δ` from its place at `a`
 //! (`|(R(t) − R(a)) p| ≤ 2 r sin(δ/2) ≤ r δ`, and the translation is
-//! linear), so the interval is free when the exact distance at `a`
+//! linear; `δ` the turn, rounded up, of `query::interval_search`), so the
+//! interval is free when the exact distance at `a`
 //! ([`ConvexPair::query`]) exceeds that, plus the rounding of the
 //! distance (taken as `10⁻¹²` of the coordinates' scale, far above it:
 //! far from the origin this bound rarely helps, the gap does) and three
-//! times the pose error above (the pose at `a`, and both translations).
+//! times the pose error `e` (the pose at `a`, and both translations).
 //!
 //! # The search
-//! For each piece of the body and each obstacle piece, intervals are
-//! examined left to right from `[0, 1]`: an interval the bound certifies
-//! free is done; one it cannot certify is halved, and once it is no wider
-//! than the tolerance its right end is queried exactly: a contact there
-//! closes the search with the bracket. So the certified intervals before a
-//! bracket cover `[0, t_safe]` without gaps. When halving keeps ending just
-//! before a contact (an interval `[a, b]` a thousand times narrower than
-//! the tolerance, `b` free, not certified), the times `a + tol`,
-//! `a + tol/2`, … `a + tol/128` are queried too: `[0, a]` is certified, so
-//! a contact at any of them is a valid bracket. Every pair is searched only up
-//! to the earliest contact found so far. An interval narrower than
-//! [`MIN_WIDTH`] that is neither certified nor colliding at its ends (the
-//! bodies within rounding of each other, grazing) is
-//! [`MotionError::Undecided`]: never a guess.
-//!
-//! A thin wall is not stepped over: a wall between two checked poses keeps
-//! every interval that sweeps through it from being certified, and halving
-//! continues until a queried pose lies inside it.
+//! Each piece of the body against each obstacle piece runs the interval
+//! search of `query::interval_search` (left to right over `[0, limit]`,
+//! halving, probes ahead when stuck, the budget, undecided below
+//! [`MIN_WIDTH`](crate::query::MIN_WIDTH); its soundness argument is
+//! there), with the bound above certifying an interval and the pair's
+//! exact query
+//! ([`ConvexPair::intersects`]) checking a time. The pairs share one
+//! budget, and each is searched only up to the earliest contact found so
+//! far (`limit`): the answer's `t_contact` is the earliest bracketed, and
+//! its `t_safe` the least certified end over the pairs that bracketed a
+//! contact (every other pair is certified free up to `limit`, beyond
+//! `t_contact`). When the budget runs out inside one pair, the pairs not
+//! yet searched are each tried by one interval up to that pair's
+//! certified end, else the check is certified only at the start.
 
 use crate::body::ConvexUnion;
 use crate::kernel::predicates::{dot4, Sign};
@@ -109,100 +98,17 @@ use crate::kernel::rotation::Pose;
 use crate::kernel::rotation::Rotation;
 use crate::polytope::Polytope;
 use crate::query::answer::Proximity;
-use crate::query::error::QueryError;
+use crate::query::checker::{Checker, MotionCheck};
+use crate::query::error::{MotionError, QueryError};
+use crate::query::interval_search::{first_contact, Stop, Sweep, SweepMargin, DEFAULT_BUDGET};
 use crate::query::pair::ConvexPair;
 use crate::query::pair::QueryStats;
 use crate::query::proximity::support::{climb, dot_error, near_max, Marks, NearestAxes};
-use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
 use glam::DQuat;
 use glam::DVec3;
 
-/// The default work budget of a motion check ([`MotionChecker::budget`]):
-/// the most intervals the search examines over all piece pairs before it
-/// gives up with [`MotionError::BudgetExhausted`]. Each costs at most a few
-/// near-extreme searches and one exact query, so the default caps a check
-/// at roughly 25–100 ms on this project's 2-core machines; the motion
-/// tests and benchmarks need at most a few hundred (docs/BENCHMARKS.md).
-pub const DEFAULT_BUDGET: u64 = 4096;
-
-/// The smallest tolerance a check accepts: the search halves intervals no
-/// further than [`MIN_WIDTH`], and brackets a contact it keeps ending just
-/// before only once an interval is `1/1024` of the tolerance wide, so a
-/// tolerance below `1024 · MIN_WIDTH = 2⁻³⁸ ≈ 3.6e-12` could never be met.
-pub const MIN_TOLERANCE: f64 = 1024.0 * MIN_WIDTH;
-
 /// How many feature axes [`PieceSearch::feature_gap`] tries.
 const FEATURE_AXES: usize = 4;
-
-/// The narrowest interval (in `t`) the search halves to before declaring
-/// a grazing motion [`MotionError::Undecided`].
-pub const MIN_WIDTH: f64 = 1.0 / (1u64 << 48) as f64;
-
-/// The answer of a motion check.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum MotionCheck {
-    /// No contact at any `t` in `[0, 1]` (certified).
-    Free,
-    /// A contact: every `t ≤ t_safe` is certified free (`None` when the
-    /// body collides at `t = 0`), and at `t_contact` the body touches or
-    /// overlaps an obstacle (the exact query says so); `t_contact − t_safe`
-    /// is at most the tolerance.
-    Collides {
-        /// The last time certified free.
-        t_safe: Option<f64>,
-        /// A time of contact.
-        t_contact: f64,
-    },
-}
-
-impl MotionCheck {
-    /// `true` for [`MotionCheck::Free`].
-    pub fn is_free(&self) -> bool {
-        matches!(self, MotionCheck::Free)
-    }
-}
-
-/// Why a motion check failed.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum MotionError {
-    /// The tolerance is not a finite number in `[MIN_TOLERANCE, 1)`.
-    #[error(
-        "the tolerance must be a finite number in [{min:e}, 1) (the smallest the search can \
-         bracket: it halves intervals down to 2^-48 of the motion), got {0}",
-        min = MIN_TOLERANCE
-    )]
-    Tolerance(f64),
-    /// The search examined its whole budget of intervals
-    /// ([`MotionChecker::budget`]) without a decision: every
-    /// `t ≤ t_safe` is certified free, nothing is known after it.
-    #[error(
-        "undecided: the check used its budget of {steps} intervals; every t <= {t_safe} is \
-         certified free, after it nothing is decided (raise the budget, or treat the motion \
-         as not free)"
-    )]
-    BudgetExhausted {
-        /// The last time certified free (`0` when only the start is).
-        t_safe: f64,
-        /// The budget that was used up.
-        steps: u64,
-    },
-    /// An exact query failed (posed coordinates beyond `f64`).
-    #[error(transparent)]
-    Query(#[from] QueryError),
-    /// Between `t_safe` and `t` the body comes within rounding of an
-    /// obstacle without a decidable contact (a grazing motion): neither
-    /// free nor colliding can be certified.
-    #[error(
-        "undecided: between t = {t_safe} and t = {t} the body comes within rounding of an \
-         obstacle without touching it at a checked time (a grazing motion)"
-    )]
-    Undecided {
-        /// The last time certified free.
-        t_safe: f64,
-        /// The end of the undecided interval.
-        t: f64,
-    },
-}
 
 /// A straight motion between two poses (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -284,6 +190,10 @@ struct PieceSearch<'a> {
     /// The largest absolute coordinate of the obstacle piece's vertices
     /// less the ball's centre, as rounded.
     obstacle_local_scale: f64,
+    /// The motion checked.
+    motion: &'a Motion,
+    /// The body piece's margin over the motion (`query::interval_search`).
+    margin: SweepMargin,
 }
 
 /// The buffers of a check (kept by a [`MotionChecker`] between checks).
@@ -538,14 +448,13 @@ impl MotionChecker {
     /// bracket no wider than `tolerance` (in `t`).
     ///
     /// # Errors
-    /// [`MotionError::Tolerance`] for a tolerance outside `(0, 1)`;
+    /// [`MotionError::Tolerance`] for a tolerance outside
+    /// `[MIN_TOLERANCE, 1)` ([`crate::query::MIN_TOLERANCE`]);
     /// [`MotionError::Query`] when a posed coordinate overflows;
     /// [`MotionError::Undecided`] for a motion grazing an obstacle within
-    /// rounding.
+    /// rounding; [`MotionError::BudgetExhausted`] past the budget.
     pub fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError> {
-        if !(MIN_TOLERANCE..1.0).contains(&tolerance) {
-            return Err(MotionError::Tolerance(tolerance));
-        }
+        MotionError::check_tolerance(tolerance)?;
         if self.collides_at(from)? {
             return Ok(MotionCheck::Collides {
                 t_safe: None,
@@ -559,14 +468,18 @@ impl MotionChecker {
             .ok()
             .and_then(|mut p| p.pop())
             .unwrap_or_default();
+        let mut stack = std::mem::take(&mut scratch.stack);
         let mut best: Option<(f64, f64)> = None;
         let mut frontier = 1.0f64;
         let mut result = Ok(());
         let mut steps_left = self.budget;
         for idx in 0..self.pairs.len() {
-            let search = self.piece_search(idx);
             let limit = best.map_or(1.0, |b| b.1);
-            match search.first_contact(&motion, limit, tolerance, &mut steps_left, &mut scratch) {
+            let mut sweep = PieceSweep {
+                search: self.piece_search(idx, &motion),
+                scratch: &mut scratch,
+            };
+            match first_contact(&mut sweep, limit, tolerance, &mut steps_left, &mut stack) {
                 Ok(Some((safe, contact))) => {
                     frontier = frontier.min(safe);
                     if best.is_none_or(|b| contact < b.1) {
@@ -581,21 +494,18 @@ impl MotionChecker {
                     for later in idx + 1..self.pairs.len() {
                         if t_safe > 0.0
                             && !self
-                                .piece_search(later)
-                                .certified_free(&motion, 0.0, t_safe, &mut scratch)
+                                .piece_search(later, &motion)
+                                .certified_free(0.0, t_safe, &mut scratch)
                                 .unwrap_or(false)
                         {
                             t_safe = 0.0;
                         }
                     }
-                    result = Err(MotionError::BudgetExhausted {
-                        t_safe,
-                        steps: self.budget,
-                    });
+                    result = Err(MotionError::from_stop(Stop::Budget { t_safe }, self.budget));
                     break;
                 }
-                Err(Stop::Error(e)) => {
-                    result = Err(e);
+                Err(stop) => {
+                    result = Err(MotionError::from_stop(stop, self.budget));
                     break;
                 }
             }
@@ -604,6 +514,7 @@ impl MotionChecker {
             self.budget - steps_left,
             std::sync::atomic::Ordering::Relaxed,
         );
+        scratch.stack = stack;
         if let Ok(mut p) = self.pool.lock() {
             p.push(scratch);
         }
@@ -617,8 +528,8 @@ impl MotionChecker {
         })
     }
 
-    /// The search of piece pair `idx`.
-    fn piece_search(&self, idx: usize) -> PieceSearch<'_> {
+    /// The search of piece pair `idx` over `motion`.
+    fn piece_search<'a>(&'a self, idx: usize, motion: &'a Motion) -> PieceSearch<'a> {
         let (i, j, k) = self.pairs[idx];
         PieceSearch {
             pair: &self.prepared[idx],
@@ -628,11 +539,21 @@ impl MotionChecker {
             scales: (self.body_scale[i], self.obstacle_scale[j][k]),
             obstacle_ball: self.balls[j][k],
             obstacle_local_scale: self.obstacle_local_scale[j][k],
+            motion,
+            margin: SweepMargin::new(motion.angle(), motion.translation_extent(), self.reach[i]),
         }
     }
 
-    /// [`MotionChecker::check`] for many motions `(from, to)`, in parallel
-    /// (rayon), in order.
+    /// [`Checker::collides_many`] (here without the trait in scope).
+    ///
+    /// # Errors
+    /// The first error of [`MotionChecker::collides_at`].
+    pub fn collides_many(&self, poses: &[Pose]) -> Result<Vec<bool>, QueryError> {
+        Checker::collides_many(self, poses)
+    }
+
+    /// [`Checker::check_many`] (here without the trait in scope): the
+    /// motions `(from, to)` in parallel (rayon), in order.
     ///
     /// # Errors
     /// The first error of [`MotionChecker::check`].
@@ -641,11 +562,54 @@ impl MotionChecker {
         motions: &[(Pose, Pose)],
         tolerance: f64,
     ) -> Result<Vec<MotionCheck>, MotionError> {
-        use rayon::prelude::*;
-        motions
-            .par_iter()
-            .map(|&(a, b)| self.check(a, b, tolerance))
-            .collect()
+        Checker::check_many(self, motions, tolerance)
+    }
+}
+
+impl Checker for MotionChecker {
+    fn collides_at(&self, pose: Pose) -> Result<bool, QueryError> {
+        MotionChecker::collides_at(self, pose)
+    }
+
+    fn distance_at(&self, pose: Pose) -> Result<f64, QueryError> {
+        MotionChecker::distance_at(self, pose)
+    }
+
+    fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError> {
+        MotionChecker::check(self, from, to, tolerance)
+    }
+
+    fn budget(&self) -> u64 {
+        MotionChecker::budget(self)
+    }
+
+    fn with_budget(self, steps: u64) -> MotionChecker {
+        MotionChecker::with_budget(self, steps)
+    }
+
+    fn steps(&self) -> u64 {
+        MotionChecker::steps(self)
+    }
+}
+
+/// One piece pair's search with the check's buffers: what the interval
+/// search runs (`query::interval_search`).
+struct PieceSweep<'a, 's> {
+    search: PieceSearch<'a>,
+    scratch: &'s mut Scratch,
+}
+
+impl Sweep for PieceSweep<'_, '_> {
+    type Error = QueryError;
+
+    fn certified_free(&mut self, a: f64, b: f64) -> Result<bool, QueryError> {
+        self.search.certified_free(a, b, self.scratch)
+    }
+
+    fn collides_at_time(&mut self, t: f64) -> Result<bool, QueryError> {
+        self.search
+            .pair
+            .intersects(self.search.motion.at(t), Pose::IDENTITY)
     }
 }
 
@@ -679,95 +643,17 @@ pub fn check_motions(
 }
 
 impl PieceSearch<'_> {
-    /// The first contact bracket of this piece pair in `[0, limit]`, or
-    /// `None` when it is certified free there (module docs).
-    ///
-    /// Each interval examined takes one step of `steps_left`; with none
-    /// left the search stops with the certified prefix `[0, a]`.
-    fn first_contact(
-        &self,
-        motion: &Motion,
-        limit: f64,
-        tol: f64,
-        steps_left: &mut u64,
-        s: &mut Scratch,
-    ) -> Result<Option<(f64, f64)>, Stop> {
-        s.stack.clear();
-        s.stack.push((0.0, limit));
-        while let Some((a, b)) = s.stack.pop() {
-            if *steps_left == 0 {
-                return Err(Stop::Budget { t_safe: a });
-            }
-            *steps_left -= 1;
-            if self.certified_free(motion, a, b, s)? {
-                continue;
-            }
-            if b - a <= tol {
-                if self.pair.intersects(motion.at(b), Pose::IDENTITY)? {
-                    return Ok(Some((a, b)));
-                }
-                if b - a <= tol / 1024.0 {
-                    // Stuck just before a contact that no halving point
-                    // hits: any contact in (a, a + tol] closes the search.
-                    if let Some(c) = self.contact_ahead(motion, a, limit, tol)? {
-                        return Ok(Some((a, c)));
-                    }
-                }
-            }
-            if b - a <= MIN_WIDTH {
-                return Err(Stop::Error(MotionError::Undecided { t_safe: a, t: b }));
-            }
-            let m = 0.5 * (a + b);
-            s.stack.push((m, b));
-            s.stack.push((a, m));
-        }
-        Ok(None)
-    }
-
-    /// A time in `(a, min(a + tol, limit)]` at which the pieces touch or
-    /// overlap (exact query), trying `a + tol`, `a + tol/2`, … `a + tol/128`.
-    fn contact_ahead(
-        &self,
-        motion: &Motion,
-        a: f64,
-        limit: f64,
-        tol: f64,
-    ) -> Result<Option<f64>, QueryError> {
-        let mut step = tol;
-        for _ in 0..8 {
-            let mut c = (a + step).min(limit);
-            if c - a > step {
-                // Rounded past the tolerance: one ulp back (`c > a ≥ 0`).
-                c = f64::from_bits(c.to_bits() - 1);
-            }
-            if c > a && self.pair.intersects(motion.at(c), Pose::IDENTITY)? {
-                return Ok(Some(c));
-            }
-            step *= 0.5;
-        }
-        Ok(None)
-    }
-
     /// Whether the piece cannot touch the obstacle piece for any `t` in
     /// `[a, b]`: the swept-hull bound, then the advancement bound (module
     /// docs).
-    fn certified_free(
-        &self,
-        motion: &Motion,
-        a: f64,
-        b: f64,
-        s: &mut Scratch,
-    ) -> Result<bool, QueryError> {
-        let (pa, pb) = (motion.at(a), motion.at(b));
+    fn certified_free(&self, a: f64, b: f64, s: &mut Scratch) -> Result<bool, QueryError> {
+        let (pa, pb) = (self.motion.at(a), self.motion.at(b));
         let r = self.reach;
-        // Rounding of the interpolated poses against the exact motion
-        // (`query::rounding`), and the sagitta of the turn over [a, b] (δ
-        // rounded up: the float angle is within ANGLE_ROUNDING of it).
-        let pose_err = pose_rounding_bound(r, motion.translation_extent());
-        let delta = ((motion.angle() + ANGLE_ROUNDING) * (b - a)) * (1.0 + 1e-12);
-        let q = (delta / 4.0).min(std::f64::consts::FRAC_PI_4).sin();
-        let sagitta = 2.0 * r * q * q * (1.0 + 1e-12);
-        let inflate = sagitta + pose_err;
+        // The sagitta of the turn over [a, b] and the rounding of the
+        // interpolated poses against the exact motion, both rounded up
+        // (`query::interval_search`, "The margin").
+        let inflate = self.margin.inflation(b - a);
+        let (delta, pose_err) = (self.margin.turn(b - a), self.margin.pose_error());
         // The balls first: the piece stays within r of the segment
         // [T(a), T(b)] (any rotation). About the ball's centre `c`: the
         // float distance (the differences, the nearest point's parameter
@@ -973,20 +859,6 @@ impl PieceSearch<'_> {
         // most u of the terms' sizes, nine in all, taken as 16u).
         let sizes = turned.abs() + 8.0 * f64::EPSILON * r + ut.abs() + obstacle_max.abs();
         -hull_max - obstacle_max - 8.0 * f64::EPSILON * sizes - 1e-300
-    }
-}
-
-/// Why one pair's search stopped without an answer.
-enum Stop {
-    /// The budget ran out; `[0, t_safe]` is certified for this pair.
-    Budget { t_safe: f64 },
-    /// An error to report as it is.
-    Error(MotionError),
-}
-
-impl From<QueryError> for Stop {
-    fn from(e: QueryError) -> Stop {
-        Stop::Error(MotionError::Query(e))
     }
 }
 

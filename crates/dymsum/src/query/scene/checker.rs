@@ -27,8 +27,10 @@ use glam::DVec3;
 use crate::body::mesh::triangle_boxes_into;
 use crate::body::MeshBody;
 use crate::kernel::rotation::Pose;
+use crate::query::checker::{Checker, MotionCheck};
+use crate::query::error::MotionError;
 use crate::query::error::QueryError;
-use crate::query::motion::DEFAULT_BUDGET;
+use crate::query::interval_search::DEFAULT_BUDGET;
 use crate::solid::aabb::{Aabb, AabbTree};
 
 /// Body vertices posed on demand, each once per query: `pts[v]` is
@@ -198,7 +200,9 @@ impl SceneChecker {
     }
 
     /// The same checker with a work budget of `steps` intervals per motion
-    /// check (at least 1; [`DEFAULT_BUDGET`] unless set).
+    /// check (at least 1; [`DEFAULT_BUDGET`] unless set): a check that has
+    /// examined that many intervals without a decision ends with
+    /// [`MotionError::BudgetExhausted`] and its certified `t_safe`.
     pub fn with_budget(mut self, steps: u64) -> SceneChecker {
         self.budget = steps.max(1);
         self
@@ -291,5 +295,31 @@ impl SceneChecker {
 
     pub(super) fn scene_triangle(&self, j: usize) -> [DVec3; 3] {
         self.scene.triangles[j].map(|v| self.scene.vertices[v as usize])
+    }
+}
+
+impl Checker for SceneChecker {
+    fn collides_at(&self, pose: Pose) -> Result<bool, QueryError> {
+        SceneChecker::collides_at(self, pose)
+    }
+
+    fn distance_at(&self, pose: Pose) -> Result<f64, QueryError> {
+        SceneChecker::distance_at(self, pose)
+    }
+
+    fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError> {
+        SceneChecker::check(self, from, to, tolerance)
+    }
+
+    fn budget(&self) -> u64 {
+        SceneChecker::budget(self)
+    }
+
+    fn with_budget(self, steps: u64) -> SceneChecker {
+        SceneChecker::with_budget(self, steps)
+    }
+
+    fn steps(&self) -> u64 {
+        SceneChecker::steps(self)
     }
 }

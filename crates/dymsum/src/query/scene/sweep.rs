@@ -2,29 +2,23 @@
 //!
 //! # Why "free" is certain
 //! The motion is [`Motion`]'s (linear translation, slerp rotation, the
-//! arc decided exactly). Over an interval `[a, b]` the rotation turns by
-//! `δ = Θ (b − a)` about one fixed axis (`Θ` the whole angle: slerp turns
-//! at a constant rate), so a body point `p` (`|p| ≤ r`, the body's reach)
-//! moves on a circle arc of angle `δ ≤ π` and radius at most `r`, within
-//! the sagitta `s = r (1 − cos(δ/2))` of the chord between `R(a) p` and
-//! `R(b) p`; the translation moves on the segment `[T(a), T(b)]`. So a
-//! body triangle `P`, at every `t` in `[a, b]`, lies in
+//! arc decided exactly). Over an interval `[a, b]` every point of a body
+//! triangle `P` stays within the margin `s + e` of
+//! `query::interval_search` (`s` the sagitta of the turn over the
+//! interval for the body's reach `r`, `e` the float poses' rounding, both
+//! rounded up; derived there, once for both motion checkers) of
 //!
-//! `conv(R(a) P ∪ R(b) P) ⊕ [T(a), T(b)] ⊕ ball(s)`,
+//! `conv(R(a) P ∪ R(b) P) ⊕ [T(a), T(b)]`,
 //!
 //! the hull of twelve points (each corner turned as at `a` and at `b`,
-//! moved as at `a` and at `b`) grown by `s`: the motion search's
-//! *swept hull* (the convex checker's bound, [`crate::query::MotionChecker`],
-//! per triangle). If every pair of a swept hull and a scene triangle is
-//! more than `s` plus `e` apart, no triangles meet anywhere in `[a, b]`:
-//! `e = 2⁻⁴³ r + 6u (M + D)` (`u = 2⁻⁵³`, `M` the largest end translation
-//! coordinate, `D` the largest of their difference) bounds the distance
-//! between each of the twelve points as computed (posed in floats, then
-//! moved by the float difference of the translations) and its exact
-//! value on the exact motion (`query::rounding`: the rotation's error is
-//! relative to the reach, the translation's a few ulps of the
-//! coordinates), and `δ` is rounded up from the float angle plus its
-//! error bound (`2⁻⁴⁶`). Pairs whose boxes are more than that apart on an axis are
+//! moved as at `a` and at `b`): the motion search's *swept hull* (the
+//! convex checker's bound, [`crate::query::MotionChecker`], per triangle).
+//! The twelve points are computed from the float poses (posed in floats,
+//! then moved by the float difference of the translations), and `e`
+//! bounds the distance between each as computed and its exact value on
+//! the exact motion (`query::rounding`). If every pair of a swept hull and
+//! a scene triangle is more than `s + e` apart, no triangles meet anywhere
+//! in `[a, b]`. Pairs whose boxes are more than that apart on an axis are
 //! dropped by the broad phase (an exact comparison after a monotone
 //! rounding), the others are certified by [`super::gap`]: floats propose
 //! an axis, and the gap along it is bounded below rigorously, about the
@@ -37,20 +31,12 @@
 //! examined left to right from `0`, are free of every contact.
 //!
 //! # The search
-//! Intervals are examined left to right from `[0, 1]`: one that is
-//! certified is done; one that is not is halved, and once it is no wider
-//! than the tolerance its right end is checked exactly, and a contact
-//! there ends the check with the bracket `(t_safe, t_contact)`. When
-//! halving keeps ending just before a contact (an interval a thousand
-//! times narrower than the tolerance, its end free but not certified: the
-//! body within the rounding margin of an obstacle it is about to enter),
-//! the times `a + tol/128`, …, `a + tol` are checked, and a contact at any
-//! of them is a valid bracket, since `[0, a]` is certified. A thin
-//! wall is not stepped over: an interval sweeping through it is never
-//! certified. An interval narrower than [`MIN_WIDTH`] that is neither
-//! certified nor colliding at its end (a grazing motion) is
-//! [`MotionError::Undecided`]; past the budget of intervals,
-//! [`MotionError::BudgetExhausted`]. Neither is ever a guess.
+//! The interval search of `query::interval_search` over `[0, 1]` (left to
+//! right, halving, probes ahead when stuck, the budget, undecided below
+//! [`MIN_WIDTH`](crate::query::MIN_WIDTH); its soundness argument is
+//! there), with the bound above certifying an interval
+//! (`SceneChecker::certified_apart`) and the exact state check
+//! (`scene::state`) checking a time.
 
 use super::checker::{cached, shifted, SceneChecker, Scratch};
 use std::sync::atomic::Ordering;
@@ -59,9 +45,10 @@ use glam::DVec3;
 
 use super::gap::apart_by_more_than;
 use crate::kernel::rotation::Pose;
-use crate::query::error::QueryError;
-use crate::query::motion::{Motion, MotionCheck, MotionError, MIN_TOLERANCE, MIN_WIDTH};
-use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
+use crate::query::checker::{Checker, MotionCheck};
+use crate::query::error::{MotionError, QueryError};
+use crate::query::interval_search::{first_contact, Sweep, SweepMargin};
+use crate::query::motion::Motion;
 use crate::solid::aabb::Aabb;
 
 impl SceneChecker {
@@ -188,20 +175,21 @@ impl SceneChecker {
     ///
     /// # Errors
     /// [`MotionError::Tolerance`] for a tolerance outside
-    /// `[MIN_TOLERANCE, 1)`; [`MotionError::Query`] when a posed coordinate
-    /// is not finite; [`MotionError::Undecided`] for a grazing motion;
+    /// `[MIN_TOLERANCE, 1)` ([`crate::query::MIN_TOLERANCE`]);
+    /// [`MotionError::Query`] when a posed coordinate is not finite;
+    /// [`MotionError::Undecided`] for a grazing motion;
     /// [`MotionError::BudgetExhausted`] past the budget.
     pub fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError> {
-        if !(MIN_TOLERANCE..1.0).contains(&tolerance) {
-            return Err(MotionError::Tolerance(tolerance));
-        }
+        MotionError::check_tolerance(tolerance)?;
         let mut s = self.scratch();
         let out = self.search(from, to, tolerance, &mut s);
         self.give_back(s);
         out
     }
 
-    pub(super) fn search(
+    /// [`SceneChecker::check`] with a tolerance already checked, on the
+    /// buffers `s`.
+    fn search(
         &self,
         from: Pose,
         to: Pose,
@@ -216,101 +204,30 @@ impl SceneChecker {
             });
         }
         let motion = Motion::new(from, to);
-        let r = self.body.reach;
-        // The float angle is within ANGLE_ROUNDING of the exact one, and
-        // every posed and swept point within `margin` of the exact motion's
-        // (`query::rounding`): a few ulps of the coordinates.
-        let angle = (motion.angle() + ANGLE_ROUNDING) * (1.0 + 1e-12);
-        let margin = pose_rounding_bound(r, motion.translation_extent());
         let mut intervals = std::mem::take(&mut s.intervals);
-        intervals.clear();
-        intervals.push((0.0, 1.0));
-        let mut steps = 0u64;
-        let mut known_free_end = f64::NAN;
-        let mut probed_from = f64::NAN;
-        let out = loop {
-            let Some((a, b)) = intervals.pop() else {
-                break Ok(MotionCheck::Free);
-            };
-            if steps == self.budget {
-                break Err(MotionError::BudgetExhausted {
-                    t_safe: a,
-                    steps: self.budget,
-                });
-            }
-            steps += 1;
-            let w = b - a;
-            let mid = a + w / 2.0;
-            // The sagitta r (1 - cos(δ/2)) = 2 r sin²(δ/4), rounded up.
-            let quarter = (angle * w / 4.0).min(std::f64::consts::FRAC_PI_2);
-            let sagitta = 2.0 * r * quarter.sin().powi(2) * (1.0 + 1e-12);
-            let reach = sagitta + margin;
-            if self.certified_apart(motion.at(a), motion.at(b), reach, s) {
-                continue;
-            }
-            if w <= tolerance && b != known_free_end {
-                match self.collides_with(motion.at(b), s) {
-                    Ok(true) => {
-                        break Ok(MotionCheck::Collides {
-                            t_safe: Some(a),
-                            t_contact: b,
-                        })
-                    }
-                    Ok(false) => known_free_end = b,
-                    Err(e) => break Err(e.into()),
-                }
-            }
-            // Halving keeps ending just before a contact (the body within
-            // the rounding margin of an obstacle it is about to enter):
-            // `[0, a]` is certified, so a contact at any later time within
-            // the tolerance is a valid bracket. Probed once per `a`.
-            if w * 1024.0 < tolerance && a != probed_from {
-                probed_from = a;
-                match self.probe_after(&motion, a, tolerance, s) {
-                    Ok(Some(t)) => {
-                        break Ok(MotionCheck::Collides {
-                            t_safe: Some(a),
-                            t_contact: t,
-                        })
-                    }
-                    Ok(None) => {}
-                    Err(e) => break Err(e.into()),
-                }
-            }
-            if w < MIN_WIDTH {
-                break Err(MotionError::Undecided { t_safe: a, t: b });
-            }
-            intervals.push((mid, b));
-            intervals.push((a, mid));
+        let mut steps_left = self.budget;
+        let mut sweep = BodySweep {
+            checker: self,
+            margin: SweepMargin::new(motion.angle(), motion.translation_extent(), self.body.reach),
+            motion,
+            s: &mut *s,
         };
+        let found = first_contact(&mut sweep, 1.0, tolerance, &mut steps_left, &mut intervals);
         s.intervals = intervals;
-        self.steps.fetch_add(steps, Ordering::Relaxed);
-        out
-    }
-
-    /// The first of `a + tolerance / 2^k` (`k` = 7 down to 0, at most 1) at
-    /// which the body collides, if any.
-    pub(super) fn probe_after(
-        &self,
-        motion: &Motion,
-        a: f64,
-        tolerance: f64,
-        s: &mut Scratch,
-    ) -> Result<Option<f64>, QueryError> {
-        for k in (0..8).rev() {
-            let t = (a + tolerance / f64::from(1u32 << k)).min(1.0);
-            if t - a > tolerance {
-                continue; // rounded past the tolerance
-            }
-            if self.collides_with(motion.at(t), s)? {
-                return Ok(Some(t));
-            }
+        self.steps
+            .fetch_add(self.budget - steps_left, Ordering::Relaxed);
+        match found {
+            Ok(None) => Ok(MotionCheck::Free),
+            Ok(Some((t_safe, t_contact))) => Ok(MotionCheck::Collides {
+                t_safe: Some(t_safe),
+                t_contact,
+            }),
+            Err(stop) => Err(MotionError::from_stop(stop, self.budget)),
         }
-        Ok(None)
     }
 
-    /// [`SceneChecker::check`] for many motions `(from, to)`, in parallel,
-    /// in order.
+    /// [`Checker::check_many`] (here without the trait in scope): the
+    /// motions `(from, to)` in parallel (rayon), in order.
     ///
     /// # Errors
     /// The first error of [`SceneChecker::check`].
@@ -319,10 +236,30 @@ impl SceneChecker {
         motions: &[(Pose, Pose)],
         tolerance: f64,
     ) -> Result<Vec<MotionCheck>, MotionError> {
-        use rayon::prelude::*;
-        motions
-            .par_iter()
-            .map(|&(a, b)| self.check(a, b, tolerance))
-            .collect()
+        Checker::check_many(self, motions, tolerance)
+    }
+}
+
+/// The whole body's search with a check's buffers: what the interval
+/// search runs (`query::interval_search`).
+struct BodySweep<'a> {
+    checker: &'a SceneChecker,
+    motion: Motion,
+    /// The body's margin over the motion.
+    margin: SweepMargin,
+    s: &'a mut Scratch,
+}
+
+impl Sweep for BodySweep<'_> {
+    type Error = QueryError;
+
+    fn certified_free(&mut self, a: f64, b: f64) -> Result<bool, QueryError> {
+        let reach = self.margin.inflation(b - a);
+        let (from, to) = (self.motion.at(a), self.motion.at(b));
+        Ok(self.checker.certified_apart(from, to, reach, self.s))
+    }
+
+    fn collides_at_time(&mut self, t: f64) -> Result<bool, QueryError> {
+        self.checker.collides_with(self.motion.at(t), self.s)
     }
 }

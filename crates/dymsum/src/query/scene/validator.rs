@@ -6,13 +6,37 @@
 use super::checker::SceneChecker;
 use crate::body::{Body, MeshBody};
 use crate::kernel::rotation::Pose;
-use crate::query::error::QueryError;
-use crate::query::motion::{MotionCheck, MotionChecker, MotionError};
+use crate::query::checker::{Checker, MotionCheck};
+use crate::query::error::{MotionError, QueryError};
+use crate::query::motion::MotionChecker;
 
 /// A planner's state and motion validator for a body against obstacles of
 /// either kind: the convex checker when every one is convex pieces, else
 /// the triangle checker with the convex pieces as solid components (the
 /// same contact semantics).
+///
+/// It answers every [`Checker`] method through the checker it holds
+/// ([`Validator::checker`]), with or without the trait in scope (it
+/// dereferences to `dyn Checker`):
+///
+/// ```
+/// use dymsum::query::{Body, ConvexUnion, MotionCheck, Validator};
+/// use dymsum::{DVec3, Polytope, Pose, Rotation};
+/// let cuboid = |lo: [f64; 3], hi: [f64; 3]| {
+///     let c: Vec<[f64; 3]> = (0..8)
+///         .map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+///         .collect();
+///     Body::from(ConvexUnion::from(Polytope::from_points(&c).unwrap()))
+/// };
+/// let wall = cuboid([2.0, -1.0, -1.0], [3.0, 1.0, 1.0]);
+/// let validator = Validator::new(&cuboid([-0.5; 3], [0.5; 3]), &[wall])?.with_budget(100);
+/// assert!(matches!(validator, Validator::Convex(_))); // every body convex
+/// let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
+/// assert_eq!(validator.collides_many(&[at(0.0), at(1.5)])?, [false, true]);
+/// assert_eq!(validator.check(at(0.0), at(-3.0), 1e-6)?, MotionCheck::Free);
+/// assert_eq!(validator.budget(), 100);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug)]
 #[allow(clippy::large_enum_variant)] // one per checker, built once
 pub enum Validator {
@@ -44,88 +68,56 @@ impl Validator {
         )?))
     }
 
-    /// The same validator with a motion budget of `steps` intervals.
+    /// The checker that answers: the convex one or the triangle one.
+    pub fn checker(&self) -> &(dyn Checker + 'static) {
+        match self {
+            Validator::Convex(c) => c,
+            Validator::Mesh(c) => c,
+        }
+    }
+
+    /// The same validator with a motion budget of `steps` intervals
+    /// ([`Checker::with_budget`]).
     pub fn with_budget(self, steps: u64) -> Validator {
         match self {
             Validator::Convex(c) => Validator::Convex(c.with_budget(steps)),
             Validator::Mesh(c) => Validator::Mesh(c.with_budget(steps)),
         }
     }
+}
 
-    /// The motion budget, in intervals.
-    pub fn budget(&self) -> u64 {
-        match self {
-            Validator::Convex(c) => c.budget(),
-            Validator::Mesh(c) => c.budget(),
-        }
+/// The held checker's methods, callable on a validator without the trait
+/// in scope.
+impl std::ops::Deref for Validator {
+    type Target = dyn Checker;
+
+    fn deref(&self) -> &Self::Target {
+        self.checker()
+    }
+}
+
+impl Checker for Validator {
+    fn collides_at(&self, pose: Pose) -> Result<bool, QueryError> {
+        self.checker().collides_at(pose)
     }
 
-    /// The intervals examined by all motion checks so far.
-    pub fn steps(&self) -> u64 {
-        match self {
-            Validator::Convex(c) => c.steps(),
-            Validator::Mesh(c) => c.steps(),
-        }
+    fn distance_at(&self, pose: Pose) -> Result<f64, QueryError> {
+        self.checker().distance_at(pose)
     }
 
-    /// Whether the body at `pose` touches or overlaps an obstacle (exact).
-    ///
-    /// # Errors
-    /// Those of [`MotionChecker::collides_at`] and
-    /// [`SceneChecker::collides_at`].
-    pub fn collides_at(&self, pose: Pose) -> Result<bool, QueryError> {
-        match self {
-            Validator::Convex(c) => c.collides_at(pose),
-            Validator::Mesh(c) => c.collides_at(pose),
-        }
+    fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError> {
+        self.checker().check(from, to, tolerance)
     }
 
-    /// The clearance of the body at `pose` from the obstacles (`0` in
-    /// contact): [`MotionChecker::distance_at`] (exact) or
-    /// [`SceneChecker::distance_at`] (certified from below, within
-    /// rounding).
-    ///
-    /// # Errors
-    /// Those of [`Validator::collides_at`].
-    pub fn distance_at(&self, pose: Pose) -> Result<f64, QueryError> {
-        match self {
-            Validator::Convex(c) => c.distance_at(pose),
-            Validator::Mesh(c) => c.distance_at(pose),
-        }
+    fn budget(&self) -> u64 {
+        self.checker().budget()
     }
 
-    /// [`Validator::collides_at`] for many poses, in parallel, in order.
-    ///
-    /// # Errors
-    /// The first error of [`Validator::collides_at`].
-    pub fn collides_many(&self, poses: &[Pose]) -> Result<Vec<bool>, QueryError> {
-        use rayon::prelude::*;
-        poses.par_iter().map(|&p| self.collides_at(p)).collect()
+    fn with_budget(self, steps: u64) -> Validator {
+        Validator::with_budget(self, steps)
     }
 
-    /// Checks the straight motion from `from` to `to`.
-    ///
-    /// # Errors
-    /// Those of [`MotionChecker::check`] and [`SceneChecker::check`].
-    pub fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError> {
-        match self {
-            Validator::Convex(c) => c.check(from, to, tolerance),
-            Validator::Mesh(c) => c.check(from, to, tolerance),
-        }
-    }
-
-    /// [`Validator::check`] for many motions, in parallel, in order.
-    ///
-    /// # Errors
-    /// The first error of [`Validator::check`].
-    pub fn check_many(
-        &self,
-        motions: &[(Pose, Pose)],
-        tolerance: f64,
-    ) -> Result<Vec<MotionCheck>, MotionError> {
-        match self {
-            Validator::Convex(c) => c.check_many(motions, tolerance),
-            Validator::Mesh(c) => c.check_many(motions, tolerance),
-        }
+    fn steps(&self) -> u64 {
+        self.checker().steps()
     }
 }

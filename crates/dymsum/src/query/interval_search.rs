@@ -1,0 +1,387 @@
+//! The one interval search both motion checks run
+//! ([`crate::query::MotionChecker`] once per piece pair,
+//! [`crate::query::SceneChecker`] once for the whole body), and the one
+//! margin both add to what they certify over an interval.
+//!
+//! A checker plugs in two answers ([`Sweep`]): whether an interval `[a, b]`
+//! of the motion is *certified free* (no contact at any `t` in it: `false`
+//! means "not proved", never "collides"), and whether the body collides
+//! at one time `t` (exact, at the float pose
+//! [`Motion::at`](crate::query::Motion::at)). How each
+//! checker certifies an interval, and why that is sound, is in its own
+//! module docs (`query::motion`: a swept convex piece against a convex
+//! obstacle; `query::scene::sweep`: swept triangles against triangles).
+//!
+//! # The margin
+//! Over an interval `[a, b]` the rotation turns by `δ = Θ (b − a)` about
+//! one fixed axis of the body (`Θ` the whole motion's angle, at most `π`
+//! on the shorter arc: slerp turns at a constant rate), so a body point
+//! `p` with `|p| ≤ r` (`r` the reach about the body's origin) moves on a
+//! circle arc of angle `δ ≤ π` and radius at most `r`, whose points lie
+//! within the sagitta `s = r (1 − cos(δ/2)) = 2 r sin²(δ/4)` of the chord
+//! between its ends `R(a) p` and `R(b) p`; the translation moves on the
+//! segment `[T(a), T(b)]`. So at every `t` in `[a, b]` the point lies
+//! within `s` of `conv(R(a) p, R(b) p) ⊕ [T(a), T(b)]`, and a set built
+//! from the end poses only (a swept hull) grown by `s` holds the body over
+//! the whole interval.
+//!
+//! The end poses are floats ([`Motion::at`](crate::query::Motion::at)): every point the searches
+//! build from them is within `e = 2⁻⁴³ r + 6u (M + D)` of the exact
+//! motion's (`u = 2⁻⁵³`, `M` the largest end translation coordinate, `D`
+//! the largest of their difference; derived in `query::rounding`: the
+//! rotation's error is relative to the reach, the translation's a few ulps
+//! of the coordinates). `δ` is rounded up from the float angle plus its
+//! error bound (`2⁻⁴⁶`, `query::rounding`), and `s` up (`sin` on
+//! `[0, π/4]`, clamped there: the exact `δ/4` never exceeds it).
+//! [`SweepMargin::inflation`] is `s + e`: a checker certifies `[a, b]`
+//! only when its swept set is more than that apart from every obstacle.
+//!
+//! # The search
+//! Intervals are examined left to right from `[0, limit]` (`limit` is `1`,
+//! or for one piece pair of the convex checker the earliest contact that
+//! another pair already bracketed): a stack whose right half is pushed
+//! first, so the intervals are examined in the order of their left ends,
+//! and each one examined starts where the certified ones before it end.
+//! Hence the invariant: **when `[a, b]` is examined, `[0, a]` is
+//! certified free**. Each examined interval:
+//!
+//! 1. takes one step of the budget; with none left the search stops with
+//!    `[0, a]` certified
+//!    ([`MotionError::BudgetExhausted`](crate::query::MotionError::BudgetExhausted));
+//! 2. is done when certified free;
+//! 3. once no wider than the tolerance, has its right end `b` checked
+//!    exactly: a contact there is the bracket `(a, b)`;
+//! 4. once [`STUCK`] times narrower than the tolerance (halving keeps
+//!    ending just before a contact that no halving point hits: the body
+//!    within the margin of an obstacle it is about to enter), has the
+//!    times `a + tol/128`, `a + tol/64`, …, `a + tol` checked, nearest
+//!    first, each clamped to `limit` (and one ulp back when the sum rounds
+//!    past the tolerance): since `[0, a]` is certified, a contact at any
+//!    of them is a valid bracket, the nearest the tightest;
+//! 5. once no wider than [`MIN_WIDTH`] (the body within rounding of an
+//!    obstacle, grazing), is undecided
+//!    ([`MotionError::Undecided`](crate::query::MotionError::Undecided))
+//!    with `[0, a]` certified;
+//! 6. else is halved.
+//!
+//! When the stack empties, `[0, limit]` is certified. Every answer is
+//! therefore either certified (free up to `limit`, or free up to `a` and
+//! colliding exactly at a time at most the tolerance after it) or says
+//! how far it is certified: never a guess. A thin wall is not stepped
+//! over: an interval sweeping through it is never certified, and halving
+//! goes on until a checked time lies inside it.
+//!
+//! Each right end is checked once and each left end probed once (the
+//! exact answers at the same time do not change: only work is saved). The
+//! budget counts examined intervals, so the same check gives the same
+//! answer on any machine and under any load.
+
+use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
+
+/// The default work budget of a motion check
+/// ([`crate::query::Checker::budget`]): the most intervals the search
+/// examines (over all piece pairs of a [`crate::query::MotionChecker`])
+/// before it gives up with
+/// [`MotionError::BudgetExhausted`](crate::query::MotionError::BudgetExhausted).
+/// Each costs at
+/// most a few near-extreme searches and one exact query, so the default
+/// caps a check at roughly 25–100 ms on this project's 2-core machines;
+/// the motion tests and benchmarks need at most a few hundred
+/// (docs/BENCHMARKS.md).
+pub const DEFAULT_BUDGET: u64 = 4096;
+
+/// The narrowest interval (in `t`) the search halves to before declaring
+/// a grazing motion undecided
+/// ([`MotionError::Undecided`](crate::query::MotionError::Undecided)).
+pub const MIN_WIDTH: f64 = 1.0 / (1u64 << 48) as f64;
+
+/// The smallest tolerance a check accepts: the search halves intervals no
+/// further than [`MIN_WIDTH`], and brackets a contact it keeps ending just
+/// before only once an interval is `1/1024` of the tolerance wide, so a
+/// tolerance below `1024 · MIN_WIDTH = 2⁻³⁸ ≈ 3.6e-12` could never be met.
+pub const MIN_TOLERANCE: f64 = STUCK * MIN_WIDTH;
+
+/// How many times narrower than the tolerance an interval is when the
+/// search probes ahead of it (module docs, step 4).
+const STUCK: f64 = 1024.0;
+
+/// How many times the search probes ahead: `a + tol/2^k` for `k` from
+/// `PROBES − 1` down to `0`.
+const PROBES: u32 = 8;
+
+/// What a checker plugs into the search (module docs).
+pub(crate) trait Sweep {
+    /// Why an answer could not be given (an exact query failed).
+    type Error;
+
+    /// Whether no contact happens at any `t` in `[a, b]`, certified (on
+    /// the exact motion and at the float poses); `false` means "not
+    /// proved".
+    fn certified_free(&mut self, a: f64, b: f64) -> Result<bool, Self::Error>;
+
+    /// Whether the body at the float pose of time `t` touches or overlaps
+    /// an obstacle (exact).
+    fn collides_at_time(&mut self, t: f64) -> Result<bool, Self::Error>;
+}
+
+/// Why a search stopped without an answer.
+#[derive(Debug, PartialEq)]
+pub(crate) enum Stop<E> {
+    /// The budget ran out; `[0, t_safe]` is certified.
+    Budget {
+        /// The last time certified free.
+        t_safe: f64,
+    },
+    /// An interval no wider than [`MIN_WIDTH`] from `t_safe` to `t` is
+    /// neither certified nor bracketed (a grazing motion); `[0, t_safe]`
+    /// is certified.
+    Undecided {
+        /// The last time certified free.
+        t_safe: f64,
+        /// The end of the undecided interval.
+        t: f64,
+    },
+    /// The sweep failed.
+    Failed(E),
+}
+
+impl<E> From<E> for Stop<E> {
+    fn from(e: E) -> Stop<E> {
+        Stop::Failed(e)
+    }
+}
+
+/// The first contact bracket `(t_safe, t_contact)` of `sweep` in
+/// `[0, limit]`, or `None` when all of it is certified free (module docs,
+/// "The search"). Each examined interval takes one step of `steps_left`;
+/// `stack` is a buffer.
+///
+/// # Errors
+/// [`Stop::Budget`] with none left, [`Stop::Undecided`] for a grazing
+/// motion, and the sweep's errors.
+pub(crate) fn first_contact<S: Sweep>(
+    sweep: &mut S,
+    limit: f64,
+    tolerance: f64,
+    steps_left: &mut u64,
+    stack: &mut Vec<(f64, f64)>,
+) -> Result<Option<(f64, f64)>, Stop<S::Error>> {
+    stack.clear();
+    stack.push((0.0, limit));
+    let mut known_free_end = f64::NAN;
+    let mut probed_from = f64::NAN;
+    while let Some((a, b)) = stack.pop() {
+        if *steps_left == 0 {
+            return Err(Stop::Budget { t_safe: a });
+        }
+        *steps_left -= 1;
+        if sweep.certified_free(a, b)? {
+            continue;
+        }
+        let width = b - a;
+        if width <= tolerance && b != known_free_end {
+            if sweep.collides_at_time(b)? {
+                return Ok(Some((a, b)));
+            }
+            known_free_end = b;
+        }
+        if width <= tolerance / STUCK && a != probed_from {
+            probed_from = a;
+            if let Some(c) = contact_ahead(sweep, a, limit, tolerance)? {
+                return Ok(Some((a, c)));
+            }
+        }
+        if width <= MIN_WIDTH {
+            return Err(Stop::Undecided { t_safe: a, t: b });
+        }
+        let m = 0.5 * (a + b);
+        stack.push((m, b));
+        stack.push((a, m));
+    }
+    Ok(None)
+}
+
+/// The first of `a + tolerance / 2^k` (`k` from `PROBES − 1` down to `0`,
+/// each at most `limit`, one ulp back when rounded past the tolerance) at
+/// which the body collides, if any (module docs, step 4).
+fn contact_ahead<S: Sweep>(
+    sweep: &mut S,
+    a: f64,
+    limit: f64,
+    tolerance: f64,
+) -> Result<Option<f64>, S::Error> {
+    let mut last = a;
+    for k in (0..PROBES).rev() {
+        let mut t = (a + tolerance / f64::from(1u32 << k)).min(limit);
+        if t - a > tolerance {
+            // Rounded past the tolerance: one ulp back (`t > a ≥ 0`).
+            t = f64::from_bits(t.to_bits() - 1);
+        }
+        if t > last {
+            if sweep.collides_at_time(t)? {
+                return Ok(Some(t));
+            }
+            last = t;
+        }
+    }
+    Ok(None)
+}
+
+/// How far a body of a given reach strays over an interval of a motion
+/// beyond what its end poses show (module docs, "The margin").
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SweepMargin {
+    /// The motion's float angle plus its rounding bound.
+    angle: f64,
+    /// The body's reach about its origin (rounded up).
+    reach: f64,
+    /// `e`: how far a float-posed point is from the exact motion's.
+    pose_error: f64,
+}
+
+impl SweepMargin {
+    /// The margin of a body of reach `reach` (rounded up) over a motion
+    /// of float angle `angle` ([`Motion::angle`]) and translation extent
+    /// `extent` (`Motion::translation_extent`, `(M, D)`).
+    ///
+    /// [`Motion::angle`]: crate::query::Motion::angle
+    pub(crate) fn new(angle: f64, extent: (f64, f64), reach: f64) -> SweepMargin {
+        SweepMargin {
+            angle: angle + ANGLE_ROUNDING,
+            reach,
+            pose_error: pose_rounding_bound(reach, extent),
+        }
+    }
+
+    /// `δ`, the angle the body turns over an interval of width `width`,
+    /// rounded up.
+    pub(crate) fn turn(&self, width: f64) -> f64 {
+        (self.angle * width) * (1.0 + 1e-12)
+    }
+
+    /// `e`, the distance between a float-posed point and the exact
+    /// motion's (`query::rounding`).
+    pub(crate) fn pose_error(&self) -> f64 {
+        self.pose_error
+    }
+
+    /// `s + e`: the sagitta of the turn over an interval of width `width`
+    /// and the poses' rounding, rounded up.
+    pub(crate) fn inflation(&self, width: f64) -> f64 {
+        let q = (self.turn(width) / 4.0)
+            .min(std::f64::consts::FRAC_PI_4)
+            .sin();
+        let sagitta = 2.0 * self.reach * q * q * (1.0 + 1e-12);
+        sagitta + self.pose_error
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sweep over `[0, 1]` that collides on `[hit, 1]` and certifies an
+    /// interval when it ends at least `gap` before `hit`; counts its
+    /// exact checks.
+    struct Wall {
+        hit: f64,
+        gap: f64,
+        checks: Vec<f64>,
+    }
+
+    impl Sweep for Wall {
+        type Error = ();
+
+        fn certified_free(&mut self, _a: f64, b: f64) -> Result<bool, ()> {
+            Ok(b + self.gap <= self.hit)
+        }
+
+        fn collides_at_time(&mut self, t: f64) -> Result<bool, ()> {
+            self.checks.push(t);
+            Ok(t >= self.hit)
+        }
+    }
+
+    /// A search's answer: a bracket, `None` (free), or why it stopped.
+    type Found = Result<Option<(f64, f64)>, Stop<()>>;
+
+    /// The search over `[0, 1]`, and the steps it took.
+    fn run(wall: &mut Wall, tol: f64, budget: u64) -> (Found, u64) {
+        let mut left = budget;
+        let out = first_contact(wall, 1.0, tol, &mut left, &mut Vec::new());
+        (out, budget - left)
+    }
+
+    #[test]
+    fn a_contact_is_bracketed_within_the_tolerance() {
+        let mut wall = Wall {
+            hit: 0.3,
+            gap: 0.0,
+            checks: Vec::new(),
+        };
+        let (out, _) = run(&mut wall, 1e-6, DEFAULT_BUDGET);
+        let (a, c) = out.unwrap().unwrap();
+        assert!(a < 0.3 && c >= 0.3 && c - a <= 1e-6, "{a} {c}");
+    }
+
+    #[test]
+    fn stuck_before_a_contact_the_probes_bracket_it() {
+        // Nothing within 1e-7 of the wall is certified: halving alone would
+        // end at MIN_WIDTH; the probes reach past the margin.
+        let mut wall = Wall {
+            hit: 0.3,
+            gap: 1e-7,
+            checks: Vec::new(),
+        };
+        let (out, _) = run(&mut wall, 1e-6, DEFAULT_BUDGET);
+        let (a, c) = out.unwrap().unwrap();
+        assert!(
+            a + 1e-7 <= 0.3 + 1e-12 && c >= 0.3 && c - a <= 1e-6,
+            "{a} {c}"
+        );
+        // Nearest first: the first probe past the wall is taken.
+        assert!(c - a <= 2.0 * (0.3 - a).max(1e-6 / 128.0), "{a} {c}");
+        // No time is checked twice.
+        let mut seen = wall.checks.clone();
+        seen.sort_by(f64::total_cmp);
+        seen.dedup();
+        assert_eq!(seen.len(), wall.checks.len());
+    }
+
+    #[test]
+    fn a_margin_wider_than_the_tolerance_is_undecided() {
+        let mut wall = Wall {
+            hit: 0.3,
+            gap: 1e-3,
+            checks: Vec::new(),
+        };
+        let (out, _) = run(&mut wall, 1e-6, DEFAULT_BUDGET);
+        let Err(Stop::Undecided { t_safe, t }) = out else {
+            panic!("{out:?}");
+        };
+        assert!(t_safe + 1e-3 <= 0.3 && t - t_safe <= MIN_WIDTH);
+    }
+
+    #[test]
+    fn the_budget_counts_intervals_and_keeps_what_is_certified() {
+        let mut wall = Wall {
+            hit: 0.3,
+            gap: 0.0,
+            checks: Vec::new(),
+        };
+        let (out, used) = run(&mut wall, 1e-6, 5);
+        let Err(Stop::Budget { t_safe }) = out else {
+            panic!("{out:?}");
+        };
+        assert_eq!(used, 5);
+        assert!(t_safe < 0.3);
+        // Free everywhere: one interval.
+        let mut free = Wall {
+            hit: 2.0,
+            gap: 0.0,
+            checks: Vec::new(),
+        };
+        let (out, used) = run(&mut free, 1e-6, 5);
+        assert!(matches!(out, Ok(None)) && used == 1);
+    }
+}
