@@ -15,6 +15,7 @@
 
 pub mod contact;
 pub mod motion;
+pub mod parts;
 pub mod scenes;
 
 use std::collections::BTreeMap;

@@ -17,5 +17,6 @@ pub(crate) mod dd;
 pub(crate) mod exact;
 pub mod predicates;
 pub mod rotation;
+pub(crate) mod separation;
 
 pub use predicates::Sign;

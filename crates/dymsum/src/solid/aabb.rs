@@ -1,8 +1,8 @@
 //! A small bounding-box tree for [`super::check_solid_mesh`] (the pairs of
 //! triangles whose closed boxes meet) and for the scenes' broad phase
 //! ([`crate::query`]'s mesh bodies: a body's tree is built once in its own
-//! frame and its bounds refitted to the posed boxes, [`AabbTree::refit`];
-//! two trees are walked against each other, [`AabbTree::for_each_pair`]).
+//! frame and its boxes carried to a pose where a walk reaches them; two
+//! trees are walked against each other, [`AabbTree::for_each_pair`]).
 //!
 //! Boxes are the exact `f64` minimum and maximum of the corners (no
 //! rounding, no padding is needed), and two boxes meet when they overlap or
@@ -286,22 +286,6 @@ impl AabbTree {
         id
     }
 
-    /// The bounds of every node for new item boxes (item `i`'s box
-    /// `boxes[i]`, e.g. a body's triangles at a pose): children are built
-    /// after their parent, so one pass from the last node up suffices.
-    pub fn refit(&self, boxes: &[Aabb], bounds: &mut Vec<Aabb>) {
-        bounds.clear();
-        bounds.resize(self.nodes.len(), Aabb::EMPTY);
-        for n in (0..self.nodes.len()).rev() {
-            bounds[n] = match self.nodes[n] {
-                Node::Leaf { start, end } => self.items[start as usize..end as usize]
-                    .iter()
-                    .fold(Aabb::EMPTY, |b, &i| b.join(&boxes[i as usize])),
-                Node::Inner { left, right } => bounds[left as usize].join(&bounds[right as usize]),
-            };
-        }
-    }
-
     /// The bounds of the boxes the tree was built from.
     pub fn bounds(&self) -> &[Aabb] {
         &self.bounds
@@ -375,15 +359,16 @@ impl AabbTree {
     /// Walks this tree against `other`, calling `f(i, j)` for every pair of
     /// items that may come within reach of each other until `f` returns
     /// `true`; returns whether it did. This tree's tests are functions:
-    /// `node_meets(n, b)` and `item_meets(i, b)` say whether node `n` or
-    /// item `i` may come within reach of the other tree's box `b` (`false`
+    /// `node_meets(n, k, b)` says whether node `n` may come within reach
+    /// of the other tree's node `k`, whose box is `b`, and `item_meets(i,
+    /// b)` whether item `i` may come within reach of box `b` (`false`
     /// must prove it does not; e.g. the body-frame bounds carried to a
     /// pose, computed only for the nodes visited), `node_size(n)` which
     /// tree to descend first; `other`'s boxes and bounds are given.
     #[allow(clippy::too_many_arguments)]
     pub fn for_each_pair(
         &self,
-        node_meets: impl Fn(usize, &Aabb) -> bool,
+        node_meets: impl Fn(usize, usize, &Aabb) -> bool,
         node_size: impl Fn(usize) -> f64,
         item_meets: impl Fn(usize, &Aabb) -> bool,
         other: &AabbTree,
@@ -399,7 +384,7 @@ impl AabbTree {
         stack.push((0, 0));
         while let Some((a, b)) = stack.pop() {
             let bb = &other_bounds[b as usize];
-            if !node_meets(a as usize, bb) {
+            if !node_meets(a as usize, b as usize, bb) {
                 continue;
             }
             match (&self.nodes[a as usize], &other.nodes[b as usize]) {
@@ -500,11 +485,25 @@ impl AabbTree {
     }
 
     /// [`AabbTree::for_each_meeting`] with the item boxes `boxes` and node
-    /// bounds `bounds` of a pose ([`AabbTree::refit`]).
+    /// bounds `bounds` (boxes holding the items').
     pub fn for_each_meeting_in(
         &self,
         boxes: &[Aabb],
         bounds: &[Aabb],
+        query: &Aabb,
+        f: impl FnMut(usize),
+    ) {
+        self.for_each_meeting_with(|n| bounds[n], |i| boxes[i], query, f);
+    }
+
+    /// [`AabbTree::for_each_meeting`] with node `n`'s box `node_box(n)` and
+    /// item `i`'s `item_box(i)` (e.g. computed at a pose only for what the
+    /// walk reaches; any boxes holding the items serve, larger ones only
+    /// call `f` more often).
+    pub fn for_each_meeting_with(
+        &self,
+        node_box: impl Fn(usize) -> Aabb,
+        item_box: impl Fn(usize) -> Aabb,
         query: &Aabb,
         mut f: impl FnMut(usize),
     ) {
@@ -513,13 +512,13 @@ impl AabbTree {
         }
         let mut stack = vec![0u32];
         while let Some(n) = stack.pop() {
-            if !bounds[n as usize].meets(query) {
+            if !node_box(n as usize).meets(query) {
                 continue;
             }
             match self.nodes[n as usize] {
                 Node::Leaf { start, end } => {
                     for &i in &self.items[start as usize..end as usize] {
-                        if boxes[i as usize].meets(query) {
+                        if item_box(i as usize).meets(query) {
                             f(i as usize);
                         }
                     }

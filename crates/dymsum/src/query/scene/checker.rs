@@ -24,7 +24,6 @@ use std::sync::Mutex;
 
 use glam::DVec3;
 
-use crate::body::mesh::triangle_boxes_into;
 use crate::body::MeshBody;
 use crate::kernel::rotation::Pose;
 use crate::query::checker::{Checker, MotionCheck};
@@ -101,11 +100,9 @@ pub(super) struct Scratch {
     pub(super) at_b: Lazy,
     /// The body's node bounds at the pose, or swept over an interval.
     pub(super) node_cache: NodeCache,
-    pub(super) posed: Vec<DVec3>,
-    /// The body's component boxes at a pose.
-    pub(super) component_boxes: Vec<Aabb>,
-    pub(super) boxes: Vec<Aabb>,
-    pub(super) bounds: Vec<Aabb>,
+    /// The scene's node bounds carried back into the body's frame at the
+    /// pose (state checks).
+    pub(super) scene_cache: NodeCache,
     pub(super) stack: Vec<(u32, u32)>,
     pub(super) parity: Vec<u8>,
     pub(super) intervals: Vec<(f64, f64)>,
@@ -266,31 +263,15 @@ impl SceneChecker {
         if s.node_cache.len() != n || s.at.epoch == 1 {
             s.node_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); n];
         }
+        let k = self.scene.tree.bounds().len();
+        if s.scene_cache.len() != k || s.at.epoch == 1 {
+            s.scene_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); k];
+        }
     }
 
     /// The rounding bound of posing the body at `pose` (module docs).
     pub(super) fn pad(&self, pose: &Pose) -> f64 {
         64.0 * f64::EPSILON * (self.body.reach + pose.translation.abs().max_element())
-    }
-
-    /// The posed vertices, triangle boxes and tree bounds of the body.
-    pub(super) fn pose_body(&self, pose: Pose, s: &mut Scratch) -> Result<(), QueryError> {
-        self.pose_into(pose, &mut s.posed)?;
-        triangle_boxes_into(&s.posed, &self.body.triangles, &mut s.boxes);
-        self.body.tree.refit(&s.boxes, &mut s.bounds);
-        Ok(())
-    }
-
-    /// The body's vertices at `pose`.
-    pub(super) fn pose_into(&self, pose: Pose, out: &mut Vec<DVec3>) -> Result<(), QueryError> {
-        out.clear();
-        out.extend(self.body.vertices.iter().map(|&p| pose.apply(p)));
-        match out.iter().position(|p| !p.is_finite()) {
-            Some(v) => Err(QueryError::OutOfRange(format!(
-                "the body's vertex {v} at the pose is not finite"
-            ))),
-            None => Ok(()),
-        }
     }
 
     pub(super) fn scene_triangle(&self, j: usize) -> [DVec3; 3] {

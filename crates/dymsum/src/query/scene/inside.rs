@@ -119,12 +119,13 @@ impl MeshBody {
             .for_each_meeting(&Aabb { lo: at, hi: at }, |k| {
                 candidates.push(self.solid_components[k])
             });
+        let (boxes, bounds) = (self.tree.boxes(), self.tree.bounds());
         inside_solid(
             self,
-            &self.vertices,
-            self.tree.boxes(),
-            self.tree.bounds(),
-            &self.component_boxes,
+            |v| self.vertices[v as usize],
+            |n| bounds[n],
+            |t| boxes[t],
+            |c| self.component_boxes[c],
             &candidates,
             p,
             parity,
@@ -140,13 +141,19 @@ impl MeshBody {
 /// The ray leaves the candidates' joint box the shortest way first.
 /// `parity` is a scratch buffer marking the candidates (all zero between
 /// calls).
+/// Whether `p` lies inside a solid among the `candidates` components of
+/// `body` (module docs), with the body's vertex `v` at `vertex(v)`, and
+/// boxes holding what the tree's node `n`, triangle `t` and component `c`
+/// hold there: `node_box(n)`, `item_box(t)`, `component_box(c)` (boxes
+/// larger than the exact ones only make the walk reach more triangles;
+/// each is then decided exactly).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn inside_solid(
     body: &MeshBody,
-    vertices: &[DVec3],
-    boxes: &[Aabb],
-    bounds: &[Aabb],
-    component_boxes: &[Aabb],
+    vertex: impl Fn(u32) -> DVec3,
+    node_box: impl Fn(usize) -> Aabb,
+    item_box: impl Fn(usize) -> Aabb,
+    component_box: impl Fn(usize) -> Aabb,
     candidates: &[u32],
     p: DVec3,
     parity: &mut Vec<u8>,
@@ -156,7 +163,7 @@ pub(crate) fn inside_solid(
     }
     let joint = candidates
         .iter()
-        .fold(Aabb::EMPTY, |b, &c| b.join(&component_boxes[c as usize]));
+        .fold(Aabb::EMPTY, |b, &c| b.join(&component_box(c as usize)));
     let span = (0..3)
         .map(|k| joint.hi[k] - joint.lo[k])
         .fold(0.0, f64::max);
@@ -195,29 +202,30 @@ pub(crate) fn inside_solid(
             // (a joined scene's obstacles each count by themselves: one's
             // inward shell must not cancel another's solid).
             let mut winding: Vec<(u32, i64)> = Vec::new();
-            body.tree.for_each_meeting_in(boxes, bounds, &ray, |t| {
-                let c = body.component_of[t] as usize;
-                if degenerate || parity[c] == 0 {
-                    return;
-                }
-                let tri = body.triangles[t].map(|v| vertices[v as usize]);
-                match crossing(p, q, tri) {
-                    Crossing::Crosses(positive) => {
-                        let w = i64::from(body.weights[t]);
-                        let source = body.source_of[c];
-                        let at = match winding.iter().position(|e| e.0 == source) {
-                            Some(i) => i,
-                            None => {
-                                winding.push((source, 0));
-                                winding.len() - 1
-                            }
-                        };
-                        winding[at].1 += if positive { w } else { -w };
+            body.tree
+                .for_each_meeting_with(&node_box, &item_box, &ray, |t| {
+                    let c = body.component_of[t] as usize;
+                    if degenerate || parity[c] == 0 {
+                        return;
                     }
-                    Crossing::Misses => {}
-                    Crossing::Degenerate => degenerate = true,
-                }
-            });
+                    let tri = body.triangles[t].map(&vertex);
+                    match crossing(p, q, tri) {
+                        Crossing::Crosses(positive) => {
+                            let w = i64::from(body.weights[t]);
+                            let source = body.source_of[c];
+                            let at = match winding.iter().position(|e| e.0 == source) {
+                                Some(i) => i,
+                                None => {
+                                    winding.push((source, 0));
+                                    winding.len() - 1
+                                }
+                            };
+                            winding[at].1 += if positive { w } else { -w };
+                        }
+                        Crossing::Misses => {}
+                        Crossing::Degenerate => degenerate = true,
+                    }
+                });
             for &c in candidates {
                 parity[c as usize] = 0;
             }

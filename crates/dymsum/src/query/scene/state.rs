@@ -2,10 +2,13 @@
 //! pose against the scene's, the exact triangle test, then containment by
 //! the winding number (the contact rule in `scene::checker`'s docs).
 
+use glam::DVec3;
+
 use super::checker::{cached, SceneChecker, Scratch};
 
 use super::inside::inside_solid;
 use crate::kernel::rotation::Pose;
+use crate::kernel::separation::{triangle_box_apart, triangles_apart};
 use crate::query::error::QueryError;
 use crate::solid::aabb::Aabb;
 use crate::solid::intersect::triangles_meet;
@@ -67,34 +70,44 @@ impl SceneChecker {
             .fold(0.0f64, |m, x| m.max(x.abs()));
         let back_pad = back_pad + 16.0 * f64::EPSILON * (2.0 * mag + t.abs().max_element());
         let back = |o: &Aabb| o.transformed(&mi, ti, back_pad);
-        let (bounds, boxes) = (self.body.tree.bounds(), self.body.tree.boxes());
-        // A pair of nodes or of triangles is kept only when their boxes meet
-        // both in the world and in the body's frame (the six face axes of a
-        // separating-axis test); the body's node boxes at the pose are
-        // computed once per query.
-        let meets = |own: &Aabb, other: &Aabb| {
-            own.transformed(&m, t, pad).within(other, 0.0) && back(other).within(own, 0.0)
-        };
+        let bounds = self.body.tree.bounds();
         let cache = std::mem::take(&mut s.node_cache);
         let epoch = s.at.epoch;
         let world = |n: usize| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad));
         let scene = &self.scene.tree;
         let mut stack = std::mem::take(&mut s.stack);
+        // The body's triangles at the pose, each corner posed once per
+        // query: a pair of triangles is kept only when the exact box of the
+        // posed triangle meets the scene triangle's box, then when no axis
+        // proves them apart in floats (`kernel::separation`, certified),
+        // and decided by the exact test.
+        let at = std::cell::RefCell::new(&mut s.at);
+        let posed = |i: usize| {
+            let mut at = at.borrow_mut();
+            self.body.triangles[i].map(|v| at.get(&self.body.vertices, &pose, v))
+        };
+        let scene_cache = std::mem::take(&mut s.scene_cache);
+        let back_node = |k: usize, o: &Aabb| cached(&scene_cache, epoch, k, || back(o));
         let hit = self.body.tree.for_each_pair(
-            |n, o| world(n).within(o, 0.0) && back(o).within(&bounds[n], 0.0),
+            |n, k, o| world(n).within(o, 0.0) && back_node(k, o).within(&bounds[n], 0.0),
             |n| bounds[n].size(),
-            |i, o| meets(&boxes[i], o),
+            |i, o| {
+                let tri = posed(i);
+                Aabb::of(tri.map(|p| p.to_array())).meets(o)
+                    && !triangle_box_apart(&tri, DVec3::from(o.lo), DVec3::from(o.hi))
+            },
             scene,
             scene.boxes(),
             scene.bounds(),
             &mut stack,
             |i, j| {
-                let tri = self.body.triangles[i].map(|v| s.at.get(&self.body.vertices, &pose, v));
-                triangles_meet(&tri, &self.scene_triangle(j))
+                let (tri, u) = (posed(i), self.scene_triangle(j));
+                !triangles_apart(&tri, &u) && triangles_meet(&tri, &u)
             },
         );
         s.stack = stack;
         s.node_cache = cache;
+        s.scene_cache = scene_cache;
         hit
     }
 
@@ -138,16 +151,21 @@ impl SceneChecker {
         if corners.is_empty() {
             return Ok(false);
         }
-        // Pose the whole body once: its triangle, node and component boxes.
-        self.pose_body(pose, s)?;
-        s.component_boxes.clear();
-        s.component_boxes
-            .resize(self.body.components.len(), Aabb::EMPTY);
-        for (t, b) in s.boxes.iter().enumerate() {
-            let c = self.body.component_of[t] as usize;
-            s.component_boxes[c] = s.component_boxes[c].join(b);
-        }
+        // The body at the pose, posed only where the rays reach: its
+        // vertices lazily, its node and component boxes carried from its
+        // own frame and grown by the rounding bound (holding the posed
+        // points), its triangles' boxes exact from their posed corners.
+        let (t, pad) = (pose.translation, self.pad(&pose));
+        let bounds = self.body.tree.bounds();
+        let cache = std::mem::take(&mut s.node_cache);
+        let epoch = s.at.epoch;
+        let at = std::cell::RefCell::new(&mut s.at);
+        let vertex = |v: u32| at.borrow_mut().get(&self.body.vertices, &pose, v);
+        let node_box = |n: usize| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad));
+        let item_box = |i: usize| Aabb::of(self.body.triangles[i].map(|v| vertex(v).to_array()));
+        let component_box = |c: usize| self.body.component_boxes[c].transformed(&m, t, pad);
         let mut candidates = Vec::new();
+        let mut out = Ok(false);
         for k in corners {
             let p = self.scene.vertices[self.scene.components[k].1 as usize];
             candidates.clear();
@@ -155,21 +173,26 @@ impl SceneChecker {
                 self.body
                     .solid_components
                     .iter()
-                    .filter(|&&c| s.component_boxes[c as usize].holds(p.to_array())),
+                    .filter(|&&c| component_box(c as usize).holds(p.to_array())),
             );
-            if inside_solid(
+            match inside_solid(
                 &self.body,
-                &s.posed,
-                &s.boxes,
-                &s.bounds,
-                &s.component_boxes,
+                vertex,
+                node_box,
+                item_box,
+                component_box,
                 &candidates,
                 p,
                 parity,
-            )? {
-                return Ok(true);
+            ) {
+                Ok(false) => {}
+                other => {
+                    out = other;
+                    break;
+                }
             }
         }
-        Ok(false)
+        s.node_cache = cache;
+        out
     }
 }

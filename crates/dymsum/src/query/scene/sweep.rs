@@ -147,7 +147,7 @@ impl SceneChecker {
         let mut stack = std::mem::take(&mut s.stack);
         let mut blocker = None;
         let blocked = self.body.tree.for_each_pair(
-            |k, o| cached(&cache, epoch, k, || swept(&bounds[k])).within(o, reach),
+            |k, _, o| cached(&cache, epoch, k, || swept(&bounds[k])).within(o, reach),
             |k| bounds[k].size(),
             |i, o| swept(&boxes[i]).within(o, reach),
             scene,

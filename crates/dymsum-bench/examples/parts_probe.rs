@@ -1,0 +1,89 @@
+//! Times dymsum's state checks on robot part pairs against parry's BVH
+//! test (issue 35): `cargo run --release -p dymsum-bench --example
+//! parts_probe -- DIR [PAIRS] [STATES]` prints, per seeded pair of the
+//! meshes in DIR, the build time and the medians and 99th percentiles of
+//! one call per state, random and near contact.
+
+use std::time::Instant;
+
+use dymsum_bench::parts::{pair_states, part_checker, parts};
+use dymsum_bench::scenes::{parry_collides, parry_mesh};
+use rand::{Rng, SeedableRng};
+
+fn quantile(v: &mut [f64], q: f64) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[((v.len() - 1) as f64 * q).round() as usize]
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let dir = std::path::Path::new(args.get(1).map_or("/tmp/rm", |s| s));
+    let pairs: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(12);
+    let n: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(100);
+    // `DYMSUM_ONLY=1`: time dymsum alone (e.g. under `perf stat`).
+    let skip_parry = std::env::var("DYMSUM_ONLY").is_ok();
+    let only: Option<String> = std::env::var("PAIR").ok();
+    let all = parts(dir);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    let mut picks = Vec::new();
+    if let Some(p) = only {
+        let (a, b) = p.split_once(',').expect("PAIR=a,b");
+        let find = |s: &str| all.iter().position(|q| q.name.contains(s)).expect("a part");
+        picks.push((find(a), find(b)));
+    } else {
+        for _ in 0..pairs {
+            picks.push((
+                rng.random_range(0..all.len()),
+                rng.random_range(0..all.len()),
+            ));
+        }
+    }
+    let (mut ratios_med, mut ratios_p99) = (Vec::new(), Vec::new());
+    for (a, b) in picks {
+        let (pa, pb) = (&all[a], &all[b]);
+        let t0 = Instant::now();
+        let checker = part_checker(&pa.mesh, &pb.mesh);
+        let build = t0.elapsed().as_secs_f64();
+        let (ra, rb) = (parry_mesh(&pa.mesh), parry_mesh(&pb.mesh));
+        let (random, near) = pair_states(&checker, &pa.mesh, &pb.mesh, n, 11);
+        for (what, states) in [("random", &random), ("near", &near)] {
+            let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+            for &p in states.iter() {
+                let t = Instant::now();
+                std::hint::black_box(checker.collides_at(p).unwrap());
+                ours.push(t.elapsed().as_secs_f64() * 1e6);
+                if skip_parry {
+                    theirs.push(1.0);
+                    continue;
+                }
+                let t = Instant::now();
+                std::hint::black_box(parry_collides(&ra, &rb, p));
+                theirs.push(t.elapsed().as_secs_f64() * 1e6);
+            }
+            if ours.is_empty() {
+                continue;
+            }
+            let (m1, m2) = (quantile(&mut ours, 0.5), quantile(&mut theirs, 0.5));
+            let (q1, q2) = (quantile(&mut ours, 0.99), quantile(&mut theirs, 0.99));
+            ratios_med.push(m1 / m2);
+            ratios_p99.push(q1 / q2);
+            println!(
+                "{:>40} {:>6} | {:>40} {:>6} {what:>6} build {:7.1} ms  median {m1:9.1} µs parry {m2:8.1} ({:5.2}x)  p99 {q1:9.1} parry {q2:8.1} ({:5.2}x)",
+                &pa.name[pa.name.len().saturating_sub(40)..],
+                pa.mesh.faces.len(),
+                &pb.name[pb.name.len().saturating_sub(40)..],
+                pb.mesh.faces.len(),
+                build * 1e3,
+                m1 / m2,
+                q1 / q2
+            );
+        }
+    }
+    let gm = |v: &[f64]| (v.iter().map(|x| x.ln()).sum::<f64>() / v.len() as f64).exp();
+    println!(
+        "geometric mean of ratios: median {:.2}x, p99 {:.2}x; worst median {:.2}x",
+        gm(&ratios_med),
+        gm(&ratios_p99),
+        ratios_med.iter().cloned().fold(0.0, f64::max)
+    );
+}

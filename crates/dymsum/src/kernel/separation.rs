@@ -1,0 +1,219 @@
+//! Certified floating-point separating-axis filters: a cheap proof that
+//! two triangles, or a triangle and a box, are apart, tried before the
+//! exact tests so that the pairs a broad phase lets through cost a few
+//! dozen flops instead of several exact orientations.
+//!
+//! A filter answers `true` only with a proof; `false` means "not proven"
+//! (the caller then runs its exact test), never "they meet".
+//!
+//! # Soundness
+//! Any vector `a` is an axis: if `a·p < a·q` for every corner `p` of one
+//! set and `q` of the other, the convex hulls are disjoint. The axis need
+//! not be exact (a normal or an edge cross product computed in floats is
+//! just some vector), only the comparison must be. With `m` the
+//! coordinatewise largest magnitude over every point involved and
+//! `S = Σ|a_k| m_k`, each computed projection `fl(a·x)` of a 3-term dot
+//! product is within `γ₃ S` of `a·x` (`γ₃ = 3u/(1−3u)`, `u = 2⁻⁵³`;
+//! with or without fused multiply–adds). The test is
+//! `fl(P₁ + s) < Q₀` with `P₁` the largest computed projection of one set,
+//! `Q₀` the least of the other, and the slack `s = fl(16u·fl(S))`. Since
+//! `|P₁| ≤ (1 + γ₃)S`, the rounded sum is at least
+//! `P₁ + s − u((1 + γ₃)S + s)`, and `fl(S) ≥ (1 − γ₃)S` gives `s ≥ 15u S`,
+//! so a passed test means `P₁ + 7u S < Q₀`, more than the `2γ₃ S` the two
+//! projections may be off by together: the true intervals are apart.
+//! Underflowing products err by at most `2⁻¹⁰⁷⁴` each; the absolute term
+//! `TINY` (far below any coordinate the crate accepts as a size) covers
+//! them. Overflow gives an infinite or NaN `S` or projection, and every
+//! comparison with those is false: not proven.
+
+use glam::DVec3;
+
+/// The unit roundoff of `f64`.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// An absolute slack covering underflowed products (module docs).
+const TINY: f64 = 1e-290;
+
+/// The least and largest computed projections of `pts` on `a`.
+#[inline]
+fn span(a: DVec3, pts: &[DVec3; 3]) -> (f64, f64) {
+    let (x, y, z) = (a.dot(pts[0]), a.dot(pts[1]), a.dot(pts[2]));
+    (x.min(y).min(z), x.max(y).max(z))
+}
+
+/// The slack of axis `a` for points within `mag` coordinatewise (module
+/// docs).
+#[inline]
+fn slack(a: DVec3, mag: DVec3) -> f64 {
+    16.0 * U * a.abs().dot(mag) + TINY
+}
+
+/// Whether the computed spans `(p0, p1)` and `(q0, q1)` are apart by more
+/// than `s`.
+#[inline]
+fn spans_apart((p0, p1): (f64, f64), (q0, q1): (f64, f64), s: f64) -> bool {
+    p1 + s < q0 || q1 + s < p0
+}
+
+/// The coordinatewise largest magnitude of some points.
+#[inline]
+fn magnitude<'a>(pts: impl IntoIterator<Item = &'a DVec3>) -> DVec3 {
+    pts.into_iter().fold(DVec3::ZERO, |m, p| m.max(p.abs()))
+}
+
+/// A proof that closed triangles `t` and `u` are disjoint: some axis among
+/// their normals and the nine cross products of their edges separates
+/// them, certified despite rounding (module docs). `false` proves nothing.
+#[inline]
+pub(crate) fn triangles_apart(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
+    let mag = magnitude(t.iter().chain(u.iter()));
+    let apart = |a: DVec3| spans_apart(span(a, t), span(a, u), slack(a, mag));
+    let et = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
+    let eu = [u[1] - u[0], u[2] - u[1], u[0] - u[2]];
+    if apart(eu[0].cross(eu[1])) || apart(et[0].cross(et[1])) {
+        return true;
+    }
+    et.iter().any(|&e| eu.iter().any(|&f| apart(e.cross(f))))
+}
+
+/// A proof that closed triangle `t` and the closed box `[lo, hi]` are
+/// disjoint: some axis among the box's three, the triangle's normal and
+/// the nine cross products of the box's axes with the triangle's edges
+/// separates them, certified despite rounding (module docs; a box corner
+/// projects to `Σ a_k c_k` with `c_k` either `lo_k` or `hi_k`, a 3-term
+/// dot product like any other point). `false` proves nothing.
+#[inline]
+pub(crate) fn triangle_box_apart(t: &[DVec3; 3], lo: DVec3, hi: DVec3) -> bool {
+    let mag = magnitude(t.iter()).max(lo.abs()).max(hi.abs());
+    let apart = |a: DVec3| {
+        let near = DVec3::select(a.cmpge(DVec3::ZERO), lo, hi);
+        let far = DVec3::select(a.cmpge(DVec3::ZERO), hi, lo);
+        spans_apart(span(a, t), (a.dot(near), a.dot(far)), slack(a, mag))
+    };
+    // The box's own axes: the triangle's box against it, exactly.
+    let (tlo, thi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+    if thi.cmplt(lo).any() || tlo.cmpgt(hi).any() {
+        return true;
+    }
+    let e = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
+    if apart(e[0].cross(e[1])) {
+        return true;
+    }
+    [DVec3::X, DVec3::Y, DVec3::Z]
+        .iter()
+        .any(|&k| e.iter().any(|&f| apart(k.cross(f))))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solid::intersect::triangles_meet;
+
+    fn v(x: f64, y: f64, z: f64) -> DVec3 {
+        DVec3::new(x, y, z)
+    }
+
+    #[test]
+    fn apart_triangles_are_proven_apart() {
+        let t = [v(0., 0., 0.), v(1., 0., 0.), v(0., 1., 0.)];
+        let u = [v(0., 0., 1.), v(1., 0., 1.), v(0., 1., 1.)];
+        assert!(triangles_apart(&t, &u));
+        // Interleaved slivers whose boxes overlap: an edge axis parts them.
+        let a = [v(0., 0., 0.), v(10., 10., 0.), v(10., 10.001, 0.)];
+        let b = [v(0., 1., 0.), v(10., 11., 0.5), v(10., 11.001, -0.5)];
+        assert!(!triangles_meet(&a, &b));
+        assert!(triangles_apart(&a, &b));
+    }
+
+    #[test]
+    fn touching_triangles_are_never_proven_apart() {
+        let t = [v(0., 0., 0.), v(1., 0., 0.), v(0., 1., 0.)];
+        // A shared corner, an edge on an edge, a corner on the face, and
+        // a corner a rounding away from the plane on the other side.
+        for u in [
+            [v(0., 0., 0.), v(-1., 0., 0.), v(0., -1., 0.)],
+            [v(0.5, 0., 0.), v(1.5, 0., 0.), v(1., 0., 1.)],
+            [v(0.25, 0.25, 0.), v(0.25, 0.25, 1.), v(1., 1., 1.)],
+            [v(0.25, 0.25, 0.0), v(3., 3., 1e-300), v(3., -3., 1.)],
+        ] {
+            assert!(triangles_meet(&t, &u));
+            assert!(!triangles_apart(&t, &u), "{u:?}");
+        }
+        // Far from the origin, touching at a corner after a shift.
+        let s = v(1e6, -3e7, 2.5e5);
+        let far = |x: [DVec3; 3]| x.map(|p| p + s);
+        let u = [v(1., 0., 0.), v(2., 0., 0.), v(1., 1., 1.)];
+        assert!(triangles_meet(&far(t), &far(u)));
+        assert!(!triangles_apart(&far(t), &far(u)));
+    }
+
+    #[test]
+    fn triangle_and_box() {
+        let t = [v(0., 0., 0.), v(10., 10., 0.), v(10., 10.01, 0.)];
+        // A box off the sliver's diagonal but inside its box.
+        assert!(triangle_box_apart(&t, v(6., 1., -1.), v(8., 3., 1.)));
+        // A box the sliver crosses, and one it touches at a corner.
+        assert!(!triangle_box_apart(&t, v(4., 4., -1.), v(6., 6., 1.)));
+        assert!(!triangle_box_apart(&t, v(10., 10.01, 0.), v(11., 11., 1.)));
+        // A box entirely apart on an axis.
+        assert!(triangle_box_apart(&t, v(-3., -3., 0.5), v(20., 20., 1.)));
+        assert!(!triangle_box_apart(&t, v(-3., -3., 0.), v(20., 20., 1.)));
+    }
+
+    /// The exact oracle: a corner of `t` in the box, or `t` meeting one of
+    /// the twelve triangles of the box's faces.
+    fn triangle_meets_box(t: &[DVec3; 3], lo: DVec3, hi: DVec3) -> bool {
+        let c =
+            |i: usize| DVec3::select(glam::BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0), hi, lo);
+        let quads = [
+            [0, 1, 3, 2],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 3, 7, 5],
+        ];
+        t.iter().any(|p| p.cmpge(lo).all() && p.cmple(hi).all())
+            || quads.iter().any(|q| {
+                triangles_meet(t, &[c(q[0]), c(q[1]), c(q[2])])
+                    || triangles_meet(t, &[c(q[0]), c(q[2]), c(q[3])])
+            })
+    }
+
+    /// A proof is never given for triangles that meet: random triangles
+    /// on a coarse grid (many touch exactly), judged by the exact test.
+    #[test]
+    fn never_proves_a_meeting_pair_apart() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % 5) as f64 - 2.0
+        };
+        let (mut proven, mut meeting) = (0, 0);
+        for _ in 0..50_000 {
+            let mut tri = || [(); 3].map(|_| v(next(), next(), next()));
+            let (t, u) = (tri(), tri());
+            let meet = triangles_meet(&t, &u);
+            meeting += meet as u32;
+            if triangles_apart(&t, &u) {
+                assert!(!meet, "{t:?} {u:?}");
+                proven += 1;
+            }
+            let (lo, hi) = (u[0].min(u[1]), u[0].max(u[1]));
+            if triangle_box_apart(&t, lo, hi) {
+                assert!(!triangle_meets_box(&t, lo, hi), "{t:?} {lo} {hi}");
+            }
+        }
+        assert!(proven > 10_000 && meeting > 5_000, "{proven} {meeting}");
+    }
+
+    #[test]
+    fn overflow_proves_nothing() {
+        let big = 1e200;
+        let t = [v(0., 0., 0.), v(big, 0., 0.), v(0., big, 0.)];
+        let u = [v(0., 0., -1.), v(big, 0., 1.), v(0., big, 1.)];
+        assert!(!triangles_apart(&t, &u));
+    }
+}
