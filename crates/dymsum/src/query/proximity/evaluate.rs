@@ -25,8 +25,7 @@ use crate::query::proximity::certificate::{separation_facets, single_facet, slab
 use crate::query::proximity::depth::penetration;
 use crate::query::proximity::from_facets::evaluate_in_frame;
 use crate::query::proximity::gjk::{
-    certify, encloses_origin, gjk, origin_in_difference_hull, separated_on_sets,
-    separating_feature_axis,
+    certify, encloses_origin, gjk, separated_on_sets, separating_feature_axis,
 };
 use crate::query::proximity::scratch::Scratch;
 use crate::sum::{minkowski_sum_posed, Method};
@@ -280,7 +279,7 @@ pub(in crate::query) fn decide(pair: &ConvexPair, scratch: &mut Scratch, yes_no:
 /// The exhaustive exact yes/no answer (counted).
 fn decide_exhaustively(pair: &ConvexPair, scratch: &Scratch) -> bool {
     pair.stats.count_exhaustive_decision();
-    origin_in_difference_hull(pair, &scratch.posed)
+    super::hulls_meet::posed_hulls_meet(pair, &scratch.posed)
 }
 
 /// An answer in frame units scaled back to the world.

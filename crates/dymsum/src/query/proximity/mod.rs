@@ -14,6 +14,7 @@ pub(in crate::query) mod epa;
 pub(in crate::query) mod evaluate;
 pub(in crate::query) mod from_facets;
 pub(in crate::query) mod gjk;
+pub(in crate::query) mod hulls_meet;
 pub(in crate::query) mod scratch;
 pub(in crate::query) mod support;
 
