@@ -7,6 +7,9 @@
 //! A dev-dependency of `dymsum`, `dymsum-io` and `dymsum-cli`, and a
 //! dependency of `dymsum-bench`; never published.
 
+pub mod fuzz_solid;
+pub mod fuzz_triangles;
+
 use dymsum::{DVec3, Polytope, Rotation};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

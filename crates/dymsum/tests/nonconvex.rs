@@ -5,8 +5,8 @@
 //! disagreement only in a thin band at the boundary.
 
 use dymsum::nonconvex::{
-    check_closed_mesh, convex_pieces, merge_closed_meshes, ClosedMeshError, Decomposition,
-    DynamicUnionSum, UnionMeshError, UnionSum,
+    check_closed_mesh, convex_pieces, merge_closed_meshes, Decomposition, DynamicUnionSum,
+    UnionMeshError, UnionSum,
 };
 use dymsum::sum::Method;
 use dymsum::{ConvexUnion, DVec3, PolygonMesh, Polytope, Pose, Rotation};
@@ -448,7 +448,7 @@ fn mesh_inputs_components_and_refusals() {
     ));
     assert!(matches!(
         check_closed_mesh(&open),
-        Err(ClosedMeshError::OpenEdge { .. })
+        Err(dymsum::SolidError::OpenEdge { .. })
     ));
 }
 

@@ -88,7 +88,7 @@ impl ConvexUnion {
             neg_pose = np;
         }
         let neg = ConvexUnion::new(pieces)
-            .ok_or(UnionMeshError::Invalid(super::ClosedMeshError::Empty))?;
+            .ok_or(UnionMeshError::Invalid(crate::solid::SolidError::Empty))?;
         let m = UnionSum::new(other, other_pose, &neg, neg_pose, Method::Walk, true)?;
         let (c, _) = closest_boundary_point(m.mesh(), DVec3::ZERO);
         let depth = c.length();

@@ -7,7 +7,8 @@ use rayon::prelude::*;
 
 use super::UnionMeshError;
 use crate::mesh::PolygonMesh;
-use crate::solid::closed::{check_triangles, triangles, ClosedMeshInfo};
+use crate::solid::closed::{check_closed_mesh, triangles, ClosedMeshInfo};
+use crate::solid::SolidError;
 
 /// A mesh handed to `boolmesh`.
 pub(crate) fn to_manifold(mesh: &PolygonMesh, what: &str) -> Result<Manifold, UnionMeshError> {
@@ -109,7 +110,7 @@ pub(crate) fn union_meshes(
         .map(|(name, m)| to_manifold(m, name).map(|x| (name.clone(), x)))
         .collect::<Result<_, _>>()?;
     if level.is_empty() {
-        return Err(UnionMeshError::Invalid(super::ClosedMeshError::Empty));
+        return Err(UnionMeshError::Invalid(SolidError::Empty));
     }
     // Each level's unions are independent: run them on the rayon pool
     // (the result does not depend on the thread count).
@@ -136,7 +137,7 @@ pub(crate) fn union_meshes(
     }
     let (_, m) = level
         .pop()
-        .ok_or(UnionMeshError::Invalid(super::ClosedMeshError::Empty))?;
+        .ok_or(UnionMeshError::Invalid(SolidError::Empty))?;
     let mesh = from_manifold(&m);
     let info = validate(&mesh)?;
     Ok((mesh, info))
@@ -144,18 +145,5 @@ pub(crate) fn union_meshes(
 
 /// [`super::check_closed_mesh`] as a [`UnionMeshError::Invalid`].
 pub(crate) fn validate(mesh: &PolygonMesh) -> Result<ClosedMeshInfo, UnionMeshError> {
-    let v_ok = mesh
-        .vertices
-        .iter()
-        .position(|p| !p.iter().all(|x| x.is_finite()));
-    if let Some(vertex) = v_ok {
-        return Err(UnionMeshError::Invalid(super::ClosedMeshError::NonFinite {
-            vertex,
-        }));
-    }
-    let tris = triangles(mesh).map_err(UnionMeshError::Invalid)?;
-    if tris.is_empty() {
-        return Err(UnionMeshError::Invalid(super::ClosedMeshError::Empty));
-    }
-    check_triangles(&mesh.vertices, &tris).map_err(UnionMeshError::Invalid)
+    check_closed_mesh(mesh).map_err(UnionMeshError::Invalid)
 }

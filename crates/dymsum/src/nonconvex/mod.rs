@@ -20,10 +20,11 @@
 //!   of the pair sums up to the rounding of its new vertices (where piece
 //!   sums cross); holes and cavities are kept;
 //! * the validation is exact and combinatorial (every directed edge once
-//!   and its reverse once, no pinched vertex); the volume is a float sum
-//!   and must be positive; sliver triangles (corners exactly collinear) are
-//!   counted, not refused (`boolmesh` can leave them where piece sums meet
-//!   at grazing angles; the surface is still closed and oriented);
+//!   and its reverse once, no pinched vertex); the volume must be positive,
+//!   its sign exact (its value a float sum); sliver triangles (corners
+//!   exactly collinear) are counted, not refused (`boolmesh` can leave
+//!   them where piece sums meet at grazing angles; the surface is still
+//!   closed and oriented);
 //! * a non-convex closed mesh becomes pieces by [`convex_pieces`], after the
 //!   exact check that it is a solid ([`crate::solid`]; else
 //!   [`UnionMeshError::Solid`]): exactly convex shells are taken as they
@@ -60,7 +61,9 @@ mod merge;
 mod sum;
 
 pub use crate::body::ConvexUnion;
-pub use crate::solid::closed::{check_closed_mesh, ClosedMeshError, ClosedMeshInfo};
+#[allow(deprecated)]
+pub use crate::solid::closed::ClosedMeshError;
+pub use crate::solid::closed::{check_closed_mesh, ClosedMeshInfo};
 pub use decompose::{convex_pieces, Decomposition, DecompositionInfo};
 pub use depth::UnionDepth;
 pub use merge::merge_closed_meshes;
@@ -114,7 +117,7 @@ pub enum UnionMeshError {
     },
     /// The merged mesh failed validation (it is not returned).
     #[error("the merged mesh is not a valid closed mesh: {0}")]
-    Invalid(ClosedMeshError),
+    Invalid(crate::solid::SolidError),
     /// A piece-pair sum failed.
     #[error(transparent)]
     Sum(#[from] SumError),

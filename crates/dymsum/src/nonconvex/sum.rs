@@ -316,8 +316,8 @@ impl ConvexUnion {
             .iter()
             .map(|p| super::depth::negated(p, Pose::IDENTITY).map(|(n, _)| n))
             .collect::<Result<Vec<_>, _>>()?;
-        let neg =
-            ConvexUnion::new(neg).ok_or(UnionMeshError::Invalid(super::ClosedMeshError::Empty))?;
+        let neg = ConvexUnion::new(neg)
+            .ok_or(UnionMeshError::Invalid(crate::solid::SolidError::Empty))?;
         let at = |r: Rotation| Pose::new(r, DVec3::ZERO);
         let mut sums = DynamicUnionSum::new(obstacle, Pose::IDENTITY, &neg, at(first))?;
         let mut out = Vec::with_capacity(orientations.len());

@@ -1,69 +1,29 @@
 //! Tolerance-free validation of a closed triangle mesh: the check every
 //! merged mesh passes before it is returned (Rust's `nonconvex` sums,
 //! merged by boolmesh, and Python's, merged by Manifold, through
-//! `_dymsum._check_closed_mesh`).
-
-use std::collections::HashMap;
+//! `_dymsum._check_closed_mesh`). It shares rules 1 and 5 of
+//! [`check_solid_mesh`](super::check_solid_mesh) (taken on the faces' fan
+//! triangles, as boolmesh and Manifold take them) and its error,
+//! [`SolidError`]; it does not look for crossings, and asks a positive
+//! volume of the whole mesh, not of each shell (a cavity is allowed).
 
 use glam::DVec3;
 
+use super::{
+    check_elements, check_topology, collinear, malformed, shells, volume_sign, SolidError,
+};
+use crate::kernel::exact;
+use crate::kernel::predicates::Sign;
 use crate::mesh::PolygonMesh;
+use crate::polytope::topology::DirectedEdges;
 
-/// Why a mesh is not a closed, oriented 2-manifold of positive volume.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum ClosedMeshError {
-    /// The mesh has no faces.
-    #[error("the mesh has no faces")]
-    Empty,
-    /// A vertex coordinate is NaN or infinite.
-    #[error("vertex {vertex} is not finite")]
-    NonFinite {
-        /// The vertex.
-        vertex: usize,
-    },
-    /// A face has fewer than three corners, names a vertex out of range, or
-    /// repeats a vertex.
-    #[error("face {face} is malformed (fewer than 3 corners, a vertex out of range, or a repeated vertex)")]
-    BadFace {
-        /// The face.
-        face: usize,
-    },
-    /// A directed edge occurs more than once: a non-manifold edge or an
-    /// inconsistent orientation.
-    #[error("directed edge ({from}, {to}) occurs {count} times (non-manifold or inconsistently oriented)")]
-    RepeatedEdge {
-        /// Its first vertex.
-        from: usize,
-        /// Its second vertex.
-        to: usize,
-        /// How often it occurs.
-        count: usize,
-    },
-    /// A directed edge has no opposite: the mesh is open or inconsistently
-    /// oriented.
-    #[error("edge ({from}, {to}) has no opposite half-edge (the mesh is open or inconsistently oriented)")]
-    OpenEdge {
-        /// Its first vertex.
-        from: usize,
-        /// Its second vertex.
-        to: usize,
-    },
-    /// The faces around a vertex form more than one fan: the surface
-    /// touches itself there.
-    #[error("vertex {vertex} is pinched: its faces form {fans} fans, not one")]
-    Pinched {
-        /// The vertex.
-        vertex: usize,
-        /// The number of fans around it.
-        fans: usize,
-    },
-    /// The signed volume is not positive: the mesh is inward or empty.
-    #[error("signed volume {volume:e} is not positive (inward or empty)")]
-    NotPositive {
-        /// The signed volume.
-        volume: f64,
-    },
-}
+/// The error of [`check_closed_mesh`], now the solid layer's one error.
+#[deprecated(
+    note = "use `dymsum::SolidError` (`check_closed_mesh` returns it: `RepeatedEdge` is \
+            `NonManifoldEdge` or `InconsistentOrientation`, `Pinched` is `NonManifoldVertex`, \
+            `NotPositive` is `NonPositiveTotalVolume`)"
+)]
+pub type ClosedMeshError = SolidError;
 
 /// What [`check_closed_mesh`] measured on a valid mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,7 +33,8 @@ pub struct ClosedMeshInfo {
     pub vertices: usize,
     /// Triangles (of the fan triangulation of the faces).
     pub triangles: usize,
-    /// The enclosed (signed) volume, positive.
+    /// The enclosed (signed) volume, a float sum (its sign, positive, is
+    /// decided exactly; infinite beyond `f64`'s range).
     pub volume: f64,
     /// Connected components of the surface (an inner shell bounds a cavity).
     pub shells: usize,
@@ -86,152 +47,117 @@ pub struct ClosedMeshInfo {
 }
 
 /// The fan triangles of a polygon mesh.
-pub(crate) fn triangles(mesh: &PolygonMesh) -> Result<Vec<[usize; 3]>, ClosedMeshError> {
+///
+/// # Errors
+/// [`SolidError::BadFace`] for a face of fewer than three corners, a
+/// corner out of range or a repeated corner.
+pub(crate) fn triangles(mesh: &PolygonMesh) -> Result<Vec<[usize; 3]>, SolidError> {
     let n = mesh.vertices.len();
     let mut out = Vec::with_capacity(mesh.triangle_count());
-    for (k, f) in mesh.faces.iter().enumerate() {
-        let bad = f.len() < 3
-            || f.iter().any(|&i| i >= n)
-            || f.iter().enumerate().any(|(a, x)| f[a + 1..].contains(x));
-        if bad {
-            return Err(ClosedMeshError::BadFace { face: k });
+    for (face, f) in mesh.faces.iter().enumerate() {
+        if malformed(f, n) {
+            return Err(SolidError::BadFace { face });
         }
-        for w in f[1..].windows(2) {
-            out.push([f[0], w[0], w[1]]);
-        }
+        out.extend(f[1..].windows(2).map(|w| [f[0], w[0], w[1]]));
     }
     Ok(out)
 }
 
 /// Checks that `mesh` is a closed, oriented 2-manifold of positive volume,
-/// without tolerance: finite vertices, well-formed faces, every directed
-/// edge once and its reverse once, no pinched vertex (the faces around each
-/// vertex form one fan), and a positive signed volume. Returns what it
-/// measured, with the number of sliver triangles (corners exactly
-/// collinear, by exact predicates), which are allowed.
+/// without tolerance: at least one face, finite vertices within the exact
+/// arithmetic's span, well-formed faces, every directed edge of the fan
+/// triangles once and its reverse once, no pinched vertex (the faces
+/// around each vertex form one fan), and a positive total volume (its
+/// exact sign). Returns what it measured, with the number of sliver
+/// triangles (corners exactly collinear, by exact predicates), which are
+/// allowed. Crossings are not looked for ([`check_solid_mesh`](super::check_solid_mesh)
+/// does).
 ///
 /// ```
-/// use dymsum::solid::closed::{check_closed_mesh, ClosedMeshError};
-/// use dymsum::PolygonMesh;
+/// use dymsum::solid::closed::check_closed_mesh;
+/// use dymsum::{PolygonMesh, SolidError};
 /// let v = vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
-/// let tetra = PolygonMesh::new(v.clone(), vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3], vec![0, 3, 2]]);
-/// let info = check_closed_mesh(&tetra)?;
+/// let faces = vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3], vec![0, 3, 2]];
+/// let info = check_closed_mesh(&PolygonMesh::new(v.clone(), faces.clone()))?;
 /// assert_eq!((info.shells, info.genus), (1, 0));
 /// assert!((info.volume - 1.0 / 6.0).abs() < 1e-15);
-/// let open = PolygonMesh::new(v, vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3]]);
-/// assert!(matches!(check_closed_mesh(&open), Err(ClosedMeshError::OpenEdge { .. })));
-/// # Ok::<(), ClosedMeshError>(())
+/// let open = PolygonMesh::new(v.clone(), faces[..3].to_vec());
+/// assert!(matches!(check_closed_mesh(&open), Err(SolidError::OpenEdge { .. })));
+/// let inward: Vec<Vec<usize>> = faces.iter().map(|f| f.iter().rev().copied().collect()).collect();
+/// assert_eq!(
+///     check_closed_mesh(&PolygonMesh::new(v, inward)),
+///     Err(SolidError::NonPositiveTotalVolume { negative: true })
+/// );
+/// # Ok::<(), SolidError>(())
 /// ```
 ///
 /// # Errors
-/// The first [`ClosedMeshError`] found, naming the element.
-pub fn check_closed_mesh(mesh: &PolygonMesh) -> Result<ClosedMeshInfo, ClosedMeshError> {
-    if let Some(v) = mesh
-        .vertices
-        .iter()
-        .position(|p| !p.iter().all(|x| x.is_finite()))
-    {
-        return Err(ClosedMeshError::NonFinite { vertex: v });
-    }
+/// The first rule broken, as a [`SolidError`] naming the element (faces
+/// in the caller's numbering): [`SolidError::Empty`],
+/// [`SolidError::NonFinite`], [`SolidError::BadFace`],
+/// [`SolidError::OutOfRange`], [`SolidError::NonManifoldEdge`],
+/// [`SolidError::InconsistentOrientation`], [`SolidError::OpenEdge`],
+/// [`SolidError::NonManifoldVertex`] or
+/// [`SolidError::NonPositiveTotalVolume`].
+pub fn check_closed_mesh(mesh: &PolygonMesh) -> Result<ClosedMeshInfo, SolidError> {
+    check_elements(mesh)?;
+    let vertices = &mesh.vertices;
     let tris = triangles(mesh)?;
-    if tris.is_empty() {
-        return Err(ClosedMeshError::Empty);
-    }
-    check_triangles(&mesh.vertices, &tris)
-}
-
-/// [`check_closed_mesh`] on triangles.
-pub(crate) fn check_triangles(
-    vertices: &[[f64; 3]],
-    tris: &[[usize; 3]],
-) -> Result<ClosedMeshInfo, ClosedMeshError> {
-    // Directed half-edges: (from, to) -> index 3 t + k.
-    let mut half: HashMap<(usize, usize), usize> = HashMap::with_capacity(3 * tris.len());
-    for (t, f) in tris.iter().enumerate() {
-        for k in 0..3 {
-            let e = (f[k], f[(k + 1) % 3]);
-            if half.insert(e, 3 * t + k).is_some() {
-                let count = tris
-                    .iter()
-                    .flat_map(|g| (0..3).map(move |j| (g[j], g[(j + 1) % 3])))
-                    .filter(|&x| x == e)
-                    .count();
-                return Err(ClosedMeshError::RepeatedEdge {
-                    from: e.0,
-                    to: e.1,
-                    count,
-                });
-            }
-        }
-    }
-    for f in tris {
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            if !half.contains_key(&(b, a)) {
-                return Err(ClosedMeshError::OpenEdge { from: a, to: b });
-            }
-        }
-    }
-    // Fans: the outgoing half-edge a->b of triangle t (corner k) is followed
-    // by the outgoing half-edge a->c of the triangle across c->a, where c
-    // precedes a in t. One cycle per used vertex.
-    let mut seen = vec![false; 3 * tris.len()];
-    let mut fans: HashMap<usize, usize> = HashMap::new();
-    for start in 0..3 * tris.len() {
-        if seen[start] {
-            continue;
-        }
-        let vertex = tris[start / 3][start % 3];
-        *fans.entry(vertex).or_insert(0) += 1;
-        let mut h = start;
-        while !seen[h] {
-            seen[h] = true;
-            let (t, k) = (h / 3, h % 3);
-            let a = tris[t][k];
-            let c = tris[t][(k + 2) % 3];
-            h = half[&(a, c)];
-        }
-    }
-    if let Some((&vertex, &n)) = fans.iter().filter(|(_, &n)| n > 1).min_by_key(|(&v, _)| v) {
-        return Err(ClosedMeshError::Pinched { vertex, fans: n });
+    // The face of each fan triangle, to name faces in errors.
+    let face_of: Vec<usize> = mesh
+        .faces
+        .iter()
+        .enumerate()
+        .flat_map(|(face, f)| std::iter::repeat_n(face, f.len() - 2))
+        .collect();
+    let d = DirectedEdges::from_faces(vertices.len(), tris.len(), |t| &tris[t][..]);
+    check_topology(&d, |t| face_of[t])?;
+    let sign = volume_sign(vertices, &tris);
+    if sign != Sign::Positive {
+        return Err(SolidError::NonPositiveTotalVolume {
+            negative: sign == Sign::Negative,
+        });
     }
     let slivers = tris
         .iter()
-        .filter(|f| super::collinear(vertices[f[0]], vertices[f[1]], vertices[f[2]]))
+        .filter(|f| collinear(vertices[f[0]], vertices[f[1]], vertices[f[2]]))
         .count();
-    let used = fans.len();
-    let edges = half.len() / 2;
+    let used = (0..vertices.len())
+        .filter(|&v| d.start[v + 1] > d.start[v])
+        .count();
+    // Closed: every half-edge has its reverse.
+    let edges = 3 * tris.len() / 2;
     let chi = used as i64 - edges as i64 + tris.len() as i64;
-    let shells = super::shells(vertices.len(), tris).len();
-    let genus = shells as i64 - chi / 2;
-    let volume = signed_volume(vertices, tris);
-    if volume.is_nan() || volume <= 0.0 {
-        return Err(ClosedMeshError::NotPositive { volume });
-    }
+    let shells = shells(vertices.len(), &tris).len();
     Ok(ClosedMeshInfo {
         vertices: used,
         triangles: tris.len(),
-        volume,
+        volume: signed_volume(vertices, &tris),
         shells,
-        genus,
+        genus: shells as i64 - chi / 2,
         slivers,
     })
 }
 
 /// Signed volume of triangles, relative to their centroid (a float
-/// construction).
+/// construction), summed in the power-of-two frame of their corners (an
+/// exact scaling, so tiny and huge meshes keep their precision) and
+/// scaled back: infinite when it is beyond `f64`'s range.
 pub(crate) fn signed_volume(vertices: &[[f64; 3]], tris: &[[usize; 3]]) -> f64 {
     if tris.is_empty() {
         return 0.0;
     }
+    let k = exact::frame_exponent(tris.iter().flatten().flat_map(|&i| vertices[i]));
     let c = tris
         .iter()
-        .map(|f| DVec3::from(vertices[f[0]]))
+        .map(|f| exact::mul_pow2_vec(DVec3::from(vertices[f[0]]), k))
         .sum::<DVec3>()
         / tris.len() as f64;
-    let p = |i: usize| DVec3::from(vertices[i]) - c;
-    tris.iter()
+    let p = |i: usize| exact::mul_pow2_vec(DVec3::from(vertices[i]), k) - c;
+    let frame_volume = tris
+        .iter()
         .map(|f| p(f[0]).dot(p(f[1]).cross(p(f[2]))))
         .sum::<f64>()
-        / 6.0
+        / 6.0;
+    exact::mul_pow2(frame_volume, -3 * k)
 }

@@ -125,10 +125,22 @@ pub(crate) fn segments_meet(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
     segments_meet_2d(pr(a, i, j), pr(b, i, j), pr(c, i, j), pr(d, i, j))
 }
 
-/// The closed triangles `t` and `u` meet, whatever their degeneracy (a flat
-/// triangle is the union of its edges, a point the point): every decision
-/// exact.
-pub(crate) fn triangles_meet(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
+/// Whether the closed triangles `t` and `u` meet (share at least one
+/// point), whatever their degeneracy (a flat triangle is the union of its
+/// edges, a point the point): every decision exact, at any scale. The
+/// scene checker's test of a body's triangle against a scene's.
+///
+/// ```
+/// use dymsum::solid::triangles_meet;
+/// use dymsum::DVec3;
+/// let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+/// let t = [v(0., 0., 0.), v(2., 0., 0.), v(0., 2., 0.)];
+/// // Touching the hypotenuse at one point, from above and below.
+/// assert!(triangles_meet(&t, &[v(1., 1., 0.), v(1., 1., 1.), v(2., 2., -1.)]));
+/// // Coplanar and apart.
+/// assert!(!triangles_meet(&t, &[v(2., 1., 0.), v(3., 1., 0.), v(2., 2., 0.)]));
+/// ```
+pub fn triangles_meet(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
     // The cheap rejection first (Guigue–Devillers' first step): all of
     // one triangle strictly on one side of the other's plane. A flat
     // triangle has no plane (every sign zero) and is never rejected here.

@@ -8,6 +8,12 @@
 //! translation and scale (as long as its coordinates span at most
 //! `MAX_COORD_SPAN` = 960 bits, else [`SolidError::OutOfRange`]).
 //!
+//! [`SolidError`] is the layer's one error: the check of every merged
+//! mesh, [`closed::check_closed_mesh`] (rules 1 and 5 below on the faces'
+//! fans, and a positive total volume), and the cleaning of triangle soups
+//! ([`soup::clean_soup`]) report through it too. [`triangles_meet`] is the
+//! exact triangle–triangle test (the scene checker's).
+//!
 //! # The rules, in the order they are checked
 //!
 //! 1. At least one face; every vertex finite; every face at least three
@@ -85,8 +91,12 @@
 
 pub(crate) mod aabb;
 pub mod closed;
+mod error;
 pub(crate) mod intersect;
 pub mod soup;
+
+pub use error::SolidError;
+pub use intersect::triangles_meet;
 
 use crate::kernel::exact::{self, Dyadic};
 use crate::kernel::predicates::{orient, Sign};
@@ -96,132 +106,6 @@ use aabb::{Aabb, AabbTree};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
-
-/// Why a mesh is not a solid (see the module docs for the rules). Faces
-/// and vertices are numbered as in the caller's mesh.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub enum SolidError {
-    /// The mesh has no faces.
-    #[error("the mesh has no faces")]
-    Empty,
-    /// A vertex coordinate is NaN or infinite.
-    #[error("vertex {vertex} is not finite")]
-    NonFinite {
-        /// The vertex.
-        vertex: usize,
-    },
-    /// A face has fewer than three corners, a vertex out of range, or a
-    /// repeated vertex.
-    #[error("face {face} is malformed (fewer than 3 corners, a vertex out of range, or a repeated vertex)")]
-    BadFace {
-        /// The face.
-        face: usize,
-    },
-    /// The coordinates span more bits than the exact arithmetic takes.
-    #[error("the coordinates span 2^{low} to 2^{top}, more than 2^960 apart: too wide for exact predicates")]
-    OutOfRange {
-        /// The largest binary exponent.
-        top: i32,
-        /// The smallest binary exponent.
-        low: i32,
-    },
-    /// Two faces have the same corners: one face listed twice, or two
-    /// faces back to back.
-    #[error(
-        "faces {a} and {b} have the same corners (a face listed twice, or two faces back to back)"
-    )]
-    DuplicateFace {
-        /// The first face.
-        a: usize,
-        /// The later face.
-        b: usize,
-    },
-    /// Three corners of a face's fan are exactly collinear.
-    #[error("face {face} has a zero-area triangle (corners {corners:?} exactly collinear)")]
-    ZeroAreaTriangle {
-        /// The face.
-        face: usize,
-        /// The three collinear corners (vertex indices).
-        corners: [usize; 3],
-    },
-    /// A polygon face is not exactly planar.
-    #[error("face {face} is not planar (vertex {vertex} is off the plane of its first three corners); triangulate it")]
-    NonPlanarFace {
-        /// The face.
-        face: usize,
-        /// A corner off the plane.
-        vertex: usize,
-    },
-    /// A directed edge has no reverse: the surface is open there.
-    #[error("open mesh: edge ({from}, {to}) of face {face} has no opposite edge (the surface has a hole there)")]
-    OpenEdge {
-        /// Its first vertex.
-        from: usize,
-        /// Its second vertex.
-        to: usize,
-        /// The face holding it.
-        face: usize,
-    },
-    /// Two faces run their common edge the same way.
-    #[error("faces {} and {} both run edge ({from}, {to}) the same way: inconsistent orientation", faces[0], faces[1])]
-    InconsistentOrientation {
-        /// Its first vertex.
-        from: usize,
-        /// Its second vertex.
-        to: usize,
-        /// The two faces.
-        faces: [usize; 2],
-    },
-    /// An edge is in more than two faces.
-    #[error(
-        "edge ({from}, {to}) is in {count} faces (a non-manifold edge), among them face {face}"
-    )]
-    NonManifoldEdge {
-        /// Its first vertex.
-        from: usize,
-        /// Its second vertex.
-        to: usize,
-        /// How many faces hold it.
-        count: usize,
-        /// One of them.
-        face: usize,
-    },
-    /// The faces about a vertex form more than one fan: the surface
-    /// touches itself there.
-    #[error("vertex {vertex} is non-manifold (its faces form more than one fan: the surface touches itself there)")]
-    NonManifoldVertex {
-        /// The vertex.
-        vertex: usize,
-    },
-    /// Two triangles of one shell meet other than along a shared edge or
-    /// vertex (`a == b`: a polygon face whose fan overlaps itself).
-    #[error("{}", crossing(*a, *b))]
-    TrianglesCross {
-        /// The first face.
-        a: usize,
-        /// The second face (not smaller).
-        b: usize,
-    },
-    /// A shell encloses a zero or negative volume.
-    #[error("shell {shell} (the connected part holding face {face}) encloses a {} volume: it is inward (faces clockwise seen from outside, e.g. a cavity) or flat",
-        if *negative { "negative" } else { "zero" })]
-    NonPositiveVolume {
-        /// The shell (numbered by its first face).
-        shell: usize,
-        /// Its first face.
-        face: usize,
-        /// Negative (`true`) or zero.
-        negative: bool,
-    },
-}
-
-fn crossing(a: usize, b: usize) -> String {
-    if a == b {
-        format!("face {a} overlaps itself (its fan triangulation folds)")
-    } else {
-        format!("faces {a} and {b} cross (they meet other than along a shared edge or vertex)")
-    }
-}
 
 /// What [`check_solid_mesh`] found in a solid.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -263,28 +147,7 @@ impl Tri {
 pub fn check_solid_mesh(mesh: &PolygonMesh) -> Result<SolidInfo, SolidError> {
     let (vertices, faces) = (&mesh.vertices, &mesh.faces);
     let n = vertices.len();
-    if faces.is_empty() {
-        return Err(SolidError::Empty);
-    }
-    if let Some(vertex) = vertices
-        .iter()
-        .position(|p| !p.iter().all(|x| x.is_finite()))
-    {
-        return Err(SolidError::NonFinite { vertex });
-    }
-    for (face, f) in faces.iter().enumerate() {
-        let bad = f.len() < 3
-            || f.iter().any(|&i| i >= n)
-            || f.iter().enumerate().any(|(k, x)| f[k + 1..].contains(x));
-        if bad {
-            return Err(SolidError::BadFace { face });
-        }
-    }
-    let coords = faces
-        .iter()
-        .flatten()
-        .flat_map(|&i| vertices[i].into_iter());
-    exact::coordinate_span_ok(coords).map_err(|(top, low)| SolidError::OutOfRange { top, low })?;
+    check_elements(mesh)?;
     check_duplicates(faces)?;
     let p = |i: usize| DVec3::from(vertices[i]);
     let mut tris = Vec::with_capacity(mesh.triangle_count());
@@ -308,7 +171,7 @@ pub fn check_solid_mesh(mesh: &PolygonMesh) -> Result<SolidInfo, SolidError> {
             return Err(SolidError::NonPlanarFace { face, vertex });
         }
     }
-    check_topology(n, faces)?;
+    check_topology(&DirectedEdges::new(n, faces), |face| face)?;
     let shells = shells(n, faces);
     // The fan triangles of each face are consecutive in `tris`.
     let mut first_tri = Vec::with_capacity(faces.len() + 1);
@@ -340,6 +203,38 @@ pub fn check_solid_mesh(mesh: &PolygonMesh) -> Result<SolidInfo, SolidError> {
     })
 }
 
+/// Rule 1 (shared with [`closed::check_closed_mesh`]): at least one face,
+/// every vertex finite, every face well formed ([`malformed`]), and the
+/// coordinates of the faces within the exact arithmetic's span.
+fn check_elements(mesh: &PolygonMesh) -> Result<(), SolidError> {
+    let (vertices, faces) = (&mesh.vertices, &mesh.faces);
+    if faces.is_empty() {
+        return Err(SolidError::Empty);
+    }
+    if let Some(vertex) = vertices
+        .iter()
+        .position(|p| !p.iter().all(|x| x.is_finite()))
+    {
+        return Err(SolidError::NonFinite { vertex });
+    }
+    if let Some(face) = faces.iter().position(|f| malformed(f, vertices.len())) {
+        return Err(SolidError::BadFace { face });
+    }
+    let coords = faces
+        .iter()
+        .flatten()
+        .flat_map(|&i| vertices[i].into_iter());
+    exact::coordinate_span_ok(coords).map_err(|(top, low)| SolidError::OutOfRange { top, low })
+}
+
+/// A face of fewer than three corners, a corner not below `n`, or a
+/// repeated corner ([`SolidError::BadFace`]).
+pub(crate) fn malformed(f: &[usize], n: usize) -> bool {
+    f.len() < 3
+        || f.iter().any(|&i| i >= n)
+        || f.iter().enumerate().any(|(k, x)| f[k + 1..].contains(x))
+}
+
 /// Exactly: are three points collinear (every coordinate projection flat)?
 pub(crate) fn collinear(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
     intersect::projection(&[a, b, c].map(DVec3::from)).is_none()
@@ -359,9 +254,10 @@ fn check_duplicates(faces: &[Vec<usize>]) -> Result<(), SolidError> {
     Ok(())
 }
 
-/// Rule 5, by `polytope::topology`'s directed-edge index.
-fn check_topology(n: usize, faces: &[Vec<usize>]) -> Result<(), SolidError> {
-    let d = DirectedEdges::new(n, faces);
+/// Rule 5 (shared with [`closed::check_closed_mesh`]), by
+/// `polytope::topology`'s directed-edge index `d` of the faces (or of
+/// their fan triangles, numbered back to faces by `face_of`).
+fn check_topology(d: &DirectedEdges, face_of: impl Fn(usize) -> usize) -> Result<(), SolidError> {
     match d.check_manifold(Unused::Skip) {
         Ok(_) => Ok(()),
         Err(TopologyDefect::EdgeUsedTwice(from, to)) => {
@@ -371,21 +267,21 @@ fn check_topology(n: usize, faces: &[Vec<usize>]) -> Result<(), SolidError> {
                 Err(SolidError::InconsistentOrientation {
                     from,
                     to,
-                    faces: [same[0], same[1]],
+                    faces: [face_of(same[0]), face_of(same[1])],
                 })
             } else {
                 Err(SolidError::NonManifoldEdge {
                     from,
                     to,
                     count: same.len() + back.len(),
-                    face: same[0],
+                    face: face_of(same[0]),
                 })
             }
         }
         Err(TopologyDefect::OpenEdge(from, to)) => Err(SolidError::OpenEdge {
             from,
             to,
-            face: d.face_of(from, to).unwrap_or(0),
+            face: face_of(d.face_of(from, to).unwrap_or(0)),
         }),
         Err(TopologyDefect::PinchedVertex(vertex)) => Err(SolidError::NonManifoldVertex { vertex }),
         // Not reported by `check_manifold` with `Unused::Skip`.
