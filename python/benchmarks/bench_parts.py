@@ -23,7 +23,15 @@ dymsum's ``collides_at(pose)`` against ``setTransform`` +
 percentiles in µs, and their ratios (dymsum / fcl: below 1 is faster);
 ``collides_many`` on all states at once, per state, against the fcl
 loop's mean. Disagreements are counted (fcl rounds; dymsum is exact and
-also counts a body inside a solid). Prints a Markdown table.
+also counts a body inside a solid). With ``--motions M``, short motions
+from free near-contact states: turned by 1° to 5° about a random axis
+through the body's centre and moved by up to 2% of the obstacle's
+diagonal, one call each: dymsum's certified ``check(pose0, pose1)``
+against discrete validation with fcl as OMPL's SE(3) space would make
+it (``DiscreteMotionValidator``: states ``0.01 · extent`` apart in OMPL's
+SE(3) distance, the translation's length plus the quaternion angle, the
+extent the obstacle box's diagonal plus π/2; the end state included, the
+start not). Prints Markdown tables.
 """
 
 import argparse
@@ -82,6 +90,57 @@ def states(checker, va, vb, n, rng):
     return random, near
 
 
+def motions(fcl, checker, oa, ob, va, vb, starts, rng):
+    """Short motions from free states (module docs): dymsum's certified check against fcl's discrete one."""
+    from scipy.spatial.transform import Rotation
+
+    import dymsum
+
+    extent = np.linalg.norm(np.ptp(vb, 0)) + np.pi / 2
+    ca = (va.min(0) + va.max(0)) / 2
+    td, tf, counts, missed = [], [], [], 0
+    for p0 in starts:
+        axis = rng.normal(size=3)
+        turn = Rotation.from_rotvec(axis / np.linalg.norm(axis) * np.radians(rng.uniform(1, 5)))
+        p1 = np.eye(4)
+        centre = p0[:3, :3] @ ca + p0[:3, 3]
+        p1[:3, :3] = turn.as_matrix() @ p0[:3, :3]
+        p1[:3, 3] = turn.apply(p0[:3, 3] - centre) + centre + rng.normal(size=3) * 0.01 * np.linalg.norm(np.ptp(vb, 0))
+        t0 = time.perf_counter()
+        try:
+            free = checker.check(p0, p1).free
+        except Exception:  # noqa: BLE001 - undecided or over budget: counted as not free, timed
+            free = False
+        td.append(time.perf_counter() - t0)
+        q0, q1 = Rotation.from_matrix(p0[:3, :3]), Rotation.from_matrix(p1[:3, :3])
+        dist = np.linalg.norm(p1[:3, 3] - p0[:3, 3]) + np.arccos(min(1.0, abs(np.dot(q0.as_quat(), q1.as_quat()))))
+        steps = max(1, int(dist / (0.01 * extent)))
+        t0 = time.perf_counter()
+        ok = True
+        for k in range(1, steps + 1):
+            s = k / steps
+            r = dymsum.pose(Rotation.from_quat(_slerp(q0.as_quat(), q1.as_quat(), s)), (1 - s) * p0[:3, 3] + s * p1[:3, 3])
+            oa.setTransform(fcl.Transform(r[:3, :3], r[:3, 3]))
+            if fcl.collide(oa, ob, fcl.CollisionRequest(), fcl.CollisionResult()) > 0:
+                ok = False
+                break
+        tf.append(time.perf_counter() - t0)
+        counts.append(steps)
+        missed += ok and not free
+    td, tf = np.array(td) * 1e6, np.array(tf) * 1e6
+    return len(td), np.median(td), np.percentile(td, 99), np.median(tf), np.percentile(tf, 99), np.median(counts), missed
+
+
+def _slerp(a, b, s):
+    if np.dot(a, b) < 0:
+        b = -b
+    d = min(1.0, float(np.dot(a, b)))
+    th = np.arccos(d)
+    if th < 1e-12:
+        return a
+    return (np.sin((1 - s) * th) * a + np.sin(s * th) * b) / np.sin(th)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("dirs", nargs="+")
@@ -89,6 +148,7 @@ def main():
     ap.add_argument("--states", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--min-faces", type=int, default=0)
+    ap.add_argument("--motions", type=int, default=0)
     a = ap.parse_args()
     import fcl
 
@@ -139,6 +199,8 @@ def main():
             many = (time.perf_counter() - t0) / len(poses)
             td, tf = np.array(td) * 1e6, np.array(tf) * 1e6
             row[what] = (len(poses), np.median(td), np.median(tf), np.percentile(td, 99), np.percentile(tf, 99), many * 1e6, tf.mean(), disagree)
+        if a.motions and near:
+            row["motions"] = motions(fcl, checker, oa, ob, va, vb, near[1::2][: a.motions], rng)
         rows.append(row)
         short = lambda s: os.path.basename(s)[:-4]
         r = row.get("near", row.get("random"))
@@ -161,6 +223,19 @@ def main():
                 f"| {md:.1f} / {mf:.1f} ({md / mf:.2f}) | {pd:.0f} / {pf:.0f} ({pd / pf:.2f}) | {many:.1f} / {meanf:.1f} ({many / meanf:.2f}) | {dis} |"
             )
     gm = lambda v: float(np.exp(np.mean(np.log(v)))) if v else float("nan")
+    if a.motions:
+        print()
+        print("| body | obstacle | motions | certified µs median (p99) | discrete fcl µs median (p99), states | ratio of medians | discrete misses |")
+        print("|---|---|---|---|---|---|---|")
+        mr = []
+        for row in rows:
+            if "motions" not in row:
+                continue
+            n, dm, d99, fm, f99, steps, missed = row["motions"]
+            mr.append(dm / fm)
+            print(f"| {short(row['a'])} | {short(row['b'])} | {n} | {dm:.0f} ({d99:.0f}) | {fm:.0f} ({f99:.0f}), {steps:.0f} | {dm / fm:.2f} | {missed} |")
+        print()
+        print(f"Motions: ratio of medians gm {gm(mr):.2f}, worst {max(mr or [0]):.2f}")
     print()
     print(
         f"Ratios (dymsum / fcl): median random gm {gm(ratios['random']):.2f} worst {max(ratios['random'] or [0]):.2f}; "

@@ -8,6 +8,7 @@ use super::checker::{cached, SceneChecker, Scratch};
 
 use super::inside::inside_solid;
 use crate::kernel::rotation::Pose;
+use crate::query::checker::Checker;
 use crate::kernel::separation::{triangle_box_apart, triangles_apart};
 use crate::query::error::QueryError;
 use crate::solid::aabb::Aabb;
@@ -27,13 +28,13 @@ impl SceneChecker {
         out
     }
 
-    /// [`SceneChecker::collides_at`] for many poses, in parallel, in order.
+    /// [`SceneChecker::collides_at`] for many poses, in parallel, in order
+    /// ([`Checker::collides_many`]; callable without the trait in scope).
     ///
     /// # Errors
     /// The first error of [`SceneChecker::collides_at`].
     pub fn collides_many(&self, poses: &[Pose]) -> Result<Vec<bool>, QueryError> {
-        use rayon::prelude::*;
-        poses.par_iter().map(|&p| self.collides_at(p)).collect()
+        Checker::collides_many(self, poses)
     }
 
     pub(super) fn collides_with(&self, pose: Pose, s: &mut Scratch) -> Result<bool, QueryError> {
