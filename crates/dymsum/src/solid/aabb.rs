@@ -360,8 +360,10 @@ impl AabbTree {
     /// items that may come within reach of each other until `f` returns
     /// `true`; returns whether it did. This tree's tests are functions:
     /// `node_meets(n, k, b)` says whether node `n` may come within reach
-    /// of the other tree's node `k`, whose box is `b`, and `item_meets(i,
-    /// b)` whether item `i` may come within reach of box `b` (`false`
+    /// of the other tree's node `k`, whose box is `b`, `item_meets(i, b)`
+    /// whether item `i` may come within reach of the other tree's leaf
+    /// box `b`, and `items_meet(i, b)` whether it may come within reach of
+    /// the other tree's item box `b` (`false`
     /// must prove it does not; e.g. the body-frame bounds carried to a
     /// pose, computed only for the nodes visited), `node_size(n)` which
     /// tree to descend first; `other`'s boxes and bounds are given.
@@ -371,6 +373,7 @@ impl AabbTree {
         node_meets: impl Fn(usize, usize, &Aabb) -> bool,
         node_size: impl Fn(usize) -> f64,
         item_meets: impl Fn(usize, &Aabb) -> bool,
+        items_meet: impl Fn(usize, &Aabb) -> bool,
         other: &AabbTree,
         other_boxes: &[Aabb],
         other_bounds: &[Aabb],
@@ -394,7 +397,7 @@ impl AabbTree {
                             continue;
                         }
                         for &j in &other.items[*s2 as usize..*e2 as usize] {
-                            if item_meets(i as usize, &other_boxes[j as usize])
+                            if items_meet(i as usize, &other_boxes[j as usize])
                                 && f(i as usize, j as usize)
                             {
                                 return true;

@@ -97,6 +97,7 @@ impl SceneChecker {
                 Aabb::of(tri.map(|p| p.to_array())).meets(o)
                     && !triangle_box_apart(&tri, DVec3::from(o.lo), DVec3::from(o.hi))
             },
+            |i, o| Aabb::of(posed(i).map(|p| p.to_array())).meets(o),
             scene,
             scene.boxes(),
             scene.bounds(),

@@ -150,6 +150,7 @@ impl SceneChecker {
             |k, _, o| cached(&cache, epoch, k, || swept(&bounds[k])).within(o, reach),
             |k| bounds[k].size(),
             |i, o| swept(&boxes[i]).within(o, reach),
+            |i, o| swept(&boxes[i]).within(o, reach),
             scene,
             scene.boxes(),
             scene.bounds(),
