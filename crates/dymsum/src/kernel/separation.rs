@@ -209,6 +209,40 @@ mod tests {
         assert!(proven > 10_000 && meeting > 5_000, "{proven} {meeting}");
     }
 
+    /// Touching made by rounding: a corner put on the other triangle's edge
+    /// or face in floats (off it by rounding, to either side), kept when
+    /// the exact test says they meet. Without the slack, some of these
+    /// would be "proven" apart by a projection an ulp off (this test then
+    /// fails: checked by setting the slack to zero).
+    #[test]
+    fn rounding_never_makes_a_proof() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut meeting = 0;
+        for k in 0..200_000 {
+            let mut pts = [(); 5].map(|_| v(unit(), unit(), unit()) * 1e3);
+            let u = [pts[0], pts[1], pts[2]];
+            let (s, r) = (unit().abs(), unit().abs());
+            let on = if k % 2 == 0 {
+                u[0] + (u[1] - u[0]) * s
+            } else {
+                u[0] + (u[1] - u[0]) * (s * 0.5) + (u[2] - u[0]) * (r * 0.5)
+            };
+            pts.rotate_left(3);
+            let t = [on, pts[0], pts[1]];
+            if triangles_meet(&t, &u) {
+                meeting += 1;
+                assert!(!triangles_apart(&t, &u), "{t:?} {u:?}");
+            }
+        }
+        assert!(meeting > 50_000, "{meeting}");
+    }
+
     #[test]
     fn overflow_proves_nothing() {
         let big = 1e200;
