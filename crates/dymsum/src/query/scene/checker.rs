@@ -65,6 +65,39 @@ impl Lazy {
     }
 }
 
+/// Body triangles posed on demand, each once per query (stamped with the
+/// query's epoch): their corners (from [`Lazy`]) and the exact box of
+/// those corners.
+#[derive(Default)]
+pub(super) struct LazyTriangles {
+    stamp: Vec<u32>,
+    corners: Vec<([DVec3; 3], Aabb)>,
+}
+
+impl LazyTriangles {
+    /// Triangle `i` of `body` at `pose`, its corners posed by `at` (whose
+    /// epoch is the query's).
+    #[inline]
+    pub(super) fn get(
+        &mut self,
+        at: &mut Lazy,
+        body: &MeshBody,
+        pose: &Pose,
+        i: usize,
+    ) -> ([DVec3; 3], Aabb) {
+        if self.stamp.len() != body.triangles.len() {
+            self.stamp = vec![0; body.triangles.len()];
+            self.corners = vec![([DVec3::ZERO; 3], Aabb::EMPTY); body.triangles.len()];
+        }
+        if self.stamp[i] != at.epoch {
+            let t = body.triangles[i].map(|v| at.get(&body.vertices, pose, v));
+            self.corners[i] = (t, Aabb::of(t.map(|p| p.to_array())));
+            self.stamp[i] = at.epoch;
+        }
+        self.corners[i]
+    }
+}
+
 /// Node bounds computed on demand, each once per query (stamped with the
 /// query's epoch).
 type NodeCache = Vec<std::cell::Cell<(u32, Aabb)>>;
@@ -96,6 +129,8 @@ pub(super) fn shifted(b: &Aabb, shift: DVec3) -> Aabb {
 pub(super) struct Scratch {
     /// The body's vertices at the pose (at an interval's start).
     pub(super) at: Lazy,
+    /// The body's triangles at the pose (state checks).
+    pub(super) tris: LazyTriangles,
     /// The body's vertices at an interval's end.
     pub(super) at_b: Lazy,
     /// The body's node bounds at the pose, or swept over an interval.

@@ -8,8 +8,8 @@ use super::checker::{cached, SceneChecker, Scratch};
 
 use super::inside::inside_solid;
 use crate::kernel::rotation::Pose;
-use crate::query::checker::Checker;
 use crate::kernel::separation::{triangle_box_apart, triangles_apart};
+use crate::query::checker::Checker;
 use crate::query::error::QueryError;
 use crate::solid::aabb::Aabb;
 use crate::solid::intersect::triangles_meet;
@@ -82,10 +82,10 @@ impl SceneChecker {
         // posed triangle meets the scene triangle's box, then when no axis
         // proves them apart in floats (`kernel::separation`, certified),
         // and decided by the exact test.
-        let at = std::cell::RefCell::new(&mut s.at);
+        let lazy = std::cell::RefCell::new((&mut s.at, &mut s.tris));
         let posed = |i: usize| {
-            let mut at = at.borrow_mut();
-            self.body.triangles[i].map(|v| at.get(&self.body.vertices, &pose, v))
+            let (at, tris) = &mut *lazy.borrow_mut();
+            tris.get(at, &self.body, &pose, i)
         };
         let scene_cache = std::mem::take(&mut s.scene_cache);
         let back_node = |k: usize, o: &Aabb| cached(&scene_cache, epoch, k, || back(o));
@@ -93,17 +93,16 @@ impl SceneChecker {
             |n, k, o| world(n).within(o, 0.0) && back_node(k, o).within(&bounds[n], 0.0),
             |n| bounds[n].size(),
             |i, o| {
-                let tri = posed(i);
-                Aabb::of(tri.map(|p| p.to_array())).meets(o)
-                    && !triangle_box_apart(&tri, DVec3::from(o.lo), DVec3::from(o.hi))
+                let (tri, own) = posed(i);
+                own.meets(o) && !triangle_box_apart(&tri, DVec3::from(o.lo), DVec3::from(o.hi))
             },
-            |i, o| Aabb::of(posed(i).map(|p| p.to_array())).meets(o),
+            |i, o| posed(i).1.meets(o),
             scene,
             scene.boxes(),
             scene.bounds(),
             &mut stack,
             |i, j| {
-                let (tri, u) = (posed(i), self.scene_triangle(j));
+                let (tri, u) = (posed(i).0, self.scene_triangle(j));
                 !triangles_apart(&tri, &u) && triangles_meet(&tri, &u)
             },
         );
