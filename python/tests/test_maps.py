@@ -601,3 +601,45 @@ def test_dask_every_worker_killed_mid_map_says_the_workers_died():
                 dymsum.cobstacle_map(ROBOT, OBSTACLES, TURN, client=KillAfterScatter(), block=8)
             msg = str(e.value)
             assert "lost this task: its workers died" in msg and "pair (r0, block), block 0" in msg, msg
+
+
+# --- Issue 34: map files are read and written by dymsum-io (Rust) ----------
+
+
+def test_a_map_numpy_saved_zip64_headers_fortran_order_loads_the_same(tmp_path):
+    # np.savez writes ZIP64 local headers (as CObstacleMap.save did before
+    # issue 34); a Fortran-ordered and a narrower integer array read in C
+    # order as int64/float64.
+    for form in ("halfspaces", "mesh"):
+        m = dymsum.CObstacleMap(small_arrays(form))
+        np.savez(tmp_path / f"{form}.npz", **m.arrays)
+        same_arrays(dymsum.load_cobstacle_map(tmp_path / f"{form}.npz"), m)
+    arrays = small_arrays()
+    arrays["normals"] = np.asfortranarray(arrays["normals"])
+    arrays["pairs"] = np.asfortranarray(arrays["pairs"].astype(np.int16))
+    assert not arrays["normals"].flags.c_contiguous
+    path = write_zip(tmp_path / "fortran.npz", list(arrays.items()))
+    same_arrays(dymsum.load_cobstacle_map(path), dymsum.CObstacleMap(small_arrays()))
+
+
+def test_save_refuses_a_map_that_load_would_refuse_and_writes_nothing(tmp_path):
+    for field, value, needles in [
+        ("plane_start", small_arrays()["plane_start"][::-1].copy(), ["'plane_start'"]),
+        ("normals", np.full_like(small_arrays()["normals"], np.nan), ["'normals'", "not finite"]),
+        ("pairs", small_arrays()["pairs"].astype(np.uint64), ["'pairs'", "dtype <u8"]),
+        ("extra", np.arange(3), ["unexpected entry 'extra.npy'"]),
+    ]:
+        arrays = small_arrays()
+        arrays[field] = value
+        with pytest.raises(ValueError) as e:
+            dymsum.CObstacleMap(arrays).save(tmp_path / "map.npz")
+        for n in [str(tmp_path / "map.npz")] + needles:
+            assert n in str(e.value), str(e.value)
+        assert os.listdir(tmp_path) == []
+
+
+def test_the_map_readers_fields_are_dymsum_ios():
+    from dymsum import _maps
+
+    assert _maps._KINDS["normals"] == ("f", 2) and _maps._KINDS["format"] == ("U", 0)
+    assert len(_maps._KINDS) == 17

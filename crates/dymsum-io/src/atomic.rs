@@ -87,10 +87,78 @@ impl FileError {
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
-/// The process id in a temporary name this crate (or `dymsum`'s Python
-/// package) writes: `.STEM.tmp-PID-N` followed by nothing or `.EXT`, with
-/// `N` a token of ASCII letters, digits and `_` (a counter here, a random
-/// token in Python's `CObstacleMap.save`). `None` for any other name.
+/// The parts of a temporary name this crate writes: `.STEM.tmp-PID-N`
+/// followed by nothing or `.EXT`, with `N` a token of ASCII letters,
+/// digits and `_` (a counter here).
+///
+/// ```
+/// use dymsum_io::atomic::TempName;
+/// let t = TempName::parse(".map.tmp-4242-7.npz").unwrap();
+/// assert_eq!((t.stem, t.pid, t.ext), ("map", 4242, Some("npz")));
+/// assert_eq!(TempName::parse(".notes.tmp-1-k3x_a9").unwrap().ext, None);
+/// assert!(TempName::parse("map.npz").is_none());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TempName<'a> {
+    /// The target's file stem.
+    pub stem: &'a str,
+    /// The writer's process id.
+    pub pid: u32,
+    /// The target's extension, without the dot.
+    pub ext: Option<&'a str>,
+}
+
+impl<'a> TempName<'a> {
+    /// The parts of `name`, `None` when it is not a temporary name.
+    pub fn parse(name: &'a str) -> Option<TempName<'a>> {
+        let hidden = name.strip_prefix('.')?;
+        let at = hidden.rfind(".tmp-")?;
+        if at == 0 {
+            return None;
+        }
+        let stem = &hidden[..at];
+        let (pid, rest) = hidden[at + 5..].split_once('-')?;
+        if pid.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        let (token, ext) = match rest.split_once('.') {
+            Some((t, e)) => (t, Some(e)),
+            None => (rest, None),
+        };
+        if token.is_empty()
+            || !token
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || b == b'_')
+        {
+            return None;
+        }
+        Some(TempName {
+            stem,
+            pid: pid.parse().ok()?,
+            ext,
+        })
+    }
+
+    /// Whether this is a temporary file of a writer of `target`: the same
+    /// stem and extension ([`AtomicFile`]'s names).
+    ///
+    /// ```
+    /// use dymsum_io::atomic::TempName;
+    /// use std::path::Path;
+    /// let t = TempName::parse(".map.tmp-17-0.npz").unwrap();
+    /// assert!(t.is_temp_of(Path::new("out/map.npz")));
+    /// assert!(!t.is_temp_of(Path::new("out/map.off")));
+    /// assert!(!t.is_temp_of(Path::new("out/other.npz")));
+    /// ```
+    pub fn is_temp_of(&self, target: &Path) -> bool {
+        let stem = target.file_stem().map(|s| s.to_string_lossy());
+        let ext = target.extension().map(|e| e.to_string_lossy());
+        stem.as_deref() == Some(self.stem) && ext.as_deref() == self.ext
+    }
+}
+
+/// The process id in a temporary name this crate writes ([`TempName`]).
+/// `None` for any other name.
 ///
 /// ```
 /// use dymsum_io::atomic::temp_owner;
@@ -101,27 +169,7 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// assert_eq!(temp_owner(".map.tmp-x-1.npz"), None);
 /// ```
 pub fn temp_owner(name: &str) -> Option<u32> {
-    if !name.starts_with('.') {
-        return None;
-    }
-    let at = name.rfind(".tmp-")?;
-    if at == 0 {
-        return None;
-    }
-    let rest = &name[at + 5..];
-    let (pid, rest) = rest.split_once('-')?;
-    if pid.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
-        return None;
-    }
-    let token = rest.split_once('.').map_or(rest, |(t, _)| t);
-    if token.is_empty()
-        || !token
-            .bytes()
-            .all(|b| b.is_ascii_alphanumeric() || b == b'_')
-    {
-        return None;
-    }
-    pid.parse().ok()
+    TempName::parse(name).map(|t| t.pid)
 }
 
 /// Whether the process `pid` may still be running: this process, or (on
@@ -165,6 +213,43 @@ pub(crate) fn remove_stale_temps_with(
     dir: &Path,
     alive: &dyn Fn(u32) -> bool,
 ) -> Result<StaleTemps, FileError> {
+    remove_stale_temps_matching(dir, alive, &|_| true)
+}
+
+/// Removes the temporary files that killed writers of `target` left next
+/// to it ([`TempName::is_temp_of`]: the same stem and extension), those
+/// whose owner process is dead ([`owner_alive`]); a running writer's, and
+/// the temporary files of other targets, are left alone. Called before a
+/// new write of `target`, so that repeated kills do not pile files up.
+///
+/// ```
+/// use dymsum_io::atomic::remove_stale_temps_of;
+/// let dir = std::env::temp_dir().join(format!("dymsum-stale-of-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir)?;
+/// let mine = dir.join(format!(".map.tmp-{}-0.npz", std::process::id()));
+/// std::fs::write(&mine, b"a running writer's")?;
+/// let found = remove_stale_temps_of(&dir.join("map.npz"))?;
+/// assert!(found.removed.is_empty() && found.live == [mine.clone()]);
+/// assert!(mine.exists());
+/// std::fs::remove_dir_all(&dir)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`remove_stale_temps`], for `target`'s folder.
+pub fn remove_stale_temps_of(target: &Path) -> Result<StaleTemps, FileError> {
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    remove_stale_temps_matching(dir, &owner_alive, &|t| t.is_temp_of(target))
+}
+
+fn remove_stale_temps_matching(
+    dir: &Path,
+    alive: &dyn Fn(u32) -> bool,
+    wanted: &dyn Fn(&TempName<'_>) -> bool,
+) -> Result<StaleTemps, FileError> {
     let mut out = StaleTemps::default();
     let list_err = |source| FileError::Read {
         path: dir.to_path_buf(),
@@ -173,14 +258,14 @@ pub(crate) fn remove_stale_temps_with(
     for e in std::fs::read_dir(dir).map_err(list_err)? {
         let e = e.map_err(list_err)?;
         let name = e.file_name();
-        let Some(pid) = name.to_str().and_then(temp_owner) else {
+        let Some(temp) = name.to_str().and_then(TempName::parse) else {
             continue;
         };
-        if !e.file_type().is_ok_and(|t| t.is_file()) {
+        if !wanted(&temp) || !e.file_type().is_ok_and(|t| t.is_file()) {
             continue;
         }
         let path = e.path();
-        if alive(pid) {
+        if alive(temp.pid) {
             out.live.push(path);
         } else {
             match std::fs::remove_file(&path) {
@@ -227,7 +312,7 @@ pub struct AtomicFile {
 
 impl AtomicFile {
     /// Creates the temporary file for `path` (in `path`'s directory, which
-    /// must exist).
+    /// must exist), under the first free name `.STEM.tmp-PID-N.EXT`.
     ///
     /// # Errors
     /// [`FileError::Write`] naming `path` when `path` is a directory, or the
@@ -244,12 +329,19 @@ impl AtomicFile {
                 "is a directory",
             )));
         }
-        let tmp = temp_path(path);
-        let file = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-            .map_err(err)?;
+        // A name already taken (a leftover of an earlier process with this
+        // process's id, or anyone's file) is skipped: the counter moves on.
+        let mut attempts = 0;
+        let (tmp, file) = loop {
+            let tmp = temp_path(path);
+            match OpenOptions::new().write(true).create_new(true).open(&tmp) {
+                Ok(file) => break (tmp, file),
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists && attempts < 1000 => {
+                    attempts += 1;
+                }
+                Err(e) => return Err(err(e)),
+            }
+        };
         Ok(AtomicFile {
             path: path.to_path_buf(),
             tmp,
@@ -388,30 +480,58 @@ pub fn ensure_regular_file(path: &Path) -> Result<(), FileError> {
     })
 }
 
-/// Reads a whole regular file; anything else is refused with
-/// [`FileError::NotRegular`] before it is opened. The read is also bounded
-/// by the size the file had when opened (plus one byte to notice growth), so
-/// a file that keeps growing cannot exhaust memory.
+/// Opens a regular file for reading; anything else is refused with
+/// [`FileError::NotRegular`] before it is opened ([`ensure_regular_file`]).
+/// On Unix the file is opened non-blocking (no effect on a regular file),
+/// so a FIFO swapped in between the check and the open cannot block the
+/// open, and it is refused by the check of the opened file.
+///
+/// ```
+/// let err = dymsum_io::atomic::open_regular_file(&std::env::temp_dir()).unwrap_err();
+/// assert!(err.to_string().contains("not a regular file (a directory)"));
+/// ```
 ///
 /// # Errors
 /// [`FileError::NotRegular`] when the path (or, checked again after opening,
 /// the opened file) is not a regular file; [`FileError::Read`] when it
-/// cannot be inspected, opened or read, or grew while being read.
-pub fn read_regular_file(path: &Path) -> Result<Vec<u8>, FileError> {
+/// cannot be inspected or opened.
+pub fn open_regular_file(path: &Path) -> Result<File, FileError> {
     ensure_regular_file(path)?;
     let read_err = |source| FileError::Read {
         path: path.to_path_buf(),
         source,
     };
-    let file = File::open(path).map_err(read_err)?;
-    let meta = file.metadata().map_err(read_err)?;
-    if !meta.is_file() {
+    let mut options = OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = options.open(path).map_err(read_err)?;
+    if !file.metadata().map_err(read_err)?.is_file() {
         return Err(FileError::NotRegular {
             path: path.to_path_buf(),
             kind: "a FIFO, socket or device",
         });
     }
-    let len = meta.len();
+    Ok(file)
+}
+
+/// Reads a whole regular file ([`open_regular_file`]). The read is bounded
+/// by the size the file had when opened (plus one byte to notice growth),
+/// so a file that keeps growing cannot exhaust memory.
+///
+/// # Errors
+/// Those of [`open_regular_file`]; [`FileError::Read`] when the file
+/// cannot be read, or grew while being read.
+pub fn read_regular_file(path: &Path) -> Result<Vec<u8>, FileError> {
+    let file = open_regular_file(path)?;
+    let read_err = |source| FileError::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    let len = file.metadata().map_err(read_err)?.len();
     let mut bytes = Vec::with_capacity(usize::try_from(len).unwrap_or(0).min(1 << 30));
     file.take(len.saturating_add(1))
         .read_to_end(&mut bytes)
@@ -475,6 +595,52 @@ mod tests {
         write_atomic(&path, |w| w.write_all(&new)).unwrap();
         assert_eq!(std::fs::read(&path).unwrap(), new);
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_write_skips_a_temporary_name_already_taken_and_clears_only_its_targets_stale_temps() {
+        let dir = std::env::temp_dir().join(format!("dymsum-atomic-taken-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("map.npz");
+        // The names this process's next writes would take, already there
+        // (a leftover of an earlier process with this id).
+        let next = COUNTER.load(Ordering::Relaxed);
+        let pid = std::process::id();
+        let taken: Vec<PathBuf> = (next..next + 3)
+            .map(|n| dir.join(format!(".map.tmp-{pid}-{n}.npz")))
+            .collect();
+        for t in &taken {
+            std::fs::write(t, b"someone else's").unwrap();
+        }
+        write_atomic_bytes(&path, b"the map").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"the map");
+        for t in &taken {
+            assert_eq!(std::fs::read(t).unwrap(), b"someone else's");
+        }
+        // Stale temporary files of this target go; another target's, and
+        // a live owner's, stay.
+        let dead = u32::MAX - 1;
+        for name in [
+            format!(".map.tmp-{dead}-ab_1.npz"),
+            format!(".map.tmp-{dead}-0.off"),
+            format!(".other.tmp-{dead}-0.npz"),
+        ] {
+            std::fs::write(dir.join(name), b"partial").unwrap();
+        }
+        let found =
+            remove_stale_temps_matching(&dir, &|p| p != dead, &|t| t.is_temp_of(&path)).unwrap();
+        assert_eq!(
+            found.removed,
+            [dir.join(format!(".map.tmp-{dead}-ab_1.npz"))]
+        );
+        let (mut live, mut taken) = (found.live.clone(), taken);
+        live.sort();
+        taken.sort();
+        assert_eq!(live, taken);
+        assert!(dir.join(format!(".map.tmp-{dead}-0.off")).exists());
+        assert!(dir.join(format!(".other.tmp-{dead}-0.npz")).exists());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

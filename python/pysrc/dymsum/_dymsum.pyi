@@ -20,7 +20,7 @@ obstacles are expected.
 """
 
 import os
-from typing import Any, Dict, Literal, Optional, Protocol, Sequence, Tuple, Union, final, overload
+from typing import IO, Any, Callable, Dict, Literal, Mapping, Optional, Protocol, Sequence, Tuple, Union, final, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -58,6 +58,9 @@ __all__ = [
     "_check_closed_mesh",
     "_surfaces_touch",
     "_cobstacle_block",
+    "_cobstacle_map_fields",
+    "_read_cobstacle_map",
+    "_write_cobstacle_map",
     "check_solid",
 ]
 
@@ -547,6 +550,17 @@ def _cobstacle_block(
     robot: _ShapeLike, obstacle: _ShapeLike, rotations: _Rotations, form: str, certified: bool
 ) -> Tuple[npt.NDArray[Any], ...]:
     """One task of :func:`dymsum.cobstacle_map`: one piece pair, one block of rotations."""
+
+def _cobstacle_map_fields() -> dict[str, Tuple[str, int]]:
+    """The fields of a map container: name → (dtype kind, dimensions)."""
+
+def _read_cobstacle_map(path: Union[str, os.PathLike[str]]) -> dict[str, npt.NDArray[Any]]:
+    """The arrays of a map container, validated whole by dymsum-io (``ValueError`` / ``OSError`` naming the path)."""
+
+def _write_cobstacle_map(
+    path: Union[str, os.PathLike[str]], arrays: Mapping[str, Any], open_temp: Callable[[os.PathLike[str]], IO[bytes]]
+) -> None:
+    """Validates a map's arrays and writes them atomically through ``open_temp(temporary path)`` (dymsum-io)."""
 
 def _surfaces_touch(a: Any, pose_a: _PoseLike, b: Any, pose_b: _PoseLike) -> bool:
     """Whether the triangles of two meshes at their poses touch (exact, no containment). Private."""
