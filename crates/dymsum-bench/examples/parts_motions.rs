@@ -42,10 +42,20 @@ fn main() {
     };
     let (mut times, mut free, mut steps) = (Vec::new(), 0, Vec::new());
     for p0 in near.iter().skip(1).step_by(2) {
-        let axis = DVec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)).normalize();
-        let turn = Rotation::from_axis_angle(axis, rng.random_range(1.0f64..5.0).to_radians()).unwrap();
+        let axis = DVec3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        )
+        .normalize();
+        let turn =
+            Rotation::from_axis_angle(axis, rng.random_range(1.0f64..5.0).to_radians()).unwrap();
         let c = p0.apply(centre);
-        let shift = DVec3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)) * (0.01 * diag);
+        let shift = DVec3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        ) * (0.01 * diag);
         let p1 = Pose::new(
             p0.rotation.then(&turn),
             turn.apply(p0.translation - c) + c + shift,
