@@ -4,12 +4,14 @@
 
 use crate::convert::{self, err_for, value_error, Budget, Tolerance};
 use crate::polytope::PyPolytope;
+use dymsum::body::BodyOptions;
 use dymsum::polytope::MeshPolicy;
 use dymsum::query::{
     Body, ConvexUnion, MeshReport, MotionCheck, MotionError, Validator, DEFAULT_BUDGET,
     MIN_TOLERANCE,
 };
 use dymsum::Pose;
+use dymsum_io::body::{body_error_text, load_body, LoadOptions};
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::PyRuntimeError;
@@ -155,11 +157,15 @@ fn is_index_array(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
 }
 
 /// A body or obstacle argument: a `ConvexUnion`; a mesh with faces (a
-/// `(vertices, faces)` pair, an object with `.vertices` and `.faces`, or a
-/// mesh file), taken as it comes ([`Body::from_mesh`]: cleaned exactly,
-/// exactly convex solids on the convex path, anything else as triangles
-/// of any topology); or another shape (a `Polytope`, a point cloud, a
-/// model name: convex).
+/// `(vertices, faces)` pair or an object with `.vertices` and `.faces`)
+/// taken by the core's ladder ([`Body::from_mesh_with`]: cleaned exactly;
+/// one exactly convex solid, or a solid of exactly convex shells, on the
+/// convex path; anything else as triangles of any topology); a mesh path or
+/// model name by the command line's loader ([`dymsum_io::body::load_body`]:
+/// the file read once, a mesh file by the same ladder, an OBJ file of
+/// several objects as convex pieces, `a+b` as pieces, a model name or a
+/// point cloud as its polytope); or another shape (a `Polytope`, a point
+/// array: convex).
 fn body_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Body> {
     let py = obj.py();
     convert::not_none(obj, what, BODY_FORMS)?;
@@ -167,34 +173,19 @@ fn body_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Body> {
         return Ok(Body::Convex(u.get().inner.clone()));
     }
     if obj.cast::<PyPolytope>().is_err() {
-        let mesh = if let Some((v, f)) = convert::mesh_parts(obj)? {
-            Some(convert::solid_from_parts(&v, &f, what)?)
-        } else if obj.is_instance_of::<pyo3::types::PyString>() || obj.hasattr("__fspath__")? {
+        if let Some((v, f)) = convert::mesh_parts(obj)? {
+            let mesh = convert::solid_from_parts(&v, &f, what)?;
+            return py
+                .detach(|| Body::from_mesh_with(&mesh, &BodyOptions::default()))
+                .map(|(body, _)| body)
+                .map_err(|e| err_for(what, body_error_text(&e, mesh.faces.len())));
+        }
+        if obj.is_instance_of::<pyo3::types::PyString>() || obj.hasattr("__fspath__")? {
             let spec = convert::path_string(obj)?;
-            let path = std::path::PathBuf::from(&spec);
-            if path.is_file() {
-                Some(
-                    py.detach(|| dymsum_io::formats::read_mesh(&path))
-                        .map_err(|e| err_for(what, format!("{spec}: {e}")))?,
-                )
-            } else {
-                None // a model name
-            }
-        } else {
-            None
-        };
-        if let Some(mesh) = mesh.filter(|m| !m.faces.is_empty()) {
-            return py.detach(|| Body::from_mesh(&mesh)).map_err(|e| match e {
-                dymsum::SolidError::Empty => err_for(
-                    what,
-                    format!(
-                        "no triangle is left after cleaning: all {} faces have zero area \
-                             (or repeat a vertex)",
-                        mesh.faces.len()
-                    ),
-                ),
-                e => err_for(what, e),
-            });
+            return py
+                .detach(|| load_body(&spec, &LoadOptions::default()))
+                .map(|loaded| loaded.body)
+                .map_err(|e| convert::load_error(e, Some(what)));
         }
     }
     Ok(Body::Convex(ConvexUnion::from(

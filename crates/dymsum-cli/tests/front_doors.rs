@@ -1,19 +1,61 @@
-//! One mesh, one answer, whichever door it comes in by (issue 33 §3): the
-//! command line's `query --collision-only` and `motion` take a mesh file
-//! exactly as Rust's `Body::from_mesh` (and so Python's `MotionChecker`,
-//! python/tests/test_front_doors.py) does: the same cleaning, the same
-//! meaning of inside, the same note of what was done. A mesh convex only
+//! One mesh, one answer, whichever door it comes in by (issues 33 §3 and
+//! 34): the same mesh files (`tests/fixtures/front_doors`) are taken by
+//! Rust's ladder (`Body::from_mesh_with`), by the one loader
+//! (`dymsum_io::body`, which reads each file once), by the command line's
+//! `query` and `motion`, and by Python's `MotionChecker`
+//! (python/tests/test_front_doors.py reads the same files, as paths and as
+//! arrays): the same body kind (convex pieces, how many, or triangles),
+//! the same answers, the same note of what was done. A mesh convex only
 //! within rounding is taken exactly unless `--hull` asks for its hull, and
 //! then the deviation is reported.
 
 mod common;
 
-use std::path::Path;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 
-use common::{model, run, stderr, stdout, temp_dir};
+use common::{fixture, model, run, stderr, stdout, temp_dir};
+use dymsum::body::{BodyOptions, Rung};
 use dymsum::query::{Body, ConvexUnion, MotionCheck, Validator};
 use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
-use dymsum_testkit::{box_corners, CUBE_QUADS};
+use dymsum_io::body::{body_from, read_operands_from, Files, LoadOptions, Reader, Taken};
+use dymsum_io::formats::FormatError;
+
+/// The family, one file each (`tests/fixtures/front_doors`), with the
+/// body each door must take: its convex pieces, or 0 for triangles.
+///
+/// * `touching.off`: two cubes sharing a face, each closed with its own
+///   corners (a solid of two exactly convex shells: their union);
+/// * `cavity.off`: a box with an inward box inside (a cavity: triangles);
+/// * `t_junction.off`: a box whose top is split at a vertex lying on an
+///   edge (the edge split by the cleaning: one exactly convex solid);
+/// * `fin.off`: a cube with a triangle sticking out of its top edge;
+/// * `open.off`: a cube without its lid, every face double-sided;
+/// * `inward.off`: the touching cubes given inward;
+/// * `dented.off`: a cube whose top is fanned about its centre, pushed
+///   down by 1e-6 (convex only within rounding: triangles, unless `--hull`);
+/// * `objects.obj`: two separate cubes as OBJ objects `a` and `b` (convex
+///   pieces);
+/// * `lidless_objects.obj`: the same, `b` without its lid (no convex
+///   piece: the whole file by the ladder, as triangles).
+const FAMILY: [(&str, usize); 9] = [
+    ("touching.off", 2),
+    ("cavity.off", 0),
+    ("t_junction.off", 1),
+    ("fin.off", 0),
+    ("open.off", 0),
+    ("inward.off", 0),
+    ("dented.off", 0),
+    ("objects.obj", 2),
+    ("lidless_objects.obj", 0),
+];
+
+/// A family file's path and its mesh as read whole.
+fn family_file(name: &str) -> (String, PolygonMesh) {
+    let path = fixture(&format!("front_doors/{name}"));
+    let mesh = dymsum_io::formats::read_mesh(Path::new(&path)).unwrap();
+    (path, mesh)
+}
 
 /// A mesh as an OFF file (coordinates written exactly: Rust's shortest
 /// round-trip text).
@@ -29,77 +71,6 @@ fn mesh_off(dir: &Path, name: &str, m: &PolygonMesh) -> String {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path.to_str().unwrap().to_string()
-}
-
-/// Boxes in one mesh, each closed with its own corners; `outward[i]` false
-/// makes box `i` an inward shell (a cavity).
-fn boxes(cells: &[([f64; 3], [f64; 3])], outward: &[bool]) -> PolygonMesh {
-    let mut m = PolygonMesh::new(Vec::new(), Vec::new());
-    for (i, (lo, hi)) in cells.iter().enumerate() {
-        let base = m.vertices.len();
-        m.vertices.extend(box_corners(*lo, *hi));
-        for q in CUBE_QUADS {
-            let q: Vec<usize> = q.iter().map(|v| v + base).collect();
-            m.faces.push(if outward[i] {
-                q
-            } else {
-                q.into_iter().rev().collect()
-            });
-        }
-    }
-    m
-}
-
-/// The family: touching solids, a cavity, a T-junction, a fin, an open
-/// double-sided box, inward input, and a box with a 1e-6 dent in its top
-/// (convex only within rounding).
-fn family() -> Vec<(&'static str, PolygonMesh)> {
-    let unit = ([0.0; 3], [2.0; 3]);
-    let mut t_junction = boxes(&[([0.0; 3], [4.0, 2.0, 2.0])], &[true]);
-    t_junction.vertices.push([2.0, 0.0, 2.0]); // on the top front edge
-    t_junction.faces.retain(|f| f != &[4, 5, 7, 6]);
-    t_junction
-        .faces
-        .extend([vec![4, 8, 6], vec![8, 7, 6], vec![8, 5, 7]]);
-    let mut fin = boxes(&[unit], &[true]);
-    fin.vertices.push([1.0, -2.0, 3.0]);
-    fin.faces.push(vec![4, 5, 8]);
-    let mut open = boxes(&[unit], &[true]);
-    open.faces.retain(|f| f != &[4, 5, 7, 6]);
-    let backs: Vec<Vec<usize>> = open
-        .faces
-        .iter()
-        .map(|f| f.iter().rev().copied().collect())
-        .collect();
-    open.faces.extend(backs);
-    // The top face fanned about its centre, pushed down by 1e-6.
-    let mut dented = boxes(&[unit], &[true]);
-    dented.vertices.push([1.0, 1.0, 2.0 - 1e-6]);
-    dented.faces.retain(|f| f != &[4, 5, 7, 6]);
-    dented
-        .faces
-        .extend([vec![4, 5, 8], vec![5, 7, 8], vec![7, 6, 8], vec![6, 4, 8]]);
-    vec![
-        (
-            "touching",
-            boxes(&[unit, ([2.0, 0.0, 0.0], [4.0, 2.0, 2.0])], &[true, true]),
-        ),
-        (
-            "cavity",
-            boxes(
-                &[([0.0; 3], [4.0; 3]), ([1.0; 3], [3.0; 3])],
-                &[true, false],
-            ),
-        ),
-        ("t_junction", t_junction),
-        ("fin", fin),
-        ("open", open),
-        (
-            "inward",
-            boxes(&[unit, ([2.0, 0.0, 0.0], [4.0, 2.0, 2.0])], &[false, false]),
-        ),
-        ("dented", dented),
-    ]
 }
 
 /// Probe translations: inside, in cavities, against walls, in the dent.
@@ -127,12 +98,52 @@ fn probe_body() -> Body {
     Body::Convex(ConvexUnion::from(model("box:0.25")))
 }
 
+/// A body's kind: its convex pieces on the convex path, 0 for triangles.
+fn kind(body: &Body) -> usize {
+    match body {
+        Body::Convex(u) => u.pieces().len(),
+        Body::Mesh(m) => usize::from(m.as_convex().is_some()),
+    }
+}
+
+/// Reads the file system and counts the reads per path.
+#[derive(Default)]
+struct Counting(HashMap<PathBuf, usize>);
+
+impl Reader for Counting {
+    fn read_file(&mut self, path: &Path) -> Result<Vec<u8>, FormatError> {
+        *self.0.entry(path.to_path_buf()).or_default() += 1;
+        Files.read_file(path)
+    }
+}
+
+#[test]
+fn the_loader_reads_each_file_once_and_takes_it_as_the_ladder_does() {
+    for (name, pieces) in FAMILY {
+        let (path, mesh) = family_file(name);
+        let (body, _) = Body::from_mesh_with(&mesh, &BodyOptions::default()).unwrap();
+        assert_eq!(kind(&body), pieces, "{name}: the ladder");
+        let mut counting = Counting::default();
+        let parts = read_operands_from(&path, &mut counting).unwrap();
+        let loaded = body_from(&parts, &LoadOptions::default()).unwrap();
+        // The convex pieces the subcommands that need them take come from
+        // the same reading.
+        let _ = dymsum_io::body::convex_pieces(&parts, &LoadOptions::default());
+        assert_eq!(kind(&loaded.body), pieces, "{name}: the loader");
+        assert_eq!(
+            counting.0,
+            HashMap::from([(PathBuf::from(&path), 1)]),
+            "{name}: each file read once"
+        );
+    }
+}
+
 #[test]
 fn query_and_motion_answer_as_the_library_on_the_family() {
-    let dir = temp_dir("front-doors");
-    for (name, mesh) in family() {
-        let file = mesh_off(&dir, &format!("{name}.off"), &mesh);
-        let library = Validator::new(&probe_body(), &[Body::from_mesh(&mesh).unwrap()]).unwrap();
+    for (name, pieces) in FAMILY {
+        let (file, mesh) = family_file(name);
+        let (body, _) = Body::from_mesh_with(&mesh, &BodyOptions::default()).unwrap();
+        let library = Validator::new(&probe_body(), &[body]).unwrap();
         // States.
         let mut args = vec![
             "query".to_string(),
@@ -159,14 +170,40 @@ fn query_and_motion_answer_as_the_library_on_the_family() {
             cli, lib,
             "{name}: the command line and the library disagree"
         );
-        // The note says what the cleaning did, in the library's counts.
-        let r = Body::from_mesh(&mesh).unwrap().to_mesh_body().report();
+        // The note says which rung took the mesh, and what the cleaning
+        // did in the library's counts.
+        let loaded = dymsum_io::load_body(&file, &LoadOptions::default()).unwrap();
         let note = stderr(&o);
-        assert!(
-            note.contains(&format!("{} triangles", r.triangles))
-                || note.contains("exactly convex shells (their union"),
-            "{name}: {note}"
-        );
+        let expected = match &loaded.taken {
+            Taken::Ladder(r) | Taken::ObjectsByLadder { report: r, .. } => match r.rung {
+                Rung::Convex => "exactly convex, taken as one convex piece".to_string(),
+                Rung::ConvexShells => format!("taken as {pieces} exactly convex shells"),
+                Rung::Triangles => format!(
+                    "taken as triangles ({}",
+                    dymsum_cli::commands::solid::triangle_components(&r.cleaning.unwrap())
+                ),
+                Rung::Hull => unreachable!("no --hull"),
+            },
+            Taken::Pieces(n) => {
+                assert_eq!(*n, pieces, "{name}");
+                assert!(note.is_empty(), "{name}: {note}");
+                String::new()
+            }
+        };
+        assert!(note.contains(&expected), "{name}: {note}");
+        if let Taken::Ladder(r) | Taken::ObjectsByLadder { report: r, .. } = &loaded.taken {
+            if let Some(c) = r.cleaning.filter(|_| r.rung == Rung::Triangles) {
+                assert!(
+                    note.contains(&format!(", {} triangles", c.triangles)),
+                    "{name}: {note}"
+                );
+            }
+        }
+        // The body's kind: without `--collision-only`, the distance is
+        // given for convex pieces and refused for triangles.
+        let far = pose_arg([10.0, 10.0, 10.0]);
+        let o = run(&["query", "box:0.25", &file, "--pose-xyz-wxyz", &far]);
+        assert_eq!(o.status.success(), pieces > 0, "{name}: {}", stderr(&o));
         // Motions: from far outside to each probe.
         for p in PROBES {
             let to = pose_arg(p);
@@ -188,8 +225,7 @@ fn query_and_motion_answer_as_the_library_on_the_family() {
                 MotionCheck::Free => assert_eq!(v["free"], true, "{name} {p:?}"),
                 MotionCheck::Collides { t_contact, .. } => {
                     // Both bracket the first contact to the tolerance (the
-                    // command line may take the convex path, or print
-                    // fewer digits).
+                    // command line prints fewer digits).
                     assert_eq!(v["free"], false, "{name} {p:?}");
                     let cli = v["t_contact"].as_f64().unwrap();
                     assert!(
@@ -200,14 +236,11 @@ fn query_and_motion_answer_as_the_library_on_the_family() {
             }
         }
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
 fn a_dent_is_kept_unless_hull_is_asked_for() {
-    let dir = temp_dir("front-doors-dent");
-    let (_, dented) = family().pop().unwrap();
-    let file = mesh_off(&dir, "dented.off", &dented);
+    let (file, _) = family_file("dented.off");
     // A probe sitting in the dent: under the hull's top face (z = 2) but
     // above the dented one.
     let probe = pose_arg([1.0, 1.0, 2.125 - 0.5e-6]);
@@ -243,7 +276,6 @@ fn a_dent_is_kept_unless_hull_is_asked_for() {
     // `--hull` and `--strict` contradict each other.
     let both = query(&["--hull", "--strict"]);
     assert_eq!(both.status.code(), Some(2));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
@@ -252,8 +284,7 @@ fn an_obstacle_is_placed_by_its_pose() {
     // about z and a translation (exact: the same as moving the vertices by
     // hand), in query and motion alike.
     let dir = temp_dir("front-doors-placed");
-    let (_, mesh) = family().swap_remove(0);
-    let file = mesh_off(&dir, "own_frame.off", &mesh);
+    let (file, mesh) = family_file("touching.off");
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let pose = Pose::new(
         Rotation::from_wxyz(h, 0.0, 0.0, h).unwrap(),

@@ -9,12 +9,14 @@
 //! * [`npz`]: NumPy `.npz` archives of plain arrays; [`cmap`]: the
 //!   C-obstacle map container written in one.
 //! * [`load`]: an operand from a file path or a model name, as a polytope
-//!   ([`load_polytope`]).
+//!   ([`load_polytope`]); [`body`]: an operand read once as a body (the
+//!   core's ladder, unions, OBJ objects: [`body::load_body`]).
 #![forbid(unsafe_code)]
 #![warn(clippy::missing_errors_doc, clippy::missing_panics_doc)]
 #![warn(missing_docs)]
 
 pub mod atomic;
+pub mod body;
 pub mod cmap;
 pub mod formats;
 pub mod load;
@@ -22,4 +24,5 @@ pub mod models;
 pub mod npz;
 pub mod staging;
 
+pub use body::{load_body, LoadOptions, LoadedBody};
 pub use load::{load_mesh, load_polytope, load_polytope_bytes, LoadError, Loaded};

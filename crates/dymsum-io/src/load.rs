@@ -1,20 +1,23 @@
 //! Loading a polytope from a file path or a built-in model name.
 //!
-//! [`load_polytope`] is what every `dymsum` subcommand does with an operand:
+//! [`load_polytope`] reads `spec` once ([`crate::body::read_operand`]) and
+//! takes it as one convex body:
 //!
-//! 1. If `spec` names an existing file, it is read with
-//!    [`formats::read_mesh`] (format by extension). A mesh with faces becomes
+//! 1. If `spec` names an existing file, it is read with the reader of its
+//!    extension ([`formats::read_mesh_bytes`]). A mesh with faces becomes
 //!    a polytope through [`Polytope::from_mesh`] (validated, see
 //!    [`dymsum::polytope::build`]); a mesh with no faces is a point cloud and
 //!    becomes its convex hull through [`Polytope::from_points`].
-//! 2. Otherwise `spec` is looked up with [`models::model`]: `random:N:SEED`
+//! 2. Otherwise `spec` is looked up with [`crate::models::model`]: `random:N:SEED`
 //!    is a point cloud (hull), every other model a mesh.
 //! 3. A spec that is neither gives [`LoadError::NotFound`], which says both
 //!    things that were tried, and suggests the closest model name.
 //!
 //! A file without a known extension that is also a model name (a file called
 //! `cube` in the current directory, say) resolves to the model: a mesh file
-//! must have a `.off`, `.obj`, `.ply` or `.stl` extension anyway.
+//! must have a `.off`, `.obj`, `.ply` or `.stl` extension anyway. Bodies
+//! that are not one convex polytope (triangles, unions) are
+//! [`crate::body`]'s.
 //!
 //! ```
 //! use dymsum::polytope::MeshPolicy;
@@ -27,13 +30,12 @@
 //! assert!(err.to_string().contains("ellipse"));
 //! ```
 
-use std::path::Path;
-
 use dymsum::polytope::{ConvexityReport, MeshPolicy};
-use dymsum::{PolygonMesh, Polytope, PolytopeError};
+use dymsum::{PolygonMesh, Polytope, PolytopeError, SolidError};
 
+use crate::body::{body_error_text, read_operand, read_operand_bytes};
 use crate::formats::{self, FormatError};
-use crate::models::{self, ModelError};
+use crate::models::ModelError;
 
 /// A polytope with where it came from and what building it changed.
 #[derive(Clone, Debug)]
@@ -115,6 +117,41 @@ pub enum LoadError {
         #[source]
         source: PolytopeError,
     },
+    /// An object of an OBJ file of several bodies, taken as convex pieces,
+    /// is not a valid convex polytope. Fix: repair or split the object.
+    #[error("{origin}, object `{name}`: {source}")]
+    Object {
+        /// `"file parts.obj"`.
+        origin: String,
+        /// The object's (or group's) name.
+        name: String,
+        /// The polytope builder's error.
+        #[source]
+        source: PolytopeError,
+    },
+    /// A mesh file could not be taken as a body even as triangles
+    /// ([`dymsum::body::Body::from_mesh_with`]: every face of zero area, a
+    /// malformed face).
+    #[error("{origin}: {}", body_error_text(.source, *.faces))]
+    Body {
+        /// `"file soup.off"`.
+        origin: String,
+        /// The mesh's face count.
+        faces: usize,
+        /// The cleaning's error.
+        #[source]
+        source: SolidError,
+    },
+    /// A piece of a union joined with `+` (`a.off+b.off`) could not be
+    /// loaded.
+    #[error("piece {index}: {source}")]
+    Piece {
+        /// The piece's place in the union, from 1.
+        index: usize,
+        /// Its error.
+        #[source]
+        source: Box<LoadError>,
+    },
 }
 
 impl LoadError {
@@ -126,7 +163,10 @@ impl LoadError {
             LoadError::Format { origin, .. }
             | LoadError::Model { origin, .. }
             | LoadError::SeveralBodies { origin, .. }
-            | LoadError::Polytope { origin, .. } => origin.clone(),
+            | LoadError::Polytope { origin, .. }
+            | LoadError::Body { origin, .. } => origin.clone(),
+            LoadError::Object { origin, name, .. } => format!("{origin}, object `{name}`"),
+            LoadError::Piece { source, .. } => source.origin(),
         }
     }
 
@@ -142,14 +182,22 @@ impl LoadError {
             LoadError::Format { source, .. } => format_cause(source),
             LoadError::Model { source, .. } => source.to_string(),
             LoadError::SeveralBodies { names, .. } => several_bodies_text(names),
-            LoadError::Polytope { source, .. } => source.to_string(),
+            LoadError::Polytope { source, .. } | LoadError::Object { source, .. } => {
+                source.to_string()
+            }
+            LoadError::Body { source, faces, .. } => body_error_text(source, *faces),
+            LoadError::Piece { source, .. } => source.cause(),
         }
     }
 
     /// The message for a named operand: `"P (file foo.off): cause"`, or for a
-    /// spec that was not found `"P: cause"` (the cause names the spec).
+    /// spec that was not found `"P: cause"` (the cause names the spec); for
+    /// a piece of a union, the piece's message as operand `"P piece 2"`.
     pub fn for_operand(&self, operand: &str) -> String {
         match self {
+            LoadError::Piece { index, source } => {
+                source.for_operand(&format!("{operand} piece {index}"))
+            }
             LoadError::NotFound { .. } => format!("{operand}: {}", self.cause()),
             _ => format!("{operand} ({}): {}", self.origin(), self.cause()),
         }
@@ -213,20 +261,6 @@ fn format_cause(e: &FormatError) -> String {
     }
 }
 
-/// Mesh file extensions, for telling a mistyped path from a mistyped name.
-const MESH_EXTENSIONS: [&str; 4] = ["off", "obj", "ply", "stl"];
-
-fn has_mesh_extension(spec: &str) -> bool {
-    Path::new(spec)
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| MESH_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
-}
-
-fn looks_like_file(spec: &str) -> bool {
-    spec.contains('/') || spec.contains(std::path::MAIN_SEPARATOR) || has_mesh_extension(spec)
-}
-
 /// Loads a polytope from a file path or a built-in model name (see the
 /// module docs for the order of the look-ups). Never panics.
 ///
@@ -243,30 +277,7 @@ fn looks_like_file(spec: &str) -> bool {
 /// * [`LoadError::Polytope`]: the mesh or point cloud is not a valid convex
 ///   body (as [`load_mesh`]).
 pub fn load_polytope(spec: &str, policy: MeshPolicy) -> Result<Loaded, LoadError> {
-    let path = Path::new(spec);
-    let is_file = path.is_file();
-    if is_file && (has_mesh_extension(spec) || models::model(spec).is_err()) {
-        return load_file(spec, path, policy);
-    }
-    if path.exists() && !is_file {
-        // A directory (or other non-file) with a name that is not a model:
-        // let the reader give the I/O error.
-        if models::model(spec).is_err() {
-            return load_file(spec, path, policy);
-        }
-    }
-    match models::model(spec) {
-        Ok(mesh) => load_mesh(mesh, format!("built-in {}", spec.trim()), policy),
-        Err(ModelError::Unknown { suggestion, .. }) => Err(LoadError::NotFound {
-            spec: spec.to_string(),
-            suggestion,
-            looks_like_file: looks_like_file(spec),
-        }),
-        Err(source) => Err(LoadError::Model {
-            origin: format!("built-in {}", spec.trim()),
-            source,
-        }),
-    }
+    read_operand(spec)?.into_polytope(policy)
 }
 
 /// Loads a polytope from mesh bytes already in memory (standard input, a
@@ -292,36 +303,7 @@ pub fn load_polytope_bytes(
     origin: &str,
     policy: MeshPolicy,
 ) -> Result<Loaded, LoadError> {
-    let mesh =
-        formats::read_mesh_bytes(bytes, format, origin).map_err(|source| LoadError::Format {
-            origin: origin.to_string(),
-            source,
-        })?;
-    load_mesh(mesh, origin.to_string(), policy)
-}
-
-fn load_file(spec: &str, path: &Path, policy: MeshPolicy) -> Result<Loaded, LoadError> {
-    let origin = format!("file {spec}");
-    let format_err = |source| LoadError::Format {
-        origin: origin.clone(),
-        source,
-    };
-    let is_obj = formats::Format::from_path(path).ok() == Some(formats::Format::Obj);
-    let mesh = if is_obj {
-        // The same bodies as `query` and `cobst` see: groups of one closed
-        // mesh are one body, a faceless object is a point cloud.
-        let mut bodies = formats::read_obj_objects(path).map_err(format_err)?;
-        if bodies.len() > 1 {
-            return Err(LoadError::SeveralBodies {
-                origin,
-                names: bodies.into_iter().map(|(n, _)| n).collect(),
-            });
-        }
-        bodies.pop().map(|(_, m)| m).unwrap_or_default()
-    } else {
-        formats::read_mesh(path).map_err(format_err)?
-    };
-    load_mesh(mesh, origin, policy)
+    read_operand_bytes(bytes, format, origin)?.into_polytope(policy)
 }
 
 /// Loads a polytope from a mesh already in memory (a built-in model's, or

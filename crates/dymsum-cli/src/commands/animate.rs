@@ -26,7 +26,7 @@ use dymsum_io::atomic::AtomicFile;
 use dymsum_io::formats::{write_mesh_with, Format};
 use indicatif::ProgressBar;
 
-use super::solid::{load_solid, Strictness};
+use super::solid::{convex_operands, load_solid};
 use super::{load, short_name};
 use crate::random_motion::PaperMotion;
 use crate::stats::{human_us, mean, median, micros};
@@ -97,8 +97,8 @@ pub fn frame_path(dir: &Path, step: u64) -> PathBuf {
 pub fn run(a: &AnimateArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     super::stdin_for_one_operand(&[(&a.p, "P"), (&a.q, "Q")])?;
     let (ps, qs) = (
-        load_solid(&a.p, "P", Strictness::from_flag(a.strict), None)?,
-        load_solid(&a.q, "Q", Strictness::from_flag(a.strict), None)?,
+        load_solid(&a.p, "P", convex_operands(a.strict), None)?,
+        load_solid(&a.q, "Q", convex_operands(a.strict), None)?,
     );
     if !(ps.is_convex() && qs.is_convex()) {
         return run_union(a, ps.pieces, qs.pieces, out);

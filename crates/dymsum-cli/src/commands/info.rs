@@ -78,7 +78,7 @@ impl Info {
 /// Runs `dymsum info`.
 ///
 /// # Errors
-/// The input cannot be loaded ([`super::load`]), or writing the report to
+/// The input cannot be loaded ([`super::solid::load_single_body`]), or writing the report to
 /// `out` fails.
 pub fn run(a: &InfoArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let loaded = load_single_body(&a.spec, "input", a.strict, "info")?;

@@ -1,19 +1,26 @@
-//! Loading an operand that may be non-convex: one convex body, a union of
-//! convex pieces (`a.off+b.off`, an OBJ file with several objects), or a
-//! closed non-convex mesh taken apart into convex pieces (its exactly convex
-//! components, or a decomposition chosen with `--decomposition`); for the
-//! contact checks (`query`, `motion`), any other mesh file as triangles of
-//! any topology ([`load_contact_body`]).
-
-use std::path::Path;
+//! The bodies the subcommands take, as arguments and messages over the one
+//! loader, `dymsum_io::body` (each operand read once; the command line
+//! adds `-` for standard input): one mesh file through the core's ladder
+//! (`dymsum::query::Body::from_mesh_with`: convex, a solid of exactly
+//! convex shells, triangles; the hull only with `--hull`) for the contact
+//! checks (`query`, `motion`: [`load_contact_body`]); convex pieces for the
+//! subcommands that need them ([`load_solid`], [`load_pieces`]: one convex
+//! body, a union `a.off+b.off`, an OBJ file of several objects, or a
+//! closed non-convex mesh taken apart into its exactly convex shells, or
+//! by `--decomposition`); one convex body for `info` and `render`
+//! ([`load_single_body`]).
 
 use anyhow::anyhow;
 use clap::{Args, ValueEnum};
+use dymsum::body::{BodyReport, Rung};
 use dymsum::nonconvex::{convex_pieces, Decomposition, DecompositionInfo, UnionMeshError};
-use dymsum::query::{Body, ConvexUnion, MeshBody, MeshReport};
-use dymsum::{DVec3, PolygonMesh, Polytope, SolidError};
+use dymsum::query::{Body, ConvexUnion, MeshReport};
+use dymsum::{Polytope, SolidError};
+use dymsum_io::body::{Content, LoadOptions, Operand, Reader, SourceKind, Taken};
+use dymsum_io::formats::{Format, FormatError};
+use dymsum_io::LoadError;
 
-use super::{load, policy, short_name};
+use super::{short_name, STDIO};
 
 /// A convex decomposition for non-convex meshes, as a command-line value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -48,6 +55,28 @@ pub struct BodyOptions {
     pub decomposition: Option<DecompositionArg>,
 }
 
+impl BodyOptions {
+    /// How the contact checks (`query`, `motion`) take meshes: mesh files
+    /// exactly unless `--hull`, the built-in models as their definitions
+    /// say (hulls) unless `--strict`.
+    pub fn contact(&self) -> LoadOptions {
+        LoadOptions {
+            hull: self.hull,
+            strict_models: self.strict,
+        }
+    }
+}
+
+/// How the subcommands that need convex operands (`sum`, `animate`,
+/// `cobst`, `info`, `render`) take meshes: a mesh convex within tolerance
+/// is the exact hull of its vertices, unless `--strict` refuses it.
+pub fn convex_operands(strict: bool) -> LoadOptions {
+    LoadOptions {
+        hull: !strict,
+        strict_models: strict,
+    }
+}
+
 impl From<DecompositionArg> for Decomposition {
     fn from(d: DecompositionArg) -> Decomposition {
         match d {
@@ -72,27 +101,95 @@ impl Solid {
     }
 }
 
-/// Loads operand `spec` as convex pieces. A convex body or a union of
-/// convex pieces loads as for `dymsum query` ([`load_body`]); a mesh file
-/// refused only for not being convex is checked exactly to be a solid
+/// The command line's [`Reader`]: files, and `-` as OFF from standard
+/// input (once per run).
+struct CommandLine<'a> {
+    operand: &'a str,
+    /// Why standard input could not be read, in the command line's words.
+    failure: Option<anyhow::Error>,
+}
+
+impl Reader for CommandLine<'_> {
+    fn resolve(&mut self, spec: &str) -> Option<Result<Operand, LoadError>> {
+        if spec != STDIO {
+            return None;
+        }
+        Some(match super::read_stdin_once(self.operand) {
+            Ok(bytes) => dymsum_io::body::read_operand_bytes(&bytes, Format::Off, "standard input"),
+            Err(e) => {
+                let source = std::io::Error::other(e.to_string());
+                self.failure = Some(e);
+                Err(LoadError::Format {
+                    origin: "standard input".into(),
+                    source: FormatError::Io {
+                        path: STDIO.into(),
+                        source,
+                    },
+                })
+            }
+        })
+    }
+}
+
+/// Reads operand `spec` (`"P"`, `"ROBOT"`) once: a file, a model name, `-`
+/// (standard input), or pieces joined with `+`
+/// ([`dymsum_io::body::read_operands_from`]).
+///
+/// # Errors
+/// The first piece that cannot be read or found, named with the operand
+/// ([`LoadError::for_operand`]), or standard input read twice.
+pub fn read(spec: &str, operand: &str) -> anyhow::Result<Vec<Operand>> {
+    let mut reader = CommandLine {
+        operand,
+        failure: None,
+    };
+    dymsum_io::body::read_operands_from(spec, &mut reader).map_err(|e| {
+        reader
+            .failure
+            .take()
+            .unwrap_or_else(|| anyhow!(e.for_operand(operand)))
+    })
+}
+
+/// Loads operand `spec` as convex pieces ([`read`], then as
+/// [`dymsum_io::body::convex_pieces`] takes it under `options`); a mesh
+/// file that is not one convex body is checked exactly to be a solid
 /// ([`dymsum::solid::check_solid_mesh`]), then split into its exactly
 /// convex shells, or else by `decomposition`.
 ///
 /// # Errors
-/// Those of [`load_body`] when the operand is no mesh at all; for a mesh
-/// that is not a solid, what is wrong and where, then the fix; for a
-/// non-convex solid, the convex loader's message (naming the operand
-/// and where the mesh is not convex) followed by
-/// [`UnionMeshError::NeedsDecomposition`] (naming `--decomposition vhacd`)
-/// or a decomposition failure.
+/// Those of [`read`]; for a mesh that is not a solid, what is wrong and
+/// where, then the fix; for a non-convex solid, the convex loader's
+/// message (naming the operand and where the mesh is not convex) followed
+/// by [`UnionMeshError::NeedsDecomposition`] (naming `--decomposition
+/// vhacd`) or a decomposition failure.
 pub fn load_solid(
     spec: &str,
     operand: &str,
-    strict: Strictness,
+    options: LoadOptions,
     decomposition: Option<DecompositionArg>,
 ) -> anyhow::Result<Solid> {
-    let refusal = match load_body(spec, operand, strict) {
+    solid_of(&read(spec, operand)?, operand, options, decomposition)
+}
+
+/// [`load_solid`] of an operand already read.
+fn solid_of(
+    parts: &[Operand],
+    operand: &str,
+    options: LoadOptions,
+    decomposition: Option<DecompositionArg>,
+) -> anyhow::Result<Solid> {
+    let refusal = match dymsum_io::body::convex_pieces(parts, &options) {
         Ok(pieces) => {
+            for (i, p) in pieces.iter().enumerate() {
+                log::debug!(
+                    "{operand} piece {}: {} vertices, {} faces, {} edges",
+                    i + 1,
+                    p.vertex_count(),
+                    p.face_count(),
+                    p.edge_count()
+                );
+            }
             let n = pieces.len();
             let method = if n == 1 { "convex" } else { "given" };
             return Ok(Solid {
@@ -100,13 +197,15 @@ pub fn load_solid(
                 info: DecompositionInfo::exact(method, n),
             });
         }
-        Err(e) => e,
+        Err(e) => anyhow!(e.for_operand(operand)),
     };
-    let Some(mesh) = mesh_file(spec) else {
-        return Err(refusal);
+    // One mesh file with faces (an OBJ file of several objects as a whole).
+    let file = match parts {
+        [part] if part.kind == SourceKind::File && !part.mesh().faces.is_empty() => part,
+        _ => return Err(refusal),
     };
     let d = decomposition.map_or(Decomposition::Components, Decomposition::from);
-    match convex_pieces(&mesh, d) {
+    match convex_pieces(file.mesh(), d) {
         Ok((pieces, info)) => Ok(Solid { pieces, info }),
         // An open mesh is no solid at all: the convex loader's message
         // names its open edge; the fix comes last.
@@ -120,7 +219,7 @@ pub fn load_solid(
             "{operand} (file {}): not a solid: {e}; fix: repair the mesh so that each shell is \
              closed, consistently oriented, manifold and crosses itself nowhere, or give its \
              convex pieces as files joined with `+` or as OBJ objects",
-            super::short_name(spec)
+            short_name(&file.spec)
         )),
         // No closed solid: the convex loader's message says most, the
         // non-convex reading's reason after it, the fix last.
@@ -134,140 +233,106 @@ pub fn load_solid(
 }
 
 /// The convex pieces of operand `spec` for the commands that take bodies
-/// as pieces (`query`, `cobst`, `motion`): as [`load_solid`]; a
-/// decomposition, being approximate, is announced on standard error with
-/// its volume error (never silently).
+/// as pieces (`cobst`): as [`load_solid`]; a decomposition, being
+/// approximate, is announced on standard error with its volume error
+/// (never silently).
 ///
 /// # Errors
 /// Those of [`load_solid`].
 pub fn load_pieces(
     spec: &str,
     operand: &str,
-    strict: Strictness,
+    options: LoadOptions,
     decomposition: Option<DecompositionArg>,
 ) -> anyhow::Result<Vec<Polytope>> {
-    let solid = load_solid(spec, operand, strict, decomposition)?;
-    if !solid.info.exact {
-        eprintln!(
-            "note: {operand} ({}) taken apart by {}",
-            super::short_name(spec),
-            describe(&solid.info)
-        );
-    }
+    let solid = load_solid(spec, operand, options, decomposition)?;
+    announce_decomposition(spec, operand, &solid);
     Ok(solid.pieces)
 }
 
-/// The mesh of operand `spec` when it is one mesh file with faces (not a
-/// union joined with `+`, a model name, standard input or a point cloud).
-fn mesh_file(spec: &str) -> Option<PolygonMesh> {
-    let path = Path::new(spec);
-    if spec.contains('+') || !path.is_file() {
-        return None;
+/// The note on standard error for pieces taken apart by a decomposition.
+fn announce_decomposition(spec: &str, operand: &str, solid: &Solid) {
+    if !solid.info.exact {
+        eprintln!(
+            "note: {operand} ({}) taken apart by {}",
+            short_name(spec),
+            describe(&solid.info)
+        );
     }
-    let mesh = dymsum_io::formats::read_mesh(path).ok()?;
-    (!mesh.faces.is_empty()).then_some(mesh)
 }
 
-/// Loads operand `spec` for the contact checks (`query`, `motion`), taking
-/// a mesh file as Python's `MotionChecker` and Rust's
-/// [`Body::from_mesh`] take it: cleaned exactly ([`MeshBody::new`]: open,
-/// double-sided, non-manifold, touching parts, cavities; what encloses is
-/// what has a non-zero winding number), on the convex path when it is one
-/// exactly convex solid, as triangles otherwise, announced on standard
-/// error with what the cleaning did ([`describe_triangles`]). A mesh convex
-/// only within rounding is taken exactly too; with `--hull` it is replaced
-/// by the exact hull of its vertices and the deviation is announced.
-/// Model names, unions (`a+b`, OBJ objects) and point clouds are convex
-/// pieces ([`load_pieces`], mesh files among them taken exactly unless
-/// `--hull`); with `--decomposition` a mesh is taken apart or refused,
+/// Loads operand `spec` for the contact checks (`query`, `motion`), read
+/// once and taken as Python's `MotionChecker` and Rust's
+/// `Body::from_mesh_with` take it ([`dymsum_io::body::body_from`]): a mesh
+/// file by the core's ladder, cleaned exactly ([`dymsum::query::MeshBody::new`]:
+/// open, double-sided, non-manifold, touching parts, cavities; what
+/// encloses is what has a non-zero winding number), on the convex path
+/// when it is one exactly convex solid or a solid of exactly convex shells
+/// (their union), as triangles otherwise, announced on standard error with
+/// what the cleaning did ([`describe_triangles`]). A mesh convex only
+/// within rounding is taken exactly too; with `--hull` it is replaced by
+/// the exact hull of its vertices and the deviation is announced. Model
+/// names, unions (`a+b`, OBJ objects) and point clouds are convex pieces
+/// (mesh files among them taken exactly unless `--hull`); with
+/// `--decomposition` a mesh is taken apart or refused ([`load_pieces`]),
 /// never taken as triangles.
 ///
 /// # Errors
-/// Those of [`load_pieces`] when the operand is not one mesh file or a
-/// decomposition was asked for; a mesh file that cannot be read; a mesh
-/// with no triangle left to take (every face of zero area).
+/// Those of [`read`]; those of [`load_solid`] with `--decomposition`; a
+/// piece that is no convex body; a mesh with no triangle left to take
+/// (every face of zero area).
 pub fn load_contact_body(spec: &str, operand: &str, options: BodyOptions) -> anyhow::Result<Body> {
-    let strict = if options.strict {
-        Strictness::Strict
-    } else if options.hull {
-        Strictness::Tolerant
-    } else {
-        Strictness::ExactFiles
-    };
-    let name = short_name(spec);
-    if options.decomposition.is_none() && !is_multi_object_obj(spec) {
-        if let Some(mesh) = mesh_file(spec) {
-            if options.hull {
-                if let Ok((hull, r)) = Polytope::from_mesh(&mesh, policy(false)) {
-                    if r.replaced_by_hull {
-                        eprintln!(
-                            "note: {operand} ({name}) replaced by the exact hull of its vertices \
-                             (--hull): convex within tolerance, largest deviation {:.3e} \
-                             (tolerance {:.3e})",
-                            r.max_deviation, r.tolerance
-                        );
-                    }
-                    return Ok(Body::Convex(ConvexUnion::from(hull)));
-                }
-            }
-            let body = MeshBody::new(&mesh).map_err(|e| match e {
-                SolidError::Empty => anyhow!(
-                    "{operand} (file {name}): no triangle is left after cleaning: all {} faces \
-                     have zero area (or repeat a vertex)",
-                    mesh.faces.len()
-                ),
-                e => anyhow!("{operand} (file {name}): {e}"),
-            })?;
-            let what = describe_triangles(&body.report());
-            if body.as_convex().is_none() {
-                // A solid of several exactly convex shells is their union
-                // (the same set: the convex path, with depth and distance).
-                if let Ok((pieces, info)) = convex_pieces(&mesh, Decomposition::Components) {
-                    if info.exact && pieces.len() > 1 {
-                        eprintln!(
-                            "note: {operand} ({name}) taken as {} exactly convex shells (their \
-                             union: the same solid as its triangles)",
-                            pieces.len()
-                        );
-                        if let Some(union) = ConvexUnion::new(pieces) {
-                            return Ok(Body::Convex(union));
-                        }
-                    }
-                }
-            }
-            if body.as_convex().is_some() {
-                eprintln!(
-                    "note: {operand} ({name}) cleaned as triangles ({what}): exactly convex, \
-                     taken as one convex piece"
-                );
-            } else {
-                eprintln!("note: {operand} ({name}) taken as triangles ({what})");
-            }
-            return Ok(Body::Mesh(body));
-        }
-    }
-    let refusal = match load_pieces(spec, operand, strict, options.decomposition) {
-        Ok(pieces) => {
-            return ConvexUnion::new(pieces)
-                .map(Body::Convex)
-                .ok_or_else(|| anyhow!("{operand} has no pieces"))
-        }
-        Err(e) => e,
-    };
+    let parts = read(spec, operand)?;
     if options.decomposition.is_some() {
-        return Err(refusal);
+        let solid = solid_of(&parts, operand, options.contact(), options.decomposition)?;
+        announce_decomposition(spec, operand, &solid);
+        return ConvexUnion::new(solid.pieces)
+            .map(Body::Convex)
+            .ok_or_else(|| anyhow!("{operand} has no pieces"));
     }
-    let Some(mesh) = mesh_file(spec) else {
-        return Err(refusal);
-    };
-    let Ok(body) = MeshBody::new(&mesh) else {
-        return Err(refusal);
-    };
-    eprintln!(
-        "note: {operand} ({name}) taken as triangles ({})",
-        describe_triangles(&body.report())
-    );
-    Ok(Body::Mesh(body))
+    let loaded = dymsum_io::body::body_from(&parts, &options.contact())
+        .map_err(|e| anyhow!(e.for_operand(operand)))?;
+    match &loaded.taken {
+        Taken::Ladder(report) | Taken::ObjectsByLadder { report, .. } => {
+            announce_ladder(operand, &short_name(spec), report);
+        }
+        Taken::Pieces(_) => {}
+    }
+    Ok(loaded.body)
+}
+
+/// The note on standard error for a mesh file taken by the core's ladder:
+/// which rung, and what the cleaning did.
+fn announce_ladder(operand: &str, name: &str, r: &BodyReport) {
+    let what = r
+        .cleaning
+        .as_ref()
+        .map(describe_triangles)
+        .unwrap_or_default();
+    match r.rung {
+        Rung::Hull => {
+            if let Some(h) = r.hull.as_ref().filter(|h| h.replaced_by_hull) {
+                eprintln!(
+                    "note: {operand} ({name}) replaced by the exact hull of its vertices \
+                     (--hull): convex within tolerance, largest deviation {:.3e} (tolerance \
+                     {:.3e})",
+                    h.max_deviation, h.tolerance
+                );
+            }
+        }
+        Rung::Convex => eprintln!(
+            "note: {operand} ({name}) cleaned as triangles ({what}): exactly convex, taken as \
+             one convex piece"
+        ),
+        // A solid of several exactly convex shells is their union (the
+        // same set: the convex path, with depth and distance).
+        Rung::ConvexShells => eprintln!(
+            "note: {operand} ({name}) taken as {} exactly convex shells (their union: the same \
+             solid as its triangles)",
+            r.pieces
+        ),
+        Rung::Triangles => eprintln!("note: {operand} ({name}) taken as triangles ({what})"),
+    }
 }
 
 /// The obstacle placed at `pose` (`--obstacle-xyz-wxyz`), or as given.
@@ -281,11 +346,6 @@ pub fn placed(body: Body, pose: Option<dymsum::Pose>) -> anyhow::Result<Body> {
             .placed(p)
             .map_err(|e| anyhow!("OBSTACLE at --obstacle-xyz-wxyz: {e}")),
     }
-}
-
-/// Whether `spec` is an OBJ file of several objects (each a convex piece).
-fn is_multi_object_obj(spec: &str) -> bool {
-    !obj_names(spec).is_empty()
 }
 
 /// `1 vertex`, `2 vertices`.
@@ -386,116 +446,35 @@ pub fn describe(info: &DecompositionInfo) -> String {
     }
 }
 
-/// Loads a body: one convex polytope, or several pieces (`a+b+c`, or an OBJ
-/// file with several objects). Errors name the operand and the piece.
-///
-/// # Errors
-/// An OBJ file that cannot be read or parsed; an object or piece that is
-/// not a valid convex body ([`dymsum::PolytopeError`]); or any error of
-/// [`super::load`] for a single body or a `+`-separated piece.
-pub fn load_body(spec: &str, operand: &str, strict: Strictness) -> anyhow::Result<Vec<Polytope>> {
-    let path = Path::new(spec);
-    if path.is_file() {
-        let strict = strict.for_part(spec);
-        let is_obj = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-        if is_obj {
-            let objects = dymsum_io::formats::read_obj_objects(path)
-                .map_err(|e| anyhow!("{operand} (file {}): {e}", short_name(spec)))?;
-            if objects.len() > 1 {
-                return objects
-                    .into_iter()
-                    .map(|(name, mesh)| {
-                        let poly = if mesh.faces.is_empty() {
-                            let pts: Vec<DVec3> =
-                                mesh.vertices.iter().map(|&p| DVec3::from(p)).collect();
-                            Polytope::from_dvec3s(&pts)
-                        } else {
-                            Polytope::from_mesh(&mesh, policy(strict)).map(|(p, _)| p)
-                        };
-                        poly.map_err(|e| {
-                            anyhow!(
-                                "{operand} (file {}, object `{name}`): {e}",
-                                short_name(spec)
-                            )
-                        })
-                    })
-                    .collect();
-            }
-        }
-        return Ok(vec![load(spec, operand, strict)?.polytope]);
-    }
-    if spec.contains('+') {
-        return spec
-            .split('+')
-            .enumerate()
-            .map(|(i, part)| {
-                let part = part.trim();
-                load(
-                    part,
-                    &format!("{operand} piece {}", i + 1),
-                    strict.for_part(part),
-                )
-                .map(|l| l.polytope)
-            })
-            .collect();
-    }
-    Ok(vec![load(spec, operand, strict.for_part(spec))?.polytope])
-}
-
-/// Which meshes must be exactly convex to be taken as one convex piece.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Strictness {
-    /// None: a mesh convex within tolerance is the exact hull of its
-    /// vertices (`sum`, `info`, `cobst` without `--strict`).
-    Tolerant,
-    /// Every mesh (`--strict`).
-    Strict,
-    /// Mesh files (the contact checks without `--hull`); the built-in
-    /// models are what their definitions say (hulls).
-    ExactFiles,
-}
-
-impl Strictness {
-    /// The `--strict` flag of the subcommands that need convex operands.
-    pub fn from_flag(strict: bool) -> Strictness {
-        if strict {
-            Strictness::Strict
-        } else {
-            Strictness::Tolerant
-        }
-    }
-
-    /// The strict flag for one operand or `+` piece `spec`.
-    fn for_part(self, spec: &str) -> bool {
-        match self {
-            Strictness::Tolerant => false,
-            Strictness::Strict => true,
-            Strictness::ExactFiles => Path::new(spec).is_file(),
-        }
-    }
-}
-
 /// Loads one convex body for a subcommand that takes only one (`info`,
-/// `render`): as [`super::load`], but a body of several pieces (a union
-/// `a+b`, an OBJ file with several objects, a mesh of several convex
-/// shells) is refused with the problem first and the fix last, naming the
-/// subcommands that take unions.
+/// `render`): read once ([`read`]) and taken as one polytope under
+/// `--strict` or not ([`convex_operands`]), but a body of several pieces
+/// (a union `a+b`, an OBJ file with several objects, a mesh of several
+/// convex shells) is refused with the problem first and the fix last,
+/// naming the subcommands that take unions.
 ///
 /// # Errors
-/// Those of [`super::load`]; a body of several pieces.
+/// Those of [`read`]; a mesh or point cloud that is no convex body
+/// ([`dymsum_io::LoadError`]); a body of several pieces.
 pub fn load_single_body(
     spec: &str,
     operand: &str,
     strict: bool,
     subcommand: &str,
 ) -> anyhow::Result<dymsum_io::Loaded> {
-    let error = match load(spec, operand, strict) {
-        Ok(loaded) => return Ok(loaded),
-        Err(e) => e,
+    let parts = read(spec, operand)?;
+    let options = convex_operands(strict);
+    let one_body_error = match parts.as_slice() {
+        [one] => match one.polytope(options.policy(one.kind)) {
+            Ok(loaded) => {
+                super::log_loaded(operand, &loaded);
+                return Ok(loaded);
+            }
+            Err(e) => Some(anyhow!(e.for_operand(operand))),
+        },
+        _ => None,
     };
-    match load_solid(spec, operand, Strictness::from_flag(strict), None) {
+    match solid_of(&parts, operand, options, None) {
         Ok(solid) if solid.pieces.len() > 1 => Err(anyhow!(
             "{operand} ({}): a body of {} convex pieces{}, and `dymsum {subcommand}` takes one \
              convex body; to use the pieces, run `dymsum sum`, `query`, `motion` or `cobst`, which \
@@ -503,22 +482,22 @@ pub fn load_single_body(
              give one piece",
             short_name(spec),
             solid.pieces.len(),
-            obj_names(spec)
+            object_names(&parts)
         )),
-        _ => Err(error),
+        other => Err(one_body_error
+            .or_else(|| other.err())
+            .unwrap_or_else(|| anyhow!("{operand}: no convex body"))),
     }
 }
 
 /// ` (`a`, `b`)`: the object names of an OBJ file of several objects, or
 /// nothing.
-fn obj_names(spec: &str) -> String {
-    let path = Path::new(spec);
-    let is_obj = path.is_file()
-        && path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    match is_obj.then(|| dymsum_io::formats::read_obj_objects(path)) {
-        Some(Ok(objects)) if objects.len() > 1 => {
+fn object_names(parts: &[Operand]) -> String {
+    match parts {
+        [Operand {
+            content: Content::Objects { objects, .. },
+            ..
+        }] => {
             let names: Vec<String> = objects.iter().map(|(n, _)| format!("`{n}`")).collect();
             format!(" ({})", names.join(", "))
         }

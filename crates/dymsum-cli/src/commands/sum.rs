@@ -18,7 +18,7 @@ use dymsum::sum::{minkowski_sum_posed, Method};
 use dymsum::{DVec3, Pose, Rotation};
 
 use super::short_name;
-use super::solid::{describe, load_solid, Solid, Strictness};
+use super::solid::{convex_operands, describe, load_solid, Solid};
 use crate::stats::{human_us, micros};
 use crate::values::{parse_output_path, parse_quaternion, parse_vector, MethodArg};
 use dymsum::nonconvex::{DecompositionInfo, UnionSum};
@@ -97,7 +97,7 @@ struct JsonDecomposition<'a> {
 /// Runs `dymsum sum`.
 ///
 /// # Errors
-/// P or Q cannot be loaded ([`super::load`]); the sum fails
+/// P or Q cannot be loaded ([`super::solid::load_solid`]); the sum fails
 /// ([`dymsum::SumError`]: a posed vertex out of range, or a `hull`-method
 /// mismatch); its mesh cannot be produced ([`dymsum::sum::MeshError`]);
 /// or the output cannot be written.
@@ -106,13 +106,13 @@ pub fn run(a: &SumArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let p = load_solid(
         &a.p,
         "P",
-        Strictness::from_flag(a.body.strict),
+        convex_operands(a.body.strict),
         a.body.decomposition,
     )?;
     let q = load_solid(
         &a.q,
         "Q",
-        Strictness::from_flag(a.body.strict),
+        convex_operands(a.body.strict),
         a.body.decomposition,
     )?;
     let pose_p = Pose::new(

@@ -2,14 +2,21 @@
 //! pieces or triangles of any topology; [`ConvexUnion`]; [`MeshBody`] with
 //! its box trees and [`MeshReport`]). A mesh is read into a body by
 //! [`Body::from_mesh`] (the cleaning of `solid::soup`, the winding-number
-//! meaning of inside) and an obstacle given in its own frame is placed by
-//! [`Body::placed`]; the questions asked of bodies live in `query`.
+//! meaning of inside), or by the ladder of [`Body::from_mesh_with`]
+//! (convex, convex shells, triangles; the hull when asked) with a
+//! [`BodyReport`] of what it did; an obstacle given in its own frame is
+//! placed by [`Body::placed`]; the questions asked of bodies live in
+//! `query`.
 
 mod error;
+mod ladder;
 pub mod mesh;
 mod union;
 
 pub use error::BodyError;
+#[cfg(feature = "union-mesh")]
+pub(crate) use ladder::solid_shells;
+pub use ladder::{BodyOptions, BodyReport, Rung};
 pub use mesh::{MeshBody, MeshReport};
 pub use union::ConvexUnion;
 
@@ -35,6 +42,8 @@ impl Body {
     /// ([`MeshBody::as_convex`]), a `query::Validator` takes it on the convex
     /// fast path (the same contact semantics: a convex solid). Nothing is
     /// approximated: a mesh convex only within rounding stays triangles.
+    /// [`Body::from_mesh_with`] also takes a solid of convex shells as
+    /// their union, and the hull when asked, and reports what it did.
     ///
     /// ```
     /// use dymsum::query::Body;

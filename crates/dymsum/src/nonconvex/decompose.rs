@@ -3,10 +3,10 @@
 
 use super::merge::{boolean, to_manifold, volume};
 use super::UnionMeshError;
+use crate::body::solid_shells;
 use crate::mesh::PolygonMesh;
 use crate::polytope::MeshPolicy;
 use crate::polytope::Polytope;
-use crate::solid::check_solid_mesh;
 use crate::solid::closed::triangles;
 
 /// How a non-convex closed mesh becomes convex pieces.
@@ -93,7 +93,7 @@ impl DecompositionInfo {
 /// The convex pieces of a mesh given as a solid.
 ///
 /// A convex mesh is one piece. Otherwise the mesh is first checked exactly
-/// by [`check_solid_mesh`] (each shell closed, oriented, manifold, not
+/// by [`crate::solid::check_solid_mesh`] (each shell closed, oriented, manifold, not
 /// crossing itself, of positive volume; no face listed twice or back to
 /// back), and refused with [`UnionMeshError::Solid`] when it fails: the
 /// body is the union of its shells (which may overlap). Each shell that is
@@ -138,21 +138,13 @@ pub fn convex_pieces(
             return Ok((vec![p], DecompositionInfo::exact("convex", 1)));
         }
     }
-    let solid = check_solid_mesh(mesh)?;
-    let shell_mesh = |shell: &[usize]| {
-        let fans = shell.iter().flat_map(|&f| {
-            let face = &mesh.faces[f];
-            face[1..].windows(2).map(move |w| [face[0], w[0], w[1]])
-        });
-        submesh(&mesh.vertices, fans)
-    };
+    let shells = solid_shells(mesh)?;
     let mut pieces = Vec::new();
-    let mut rest: Vec<PolygonMesh> = Vec::new();
-    for shell in &solid.shells {
-        let sub = shell_mesh(shell);
-        match Polytope::from_mesh(&sub, MeshPolicy::strict()) {
-            Ok((p, _)) => pieces.push(p),
-            Err(_) => rest.push(sub),
+    let mut rest: Vec<&PolygonMesh> = Vec::new();
+    for shell in &shells {
+        match &shell.convex {
+            Some(p) => pieces.push(p.clone()),
+            None => rest.push(&shell.mesh),
         }
     }
     if rest.is_empty() {
@@ -163,12 +155,12 @@ pub fn convex_pieces(
     }
     if decomposition == Decomposition::Components {
         return Err(UnionMeshError::NeedsDecomposition {
-            components: solid.shells.len(),
+            components: shells.len(),
             nonconvex: rest.len(),
         });
     }
     let convex_components = pieces.len();
-    for sub in &rest {
+    for sub in rest {
         let parts = decompose(sub, decomposition)?;
         if parts.is_empty() {
             return Err(UnionMeshError::Decomposition(format!(
@@ -180,14 +172,13 @@ pub fn convex_pieces(
     }
     // The input as one closed mesh: the union of its shells when they are
     // several (they may overlap).
-    let (input, total) = if solid.shells.len() == 1 {
+    let (input, total) = if shells.len() == 1 {
         (mesh.clone(), mesh.signed_volume())
     } else {
-        let shells: Vec<(String, PolygonMesh)> = solid
-            .shells
+        let shells: Vec<(String, PolygonMesh)> = shells
             .iter()
             .enumerate()
-            .map(|(k, s)| (format!("shell {k} of the input"), shell_mesh(s)))
+            .map(|(k, s)| (format!("shell {k} of the input"), s.mesh.clone()))
             .collect();
         let (union, info) = super::merge::union_meshes(&shells)?;
         (union, info.volume)
@@ -206,26 +197,6 @@ pub fn convex_pieces(
             volume_error: Some(volume_error),
         },
     ))
-}
-
-/// The mesh of some triangles, with only their vertices.
-fn submesh(vertices: &[[f64; 3]], tris: impl Iterator<Item = [usize; 3]>) -> PolygonMesh {
-    let mut map = std::collections::HashMap::new();
-    let mut v = Vec::new();
-    let mut faces = Vec::new();
-    for t in tris {
-        faces.push(
-            t.iter()
-                .map(|&i| {
-                    *map.entry(i).or_insert_with(|| {
-                        v.push(vertices[i]);
-                        v.len() - 1
-                    })
-                })
-                .collect(),
-        );
-    }
-    PolygonMesh::new(v, faces)
 }
 
 /// The union's volume and its volume error against the input.

@@ -49,7 +49,7 @@ use dymsum::{DVec3, Rotation};
 use serde::Serialize;
 
 use super::short_name;
-use super::solid::{load_pieces, Strictness};
+use super::solid::{convex_operands, load_pieces};
 use crate::stats::{human_us, micros};
 use dymsum_io::cmap::Form;
 use dymsum_io::staging::{is_temp_name, StagedDir};
@@ -288,7 +288,7 @@ struct IndexEntry {
 /// Runs `dymsum cobst`.
 ///
 /// # Errors
-/// ROBOT or OBSTACLE cannot be loaded ([`crate::commands::solid::load_body`]); the
+/// ROBOT or OBSTACLE cannot be loaded ([`crate::commands::solid::load_pieces`]); the
 /// orientations are missing or invalid ([`read_orientations`], a zero
 /// axis, neither `--orientations-wxyz` nor `--axis` with `--slices`); `--out`
 /// is not a directory, is not empty (without `--force`), or cannot be
@@ -299,13 +299,13 @@ pub fn run(a: &CobstArgs, out: &mut dyn Write) -> anyhow::Result<()> {
     let robot = load_pieces(
         &a.robot,
         "ROBOT",
-        Strictness::from_flag(a.body.strict),
+        convex_operands(a.body.strict),
         a.body.decomposition,
     )?;
     let obstacle = load_pieces(
         &a.obstacle,
         "OBSTACLE",
-        Strictness::from_flag(a.body.strict),
+        convex_operands(a.body.strict),
         a.body.decomposition,
     )?;
     if a.certified {
