@@ -475,7 +475,7 @@ class FailAfter:
 
 
 def test_save_failing_after_k_bytes_for_every_k_keeps_the_old_map_and_leaves_no_temp(tmp_path, monkeypatch):
-    from dymsum import _maps
+    from dymsum import _maps_io
 
     path = tmp_path / "map.npz"
     old = dymsum.CObstacleMap(small_arrays())
@@ -485,21 +485,21 @@ def test_save_failing_after_k_bytes_for_every_k_keeps_the_old_map_and_leaves_no_
     new.save(tmp_path / "new.npz")
     size = (tmp_path / "new.npz").stat().st_size
     os.unlink(tmp_path / "new.npz")
-    real = _maps._open_temp
+    real = _maps_io.open_temp
     for k in range(size):
-        monkeypatch.setattr(_maps, "_open_temp", lambda fd, k=k: FailAfter(real(fd), k))
+        monkeypatch.setattr(_maps_io, "open_temp", lambda fd, k=k: FailAfter(real(fd), k))
         with pytest.raises(OSError):
             new.save(path)
         assert path.read_bytes() == before, k
         assert os.listdir(tmp_path) == ["map.npz"], k
-    monkeypatch.setattr(_maps, "_open_temp", real)
+    monkeypatch.setattr(_maps_io, "open_temp", real)
     new.save(path)
     same_arrays(dymsum.load_cobstacle_map(path), new)
     assert os.listdir(tmp_path) == ["map.npz"]
 
 
 def test_save_names_its_temp_file_with_its_pid_and_removes_only_dead_owners(tmp_path, monkeypatch):
-    from dymsum import _maps
+    from dymsum import _maps_io
 
     child = subprocess.Popen(["true"])
     child.wait()
@@ -510,13 +510,13 @@ def test_save_names_its_temp_file_with_its_pid_and_removes_only_dead_owners(tmp_
     for p in (stale, mine, other):
         p.write_bytes(b"partial")
     seen = []
-    real = _maps._open_temp
+    real = _maps_io.open_temp
 
     def spy(fd):
         seen.append(os.readlink(f"/proc/self/fd/{fd}") if os.path.exists("/proc/self/fd") else "")
         return real(fd)
 
-    monkeypatch.setattr(_maps, "_open_temp", spy)
+    monkeypatch.setattr(_maps_io, "open_temp", spy)
     dymsum.CObstacleMap(small_arrays()).save(tmp_path / "map.npz")
     if seen[0]:
         assert os.path.basename(seen[0]).startswith(f".map.tmp-{live}-") and seen[0].endswith(".npz"), seen

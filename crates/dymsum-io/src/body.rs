@@ -55,9 +55,10 @@ use std::path::Path;
 
 use dymsum::body::{Body, BodyOptions, BodyReport, ConvexUnion};
 use dymsum::polytope::MeshPolicy;
-use dymsum::{PolygonMesh, Polytope, PolytopeError, SolidError};
+use dymsum::{PolygonMesh, Polytope, PolytopeError};
 
 use crate::formats::{self, Format, FormatError};
+pub use crate::load::body_error_text;
 use crate::load::{load_mesh, LoadError, Loaded};
 use crate::models::{self, ModelError};
 
@@ -507,23 +508,56 @@ pub fn load_body(spec: &str, options: &LoadOptions) -> Result<LoadedBody, LoadEr
     body_from(&read_operands(spec)?, options)
 }
 
-/// Why a mesh could not be taken as a body, for messages: the
-/// [`SolidError`], or for [`SolidError::Empty`] that every one of its
-/// `faces` faces has zero area.
-pub fn body_error_text(e: &SolidError, faces: usize) -> String {
-    match e {
-        SolidError::Empty => format!(
-            "no triangle is left after cleaning: all {faces} faces have zero area (or repeat a \
-             vertex)"
-        ),
-        e => e.to_string(),
-    }
+/// Loads a polytope from a file path or a built-in model name (see the
+/// module docs for the order of the look-ups). Never panics.
+///
+/// # Errors
+/// * [`LoadError::NotFound`]: `spec` is neither an existing file nor a
+///   built-in model name (with the closest model name, if one is close);
+/// * [`LoadError::Format`]: the file cannot be read ([`FormatError::Io`],
+///   [`FormatError::NotRegularFile`] for a directory or device) or parsed
+///   (the content errors of [`formats::read_mesh_bytes`]);
+/// * [`LoadError::SeveralBodies`]: an OBJ file holds more than one separate
+///   body;
+/// * [`LoadError::Model`]: a model family's parameters are wrong
+///   ([`ModelError::BadParameter`]);
+/// * [`LoadError::Polytope`]: the mesh or point cloud is not a valid convex
+///   body (as [`load_mesh`]).
+pub fn load_polytope(spec: &str, policy: MeshPolicy) -> Result<Loaded, LoadError> {
+    read_operand(spec)?.into_polytope(policy)
+}
+
+/// Loads a polytope from mesh bytes already in memory (standard input, a
+/// network buffer) in the given format; `origin` labels errors and
+/// [`Loaded::source`] (e.g. `"standard input"`). A mesh without faces is a
+/// point cloud, as for files. Never panics.
+///
+/// # Errors
+/// [`LoadError::Format`] when the bytes do not parse in `format` (any
+/// content error of [`formats::read_mesh_bytes`]); [`LoadError::Polytope`]
+/// when the mesh is not a valid convex body (as [`load_mesh`]).
+///
+/// ```
+/// use dymsum::polytope::MeshPolicy;
+/// use dymsum_io::formats::Format;
+/// let off = b"OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+/// let loaded = dymsum_io::load_polytope_bytes(off, Format::Off, "standard input", MeshPolicy::default()).unwrap();
+/// assert_eq!(loaded.polytope.face_count(), 4);
+/// ```
+pub fn load_polytope_bytes(
+    bytes: &[u8],
+    format: formats::Format,
+    origin: &str,
+    policy: MeshPolicy,
+) -> Result<Loaded, LoadError> {
+    read_operand_bytes(bytes, format, origin)?.into_polytope(policy)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use dymsum::body::Rung;
+    use dymsum::SolidError;
     use std::collections::HashMap;
     use std::path::PathBuf;
 

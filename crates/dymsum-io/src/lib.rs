@@ -24,5 +24,5 @@ pub mod models;
 pub mod npz;
 pub mod staging;
 
-pub use body::{load_body, LoadOptions, LoadedBody};
-pub use load::{load_mesh, load_polytope, load_polytope_bytes, LoadError, Loaded};
+pub use body::{load_body, load_polytope, load_polytope_bytes, LoadOptions, LoadedBody};
+pub use load::{load_mesh, LoadError, Loaded};

@@ -1,10 +1,12 @@
 //! Loading a polytope from a file path or a built-in model name.
 //!
-//! [`load_polytope`] reads `spec` once ([`crate::body::read_operand`]) and
-//! takes it as one convex body:
+//! [`crate::load_polytope`] (in [`crate::body`]) reads `spec` once
+//! ([`crate::body::read_operand`]) and takes it as one convex body; this
+//! module holds what it returns ([`Loaded`], [`LoadError`]) and
+//! [`load_mesh`], which takes a mesh in memory:
 //!
 //! 1. If `spec` names an existing file, it is read with the reader of its
-//!    extension ([`formats::read_mesh_bytes`]). A mesh with faces becomes
+//!    extension ([`crate::formats::read_mesh_bytes`]). A mesh with faces becomes
 //!    a polytope through [`Polytope::from_mesh`] (validated, see
 //!    [`dymsum::polytope::build`]); a mesh with no faces is a point cloud and
 //!    becomes its convex hull through [`Polytope::from_points`].
@@ -21,7 +23,7 @@
 //!
 //! ```
 //! use dymsum::polytope::MeshPolicy;
-//! use dymsum_io::load::{load_polytope, LoadError};
+//! use dymsum_io::{load_polytope, LoadError};
 //! let gs1 = load_polytope("gs1", MeshPolicy::default()).unwrap();
 //! assert_eq!(gs1.source, "built-in gs1");
 //! assert_eq!(gs1.input.triangle_count(), 80);
@@ -33,8 +35,7 @@
 use dymsum::polytope::{ConvexityReport, MeshPolicy};
 use dymsum::{PolygonMesh, Polytope, PolytopeError, SolidError};
 
-use crate::body::{body_error_text, read_operand, read_operand_bytes};
-use crate::formats::{self, FormatError};
+use crate::formats::FormatError;
 use crate::models::ModelError;
 
 /// A polytope with where it came from and what building it changed.
@@ -261,49 +262,17 @@ fn format_cause(e: &FormatError) -> String {
     }
 }
 
-/// Loads a polytope from a file path or a built-in model name (see the
-/// module docs for the order of the look-ups). Never panics.
-///
-/// # Errors
-/// * [`LoadError::NotFound`]: `spec` is neither an existing file nor a
-///   built-in model name (with the closest model name, if one is close);
-/// * [`LoadError::Format`]: the file cannot be read ([`FormatError::Io`],
-///   [`FormatError::NotRegularFile`] for a directory or device) or parsed
-///   (the content errors of [`formats::read_mesh_bytes`]);
-/// * [`LoadError::SeveralBodies`]: an OBJ file holds more than one separate
-///   body;
-/// * [`LoadError::Model`]: a model family's parameters are wrong
-///   ([`ModelError::BadParameter`]);
-/// * [`LoadError::Polytope`]: the mesh or point cloud is not a valid convex
-///   body (as [`load_mesh`]).
-pub fn load_polytope(spec: &str, policy: MeshPolicy) -> Result<Loaded, LoadError> {
-    read_operand(spec)?.into_polytope(policy)
-}
-
-/// Loads a polytope from mesh bytes already in memory (standard input, a
-/// network buffer) in the given format; `origin` labels errors and
-/// [`Loaded::source`] (e.g. `"standard input"`). A mesh without faces is a
-/// point cloud, as for files. Never panics.
-///
-/// # Errors
-/// [`LoadError::Format`] when the bytes do not parse in `format` (any
-/// content error of [`formats::read_mesh_bytes`]); [`LoadError::Polytope`]
-/// when the mesh is not a valid convex body (as [`load_mesh`]).
-///
-/// ```
-/// use dymsum::polytope::MeshPolicy;
-/// use dymsum_io::formats::Format;
-/// let off = b"OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
-/// let loaded = dymsum_io::load_polytope_bytes(off, Format::Off, "standard input", MeshPolicy::default()).unwrap();
-/// assert_eq!(loaded.polytope.face_count(), 4);
-/// ```
-pub fn load_polytope_bytes(
-    bytes: &[u8],
-    format: formats::Format,
-    origin: &str,
-    policy: MeshPolicy,
-) -> Result<Loaded, LoadError> {
-    read_operand_bytes(bytes, format, origin)?.into_polytope(policy)
+/// Why a mesh could not be taken as a body, for messages: the
+/// [`SolidError`], or for [`SolidError::Empty`] that every one of its
+/// `faces` faces has zero area.
+pub fn body_error_text(e: &SolidError, faces: usize) -> String {
+    match e {
+        SolidError::Empty => format!(
+            "no triangle is left after cleaning: all {faces} faces have zero area (or repeat a \
+             vertex)"
+        ),
+        e => e.to_string(),
+    }
 }
 
 /// Loads a polytope from a mesh already in memory (a built-in model's, or
@@ -344,6 +313,7 @@ pub fn load_mesh(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::load_polytope;
     use std::path::PathBuf;
 
     fn temp_file(name: &str, contents: &str) -> PathBuf {

@@ -32,7 +32,6 @@ from ._maps_io import FIELD_KINDS, read_map
 from ._maps_io import FORMAT as FORMAT
 # The seam CObstacleMap.save writes through, looked up here at each call
 # (the tests replace it to fail a write after k bytes).
-from ._maps_io import open_temp as _open_temp
 from ._maps_tasks import CObstacleMapError as CObstacleMapError
 from ._maps_tasks import _read_blocks as _read_blocks
 from ._maps_tasks import _remote_task as _remote_task

@@ -82,12 +82,7 @@ class CObstacleMap:
         killed writers of ``path`` left (their owner process is dead) are
         removed first; a running writer's are kept. The writing is
         dymsum-io's (``dymsum._maps_io``)."""
-        # The file object comes from ``dymsum._maps._open_temp``, looked up
-        # at each call: the seam the tests replace to fail a write after k
-        # bytes.
-        from . import _maps
-
-        write_map(path, self._a, _maps._open_temp)
+        write_map(path, self._a)
 
     def __repr__(self) -> str:
         return (

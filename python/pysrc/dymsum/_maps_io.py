@@ -15,7 +15,7 @@ from Python or from ``dymsum cobst --format npz``:
 from __future__ import annotations
 
 import os
-from typing import IO, Any, Callable, Dict, Mapping, Tuple, Union
+from typing import IO, Any, Callable, Dict, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
@@ -37,10 +37,12 @@ def open_temp(fd: int) -> IO[bytes]:
 def write_map(
     path: Union[str, "os.PathLike[str]"],
     arrays: Mapping[str, Any],
-    open_temp: Callable[[int], IO[bytes]] = open_temp,
+    opener: Optional[Callable[[int], IO[bytes]]] = None,
 ) -> None:
     """Writes the container ``arrays`` to ``path`` atomically (module docs),
-    through the file object ``open_temp(fd)`` gives. Raises
+    through the file object ``opener(fd)`` gives (by default this module's
+    ``open_temp``, looked up at each call: the seam the tests replace to
+    fail a write after k bytes). Raises
     :class:`ValueError` naming the path and the field for arrays that are
     not a valid map (nothing is written), :class:`OSError` when the file
     cannot be written (``path`` is then as it was, and no temporary file is
@@ -49,7 +51,7 @@ def write_map(
     def open_path(temp: Union[str, "os.PathLike[str]"]) -> IO[bytes]:
         fd = os.open(temp, os.O_WRONLY | getattr(os, "O_BINARY", 0) | getattr(os, "O_CLOEXEC", 0))
         try:
-            return open_temp(fd)
+            return (opener or open_temp)(fd)
         except BaseException:
             os.close(fd)
             raise
