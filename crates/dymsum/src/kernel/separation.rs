@@ -16,15 +16,30 @@
 //! product is within `γ₃ S` of `a·x` (`γ₃ = 3u/(1−3u)`, `u = 2⁻⁵³`;
 //! with or without fused multiply–adds). The test is
 //! `fl(P₁ + s) < Q₀` with `P₁` the largest computed projection of one set,
-//! `Q₀` the least of the other, and the slack `s = fl(16u·fl(S))`. Since
-//! `|P₁| ≤ (1 + γ₃)S`, the rounded sum is at least
+//! `Q₀` the least of the other, and the slack `s = fl(fl(16u·fl(S)) +
+//! TINY)`. Since `|P₁| ≤ (1 + γ₃)S`, the rounded sum is at least
 //! `P₁ + s − u((1 + γ₃)S + s)`, and `fl(S) ≥ (1 − γ₃)S` gives `s ≥ 15u S`,
 //! so a passed test means `P₁ + 7u S < Q₀`, more than the `2γ₃ S` the two
 //! projections may be off by together: the true intervals are apart.
 //! Underflowing products err by at most `2⁻¹⁰⁷⁴` each; the absolute term
 //! `TINY` (far below any coordinate the crate accepts as a size) covers
-//! them. Overflow gives an infinite or NaN `S` or projection, and every
-//! comparison with those is false: not proven.
+//! them. Overflow is safe by monotone rounding: `|fl(a·x)| ≤ fl(S)`, so an
+//! overflowed projection forces `fl(S) = ∞`, hence an infinite or NaN
+//! slack, and the comparison fails (not because NaN projections fail
+//! comparisons: `f64::min`/`max` drop them). Inputs must be finite (a NaN
+//! coordinate is no point; the callers' posed coordinates are finite).
+//!
+//! # Independent review (2026-11-29)
+//! The γ₃ bound (glam's `dot` is three rounded products and two rounded
+//! sums, never fused), the slack `fl(fl(16u·fl(S)) + TINY) ≥ 15.99u·S` and
+//! the rounded comparison were checked: a passed test leaves about
+//! `14u·S` of margin against the `6u·S` needed. A port checked against
+//! exact rationals on 300,000 axis and point sets at scales `2⁻¹⁰⁷⁰` to
+//! `2⁵⁰⁰` found no false proof. The box corners' projections (`select` on
+//! the axis' signs) and `magnitude` (box corners included) were verified.
+//! The overflow sentence and the slack's formula above were corrected
+//! after it; `rounding_never_makes_a_proof` fails when the slack is
+//! weakened.
 
 use glam::DVec3;
 
@@ -66,6 +81,7 @@ fn magnitude<'a>(pts: impl IntoIterator<Item = &'a DVec3>) -> DVec3 {
 /// them, certified despite rounding (module docs). `false` proves nothing.
 #[inline]
 pub(crate) fn triangles_apart(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
+    debug_assert!(t.iter().chain(u.iter()).all(|p| p.is_finite()));
     let mag = magnitude(t.iter().chain(u.iter()));
     let apart = |a: DVec3| spans_apart(span(a, t), span(a, u), slack(a, mag));
     let et = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];

@@ -75,6 +75,17 @@
 //! exact answers at the same time do not change: only work is saved). The
 //! budget counts examined intervals, so the same check gives the same
 //! answer on any machine and under any load.
+//!
+//! # Independent review (2026-11-29)
+//! The left-to-right invariant, that no time is skipped (children share
+//! the exact float midpoint), termination, and the sagitta and
+//! parallelogram margin were verified. Found and mended: when `a` is below
+//! the tolerance, the float `t − a` could round onto it, so a bracket
+//! could exceed the tolerance by under half an ulp (2 in 200,000 random
+//! sweeps); the comparison is now exact ([`exceeds`]). Stated more
+//! precisely after it: the margin certifies the exact motion (a float
+//! pose of an inner time may lie up to the rounding bound from it), and
+//! `t_safe = 0` rests on the caller's exact check of the start pose.
 
 use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
 
@@ -114,9 +125,10 @@ pub(crate) trait Sweep {
     /// Why an answer could not be given (an exact query failed).
     type Error;
 
-    /// Whether no contact happens at any `t` in `[a, b]`, certified (on
-    /// the exact motion and at the float poses); `false` means "not
-    /// proved".
+    /// Whether no contact happens at any `t` in `[a, b]` of the exact
+    /// motion, certified; `false` means "not proved". (The float pose of
+    /// an inner time may lie up to the rounding bound `e` from the exact
+    /// one: the margin covers the exact motion, not every float pose.)
     fn certified_free(&mut self, a: f64, b: f64) -> Result<bool, Self::Error>;
 
     /// Whether the body at the float pose of time `t` touches or overlaps
@@ -179,7 +191,7 @@ pub(crate) fn first_contact<S: Sweep>(
             continue;
         }
         let width = b - a;
-        if width <= tolerance && b != known_free_end {
+        if !exceeds(b, a, tolerance) && b != known_free_end {
             if sweep.collides_at_time(b)? {
                 return Ok(Some((a, b)));
             }
@@ -201,6 +213,24 @@ pub(crate) fn first_contact<S: Sweep>(
     Ok(None)
 }
 
+/// Whether `t − a > tolerance` exactly, for floats `0 ≤ a ≤ t` (a float
+/// `t − a` may round onto the tolerance when `a` is smaller than it; the
+/// independent review found brackets an ulp wider than asked). When
+/// `a ≥ tolerance`: `t − a` is exact for `t ≤ 2a` (Sterbenz), and for
+/// `t > 2a` both `t − a > tolerance` and its rounding (at least the next
+/// float above `a`) hold. When `a < tolerance`: `t < tolerance / 2` gives
+/// `t − a < tolerance`; else `t − tolerance` is exact for `t ≤ 2 ·
+/// tolerance` (Sterbenz) and exceeds `tolerance > a` beyond.
+fn exceeds(t: f64, a: f64, tolerance: f64) -> bool {
+    if a >= tolerance {
+        t - a > tolerance
+    } else if t < 0.5 * tolerance {
+        false
+    } else {
+        t - tolerance > a
+    }
+}
+
 /// The first of `a + tolerance / 2^k` (`k` from `PROBES − 1` down to `0`,
 /// each at most `limit`, one ulp back when rounded past the tolerance) at
 /// which the body collides, if any (module docs, step 4).
@@ -213,7 +243,7 @@ fn contact_ahead<S: Sweep>(
     let mut last = a;
     for k in (0..PROBES).rev() {
         let mut t = (a + tolerance / f64::from(1u32 << k)).min(limit);
-        if t - a > tolerance {
+        if exceeds(t, a, tolerance) {
             // Rounded past the tolerance: one ulp back (`t > a ≥ 0`).
             t = f64::from_bits(t.to_bits() - 1);
         }
@@ -299,6 +329,64 @@ mod tests {
         fn collides_at_time(&mut self, t: f64) -> Result<bool, ()> {
             self.checks.push(t);
             Ok(t >= self.hit)
+        }
+    }
+
+    /// Whether `c − a ≤ tol` exactly (the difference as an exact float
+    /// sum by Knuth's two-sum, independent of [`exceeds`]).
+    fn exactly_within(c: f64, a: f64, tol: f64) -> bool {
+        let d = c - a;
+        let bb = d - c;
+        let err = (c - (d - bb)) + (-a - bb);
+        d < tol || (d == tol && err <= 0.0)
+    }
+
+    /// The independent review's counterexample: a bracket an ulp wider
+    /// than the tolerance when its left end is below the tolerance (the
+    /// float `t − a` rounded onto it); and the same on random walls.
+    #[test]
+    fn brackets_are_never_wider_than_the_tolerance_exactly() {
+        struct Strict(f64, f64);
+        impl Sweep for Strict {
+            type Error = ();
+            fn certified_free(&mut self, _a: f64, b: f64) -> Result<bool, ()> {
+                Ok(b + self.1 < self.0)
+            }
+            fn collides_at_time(&mut self, t: f64) -> Result<bool, ()> {
+                Ok(t >= self.0)
+            }
+        }
+        let check = |limit: f64, tol: f64, hit: f64, gap: f64| {
+            let mut left = 1 << 20;
+            let found = first_contact(
+                &mut Strict(hit, gap),
+                limit,
+                tol,
+                &mut left,
+                &mut Vec::new(),
+            );
+            if let Ok(Some((a, c))) = found {
+                assert!(a < hit && c >= hit, "{a} {c}");
+                assert!(exactly_within(c, a, tol), "{a} {c} {tol}");
+            }
+        };
+        check(
+            0.8067142476936945,
+            0.005978819470047294,
+            0.0036183057259554586,
+            0.0029883845840746634,
+        );
+        let mut state = 0x1234_5678_9abc_def1u64;
+        let mut unit = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..20_000 {
+            let (limit, tol) = (0.5 + 0.5 * unit(), 0.01 * unit() + 1e-9);
+            let hit = unit() * 2.0 * tol;
+            check(limit, tol, hit, unit() * tol);
         }
     }
 

@@ -2,11 +2,14 @@
 //! cost of their sizes rather than of their product: whether the hulls of
 //! the posed (rounded) vertices of A and of B share a point.
 //!
-//! Two compact convex sets meet exactly when their boundaries meet or one
-//! lies inside the other (if they meet and neither boundary reaches the
-//! other, the intersection is a nonempty subset of both interiors, open
-//! and closed in the connected interior of one of them, so it is all of
-//! it). So: the exact hull of each posed point set ([`convex_hull`],
+//! Two compact convex sets `K`, `L` with interiors meet exactly when their
+//! boundaries meet or one lies inside the other: if `∂K ∩ ∂L` is empty,
+//! `∂K ∩ L = ∂K ∩ int L` is open and closed in the connected sphere `∂K`,
+//! so it is empty or all of `∂K`; all of it gives `K = conv ∂K ⊂ L` (a
+//! corner of `K` lies in `L`), and if both such sets are empty the two
+//! meet nowhere (a common point would be interior to both, and the segment
+//! from it to a boundary point of one would leave the other through its
+//! boundary inside the first). So: the exact hull of each posed point set ([`convex_hull`],
 //! exact predicates), its maximal faces fanned into triangles (a face is
 //! exactly planar and convex, so its fan covers it exactly), every pair of
 //! triangles whose exact boxes meet tried by the certified float filter
@@ -19,6 +22,13 @@
 //! contains the origin exactly when the two hulls meet), which builds the
 //! hull of `|A| · |B|` points: seconds for two robot links of a thousand
 //! faces each, where this takes about a millisecond.
+//!
+//! # Independent review (2026-11-29)
+//! Face orientation (counter-clockwise from outside, decided by the same
+//! exact `orient` as the hull), exactly planar and strictly convex maximal
+//! faces (so the fans cover the boundary with no flat triangle), closed
+//! exact boxes and `vertices[0]` were verified. The review supplied the
+//! connectedness step of the argument above; the code needed no change.
 
 use glam::DVec3;
 
