@@ -2,7 +2,8 @@
 //! test (issue 35): `cargo run --release -p dymsum-bench --example
 //! parts_probe -- DIR [PAIRS] [STATES]` prints, per seeded pair of the
 //! meshes in DIR, the build time and the medians and 99th percentiles of
-//! one call per state, random and near contact.
+//! one call per state, random and near contact (`DISTANCE=1`:
+//! `distance_at` on the free states).
 
 use std::time::Instant;
 
@@ -20,8 +21,10 @@ fn main() {
     let dir = std::path::Path::new(args.get(1).map_or("/tmp/rm", |s| s));
     let pairs: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(12);
     let n: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(100);
-    // `DYMSUM_ONLY=1`: time dymsum alone (e.g. under `perf stat`).
+    // `DYMSUM_ONLY=1`: time dymsum alone (e.g. under `perf stat`);
+    // `DISTANCE=1`: time `distance_at` on the free states instead.
     let skip_parry = std::env::var("DYMSUM_ONLY").is_ok();
+    let distance = std::env::var("DISTANCE").is_ok();
     let only: Option<String> = std::env::var("PAIR").ok();
     let all = parts(dir);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
@@ -49,8 +52,15 @@ fn main() {
         for (what, states) in [("random", &random), ("near", &near)] {
             let (mut ours, mut theirs) = (Vec::new(), Vec::new());
             for &p in states.iter() {
+                if distance && checker.collides_at(p).unwrap() {
+                    continue;
+                }
                 let t = Instant::now();
-                std::hint::black_box(checker.collides_at(p).unwrap());
+                if distance {
+                    std::hint::black_box(checker.distance_at(p).unwrap());
+                } else {
+                    std::hint::black_box(checker.collides_at(p).unwrap());
+                }
                 ours.push(t.elapsed().as_secs_f64() * 1e6);
                 if skip_parry {
                     theirs.push(1.0);

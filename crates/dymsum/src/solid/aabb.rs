@@ -448,7 +448,21 @@ impl AabbTree {
                         }
                     }
                 }
-                _ => self.descend(other, a, b, ba.size() >= bb.size(), stack),
+                _ => {
+                    // The nearer child pair is examined first, so the
+                    // best distance tightens early and prunes more.
+                    let before = stack.len();
+                    self.descend(other, a, b, ba.size() >= bb.size(), stack);
+                    if stack.len() == before + 2 {
+                        let gap = |(x, y): (u32, u32)| {
+                            node_box(x as usize).distance(&other.bounds[y as usize])
+                        };
+                        let (first, second) = (stack[before + 1], stack[before]);
+                        if gap(second) < gap(first) {
+                            stack.swap(before, before + 1);
+                        }
+                    }
+                }
             }
         }
         best
