@@ -558,6 +558,7 @@ mod tests {
     use super::*;
     use dymsum::body::Rung;
     use dymsum::SolidError;
+    use dymsum_testkit::CUBE_QUADS;
     use std::collections::HashMap;
     use std::path::PathBuf;
 
@@ -572,15 +573,6 @@ mod tests {
         }
     }
 
-    const QUADS: [[usize; 4]; 6] = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-
     /// Unit cubes at these x offsets in one OFF text; `drop_lid` leaves
     /// out the first cube's top face.
     fn cubes_off(offsets: &[f64], drop_lid: bool) -> String {
@@ -591,7 +583,7 @@ mod tests {
                 let c = |b: usize| ((i >> b) & 1) as f64;
                 v += &format!("{} {} {}\n", dx + c(0), c(1), c(2));
             }
-            for (j, q) in QUADS.iter().enumerate() {
+            for (j, q) in CUBE_QUADS.iter().enumerate() {
                 if !(drop_lid && k == 0 && j == 1) {
                     f.push(format!(
                         "4 {}",
@@ -615,7 +607,7 @@ mod tests {
             let c = |b: usize| ((i >> b) & 1) as f64;
             t += &format!("v {} {} {}\n", dx + c(0), c(1), c(2));
         }
-        for q in QUADS {
+        for q in CUBE_QUADS {
             t += &format!("f {}\n", q.map(|x| (base + x + 1).to_string()).join(" "));
         }
         t

@@ -14,7 +14,7 @@ pub enum InteropError {
     },
     /// The 3×3 matrix is not a rotation: not finite, not orthonormal, or
     /// its determinant is not +1 (each within `1e-6`, see
-    /// [`Rotation::from_matrix`]). Columns listed in order.
+    /// [`Rotation::from_matrix`](crate::kernel::rotation::Rotation::from_matrix)). Columns listed in order.
     #[error("matrix with columns {columns:?} is not a rotation (orthonormal with determinant +1, within 1e-6)")]
     NotRotation {
         /// The matrix, column by column.
@@ -22,7 +22,7 @@ pub enum InteropError {
     },
     /// The 4×4 matrix is not a rigid transform: its last row is not exactly
     /// `0, 0, 0, 1`, an entry is not finite, or its upper 3×3 block is not a
-    /// rotation (see [`Pose::from_mat4`]). Columns listed in order.
+    /// rotation (see [`Pose::from_mat4`](crate::kernel::rotation::Pose::from_mat4)). Columns listed in order.
     #[error("4x4 matrix with columns {columns:?} is not a rigid transform (a rotation block, a finite translation, last row exactly 0, 0, 0, 1)")]
     NotRigid {
         /// The matrix, column by column (boxed: it is large).

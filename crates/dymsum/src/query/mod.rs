@@ -221,4 +221,41 @@ pub(crate) mod test_support {
             .collect();
         Polytope::from_points(&pts).unwrap()
     }
+
+    /// Two boxes and random hulls of `sizes` points: the shapes the
+    /// yes/no oracles are compared on.
+    pub(crate) fn boxes_and_hulls(r: &mut Lcg, sizes: &[usize]) -> Vec<Polytope> {
+        let mut shapes = vec![boxed(0.5, 0.5, 0.5), boxed(1.0, 0.25, 0.5)];
+        for &n in sizes {
+            let pts: Vec<DVec3> = (0..n).map(|_| r.unit()).collect();
+            shapes.push(Polytope::from_dvec3s(&pts).unwrap());
+        }
+        shapes
+    }
+
+    /// The `k`-th pose pair of those comparisons: A turned (identity, an
+    /// exact quarter turn about z, or random), B moved: every fourth one
+    /// along x to touch the unit box exactly or an ulp either side, the
+    /// others at random within 2.5.
+    pub(crate) fn oracle_poses(
+        r: &mut Lcg,
+        k: usize,
+    ) -> (crate::kernel::rotation::Pose, crate::kernel::rotation::Pose) {
+        use crate::kernel::rotation::{Pose, Rotation};
+        let rot = match k % 3 {
+            0 => Rotation::IDENTITY,
+            1 => Rotation::from_axis_angle(DVec3::Z, std::f64::consts::FRAC_PI_2).unwrap(),
+            _ => Rotation::from_axis_angle(r.unit(), 3.0 * r.next()).unwrap(),
+        };
+        let t = if k % 4 == 0 {
+            let x = 1.0 + [0.0, f64::EPSILON, -f64::EPSILON][k % 3];
+            DVec3::new(x, 0.0, 0.0)
+        } else {
+            r.unit() * (2.5 * r.next().abs())
+        };
+        (
+            Pose::new(rot, DVec3::ZERO),
+            Pose::new(Rotation::IDENTITY, t),
+        )
+    }
 }

@@ -676,12 +676,9 @@ pub(in crate::query) fn origin_in_difference_hull(pair: &ConvexPair, posed: &Pos
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::rotation::Pose;
-    use crate::kernel::rotation::Rotation;
-    use crate::polytope::Polytope;
     use crate::query::proximity::scratch::Scratch;
 
-    use crate::query::test_support::{boxed, Lcg};
+    use crate::query::test_support::{boxes_and_hulls, oracle_poses, Lcg};
 
     /// GJK's certificates (when they decide) against the independent
     /// exhaustive exact method (the exact hull of all differences and the
@@ -691,34 +688,14 @@ mod tests {
     #[test]
     fn certificates_agree_with_the_exact_hull_of_differences() {
         let mut r = Lcg(5);
-        let mut shapes = vec![boxed(0.5, 0.5, 0.5), boxed(1.0, 0.25, 0.5)];
-        for n in [6, 20, 60] {
-            let pts: Vec<DVec3> = (0..n).map(|_| r.unit()).collect();
-            shapes.push(Polytope::from_dvec3s(&pts).unwrap());
-        }
+        let shapes = boxes_and_hulls(&mut r, &[6, 20, 60]);
         let (mut decided, mut total) = (0, 0);
         for a in &shapes {
             for b in &shapes {
                 let pair = ConvexPair::new(a, b).unwrap();
                 let mut scratch = Scratch::default();
                 for k in 0..60 {
-                    let rot = match k % 3 {
-                        0 => Rotation::IDENTITY,
-                        1 => Rotation::from_axis_angle(DVec3::Z, std::f64::consts::FRAC_PI_2)
-                            .unwrap(),
-                        _ => Rotation::from_axis_angle(r.unit(), 3.0 * r.next()).unwrap(),
-                    };
-                    let t = if k % 4 == 0 {
-                        // Touching or an ulp off along x at the identity.
-                        let x = 1.0 + [0.0, f64::EPSILON, -f64::EPSILON][k % 3];
-                        DVec3::new(x, 0.0, 0.0)
-                    } else {
-                        r.unit() * (2.5 * r.next().abs())
-                    };
-                    let (pa, pb) = (
-                        Pose::new(rot, DVec3::ZERO),
-                        Pose::new(Rotation::IDENTITY, t),
-                    );
+                    let (pa, pb) = oracle_poses(&mut r, k);
                     scratch.posed.reset(&pair, pa, pb).unwrap();
                     let posed = &scratch.posed;
                     let exact = origin_in_difference_hull(&pair, posed);
