@@ -75,6 +75,12 @@ pub(super) struct LazyTriangles {
 }
 
 impl LazyTriangles {
+    /// Forgets every triangle (the stamps restart with the epoch).
+    pub(super) fn clear(&mut self) {
+        self.stamp.clear();
+        self.corners.clear();
+    }
+
     /// Triangle `i` of `body` at `pose`, its corners posed by `at` (whose
     /// epoch is the query's).
     #[inline]
@@ -301,6 +307,11 @@ impl SceneChecker {
         let k = self.scene.tree.bounds().len();
         if s.scene_cache.len() != k || s.at.epoch == 1 {
             s.scene_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); k];
+        }
+        if s.at.epoch == 1 {
+            // The epoch wrapped (or this is the first query): stamps from
+            // the last cycle must not pass for this one's.
+            s.tris.clear();
         }
     }
 

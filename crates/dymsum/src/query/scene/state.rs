@@ -197,3 +197,44 @@ impl SceneChecker {
         out
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::MeshBody;
+    use crate::kernel::rotation::Rotation;
+    use crate::mesh::PolygonMesh;
+
+    /// The per-query caches (posed vertices, triangles, node boxes) are
+    /// stamped with a query counter that wraps after 2³² queries; a
+    /// triangle posed in the counter's last cycle must not pass for this
+    /// cycle's. A vertical triangle whose box crosses a flat one's: it
+    /// crosses the flat triangle at the first pose, misses it at the
+    /// second (boxes still meeting).
+    #[test]
+    fn caches_survive_the_query_counter_wrapping() {
+        let flat = PolygonMesh::new(
+            vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
+            vec![vec![0, 1, 2]],
+        );
+        let upright = PolygonMesh::new(
+            vec![[1.5, 1.5, -1.0], [1.5, 1.5, 1.0], [1.6, 1.4, 0.0]],
+            vec![vec![0, 1, 2]],
+        );
+        let checker = SceneChecker::new(
+            &MeshBody::new(&upright).unwrap(),
+            &[MeshBody::new(&flat).unwrap()],
+        )
+        .unwrap();
+        let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, x, 0.0));
+        let mut s = checker.scratch();
+        assert!(checker.collides_with(at(-1.0), &mut s).unwrap());
+        assert!(!checker.collides_with(at(0.0), &mut s).unwrap());
+        // The next query wraps the counter back to the first one's stamp.
+        s.at.epoch = u32::MAX;
+        assert!(checker.collides_with(at(-1.0), &mut s).unwrap());
+        s.at.epoch = u32::MAX;
+        assert!(!checker.collides_with(at(0.0), &mut s).unwrap());
+        assert!(!checker.collides_at(at(0.0)).unwrap());
+    }
+}
