@@ -435,21 +435,16 @@ impl MeshBody {
 
 /// The exact boxes of triangles over `vertices`.
 pub(crate) fn triangle_boxes(vertices: &[DVec3], triangles: &[[u32; 3]]) -> Vec<Aabb> {
-    let mut out = Vec::with_capacity(triangles.len());
-    triangle_boxes_into(vertices, triangles, &mut out);
-    out
-}
-
-/// [`triangle_boxes`] into a buffer.
-pub(crate) fn triangle_boxes_into(vertices: &[DVec3], triangles: &[[u32; 3]], out: &mut Vec<Aabb>) {
-    out.clear();
-    out.extend(triangles.iter().map(|t| {
-        let [a, b, c] = t.map(|v| vertices[v as usize]);
-        Aabb {
-            lo: a.min(b).min(c).to_array(),
-            hi: a.max(b).max(c).to_array(),
-        }
-    }));
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| vertices[v as usize]);
+            Aabb {
+                lo: a.min(b).min(c).to_array(),
+                hi: a.max(b).max(c).to_array(),
+            }
+        })
+        .collect()
 }
 
 /// A convex polytope placed at `pose`: the hull of its posed vertices.

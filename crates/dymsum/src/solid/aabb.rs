@@ -498,19 +498,7 @@ impl AabbTree {
 
     /// Calls `f` with every item whose box meets `query`.
     pub fn for_each_meeting(&self, query: &Aabb, f: impl FnMut(usize)) {
-        self.for_each_meeting_in(&self.boxes, &self.bounds, query, f);
-    }
-
-    /// [`AabbTree::for_each_meeting`] with the item boxes `boxes` and node
-    /// bounds `bounds` (boxes holding the items').
-    pub fn for_each_meeting_in(
-        &self,
-        boxes: &[Aabb],
-        bounds: &[Aabb],
-        query: &Aabb,
-        f: impl FnMut(usize),
-    ) {
-        self.for_each_meeting_with(|n| bounds[n], |i| boxes[i], query, f);
+        self.for_each_meeting_with(|n| self.bounds[n], |i| self.boxes[i], query, f);
     }
 
     /// [`AabbTree::for_each_meeting`] with node `n`'s box `node_box(n)` and
