@@ -27,7 +27,8 @@ also counts a body inside a solid). With ``--motions M``, short motions
 from free near-contact states: turned by 1° to 5° about a random axis
 through the body's centre and moved by up to 2% of the obstacle's
 diagonal, one call each: dymsum's certified ``check(pose0, pose1)``
-against discrete validation with fcl as OMPL's SE(3) space would make
+(the contact bracketed to 1e-6, and to ``dymsum.ompl.DECISION_TOLERANCE``
+as the OMPL validator's ``checkMotion(s1, s2)`` asks) against discrete validation with fcl as OMPL's SE(3) space would make
 it (``DiscreteMotionValidator``: states ``0.01 · extent`` apart in OMPL's
 SE(3) distance, the translation's length plus the quaternion angle, the
 extent the obstacle box's diagonal plus π/2; the end state included, the
@@ -98,7 +99,9 @@ def motions(fcl, checker, oa, ob, va, vb, starts, rng):
 
     extent = np.linalg.norm(np.ptp(vb, 0)) + np.pi / 2
     ca = (va.min(0) + va.max(0)) / 2
-    td, tf, counts, missed = [], [], [], 0
+    from dymsum.ompl import DECISION_TOLERANCE
+
+    td, tdec, tf, counts, missed = [], [], [], [], 0
     for p0 in starts:
         axis = rng.normal(size=3)
         turn = Rotation.from_rotvec(axis / np.linalg.norm(axis) * np.radians(rng.uniform(1, 5)))
@@ -112,6 +115,14 @@ def motions(fcl, checker, oa, ob, va, vb, starts, rng):
         except Exception:  # noqa: BLE001 - undecided or over budget: counted as not free, timed
             free = False
         td.append(time.perf_counter() - t0)
+        # What the OMPL validator's checkMotion(s1, s2) runs: the same
+        # certified answer, the contact bracketed only to 1/8.
+        t0 = time.perf_counter()
+        try:
+            checker.check(p0, p1, DECISION_TOLERANCE)
+        except Exception:  # noqa: BLE001 - as above
+            pass
+        tdec.append(time.perf_counter() - t0)
         q0, q1 = Rotation.from_matrix(p0[:3, :3]), Rotation.from_matrix(p1[:3, :3])
         dist = np.linalg.norm(p1[:3, 3] - p0[:3, 3]) + np.arccos(min(1.0, abs(np.dot(q0.as_quat(), q1.as_quat()))))
         steps = max(1, int(dist / (0.01 * extent)))
@@ -127,8 +138,11 @@ def motions(fcl, checker, oa, ob, va, vb, starts, rng):
         tf.append(time.perf_counter() - t0)
         counts.append(steps)
         missed += ok and not free
-    td, tf = np.array(td) * 1e6, np.array(tf) * 1e6
-    return len(td), np.median(td), np.percentile(td, 99), np.median(tf), np.percentile(tf, 99), np.median(counts), missed
+    td, tdec, tf = np.array(td) * 1e6, np.array(tdec) * 1e6, np.array(tf) * 1e6
+    return (
+        len(td), np.median(td), np.percentile(td, 99), np.median(tf), np.percentile(tf, 99), np.median(counts), missed,
+        np.median(tdec), np.percentile(tdec, 99),
+    )
 
 
 def _slerp(a, b, s):
@@ -225,17 +239,27 @@ def main():
     gm = lambda v: float(np.exp(np.mean(np.log(v)))) if v else float("nan")
     if a.motions:
         print()
-        print("| body | obstacle | motions | certified µs median (p99) | discrete fcl µs median (p99), states | ratio of medians | discrete misses |")
-        print("|---|---|---|---|---|---|---|")
-        mr = []
+        print(
+            "| body | obstacle | motions | certified, bracket 1e-6: µs median (p99) | certified, decision (validator): µs median (p99) "
+            "| discrete fcl µs median (p99), states | ratio of medians, bracket / decision | discrete misses |"
+        )
+        print("|---|---|---|---|---|---|---|---|")
+        mr, mdec = [], []
         for row in rows:
             if "motions" not in row:
                 continue
-            n, dm, d99, fm, f99, steps, missed = row["motions"]
+            n, dm, d99, fm, f99, steps, missed, cm, c99 = row["motions"]
             mr.append(dm / fm)
-            print(f"| {short(row['a'])} | {short(row['b'])} | {n} | {dm:.0f} ({d99:.0f}) | {fm:.0f} ({f99:.0f}), {steps:.0f} | {dm / fm:.2f} | {missed} |")
+            mdec.append(cm / fm)
+            print(
+                f"| {short(row['a'])} | {short(row['b'])} | {n} | {dm:.0f} ({d99:.0f}) | {cm:.0f} ({c99:.0f}) "
+                f"| {fm:.0f} ({f99:.0f}), {steps:.0f} | {dm / fm:.2f} / {cm / fm:.2f} | {missed} |"
+            )
         print()
-        print(f"Motions: ratio of medians gm {gm(mr):.2f}, worst {max(mr or [0]):.2f}")
+        print(
+            f"Motions: ratio of medians, bracket 1e-6 gm {gm(mr):.2f} worst {max(mr or [0]):.2f}; "
+            f"decision gm {gm(mdec):.2f} worst {max(mdec or [0]):.2f}"
+        )
     print()
     print(
         f"Ratios (dymsum / fcl): median random gm {gm(ratios['random']):.2f} worst {max(ratios['random'] or [0]):.2f}; "

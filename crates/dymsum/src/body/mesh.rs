@@ -11,6 +11,7 @@ use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;
 use crate::sanity::SanityError;
 use crate::solid::aabb::{Aabb, AabbTree};
+use crate::solid::obb::{node_obbs, Obb};
 use crate::solid::soup::{clean_soup, ComponentKind};
 use crate::solid::SolidError;
 
@@ -91,6 +92,9 @@ pub struct MeshBody {
     /// body.
     pub(crate) source_of: Vec<u32>,
     pub(crate) tree: AabbTree,
+    /// One oriented box per node of `tree` (body frame;
+    /// [`crate::solid::obb`]).
+    pub(crate) obbs: Vec<Obb>,
     /// Each component's box (body frame).
     pub(crate) component_boxes: Vec<Aabb>,
     /// The solid components (their indices).
@@ -275,6 +279,7 @@ impl MeshBody {
     ) -> MeshBody {
         let boxes = triangle_boxes(&vertices, &triangles);
         let tree = AabbTree::new(&boxes);
+        let obbs = node_obbs(&tree, |i| triangles[i].map(|v| vertices[v as usize]));
         let mut component_boxes = vec![Aabb::EMPTY; components.len()];
         for (t, b) in boxes.iter().enumerate() {
             let c = component_of[t] as usize;
@@ -304,6 +309,7 @@ impl MeshBody {
             source_of: vec![0; components.len()],
             components,
             tree,
+            obbs,
             component_boxes,
             solid_components,
             solid_tree,
@@ -428,6 +434,19 @@ impl MeshBody {
         }
         if let Some(v) = self.vertices.iter().position(|v| v.length() > self.reach) {
             return bad(format!("the reach is below vertex {v}'s norm"));
+        }
+        let spans = self.tree.node_spans();
+        if self.obbs.len() != spans.len() {
+            return bad("not one oriented box per tree node".into());
+        }
+        for (n, (&(s, e), o)) in spans.iter().zip(&self.obbs).enumerate() {
+            let items = &self.tree.items()[s as usize..e as usize];
+            let corner = |&i: &u32| self.triangles[i as usize].map(|v| self.vertices[v as usize]);
+            if !items.iter().flat_map(corner).all(|p| o.holds(p)) {
+                return bad(format!(
+                    "node {n}'s oriented box misses a corner of its triangles"
+                ));
+            }
         }
         Ok(())
     }

@@ -291,6 +291,25 @@ impl AabbTree {
         &self.bounds
     }
 
+    /// The items in tree order: node `n`'s items are
+    /// `items()[s..e]` with `(s, e) = node_spans()[n]`.
+    pub fn items(&self) -> &[u32] {
+        &self.items
+    }
+
+    /// Each node's range in [`AabbTree::items`] (children are built after
+    /// their parent, over contiguous ranges).
+    pub fn node_spans(&self) -> Vec<(u32, u32)> {
+        let mut spans = vec![(0u32, 0u32); self.nodes.len()];
+        for n in (0..self.nodes.len()).rev() {
+            spans[n] = match self.nodes[n] {
+                Node::Leaf { start, end } => (start, end),
+                Node::Inner { left, right } => (spans[left as usize].0, spans[right as usize].1),
+            };
+        }
+        spans
+    }
+
     /// The boxes the tree was built from.
     pub fn boxes(&self) -> &[Aabb] {
         &self.boxes

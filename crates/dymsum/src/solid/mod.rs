@@ -93,6 +93,7 @@ pub(crate) mod aabb;
 pub mod closed;
 mod error;
 pub(crate) mod intersect;
+pub(crate) mod obb;
 pub mod soup;
 
 pub use error::SolidError;

@@ -31,6 +31,7 @@ use crate::query::error::MotionError;
 use crate::query::error::QueryError;
 use crate::query::interval_search::DEFAULT_BUDGET;
 use crate::solid::aabb::{Aabb, AabbTree};
+use crate::solid::obb::PosedObb;
 
 /// Body vertices posed on demand, each once per query: `pts[v]` is
 /// current when `stamp[v] == epoch`.
@@ -106,11 +107,16 @@ impl LazyTriangles {
 
 /// Node bounds computed on demand, each once per query (stamped with the
 /// query's epoch).
-type NodeCache = Vec<std::cell::Cell<(u32, Aabb)>>;
+type NodeCache<T = Aabb> = Vec<std::cell::Cell<(u32, T)>>;
 
 /// The value of node `n` from the cache, or computed and kept.
 #[inline]
-pub(super) fn cached(cache: &NodeCache, epoch: u32, n: usize, compute: impl Fn() -> Aabb) -> Aabb {
+pub(super) fn cached<T: Copy>(
+    cache: &NodeCache<T>,
+    epoch: u32,
+    n: usize,
+    compute: impl Fn() -> T,
+) -> T {
     let (stamp, b) = cache[n].get();
     if stamp == epoch {
         return b;
@@ -144,6 +150,8 @@ pub(super) struct Scratch {
     /// The scene's node bounds carried back into the body's frame at the
     /// pose (state checks).
     pub(super) scene_cache: NodeCache,
+    /// The body's oriented node boxes at the pose (state checks).
+    pub(super) obb_cache: NodeCache<PosedObb>,
     pub(super) stack: Vec<(u32, u32)>,
     pub(super) parity: Vec<u8>,
     pub(super) intervals: Vec<(f64, f64)>,
@@ -303,6 +311,9 @@ impl SceneChecker {
         let n = self.body.tree.bounds().len();
         if s.node_cache.len() != n || s.at.epoch == 1 {
             s.node_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); n];
+        }
+        if s.obb_cache.len() != n || s.at.epoch == 1 {
+            s.obb_cache = vec![std::cell::Cell::new((0, PosedObb::default())); n];
         }
         let k = self.scene.tree.bounds().len();
         if s.scene_cache.len() != k || s.at.epoch == 1 {

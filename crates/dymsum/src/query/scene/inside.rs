@@ -178,8 +178,9 @@ pub(crate) fn inside_solid(
             p[k] - joint.lo[k]
         }
     };
-    let mut order = DIRECTIONS;
-    order.sort_by(|a, b| exit(a).total_cmp(&exit(b)));
+    let mut order = DIRECTIONS.map(|d| (exit(&d), d));
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let order = order.map(|(_, d)| d);
     if parity.len() < body.components.len() {
         parity.resize(body.components.len(), 0);
     }

@@ -13,6 +13,7 @@ use crate::query::checker::Checker;
 use crate::query::error::QueryError;
 use crate::solid::aabb::Aabb;
 use crate::solid::intersect::triangles_meet;
+use crate::solid::obb::pose_skew;
 
 impl SceneChecker {
     /// Whether the body at `pose` touches or overlaps the scene (exact;
@@ -89,8 +90,22 @@ impl SceneChecker {
         };
         let scene_cache = std::mem::take(&mut s.scene_cache);
         let back_node = |k: usize, o: &Aabb| cached(&scene_cache, epoch, k, || back(o));
+        // Then the oriented boxes (`solid::obb`: certified), when the
+        // pose's matrix is close enough to a rotation for their test.
+        let oriented = pose_skew(&m).is_some();
+        let obb_cache = std::mem::take(&mut s.obb_cache);
+        let (body_obbs, scene_obbs) = (&self.body.obbs, &self.scene.obbs);
+        let obb_apart = |n: usize, k: usize| {
+            let a = &body_obbs[n];
+            let posed = cached(&obb_cache, epoch, n, || a.posed(&m, t));
+            scene_obbs[k].apart(&posed, a.h, a.fuzz, pad)
+        };
         let hit = self.body.tree.for_each_pair(
-            |n, k, o| world(n).within(o, 0.0) && back_node(k, o).within(&bounds[n], 0.0),
+            |n, k, o| {
+                world(n).within(o, 0.0)
+                    && back_node(k, o).within(&bounds[n], 0.0)
+                    && !(oriented && obb_apart(n, k))
+            },
             |n| bounds[n].size(),
             |i, o| {
                 let (tri, own) = posed(i);
@@ -109,6 +124,7 @@ impl SceneChecker {
         s.stack = stack;
         s.node_cache = cache;
         s.scene_cache = scene_cache;
+        s.obb_cache = obb_cache;
         hit
     }
 
@@ -132,8 +148,13 @@ impl SceneChecker {
         parity: &mut Vec<u8>,
     ) -> Result<bool, QueryError> {
         if !self.scene.solid_components.is_empty() {
+            let scene_box = self.scene.obbs.first();
             for &(_, v) in &self.body.components {
                 let p = s.at.get(&self.body.vertices, &pose, v);
+                // Outside the scene's oriented box: inside nothing of it.
+                if scene_box.is_some_and(|o| o.excludes(p, 0.0)) {
+                    continue;
+                }
                 if self.scene.inside_solid(p, parity)? {
                     return Ok(true);
                 }
@@ -165,17 +186,38 @@ impl SceneChecker {
         let node_box = |n: usize| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad));
         let item_box = |i: usize| Aabb::of(self.body.triangles[i].map(|v| vertex(v).to_array()));
         let component_box = |c: usize| self.body.component_boxes[c].transformed(&m, t, pad);
+        // A scene corner carried back into the body's frame, known there
+        // up to `back_pad` per coordinate: a point of the posed body's
+        // hull carried back lies within it of the body-frame hull (the
+        // posing's rounding `pad`, three times the matrix's distance from
+        // a rotation (`pose_skew`, at most 2⁻⁴⁰ an entry, else this
+        // filter is off) times the body's size, and this product's own
+        // rounding), so a corner the body-frame boxes exclude by more is
+        // in none of the body's solids.
+        let mi = m.transpose();
+        let filter = pose_skew(&m).is_some();
+        let size = self.body.reach + t.abs().max_element();
+        let body_box = self.body.obbs.first();
         let mut candidates = Vec::new();
         let mut out = Ok(false);
         for k in corners {
             let p = self.scene.vertices[self.scene.components[k].1 as usize];
+            let back = mi * (p - t);
+            let back_pad = size * (1.0 / (1u64 << 36) as f64)
+                + 2.0 * pad
+                + 16.0 * f64::EPSILON * (p.abs().max_element() + t.abs().max_element());
+            if filter && body_box.is_some_and(|o| o.excludes(back, back_pad)) {
+                continue;
+            }
             candidates.clear();
-            candidates.extend(
-                self.body
-                    .solid_components
-                    .iter()
-                    .filter(|&&c| component_box(c as usize).holds(p.to_array())),
-            );
+            candidates.extend(self.body.solid_components.iter().filter(|&&c| {
+                let near_back = || {
+                    let at = back.to_array();
+                    let point = Aabb { lo: at, hi: at };
+                    self.body.component_boxes[c as usize].within(&point, back_pad)
+                };
+                component_box(c as usize).holds(p.to_array()) && (!filter || near_back())
+            }));
             match inside_solid(
                 &self.body,
                 vertex,

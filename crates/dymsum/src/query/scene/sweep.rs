@@ -23,7 +23,22 @@
 //! rounding), the others are certified by [`super::gap`]: floats propose
 //! an axis, and the gap along it is bounded below rigorously, about the
 //! scene triangle's first corner (so its rounding is a few ulps of the
-//! local sizes, not of the coordinates). A slide
+//! local sizes, not of the coordinates).
+//!
+//! The broad phase also drops a pair of tree nodes when the scene node's
+//! oriented box is proven apart ([`crate::solid::obb`], certified) from
+//! the body node's box posed at `a`, grown by the node's *swept reach*:
+//! with `ρ` an upper bound on the norm of every point of the node's box
+//! (`|c| + |h| + fuzz`, rounded up) and `θ` one on `‖M(b) − M(a)‖`
+//! (the Frobenius norm of the float matrices' difference, rounded up),
+//! each of the twelve points of a node triangle lies within
+//! `θρ + 2|Δt| + 4·pad + 16u(size + 2|Δt|)` of `M(a) p + t(a)` for the
+//! triangle's corner `p` (the other end's corners move by at most
+//! `θρ + |Δt|`, the shifted copies by one more `|Δt|`; each float posing
+//! errs by at most `pad` a coordinate, each float shift by an ulp of the
+//! sizes). The hull of points within that distance of the posed box lies
+//! within it too (a ball around a convex set is convex), and the test
+//! adds `s + e` to the grown distance. A slide
 //! along a wall certifies in one interval (the hull stays on its side);
 //! the sagitta is second order in the interval's width. Containment
 //! cannot begin without triangles meeting, and the body is not inside
@@ -50,6 +65,7 @@ use crate::query::error::{MotionError, QueryError};
 use crate::query::interval_search::{first_contact, Sweep, SweepMargin};
 use crate::query::motion::Motion;
 use crate::solid::aabb::Aabb;
+use crate::solid::obb::pose_skew;
 
 impl SceneChecker {
     /// The twelve points of body triangle `i`'s swept hull (module docs):
@@ -146,8 +162,29 @@ impl SceneChecker {
         let scene = &self.scene.tree;
         let mut stack = std::mem::take(&mut s.stack);
         let mut blocker = None;
+        // Then the oriented boxes (`solid::obb`): a node's swept hulls lie
+        // within `swept_reach` of its box posed at `from` (module docs).
+        let turn = frobenius(mb - ma);
+        let size = self.body.reach + ta.abs().max_element().max(tb.abs().max_element());
+        let shift_len = shift.length() * (1.0 + 1e-12);
+        let oriented = pose_skew(&ma).is_some();
+        let obb_cache = std::mem::take(&mut s.obb_cache);
+        let (body_obbs, scene_obbs) = (&self.body.obbs, &self.scene.obbs);
+        let obb_apart = |k: usize, j: usize| {
+            let a = &body_obbs[k];
+            let posed = cached(&obb_cache, epoch, k, || a.posed(&ma, ta));
+            let radius = (a.c.length() + a.h.length() + a.fuzz) * (1.0 + 1e-12);
+            let swept_reach = turn * radius
+                + 2.0 * shift_len
+                + 4.0 * pad
+                + 8.0 * f64::EPSILON * (size + 2.0 * shift_len);
+            scene_obbs[j].apart(&posed, a.h, a.fuzz + swept_reach + reach, pad)
+        };
         let blocked = self.body.tree.for_each_pair(
-            |k, _, o| cached(&cache, epoch, k, || swept(&bounds[k])).within(o, reach),
+            |k, j, o| {
+                cached(&cache, epoch, k, || swept(&bounds[k])).within(o, reach)
+                    && !(oriented && obb_apart(k, j))
+            },
             |k| bounds[k].size(),
             |i, o| swept(&boxes[i]).within(o, reach),
             |i, o| swept(&boxes[i]).within(o, reach),
@@ -165,6 +202,7 @@ impl SceneChecker {
         );
         s.stack = stack;
         s.node_cache = cache;
+        s.obb_cache = obb_cache;
         if blocked {
             s.blocker = blocker;
         }
@@ -239,6 +277,13 @@ impl SceneChecker {
     ) -> Result<Vec<MotionCheck>, MotionError> {
         Checker::check_many(self, motions, tolerance)
     }
+}
+
+/// An upper bound on the Frobenius norm of `m` (so on its spectral norm):
+/// rounded up past the few ulps its sum and root may lose.
+fn frobenius(m: glam::DMat3) -> f64 {
+    let s = m.x_axis.length_squared() + m.y_axis.length_squared() + m.z_axis.length_squared();
+    s.sqrt() * (1.0 + 1e-12) + 1e-300
 }
 
 /// The whole body's search with a check's buffers: what the interval

@@ -1,0 +1,427 @@
+//! Oriented bounding boxes for the nodes of a box tree, and a certified
+//! floating-point test that proves two of them apart (issue 35: robot
+//! parts are full of long slanted triangles, and an axis-aligned box
+//! around a slanted part is mostly empty; an oriented box fitted to the
+//! node's corners is not).
+//!
+//! A node's [`Obb`] is `{c + Σ sᵢ eᵢ : |sᵢ| ≤ hᵢ}` grown by a ball of
+//! radius `fuzz`: the axes `eᵢ` are the principal axes of the node's
+//! triangle corners (a Jacobi eigen-decomposition of their covariance,
+//! orthonormalised in floats, right-handed), `h` the half-widths of the
+//! corners' projections, and `fuzz` a bound on everything rounding does to
+//! that description. Like the axis-aligned boxes, an oriented box is only
+//! ever used to *drop* pairs: [`Obb::apart`] answers `true` only with a
+//! proof that the two boxes, hence every point they hold, are apart.
+//!
+//! # Soundness
+//! Let `u = 2⁻⁵³`.
+//!
+//! **Fitting.** Any float axes will do; they are checked to be
+//! orthonormal up to `β`: every `|fl(eᵢ·eⱼ) − δᵢⱼ| + 8u ≤ β ≤ 2⁻⁴⁴` (else
+//! the node keeps the coordinate axes, which are exact). Each corner `p`
+//! is projected as `dᵢ = fl(eᵢ·fl(p − c₀))` about the node's box centre
+//! `c₀`, within `8u·D` of `eᵢ·(p − c₀)` (`D` the box's largest half-side,
+//! bounding `|p − c₀|∞`). The box is the midpoint `mᵢ` and half-width `hᵢ`
+//! of each projection's range, its centre `c = fl(c₀ + Σ mᵢeᵢ)` (within
+//! `8u(|c₀|∞ + 3D)`). Writing `p − c₀ = E⁻ᵀ d*` with `d* = Eᵀ(p − c₀)`
+//! exact and `‖E⁻ᵀ − E‖ ≤ 4β`, every corner lies within
+//! `4β·3D + 16u·3D + 8u(|c₀|∞ + 3D) < 2⁻³⁸(|c₀|∞ + D)` of the box; `fuzz`
+//! is that bound (rounded up, plus an absolute `2⁻¹⁰⁰⁰` for underflow).
+//! The box holds every point of the node's triangles, since it is convex.
+//!
+//! **Posing.** A body node is carried by the pose's float matrix `M` and
+//! translation `t`: its posed points are `fl(Mp + t)`, each coordinate
+//! within the caller's `pad` of `Mp + t`. The posed box is described by
+//! `c' = fl(Mc + t)` and `fᵢ = fl(M eᵢ)`; with `ω ≥ |fl(MᵀM) − I|` entrywise
+//! plus `8u` (checked per query, at most `2⁻⁴⁰`, else no oriented test is
+//! made), `F = [fᵢ]` is orthonormal and right-handed up to `ω + 2β + 8u`.
+//!
+//! **The test.** The fifteen separating axes of two boxes (Gottschalk,
+//! Lin and Manocha's OBB tree test, as FCL's `obbDisjoint`), computed in
+//! the scene box's frame from `C = [eᴮᵢ·fⱼ]` and `T = Eᴮᵀ(c' − cᴮ)`. Every
+//! formula there is exact for orthonormal right-handed frames; here each
+//! frame is orthonormal up to at most `2⁻³⁹` (`ω`, `β`, the rounding of
+//! `C` and `T`), which moves each computed projection and radius by at
+//! most `64·2⁻³⁹·S`, `S = |c'|∞ + |cᴮ|∞ + |T|₁ + Σhᴬ + Σhᴮ` (every term
+//! is a sum of at most six products of a length below `S` with entries of
+//! `C` or `T` that are off by at most `2⁻³⁹` relative; the constant 64
+//! covers the sum's terms and their rounding). Each axis has length at
+//! most `1.01`, so the fuzz balls and the posing move projections by at
+//! most `1.01(fuzzᴬ + fuzzᴮ) + 2·pad`. The test declares the boxes apart
+//! only when some axis shows a gap above
+//! `2⁻³⁰·S + 1.01(fuzzᴬ + fuzzᴮ) + 2·pad`: 8 times what the errors can
+//! take. A NaN or overflow anywhere makes every comparison fail (no
+//! proof).
+
+use glam::{DMat3, DVec3};
+
+use super::aabb::{Aabb, AabbTree};
+
+const U: f64 = f64::EPSILON / 2.0;
+/// Frames further from orthonormal than this are not used.
+const MAX_SKEW: f64 = 1.0 / (1u64 << 40) as f64;
+/// The fitted axes must be orthonormal within this (else coordinate axes).
+const MAX_FIT_SKEW: f64 = 1.0 / (1u64 << 44) as f64;
+/// The test's relative slack (module docs).
+const SLACK: f64 = 1.0 / (1u64 << 30) as f64;
+/// The fitting's relative fuzz (module docs).
+const FUZZ: f64 = 1.0 / (1u64 << 38) as f64;
+/// Absolute fuzz, for underflow.
+const TINY: f64 = 1e-300;
+
+/// An oriented box grown by a ball (module docs).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Obb {
+    pub c: DVec3,
+    pub axes: [DVec3; 3],
+    pub h: DVec3,
+    pub fuzz: f64,
+}
+
+/// A body node's box at a pose: the centre `fl(Mc + t)` and the axes
+/// `fl(M eᵢ)`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PosedObb {
+    pub c: DVec3,
+    pub f: [DVec3; 3],
+}
+
+/// How far a pose's matrix is from orthonormal (`ω` of the module docs),
+/// or `None` when more than the test allows (then no oriented test is
+/// made for that pose).
+pub(crate) fn pose_skew(m: &DMat3) -> Option<f64> {
+    let g = m.transpose() * *m;
+    let cols = [g.x_axis, g.y_axis, g.z_axis];
+    let mut w = 0.0f64;
+    for (j, c) in cols.iter().enumerate() {
+        for i in 0..3 {
+            let d = c[i] - if i == j { 1.0 } else { 0.0 };
+            w = w.max(d.abs());
+        }
+    }
+    let w = w + 8.0 * U;
+    (w <= MAX_SKEW).then_some(w)
+}
+
+impl Obb {
+    /// The box fitted to `points` (at least one), whose axis-aligned box
+    /// is `around` (module docs).
+    pub fn fit(points: &[DVec3], around: &Aabb) -> Obb {
+        let (lo, hi) = (DVec3::from(around.lo), DVec3::from(around.hi));
+        let c0 = 0.5 * lo + 0.5 * hi;
+        let d = (0.5 * hi - 0.5 * lo).max_element();
+        let axes = principal_axes(points, c0).unwrap_or([DVec3::X, DVec3::Y, DVec3::Z]);
+        let (mut plo, mut phi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        for &p in points {
+            let q = p - c0;
+            let d = DVec3::new(axes[0].dot(q), axes[1].dot(q), axes[2].dot(q));
+            plo = plo.min(d);
+            phi = phi.max(d);
+        }
+        let m = 0.5 * plo + 0.5 * phi;
+        let h = 0.5 * phi - 0.5 * plo;
+        let c = c0 + axes[0] * m.x + axes[1] * m.y + axes[2] * m.z;
+        let fuzz = FUZZ * (c0.abs().max_element() + d) * (1.0 + 1e-9) + TINY;
+        Obb { c, axes, h, fuzz }
+    }
+
+    /// Whether the box holds `p`, checked in floats with twice the fuzz
+    /// (for [`crate::body::MeshBody::sanity_check`]: a fitted box that
+    /// misses a corner by more than its rounding is a bug).
+    pub fn holds(&self, p: DVec3) -> bool {
+        let q = p - self.c;
+        (0..3).all(|i| self.axes[i].dot(q).abs() <= self.h[i] + 2.0 * self.fuzz)
+    }
+
+    /// Whether `p`, known up to `pad` per coordinate (a point within `pad`
+    /// of `p` on every axis is meant), is proven outside the box: some
+    /// axis shows it beyond the half-width by more than the box's fuzz,
+    /// the axes' skew and the rounding of the projection can account for
+    /// (module docs' `2⁻³⁰` relative slack). `false` proves nothing.
+    #[inline]
+    pub fn excludes(&self, p: DVec3, pad: f64) -> bool {
+        let q = p - self.c;
+        let slack = SLACK
+            * (p.abs().max_element() + self.c.abs().max_element() + self.h.element_sum())
+            + 1.01 * self.fuzz
+            + 2.0 * pad;
+        (0..3).any(|i| self.axes[i].dot(q).abs() > self.h[i] + slack)
+    }
+
+    /// This (body-frame) box at the pose `x ↦ m x + t`.
+    #[inline]
+    pub fn posed(&self, m: &DMat3, t: DVec3) -> PosedObb {
+        PosedObb {
+            c: *m * self.c + t,
+            f: self.axes.map(|e| *m * e),
+        }
+    }
+
+    /// Whether `a` (a body node's box, posed; `fuzz_a` its fuzz, `ha` its
+    /// half-widths) is proven apart from this (scene-frame) box; `pad`
+    /// bounds the rounding of posing each point, per coordinate (module
+    /// docs). `false` proves nothing.
+    #[inline]
+    pub fn apart(&self, a: &PosedObb, ha: DVec3, fuzz_a: f64, pad: f64) -> bool {
+        let e = &self.axes;
+        let d = a.c - self.c;
+        let t = [e[0].dot(d), e[1].dot(d), e[2].dot(d)];
+        // c[i][j] = eᵢ·fⱼ
+        let c: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| e[i].dot(a.f[j])));
+        let ac: [[f64; 3]; 3] = c.map(|r| r.map(f64::abs));
+        let (ha, hb) = (ha.to_array(), self.h.to_array());
+        let s = a.c.abs().max_element()
+            + self.c.abs().max_element()
+            + t[0].abs()
+            + t[1].abs()
+            + t[2].abs()
+            + ha[0]
+            + ha[1]
+            + ha[2]
+            + hb[0]
+            + hb[1]
+            + hb[2];
+        let slack = SLACK * s + 1.01 * (fuzz_a + self.fuzz) + 2.0 * pad;
+        // The scene box's axes.
+        for i in 0..3 {
+            let ra = ha[0] * ac[i][0] + ha[1] * ac[i][1] + ha[2] * ac[i][2];
+            if t[i].abs() > hb[i] + ra + slack {
+                return true;
+            }
+        }
+        // The body box's axes.
+        for j in 0..3 {
+            let rb = hb[0] * ac[0][j] + hb[1] * ac[1][j] + hb[2] * ac[2][j];
+            let p = t[0] * c[0][j] + t[1] * c[1][j] + t[2] * c[2][j];
+            if p.abs() > ha[j] + rb + slack {
+                return true;
+            }
+        }
+        // eᵢ × fⱼ.
+        for i in 0..3 {
+            let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+            for j in 0..3 {
+                let (k, l) = ((j + 1) % 3, (j + 2) % 3);
+                let p = t[i2] * c[i1][j] - t[i1] * c[i2][j];
+                let rb = hb[i1] * ac[i2][j] + hb[i2] * ac[i1][j];
+                let ra = ha[k] * ac[i][l] + ha[l] * ac[i][k];
+                if p.abs() > ra + rb + slack {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}
+
+/// The principal axes of `points` about `c0` (orthonormal within
+/// `MAX_FIT_SKEW`, right-handed), or `None` when they cannot be had.
+fn principal_axes(points: &[DVec3], c0: DVec3) -> Option<[DVec3; 3]> {
+    let mut cov = [[0.0f64; 3]; 3];
+    let mut mean = DVec3::ZERO;
+    for &p in points {
+        mean += p - c0;
+    }
+    mean /= points.len() as f64;
+    for &p in points {
+        let q = (p - c0 - mean).to_array();
+        for (i, row) in cov.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x += q[i] * q[j];
+            }
+        }
+    }
+    let v = jacobi_eigenvectors(cov)?;
+    // The largest spread first: Gram–Schmidt keeps it exact-ish.
+    let e0 = v[0].try_normalize()?;
+    let e1 = (v[1] - e0 * e0.dot(v[1])).try_normalize()?;
+    let e2 = e0.cross(e1).try_normalize()?;
+    let axes = [e0, e1, e2];
+    for i in 0..3 {
+        for j in 0..3 {
+            let want = if i == j { 1.0 } else { 0.0 };
+            if (axes[i].dot(axes[j]) - want).abs() + 8.0 * U > MAX_FIT_SKEW {
+                return None;
+            }
+        }
+    }
+    Some(axes)
+}
+
+/// The eigenvectors of a symmetric 3×3 matrix (cyclic Jacobi), the one of
+/// the largest eigenvalue first, then the next.
+fn jacobi_eigenvectors(mut a: [[f64; 3]; 3]) -> Option<[DVec3; 3]> {
+    if a.iter().flatten().any(|x| !x.is_finite()) {
+        return None;
+    }
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..32 {
+        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
+        let diag = a[0][0].abs() + a[1][1].abs() + a[2][2].abs();
+        if off <= 1e-15 * diag || off == 0.0 {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let cs = 1.0 / (t * t + 1.0).sqrt();
+            let sn = t * cs;
+            // a ← Jᵀ a J, v ← v J.
+            let turn = |x: f64, y: f64| (cs * x - sn * y, sn * x + cs * y);
+            for row in a.iter_mut().chain(v.iter_mut()) {
+                (row[p], row[q]) = turn(row[p], row[q]);
+            }
+            let (rp, rq) = (a[p], a[q]);
+            a[p] = std::array::from_fn(|k| turn(rp[k], rq[k]).0);
+            a[q] = std::array::from_fn(|k| turn(rp[k], rq[k]).1);
+        }
+    }
+    let mut order = [0usize, 1, 2];
+    order.sort_by(|&x, &y| a[y][y].total_cmp(&a[x][x]));
+    let col = |k: usize| DVec3::new(v[0][k], v[1][k], v[2][k]);
+    let out = order.map(col);
+    out.iter().all(|c| c.is_finite()).then_some(out)
+}
+
+/// One oriented box per node of `tree`, fitted to the corners of the
+/// node's items (`corners(i)` the triangle of item `i`).
+pub(crate) fn node_obbs(tree: &AabbTree, corners: impl Fn(usize) -> [DVec3; 3]) -> Vec<Obb> {
+    let spans = tree.node_spans();
+    let items = tree.items();
+    let bounds = tree.bounds();
+    let mut pts = Vec::new();
+    spans
+        .iter()
+        .enumerate()
+        .map(|(n, &(s, e))| {
+            pts.clear();
+            pts.extend(
+                items[s as usize..e as usize]
+                    .iter()
+                    .flat_map(|&i| corners(i as usize)),
+            );
+            Obb::fit(&pts, &bounds[n])
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::rotation::Rotation;
+    use crate::solid::intersect::triangles_meet;
+
+    fn rng(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed | 1;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
+    #[test]
+    fn jacobi_finds_the_axes_of_a_slanted_slab() {
+        let r = Rotation::from_axis_angle(DVec3::new(1.0, 2.0, 3.0), 0.7).unwrap();
+        let m = r.matrix();
+        let mut unit = rng(7);
+        let pts: Vec<DVec3> = (0..500)
+            .map(|_| m * DVec3::new(10.0 * unit(), 2.0 * unit(), 0.1 * unit()))
+            .collect();
+        let b = Aabb::of(pts.iter().map(|p| p.to_array()));
+        let o = Obb::fit(&pts, &b);
+        assert!(o.axes[0].dot(m.x_axis).abs() > 0.999, "{:?}", o.axes);
+        assert!(o.axes[2].dot(m.z_axis).abs() > 0.999, "{:?}", o.axes);
+        assert!(
+            o.h.x * o.h.y * o.h.z
+                < 0.02 * (b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2])
+        );
+        for p in pts {
+            let q = p - o.c;
+            for i in 0..3 {
+                assert!(o.axes[i].dot(q).abs() <= o.h[i] + o.fuzz);
+            }
+        }
+    }
+
+    /// A triangle touching another (a corner on its edge or face, in
+    /// floats), both in random frames: the two fitted boxes, one posed,
+    /// are never proven apart when the exact test says the posed
+    /// triangles meet. Without the slack and fuzz some would be (checked
+    /// by setting both to zero).
+    #[test]
+    fn touching_boxes_are_never_proven_apart() {
+        let mut unit = rng(0x2545_f491_4f6c_dd1d);
+        let mut meeting = 0;
+        for k in 0..20_000 {
+            let scale = [1e-3, 1.0, 1e3, 1e6][k % 4];
+            let off = DVec3::new(unit(), unit(), unit()) * scale * 100.0;
+            let u: [DVec3; 3] = [(); 3].map(|_| DVec3::new(unit(), unit(), unit()) * scale + off);
+            let (s, r) = (unit().abs(), unit().abs());
+            let on = if k % 2 == 0 {
+                u[0] + (u[1] - u[0]) * s
+            } else {
+                u[0] + (u[1] - u[0]) * (s * 0.5) + (u[2] - u[0]) * (r * 0.5)
+            };
+            let rot = Rotation::from_axis_angle(DVec3::new(unit(), unit(), unit()), 3.0 * unit())
+                .unwrap();
+            let (m, t) = (rot.matrix(), DVec3::new(unit(), unit(), unit()) * scale);
+            // The body triangle in its own frame: posed back by the inverse
+            // (so posing it lands near `on`), then posed as a query would.
+            let (mi, ti) = (m.transpose(), -(m.transpose() * t));
+            let body = [
+                mi * on + ti,
+                mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
+                mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
+            ];
+            let posed = body.map(|p| m * p + t);
+            if !triangles_meet(&posed, &u) {
+                continue;
+            }
+            meeting += 1;
+            let pad = 64.0
+                * f64::EPSILON
+                * (body
+                    .iter()
+                    .map(|p| p.abs().max_element())
+                    .fold(0.0, f64::max)
+                    * 1.8
+                    + t.abs().max_element());
+            let ob = Obb::fit(&body, &Aabb::of(body.map(|p| p.to_array())));
+            let os = Obb::fit(&u, &Aabb::of(u.map(|p| p.to_array())));
+            assert!(pose_skew(&m).is_some());
+            assert!(!os.apart(&ob.posed(&m, t), ob.h, ob.fuzz, pad), "{k}");
+        }
+        assert!(meeting > 5_000, "{meeting}");
+    }
+
+    #[test]
+    fn separated_slanted_boxes_are_proven_apart() {
+        let r = Rotation::from_axis_angle(DVec3::new(1.0, 1.0, 0.0), 0.6).unwrap();
+        let m = r.matrix();
+        let rod = |x: f64| {
+            [
+                DVec3::new(x, 0.0, 0.0),
+                m * DVec3::new(5.0, 0.0, 0.0) + DVec3::X * x,
+                m * DVec3::new(5.0, 0.01, 0.0) + DVec3::X * x,
+            ]
+        };
+        let a = rod(0.0);
+        let b = rod(0.05);
+        let oa = Obb::fit(&a, &Aabb::of(a.map(|p| p.to_array())));
+        let ob = Obb::fit(&b, &Aabb::of(b.map(|p| p.to_array())));
+        // Their axis-aligned boxes overlap; their oriented ones do not.
+        assert!(Aabb::of(a.map(|p| p.to_array())).meets(&Aabb::of(b.map(|p| p.to_array()))));
+        assert!(ob.apart(&oa.posed(&DMat3::IDENTITY, DVec3::ZERO), oa.h, oa.fuzz, 0.0));
+    }
+
+    #[test]
+    fn skewed_pose_matrices_are_refused() {
+        assert!(pose_skew(&DMat3::IDENTITY).is_some());
+        assert!(pose_skew(&(DMat3::IDENTITY * (1.0 + 1e-9))).is_none());
+    }
+}

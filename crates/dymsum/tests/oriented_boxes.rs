@@ -1,0 +1,138 @@
+//! The oriented node boxes of the scene checker's broad phase (issue 35,
+//! `solid::obb`) drop only pairs that are apart: on soups of long, thin,
+//! slanted triangles (robot parts' slivers, where oriented boxes cull the
+//! most), at random poses and within 2⁻⁴⁰ of contact, the state check
+//! equals `surfaces_touch` (an axis-aligned tree and the exact triangle
+//! test, no oriented boxes), and a short motion called free has no
+//! sampled pose whose surfaces touch; a contact found touches at
+//! `t_contact`.
+
+use dymsum::query::{surfaces_touch, MeshBody, MotionCheck, MotionError, SceneChecker};
+use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
+
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+
+    fn direction(&mut self) -> DVec3 {
+        loop {
+            let d = DVec3::new(self.unit(), self.unit(), self.unit());
+            if (0.01..=1.0).contains(&d.length_squared()) {
+                return d.normalize();
+            }
+        }
+    }
+}
+
+/// `n` slivers: from a point in a box of side 4 about `centre`, a long
+/// edge of length 1 to 4 in a random direction, a third corner 0.025 to
+/// 1 off its middle.
+fn slivers(rng: &mut Rng, n: usize, centre: DVec3) -> PolygonMesh {
+    let mut vertices = Vec::new();
+    for _ in 0..n {
+        let p = centre + DVec3::new(rng.unit(), rng.unit(), rng.unit()) * 2.0;
+        let d = rng.direction();
+        let len = 2.5 + 1.5 * rng.unit();
+        let side = d
+            .cross(rng.direction())
+            .normalize_or(d.any_orthonormal_vector());
+        let width = 10f64.powf(-0.8 + 0.8 * rng.unit());
+        let q = p + d * len;
+        vertices.extend([p, q, p + d * (0.5 * len) + side * width].map(|v| v.to_array()));
+    }
+    let faces = (0..n).map(|t| vec![3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    PolygonMesh::new(vertices, faces)
+}
+
+fn touch(a: &PolygonMesh, pose: Pose, b: &PolygonMesh) -> bool {
+    surfaces_touch(a, pose, b, Pose::IDENTITY).unwrap()
+}
+
+#[test]
+fn sliver_soups_agree_with_surfaces_touch_and_motions_with_sampling() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let (mut states, mut touching, mut motions, mut free, mut undecided) = (0, 0, 0, 0, 0);
+    for case in 0..12 {
+        // Far from the origin for some cases: rounding there is larger.
+        let far = if case % 3 == 2 { 1e4 } else { 0.0 };
+        let a = slivers(&mut rng, 60, DVec3::ZERO);
+        let b = slivers(&mut rng, 120, DVec3::splat(far));
+        let checker =
+            SceneChecker::new(&MeshBody::new(&a).unwrap(), &[MeshBody::new(&b).unwrap()]).unwrap();
+        checker.body().sanity_check().unwrap();
+        checker.scene().sanity_check().unwrap();
+        for _ in 0..25 {
+            let r = Rotation::from_axis_angle(rng.direction(), 3.0 * rng.unit()).unwrap();
+            let dir = rng.direction();
+            let at = |s: f64| Pose::new(r, DVec3::splat(far) + dir * (16.0 * s));
+            let mut poses = vec![at(rng.unit().abs())];
+            let (mut lo, mut hi) = (0.0, 1.0);
+            if checker.collides_at(at(lo)).unwrap() && !checker.collides_at(at(hi)).unwrap() {
+                for _ in 0..40 {
+                    let mid = 0.5 * (lo + hi);
+                    if checker.collides_at(at(mid)).unwrap() {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                poses.extend([at(lo), at(hi)]);
+            }
+            for &p in &poses {
+                let got = checker.collides_at(p).unwrap();
+                assert_eq!(got, touch(&a, p, &b), "case {case} pose {p:?}");
+                states += 1;
+                touching += usize::from(got);
+            }
+            if poses.len() < 3 {
+                continue;
+            }
+            // A short motion from just off the free end (the free end
+            // itself is within rounding of contact: a grazing start): a turn of up to 0.3° about
+            // the body's origin and a small move, away from the contact
+            // or towards it.
+            let from = at(hi + 0.002);
+            let turn = Rotation::from_axis_angle(rng.direction(), 0.005 * rng.unit()).unwrap();
+            let to = Pose::new(
+                from.rotation.then(&turn),
+                from.translation + (dir * rng.unit() + rng.direction() * 0.1) * 0.1,
+            );
+            motions += 1;
+            let motion = dymsum::query::Motion::new(from, to);
+            match checker.check(from, to, 1e-6) {
+                Ok(MotionCheck::Free) => {
+                    free += 1;
+                    for k in 0..=300 {
+                        let p = motion.at(f64::from(k) / 300.0);
+                        assert!(
+                            !touch(&a, p, &b),
+                            "case {case}: sample {k} of a free motion touches"
+                        );
+                    }
+                }
+                Ok(MotionCheck::Collides { t_contact, .. }) => {
+                    assert!(touch(&a, motion.at(t_contact), &b), "case {case}");
+                }
+                Err(MotionError::Undecided { .. } | MotionError::BudgetExhausted { .. }) => {
+                    undecided += 1;
+                }
+                Err(e) => panic!("{e}"),
+            }
+        }
+    }
+    // The cases exercise both answers.
+    assert!(
+        states > 300 && touching > 60 && states - touching > 60,
+        "{states} {touching}"
+    );
+    assert!(
+        motions > 50 && free > 5 && motions - free - undecided > 5,
+        "{motions} {free} {undecided}"
+    );
+}
