@@ -136,3 +136,39 @@ fn sliver_soups_agree_with_surfaces_touch_and_motions_with_sampling() {
         "{motions} {free} {undecided}"
     );
 }
+
+/// Review find (2026-11-29): the swept reach of a node took Euclidean
+/// norms, whose squared coordinates underflow for bodies below `10⁻¹⁵⁴`;
+/// a sliver turning through a triangle was called free at sizes
+/// `10⁻¹⁶⁵` and below. At every scale the motion must not be free.
+#[test]
+fn review_a_tiny_body_turning_through_a_triangle_is_not_called_free() {
+    use dymsum::query::MotionCheck;
+    for s in [1.0, 1e-100, 1e-150, 1e-160, 1e-165, 1e-170, 1e-200, 1e-250] {
+        let body = PolygonMesh::new(
+            vec![
+                [9.0 * s, 0.0, -0.5 * s],
+                [11.0 * s, 0.0, -0.5 * s],
+                [10.0 * s, 0.0, 0.5 * s],
+            ],
+            vec![vec![0, 1, 2]],
+        );
+        let pt = |r: f64, a: f64| [r * a.cos() * s, r * a.sin() * s, 0.0];
+        let scene = PolygonMesh::new(
+            vec![pt(5.0, 0.15), pt(15.0, 0.15), pt(10.0, 0.35)],
+            vec![vec![0, 1, 2]],
+        );
+        let checker = SceneChecker::new(
+            &MeshBody::new(&body).unwrap(),
+            &[MeshBody::new(&scene).unwrap()],
+        )
+        .unwrap();
+        let at = |a: f64| Pose::new(Rotation::from_axis_angle(DVec3::Z, a).unwrap(), DVec3::ZERO);
+        assert!(checker.collides_at(at(0.2)).unwrap(), "scale {s:e}");
+        let got = checker.check(at(0.0), at(0.5), 1e-6);
+        assert!(
+            !matches!(got, Ok(MotionCheck::Free)),
+            "scale {s:e}: {got:?}"
+        );
+    }
+}

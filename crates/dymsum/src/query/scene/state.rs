@@ -191,9 +191,10 @@ impl SceneChecker {
         // hull carried back lies within it of the body-frame hull (the
         // posing's rounding `pad`, three times the matrix's distance from
         // a rotation (`pose_skew`, at most 2⁻⁴⁰ an entry, else this
-        // filter is off) times the body's size, and this product's own
-        // rounding), so a corner the body-frame boxes exclude by more is
-        // in none of the body's solids.
+        // filter is off) times the body's size, this product's own
+        // rounding, and an absolute 10⁻³⁰⁰ for subnormal sizes), so a
+        // corner the body-frame boxes exclude by more is in none of the
+        // body's solids.
         let mi = m.transpose();
         let filter = pose_skew(&m).is_some();
         let size = self.body.reach + t.abs().max_element();
@@ -205,7 +206,8 @@ impl SceneChecker {
             let back = mi * (p - t);
             let back_pad = size * (1.0 / (1u64 << 36) as f64)
                 + 2.0 * pad
-                + 16.0 * f64::EPSILON * (p.abs().max_element() + t.abs().max_element());
+                + 16.0 * f64::EPSILON * (p.abs().max_element() + t.abs().max_element())
+                + 1e-300;
             if filter && body_box.is_some_and(|o| o.excludes(back, back_pad)) {
                 continue;
             }

@@ -29,10 +29,14 @@
 //! oriented box is proven apart ([`crate::solid::obb`], certified) from
 //! the body node's box posed at `a`, grown by the node's *swept reach*:
 //! with `ρ` an upper bound on the norm of every point of the node's box
-//! (`|c| + |h| + fuzz`, rounded up) and `θ` one on `‖M(b) − M(a)‖`
-//! (the Frobenius norm of the float matrices' difference, rounded up),
+//! (`|c|₁ + |h|₁ + fuzz`, rounded up) and `θ` one on `‖M(b) − M(a)‖`
+//! (the sum of the magnitudes of the float matrices' difference, rounded
+//! up; sums of magnitudes bound the Euclidean norms from above and cannot
+//! underflow as squares of coordinates below 1e-154 do: with Euclidean
+//! norms a body of size 1e-165 had a colliding motion called free, found
+//! by the review below, `tests/oriented_boxes.rs` pins it),
 //! each of the twelve points of a node triangle lies within
-//! `θρ + 2|Δt| + 4·pad + 16u(size + 2|Δt|)` of `M(a) p + t(a)` for the
+//! `θρ + 2|Δt|₁ + 4·pad + 16u(size + 2|Δt|₁) + 10⁻³⁰⁰` of `M(a) p + t(a)` for the
 //! triangle's corner `p` (the other end's corners move by at most
 //! `θρ + |Δt|`, the shifted copies by one more `|Δt|`; each float posing
 //! errs by at most `pad` a coordinate, each float shift by an ulp of the
@@ -164,20 +168,23 @@ impl SceneChecker {
         let mut blocker = None;
         // Then the oriented boxes (`solid::obb`): a node's swept hulls lie
         // within `swept_reach` of its box posed at `from` (module docs).
-        let turn = frobenius(mb - ma);
+        let turn = entry_sum(mb - ma);
         let size = self.body.reach + ta.abs().max_element().max(tb.abs().max_element());
-        let shift_len = shift.length() * (1.0 + 1e-12);
+        // Norms as sums of magnitudes: never below the Euclidean norm and
+        // never underflowing (squares of coordinates below 1e-154 would).
+        let shift_len = shift.abs().element_sum() * (1.0 + 1e-12);
         let oriented = pose_skew(&ma).is_some();
         let obb_cache = std::mem::take(&mut s.obb_cache);
         let (body_obbs, scene_obbs) = (&self.body.obbs, &self.scene.obbs);
         let obb_apart = |k: usize, j: usize| {
             let a = &body_obbs[k];
             let posed = cached(&obb_cache, epoch, k, || a.posed(&ma, ta));
-            let radius = (a.c.length() + a.h.length() + a.fuzz) * (1.0 + 1e-12);
+            let radius = (a.c.abs().element_sum() + a.h.element_sum() + a.fuzz) * (1.0 + 1e-12);
             let swept_reach = turn * radius
                 + 2.0 * shift_len
                 + 4.0 * pad
-                + 8.0 * f64::EPSILON * (size + 2.0 * shift_len);
+                + 8.0 * f64::EPSILON * (size + 2.0 * shift_len)
+                + 1e-300;
             scene_obbs[j].apart(&posed, a.h, a.fuzz + swept_reach + reach, pad)
         };
         let blocked = self.body.tree.for_each_pair(
@@ -279,11 +286,13 @@ impl SceneChecker {
     }
 }
 
-/// An upper bound on the Frobenius norm of `m` (so on its spectral norm):
-/// rounded up past the few ulps its sum and root may lose.
-fn frobenius(m: glam::DMat3) -> f64 {
-    let s = m.x_axis.length_squared() + m.y_axis.length_squared() + m.z_axis.length_squared();
-    s.sqrt() * (1.0 + 1e-12) + 1e-300
+/// An upper bound on the spectral norm of `m`: the sum of its entries'
+/// magnitudes (at least the Frobenius norm, and no squares to underflow),
+/// rounded up past the few ulps the sum may lose.
+fn entry_sum(m: glam::DMat3) -> f64 {
+    let s =
+        m.x_axis.abs().element_sum() + m.y_axis.abs().element_sum() + m.z_axis.abs().element_sum();
+    s * (1.0 + 1e-12) + 1e-300
 }
 
 /// The whole body's search with a check's buffers: what the interval
