@@ -23,6 +23,7 @@ pub mod load;
 pub mod models;
 pub mod npz;
 pub mod staging;
+pub mod urdf;
 
 pub use body::{load_body, load_polytope, load_polytope_bytes, LoadOptions, LoadedBody};
 pub use load::{load_mesh, LoadError, Loaded};

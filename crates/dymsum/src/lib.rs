@@ -51,6 +51,7 @@ pub mod mesh;
 pub mod nonconvex;
 pub mod polytope;
 pub mod query;
+pub mod robot;
 pub mod sanity;
 pub mod solid;
 pub mod sum;

@@ -28,6 +28,7 @@ const LAYERS: &[&[&str]] = &[
     &["dynamic"],
     &["query", "interop"],
     &["nonconvex"],
+    &["robot"],
 ];
 
 fn src() -> PathBuf {

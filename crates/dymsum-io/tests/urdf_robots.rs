@@ -1,0 +1,295 @@
+//! Robots from URDF (issue 37): Panda (example-robot-data's URDF, SRDF
+//! and collision meshes, Apache-2.0, shipped in `python/tests/data/panda`)
+//! and small URDFs of one feature each.
+//!
+//! Oracles: forward kinematics against an independent product of 4×4
+//! matrices built from urdf-rs's parse; configuration checks against the
+//! links placed in the world frame one by one (`MeshBody::placed`) and
+//! checked pair by pair at the identity, and against `surfaces_touch`
+//! (a contact of surfaces is never missed).
+
+use std::path::{Path, PathBuf};
+
+use dymsum::glam::{DMat4, DQuat, EulerRot};
+use dymsum::query::{surfaces_touch, SceneChecker};
+use dymsum::robot::{RobotChecker, RobotError};
+use dymsum::{DVec3, PolygonMesh, Pose};
+use dymsum_io::urdf::{load_robot, robot_from_str, UrdfError};
+
+fn panda_data() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../python/tests/data/panda")
+}
+
+/// A package root laid out as the URDF's `package://` paths expect.
+fn panda_root() -> PathBuf {
+    let root = std::env::temp_dir().join(format!("dymsum-urdf-{}", std::process::id()));
+    let meshes = root.join("example-robot-data/robots/panda_description/meshes/collision");
+    std::fs::create_dir_all(&meshes).unwrap();
+    for entry in std::fs::read_dir(panda_data()).unwrap() {
+        let p = entry.unwrap().path();
+        if p.extension().is_some_and(|e| e == "stl") {
+            std::fs::copy(&p, meshes.join(p.file_name().unwrap())).unwrap();
+        }
+    }
+    root
+}
+
+fn panda() -> dymsum_io::urdf::LoadedRobot {
+    let data = panda_data();
+    load_robot(
+        &data.join("panda.urdf"),
+        Some(&data.join("panda.srdf")),
+        &[panda_root()],
+    )
+    .unwrap()
+}
+
+struct Lcg(u64);
+impl Lcg {
+    fn unit(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A random configuration within Panda's limits.
+fn random_q(r: &mut Lcg) -> Vec<f64> {
+    let limits = [
+        (-2.8973, 2.8973),
+        (-1.7628, 1.7628),
+        (-2.8973, 2.8973),
+        (-3.0718, -0.0698),
+        (-2.8973, 2.8973),
+        (-0.0175, 3.7525),
+        (-2.8973, 2.8973),
+        (0.0, 0.04),
+    ];
+    limits
+        .iter()
+        .map(|&(lo, hi)| lo + (hi - lo) * r.unit())
+        .collect()
+}
+
+/// Forward kinematics by 4×4 matrices straight from urdf-rs's parse.
+fn matrix_forward(urdf: &urdf_rs::Robot, q: &[f64]) -> Vec<(String, DMat4)> {
+    let mut values = std::collections::HashMap::new();
+    let mut k = 0;
+    for j in &urdf.joints {
+        if j.joint_type != urdf_rs::JointType::Fixed && j.mimic.is_none() {
+            values.insert(j.name.clone(), q[k]);
+            k += 1;
+        }
+    }
+    for j in &urdf.joints {
+        if let Some(m) = &j.mimic {
+            let v = values[&m.joint] * m.multiplier.unwrap_or(1.0) + m.offset.unwrap_or(0.0);
+            values.insert(j.name.clone(), v);
+        }
+    }
+    let mut at: Vec<(String, DMat4)> = vec![(urdf.links[0].name.clone(), DMat4::IDENTITY)];
+    while at.len() < urdf.links.len() {
+        for j in &urdf.joints {
+            if at.iter().any(|(n, _)| *n == j.child.link) {
+                continue;
+            }
+            let Some(parent) = at.iter().find(|(n, _)| *n == j.parent.link).map(|p| p.1) else {
+                continue;
+            };
+            let [r, p, y] = j.origin.rpy.0;
+            let origin = DMat4::from_rotation_translation(
+                DQuat::from_euler(EulerRot::ZYX, y, p, r),
+                DVec3::from(j.origin.xyz.0),
+            );
+            let axis = DVec3::from(j.axis.xyz.0).normalize();
+            let v = values.get(&j.name).copied().unwrap_or(0.0);
+            let motion = match j.joint_type {
+                urdf_rs::JointType::Prismatic => DMat4::from_translation(axis * v),
+                urdf_rs::JointType::Fixed => DMat4::IDENTITY,
+                _ => DMat4::from_axis_angle(axis, v),
+            };
+            at.push((j.child.link.clone(), parent * origin * motion));
+        }
+    }
+    at
+}
+
+#[test]
+fn panda_loads_with_its_srdf_and_moves_as_its_matrices_say() {
+    let loaded = panda();
+    let robot = &loaded.robot;
+    assert_eq!(robot.dof(), 8);
+    assert_eq!(robot.joint_names()[7], "panda_finger_joint1");
+    // The SRDF's pairs are not checked; links without geometry have none.
+    let pairs = robot.collision_pair_names();
+    for (a, b) in &loaded.disabled {
+        assert!(
+            !pairs.contains(&(a.clone(), b.clone())) && !pairs.contains(&(b.clone(), a.clone()))
+        );
+    }
+    assert!(!pairs.is_empty() && pairs.len() < 40, "{}", pairs.len());
+    let urdf = urdf_rs::read_file(panda_data().join("panda.urdf")).unwrap();
+    let mut r = Lcg(5);
+    for _ in 0..50 {
+        let q = random_q(&mut r);
+        let poses = robot.forward(&q).unwrap();
+        for (name, m) in matrix_forward(&urdf, &q) {
+            let l = robot.link_names().iter().position(|n| *n == name).unwrap();
+            let ours = poses[l].to_mat4();
+            assert!(ours.abs_diff_eq(m, 1e-12), "{name}: {ours:?} vs {m:?}");
+        }
+    }
+}
+
+#[test]
+fn panda_configurations_agree_with_links_placed_one_by_one() {
+    let loaded = panda();
+    let robot = loaded.robot.clone();
+    let checker = RobotChecker::new(loaded.robot, &[]).unwrap();
+    let body = |l: usize| robot.links()[l].body.clone().unwrap();
+    let mesh = |l: usize| {
+        let b = body(l);
+        PolygonMesh::new(
+            b.vertices().iter().map(|v| v.to_array()).collect(),
+            b.triangles()
+                .iter()
+                .map(|t| t.iter().map(|&v| v as usize).collect())
+                .collect(),
+        )
+    };
+    let mut r = Lcg(11);
+    let (mut hits, mut total) = (0, 0);
+    for _ in 0..150 {
+        let q = random_q(&mut r);
+        let poses = robot.forward(&q).unwrap();
+        let got = checker.colliding_pairs(&q).unwrap();
+        let mut want = Vec::new();
+        for &(i, j) in robot.collision_pairs() {
+            let (a, b) = (
+                body(i).placed(poses[i]).unwrap(),
+                body(j).placed(poses[j]).unwrap(),
+            );
+            let placed = SceneChecker::new(&a, &[b]).unwrap();
+            let touch = placed.collides_at(Pose::IDENTITY).unwrap();
+            // A contact of surfaces is never missed.
+            if surfaces_touch(&mesh(i), poses[i], &mesh(j), poses[j]).unwrap() {
+                assert!(touch);
+            }
+            if touch {
+                let name = |l: usize| robot.link_names()[l].to_string();
+                want.push((name(i), Some(name(j))));
+            }
+        }
+        assert_eq!(got, want, "q = {q:?}");
+        assert_eq!(checker.collides_at(&q).unwrap(), !want.is_empty());
+        hits += usize::from(!want.is_empty());
+        total += 1;
+    }
+    // Random Panda configurations fold onto themselves now and then.
+    assert!(hits > 5 && hits < total, "{hits} of {total}");
+    let qs: Vec<Vec<f64>> = (0..20).map(|_| random_q(&mut r)).collect();
+    let one: Vec<bool> = qs.iter().map(|q| checker.collides_at(q).unwrap()).collect();
+    assert_eq!(checker.collides_many(&qs).unwrap(), one);
+}
+
+#[test]
+fn configurations_outside_the_limits_name_the_joint() {
+    let checker = RobotChecker::new(panda().robot, &[]).unwrap();
+    let mut q = vec![0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0, 0.01];
+    q[3] = 0.5;
+    let err = checker.collides_at(&q).unwrap_err().to_string();
+    assert!(err.contains("panda_joint4"), "{err}");
+    assert!(matches!(
+        checker.collides_at(&q[..7]),
+        Err(RobotError::BadConfiguration(_))
+    ));
+    q[3] = f64::NAN;
+    assert!(checker.collides_at(&q).is_err());
+}
+
+fn small(joints: &str, links: &str) -> String {
+    format!("<robot name=\"t\">{links}{joints}</robot>")
+}
+
+const TWO_BOXES: &str = r#"<link name="a"><collision><geometry><box size="1 1 1"/></geometry></collision></link>
+<link name="b"><collision><geometry><box size="1 1 1"/></geometry></collision></link>
+<link name="c"><collision><geometry><box size="1 1 1"/></geometry></collision></link>"#;
+
+#[test]
+fn each_urdf_feature_and_each_bad_input() {
+    let load = |text: &str| robot_from_str(text, Path::new("."), &[], None);
+    // Prismatic and continuous joints, and a mimic.
+    let ok = small(
+        r#"<joint name="slide" type="prismatic"><parent link="a"/><child link="b"/><origin xyz="3 0 0"/>
+             <axis xyz="-1 0 0"/><limit lower="0" upper="2" effort="1" velocity="1"/></joint>
+           <joint name="spin" type="continuous"><parent link="b"/><child link="c"/><origin xyz="3 0 0"/>
+             <axis xyz="0 0 1"/><mimic joint="slide" multiplier="2" offset="0.5"/></joint>"#,
+        TWO_BOXES,
+    );
+    let robot = load(&ok).unwrap().robot;
+    assert_eq!(robot.joint_names(), ["slide"]);
+    assert_eq!(
+        robot.collision_pair_names(),
+        [("a".to_string(), "c".to_string())]
+    );
+    let poses = robot.forward(&[2.0]).unwrap();
+    assert!((poses[1].translation - DVec3::new(1.0, 0.0, 0.0)).length() < 1e-15);
+    assert!((poses[2].rotation.angle() - (4.5 - std::f64::consts::TAU).abs()).abs() < 1e-12);
+    let checker = RobotChecker::new(robot, &[]).unwrap();
+    // a at 0, c at 4 - 2 = 2 (unit boxes): apart; slid fully they stay 2 apart.
+    assert!(!checker.collides_at(&[0.0]).unwrap());
+    assert!(checker.distance_at(&[2.0]).unwrap() > 0.9);
+    // Bad input, each named.
+    let cases = [
+        (
+            small(
+                r#"<joint name="j" type="floating"><parent link="a"/><child link="b"/></joint>"#,
+                TWO_BOXES,
+            ),
+            "\"j\"",
+        ),
+        (
+            small(
+                r#"<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+                   <joint name="j2" type="fixed"><parent link="b"/><child link="c"/></joint>
+                   <joint name="j3" type="fixed"><parent link="c"/><child link="b"/></joint>"#,
+                TWO_BOXES,
+            ),
+            "\"b\"",
+        ),
+        (
+            small(
+                r#"<joint name="j" type="fixed"><parent link="a"/><child link="nowhere"/></joint>"#,
+                TWO_BOXES,
+            ),
+            "nowhere",
+        ),
+        (
+            small(
+                "",
+                r#"<link name="m"><collision><geometry><mesh filename="missing.stl"/></geometry></collision></link>"#,
+            ),
+            "\"m\"",
+        ),
+        (
+            small(
+                "",
+                r#"<link name="p"><collision><geometry><mesh filename="package://x/../../etc/passwd"/></geometry></collision></link>"#,
+            ),
+            "leaves its package root",
+        ),
+        (
+            small(
+                "",
+                r#"<link name="v"><collision><geometry><mesh filename="package://x/a.dae"/></geometry></collision></link>"#,
+            ),
+            "\"v\"",
+        ),
+    ];
+    for (text, named) in cases {
+        let err: UrdfError = load(&text).unwrap_err();
+        assert!(err.to_string().contains(named), "{named}: {err}");
+    }
+}
