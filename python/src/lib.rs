@@ -26,6 +26,7 @@ mod io;
 mod maps;
 mod motion;
 mod polytope;
+mod robot;
 mod slices;
 mod solid;
 mod sums;
@@ -40,6 +41,7 @@ fn _dymsum(m: &Bound<'_, PyModule>) -> PyResult<()> {
     slices::register(m)?;
     io::register(m)?;
     motion::register(m)?;
+    robot::register(m)?;
     maps::register(m)?;
     solid::register(m)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

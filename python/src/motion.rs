@@ -198,7 +198,7 @@ const BODY_FORMS: &str = "a ConvexUnion or a shape (an (N, 3) point array, a (ve
      pair, an object with .vertices and .faces, a Polytope, or a model name or mesh path)";
 
 /// The obstacles argument: a sequence of bodies, or one.
-fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
+pub(crate) fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
     convert::not_none(
         obj,
         "obstacles",
@@ -302,7 +302,7 @@ fn report_dict<'py>(py: Python<'py>, r: MeshReport) -> PyResult<Bound<'py, PyDic
     Ok(d)
 }
 
-fn check_tolerance(tolerance: f64) -> PyResult<()> {
+pub(crate) fn check_tolerance(tolerance: f64) -> PyResult<()> {
     if (MIN_TOLERANCE..1.0).contains(&tolerance) {
         Ok(())
     } else {
@@ -326,7 +326,12 @@ fn checked_budget(budget: Option<Budget>) -> PyResult<u64> {
 
 /// A motion error as a Python exception: `MotionUndecided` (with
 /// `t_safe`, `t`, `index`) for a grazing motion, `ValueError` otherwise.
-fn motion_error(py: Python<'_>, what: &str, e: MotionError, index: Option<usize>) -> PyErr {
+pub(crate) fn motion_error(
+    py: Python<'_>,
+    what: &str,
+    e: MotionError,
+    index: Option<usize>,
+) -> PyErr {
     match e {
         MotionError::Undecided { t_safe, t } => undecided(py, what, &e, t_safe, Some(t), index),
         MotionError::BudgetExhausted { t_safe, .. } => undecided(py, what, &e, t_safe, None, index),
@@ -373,7 +378,7 @@ pub struct PyMotionCheck {
 }
 
 impl PyMotionCheck {
-    fn from_check(c: MotionCheck) -> Self {
+    pub(crate) fn from_check(c: MotionCheck) -> Self {
         match c {
             MotionCheck::Free => PyMotionCheck {
                 free: true,

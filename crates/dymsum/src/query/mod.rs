@@ -144,7 +144,7 @@ mod checker;
 mod cobstacle;
 mod error;
 mod frame;
-mod interval_search;
+pub(crate) mod interval_search;
 mod motion;
 mod pair;
 mod prep;

@@ -198,6 +198,51 @@ impl RobotChecker {
     }
 }
 
+impl RobotChecker {
+    /// The checkers measured by a motion search, numbered: each link's
+    /// against the scene (`(link, None)`), then each pair's.
+    pub(super) fn measured_pairs(
+        &self,
+    ) -> impl Iterator<Item = (usize, &SceneChecker, (usize, Option<usize>))> {
+        let scene = self
+            .scene_checkers
+            .iter()
+            .enumerate()
+            .filter_map(|(l, c)| c.as_ref().map(|c| (c, (l, None))));
+        let pairs = self
+            .pairs
+            .iter()
+            .zip(&self.pair_checkers)
+            .map(|(&(i, j), c)| (c, (i, Some(j))));
+        scene.chain(pairs).enumerate().map(|(k, (c, p))| (k, c, p))
+    }
+
+    /// The certified clearance of one measured checker at the links'
+    /// poses.
+    pub(super) fn clearance_of(
+        &self,
+        c: &SceneChecker,
+        poses: &[Pose],
+        i: usize,
+        j: Option<usize>,
+    ) -> Result<f64, RobotError> {
+        let pose = match j {
+            Some(j) => relative(poses, i, j),
+            None => poses[i],
+        };
+        Ok(c.distance_at(pose)?)
+    }
+
+    /// The largest norm of a scene point (`0` without a scene).
+    pub(super) fn scene_size(&self) -> f64 {
+        self.scene_checkers
+            .iter()
+            .flatten()
+            .map(|c| c.scene().reach)
+            .fold(0.0, f64::max)
+    }
+}
+
 /// Link `i`'s pose in link `j`'s frame.
 fn relative(poses: &[Pose], i: usize, j: usize) -> Pose {
     compose(&inverse(&poses[j]), &poses[i])

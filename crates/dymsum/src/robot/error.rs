@@ -1,6 +1,6 @@
 //! The robot layer's error.
 
-use crate::query::QueryError;
+use crate::query::{MotionError, QueryError};
 
 /// What can go wrong building a robot or checking a configuration; each
 /// variant names the element at fault.
@@ -36,6 +36,10 @@ pub enum RobotError {
     /// A collision pair names a missing link or a link twice.
     #[error("collision pair: {0}")]
     BadPair(String),
+    /// A motion check gave no answer: a tolerance out of range, a grazing
+    /// motion (undecided) or a spent budget ([`MotionError`]).
+    #[error(transparent)]
+    Motion(MotionError),
     /// A check failed ([`QueryError`], e.g. coordinates beyond `f64`).
     #[error(transparent)]
     Query(#[from] QueryError),

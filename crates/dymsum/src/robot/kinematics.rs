@@ -79,10 +79,16 @@ impl Robot {
         for (joint, &v) in self.joints.iter().zip(&values) {
             let motion = match joint.spec.kind {
                 JointKind::Fixed => Pose::IDENTITY,
-                JointKind::Revolute { .. } | JointKind::Continuous => Pose::new(
-                    Rotation::from_axis_angle(joint.axis, v).unwrap_or(Rotation::IDENTITY),
-                    DVec3::ZERO,
-                ),
+                JointKind::Revolute { .. } | JointKind::Continuous => {
+                    let turn = Rotation::from_axis_angle(joint.axis, v).ok_or_else(|| {
+                        RobotError::BadConfiguration(format!(
+                            "joint {:?} takes the value {v}, which is not finite (a mimic \
+                             overflowing?)",
+                            joint.spec.name
+                        ))
+                    })?;
+                    Pose::new(turn, DVec3::ZERO)
+                }
                 JointKind::Prismatic { .. } => Pose::new(Rotation::IDENTITY, joint.axis * v),
             };
             let at = compose(&compose(&poses[joint.parent], &joint.spec.origin), &motion);

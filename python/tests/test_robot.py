@@ -1,0 +1,162 @@
+"""Robots with joints from Python (issue 37): ``dymsum.Robot`` and
+``dymsum.RobotChecker`` on Panda (example-robot-data's URDF, SRDF and
+collision meshes, Apache-2.0, in ``data/panda``).
+
+Oracles: python-fcl on the link meshes placed by ``Robot.forward`` (a
+contact of surfaces fcl finds is never missed; fcl does not count a link
+inside another); pinocchio + coal (``pin.buildGeomFromUrdf``,
+``computeCollisions``) where installed; dense sampling for motions.
+"""
+
+import os
+import shutil
+
+import numpy as np
+import pytest
+from conftest import need
+
+import dymsum
+
+DATA = os.path.join(os.path.dirname(__file__), "data", "panda")
+LIMITS = np.array(
+    [
+        (-2.8973, 2.8973),
+        (-1.7628, 1.7628),
+        (-2.8973, 2.8973),
+        (-3.0718, -0.0698),
+        (-2.8973, 2.8973),
+        (-0.0175, 3.7525),
+        (-2.8973, 2.8973),
+        (0.0, 0.04),
+    ]
+)
+
+
+@pytest.fixture(scope="module")
+def root(tmp_path_factory):
+    """A package root laid out as the URDF's ``package://`` paths expect."""
+    base = tmp_path_factory.mktemp("pkg")
+    meshes = base / "example-robot-data" / "robots" / "panda_description" / "meshes" / "collision"
+    meshes.mkdir(parents=True)
+    for name in os.listdir(DATA):
+        if name.endswith(".stl"):
+            shutil.copy(os.path.join(DATA, name), meshes / name)
+    return base
+
+
+@pytest.fixture(scope="module")
+def panda(root):
+    return dymsum.Robot.from_urdf(
+        os.path.join(DATA, "panda.urdf"), srdf=os.path.join(DATA, "panda.srdf"), package_dirs=[root]
+    )
+
+
+def _random_q(rng, n):
+    return LIMITS[:, 0] + (LIMITS[:, 1] - LIMITS[:, 0]) * rng.random((n, 8))
+
+
+def test_the_front_door(panda):
+    assert panda.dof == 8
+    assert panda.joint_names[:2] == ["panda_joint1", "panda_joint2"]
+    assert "panda_hand" in panda.link_names
+    poses = panda.forward([0, 0, 0, -1.5, 0, 1.5, 0, 0.02])
+    assert poses.shape == (len(panda.link_names), 4, 4)
+    assert np.allclose(poses[:, 3], [0, 0, 0, 1])
+    pairs = panda.collision_pairs
+    assert pairs and all(isinstance(a, str) and isinstance(b, str) for a, b in pairs)
+    with pytest.raises(ValueError, match="panda_joint4"):
+        panda.forward([0, 0, 0, 0.5, 0, 1.5, 0, 0.02])
+    with pytest.raises(ValueError):
+        panda.forward([0.0] * 7)
+    with pytest.raises(ValueError, match="nowhere"):
+        panda.collision_pairs = [("panda_link0", "nowhere")]
+
+
+def test_configurations_against_fcl(panda):
+    fcl = need("fcl")
+    trimesh = need("trimesh")
+    checker = dymsum.RobotChecker(panda)
+    names = panda.link_names
+    meshes = {}
+    for link in ("link0", "link1", "link2", "link3", "link4", "link5", "link6", "link7", "hand"):
+        m = trimesh.load(os.path.join(DATA, link + ".stl"), process=False, force="mesh")
+        model = fcl.BVHModel()
+        model.beginModel(len(m.vertices), len(m.faces))
+        model.addSubModel(np.asarray(m.vertices, float), np.asarray(m.faces, np.int64))
+        model.endModel()
+        meshes["panda_" + link] = model
+    pairs = [(a, b) for a, b in panda.collision_pairs if a in meshes and b in meshes]
+    rng = np.random.default_rng(7)
+    qs = _random_q(rng, 300)
+    found = 0
+    for q in qs:
+        poses = panda.forward(q)
+        ours = {(a, b) for a, b in checker.colliding_pairs(q)}
+        for a, b in pairs:
+            pa, pb = poses[names.index(a)], poses[names.index(b)]
+            oa = fcl.CollisionObject(meshes[a], fcl.Transform(pa[:3, :3], pa[:3, 3]))
+            ob = fcl.CollisionObject(meshes[b], fcl.Transform(pb[:3, :3], pb[:3, 3]))
+            if fcl.collide(oa, ob, fcl.CollisionRequest(), fcl.CollisionResult()) > 0:
+                found += 1
+                assert (a, b) in ours or (b, a) in ours, (q, a, b)
+        assert checker.collides_at(q) == bool(ours)
+    assert found > 5
+    many = checker.collides_many(qs[:40])
+    assert list(many) == [checker.collides_at(q) for q in qs[:40]]
+
+
+def test_against_pinocchio_and_coal(root, panda):
+    if os.environ.get("DYMSUM_REQUIRE_PINOCCHIO") == "1":
+        import pinocchio as pin
+    else:
+        pin = pytest.importorskip("pinocchio")
+    urdf = os.path.join(DATA, "panda.urdf")
+    model = pin.buildModelFromUrdf(urdf)
+    geom = pin.buildGeomFromUrdf(model, urdf, pin.GeometryType.COLLISION, package_dirs=[str(root)])
+    geom.addAllCollisionPairs()
+    pin.removeCollisionPairs(model, geom, os.path.join(DATA, "panda.srdf"))
+    data, gdata = model.createData(), pin.GeometryData(geom)
+    checker = dymsum.RobotChecker(panda)
+    ours_pairs = {frozenset(p) for p in panda.collision_pairs}
+    rng = np.random.default_rng(3)
+    found = 0
+    for q in _random_q(rng, 200):
+        pq = np.concatenate([q, [q[7]]])[: model.nq]  # the mimic finger, when pinocchio has it
+        pin.computeCollisions(model, data, geom, gdata, pq, False)
+        ours = {frozenset((a, b)) for a, b in checker.colliding_pairs(q)}
+        for k, cp in enumerate(geom.collisionPairs):
+            if not gdata.collisionResults[k].isCollision():
+                continue
+            a = model.frames[geom.geometryObjects[cp.first].parentFrame].name
+            b = model.frames[geom.geometryObjects[cp.second].parentFrame].name
+            if frozenset((a, b)) in ours_pairs:
+                found += 1
+                # No contact coal finds is missed (our spheres and
+                # cylinders contain coal's exact ones).
+                assert frozenset((a, b)) in ours, (q, a, b)
+    assert found > 0
+
+
+def test_motions_against_dense_sampling(panda):
+    corners = np.array([[x, y, z] for x in (0.37, 0.53) for y in (-0.3, 0.3) for z in (0.0, 0.8)], float)
+    checker = dymsum.RobotChecker(panda, [corners])
+    rng = np.random.default_rng(11)
+    free = hit = 0
+    while free + hit < 12:
+        q0 = _random_q(rng, 1)[0]
+        if checker.collides_at(q0):
+            continue
+        q1 = q0 + 0.25 * (_random_q(rng, 1)[0] - q0)
+        try:
+            c = checker.check(q0, q1)
+        except dymsum.MotionUndecided:
+            continue
+        at = lambda t: np.clip(q0 + t * (q1 - q0), np.minimum(q0, q1), np.maximum(q0, q1))  # noqa: E731
+        if c.free:
+            free += 1
+            assert not any(checker.collides_at(at(t)) for t in np.linspace(0, 1, 101))
+        else:
+            hit += 1
+            assert checker.collides_at(at(c.t_contact))
+            assert c.t_contact - c.t_safe <= 1e-6
+    assert free and hit
