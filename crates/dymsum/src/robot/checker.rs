@@ -217,20 +217,21 @@ impl RobotChecker {
         scene.chain(pairs).enumerate().map(|(k, (c, p))| (k, c, p))
     }
 
-    /// The certified clearance of one measured checker at the links'
-    /// poses.
-    pub(super) fn clearance_of(
+    /// Whether the measured checker's body at the links' poses is more
+    /// than `reach` from its scene, certified (`false`: not proved).
+    pub(super) fn apart_by(
         &self,
         c: &SceneChecker,
         poses: &[Pose],
         i: usize,
         j: Option<usize>,
-    ) -> Result<f64, RobotError> {
+        reach: f64,
+    ) -> bool {
         let pose = match j {
             Some(j) => relative(poses, i, j),
             None => poses[i],
         };
-        Ok(c.distance_at(pose)?)
+        c.apart_at(pose, reach)
     }
 
     /// The largest norm of a scene point (`0` without a scene).

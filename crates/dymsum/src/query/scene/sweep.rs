@@ -216,6 +216,16 @@ impl SceneChecker {
         !blocked
     }
 
+    /// Whether every triangle of the body at `pose` is more than `reach`
+    /// from every scene triangle, certified (`false`: not proved): the
+    /// swept test of an interval whose ends are both `pose`.
+    pub(crate) fn apart_at(&self, pose: Pose, reach: f64) -> bool {
+        let mut s = self.scratch();
+        let out = self.certified_apart(pose, pose, reach, &mut s);
+        self.give_back(s);
+        out
+    }
+
     /// Checks the straight motion from `from` to `to` (module docs) with
     /// the bracket no wider than `tolerance` (in `t`).
     ///
