@@ -265,6 +265,12 @@ impl PyRobotChecker {
             .map_err(|e| robot_error(py, "RobotChecker.check", e))
     }
 
+    /// The robot's number of degrees of freedom.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.inner.robot().dof()
+    }
+
     /// The most intervals one motion check examines.
     #[getter]
     fn budget(&self) -> u64 {

@@ -160,3 +160,43 @@ def test_motions_against_dense_sampling(panda):
             assert checker.collides_at(at(c.t_contact))
             assert c.t_contact - c.t_safe <= 1e-6
     assert free and hit
+
+
+def test_planning_in_joint_space_with_ompl(panda):
+    """RRTConnect plans Panda around a block with dymsum's joint-space
+    validators; every motion of the path found is certified free."""
+    if os.environ.get("DYMSUM_REQUIRE_OMPL") == "1":
+        from ompl import base as ob
+    else:
+        ob = pytest.importorskip("ompl.base")
+    from ompl import geometric as og
+
+    import dymsum.ompl as dom
+
+    block = np.array([[x, y, z] for x in (0.35, 0.45) for y in (-0.15, 0.15) for z in (0.0, 0.9)], float)
+    checker = dymsum.RobotChecker(panda, [block])
+    space = ob.RealVectorStateSpace(8)
+    bounds = ob.RealVectorBounds(8)
+    for i, (lo, hi) in enumerate(LIMITS):
+        bounds.setLow(i, float(lo))
+        bounds.setHigh(i, float(hi))
+    space.setBounds(bounds)
+    ss = og.SimpleSetup(space)
+    v = dom.setup_joint_validators(ss, checker)
+    start, goal = space.allocState(), space.allocState()
+    # Reaching to one side of the block, then to the other.
+    for st, q in ((start, [0.9, 0.3, 0, -1.8, 0, 2.1, 0.8, 0.02]), (goal, [-0.9, 0.3, 0, -1.8, 0, 2.1, 0.8, 0.02])):
+        for i, x in enumerate(q):
+            st[i] = x
+        assert v.state_checker(st)
+    # The straight motion between them passes through the block.
+    assert not checker.check(v.state_checker.q(start), v.state_checker.q(goal)).free
+    ss.setStartAndGoalStates(start, goal)
+    ss.setPlanner(og.RRTConnect(ss.getSpaceInformation()))
+    assert ss.solve(20.0) and ss.haveExactSolutionPath()
+    states = ss.getSolutionPath().getStates()
+    qs = [v.state_checker.q(s) for s in states]
+    assert all(checker.check(a, b).free for a, b in zip(qs, qs[1:]))
+    assert v.motion_validator.checked > 0 and "JointMotionValidator" in repr(v.motion_validator)
+    with pytest.raises(ValueError, match="degrees of freedom"):
+        dom.setup_joint_validators(ob.SpaceInformation(ob.RealVectorStateSpace(3)), checker)

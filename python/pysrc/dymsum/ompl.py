@@ -17,7 +17,13 @@ module installs validators built on dymsum instead:
   that grazes an obstacle within rounding (``MotionUndecided``) is
   rejected.
 
-Only ``SE2StateSpace`` and ``SE3StateSpace`` are accepted, because their
+Robots with joints plan in a ``RealVectorStateSpace`` of one dimension
+per degree of freedom (``Robot.joint_names`` order; set the bounds to the
+joint limits): ``setup_joint_validators`` installs the same two callbacks
+on a ``dymsum.RobotChecker``, OMPL's linear interpolation being the
+joint-space motion ``RobotChecker.check`` certifies.
+
+For rigid bodies only ``SE2StateSpace`` and ``SE3StateSpace`` are accepted, because their
 interpolation is the motion dymsum certifies: the translation linear, the
 rotation at a constant rate about a fixed axis along the shorter arc
 (SE(2): OMPL's ``SO2StateSpace.interpolate`` moves the yaw the shorter way;
@@ -68,16 +74,18 @@ from typing import Any, List, NamedTuple, Optional, Tuple
 
 import numpy as np
 
-from ._dymsum import MotionChecker, MotionUndecided
+from ._dymsum import MotionChecker, MotionUndecided, RobotChecker
 
 __all__ = [
     "CertifiedMotionValidator",
+    "JointStateChecker",
     "MotionResult",
     "StateChecker",
     "Validators",
     "certified_path",
     "se2_pose",
     "se3_pose",
+    "setup_joint_validators",
     "setup_state_checker",
     "setup_validators",
     "solve_and_certify",
@@ -520,6 +528,8 @@ def __getattr__(name: str) -> Any:
     # ``dymsum.ompl.CertifiedMotionValidator`` imports OMPL on first use.
     if name == "CertifiedMotionValidator":
         return _validator_class()
+    if name == "JointMotionValidator":
+        return _joint_validator_class()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
@@ -623,3 +633,130 @@ def solve_and_certify(simple_setup: Any, checker: MotionChecker, seconds: float 
         uncertified_motions=sum(not c.free for c in checks),
     )
     return out
+
+
+def _joint_space(si: Any, checker: RobotChecker) -> int:
+    """The dimension of a ``RealVectorStateSpace`` matching the robot's
+    degrees of freedom; a ``TypeError`` or ``ValueError`` otherwise."""
+    ob = _ompl_base()
+    space = si.getStateSpace()
+    if not isinstance(space, ob.RealVectorStateSpace):
+        raise TypeError(
+            f"joint-space validators need OMPL's RealVectorStateSpace (linear interpolation is the "
+            f"motion dymsum certifies); got {type(space).__name__}"
+        )
+    n = space.getDimension()
+    if n != checker.dof:
+        raise ValueError(f"the space has {n} dimensions, the robot {checker.dof} degrees of freedom")
+    return n
+
+
+class JointStateChecker:
+    """An OMPL state validity checker for a robot in joint space: the state
+    is within the space's bounds (and the joint limits) and the robot there
+    touches neither itself nor an obstacle (``RobotChecker.collides_at``,
+    exact). ``checked`` and ``invalid`` count the calls."""
+
+    def __init__(self, space_information: Any, checker: RobotChecker) -> None:
+        si = _space_information(space_information)
+        self.n = _joint_space(si, checker)
+        self.checker = checker
+        self.checked = 0
+        self.invalid = 0
+        self._satisfies_bounds = si.getStateSpace().satisfiesBounds
+
+    def q(self, state: Any) -> List[float]:
+        """The configuration of an OMPL state."""
+        return [state[i] for i in range(self.n)]
+
+    def __call__(self, state: Any) -> bool:
+        """Whether ``state`` is valid."""
+        self.checked += 1
+        if self._satisfies_bounds(state):
+            try:
+                if not self.checker.collides_at(self.q(state)):
+                    return True
+            except ValueError:
+                pass  # outside a joint's limits
+        self.invalid += 1
+        return False
+
+    def __repr__(self) -> str:
+        return f"dymsum.ompl.JointStateChecker(checked={self.checked}, invalid={self.invalid})"
+
+
+_JOINT_VALIDATOR_CLASS: Optional[type] = None
+
+
+def _joint_validator_class() -> type:
+    """``JointMotionValidator``, defined on first use (it subclasses OMPL's
+    ``MotionValidator``)."""
+    global _JOINT_VALIDATOR_CLASS
+    if _JOINT_VALIDATOR_CLASS is not None:
+        return _JOINT_VALIDATOR_CLASS
+    ob = _ompl_base()
+
+    class JointMotionValidator(ob.MotionValidator):  # type: ignore[misc, name-defined]
+        """An OMPL motion validator for a robot in joint space: a motion is
+        accepted only when ``RobotChecker.check`` certifies it free, both
+        ends in bounds; ``MotionUndecided`` and configurations outside the
+        joint limits count as invalid. Counters: ``checked``, ``rejected``,
+        ``undecided``."""
+
+        def __init__(self, space_information: Any, checker: RobotChecker, tolerance: float = 1e-6) -> None:
+            si = _space_information(space_information)
+            super().__init__(si)
+            if not (0.0 < tolerance < 1.0):
+                raise ValueError(f"tolerance must be a finite number in (0, 1), got {tolerance}")
+            self.n = _joint_space(si, checker)
+            self.checker = checker
+            self.tolerance = float(tolerance)
+            self.decision_tolerance = max(self.tolerance, DECISION_TOLERANCE)
+            self.checked = 0
+            self.rejected = 0
+            self.undecided = 0
+            self._satisfies_bounds = si.getStateSpace().satisfiesBounds
+
+        def checkMotion(self, s1: Any, s2: Any) -> bool:  # noqa: N802
+            """Whether the motion ``s1 → s2`` is certified free."""
+            self.checked += 1
+            free = False
+            if self._satisfies_bounds(s1) and self._satisfies_bounds(s2):
+                q1 = [s1[i] for i in range(self.n)]
+                q2 = [s2[i] for i in range(self.n)]
+                try:
+                    # Backwards: s2 (the new end in a tree planner) first.
+                    free = self.checker.check(q2, q1, self.decision_tolerance).free
+                except MotionUndecided:
+                    self.undecided += 1
+                except ValueError:
+                    pass  # outside a joint's limits
+            if not free:
+                self.rejected += 1
+            return free
+
+        def __repr__(self) -> str:
+            return (
+                f"dymsum.ompl.JointMotionValidator(checked={self.checked}, rejected={self.rejected}, "
+                f"undecided={self.undecided})"
+            )
+
+    JointMotionValidator.__module__ = __name__
+    JointMotionValidator.__qualname__ = "JointMotionValidator"
+    _JOINT_VALIDATOR_CLASS = JointMotionValidator
+    return JointMotionValidator
+
+
+def setup_joint_validators(space_information: Any, checker: RobotChecker, tolerance: float = 1e-6) -> Validators:
+    """Installs dymsum's exact state validity checker and certified motion
+    validator for a robot in joint space on an OMPL ``SpaceInformation``
+    (or a ``SimpleSetup``'s) of a ``RealVectorStateSpace`` with one
+    dimension per degree of freedom. Returns ``Validators(checker,
+    state_checker, motion_validator)``."""
+    si = _space_information(space_information)
+    state_checker = JointStateChecker(si, checker)
+    validator = _joint_validator_class()(si, checker, tolerance)
+    si.setStateValidityChecker(state_checker)
+    si.setMotionValidator(validator)
+    return Validators(checker, state_checker, validator)
+
