@@ -200,3 +200,20 @@ def test_planning_in_joint_space_with_ompl(panda):
     assert v.motion_validator.checked > 0 and "JointMotionValidator" in repr(v.motion_validator)
     with pytest.raises(ValueError, match="degrees of freedom"):
         dom.setup_joint_validators(ob.SpaceInformation(ob.RealVectorStateSpace(3)), checker)
+
+
+def test_the_shelves_example_plans_and_certifies():
+    """python/examples/robot_shelves.py: Panda into the middle compartment
+    of a shelf on a table, with RRTConnect and dymsum's validators."""
+    if os.environ.get("DYMSUM_REQUIRE_OMPL") != "1":
+        pytest.importorskip("ompl.base")
+    import importlib.util
+    import pathlib
+
+    path = pathlib.Path(__file__).parent.parent / "examples" / "robot_shelves.py"
+    spec = importlib.util.spec_from_file_location("robot_shelves", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    r = mod.plan(seconds=30.0, seed=1)
+    assert r["found"] and r["path_certified"], r
+    assert 0 < r["motions_certified"] <= r["motions_checked"]
