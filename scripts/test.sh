@@ -96,8 +96,10 @@ export DYMSUM_REQUIRE_MANIFOLD=1
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check trimesh pycollada python-fcl
 export DYMSUM_REQUIRE_SCENES=1
 # Robots (issue 37): pinocchio + coal, the anchor the robot checks are
-# compared with (python/tests/test_robot.py); installed and required here.
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check pin
+# compared with, and example-robot-data's robots (URDFs, SRDFs, STL and
+# Collada meshes; python/tests/test_robot.py, test_robot_zoo.py);
+# installed and required here.
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check pin example-robot-data
 export DYMSUM_REQUIRE_PINOCCHIO=1
 
 printf '\n=== Python: stubtest (the type stubs match the module)\n'

@@ -18,6 +18,7 @@
 pub mod atomic;
 pub mod body;
 pub mod cmap;
+mod collada;
 pub mod formats;
 pub mod load;
 pub mod models;

@@ -10,8 +10,10 @@
 //!   (OFF, OBJ, PLY, STL; with their `scale`), boxes exactly, spheres,
 //!   cylinders and capsules as convex polytopes of 32 segments that
 //!   contain them ([`dymsum::robot::shapes`]; the largest deviation per
-//!   link is reported). Collada (`.dae`) meshes are refused, naming the
-//!   link: convert them to STL or OBJ.
+//!   link is reported). Collada (`.dae`) meshes are read by `mesh-loader`,
+//!   the scene's node transforms and unit composed by `crate::collada`.
+//!   `<visual>` and `<material>` elements are skipped before parsing
+//!   (only collisions are used). An SRDF's pairs naming links the URDF lacks are set aside.
 //! * Mesh paths: absolute, `file://`, relative to the URDF's folder, or
 //!   `package://NAME/REST`, found as `ROOT/NAME/REST` (or `ROOT/REST` when
 //!   `ROOT`'s own name is `NAME`) under the given package roots; a
@@ -93,9 +95,10 @@ pub struct LoadedRobot {
     /// For each link with a sphere, cylinder or capsule: the largest
     /// distance from its polytope's vertices to the exact shape.
     pub deviations: Vec<(String, f64)>,
-    /// The SRDF's disabled pairs (as read; those naming missing links are
-    /// errors).
+    /// The SRDF's disabled pairs of links the URDF has.
     pub disabled: Vec<(String, String)>,
+    /// The SRDF's disabled pairs naming a link the URDF lacks (set aside).
+    pub ignored: Vec<(String, String)>,
 }
 
 /// Reads the URDF at `path` (meshes resolved against its folder and the
@@ -131,7 +134,8 @@ pub fn robot_from_str(
     package_dirs: &[PathBuf],
     srdf: Option<&str>,
 ) -> Result<LoadedRobot, UrdfError> {
-    let parsed = urdf_rs::read_from_string(urdf).map_err(|e| UrdfError::Parse(e.to_string()))?;
+    let parsed = urdf_rs::read_from_string(&without_visuals(urdf))
+        .map_err(|e| UrdfError::Parse(e.to_string()))?;
     let mut deviations = Vec::new();
     let mut links = Vec::with_capacity(parsed.links.len());
     for link in &parsed.links {
@@ -150,12 +154,24 @@ pub fn robot_from_str(
         .map(joint_spec)
         .collect::<Result<Vec<_>, _>>()?;
     let mut robot = Robot::new(links, joints)?;
-    let disabled = srdf.map(disabled_pairs).unwrap_or_default();
+    // An SRDF often names links this URDF lacks (one SRDF for several
+    // variants of a robot): those pairs are set aside, as MoveIt does.
+    let names = robot
+        .link_names()
+        .iter()
+        .map(|n| n.to_string())
+        .collect::<Vec<_>>();
+    let (disabled, ignored): (Vec<_>, Vec<_>) = srdf
+        .map(disabled_pairs)
+        .unwrap_or_default()
+        .into_iter()
+        .partition(|(a, b)| names.contains(a) && names.contains(b));
     robot.disable_pairs(&disabled)?;
     Ok(LoadedRobot {
         robot,
         deviations,
         disabled,
+        ignored,
     })
 }
 
@@ -251,17 +267,16 @@ fn link_body(
             }
             G::Mesh { filename, scale } => {
                 let path = resolve(filename, base, package_dirs).map_err(&bad)?;
-                if path
+                let collada = path
                     .extension()
-                    .is_some_and(|e| e.eq_ignore_ascii_case("dae"))
-                {
-                    return Err(bad(format!(
-                        "mesh {}: Collada (.dae) is not read; convert it to STL or OBJ",
-                        path.display()
-                    )));
-                }
-                let mut m = crate::formats::read_mesh(&path)
-                    .map_err(|e| bad(format!("mesh {}: {e}", path.display())))?;
+                    .is_some_and(|e| e.eq_ignore_ascii_case("dae"));
+                let mut m = if collada {
+                    crate::collada::read_collada(&path)
+                        .map_err(|e| bad(format!("mesh {}: {e}", path.display())))?
+                } else {
+                    crate::formats::read_mesh(&path)
+                        .map_err(|e| bad(format!("mesh {}: {e}", path.display())))?
+                };
                 if let Some(s) = scale {
                     let s = DVec3::from(s.0);
                     if !(s.is_finite() && s.min_element().abs() > 0.0) {
@@ -298,6 +313,50 @@ fn link_body(
     let body = MeshBody::new(&PolygonMesh::new(vertices, faces))
         .map_err(|e| bad(format!("the collision geometry is not usable: {e}")))?;
     Ok((Some(body), deviation))
+}
+
+/// The URDF without its `<visual>` and `<material>` elements: only the
+/// collision geometry is used, and a material may not parse (a
+/// `<texture/>` without a file name, as some robots ship).
+fn without_visuals(urdf: &str) -> String {
+    without_elements(&without_elements(urdf, "visual"), "material")
+}
+
+/// `text` without the elements `name` (not nested in themselves).
+fn without_elements(text: &str, name: &str) -> String {
+    let close = format!("</{name}>");
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = find_element(rest, name) {
+        out.push_str(&rest[..at]);
+        let tail = &rest[at..];
+        let open_end = tail.find('>').map_or(tail.len(), |k| k + 1);
+        if tail[..open_end].ends_with("/>") {
+            rest = &tail[open_end..];
+            continue;
+        }
+        rest = match tail.find(&close) {
+            Some(k) => &tail[k + close.len()..],
+            None => "",
+        };
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Where the next `<name` element starts (not `<names…`).
+fn find_element(text: &str, name: &str) -> Option<usize> {
+    let tag = format!("<{name}");
+    let mut from = 0;
+    while let Some(k) = text[from..].find(&tag) {
+        let at = from + k;
+        let next = text[at + tag.len()..].chars().next();
+        if next.is_some_and(|c| c.is_whitespace() || c == '>' || c == '/') {
+            return Some(at);
+        }
+        from = at + tag.len();
+    }
+    None
 }
 
 fn positive(xs: &[f64]) -> Option<()> {
@@ -398,6 +457,18 @@ fn attribute(element: &str, name: &str) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn visuals_and_materials_are_skipped() {
+        let urdf = r#"<robot><material name="m"><texture/></material><link name="a">
+            <visual><geometry><mesh/></geometry><material name="x"/></visual><visual/>
+            <visualise/><collision/></link></robot>"#;
+        let out = without_visuals(urdf);
+        assert!(
+            !out.contains("<visual>") && !out.contains("<visual/>") && !out.contains("material")
+        );
+        assert!(out.contains("<visualise/>") && out.contains("<collision/>"));
+    }
 
     #[test]
     fn srdf_pairs_are_read_with_either_quote() {

@@ -445,3 +445,75 @@ fn review_a_mimic_beyond_its_limits_does_not_make_a_swing_free() {
     let got = checker.check(&q0, &q1, 1e-6, DEFAULT_BUDGET).unwrap();
     assert!(!got.is_free(), "{got:?}");
 }
+
+/// A tetrahedron in Collada, its unit half a metre, its node moved by 2
+/// units along x: its corners land at x from 1 to 1.5 m.
+const TET_DAE: &str = r##"<?xml version="1.0"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="0.5"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries>
+    <geometry id="tet" name="tet"><mesh>
+      <source id="tet-pos"><float_array id="tet-pos-array" count="12">0 0 0 1 0 0 0 1 0 0 0 1</float_array>
+        <technique_common><accessor source="#tet-pos-array" count="4" stride="3">
+          <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+        </accessor></technique_common></source>
+      <vertices id="tet-vtx"><input semantic="POSITION" source="#tet-pos"/></vertices>
+      <triangles count="4"><input semantic="VERTEX" source="#tet-vtx" offset="0"/><p>0 2 1 0 1 3 0 3 2 1 2 3</p></triangles>
+    </mesh></geometry>
+  </library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node id="n"><translate>2 0 0</translate>
+    <instance_geometry url="#tet"/></node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>"##;
+
+/// Collada meshes (with their unit and node transforms), chains of
+/// mimics, an SRDF naming links the URDF lacks, visuals whose materials
+/// do not parse, and a robot without links.
+#[test]
+fn collada_mimic_chains_foreign_srdf_pairs_and_empty_robots() {
+    let dir = std::env::temp_dir().join(format!("dymsum-urdf-dae-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("tet.dae"), TET_DAE).unwrap();
+    let urdf = small(
+        r#"<joint name="a" type="revolute"><parent link="base"/><child link="l1"/>
+             <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+           <joint name="b" type="revolute"><parent link="l1"/><child link="l2"/>
+             <axis xyz="0 0 1"/><limit lower="-9" upper="9" effort="1" velocity="1"/>
+             <mimic joint="a" multiplier="2" offset="0.1"/></joint>
+           <joint name="c" type="revolute"><parent link="l2"/><child link="l3"/>
+             <axis xyz="0 0 1"/><limit lower="-9" upper="9" effort="1" velocity="1"/>
+             <mimic joint="b" multiplier="3"/></joint>"#,
+        r#"<material name="m"><texture/></material>
+           <link name="base"><visual><geometry><box size="1 1 1"/></geometry><material name="v"><texture/></material></visual>
+             <collision><geometry><mesh filename="tet.dae"/></geometry></collision></link>
+           <link name="l1"/><link name="l2"/><link name="l3"/>"#,
+    );
+    let srdf = r#"<robot><disable_collisions link1="base" link2="elsewhere"/></robot>"#;
+    let loaded = robot_from_str(&urdf, &dir, &[], Some(srdf)).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(
+        loaded.ignored,
+        [("base".to_string(), "elsewhere".to_string())]
+    );
+    let robot = loaded.robot;
+    assert_eq!(robot.joint_names(), ["a"]);
+    // c = 3 (2 a + 0.1): at a = 0.2, l3 has turned 0.2 + 0.5 + 1.5 = 2.2 rad.
+    let poses = robot.forward(&[0.2]).unwrap();
+    assert!(
+        (poses[3].rotation.angle() - 2.2).abs() < 1e-12,
+        "{}",
+        poses[3].rotation.angle()
+    );
+    let body = robot.links()[0].body.as_ref().unwrap();
+    let xs: Vec<f64> = body.vertices().iter().map(|v| v.x).collect();
+    let (lo, hi) = xs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(l, h), &x| (l.min(x), h.max(x)));
+    assert!(
+        (lo - 1.0).abs() < 1e-6 && (hi - 1.5).abs() < 1e-6,
+        "{lo} {hi}"
+    );
+    // A robot with no links.
+    let err = robot_from_str(r#"<robot name="e"></robot>"#, Path::new("."), &[], None).unwrap_err();
+    assert!(err.to_string().contains("no links"), "{err}");
+}

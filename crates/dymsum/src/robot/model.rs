@@ -207,6 +207,9 @@ impl Robot {
                 value: Value::None,
             });
         }
+        if links.is_empty() {
+            return Err(RobotError::NotATree("the robot has no links".into()));
+        }
         let roots: Vec<usize> = (0..links.len())
             .filter(|&l| parent_joint[l].is_none())
             .collect();
@@ -260,30 +263,48 @@ impl Robot {
                 dofs.push(k);
             }
         }
+        // Mimics, resolved to a degree of freedom through chains of mimics
+        // (`m₂(m₁ q + o₁) + o₂`); a chain that never reaches one (a cycle,
+        // a missing or fixed joint) is an error naming the joint.
         for k in 0..joints.len() {
-            let Some(m) = joints[k].spec.mimic.clone() else {
-                continue;
-            };
-            if joints[k].spec.kind == JointKind::Fixed {
+            if joints[k].spec.mimic.is_none() || joints[k].spec.kind == JointKind::Fixed {
                 continue;
             }
-            let followed = joints.iter().position(|o| o.spec.name == m.joint);
-            let Some(Value::Dof(d)) = followed.map(|f| joints[f].value) else {
+            let (mut at, mut scale, mut shift) = (k, 1.0f64, 0.0f64);
+            let mut steps = 0;
+            let resolved = loop {
+                let Some(m) = joints[at].spec.mimic.clone() else {
+                    break None;
+                };
+                if !(m.multiplier.is_finite() && m.offset.is_finite()) {
+                    return Err(RobotError::BadJoint {
+                        joint: joints[at].spec.name.clone(),
+                        reason: "the mimic's multiplier or offset is not finite".into(),
+                    });
+                }
+                shift += scale * m.offset;
+                scale *= m.multiplier;
+                let followed = joints.iter().position(|o| o.spec.name == m.joint);
+                match followed.map(|f| (f, joints[f].value, joints[f].spec.kind)) {
+                    Some((_, Value::Dof(d), _)) => break Some(d),
+                    Some((f, _, kind)) if kind != JointKind::Fixed && steps < joints.len() => {
+                        at = f;
+                        steps += 1;
+                    }
+                    _ => break None,
+                }
+            };
+            let Some(d) = resolved else {
                 return Err(RobotError::BadJoint {
                     joint: joints[k].spec.name.clone(),
                     reason: format!(
-                        "it mimics {:?}, which is missing, fixed or itself a mimic",
-                        m.joint
+                        "it mimics {:?}, which is missing, fixed, or a chain of mimics that reaches \
+                         no degree of freedom",
+                        joints[k].spec.mimic.as_ref().map_or("", |m| m.joint.as_str())
                     ),
                 });
             };
-            if !(m.multiplier.is_finite() && m.offset.is_finite()) {
-                return Err(RobotError::BadJoint {
-                    joint: joints[k].spec.name.clone(),
-                    reason: "the mimic's multiplier or offset is not finite".into(),
-                });
-            }
-            joints[k].value = Value::Mimic(d, m.multiplier, m.offset);
+            joints[k].value = Value::Mimic(d, scale, shift);
         }
         let mut robot = Robot {
             links,
