@@ -17,7 +17,12 @@
 //! * Mesh paths: absolute, `file://`, relative to the URDF's folder, or
 //!   `package://NAME/REST`, found as `ROOT/NAME/REST` (or `ROOT/REST` when
 //!   `ROOT`'s own name is `NAME`) under the given package roots; a
-//!   `package://` path that leaves its root (`..`) is refused.
+//!   `package://` path that leaves its root (`..`, or a package named `..`)
+//!   is refused.
+//! * The SRDF is read by an XML parser (a commented-out
+//!   `disable_collisions` disables nothing; a second reading found the
+//!   first version applied them), and so are the `<visual>` and
+//!   `<material>` elements skipped before urdf-rs parses the rest.
 //!
 //! ```
 //! use dymsum::robot::RobotChecker;
@@ -163,6 +168,7 @@ pub fn robot_from_str(
         .collect::<Vec<_>>();
     let (disabled, ignored): (Vec<_>, Vec<_>) = srdf
         .map(disabled_pairs)
+        .transpose()?
         .unwrap_or_default()
         .into_iter()
         .partition(|(a, b)| names.contains(a) && names.contains(b));
@@ -279,7 +285,7 @@ fn link_body(
                 };
                 if let Some(s) = scale {
                     let s = DVec3::from(s.0);
-                    if !(s.is_finite() && s.min_element().abs() > 0.0) {
+                    if !(s.is_finite() && s.abs().min_element() > 0.0) {
                         return Err(bad(format!("mesh {}: scale {:?}", path.display(), s)));
                     }
                     for v in &mut m.vertices {
@@ -317,46 +323,30 @@ fn link_body(
 
 /// The URDF without its `<visual>` and `<material>` elements: only the
 /// collision geometry is used, and a material may not parse (a
-/// `<texture/>` without a file name, as some robots ship).
+/// `<texture/>` without a file name, as some robots ship). Elements are
+/// found by an XML parser (comments and CDATA are not elements); a text
+/// that is not XML is left for urdf-rs to refuse.
 fn without_visuals(urdf: &str) -> String {
-    without_elements(&without_elements(urdf, "visual"), "material")
-}
-
-/// `text` without the elements `name` (not nested in themselves).
-fn without_elements(text: &str, name: &str) -> String {
-    let close = format!("</{name}>");
-    let mut out = String::with_capacity(text.len());
-    let mut rest = text;
-    while let Some(at) = find_element(rest, name) {
-        out.push_str(&rest[..at]);
-        let tail = &rest[at..];
-        let open_end = tail.find('>').map_or(tail.len(), |k| k + 1);
-        if tail[..open_end].ends_with("/>") {
-            rest = &tail[open_end..];
-            continue;
-        }
-        rest = match tail.find(&close) {
-            Some(k) => &tail[k + close.len()..],
-            None => "",
-        };
+    let Ok(doc) = roxmltree::Document::parse(urdf) else {
+        return urdf.to_string();
+    };
+    let mut ranges: Vec<std::ops::Range<usize>> = doc
+        .descendants()
+        .filter(|n| n.is_element() && matches!(n.tag_name().name(), "visual" | "material"))
+        .filter(|n| {
+            // Outermost only (a material inside a removed visual goes with it).
+            !n.ancestors()
+                .skip(1)
+                .any(|a| a.is_element() && matches!(a.tag_name().name(), "visual" | "material"))
+        })
+        .map(|n| n.range())
+        .collect();
+    ranges.sort_by_key(|r| std::cmp::Reverse(r.start));
+    let mut out = urdf.to_string();
+    for r in ranges {
+        out.replace_range(r, "");
     }
-    out.push_str(rest);
     out
-}
-
-/// Where the next `<name` element starts (not `<names…`).
-fn find_element(text: &str, name: &str) -> Option<usize> {
-    let tag = format!("<{name}");
-    let mut from = 0;
-    while let Some(k) = text[from..].find(&tag) {
-        let at = from + k;
-        let next = text[at + tag.len()..].chars().next();
-        if next.is_some_and(|c| c.is_whitespace() || c == '>' || c == '/') {
-            return Some(at);
-        }
-        from = at + tag.len();
-    }
-    None
 }
 
 fn positive(xs: &[f64]) -> Option<()> {
@@ -366,7 +356,13 @@ fn positive(xs: &[f64]) -> Option<()> {
 /// The file a mesh URI names (module docs).
 fn resolve(uri: &str, base: &Path, package_dirs: &[PathBuf]) -> Result<PathBuf, String> {
     if let Some(rest) = uri.strip_prefix("package://") {
+        // `package:///name/…` (some robots write three slashes) is read as
+        // `package://name/…`.
+        let rest = rest.trim_start_matches('/');
         let (package, inner) = rest.split_once('/').unwrap_or((rest, ""));
+        if package.is_empty() || package == "." || package == ".." || package.contains('\\') {
+            return Err(format!("mesh {uri:?}: {package:?} is not a package name"));
+        }
         let inner = Path::new(inner);
         if inner.components().any(|c| {
             matches!(
@@ -413,45 +409,24 @@ fn resolve(uri: &str, base: &Path, package_dirs: &[PathBuf]) -> Result<PathBuf, 
 }
 
 /// The `disable_collisions` pairs of an SRDF (`link1`, `link2`
-/// attributes; everything else in it is ignored).
-pub fn disabled_pairs(srdf: &str) -> Vec<(String, String)> {
-    let mut out = Vec::new();
-    let mut rest = srdf;
-    while let Some(at) = rest.find("<disable_collisions") {
-        let tail = &rest[at..];
-        let end = tail.find('>').unwrap_or(tail.len());
-        let element = &tail[..end];
-        if let (Some(a), Some(b)) = (attribute(element, "link1"), attribute(element, "link2")) {
-            out.push((a, b));
-        }
-        rest = &tail[end..];
-    }
-    out
-}
-
-/// The value of attribute `name` in an element's text (either quote).
-fn attribute(element: &str, name: &str) -> Option<String> {
-    let mut from = 0;
-    while let Some(k) = element[from..].find(name) {
-        let start = from + k;
-        from = start + name.len();
-        let before = element[..start].chars().last();
-        if !before.is_some_and(char::is_whitespace) {
-            continue;
-        }
-        let after = element[from..].trim_start();
-        let Some(after) = after.strip_prefix('=') else {
-            continue;
-        };
-        let after = after.trim_start();
-        let quote = after.chars().next()?;
-        if quote != '"' && quote != '\'' {
-            continue;
-        }
-        let value = &after[1..];
-        return value.find(quote).map(|e| value[..e].to_string());
-    }
-    None
+/// attributes; everything else in it, comments included, is ignored). An
+/// SRDF that is not XML disables nothing and is an error.
+///
+/// # Errors
+/// [`UrdfError::Parse`] naming the XML error.
+pub fn disabled_pairs(srdf: &str) -> Result<Vec<(String, String)>, UrdfError> {
+    let doc = roxmltree::Document::parse(srdf)
+        .map_err(|e| UrdfError::Parse(format!("the SRDF is not XML: {e}")))?;
+    Ok(doc
+        .descendants()
+        .filter(|n| n.is_element() && n.tag_name().name() == "disable_collisions")
+        .filter_map(|n| {
+            Some((
+                n.attribute("link1")?.to_string(),
+                n.attribute("link2")?.to_string(),
+            ))
+        })
+        .collect())
 }
 
 #[cfg(test)]
@@ -461,25 +436,41 @@ mod tests {
     #[test]
     fn visuals_and_materials_are_skipped() {
         let urdf = r#"<robot><material name="m"><texture/></material><link name="a">
+            <!-- <visual> kept for later -->
             <visual><geometry><mesh/></geometry><material name="x"/></visual><visual/>
             <visualise/><collision/></link></robot>"#;
         let out = without_visuals(urdf);
+        // Only the comment's `<visual>` is left.
+        assert_eq!(out.matches("<visual").count(), 2, "{out}"); // the comment's and <visualise/>
+        assert!(!out.contains("<visual/>") && !out.contains("<material"));
         assert!(
-            !out.contains("<visual>") && !out.contains("<visual/>") && !out.contains("material")
+            out.contains("<visualise/>")
+                && out.contains("<collision/>")
+                && out.contains("kept for later -->")
         );
-        assert!(out.contains("<visualise/>") && out.contains("<collision/>"));
+        assert!(roxmltree::Document::parse(&out).is_ok());
     }
 
     #[test]
-    fn srdf_pairs_are_read_with_either_quote() {
+    fn package_names_stay_inside_their_root() {
+        for uri in ["package://../x/m.stl", "package://./m.stl", "package://"] {
+            let err = resolve(uri, Path::new("."), &[PathBuf::from("/tmp")]).unwrap_err();
+            assert!(err.contains("package name"), "{uri}: {err}");
+        }
+    }
+
+    #[test]
+    fn srdf_pairs_are_read_with_either_quote_and_comments_ignored() {
         let srdf = r#"<robot name="r">
             <disable_collisions link1="a" link2="b" reason="Adjacent"/>
-            <disable_collisions reason='Never' link2='d' link1='c' />
+            <!-- <disable_collisions link1="x" link2="y" reason="Never"/> -->
+            <disable_collisions reason=' link1="z"' link2='d' link1='c' />
             <group name="arm"/>
         </robot>"#;
         assert_eq!(
-            disabled_pairs(srdf),
+            disabled_pairs(srdf).unwrap(),
             [("a".into(), "b".into()), ("c".into(), "d".into())]
         );
+        assert!(disabled_pairs("<robot>").is_err());
     }
 }
