@@ -29,18 +29,6 @@ import numpy as np
 import dymsum
 
 DATA = os.path.join(os.path.dirname(__file__), "..", "tests", "data", "panda")
-LIMITS = np.array(
-    [
-        (-2.8973, 2.8973),
-        (-1.7628, 1.7628),
-        (-2.8973, 2.8973),
-        (-3.0718, -0.0698),
-        (-2.8973, 2.8973),
-        (-0.0175, 3.7525),
-        (-2.8973, 2.8973),
-        (0.0, 0.04),
-    ]
-)
 
 
 def main():
@@ -72,8 +60,9 @@ def main():
         build_p = time.perf_counter() - t0
     finally:
         shutil.rmtree(root, ignore_errors=True)
+    limits = np.array(robot.joint_limits)
     rng = np.random.default_rng(a.seed)
-    qs = LIMITS[:, 0] + (LIMITS[:, 1] - LIMITS[:, 0]) * rng.random((a.states, 8))
+    qs = limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random((a.states, 8))
     pq = lambda q: np.concatenate([q, [q[7]]])[: model.nq]  # noqa: E731 - the mimic finger
     td, tp, hits = [], [], 0
     for q in qs:
@@ -100,10 +89,10 @@ def main():
 
         tm, tdisc, missed, n = [], [], 0, 0
         while n < a.motions:
-            q0 = LIMITS[:, 0] + (LIMITS[:, 1] - LIMITS[:, 0]) * rng.random(8)
+            q0 = limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random(8)
             if checker.collides_at(q0):
                 continue
-            q1 = q0 + 0.1 * (LIMITS[:, 0] + (LIMITS[:, 1] - LIMITS[:, 0]) * rng.random(8) - q0)
+            q1 = q0 + 0.1 * (limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random(8) - q0)
             n += 1
             t0 = time.perf_counter()
             try:

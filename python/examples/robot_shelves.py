@@ -36,16 +36,6 @@ import dymsum
 import dymsum.ompl
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data", "panda")
-LIMITS = [
-    (-2.8973, 2.8973),
-    (-1.7628, 1.7628),
-    (-2.8973, 2.8973),
-    (-3.0718, -0.0698),
-    (-2.8973, 2.8973),
-    (-0.0175, 3.7525),
-    (-2.8973, 2.8973),
-    (0.0, 0.04),
-]
 #: The arm raised above the table.
 START = [0.0, -0.3, 0.0, -1.2, 0.0, 1.5, 0.8, 0.02]
 #: The hand in the middle compartment.
@@ -97,7 +87,7 @@ def plan(seconds: float = 30.0, seed: int = 1) -> dict:
     checker = dymsum.RobotChecker(robot, scene())
     space = ob.RealVectorStateSpace(robot.dof)
     bounds = ob.RealVectorBounds(robot.dof)
-    for i, (lo, hi) in enumerate(LIMITS):
+    for i, (lo, hi) in enumerate(robot.joint_limits):
         bounds.setLow(i, lo)
         bounds.setHigh(i, hi)
     space.setBounds(bounds)

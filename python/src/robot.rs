@@ -97,6 +97,14 @@ impl PyRobot {
         self.inner.dof()
     }
 
+    /// Each degree of freedom's ``(lower, upper)`` limits, in
+    /// ``joint_names`` order (a continuous joint's are infinite): the
+    /// bounds of a planner's joint space.
+    #[getter]
+    fn joint_limits(&self) -> Vec<(f64, f64)> {
+        self.inner.joint_limits()
+    }
+
     /// For each link with a sphere, cylinder or capsule: the largest
     /// distance from its polytope to the exact shape.
     #[getter]

@@ -18,18 +18,6 @@ from conftest import need
 import dymsum
 
 DATA = os.path.join(os.path.dirname(__file__), "data", "panda")
-LIMITS = np.array(
-    [
-        (-2.8973, 2.8973),
-        (-1.7628, 1.7628),
-        (-2.8973, 2.8973),
-        (-3.0718, -0.0698),
-        (-2.8973, 2.8973),
-        (-0.0175, 3.7525),
-        (-2.8973, 2.8973),
-        (0.0, 0.04),
-    ]
-)
 
 
 @pytest.fixture(scope="module")
@@ -51,13 +39,15 @@ def panda(root):
     )
 
 
-def _random_q(rng, n):
-    return LIMITS[:, 0] + (LIMITS[:, 1] - LIMITS[:, 0]) * rng.random((n, 8))
+def _random_q(rng, n, robot):
+    limits = np.array(robot.joint_limits)
+    return limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random((n, len(limits)))
 
 
 def test_the_front_door(panda):
     assert panda.dof == 8
     assert panda.joint_names[:2] == ["panda_joint1", "panda_joint2"]
+    assert panda.joint_limits[3] == (-3.0718, -0.0698) and panda.joint_limits[7] == (0.0, 0.04)
     assert "panda_hand" in panda.link_names
     poses = panda.forward([0, 0, 0, -1.5, 0, 1.5, 0, 0.02])
     assert poses.shape == (len(panda.link_names), 4, 4)
@@ -87,7 +77,7 @@ def test_configurations_against_fcl(panda):
         meshes["panda_" + link] = model
     pairs = [(a, b) for a, b in panda.collision_pairs if a in meshes and b in meshes]
     rng = np.random.default_rng(7)
-    qs = _random_q(rng, 300)
+    qs = _random_q(rng, 300, panda)
     found = 0
     for q in qs:
         poses = panda.forward(q)
@@ -120,7 +110,7 @@ def test_against_pinocchio_and_coal(root, panda):
     ours_pairs = {frozenset(p) for p in panda.collision_pairs}
     rng = np.random.default_rng(3)
     found = 0
-    for q in _random_q(rng, 200):
+    for q in _random_q(rng, 200, panda):
         pq = np.concatenate([q, [q[7]]])[: model.nq]  # the mimic finger, when pinocchio has it
         pin.computeCollisions(model, data, geom, gdata, pq, False)
         ours = {frozenset((a, b)) for a, b in checker.colliding_pairs(q)}
@@ -143,10 +133,10 @@ def test_motions_against_dense_sampling(panda):
     rng = np.random.default_rng(11)
     free = hit = 0
     while free + hit < 12:
-        q0 = _random_q(rng, 1)[0]
+        q0 = _random_q(rng, 1, panda)[0]
         if checker.collides_at(q0):
             continue
-        q1 = q0 + 0.25 * (_random_q(rng, 1)[0] - q0)
+        q1 = q0 + 0.25 * (_random_q(rng, 1, panda)[0] - q0)
         try:
             c = checker.check(q0, q1)
         except dymsum.MotionUndecided:
@@ -177,9 +167,9 @@ def test_planning_in_joint_space_with_ompl(panda):
     checker = dymsum.RobotChecker(panda, [block])
     space = ob.RealVectorStateSpace(8)
     bounds = ob.RealVectorBounds(8)
-    for i, (lo, hi) in enumerate(LIMITS):
-        bounds.setLow(i, float(lo))
-        bounds.setHigh(i, float(hi))
+    for i, (lo, hi) in enumerate(panda.joint_limits):
+        bounds.setLow(i, lo)
+        bounds.setHigh(i, hi)
     space.setBounds(bounds)
     ss = og.SimpleSetup(space)
     v = dom.setup_joint_validators(ss, checker)

@@ -70,19 +70,10 @@ impl Lcg {
     }
 }
 
-/// A random configuration within Panda's limits.
-fn random_q(r: &mut Lcg) -> Vec<f64> {
-    let limits = [
-        (-2.8973, 2.8973),
-        (-1.7628, 1.7628),
-        (-2.8973, 2.8973),
-        (-3.0718, -0.0698),
-        (-2.8973, 2.8973),
-        (-0.0175, 3.7525),
-        (-2.8973, 2.8973),
-        (0.0, 0.04),
-    ];
-    limits
+/// A random configuration within the robot's limits (finite ones).
+fn random_q(r: &mut Lcg, robot: &dymsum::robot::Robot) -> Vec<f64> {
+    robot
+        .joint_limits()
         .iter()
         .map(|&(lo, hi)| lo + (hi - lo) * r.unit())
         .collect()
@@ -148,7 +139,7 @@ fn panda_loads_with_its_srdf_and_moves_as_its_matrices_say() {
     let urdf = urdf_rs::read_file(panda_data().join("panda.urdf")).unwrap();
     let mut r = Lcg(5);
     for _ in 0..50 {
-        let q = random_q(&mut r);
+        let q = random_q(&mut r, robot);
         let poses = robot.forward(&q).unwrap();
         for (name, m) in matrix_forward(&urdf, &q) {
             let l = robot.link_names().iter().position(|n| *n == name).unwrap();
@@ -177,7 +168,7 @@ fn panda_configurations_agree_with_links_placed_one_by_one() {
     let mut r = Lcg(11);
     let (mut hits, mut total) = (0, 0);
     for _ in 0..150 {
-        let q = random_q(&mut r);
+        let q = random_q(&mut r, &robot);
         let poses = robot.forward(&q).unwrap();
         let got = checker.colliding_pairs(&q).unwrap();
         let mut want = Vec::new();
@@ -204,7 +195,7 @@ fn panda_configurations_agree_with_links_placed_one_by_one() {
     }
     // Random Panda configurations fold onto themselves now and then.
     assert!(hits > 5 && hits < total, "{hits} of {total}");
-    let qs: Vec<Vec<f64>> = (0..20).map(|_| random_q(&mut r)).collect();
+    let qs: Vec<Vec<f64>> = (0..20).map(|_| random_q(&mut r, &robot)).collect();
     let one: Vec<bool> = qs.iter().map(|q| checker.collides_at(q).unwrap()).collect();
     assert_eq!(checker.collides_many(&qs).unwrap(), one);
 }
@@ -330,11 +321,11 @@ fn panda_motions_agree_with_dense_sampling() {
     let mut r = Lcg(21);
     let (mut free, mut hit, mut undecided) = (0, 0, 0);
     while free + hit + undecided < 40 {
-        let q0 = random_q(&mut r);
+        let q0 = random_q(&mut r, checker.robot());
         if checker.collides_at(&q0).unwrap() {
             continue;
         }
-        let target = random_q(&mut r);
+        let target = random_q(&mut r, checker.robot());
         // A short motion: a quarter of the way to another configuration.
         let q1: Vec<f64> = q0
             .iter()

@@ -434,6 +434,21 @@ impl Robot {
         self.root
     }
 
+    /// Each degree of freedom's limits `(lower, upper)`, in
+    /// [`Robot::joint_names`] order (a continuous joint's are infinite):
+    /// the bounds of a planner's joint space.
+    pub fn joint_limits(&self) -> Vec<(f64, f64)> {
+        self.dofs
+            .iter()
+            .map(|&k| match self.joints[k].spec.kind {
+                JointKind::Revolute { lower, upper } | JointKind::Prismatic { lower, upper } => {
+                    (lower, upper)
+                }
+                _ => (f64::NEG_INFINITY, f64::INFINITY),
+            })
+            .collect()
+    }
+
     /// The number of degrees of freedom.
     pub fn dof(&self) -> usize {
         self.dofs.len()
