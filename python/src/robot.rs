@@ -33,6 +33,24 @@ fn configuration(q: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<f64>> {
     })
 }
 
+/// Configurations as rows of a (K, dof) array-like of numbers (any dtype
+/// NumPy converts to float64, any memory layout).
+fn configurations(qs: &Bound<'_, PyAny>, dof: usize) -> PyResult<Vec<Vec<f64>>> {
+    let shape_error = || value_error(format!("qs must be a (K, {dof}) array of numbers"));
+    let np = qs.py().import("numpy")?;
+    let arr = np
+        .call_method1("asarray", (qs, "float64"))
+        .map_err(|_| shape_error())?;
+    let arr = arr
+        .extract::<PyReadonlyArray2<'_, f64>>()
+        .map_err(|_| shape_error())?;
+    let view = arr.as_array();
+    if view.ncols() != dof {
+        return Err(shape_error());
+    }
+    Ok(view.rows().into_iter().map(|r| r.to_vec()).collect())
+}
+
 /// A robot read from a URDF: links, joints (revolute, continuous,
 /// prismatic, fixed; limits; mimics) and each link's collision geometry.
 ///
@@ -208,19 +226,15 @@ impl PyRobotChecker {
             .map_err(|e| robot_error(py, "RobotChecker.collides_at", e))
     }
 
-    /// ``collides_at`` for each row of a (K, dof) array: a (K,) bool
-    /// array, in parallel with the GIL released.
+    /// ``collides_at`` for each row of a (K, dof) array (any array-like
+    /// of numbers, in any memory layout): a (K,) bool array, in parallel
+    /// with the GIL released.
     fn collides_many<'py>(
         &self,
         py: Python<'py>,
-        qs: PyReadonlyArray2<'py, f64>,
+        qs: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<bool>>> {
-        let rows: Vec<Vec<f64>> = qs
-            .as_array()
-            .rows()
-            .into_iter()
-            .map(|r| r.to_vec())
-            .collect();
+        let rows = configurations(qs, self.inner.robot().dof())?;
         let inner = &self.inner;
         let hits = py
             .detach(|| inner.collides_many(&rows))

@@ -93,6 +93,12 @@ def test_configurations_against_fcl(panda):
     assert found > 5
     many = checker.collides_many(qs[:40])
     assert list(many) == [checker.collides_at(q) for q in qs[:40]]
+    # Any array-like, any layout: lists, Fortran order, a strided view.
+    assert list(checker.collides_many(qs[:40].tolist())) == list(many)
+    assert list(checker.collides_many(np.asfortranarray(qs[:40]))) == list(many)
+    assert list(checker.collides_many(qs[:80:2])) == [checker.collides_at(q) for q in qs[:80:2]]
+    with pytest.raises(ValueError, match=r"\(K, 8\)"):
+        checker.collides_many(qs[:4, :7])
 
 
 def test_against_pinocchio_and_coal(root, panda):
