@@ -372,30 +372,25 @@ impl Robot {
     /// pairs not checked anyway are ignored.
     ///
     /// # Errors
-    /// [`RobotError::BadPair`] naming a missing link or a link paired with
-    /// itself.
+    /// [`RobotError::BadPair`] naming a missing link.
     pub fn disable_pairs(&mut self, pairs: &[(String, String)]) -> Result<(), RobotError> {
         for (a, b) in pairs {
-            let index = |n: &str| {
-                self.links
-                    .iter()
-                    .position(|l| l.name == n)
-                    .ok_or_else(|| RobotError::BadPair(format!("no link {n:?}")))
-            };
-            let (i, j) = (index(a)?, index(b)?);
+            let (i, j) = (self.link_index(a)?, self.link_index(b)?);
             self.pairs.retain(|&p| p != (i.min(j), i.max(j)));
         }
         Ok(())
     }
 
+    /// The index of the link named `name`, for a collision pair.
+    fn link_index(&self, name: &str) -> Result<usize, RobotError> {
+        self.links
+            .iter()
+            .position(|l| l.name == name)
+            .ok_or_else(|| RobotError::BadPair(format!("no link {name:?}")))
+    }
+
     fn pair_index(&self, a: &str, b: &str) -> Result<(usize, usize), RobotError> {
-        let index = |n: &str| {
-            self.links
-                .iter()
-                .position(|l| l.name == n)
-                .ok_or_else(|| RobotError::BadPair(format!("no link {n:?}")))
-        };
-        let (i, j) = (index(a)?, index(b)?);
+        let (i, j) = (self.link_index(a)?, self.link_index(b)?);
         if i == j {
             return Err(RobotError::BadPair(format!("link {a:?} with itself")));
         }
