@@ -14,9 +14,14 @@ use rayon::prelude::*;
 use super::error::RobotError;
 use super::kinematics::{compose, inverse};
 use super::model::Robot;
+use super::separation::Corners;
 use crate::body::MeshBody;
 use crate::kernel::rotation::Pose;
 use crate::query::SceneChecker;
+
+/// The most obstacles the motion search gives each a separating plane
+/// (one plane test per obstacle a step: `robot::motion`).
+pub(super) const PLANE_OBSTACLES: usize = 32;
 
 /// A robot prepared for many configuration checks against a scene.
 ///
@@ -58,6 +63,13 @@ pub struct RobotChecker {
     /// link against the second).
     pairs: Vec<(usize, usize)>,
     pair_checkers: Vec<SceneChecker>,
+    /// Each link's hull corners (`None` without geometry): the motion
+    /// search's plane certificate (`robot::separation`).
+    corners: Vec<Option<Corners>>,
+    /// Each obstacle's hull corners, when there are at most
+    /// [`PLANE_OBSTACLES`] obstacles (else none: links against the scene
+    /// are then certified by the swept test alone).
+    obstacle_corners: Vec<Corners>,
     /// A checker of each link with geometry against the scene.
     scene_checkers: Vec<Option<SceneChecker>>,
 }
@@ -102,10 +114,25 @@ impl RobotChecker {
                 _ => Err(RobotError::BadPair("a link without geometry".into())),
             })
             .collect::<Result<Vec<_>, RobotError>>()?;
+        let corners = robot
+            .links
+            .iter()
+            .map(|l| l.body.as_ref().map(|b| Corners::new(b.vertices())))
+            .collect();
+        let obstacle_corners = if obstacles.len() <= PLANE_OBSTACLES {
+            obstacles
+                .iter()
+                .map(|o| Corners::new(o.vertices()))
+                .collect()
+        } else {
+            Vec::new()
+        };
         Ok(RobotChecker {
             robot,
             pairs,
             pair_checkers,
+            corners,
+            obstacle_corners,
             scene_checkers,
         })
     }
@@ -234,6 +261,16 @@ impl RobotChecker {
         c.apart_at(pose, reach)
     }
 
+    /// Each obstacle's hull corners (empty past [`PLANE_OBSTACLES`]).
+    pub(super) fn obstacle_corners(&self) -> &[Corners] {
+        &self.obstacle_corners
+    }
+
+    /// Link `l`'s hull corners (`None` without geometry).
+    pub(super) fn corners(&self, l: usize) -> Option<&Corners> {
+        self.corners[l].as_ref()
+    }
+
     /// The largest norm of a scene point (`0` without a scene).
     pub(super) fn scene_size(&self) -> f64 {
         self.scene_checkers
@@ -245,6 +282,6 @@ impl RobotChecker {
 }
 
 /// Link `i`'s pose in link `j`'s frame.
-fn relative(poses: &[Pose], i: usize, j: usize) -> Pose {
+pub(super) fn relative(poses: &[Pose], i: usize, j: usize) -> Pose {
     compose(&inverse(&poses[j]), &poses[i])
 }

@@ -11,6 +11,7 @@ pub mod error;
 pub mod kinematics;
 pub mod model;
 pub mod motion;
+mod separation;
 pub mod shapes;
 
 pub use checker::{LinkContact, RobotChecker};

@@ -20,11 +20,29 @@
 //! (Schwarzer, Saha and Latombe's bound for exact path checking), and
 //! over `[a, t]` at most `(t − a) vᵢ`.
 //!
+//! **A pair's relative motion.** Whether links `i` and `j` meet depends
+//! only on `i`'s pose in `j`'s frame, `pose_j⁻¹ ∘ pose_i`: the joints
+//! above their common ancestor cancel. That relative pose is itself a
+//! serial chain rooted at `j`: the joints from `j` up to the ancestor,
+//! each inverted (its motion reversed, about or along the same axis
+//! through its child frame's origin), then the joints from the ancestor
+//! down to `i`. The bound above applies to it unchanged: walking up from
+//! `i`, `ρ` grows by each joint's origin and travel as before; walking
+//! down towards `j`, a joint's child frame lies at most its origin's
+//! length and its travel from its parent's, so `ρ` grows by those before
+//! the joint's `|Δₖ| ρ` is added (the inverse motion turns about an axis
+//! through the child frame's origin). Distances are the same in either
+//! link's frame, so `vᵢⱼ` is the smaller of `i` seen from `j` and `j`
+//! seen from `i` (`chain_speed`). A link against the scene uses `vᵢ`
+//! (the scene is the root's). Before this, a pair took `vᵢ + vⱼ`, both
+//! from the root: a turn of the base counted twice for links that it
+//! carries alike.
+//!
 //! **The certificate.** For a pair of links `i`, `j` (or a link and the
-//! scene, `vⱼ = 0`) over an interval `[a, b]`, the scene checker's swept
+//! scene, `vᵢⱼ = vᵢ`) over an interval `[a, b]`, the scene checker's swept
 //! test with both ends at `q(a)` certifies that every triangle of link
 //! `i`, at its pose relative to `j` there, is more than
-//! `r = (b − a)(vᵢ + vⱼ) + m` from every triangle of `j` (the tree walk
+//! `r = (b − a) vᵢⱼ + m` from every triangle of `j` (the tree walk
 //! drops node pairs whose boxes are more than `r` apart, the rest by a
 //! gap bounded below rigorously: `query::scene::sweep`). The float poses
 //! differ from the exact forward kinematics at `q(a)` and at any `q(t)`
@@ -39,6 +57,30 @@
 //! tested again before `b` (the search examines intervals left to right,
 //! so `[a, b]` and the certified `[0, a]` are contiguous); an interval is
 //! certified when every pair is.
+//!
+//! **The plane certificate.** Before walking a pair's triangles, a
+//! separating plane between the two links' hull corners at `q(a)`
+//! (`robot::separation`: Gilbert's iteration, warm-started per pair)
+//! gives a float gap `g`; a link against the scene takes one plane per
+//! obstacle (up to `PLANE_OBSTACLES` of them) and the least gap: outside
+//! every obstacle's hull a point is inside no obstacle's solid (a
+//! component's winding number vanishes outside its hull). The horizon `h = a + 0.999 (g − m) / v`,
+//! clamped to `1`, is used when it reaches `b`, and only once the plane
+//! certifies the corners, posed at `q(a)`, more than
+//! `r = (h − a) vᵢⱼ + m` apart (rounded up as above): the same statement
+//! the swept test makes for `[a, h]`, so the same argument covers it. A
+//! plane separating the hulls separates the meshes and the solids they
+//! bound. `h` may lie beyond `b`: the pair is then not tested again
+//! before `h` (conservative advancement, one step a call). Pairs far
+//! apart cost a few dozen dot products per step instead of a tree walk.
+//! When the plane falls short and two corners (vertices of the meshes)
+//! lie closer than `r`, the walk could not certify `r` either; when the
+//! plane's gap is at least `r / 8`, a few halvings of the interval let
+//! the plane certify, for far less than a walk at a reach that wide
+//! (every triangle pair within `r` is visited). Either way the interval
+//! is "not proved" without walking (a `false` is always sound); the walk
+//! is for pairs whose hulls overlap or nearly (nested, interleaved or
+//! non-convex links close together).
 //!
 //! **Rounding.** `ε` bounds how far a point of a link at its float pose
 //! ([`Robot::forward`], composed joint by joint) lies from the same point
@@ -78,9 +120,11 @@
 //! [`RobotChecker::collides_at`] at `q(t)`, each value clamped into the
 //! range between its ends.
 
-use super::checker::RobotChecker;
+use super::checker::{relative, RobotChecker};
 use super::error::RobotError;
 use super::model::{JointKind, Robot};
+use super::separation::PlaneCertificate;
+use crate::kernel::rotation::Pose;
 use crate::query::interval_search::{first_contact, Stop, Sweep};
 use crate::query::{MotionCheck, MotionError};
 
@@ -95,32 +139,99 @@ fn travel(robot: &Robot, k: usize, ends: (&[f64], &[f64])) -> f64 {
     }
 }
 
-/// A link's motion bound (module docs): how far any point of link `l`
-/// moves per unit of `t` along a motion whose joint values go from
-/// `ends.0` to `ends.1` (one per joint, in the robot's joint order).
-fn link_speed(robot: &Robot, l: usize, ends: (&[f64], &[f64]), reaches: &[f64]) -> f64 {
-    // The joints from link `l` up to the root, child first.
+/// The joints from link `l` up to the root, child first.
+fn chain_to_root(robot: &Robot, l: usize) -> Vec<usize> {
     let mut chain = Vec::new();
     let mut at = l;
     while let Some(k) = robot.joints.iter().position(|j| j.child == at) {
         chain.push(k);
         at = robot.joints[k].parent;
     }
-    // ρ grows as the walk goes up: for joint k, what lies below it; then
-    // joint k's own travel and origin are added for the joints above.
-    let mut rho = reaches[l];
+    chain
+}
+
+/// How far a point of the link below `up` moves per unit of `t`, walking
+/// `up` (joints child first, from the link upwards) then `down` (joints
+/// parent first, downwards to the frame the motion is measured in), the
+/// link's points within `reach` of its own frame (module docs, "The chain
+/// bound" and "A pair's relative motion").
+fn chain_speed(
+    robot: &Robot,
+    up: &[usize],
+    down: &[usize],
+    ends: (&[f64], &[f64]),
+    reach: f64,
+) -> f64 {
+    let turn = |k: usize| (ends.1[k] - ends.0[k]).abs();
+    let offset = |k: usize| {
+        travel(robot, k, ends) + robot.joints[k].spec.origin.translation.abs().element_sum()
+    };
+    // ρ: how far the link's points lie from the current frame's origin.
+    let mut rho = reach;
     let mut speed = 0.0;
-    for &k in &chain {
-        let joint = &robot.joints[k];
-        let d = (ends.1[k] - ends.0[k]).abs();
-        match joint.spec.kind {
-            JointKind::Revolute { .. } | JointKind::Continuous => speed += d * rho,
-            JointKind::Prismatic { .. } => speed += d,
+    for &k in up {
+        // Joint k's axis passes through its child frame's origin, within
+        // ρ of every point; then the parent's frame is `offset` away.
+        match robot.joints[k].spec.kind {
+            JointKind::Revolute { .. } | JointKind::Continuous => speed += turn(k) * rho,
+            JointKind::Prismatic { .. } => speed += turn(k),
             JointKind::Fixed => {}
         }
-        rho += travel(robot, k, ends) + joint.spec.origin.translation.abs().element_sum();
+        rho += offset(k);
+    }
+    for &k in down {
+        // Seen from joint k's child frame, the points move by the joint's
+        // inverse motion, about an axis through that frame's origin, at
+        // most `offset` farther from it than from the parent's.
+        rho += offset(k);
+        match robot.joints[k].spec.kind {
+            JointKind::Revolute { .. } | JointKind::Continuous => speed += turn(k) * rho,
+            JointKind::Prismatic { .. } => speed += turn(k),
+            JointKind::Fixed => {}
+        }
     }
     speed * (1.0 + 1e-12)
+}
+
+/// A link's motion bound in the root's frame (module docs): how far any
+/// point of link `l` moves per unit of `t` along a motion whose joint
+/// values go from `ends.0` to `ends.1` (one per joint, in the robot's
+/// joint order).
+fn link_speed(robot: &Robot, l: usize, ends: (&[f64], &[f64]), reaches: &[f64]) -> f64 {
+    chain_speed(robot, &chain_to_root(robot, l), &[], ends, reaches[l])
+}
+
+/// A pair's relative motion bound (module docs): how fast the distance
+/// between links `i` and `j` may shrink, from the joints between them
+/// only (those above their common ancestor move both alike). The smaller
+/// of link `i` seen from `j` and `j` seen from `i`.
+fn pair_speed(robot: &Robot, i: usize, j: usize, ends: (&[f64], &[f64]), reaches: &[f64]) -> f64 {
+    let (i_from_j, j_from_i) = pair_speeds(robot, i, j, ends, reaches);
+    i_from_j.min(j_from_i)
+}
+
+/// How fast points of link `i` move in `j`'s frame, and points of `j` in
+/// `i`'s (module docs).
+fn pair_speeds(
+    robot: &Robot,
+    i: usize,
+    j: usize,
+    ends: (&[f64], &[f64]),
+    reaches: &[f64],
+) -> (f64, f64) {
+    let (mut ci, mut cj) = (chain_to_root(robot, i), chain_to_root(robot, j));
+    while let (Some(a), Some(b)) = (ci.last(), cj.last()) {
+        if a != b {
+            break;
+        }
+        ci.pop();
+        cj.pop();
+    }
+    let down = |c: &[usize]| c.iter().rev().copied().collect::<Vec<_>>();
+    (
+        chain_speed(robot, &ci, &down(&cj), ends, reaches[i]),
+        chain_speed(robot, &cj, &down(&ci), ends, reaches[j]),
+    )
 }
 
 /// `R` of the module docs: every origin's length, every prismatic
@@ -153,20 +264,109 @@ fn interpolation_error(robot: &Robot, ends: (&[f64], &[f64]), size: f64) -> f64 
         * 2.0
 }
 
+/// What the plane certificate found for a pair over an interval.
+enum Plane {
+    /// Certified free up to this horizon (at or beyond the interval's end).
+    Certified(f64),
+    /// Not up to the interval's end: the float gap along the plane, and
+    /// the distance of two corners (the links are no farther apart, up to
+    /// rounding).
+    Short { gap: f64, nearest: f64 },
+}
+
 /// The search over one motion (module docs).
 struct RobotSweep<'a> {
     checker: &'a RobotChecker,
     q0: Vec<f64>,
     q1: Vec<f64>,
-    /// Per link, its speed bound.
+    /// Per measured checker (scene links, then pairs): how fast its two
+    /// sides may approach each other.
     speed: Vec<f64>,
     /// `2(2ε + pad)` of the module docs, per unit of pad's scale.
     margin: f64,
     /// Per scene link then per pair: the horizon certified so far.
     horizon: Vec<f64>,
+    /// Per measured checker, per target (the other link, or each
+    /// obstacle): the plane certificate's buffer and warm start.
+    planes: Vec<Vec<PlaneCertificate>>,
+    /// A buffer: a link's corners posed.
+    posed: Vec<glam::DVec3>,
 }
 
 impl RobotSweep<'_> {
+    /// The horizon separating planes certify for measured checker `k`
+    /// (link `i` against link `j`, or against each obstacle when `j` is
+    /// `None`; approaching at most at `v`) from `a`, when it reaches `b`
+    /// (module docs, "The plane certificate").
+    fn plane_horizon(
+        &mut self,
+        k: usize,
+        poses: &[Pose],
+        (i, j): (usize, Option<usize>),
+        (a, b): (f64, f64),
+        v: f64,
+    ) -> Plane {
+        let checker = self.checker;
+        let none = Plane::Short {
+            gap: f64::NEG_INFINITY,
+            nearest: f64::INFINITY,
+        };
+        let (Some(ci), (pose, targets)) = (
+            checker.corners(i),
+            match j {
+                Some(j) => (
+                    relative(poses, i, j),
+                    checker.corners(j).map(std::slice::from_ref).unwrap_or(&[]),
+                ),
+                None => (poses[i], checker.obstacle_corners()),
+            },
+        ) else {
+            return none;
+        };
+        if targets.is_empty() {
+            return none;
+        }
+        let planes = &mut self.planes[k];
+        planes.resize_with(targets.len(), PlaneCertificate::default);
+        let posed = &mut self.posed;
+        ci.pose_into(&pose, posed);
+        let (mut gap, mut nearest) = (f64::INFINITY, f64::INFINITY);
+        let mut horizon = f64::INFINITY;
+        for (plane, target) in planes.iter_mut().zip(targets) {
+            // A target certified past b by an earlier step is not tested.
+            if plane.horizon >= b {
+                horizon = horizon.min(plane.horizon);
+                continue;
+            }
+            // Enough: a gap that certifies four times the interval.
+            let g = plane.prepare(posed, target, 4.0 * (b - a) * v + 2.0 * self.margin);
+            gap = gap.min(g);
+            nearest = nearest.min(plane.nearest);
+            // The width this target's float gap allows, a little less;
+            // then certified.
+            let w = (g - self.margin) / v * 0.999;
+            let h = if w.is_finite() { (a + w).min(1.0) } else { 1.0 };
+            if !(g > self.margin && h >= b) {
+                return Plane::Short { gap, nearest };
+            }
+            let reach = ((h - a) * v * (1.0 + 1e-12) + self.margin) * (1.0 + 1e-12);
+            if !plane.apart_by(posed, target, reach) {
+                return Plane::Short { gap, nearest };
+            }
+            plane.horizon = h;
+            horizon = horizon.min(h);
+        }
+        Plane::Certified(horizon)
+    }
+
+    /// Every target of measured checker `k` is certified to `b` (by the
+    /// swept test).
+    fn planes_certified_to(&mut self, k: usize, b: f64) {
+        for p in &mut self.planes[k] {
+            p.horizon = p.horizon.max(b);
+        }
+    }
+
     fn q_at(&self, t: f64) -> Vec<f64> {
         self.q0
             .iter()
@@ -190,15 +390,33 @@ impl Sweep for RobotSweep<'_> {
             if self.horizon[k] >= b {
                 continue;
             }
-            let v = self.speed[i] + j.map_or(0.0, |j| self.speed[j]);
+            let v = self.speed[k];
             // How far the two links may come towards each other over
             // [a, b], rounded up; then certified at q(a).
             let reach = ((b - a) * v * (1.0 + 1e-12) + self.margin) * (1.0 + 1e-12);
+            match self.plane_horizon(k, &poses, (i, j), (a, b), v) {
+                Plane::Certified(h) => {
+                    self.horizon[k] = h;
+                    continue;
+                }
+                // Two corners closer than the reach: the walk cannot
+                // certify it. A plane gap of an eighth of the reach: a
+                // few halvings let the plane certify, cheaper than a walk
+                // this wide (module docs). Not proved, without walking.
+                Plane::Short { gap, nearest } if reach > nearest * 1.01 || gap > 0.125 * reach => {
+                    all = false;
+                    break;
+                }
+                Plane::Short { .. } => {}
+            }
             if !(reach.is_finite() && self.checker.apart_by(c, &poses, i, j, reach)) {
                 all = false;
                 break;
             }
-            self.horizon[k] = b;
+            // Nothing moves the two apart or together (a link fixed to the
+            // root against the scene): certified to the end.
+            self.horizon[k] = if v == 0.0 { 1.0 } else { b };
+            self.planes_certified_to(k, self.horizon[k]);
         }
         Ok(all)
     }
@@ -242,8 +460,12 @@ impl RobotChecker {
             .iter()
             .map(|l| l.body.as_ref().map_or(0.0, |b| b.reach))
             .collect();
-        let speed: Vec<f64> = (0..robot.links.len())
-            .map(|l| link_speed(robot, l, ends, &reaches))
+        let speed: Vec<f64> = self
+            .measured_pairs()
+            .map(|(_, _, (i, j))| match j {
+                None => link_speed(robot, i, ends, &reaches),
+                Some(j) => pair_speed(robot, i, j, ends, &reaches),
+            })
             .collect();
         let size = robot_size(robot, ends, &reaches) + self.scene_size();
         let epsilon = (2.0 * robot.joints.len() as f64 + 8.0) * 1e-13 * size
@@ -261,6 +483,8 @@ impl RobotChecker {
             speed,
             margin: 2.0 * (2.0 * epsilon + pad) + 1e-300,
             horizon: vec![0.0; self.measured_pairs().count()],
+            planes: vec![Vec::new(); self.measured_pairs().count()],
+            posed: Vec::new(),
         };
         let mut steps_left = budget.max(1);
         let mut stack = Vec::new();
@@ -288,5 +512,211 @@ impl From<MotionError> for RobotError {
             MotionError::Query(q) => RobotError::Query(q),
             other => RobotError::Motion(other),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::rotation::{Pose, Rotation};
+    use crate::robot::kinematics::{compose, inverse};
+    use crate::robot::model::{JointSpec, LinkSpec, Mimic};
+    use glam::DVec3;
+
+    struct Rng(u64);
+    impl Rng {
+        /// Uniform in [−1, 1).
+        fn unit(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+        fn vec(&mut self) -> DVec3 {
+            DVec3::new(self.unit(), self.unit(), self.unit())
+        }
+        fn below(&mut self, n: usize) -> usize {
+            ((self.unit() + 1.0) * 0.5 * n as f64) as usize % n
+        }
+    }
+
+    /// A random tree of `n` links: each joint's parent one of the links
+    /// before it, kinds, origins and axes at random, one mimic sometimes.
+    fn random_tree(r: &mut Rng, n: usize) -> Robot {
+        let links = (0..n)
+            .map(|l| LinkSpec {
+                name: format!("l{l}"),
+                body: None,
+            })
+            .collect();
+        let mut joints = Vec::new();
+        for c in 1..n {
+            let kind = match r.below(4) {
+                0 => JointKind::Revolute {
+                    lower: -2.0,
+                    upper: 2.0,
+                },
+                1 => JointKind::Continuous,
+                2 => JointKind::Prismatic {
+                    lower: -0.5,
+                    upper: 0.7,
+                },
+                _ => JointKind::Fixed,
+            };
+            let mimic =
+                (c > 2 && r.below(4) == 0 && !matches!(kind, JointKind::Fixed)).then(|| Mimic {
+                    joint: "j1".into(),
+                    multiplier: 2.5 * r.unit(),
+                    offset: r.unit(),
+                });
+            let parent = if r.below(3) == 0 { r.below(c) } else { c - 1 };
+            let turn =
+                Rotation::from_axis_angle(r.vec() + DVec3::splat(0.01), 3.0 * r.unit()).unwrap();
+            joints.push(JointSpec {
+                name: format!("j{c}"),
+                kind,
+                parent: format!("l{parent}"),
+                child: format!("l{c}"),
+                origin: Pose::new(turn, r.vec()),
+                axis: r.vec() + DVec3::splat(0.01),
+                mimic,
+            });
+        }
+        // j1 must be a degree of freedom for the mimics.
+        joints[0].kind = JointKind::Revolute {
+            lower: -2.0,
+            upper: 2.0,
+        };
+        joints[0].mimic = None;
+        Robot::new(links, joints).unwrap()
+    }
+
+    fn random_q(r: &mut Rng, robot: &Robot) -> Vec<f64> {
+        robot
+            .dofs
+            .iter()
+            .map(|&j| match robot.joints[j].spec.kind {
+                JointKind::Revolute { lower, upper } | JointKind::Prismatic { lower, upper } => {
+                    lower + (upper - lower) * 0.5 * (r.unit() + 1.0)
+                }
+                _ => 6.0 * r.unit(),
+            })
+            .collect()
+    }
+
+    /// The chain bounds against the motion itself: points of a link within
+    /// its reach, posed at many times along random motions of random
+    /// trees, never move faster than the bound, in the root's frame
+    /// (`link_speed`) nor in another link's (`pair_speed`).
+    #[test]
+    fn links_move_no_faster_than_their_chain_bounds() {
+        let mut r = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut tight = 0.0f64;
+        for _ in 0..300 {
+            let size = 2 + r.below(6);
+            let robot = random_tree(&mut r, size);
+            let n = robot.links.len();
+            let reaches: Vec<f64> = (0..n).map(|_| 0.1 + r.unit().abs()).collect();
+            let (q0, q1) = (random_q(&mut r, &robot), random_q(&mut r, &robot));
+            let (v0, v1) = (
+                robot.joint_values(&q0).unwrap(),
+                robot.joint_values(&q1).unwrap(),
+            );
+            let ends = (v0.as_slice(), v1.as_slice());
+            let (i, j) = (r.below(n), r.below(n));
+            let within = |r: &mut Rng, reach: f64| -> Vec<DVec3> {
+                (0..8)
+                    .map(|_| r.vec().clamp_length_max(1.0) * reach / 3f64.sqrt())
+                    .collect()
+            };
+            let (pi, pj) = (within(&mut r, reaches[i]), within(&mut r, reaches[j]));
+            let vi = link_speed(&robot, i, ends, &reaches);
+            let (i_from_j, j_from_i) = pair_speeds(&robot, i, j, ends, &reaches);
+            let vij = pair_speed(&robot, i, j, ends, &reaches);
+            let at = |t: f64| {
+                let q: Vec<f64> = q0.iter().zip(&q1).map(|(a, b)| a + t * (b - a)).collect();
+                robot.forward(&q).unwrap()
+            };
+            let steps = 400;
+            let dt = 1.0 / steps as f64;
+            let rel = |p: &[Pose], a: usize, b: usize| compose(&inverse(&p[b]), &p[a]);
+            let mut before = at(0.0);
+            for s in 1..=steps {
+                let now = at(s as f64 / steps as f64);
+                for x in &pi {
+                    let moved = (now[i].apply(*x) - before[i].apply(*x)).length();
+                    assert!(moved <= dt * vi + 1e-12, "link {i}: {moved} > {}", dt * vi);
+                    let moved = (rel(&now, i, j).apply(*x) - rel(&before, i, j).apply(*x)).length();
+                    assert!(
+                        moved <= dt * i_from_j + 1e-12,
+                        "{i} from {j}: {moved} > {}",
+                        dt * i_from_j
+                    );
+                    if i_from_j > 0.0 {
+                        tight = tight.max(moved / (dt * i_from_j));
+                    }
+                    // The distance to any point of j changes no faster than
+                    // the smaller bound.
+                    for y in &pj {
+                        let d = |p: &[Pose]| (p[i].apply(*x) - p[j].apply(*y)).length();
+                        let change = (d(&now) - d(&before)).abs();
+                        assert!(
+                            change <= dt * vij + 1e-12,
+                            "pair {i}, {j}: {change} > {}",
+                            dt * vij
+                        );
+                    }
+                }
+                for y in &pj {
+                    let moved = (rel(&now, j, i).apply(*y) - rel(&before, j, i).apply(*y)).length();
+                    assert!(
+                        moved <= dt * j_from_i + 1e-12,
+                        "{j} from {i}: {moved} > {}",
+                        dt * j_from_i
+                    );
+                }
+                before = now;
+            }
+        }
+        // The bound is not vacuous: some motion comes within half of it.
+        assert!(tight > 0.5, "{tight}");
+    }
+
+    /// Links carried alike by a turn of a joint above both do not move
+    /// relative to each other: the pair's bound is zero, while each
+    /// link's own bound is not.
+    #[test]
+    fn a_turn_above_both_links_does_not_count_for_the_pair() {
+        let spec = |name: &str, parent: &str, child: &str, kind| JointSpec {
+            name: name.into(),
+            kind,
+            parent: parent.into(),
+            child: child.into(),
+            origin: Pose::new(Rotation::IDENTITY, DVec3::new(1.0, 0.0, 0.0)),
+            axis: DVec3::Z,
+            mimic: None,
+        };
+        let turn = JointKind::Revolute {
+            lower: -3.0,
+            upper: 3.0,
+        };
+        let links = ["base", "arm", "a", "b"].map(|n| LinkSpec {
+            name: n.into(),
+            body: None,
+        });
+        let robot = Robot::new(
+            links.to_vec(),
+            vec![
+                spec("pan", "base", "arm", turn),
+                spec("fa", "arm", "a", JointKind::Fixed),
+                spec("fb", "arm", "b", JointKind::Fixed),
+            ],
+        )
+        .unwrap();
+        let ends = ([0.0, 0.0, 0.0].as_slice(), [3.0, 0.0, 0.0].as_slice());
+        let reaches = [1.0; 4];
+        assert!(link_speed(&robot, 2, ends, &reaches) > 3.0);
+        assert_eq!(pair_speed(&robot, 2, 3, ends, &reaches), 0.0);
+        assert!(pair_speed(&robot, 0, 2, ends, &reaches) > 3.0);
     }
 }
