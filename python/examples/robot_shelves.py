@@ -1,5 +1,5 @@
-"""Plan Panda's arm into a shelf with OMPL's RRTConnect in joint space,
-every motion certified (issue 37).
+"""Plan an arm (Panda or UR5) into a shelf with OMPL's RRTConnect in joint
+space, every motion certified (issue 37).
 
 The scene, in the robot base's frame (metres; x in front of the robot):
 
@@ -10,17 +10,19 @@ The scene, in the robot base's frame (metres; x in front of the robot):
   (0.02 thick) every 0.3 up to 0.9, side walls and a back.
 
 The start holds the arm raised above the table; the goal puts the hand in
-the middle compartment (between the boards at 0.3 and 0.6; the hand's
-tool point at about (0.88, −0.03, 0.39)). Both are checked free.
+the middle compartment (between the boards at 0.3 and 0.6): Panda's tool
+point at about (0.88, −0.03, 0.39), UR5's flange (``ee_link``, no gripper)
+at (0.76, 0, 0.42) pointing into the shelf. Both are checked free.
 dymsum's joint-space validators (``dymsum.ompl.setup_joint_validators``)
 check states exactly and accept a motion only with a certificate. Prints
 whether a path was found, how many motions the validator certified, and
 whether every motion of the path found is certified free again.
 
-    python python/examples/robot_shelves.py [--time SECONDS] [--seed N]
+    python python/examples/robot_shelves.py [--robot panda|ur5] [--time SECONDS] [--seed N]
 
 Needs OMPL (``pip install ompl``); reads Panda from
-``python/tests/data/panda`` (example-robot-data, Apache-2.0).
+``python/tests/data/panda`` (example-robot-data, Apache-2.0) and UR5 from
+an installed ``example-robot-data`` (``pip install example-robot-data``).
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from __future__ import annotations
 import argparse
 import os
 import shutil
+import sysconfig
 import tempfile
 
 import numpy as np
@@ -36,10 +39,8 @@ import dymsum
 import dymsum.ompl
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data", "panda")
-#: The arm raised above the table.
-START = [0.0, -0.3, 0.0, -1.2, 0.0, 1.5, 0.8, 0.02]
-#: The hand in the middle compartment.
-GOAL = [-2.519, -1.079, 2.049, -1.139, 1.713, 2.747, 2.762, 0.026]
+#: Where ``pip install example-robot-data`` puts its robots' packages.
+SHARE = os.path.join(sysconfig.get_paths()["purelib"], "cmeel.prefix", "share")
 
 
 def box(lo, hi):
@@ -77,14 +78,43 @@ def panda() -> dymsum.Robot:
         shutil.rmtree(root, ignore_errors=True)
 
 
-def plan(seconds: float = 30.0, seed: int = 1) -> dict:
+def ur5() -> dymsum.Robot:
+    """UR5 as example-robot-data ships it (Collada meshes, its SRDF)."""
+    ur = os.path.join(SHARE, "example-robot-data", "robots", "ur_description")
+    if not os.path.isdir(ur):
+        raise FileNotFoundError(f"example-robot-data is not installed ({ur}): pip install example-robot-data")
+    return dymsum.Robot.from_urdf(
+        os.path.join(ur, "urdf", "ur5_robot.urdf"), srdf=os.path.join(ur, "srdf", "ur5.srdf"), package_dirs=[SHARE]
+    )
+
+
+#: Per robot: its loader, the start (the arm raised above the table), the
+#: goal (the hand in the middle compartment) and the link that must be
+#: there.
+ROBOTS = {
+    "panda": (panda, [0.0, -0.3, 0.0, -1.2, 0.0, 1.5, 0.8, 0.02],
+              [-2.519, -1.079, 2.049, -1.139, 1.713, 2.747, 2.762, 0.026], "panda_hand_tcp"),
+    "ur5": (ur5, [0.0, -1.571, 0.0, -1.571, 0.0, 0.0],
+            [-0.162, -0.331, -0.492, 0.822, 1.409, 0.206], "ee_link"),
+}
+
+
+def problem(name: str = "panda"):
+    """The robot, the checker against the scene, the start and the goal."""
+    load, start, goal, hand = ROBOTS[name]
+    robot = load()
+    tcp = robot.forward(goal)[robot.link_names.index(hand)][:3, 3]
+    assert 0.7 < tcp[0] < 1.0 and 0.3 < tcp[2] < 0.6, tcp  # in the middle compartment
+    return robot, dymsum.RobotChecker(robot, scene()), start, goal
+
+
+def plan(seconds: float = 30.0, seed: int = 1, robot_name: str = "panda") -> dict:
     from ompl import base as ob
     from ompl import geometric as og
     from ompl import util as ou
 
     ou.RNG.setSeed(seed)
-    robot = panda()
-    checker = dymsum.RobotChecker(robot, scene())
+    robot, checker, start_q, goal_q = problem(robot_name)
     space = ob.RealVectorStateSpace(robot.dof)
     bounds = ob.RealVectorBounds(robot.dof)
     for i, (lo, hi) in enumerate(robot.joint_limits):
@@ -94,12 +124,10 @@ def plan(seconds: float = 30.0, seed: int = 1) -> dict:
     ss = og.SimpleSetup(space)
     v = dymsum.ompl.setup_joint_validators(ss, checker)
     start, goal = space.allocState(), space.allocState()
-    for state, q in ((start, START), (goal, GOAL)):
+    for state, q in ((start, start_q), (goal, goal_q)):
         for i, x in enumerate(q):
             state[i] = x
         assert v.state_checker(state), f"{q} is not free"
-    tcp = robot.forward(GOAL)[robot.link_names.index("panda_hand_tcp")][:3, 3]
-    assert 0.7 < tcp[0] < 1.0 and 0.3 < tcp[2] < 0.6, tcp  # in the middle compartment
     ss.setStartAndGoalStates(start, goal)
     ss.setPlanner(og.RRTConnect(ss.getSpaceInformation()))
     solved = bool(ss.solve(seconds)) and ss.haveExactSolutionPath()
@@ -119,10 +147,11 @@ def plan(seconds: float = 30.0, seed: int = 1) -> dict:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--robot", choices=sorted(ROBOTS), default="panda")
     ap.add_argument("--time", type=float, default=30.0)
     ap.add_argument("--seed", type=int, default=1)
     a = ap.parse_args()
-    r = plan(a.time, a.seed)
+    r = plan(a.time, a.seed, a.robot)
     print(f"found: {r['found']} in {r['time']:.2f} s")
     print(f"motions certified by the validator: {r['motions_certified']} of {r['motions_checked']} checked")
     if r["found"]:

@@ -198,11 +198,8 @@ def test_planning_in_joint_space_with_ompl(panda):
         dom.setup_joint_validators(ob.SpaceInformation(ob.RealVectorStateSpace(3)), checker)
 
 
-def test_the_shelves_example_plans_and_certifies():
-    """python/examples/robot_shelves.py: Panda into the middle compartment
-    of a shelf on a table, with RRTConnect and dymsum's validators."""
-    if os.environ.get("DYMSUM_REQUIRE_OMPL") != "1":
-        pytest.importorskip("ompl.base")
+def _shelves():
+    """python/examples/robot_shelves.py as a module."""
     import importlib.util
     import pathlib
 
@@ -210,6 +207,61 @@ def test_the_shelves_example_plans_and_certifies():
     spec = importlib.util.spec_from_file_location("robot_shelves", path)
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
-    r = mod.plan(seconds=30.0, seed=1)
+    return mod
+
+
+@pytest.mark.parametrize("robot_name", ["panda", "ur5"])
+def test_long_motions_among_shelves_against_dense_sampling(robot_name):
+    """Motions as a planner asks them (anywhere in the joint limits, up to
+    the whole range), among the table and the shelf: a motion certified
+    free has no colliding state among 1,500 evenly spaced ones (including
+    the moments its links pass closest, which the separating planes of
+    ``robot::motion`` certify over long stretches), and a contact
+    bracketed is a contact, with no contact sampled before it."""
+    mod = _shelves()
+    if robot_name == "ur5" and not os.path.isdir(os.path.join(mod.SHARE, "example-robot-data")):
+        assert os.environ.get("DYMSUM_REQUIRE_PINOCCHIO") != "1", "example-robot-data is not installed"
+        pytest.skip("example-robot-data is not installed")
+    robot, checker, _, _ = mod.problem(robot_name)
+    rng = np.random.default_rng(5)
+    limits = np.array(robot.joint_limits)
+    free = hit = 0
+    ts = np.linspace(0.0, 1.0, 1501)
+    while free + hit < 40:
+        q0, q1 = _random_q(rng, 2, robot)
+        if checker.collides_at(q0):
+            continue
+        q1 = q0 + rng.choice([0.05, 0.3, 1.0]) * (q1 - q0)
+        try:
+            c = checker.check(q0, q1, 1e-3)
+        except dymsum.MotionUndecided:
+            continue
+        states = np.clip(q0 + ts[:, None] * (q1 - q0), np.minimum(q0, q1), np.maximum(q0, q1))
+        states = np.clip(states, limits[:, 0], limits[:, 1])
+        hits = checker.collides_many(states)
+        if c.free:
+            free += 1
+            assert not hits.any(), (q0.tolist(), q1.tolist(), ts[hits.argmax()])
+        else:
+            hit += 1
+            at = np.clip(q0 + c.t_contact * (q1 - q0), np.minimum(q0, q1), np.maximum(q0, q1))
+            assert checker.collides_at(at)
+            assert not hits[ts <= c.t_safe].any()
+            assert c.t_contact - c.t_safe <= 1e-3
+    assert free >= 5 and hit >= 5, (free, hit)
+
+
+@pytest.mark.parametrize("robot_name", ["panda", "ur5"])
+def test_the_shelves_example_plans_and_certifies(robot_name):
+    """python/examples/robot_shelves.py: Panda and UR5 (example-robot-data's,
+    Collada meshes) into the middle compartment of a shelf on a table, with
+    RRTConnect and dymsum's validators, every motion of the path certified."""
+    if os.environ.get("DYMSUM_REQUIRE_OMPL") != "1":
+        pytest.importorskip("ompl.base")
+    mod = _shelves()
+    if robot_name == "ur5" and not os.path.isdir(os.path.join(mod.SHARE, "example-robot-data")):
+        assert os.environ.get("DYMSUM_REQUIRE_PINOCCHIO") != "1", "example-robot-data is not installed"
+        pytest.skip("example-robot-data is not installed")
+    r = mod.plan(seconds=30.0, seed=1, robot_name=robot_name)
     assert r["found"] and r["path_certified"], r
     assert 0 < r["motions_certified"] <= r["motions_checked"]
