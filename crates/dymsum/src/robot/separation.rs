@@ -14,7 +14,9 @@
 //! [`PlaneCertificate::apart_by`] tests `fl(fl(P₁ + R) + s) < Q₀`, with
 //! `P₁` the largest computed projection of `i`'s corners, `Q₀` the least
 //! of `j`'s, `R = fl(reach · A)` for `A ≥ |a|` (the float length times
-//! `1 + 10⁻¹²`: `sqrt` of a rounded dot product is within `3u` of it) and
+//! `1 + 10⁻¹²`: `sqrt` of a rounded dot product is within `3u` of it when
+//! `a·a` does not underflow, and `a` is first scaled by a power of two,
+//! exactly, so that its largest component lies in `[1, 2)`) and
 //! `s = fl(fl(64u · fl(S + R)) + TINY)`. The two rounded additions err by
 //! at most `2.01u (S(1 + γ₃) + R + s)`, `R` is at least `reach · A (1 − u)`
 //! and the projections together at most `2γ₃ S` off, all within the
@@ -23,9 +25,11 @@
 //! apart. Underflow is covered by `TINY` and overflow makes `s` infinite
 //! (the comparison fails), as in `kernel::separation`.
 //!
-//! What the test certifies is the links' corners as posed in floats, the
-//! same points the swept tree test certifies; the motion search's margin
-//! covers the rest (`robot::motion`).
+//! What the test certifies is the hull of the corners as posed in floats;
+//! every point of the link at the float pose lies within `pad` of it (a
+//! float-posed vertex need not lie in the hull of the float-posed corners,
+//! but the exactly posed one does), which the motion search's margin
+//! covers, as for the swept tree test (`robot::motion`).
 //!
 //! # The direction
 //! Any `a` is sound; a good one comes from Gilbert's iteration on the
@@ -138,7 +142,7 @@ impl PlaneCertificate {
             }
             v += s * d;
         }
-        self.warm = best.1;
+        self.warm = power_of_two_scaled(best.1);
         best.0
     }
 
@@ -146,7 +150,7 @@ impl PlaneCertificate {
     /// certified more than `reach` from `j`'s corners along the prepared
     /// direction (module docs); `false` means "not proved".
     pub(super) fn apart_by(&self, posed: &[DVec3], j: &Corners, reach: f64) -> bool {
-        let a = self.warm;
+        let a = power_of_two_scaled(self.warm);
         if !(a.is_finite() && a != DVec3::ZERO && reach.is_finite())
             || posed.is_empty()
             || j.points.is_empty()
@@ -164,6 +168,30 @@ impl PlaneCertificate {
         let slack = 64.0 * U * (big_s + r) + TINY;
         hi + r + slack < lo
     }
+}
+
+/// `v` times the power of two that brings its largest component into
+/// `[1, 2)` (exact: only the exponents change), so that `v·v` neither
+/// underflows nor overflows; zero and non-finite vectors as they are.
+fn power_of_two_scaled(v: DVec3) -> DVec3 {
+    let m = v.abs().max_element();
+    if !(m.is_finite() && m > 0.0) {
+        return v;
+    }
+    // m = f · 2^e with f in [1, 2): scale by 2^-e in two steps (each
+    // exact, neither overflowing: |e| ≤ 1074).
+    let e = m.log2().floor() as i32;
+    let e = if m * 2f64.powi(-e / 2) * 2f64.powi(-(e - e / 2)) >= 2.0 {
+        e + 1
+    } else {
+        e
+    };
+    let e = if m * 2f64.powi(-e / 2) * 2f64.powi(-(e - e / 2)) < 1.0 {
+        e - 1
+    } else {
+        e
+    };
+    v * 2f64.powi(-e / 2) * 2f64.powi(-(e - e / 2))
 }
 
 /// The point of `pts` with the largest (`max`) or least projection on `v`,
@@ -220,6 +248,36 @@ mod tests {
         let mut p = PlaneCertificate::default();
         p.prepare(&posed, &c, f64::INFINITY);
         assert!(!p.apart_by(&posed, &c, 0.0));
+    }
+
+    /// Review (2026-11-29): a direction whose square underflows (a stale
+    /// warm start near 1e-154 or below) made the length 0 and the reach
+    /// vanish, so any reach passed. Directions are scaled first now.
+    #[test]
+    fn review_a_direction_whose_square_underflows_certifies_nothing_false() {
+        let (a, b) = (
+            Corners::new(&cube(DVec3::ZERO, 0.5)),
+            Corners::new(&cube(DVec3::X * 3.0, 0.5)),
+        );
+        let mut posed = Vec::new();
+        a.pose_into(&Pose::IDENTITY, &mut posed);
+        for tiny in [1e-150, 1e-160, 1e-170, 1e-300, 5e-324] {
+            let p = PlaneCertificate {
+                warm: DVec3::new(tiny, 0.0, 0.0),
+                ..PlaneCertificate::default()
+            };
+            assert!(p.apart_by(&posed, &b, 1.999), "{tiny}");
+            assert!(!p.apart_by(&posed, &b, 2.0), "{tiny}");
+            assert!(!p.apart_by(&posed, &b, 1e300), "{tiny}");
+        }
+        for v in [
+            DVec3::new(3e-320, -1e-310, 0.0),
+            DVec3::new(1e300, 2.0, -1e307),
+            DVec3::splat(1.5),
+        ] {
+            let m = power_of_two_scaled(v).abs().max_element();
+            assert!((1.0..2.0).contains(&m), "{v} -> {m}");
+        }
     }
 
     /// Random posed point sets far from the origin and at tiny scales: a
