@@ -228,6 +228,20 @@ impl MeshBody {
     /// Several bodies as one (their components side by side), e.g. a
     /// scene's obstacles placed in the world frame.
     pub fn join(bodies: &[MeshBody]) -> MeshBody {
+        if let [one] = bodies {
+            // What assembling its parts again would build (the same
+            // vertices, triangles and components give the same trees),
+            // without the work: a robot's checker joins each link alone.
+            let mut joined = one.clone();
+            joined.source_of.fill(0);
+            joined.convex = None;
+            return joined;
+        }
+        MeshBody::join_assembled(bodies)
+    }
+
+    /// [`MeshBody::join`] by assembling the bodies' parts side by side.
+    fn join_assembled(bodies: &[MeshBody]) -> MeshBody {
         let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
         let (mut component_of, mut components) = (Vec::new(), Vec::new());
         let mut weights = Vec::new();
@@ -482,4 +496,44 @@ pub(crate) fn placed_polytope(
         });
     }
     crate::polytope::Polytope::from_points(&posed).map_err(|e| BodyError::Flattened(e.to_string()))
+}
+
+#[cfg(test)]
+mod join_tests {
+    use super::*;
+
+    /// Joining one body clones it: the same structure, field by field, as
+    /// assembling its parts again (the path for several bodies).
+    #[test]
+    fn joining_one_body_is_assembling_it_again() {
+        let v = vec![
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [1., 1., 0.],
+            [0., 1., 0.],
+            [0., 0., 1.],
+            [1., 0., 1.],
+            [1., 1., 1.],
+            [0., 1., 1.],
+            [5., 0., 0.],
+            [6., 0., 0.],
+            [5., 1., 0.],
+        ];
+        let faces = vec![
+            vec![0, 3, 2, 1],
+            vec![4, 5, 6, 7],
+            vec![0, 1, 5, 4],
+            vec![1, 2, 6, 5],
+            vec![2, 3, 7, 6],
+            vec![3, 0, 4, 7],
+            vec![8, 9, 10],
+        ];
+        let body = MeshBody::new(&PolygonMesh::new(v, faces)).unwrap();
+        let twice = MeshBody::join(&[body.clone(), body.clone()]);
+        for one in [body, twice] {
+            let fast = MeshBody::join(std::slice::from_ref(&one));
+            let slow = MeshBody::join_assembled(std::slice::from_ref(&one));
+            assert_eq!(format!("{fast:?}"), format!("{slow:?}"));
+        }
+    }
 }
