@@ -358,7 +358,7 @@ impl RobotSweep<'_> {
                 continue;
             }
             // Enough: a gap that certifies four times the interval.
-            let g = plane.prepare(posed, target, 4.0 * (b - a) * v + 2.0 * self.margin);
+            let g = plane.prepare(posed, ci, target, 4.0 * (b - a) * v + 2.0 * self.margin);
             gap = gap.min(g);
             nearest = nearest.min(plane.nearest);
             // The width this target's float gap allows, a little less;

@@ -53,13 +53,45 @@ const TINY: f64 = 1e-290;
 const STEPS: usize = 6;
 
 /// A link's corners for the plane test: its convex hull's corners (all its
-/// vertices when they span no volume), in its own frame.
+/// vertices when they span no volume), in its own frame, and the hull's
+/// edges between them (for hill climbing; none without a hull).
 #[derive(Clone, Debug)]
 pub(super) struct Corners {
     points: Vec<DVec3>,
+    /// Per corner, its neighbours along the hull's edges.
+    neighbours: Vec<Vec<u32>>,
 }
 
 impl Corners {
+    /// The hull corners of `vertices`.
+    pub(super) fn new(vertices: &[DVec3]) -> Corners {
+        let Ok(hull) = convex_hull(&FloatPoints(vertices)) else {
+            return Corners {
+                points: vertices.to_vec(),
+                neighbours: Vec::new(),
+            };
+        };
+        let points = hull.vertices.iter().map(|&k| vertices[k]).collect();
+        let mut index = std::collections::HashMap::new();
+        for (c, &k) in hull.vertices.iter().enumerate() {
+            index.insert(k, c as u32);
+        }
+        let mut neighbours = vec![Vec::new(); hull.vertices.len()];
+        for face in &hull.faces {
+            for (k, &from) in face.iter().enumerate() {
+                let to = face[(k + 1) % face.len()];
+                let (a, b) = (index[&from], index[&to]);
+                for (x, y) in [(a, b), (b, a)] {
+                    let list: &mut Vec<u32> = &mut neighbours[x as usize];
+                    if !list.contains(&y) {
+                        list.push(y);
+                    }
+                }
+            }
+        }
+        Corners { points, neighbours }
+    }
+
     /// The corners posed by `pose` into `out` (cleared first).
     pub(super) fn pose_into(&self, pose: &Pose, out: &mut Vec<DVec3>) {
         let m = pose.rotation.matrix();
@@ -67,13 +99,30 @@ impl Corners {
         out.extend(self.points.iter().map(|&p| m * p + pose.translation));
     }
 
-    /// The hull corners of `vertices`.
-    pub(super) fn new(vertices: &[DVec3]) -> Corners {
-        let points = match convex_hull(&FloatPoints(vertices)) {
-            Ok(h) => h.vertices.iter().map(|&k| vertices[k]).collect(),
-            Err(_) => vertices.to_vec(),
-        };
-        Corners { points }
+    /// The corner of `points` (these corners, posed or not) with the
+    /// largest (`max`) or least projection on `v`, by climbing the hull's
+    /// edges from `start` (a local extreme in floats: an estimate, for
+    /// choosing a direction), or by a scan without a hull.
+    fn climb(&self, points: &[DVec3], v: DVec3, start: u32, max: bool) -> (u32, f64) {
+        if self.neighbours.len() != points.len() {
+            return extreme(points, v, max);
+        }
+        let better = |d: f64, best: f64| if max { d > best } else { d < best };
+        let mut at = (start as usize).min(points.len() - 1) as u32;
+        let mut best = v.dot(points[at as usize]);
+        loop {
+            let mut moved = false;
+            for &n in &self.neighbours[at as usize] {
+                let d = v.dot(points[n as usize]);
+                if better(d, best) {
+                    (at, best) = (n, d);
+                    moved = true;
+                }
+            }
+            if !moved {
+                return (at, best);
+            }
+        }
     }
 }
 
@@ -90,15 +139,24 @@ pub(super) struct PlaneCertificate {
     /// How far in the motion (in `t`) this pair is certified free: the
     /// motion search's per-target horizon (`robot::motion`).
     pub(super) horizon: f64,
+    /// The last extreme corners (of `i`, of `j`): the climbs' start.
+    start: (u32, u32),
 }
 
 impl PlaneCertificate {
     /// Looks for a direction separating `posed` (`i`'s corners posed into
     /// `j`'s frame by [`Corners::pose_into`]) from `j`'s corners; returns
     /// the float gap along it (an estimate, not a certificate:
-    /// [`PlaneCertificate::apart_by`] certifies). Stops looking once the
-    /// gap reaches `enough`.
-    pub(super) fn prepare(&mut self, posed: &[DVec3], j: &Corners, enough: f64) -> f64 {
+    /// [`PlaneCertificate::apart_by`] certifies). The extremes climb the
+    /// hulls' edges from the last ones. Stops looking once the gap
+    /// reaches `enough`.
+    pub(super) fn prepare(
+        &mut self,
+        posed: &[DVec3],
+        i: &Corners,
+        j: &Corners,
+        enough: f64,
+    ) -> f64 {
         let (a, b) = (posed, &j.points);
         self.nearest = f64::INFINITY;
         if a.is_empty() || b.is_empty() {
@@ -117,8 +175,10 @@ impl PlaneCertificate {
             if !(v.length_squared() > 0.0 && v.is_finite()) {
                 break;
             }
-            let (xa, hi) = extreme(a, v, true);
-            let (yb, lo) = extreme(b, v, false);
+            let (ia, hi) = i.climb(a, v, self.start.0, true);
+            let (ib, lo) = j.climb(b, v, self.start.1, false);
+            self.start = (ia, ib);
+            let (xa, yb) = (a[ia as usize], b[ib as usize]);
             let length = v.length();
             let gap = (lo - hi) / length;
             let w = yb - xa;
@@ -194,14 +254,14 @@ fn power_of_two_scaled(v: DVec3) -> DVec3 {
     v * 2f64.powi(-e / 2) * 2f64.powi(-(e - e / 2))
 }
 
-/// The point of `pts` with the largest (`max`) or least projection on `v`,
-/// and that projection.
-fn extreme(pts: &[DVec3], v: DVec3, max: bool) -> (DVec3, f64) {
-    let mut best = (pts[0], v.dot(pts[0]));
-    for &p in &pts[1..] {
+/// The index of the point of `pts` with the largest (`max`) or least
+/// projection on `v`, and that projection.
+fn extreme(pts: &[DVec3], v: DVec3, max: bool) -> (u32, f64) {
+    let mut best = (0, v.dot(pts[0]));
+    for (k, &p) in pts.iter().enumerate().skip(1) {
         let d = v.dot(p);
         if (max && d > best.1) || (!max && d < best.1) {
-            best = (p, d);
+            best = (k as u32, d);
         }
     }
     best
@@ -239,14 +299,14 @@ mod tests {
         let mut posed = Vec::new();
         a.pose_into(&Pose::IDENTITY, &mut posed);
         let mut p = PlaneCertificate::default();
-        let gap = p.prepare(&posed, &b, f64::INFINITY);
+        let gap = p.prepare(&posed, &a, &b, f64::INFINITY);
         assert!((gap - 1.0).abs() < 1e-12, "{gap}");
         assert!(p.apart_by(&posed, &b, 0.999_999));
         assert!(!p.apart_by(&posed, &b, 1.0));
         // Touching: nothing is certified, not even 0.
         let c = Corners::new(&cube(DVec3::X, 0.5));
         let mut p = PlaneCertificate::default();
-        p.prepare(&posed, &c, f64::INFINITY);
+        p.prepare(&posed, &a, &c, f64::INFINITY);
         assert!(!p.apart_by(&posed, &c, 0.0));
     }
 
@@ -311,7 +371,7 @@ mod tests {
             let mut p = PlaneCertificate::default();
             let mut posed_corners = Vec::new();
             ca.pose_into(&pose, &mut posed_corners);
-            let gap = p.prepare(&posed_corners, &cb, f64::INFINITY);
+            let gap = p.prepare(&posed_corners, &ca, &cb, f64::INFINITY);
             if gap.is_nan() || gap <= 0.0 {
                 continue;
             }
