@@ -1,10 +1,13 @@
 """Robot configuration checks against pinocchio + coal (issue 37).
 
-``python python/benchmarks/bench_robot.py [--states N] [--motions M]``
+``python python/benchmarks/bench_robot.py [--states N] [--motions M] [--robot panda|ur5] [--shelves]``
 
 Panda (example-robot-data's URDF, SRDF and collision meshes, shipped in
-``python/tests/data/panda``), self-collision only, the SRDF's pairs
-removed in both tools. Per random configuration within the limits, one
+``python/tests/data/panda``) or UR5 (an installed ``example-robot-data``),
+self-collision, the SRDF's pairs removed in both tools; with
+``--shelves`` also against ``python/examples/robot_shelves.py``'s table
+and shelf (seven boxes, coal's ``Box`` in pinocchio, every robot geometry
+paired with every box). Per random configuration within the limits, one
 call each, timed interleaved in one process: dymsum's
 ``RobotChecker.collides_at(q)`` against pinocchio's
 ``computeCollisions(model, data, geom, gdata, q, True)`` (forward
@@ -21,14 +24,14 @@ Medians and 99th percentiles in µs and their ratios (dymsum / pinocchio).
 import argparse
 import os
 import shutil
-import tempfile
+import sys
 import time
 
 import numpy as np
 
 import dymsum
 
-DATA = os.path.join(os.path.dirname(__file__), "..", "tests", "data", "panda")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 
 def main():
@@ -36,34 +39,31 @@ def main():
     ap.add_argument("--states", type=int, default=2000)
     ap.add_argument("--motions", type=int, default=100)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--robot", choices=["panda", "ur5"], default="panda")
+    ap.add_argument("--shelves", action="store_true")
     a = ap.parse_args()
-    import pinocchio as pin
+    from bench_robot_plan import Pinocchio, rs, urdf_paths
 
-    root = tempfile.mkdtemp()
+    paths = urdf_paths(a.robot)
     try:
-        meshes = os.path.join(root, "example-robot-data", "robots", "panda_description", "meshes", "collision")
-        os.makedirs(meshes)
-        for name in os.listdir(DATA):
-            if name.endswith(".stl"):
-                shutil.copy(os.path.join(DATA, name), meshes)
-        urdf, srdf = os.path.join(DATA, "panda.urdf"), os.path.join(DATA, "panda.srdf")
+        urdf, srdf, root = paths
+        obstacles = rs.scene() if a.shelves else []
         t0 = time.perf_counter()
         robot = dymsum.Robot.from_urdf(urdf, srdf=srdf, package_dirs=[root])
-        checker = dymsum.RobotChecker(robot)
+        checker = dymsum.RobotChecker(robot, obstacles)
         build_d = time.perf_counter() - t0
         t0 = time.perf_counter()
-        model = pin.buildModelFromUrdf(urdf)
-        geom = pin.buildGeomFromUrdf(model, urdf, pin.GeometryType.COLLISION, package_dirs=[root])
-        geom.addAllCollisionPairs()
-        pin.removeCollisionPairs(model, geom, srdf)
-        data, gdata = model.createData(), pin.GeometryData(geom)
+        pino = Pinocchio(a.robot, robot, paths, obstacles)
         build_p = time.perf_counter() - t0
     finally:
-        shutil.rmtree(root, ignore_errors=True)
+        if a.robot == "panda":
+            shutil.rmtree(paths[2], ignore_errors=True)
+    pin = pino.pin
+    model, data, geom, gdata = pino.model, pino.data, pino.geom, pino.gdata
+    pq = pino.q
     limits = np.array(robot.joint_limits)
     rng = np.random.default_rng(a.seed)
-    qs = limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random((a.states, 8))
-    pq = lambda q: np.concatenate([q, [q[7]]])[: model.nq]  # noqa: E731 - the mimic finger
+    qs = limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random((a.states, robot.dof))
     td, tp, hits = [], [], 0
     for q in qs:
         t0 = time.perf_counter()
@@ -78,7 +78,7 @@ def main():
     checker.collides_many(qs)
     many = (time.perf_counter() - t0) / len(qs)
     td, tp = np.array(td) * 1e6, np.array(tp) * 1e6
-    print(f"Panda: {len(robot.collision_pairs)} pairs (dymsum), {len(geom.collisionPairs)} (pinocchio); build {build_d * 1e3:.0f} ms / {build_p * 1e3:.0f} ms")
+    print(f"{a.robot}{' among the shelves' if a.shelves else ''}: {len(robot.collision_pairs)} link pairs (dymsum), {len(geom.collisionPairs)} geometry pairs (pinocchio); build {build_d * 1e3:.0f} ms / {build_p * 1e3:.0f} ms")
     print("| states | colliding | median µs dymsum / pinocchio (ratio) | p99 µs (ratio) | collides_many µs per state (ratio to pinocchio's median) |")
     print("|---|---|---|---|---|")
     md, mp = np.median(td), np.median(tp)
@@ -89,10 +89,10 @@ def main():
 
         tm, tdisc, missed, n = [], [], 0, 0
         while n < a.motions:
-            q0 = limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random(8)
+            q0 = limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random(robot.dof)
             if checker.collides_at(q0):
                 continue
-            q1 = q0 + 0.1 * (limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random(8) - q0)
+            q1 = q0 + 0.1 * (limits[:, 0] + (limits[:, 1] - limits[:, 0]) * rng.random(robot.dof) - q0)
             n += 1
             t0 = time.perf_counter()
             try:
