@@ -282,6 +282,6 @@ impl RobotChecker {
 }
 
 /// Link `i`'s pose in link `j`'s frame.
-pub(super) fn relative(poses: &[Pose], i: usize, j: usize) -> Pose {
+fn relative(poses: &[Pose], i: usize, j: usize) -> Pose {
     compose(&inverse(&poses[j]), &poses[i])
 }

@@ -61,7 +61,11 @@
 //! certified when every pair is.
 //!
 //! **The plane certificate.** Before walking a pair's triangles, a
-//! separating plane between the two links' hull corners at `q(a)`
+//! separating plane between the two links' hull corners at `q(a)` (link
+//! `i`'s corners carried into `j`'s frame by the float products
+//! `R_jᵀ R_i` and `R_jᵀ (t_i − t_j)` of the float poses: a few ulps of
+//! `R` from the exactly composed relative pose, far within the four
+//! joints' worth of rounding the margin holds for it, below)
 //! (`robot::separation`: Gilbert's iteration, warm-started per pair)
 //! gives a float gap `g`; a link against the scene takes one plane per
 //! obstacle (up to `PLANE_OBSTACLES` of them) and the least gap: outside
@@ -139,7 +143,7 @@
 //! [`RobotChecker::collides_at`] at `q(t)`, each value clamped into the
 //! range between its ends.
 
-use super::checker::{relative, RobotChecker};
+use super::checker::RobotChecker;
 use super::error::RobotError;
 use super::model::{JointKind, Robot};
 use super::separation::PlaneCertificate;
@@ -330,14 +334,20 @@ impl RobotSweep<'_> {
             gap: f64::NEG_INFINITY,
             nearest: f64::INFINITY,
         };
+        // Link i's pose in j's frame as a float matrix product (module
+        // docs: within a few ulps of the composed relative pose).
+        let (mi, ti) = (poses[i].rotation.matrix(), poses[i].translation);
         let (Some(ci), (pose, targets)) = (
             checker.corners(i),
             match j {
-                Some(j) => (
-                    relative(poses, i, j),
-                    checker.corners(j).map(std::slice::from_ref).unwrap_or(&[]),
-                ),
-                None => (poses[i], checker.obstacle_corners()),
+                Some(j) => {
+                    let back = poses[j].rotation.matrix().transpose();
+                    (
+                        (back * mi, back * (ti - poses[j].translation)),
+                        checker.corners(j).map(std::slice::from_ref).unwrap_or(&[]),
+                    )
+                }
+                None => ((mi, ti), checker.obstacle_corners()),
             },
         ) else {
             return none;
@@ -348,7 +358,7 @@ impl RobotSweep<'_> {
         let planes = &mut self.planes[k];
         planes.resize_with(targets.len(), PlaneCertificate::default);
         let posed = &mut self.posed;
-        ci.pose_into(&pose, posed);
+        ci.pose_into(pose, posed);
         let (mut gap, mut nearest) = (f64::INFINITY, f64::INFINITY);
         let mut horizon = f64::INFINITY;
         for (plane, target) in planes.iter_mut().zip(targets) {

@@ -38,10 +38,9 @@
 //! the last direction that certified the pair (a warm start: the search
 //! moves the links a little between calls).
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 use crate::hull::{convex_hull, FloatPoints};
-use crate::kernel::rotation::Pose;
 
 /// The unit roundoff of `f64`.
 const U: f64 = f64::EPSILON / 2.0;
@@ -92,11 +91,11 @@ impl Corners {
         Corners { points, neighbours }
     }
 
-    /// The corners posed by `pose` into `out` (cleared first).
-    pub(super) fn pose_into(&self, pose: &Pose, out: &mut Vec<DVec3>) {
-        let m = pose.rotation.matrix();
+    /// The corners moved by the matrix and translation `(m, t)` into `out`
+    /// (cleared first).
+    pub(super) fn pose_into(&self, (m, t): (DMat3, DVec3), out: &mut Vec<DVec3>) {
         out.clear();
-        out.extend(self.points.iter().map(|&p| m * p + pose.translation));
+        out.extend(self.points.iter().map(|&p| m * p + t));
     }
 
     /// The corner of `points` (these corners, posed or not) with the
@@ -274,7 +273,7 @@ fn centroid(pts: &[DVec3]) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::rotation::Rotation;
+    use crate::kernel::rotation::{Pose, Rotation};
 
     fn cube(c: DVec3, h: f64) -> Vec<DVec3> {
         (0..8)
@@ -297,7 +296,7 @@ mod tests {
             Corners::new(&cube(DVec3::X * 2.0, 0.5)),
         );
         let mut posed = Vec::new();
-        a.pose_into(&Pose::IDENTITY, &mut posed);
+        a.pose_into((DMat3::IDENTITY, DVec3::ZERO), &mut posed);
         let mut p = PlaneCertificate::default();
         let gap = p.prepare(&posed, &a, &b, f64::INFINITY);
         assert!((gap - 1.0).abs() < 1e-12, "{gap}");
@@ -320,7 +319,7 @@ mod tests {
             Corners::new(&cube(DVec3::X * 3.0, 0.5)),
         );
         let mut posed = Vec::new();
-        a.pose_into(&Pose::IDENTITY, &mut posed);
+        a.pose_into((DMat3::IDENTITY, DVec3::ZERO), &mut posed);
         for tiny in [1e-150, 1e-160, 1e-170, 1e-300, 5e-324] {
             let p = PlaneCertificate {
                 warm: DVec3::new(tiny, 0.0, 0.0),
@@ -370,7 +369,10 @@ mod tests {
             let (ca, cb) = (Corners::new(&a), Corners::new(&b));
             let mut p = PlaneCertificate::default();
             let mut posed_corners = Vec::new();
-            ca.pose_into(&pose, &mut posed_corners);
+            ca.pose_into(
+                (pose.rotation.matrix(), pose.translation),
+                &mut posed_corners,
+            );
             let gap = p.prepare(&posed_corners, &ca, &cb, f64::INFINITY);
             if gap.is_nan() || gap <= 0.0 {
                 continue;
