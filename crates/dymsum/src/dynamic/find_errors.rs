@@ -94,7 +94,9 @@ pub(super) fn scan_side(
         // Many normals are due each step (large steps, or small cells): a
         // pass over all of them is cheaper than a schedule.
         for f in 0..n {
-            visit(f, state, out);
+            if !lazily_certified(f, state, step) {
+                visit(f, state, out);
+            }
         }
         if out.checked * SCHEDULE_BELOW < n {
             state.start_schedule(step);
@@ -132,6 +134,31 @@ pub(super) fn scan_side(
 const SCHEDULE_BELOW: usize = 8;
 const SCAN_ABOVE: usize = 4;
 
+/// Whether face `f`'s normal is certified to stay in its cell over this
+/// step without being looked at: its lazy margin (the margin when last
+/// computed, less the rotation since) still exceeds this step's needs, or
+/// the same through its persistent ties, as long as every step since was
+/// about the same coordinate axis. Tested before the call to
+/// [`visit_normal`] in a pass over all normals (most pass it), and again
+/// inside it.
+#[inline(always)]
+fn lazily_certified(f: usize, state: &Side, step: &StepBounds) -> bool {
+    let delta = state.dir_err[f];
+    let lower = state.margin[f] - (step.before - state.margin_at[f]);
+    if lower - step.theta > step.drift + delta {
+        return true;
+    }
+    if let Some(k) = step.axis {
+        if state.tie_axis[f] == k as u8 && state.tie_tick[f] >= step.run_start {
+            let tie_lower = state.tie_margin[f] - (step.before - state.margin_at[f]);
+            if tie_lower - step.theta > step.drift + delta {
+                return true;
+            }
+        }
+    }
+    false
+}
+
 /// FindErrors and the fv-correction for face `f` (module docs).
 #[allow(clippy::too_many_arguments)]
 fn visit_normal(
@@ -146,22 +173,10 @@ fn visit_normal(
 ) {
     let cpoly = cells.poly;
     let delta = state.dir_err[f];
-    // Lazy margins: a normal whose margin, less the rotation since it was
-    // computed, still exceeds this step's needs cannot have had an event.
-    let lower = state.margin[f] - (step.before - state.margin_at[f]);
-    if lower - step.theta > step.drift + delta {
+    if lazily_certified(f, state, step) {
         return;
     }
-    // The same for a normal certified through its persistent ties, as
-    // long as every step since was about the same coordinate axis.
-    if let Some(k) = step.axis {
-        if state.tie_axis[f] == k as u8 && state.tie_tick[f] >= step.run_start {
-            let tie_lower = state.tie_margin[f] - (step.before - state.margin_at[f]);
-            if tie_lower - step.theta > step.drift + delta {
-                return;
-            }
-        }
-    }
+    let lower = state.margin[f] - (step.before - state.margin_at[f]);
     state.tie_axis[f] = NO_AXIS;
     out.checked += 1;
     let unit = faces.poly.unit_normal(f);

@@ -45,10 +45,16 @@ pub(super) fn direction_errors(poly: &Polytope) -> Vec<f64> {
 #[inline]
 pub(super) fn margin(poly: &Polytope, arcs: &[DVec3], v: u32, x: DVec3) -> f64 {
     let off = poly.ring_offset(v as usize);
-    arcs[off..off + poly.degree(v as usize)]
-        .iter()
-        .map(|m| m.dot(x))
-        .fold(f64::INFINITY, f64::min)
+    // A plain comparison (arcs and normals are finite): the same least
+    // value as `f64::min`, without its NaN handling.
+    let mut least = f64::INFINITY;
+    for m in &arcs[off..off + poly.degree(v as usize)] {
+        let d = m.dot(x);
+        if d < least {
+            least = d;
+        }
+    }
+    least
 }
 
 /// Below this float margin (plus the face's direction error) the exact
