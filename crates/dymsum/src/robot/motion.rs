@@ -13,10 +13,10 @@
 //! `k` on the chain to link `i`, each prismatic joint's largest `|value|`
 //! on this motion among them (one of its ends: values are linear; a
 //! mimic's value may lie beyond its own limits, so limits would not do),
-//! and link `i`'s reach about its own frame (`MeshBody`'s reach: `√3`
-//! times the largest coordinate magnitude, rounded up, at least the
-//! largest vertex norm; the origins' lengths are sums of coordinate
-//! magnitudes). So a point of
+//! and link `i`'s reach about its own frame (the largest norm of its hull
+//! corners, which is the largest of all its vertices'; every length is
+//! rounded up by `norm_up`, which never squares a coordinate into
+//! underflow or overflow). So a point of
 //! link `i` moves at most
 //! `vᵢ = Σ |Δₖ| ρₖᵢ + Σ_prismatic |Δₖ|` per unit of `t`
 //! (Schwarzer, Saha and Latombe's bound for exact path checking), and
@@ -150,6 +150,7 @@ use super::separation::PlaneCertificate;
 use crate::kernel::rotation::Pose;
 use crate::query::interval_search::{first_contact, Stop, Sweep};
 use crate::query::{MotionCheck, MotionError};
+use glam::DVec3;
 
 /// The largest `|value|` joint `k` takes along the motion (values are
 /// linear in `t`, so one of the ends), for the prismatic joints' travel:
@@ -186,9 +187,8 @@ fn chain_speed(
     reach: f64,
 ) -> f64 {
     let turn = |k: usize| (ends.1[k] - ends.0[k]).abs();
-    let offset = |k: usize| {
-        travel(robot, k, ends) + robot.joints[k].spec.origin.translation.abs().element_sum()
-    };
+    let offset =
+        |k: usize| travel(robot, k, ends) + norm_up(robot.joints[k].spec.origin.translation);
     // ρ: how far the link's points lie from the current frame's origin.
     let mut rho = reach;
     let mut speed = 0.0;
@@ -214,6 +214,18 @@ fn chain_speed(
         }
     }
     speed * (1.0 + 1e-12)
+}
+
+/// `|v|`, rounded up, without squaring small coordinates into underflow
+/// or large ones into overflow: the largest magnitude `m` times the length
+/// of `v / m` (every coordinate of which is at most 1, one of them 1),
+/// each of the half-dozen roundings below `u`, covered by `10⁻¹²`.
+pub(super) fn norm_up(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if !(m > 0.0 && m.is_finite()) {
+        return m;
+    }
+    m * (v / m).length() * (1.0 + 1e-12)
 }
 
 /// A link's motion bound in the root's frame (module docs): how far any
@@ -496,11 +508,16 @@ impl RobotChecker {
             .iter()
             .map(|l| l.body.as_ref().map_or(0.0, |b| b.reach))
             .collect();
+        // The speeds from each link's largest vertex norm (its hull
+        // corners', `robot::separation`), tighter than the body's reach.
+        let norms: Vec<f64> = (0..robot.links.len())
+            .map(|l| self.corners(l).map_or(0.0, |c| c.largest_norm()))
+            .collect();
         let speed: Vec<f64> = self
             .measured_pairs()
             .map(|(_, _, (i, j))| match j {
-                None => link_speed(robot, i, ends, &reaches),
-                Some(j) => pair_speed(robot, i, j, ends, &reaches),
+                None => link_speed(robot, i, ends, &norms),
+                Some(j) => pair_speed(robot, i, j, ends, &norms),
             })
             .collect();
         let size = robot_size(robot, ends, &reaches) + self.scene_size();
@@ -716,6 +733,29 @@ mod tests {
         }
         // The bound is not vacuous: some motion comes within half of it.
         assert!(tight > 0.5, "{tight}");
+    }
+
+    /// `norm_up` is never below the Euclidean norm, at any scale (squares
+    /// of 1e-200 would underflow, of 1e200 overflow), and within 1e-11 of
+    /// it.
+    #[test]
+    fn norms_are_rounded_up_at_every_scale() {
+        for scale in [1e-300, 1e-200, 1e-150, 1.0, 1e150, 1e200, 1e300] {
+            for v in [
+                DVec3::new(3.0, 4.0, 0.0),
+                DVec3::new(-1.0, 2.0, -2.0),
+                DVec3::new(0.0, 0.0, -7.0),
+            ] {
+                let exact = v.length();
+                let n = norm_up(v * scale) / scale;
+                assert!(
+                    n >= exact && n <= exact * (1.0 + 1e-11),
+                    "{v} at {scale}: {n}"
+                );
+            }
+        }
+        assert_eq!(norm_up(DVec3::ZERO), 0.0);
+        assert_eq!(norm_up(DVec3::new(f64::INFINITY, 0.0, 0.0)), f64::INFINITY);
     }
 
     /// Links carried alike by a turn of a joint above both do not move

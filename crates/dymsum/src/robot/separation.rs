@@ -91,6 +91,15 @@ impl Corners {
         Corners { points, neighbours }
     }
 
+    /// The largest norm of a corner (rounded up), which is the largest of
+    /// every vertex's: how far the link reaches from its frame's origin.
+    pub(super) fn largest_norm(&self) -> f64 {
+        self.points
+            .iter()
+            .map(|&p| super::motion::norm_up(p))
+            .fold(0.0, f64::max)
+    }
+
     /// The corners moved by the matrix and translation `(m, t)` into `out`
     /// (cleared first).
     pub(super) fn pose_into(&self, (m, t): (DMat3, DVec3), out: &mut Vec<DVec3>) {
