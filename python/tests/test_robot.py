@@ -211,6 +211,91 @@ def _shelves():
 
 
 @pytest.mark.parametrize("robot_name", ["panda", "ur5"])
+def test_near_contact_configurations_against_pinocchio_and_coal(root, robot_name):
+    """Both arms among the table and the shelf, 600 random configurations
+    and 1,200 within 1e-9 (in joint space) of contact, found by bisecting
+    between a free and a colliding one: no contact coal finds (link
+    against link, or link against a box) is missed, beyond what coal's own
+    distance can tell (a contact it reports within 1e-9 m of touching, by
+    its own distance, is counted, not a failure)."""
+    if os.environ.get("DYMSUM_REQUIRE_PINOCCHIO") == "1":
+        import pinocchio as pin
+    else:
+        pin = pytest.importorskip("pinocchio")
+    import coal
+
+    mod = _shelves()
+    if robot_name == "panda":
+        urdf, srdf, package = os.path.join(DATA, "panda.urdf"), os.path.join(DATA, "panda.srdf"), str(root)
+    else:
+        ur = os.path.join(mod.SHARE, "example-robot-data", "robots", "ur_description")
+        if not os.path.isdir(ur):
+            assert os.environ.get("DYMSUM_REQUIRE_PINOCCHIO") != "1", "example-robot-data is not installed"
+            pytest.skip("example-robot-data is not installed")
+        urdf, srdf, package = os.path.join(ur, "urdf", "ur5_robot.urdf"), os.path.join(ur, "srdf", "ur5.srdf"), mod.SHARE
+    robot, checker, _, _ = mod.problem(robot_name)
+    model = pin.buildModelFromUrdf(urdf)
+    geom = pin.buildGeomFromUrdf(model, urdf, pin.GeometryType.COLLISION, package_dirs=[package])
+    geom.addAllCollisionPairs()
+    pin.removeCollisionPairs(model, geom, srdf)
+    links = range(geom.ngeoms)
+    for k, corners in enumerate(mod.scene()):
+        lo, hi = corners.min(axis=0), corners.max(axis=0)
+        box = pin.GeometryObject(f"box{k}", 0, 0, pin.SE3(np.eye(3), (lo + hi) / 2), coal.Box(*(hi - lo)))
+        o = geom.addGeometryObject(box)
+        for g in links:
+            if geom.geometryObjects[g].parentJoint != 0:
+                geom.addCollisionPair(pin.CollisionPair(g, o))
+    data, gdata = model.createData(), pin.GeometryData(geom)
+    names = list(robot.joint_names)
+    # Pinocchio's configuration: a mimic joint is an independent one there
+    # (Panda's second finger follows the first).
+    index = [names.index(n) if n in names else names.index("panda_finger_joint1") for n in model.names[1:]]
+    checked = {frozenset(p) for p in robot.collision_pairs}
+    rng = np.random.default_rng(17)
+    configurations = list(_random_q(rng, 600, robot))
+    while len(configurations) < 1800:
+        q0, q1 = _random_q(rng, 2, robot)
+        if checker.collides_at(q0) or not checker.collides_at(q1):
+            continue
+        a, b = 0.0, 1.0
+        while b - a > 1e-9:
+            t = 0.5 * (a + b)
+            if checker.collides_at(q0 + t * (q1 - q0)):
+                b = t
+            else:
+                a = t
+        configurations += [q0 + a * (q1 - q0), q0 + b * (q1 - q0)]
+    found = settled = 0
+
+    def frame(g):
+        obj = geom.geometryObjects[g]
+        return None if obj.parentJoint == 0 else model.frames[obj.parentFrame].name
+
+    for q in configurations:
+        ours = {frozenset(p) for p in checker.colliding_pairs(q)}
+        pin.computeCollisions(model, data, geom, gdata, np.asarray(q)[index], False)
+        for k, cp in enumerate(geom.collisionPairs):
+            if not gdata.collisionResults[k].isCollision():
+                continue
+            a, b = frame(cp.first), frame(cp.second)
+            if a == b or (b is not None and frozenset((a, b)) not in checked):
+                continue
+            pair = frozenset((a, b)) if b is not None else frozenset((a, None))
+            found += 1
+            if pair not in ours:
+                # coal's collide() reports contacts within its own margin
+                # (its distance then says apart, up to 4e-10 here) and its
+                # EPA depths are floats: a disagreement within 1e-9 m of
+                # touching by coal's own distance is within what coal can
+                # tell, counted apart; anything deeper fails.
+                d = pin.computeDistance(geom, gdata, k).min_distance
+                assert d > -1e-9, (robot_name, list(q), a, b, d)
+                settled += 1
+    assert found > 300 and settled <= found // 10, (found, settled)
+
+
+@pytest.mark.parametrize("robot_name", ["panda", "ur5"])
 def test_long_motions_among_shelves_against_dense_sampling(robot_name):
     """Motions as a planner asks them (anywhere in the joint limits, up to
     the whole range), among the table and the shelf: a motion certified
