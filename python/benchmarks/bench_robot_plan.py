@@ -29,11 +29,13 @@ Three measurements per robot:
    within rounding, is counted apart).
 3. **The motions RRTConnect asks**: every motion dymsum's validator was
    asked in the runs above (recorded), timed again one call each,
-   interleaved: dymsum's certified ``check(q0, q1, 1/8)`` (what the
-   validator runs) against the discrete check at OMPL's resolution done
-   with pinocchio in a Python loop (the end state first, then the
-   intermediate states in order, stopping at the first contact: what
-   ``DiscreteMotionValidator`` does, without its callback overhead).
+   interleaved: dymsum's ``JointMotionValidator.checkMotion`` (the states
+   OMPL would sample checked exactly in one ``collides_many`` call, then,
+   unless one collides, the certified ``check(s2, s1, 1/8)``) against the
+   discrete check at OMPL's resolution done with pinocchio in a Python
+   loop (the end state first, then the intermediate states in order,
+   stopping at the first contact: what ``DiscreteMotionValidator`` does,
+   without its callback overhead).
 
 Prints Markdown rows for docs/BENCHMARKS.md.
 """
@@ -160,16 +162,15 @@ def plan_once(name, seconds, tool, pinocchio=None, record=None):
     if tool == "dymsum":
         v = dymsum.ompl.setup_joint_validators(ss, checker)
         if record is not None:
-            inner = v.motion_validator.checker
 
-            class Recording:
-                dof = inner.dof
+            class Recording(dymsum.ompl.JointMotionValidator):
+                def checkMotion(self, s1, s2):  # noqa: N802
+                    record.append(([s1[i] for i in range(n)], [s2[i] for i in range(n)]))
+                    return super().checkMotion(s1, s2)
 
-                def check(self, q0, q1, tol):
-                    record.append((list(q0), list(q1)))
-                    return inner.check(q0, q1, tol)
-
-            v.motion_validator.checker = Recording()
+            recording = Recording(ss.getSpaceInformation(), checker)
+            ss.getSpaceInformation().setMotionValidator(recording)
+            plan_once.keep = recording  # alive while OMPL holds it
     else:
         si = ss.getSpaceInformation()
         sat = space.satisfiesBounds
@@ -190,6 +191,24 @@ def plan_once(name, seconds, tool, pinocchio=None, record=None):
     took = time.perf_counter() - t0
     path = [[s[i] for i in range(n)] for s in ss.getSolutionPath().getStates()] if solved else []
     return solved, took, path, checker
+
+
+def replay_validator(robot, checker):
+    """dymsum's joint motion validator on a fresh space with the robot's
+    bounds, and the space."""
+    from ompl import base as ob
+
+    space = ob.RealVectorStateSpace(robot.dof)
+    bounds = ob.RealVectorBounds(robot.dof)
+    for i, (lo, hi) in enumerate(robot.joint_limits):
+        bounds.setLow(i, lo)
+        bounds.setHigh(i, hi)
+    space.setBounds(bounds)
+    si = ob.SpaceInformation(space)
+    v = dymsum.ompl.setup_joint_validators(si, checker)
+    si.setup()
+    replay_validator.keep = (si, v)
+    return v.motion_validator, space
 
 
 def discrete(pinocchio, q0, q1, extent):
@@ -214,6 +233,7 @@ def main():
     ap.add_argument("--motions", type=int, default=400, help="at most this many recorded motions timed")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json", help="write the figures here too")
+    ap.add_argument("--dump", help="write the recorded motions (s1, s2) to DUMP_robot.json")
     a = ap.parse_args()
     from ompl import util as ou
 
@@ -248,20 +268,27 @@ def main():
                             unsure = True
                     bad_paths += bad
                     unsure_paths += unsure and not bad
+        if a.dump:
+            with open(f"{a.dump}_{name}.json", "w") as f:
+                json.dump(record, f)
         limits = np.array(robot.joint_limits)
         extent = float(np.linalg.norm(limits[:, 1] - limits[:, 0]))
         rng = np.random.default_rng(0)
         motions = record if len(record) <= a.motions else [record[i] for i in sorted(rng.choice(len(record), a.motions, replace=False))]
         td, tp, missed, undecided = [], [], 0, 0
-        # Recorded as the validator asks: check(s2, s1) for OMPL's s1 → s2.
-        for s2, s1 in motions:
+        # Replayed through dymsum's validator itself (the sampled states,
+        # then the certificate), on a space with the same bounds.
+        validator, space = replay_validator(robot, checker)
+        st1, st2 = space.allocState(), space.allocState()
+        for s1, s2 in motions:
+            for state, q in ((st1, s1), (st2, s2)):
+                for i, x in enumerate(q):
+                    state[i] = x
+            before = validator.undecided
             t0 = time.perf_counter()
-            try:
-                free = checker.check(s2, s1, dymsum.ompl.DECISION_TOLERANCE).free
-                decided = True
-            except dymsum.MotionUndecided:
-                free, decided = False, False
+            free = validator.checkMotion(st1, st2)
             td.append(time.perf_counter() - t0)
+            decided = validator.undecided == before
             t0 = time.perf_counter()
             ok = discrete(pino, s1, s2, extent)
             tp.append(time.perf_counter() - t0)

@@ -287,6 +287,29 @@ impl PyRobotChecker {
             .map_err(|e| robot_error(py, "RobotChecker.check", e))
     }
 
+    /// A cheap refutation before a certificate: the ``t`` of the first
+    /// configuration ``q(k / segments)`` of the straight motion (visited
+    /// in bisection order, at most ``most`` of them) at which the robot
+    /// collides (exact), or ``None`` when none does (which proves nothing:
+    /// ``check`` decides). GIL released.
+    #[pyo3(
+        signature = (q0, q1, segments, most = 7),
+        text_signature = "($self, q0, q1, segments, most=7)"
+    )]
+    fn sampled_contact(
+        &self,
+        py: Python<'_>,
+        q0: &Bound<'_, PyAny>,
+        q1: &Bound<'_, PyAny>,
+        segments: usize,
+        most: usize,
+    ) -> PyResult<Option<f64>> {
+        let (a, b) = (configuration(q0, "q0")?, configuration(q1, "q1")?);
+        let inner = &self.inner;
+        py.detach(|| inner.sampled_contact(&a, &b, segments, most))
+            .map_err(|e| robot_error(py, "RobotChecker.sampled_contact", e))
+    }
+
     /// The robot's number of degrees of freedom.
     #[getter]
     fn dof(&self) -> usize {

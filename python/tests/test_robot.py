@@ -133,6 +133,30 @@ def test_against_pinocchio_and_coal(root, panda):
     assert found > 0
 
 
+def test_sampled_contact_refutes_only_with_a_colliding_sample(panda):
+    """``RobotChecker.sampled_contact``: the first colliding sample in
+    bisection order (exact), ``None`` when no sample collides; every ``t``
+    it gives is a colliding configuration."""
+    corners = np.array([[x, y, z] for x in (0.37, 0.53) for y in (-0.3, 0.3) for z in (0.0, 0.8)], float)
+    checker = dymsum.RobotChecker(panda, [corners])
+    rng = np.random.default_rng(2)
+    hits = misses = 0
+    while hits < 10 or misses < 10:
+        q0, q1 = _random_q(rng, 2, panda)
+        t = checker.sampled_contact(q0, q1, 16)
+        if t is None:
+            misses += 1
+            for k in (8, 4, 12, 2, 6, 10, 14):
+                assert not checker.collides_at(q0 + k / 16 * (q1 - q0))
+        else:
+            hits += 1
+            assert t * 16 == round(t * 16) and 0 < t < 1
+            assert checker.collides_at(np.clip(q0 + t * (q1 - q0), np.minimum(q0, q1), np.maximum(q0, q1)))
+    assert checker.sampled_contact(q0, q0, 16) is None and checker.sampled_contact(q0, q1, 1) is None
+    with pytest.raises(ValueError, match="outside its limits"):
+        checker.sampled_contact(q0 + 10.0, q1, 16)
+
+
 def test_motions_against_dense_sampling(panda):
     corners = np.array([[x, y, z] for x in (0.37, 0.53) for y in (-0.3, 0.3) for z in (0.0, 0.8)], float)
     checker = dymsum.RobotChecker(panda, [corners])
@@ -194,6 +218,7 @@ def test_planning_in_joint_space_with_ompl(panda):
     qs = [v.state_checker.q(s) for s in states]
     assert all(checker.check(a, b).free for a, b in zip(qs, qs[1:]))
     assert v.motion_validator.checked > 0 and "JointMotionValidator" in repr(v.motion_validator)
+    assert 0 <= v.motion_validator.sampled <= v.motion_validator.rejected
     with pytest.raises(ValueError, match="degrees of freedom"):
         dom.setup_joint_validators(ob.SpaceInformation(ob.RealVectorStateSpace(3)), checker)
 

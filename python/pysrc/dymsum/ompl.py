@@ -700,8 +700,15 @@ def _joint_validator_class() -> type:
         """An OMPL motion validator for a robot in joint space: a motion is
         accepted only when ``RobotChecker.check`` certifies it free, both
         ends in bounds; ``MotionUndecided`` and configurations outside the
-        joint limits count as invalid. Counters: ``checked``, ``rejected``,
-        ``undecided``."""
+        joint limits count as invalid. Up to seven of the states OMPL's own
+        ``DiscreteMotionValidator`` would sample (the space's
+        ``validSegmentCount``, in bisection order) are checked exactly
+        first (``RobotChecker.sampled_contact``): a contact at one of them
+        refutes the motion at the sampled check's price (a colliding state
+        is a colliding motion); only a motion none of them refutes is
+        certified.
+        Counters: ``checked``, ``rejected``, ``undecided``, ``sampled``
+        (rejected by a sampled state)."""
 
         def __init__(self, space_information: Any, checker: RobotChecker, tolerance: float = 1e-6) -> None:
             si = _space_information(space_information)
@@ -715,7 +722,9 @@ def _joint_validator_class() -> type:
             self.checked = 0
             self.rejected = 0
             self.undecided = 0
-            self._satisfies_bounds = si.getStateSpace().satisfiesBounds
+            self.sampled = 0
+            self._space = si.getStateSpace()
+            self._satisfies_bounds = self._space.satisfiesBounds
 
         def checkMotion(self, s1: Any, s2: Any) -> bool:  # noqa: N802
             """Whether the motion ``s1 → s2`` is certified free."""
@@ -725,6 +734,11 @@ def _joint_validator_class() -> type:
                 q1 = [s1[i] for i in range(self.n)]
                 q2 = [s2[i] for i in range(self.n)]
                 try:
+                    segments = int(self._space.validSegmentCount(s1, s2))
+                    if self.checker.sampled_contact(q1, q2, segments) is not None:
+                        self.sampled += 1
+                        self.rejected += 1
+                        return False
                     # Backwards: s2 (the new end in a tree planner) first.
                     free = self.checker.check(q2, q1, self.decision_tolerance).free
                 except MotionUndecided:
@@ -738,7 +752,7 @@ def _joint_validator_class() -> type:
         def __repr__(self) -> str:
             return (
                 f"dymsum.ompl.JointMotionValidator(checked={self.checked}, rejected={self.rejected}, "
-                f"undecided={self.undecided})"
+                f"undecided={self.undecided}, sampled={self.sampled})"
             )
 
     JointMotionValidator.__module__ = __name__

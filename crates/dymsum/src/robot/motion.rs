@@ -474,7 +474,60 @@ impl Sweep for RobotSweep<'_> {
     }
 }
 
+/// The indices `k` of `0 < k < segments` in bisection order (the middle
+/// first, then the quarters, then the eighths, …), at most `most` of them.
+fn bisection_order(segments: usize, most: usize) -> Vec<usize> {
+    let mut out: Vec<usize> = Vec::new();
+    let mut level = 2usize;
+    while out.len() < most.min(segments.saturating_sub(1)) && level <= 2 * segments.max(1) {
+        for j in (1..level).step_by(2) {
+            let k = (j * segments + level / 2) / level;
+            if k > 0 && k < segments && !out.contains(&k) && out.len() < most {
+                out.push(k);
+            }
+        }
+        level *= 2;
+    }
+    out
+}
+
 impl RobotChecker {
+    /// A cheap refutation before a certificate: the first configuration
+    /// `q(k / segments)` of the straight motion from `q0` to `q1` (values
+    /// clamped between the ends), visited in bisection order and at most
+    /// `most` of them, at which the robot collides (exact), as its `t`;
+    /// `None` when none of them does (which proves nothing: the motion
+    /// may still collide between them; [`RobotChecker::check`] decides).
+    /// A planner's motion validator runs it with the sampled check's own
+    /// count first, so that a colliding motion costs what sampling costs.
+    ///
+    /// # Errors
+    /// [`RobotError::BadConfiguration`] for an end outside the limits;
+    /// [`RobotError::Query`] when a check fails.
+    pub fn sampled_contact(
+        &self,
+        q0: &[f64],
+        q1: &[f64],
+        segments: usize,
+        most: usize,
+    ) -> Result<Option<f64>, RobotError> {
+        let robot = self.robot();
+        robot.joint_values(q0)?;
+        robot.joint_values(q1)?;
+        for k in bisection_order(segments, most) {
+            let t = k as f64 / segments as f64;
+            let q: Vec<f64> = q0
+                .iter()
+                .zip(q1)
+                .map(|(&a, &b)| (a + t * (b - a)).clamp(a.min(b), a.max(b)))
+                .collect();
+            if self.collides_at(&q)? {
+                return Ok(Some(t));
+            }
+        }
+        Ok(None)
+    }
+
     /// Checks the straight joint-space motion from `q0` to `q1` (module
     /// docs) with the bracket no wider than `tolerance` (in `t`): the
     /// answer as [`crate::query::MotionChecker::check`]'s, at most
@@ -733,6 +786,19 @@ mod tests {
         }
         // The bound is not vacuous: some motion comes within half of it.
         assert!(tight > 0.5, "{tight}");
+    }
+
+    /// Bisection order visits each inner index once, the middle first.
+    #[test]
+    fn bisection_order_visits_each_inner_sample_once_middle_first() {
+        assert_eq!(bisection_order(8, 100), vec![4, 2, 6, 1, 3, 5, 7]);
+        assert_eq!(bisection_order(8, 3), vec![4, 2, 6]);
+        assert!(bisection_order(1, 10).is_empty() && bisection_order(0, 10).is_empty());
+        for n in 2..60 {
+            let mut all = bisection_order(n, usize::MAX);
+            all.sort_unstable();
+            assert_eq!(all, (1..n).collect::<Vec<_>>(), "{n}");
+        }
     }
 
     /// `norm_up` is never below the Euclidean norm, at any scale (squares
