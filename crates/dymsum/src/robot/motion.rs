@@ -145,12 +145,12 @@
 
 use super::checker::RobotChecker;
 use super::error::RobotError;
+use super::kinematics::norm_up;
 use super::model::{JointKind, Robot};
 use super::separation::PlaneCertificate;
 use crate::kernel::rotation::Pose;
 use crate::query::interval_search::{first_contact, Stop, Sweep};
 use crate::query::{MotionCheck, MotionError};
-use glam::DVec3;
 
 /// The largest `|value|` joint `k` takes along the motion (values are
 /// linear in `t`, so one of the ends), for the prismatic joints' travel:
@@ -214,18 +214,6 @@ fn chain_speed(
         }
     }
     speed * (1.0 + 1e-12)
-}
-
-/// `|v|`, rounded up, without squaring small coordinates into underflow
-/// or large ones into overflow: the largest magnitude `m` times the length
-/// of `v / m` (every coordinate of which is at most 1, one of them 1),
-/// each of the half-dozen roundings below `u`, covered by `10⁻¹²`.
-pub(super) fn norm_up(v: DVec3) -> f64 {
-    let m = v.abs().max_element();
-    if !(m > 0.0 && m.is_finite()) {
-        return m;
-    }
-    m * (v / m).length() * (1.0 + 1e-12)
 }
 
 /// A link's motion bound in the root's frame (module docs): how far any

@@ -40,6 +40,7 @@
 
 use glam::{DMat3, DVec3};
 
+use super::kinematics::norm_up;
 use crate::hull::{convex_hull, FloatPoints};
 
 /// The unit roundoff of `f64`.
@@ -94,10 +95,7 @@ impl Corners {
     /// The largest norm of a corner (rounded up), which is the largest of
     /// every vertex's: how far the link reaches from its frame's origin.
     pub(super) fn largest_norm(&self) -> f64 {
-        self.points
-            .iter()
-            .map(|&p| super::motion::norm_up(p))
-            .fold(0.0, f64::max)
+        self.points.iter().map(|&p| norm_up(p)).fold(0.0, f64::max)
     }
 
     /// The corners moved by the matrix and translation `(m, t)` into `out`
