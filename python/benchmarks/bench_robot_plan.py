@@ -147,20 +147,14 @@ class Pinocchio:
 
 def plan_once(name, seconds, tool, pinocchio=None, record=None):
     """One RRTConnect run; returns (solved, time, path configurations)."""
-    from ompl import base as ob
     from ompl import geometric as og
 
     robot, checker, start_q, goal_q = rs.problem(name)
-    space = ob.RealVectorStateSpace(robot.dof)
-    bounds = ob.RealVectorBounds(robot.dof)
-    for i, (lo, hi) in enumerate(robot.joint_limits):
-        bounds.setLow(i, lo)
-        bounds.setHigh(i, hi)
-    space.setBounds(bounds)
+    space = rs.joint_space(robot)
     ss = og.SimpleSetup(space)
     n = robot.dof
     if tool == "dymsum":
-        v = dymsum.ompl.setup_joint_validators(ss, checker)
+        dymsum.ompl.setup_joint_validators(ss, checker)
         if record is not None:
 
             class Recording(dymsum.ompl.JointMotionValidator):
@@ -198,12 +192,7 @@ def replay_validator(robot, checker):
     bounds, and the space."""
     from ompl import base as ob
 
-    space = ob.RealVectorStateSpace(robot.dof)
-    bounds = ob.RealVectorBounds(robot.dof)
-    for i, (lo, hi) in enumerate(robot.joint_limits):
-        bounds.setLow(i, lo)
-        bounds.setHigh(i, hi)
-    space.setBounds(bounds)
+    space = rs.joint_space(robot)
     si = ob.SpaceInformation(space)
     v = dymsum.ompl.setup_joint_validators(si, checker)
     si.setup()

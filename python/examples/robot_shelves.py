@@ -108,19 +108,27 @@ def problem(name: str = "panda"):
     return robot, dymsum.RobotChecker(robot, scene()), start, goal
 
 
-def plan(seconds: float = 30.0, seed: int = 1, robot_name: str = "panda") -> dict:
+def joint_space(robot: dymsum.Robot):
+    """OMPL's ``RealVectorStateSpace`` of the robot's degrees of freedom,
+    bounded by its joint limits."""
     from ompl import base as ob
-    from ompl import geometric as og
-    from ompl import util as ou
 
-    ou.RNG.setSeed(seed)
-    robot, checker, start_q, goal_q = problem(robot_name)
     space = ob.RealVectorStateSpace(robot.dof)
     bounds = ob.RealVectorBounds(robot.dof)
     for i, (lo, hi) in enumerate(robot.joint_limits):
         bounds.setLow(i, lo)
         bounds.setHigh(i, hi)
     space.setBounds(bounds)
+    return space
+
+
+def plan(seconds: float = 30.0, seed: int = 1, robot_name: str = "panda") -> dict:
+    from ompl import geometric as og
+    from ompl import util as ou
+
+    ou.RNG.setSeed(seed)
+    robot, checker, start_q, goal_q = problem(robot_name)
+    space = joint_space(robot)
     ss = og.SimpleSetup(space)
     v = dymsum.ompl.setup_joint_validators(ss, checker)
     start, goal = space.allocState(), space.allocState()

@@ -401,12 +401,17 @@ impl RobotSweep<'_> {
     }
 
     fn q_at(&self, t: f64) -> Vec<f64> {
-        self.q0
-            .iter()
-            .zip(&self.q1)
-            .map(|(&a, &b)| (a + t * (b - a)).clamp(a.min(b), a.max(b)))
-            .collect()
+        configuration_at(&self.q0, &self.q1, t)
     }
+}
+
+/// `q(t) = q₀ + t (q₁ − q₀)`, each value clamped into the range between
+/// its ends (the float product may round past them).
+fn configuration_at(q0: &[f64], q1: &[f64], t: f64) -> Vec<f64> {
+    q0.iter()
+        .zip(q1)
+        .map(|(&a, &b)| (a + t * (b - a)).clamp(a.min(b), a.max(b)))
+        .collect()
 }
 
 impl Sweep for RobotSweep<'_> {
@@ -504,12 +509,7 @@ impl RobotChecker {
         robot.joint_values(q1)?;
         for k in bisection_order(segments, most) {
             let t = k as f64 / segments as f64;
-            let q: Vec<f64> = q0
-                .iter()
-                .zip(q1)
-                .map(|(&a, &b)| (a + t * (b - a)).clamp(a.min(b), a.max(b)))
-                .collect();
-            if self.collides_at(&q)? {
+            if self.collides_at(&configuration_at(q0, q1, t))? {
                 return Ok(Some(t));
             }
         }
