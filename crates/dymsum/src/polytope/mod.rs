@@ -129,7 +129,10 @@ struct PolytopeData {
     /// axis-aligned plates on their cheap paths even when the normal itself
     /// is not a float.
     normal_support: Vec<u8>,
-    normal_scale: Vec<f64>,
+    /// Per face: [`Polytope::refined_normal`], computed once (the arcs, the
+    /// Gaussian map's check and every exact fallback of a predicate on
+    /// normals read it).
+    refined_normals: Vec<(DDVec, f64)>,
     arc_normals: Vec<DVec3>,
     arc_err: Vec<f64>,
     unit_normals: Vec<DVec3>,
@@ -355,6 +358,11 @@ impl Polytope {
             normal_err.push(err);
             normal_scale.push(scale);
         }
+        let refined_normals = normal_triple
+            .iter()
+            .zip(&normal_scale)
+            .map(|(t, &s)| refine_normal(t.map(|v| framed[v as usize]), s))
+            .collect();
         let unit_normals = normals.iter().map(|n| n.normalize()).collect();
         let inv_normal_len = normals.iter().map(|n| 1.0 / n.length()).collect();
         let data = PolytopeData {
@@ -367,7 +375,7 @@ impl Polytope {
             normal_triple,
             normal_err,
             normal_support,
-            normal_scale,
+            refined_normals,
             arc_normals: Vec::new(),
             arc_err: Vec::new(),
             unit_normals,
@@ -444,18 +452,9 @@ impl Polytope {
 
     /// The exact normal of face `f`, scaled like [`Polytope::normal`], in
     /// double-double, with a bound on its error.
+    #[inline]
     pub fn refined_normal(&self, f: usize) -> (DDVec, f64) {
-        let [a, b, c] =
-            self.data.normal_triple[f].map(|v| self.to_frame(self.data.vertices[v as usize]));
-        let d1 = [DD::diff(b.x, a.x), DD::diff(b.y, a.y), DD::diff(b.z, a.z)];
-        let d2 = [DD::diff(c.x, a.x), DD::diff(c.y, a.y), DD::diff(c.z, a.z)];
-        let s = self.data.normal_scale[f];
-        let n = dd::cross(&d1, &d2).map(|x| x.scale(s));
-        // Each component: two DD products and a DD difference, relative
-        // error ≤ ~12u² of |d1||d2|; plus the absolute error of low parts
-        // that underflow (a few units of 2^-1074 per operation).
-        let err = (32.0 * U * U * (b - a).length() * (c - a).length() + 64.0 * TINY) * s * 1.01;
-        (n, err)
+        self.data.refined_normals[f]
     }
 
     /// The normal of the great circle of edge `e`'s Gaussian arc,
@@ -660,6 +659,20 @@ fn rotated_component(row: DVec3, n: DVec3) -> Option<f64> {
 }
 
 const U: f64 = f64::EPSILON / 2.0;
+
+/// The exact normal `(b − a) × (c − a)` of a face's defining triple (in
+/// the frame), scaled by `s` (a power of two), in double-double, with a
+/// bound on its error: [`Polytope::refined_normal`].
+fn refine_normal([a, b, c]: [DVec3; 3], s: f64) -> (DDVec, f64) {
+    let d1 = [DD::diff(b.x, a.x), DD::diff(b.y, a.y), DD::diff(b.z, a.z)];
+    let d2 = [DD::diff(c.x, a.x), DD::diff(c.y, a.y), DD::diff(c.z, a.z)];
+    let n = dd::cross(&d1, &d2).map(|x| x.scale(s));
+    // Each component: two DD products and a DD difference, relative
+    // error ≤ ~12u² of |d1||d2|; plus the absolute error of low parts
+    // that underflow (a few units of 2^-1074 per operation).
+    let err = (32.0 * U * U * (b - a).length() * (c - a).length() + 64.0 * TINY) * s * 1.01;
+    (n, err)
+}
 /// The smallest positive subnormal, `2^-1074`.
 const TINY: f64 = 5e-324;
 
