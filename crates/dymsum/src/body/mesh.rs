@@ -172,6 +172,10 @@ impl MeshBody {
         if self.components.len() != 1 || self.components[0].0 != ComponentKind::Solid {
             return None;
         }
+        if has_reflex_edge(&self.vertices, &self.triangles) {
+            exactly_convex_refuted_by_edges_add();
+            return None;
+        }
         let mesh = PolygonMesh::new(
             self.vertices.iter().map(|v| v.to_array()).collect(),
             self.triangles
@@ -498,6 +502,80 @@ pub(crate) fn placed_polytope(
     crate::polytope::Polytope::from_points(&posed).map_err(|e| BodyError::Flattened(e.to_string()))
 }
 
+/// How many bodies [`MeshBody::new`] found not exactly convex from their
+/// edges alone ([`has_reflex_edge`]), without building their hull.
+static EXACTLY_CONVEX_REFUTED_BY_EDGES: std::sync::atomic::AtomicU64 =
+    std::sync::atomic::AtomicU64::new(0);
+
+fn exactly_convex_refuted_by_edges_add() {
+    EXACTLY_CONVEX_REFUTED_BY_EDGES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// How many bodies were found not exactly convex by their edges alone,
+/// without building their hull (the rest of the one-solid bodies build it
+/// and compare): a counter for benchmarks, process-wide.
+pub fn exactly_convex_refuted_by_edges() -> u64 {
+    EXACTLY_CONVEX_REFUTED_BY_EDGES.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// `true` when two triangles that share an edge in opposite directions
+/// (consistently oriented neighbours) fold strictly inwards: the far
+/// corner of the second strictly above the first's plane, on the side its
+/// corners wind counter-clockwise (exact `orient3d`), a reflex edge.
+///
+/// Such a mesh is not exactly convex, so the hull need not be built to
+/// say so. [`crate::polytope::Polytope::from_mesh`] under the strict
+/// policy accepts only a closed sphere oriented consistently and outwards
+/// whose every triangle lies in the plane of a face of the hull of its
+/// vertices; every vertex is then on the closed inner side of every
+/// triangle's plane, and no far corner is strictly above. Edges with
+/// other than two users, or two users running the same way, are skipped:
+/// they witness nothing here, and the exact comparison refuses them
+/// anyway. `false` decides nothing (a mesh can have no reflex edge and
+/// still not be exactly convex: it winds twice, or is inward), and the
+/// hull is compared as before.
+///
+/// O(T log T) for T triangles: the 3T directed edges sorted by their
+/// undirected key, one `orient3d` (float-filtered) per shared edge until
+/// the first reflex one.
+pub(crate) fn has_reflex_edge(vertices: &[DVec3], triangles: &[[u32; 3]]) -> bool {
+    use crate::kernel::predicates::{orient, Sign};
+    // (undirected key, triangle · 3 + position of the edge's first corner)
+    let mut edges: Vec<(u64, u32)> = Vec::with_capacity(3 * triangles.len());
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+            edges.push((key, (3 * t + k) as u32));
+        }
+    }
+    edges.sort_unstable();
+    let mut i = 0;
+    while i < edges.len() {
+        let mut j = i + 1;
+        while j < edges.len() && edges[j].0 == edges[i].0 {
+            j += 1;
+        }
+        if j - i == 2 {
+            let corner = |slot: u32| {
+                let (t, k) = ((slot / 3) as usize, (slot % 3) as usize);
+                (triangles[t], k)
+            };
+            let ((t0, k0), (t1, k1)) = (corner(edges[i].1), corner(edges[i + 1].1));
+            // Opposite directions: t0 runs a → b where t1 runs b → a.
+            if t0[k0] == t1[(k1 + 1) % 3] {
+                let far = vertices[t1[(k1 + 2) % 3] as usize];
+                let [a, b, c] = t0.map(|v| vertices[v as usize]);
+                if orient(a, b, c, far) == Sign::Positive {
+                    return true;
+                }
+            }
+        }
+        i = j;
+    }
+    false
+}
+
 #[cfg(test)]
 mod join_tests {
     use super::*;
@@ -535,5 +613,75 @@ mod join_tests {
             let slow = MeshBody::join_assembled(std::slice::from_ref(&one));
             assert_eq!(format!("{fast:?}"), format!("{slow:?}"));
         }
+    }
+
+    /// The hull of a few points of a small grid (many coplanar corners),
+    /// its faces as fans, optionally one corner moved: the reflex-edge
+    /// filter never refuses a mesh the strict comparison accepts, never
+    /// refutes an unmoved hull, and the body's convex fast path is what
+    /// the strict comparison decides on the cleaned triangles.
+    #[test]
+    fn a_reflex_edge_refutes_only_meshes_the_strict_comparison_refuses() {
+        use crate::polytope::{MeshPolicy, Polytope};
+        use proptest::prelude::*;
+        use proptest::test_runner::{Config, TestRunner};
+        let refuted = std::cell::Cell::new(0);
+        let mut runner = TestRunner::new(Config::with_cases(400));
+        let points = proptest::collection::vec(proptest::array::uniform3(-3i8..=3), 5..20);
+        let moved = (
+            any::<prop::sample::Index>(),
+            proptest::array::uniform3(-2i8..=2),
+        );
+        runner
+            .run(&(points, moved), |(points, (which, by))| {
+                let pts: Vec<[f64; 3]> = points.iter().map(|p| p.map(f64::from)).collect();
+                let Ok(hull) = Polytope::from_points(&pts) else {
+                    return Ok(());
+                };
+                let mut vertices: Vec<DVec3> = hull.vertices().to_vec();
+                let mut triangles = Vec::new();
+                for f in hull.faces() {
+                    for w in f[1..].windows(2) {
+                        triangles.push([f[0], w[0], w[1]]);
+                    }
+                }
+                prop_assert!(!has_reflex_edge(&vertices, &triangles));
+                let v = which.index(vertices.len());
+                vertices[v] += DVec3::from(by.map(f64::from));
+                let mesh = PolygonMesh::new(
+                    vertices.iter().map(|p| p.to_array()).collect(),
+                    triangles
+                        .iter()
+                        .map(|t| t.iter().map(|&i| i as usize).collect())
+                        .collect(),
+                );
+                let strict = Polytope::from_mesh(&mesh, MeshPolicy::strict()).is_ok();
+                if has_reflex_edge(&vertices, &triangles) {
+                    refuted.set(refuted.get() + 1);
+                    prop_assert!(!strict);
+                }
+                // On the cleaned triangles (an inverted mesh is turned
+                // outwards), the filter never changes the decision.
+                if let Ok(body) = MeshBody::new(&mesh) {
+                    if body.components.len() == 1 {
+                        let cleaned = PolygonMesh::new(
+                            body.vertices.iter().map(|p| p.to_array()).collect(),
+                            body.triangles
+                                .iter()
+                                .map(|t| t.iter().map(|&i| i as usize).collect())
+                                .collect(),
+                        );
+                        let strict = Polytope::from_mesh(&cleaned, MeshPolicy::strict()).is_ok();
+                        prop_assert_eq!(body.as_convex().is_some(), strict);
+                    }
+                }
+                Ok(())
+            })
+            .unwrap();
+        let refuted = refuted.get();
+        assert!(
+            refuted > 50,
+            "the filter refuted only {refuted} moved hulls"
+        );
     }
 }
