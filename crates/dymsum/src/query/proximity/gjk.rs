@@ -26,6 +26,17 @@
 //!   3×3 determinants of the exact points, and for a flat simplex of the
 //!   lower-dimensional tests), so touching (the origin on the boundary of
 //!   `D'`) is decided without a tolerance.
+//! * **apart, near contact**: GJK's direction is then the difference of
+//!   two nearly equal points, too coarse to show the separation, so the
+//!   face normals and edge cross products of the features around its
+//!   simplex are tried ([`separating_feature_axis`]): the three nearest
+//!   GJK's direction, then the three that leave the widest gap between
+//!   the simplex's neighbouring vertices; each is decided exactly as
+//!   above, so the choice needs no error bound.
+//! * **overlapping by less than rounding**: two fan triangles, of faces
+//!   of A and of B around the simplex's vertices (then one edge further),
+//!   that meet exactly ([`local_faces_meet`]); each lies in its posed
+//!   body's hull, so a common point is one of the two hulls.
 //!
 //! When neither certificate holds (the origin within rounding of the
 //! boundary, where float directions cannot exhibit a separation), the
@@ -35,10 +46,13 @@
 
 use crate::hull::{convex_hull, PairwiseSums};
 use crate::kernel::exact::{self, Dyadic, ExactVec};
+use crate::kernel::separation::triangles_apart;
 use crate::kernel::Sign;
+use crate::polytope::Polytope;
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
 use crate::query::proximity::support::{climb, near_max, Marks, NearMax, NearestAxes};
+use crate::solid::intersect::triangles_meet;
 use glam::DVec3;
 
 /// The most GJK steps before it stops with what it has (never reached in
@@ -378,7 +392,113 @@ pub(in crate::query) fn certify(
     {
         return Some(false);
     }
+    if local_faces_meet(pair, posed, g) {
+        return Some(true);
+    }
     None
+}
+
+/// The most faces around GJK's simplex whose triangles
+/// [`local_faces_meet`] tries per body.
+const LOCAL_FACES: usize = 64;
+
+/// Exactly whether a triangle of A's faces near GJK's final simplex meets
+/// a triangle of B's (each face fanned from its first corner, at the
+/// posed, rounded vertices): an overlap certificate for bodies that meet
+/// by less than rounding can show in GJK's simplex.
+///
+/// A fan triangle of posed vertices of A lies in the hull of A's posed
+/// vertices, and likewise for B, so a common point of two such triangles
+/// (decided by [`triangles_meet`], exact, after the box test and the
+/// certified float filter [`triangles_apart`]) is a common point of the
+/// two hulls: the bodies meet. `false` proves nothing. When the bodies
+/// meet by very little and neither holds the other, their boundaries
+/// cross next to the features GJK ends on: the faces around its simplex's
+/// vertices are tried first, then those one edge further (on tessellated
+/// cylinders bisected to 2⁻⁴⁰ of contact the first ring held a crossing
+/// pair in nine of ten such states, the second in all).
+fn local_faces_meet(pair: &ConvexPair, posed: &Posed, g: &Gjk) -> bool {
+    let mut fa = LocalFaces::default();
+    let mut fb = LocalFaces::default();
+    let pts = &g.simplex.pts[..g.simplex.len];
+    for p in pts {
+        fa.ring(&pair.a, p.a);
+        fb.ring(&pair.b, p.b);
+    }
+    let (first_a, first_b) = (fa.n, fb.n);
+    if faces_meet(pair, posed, &fa.faces[..first_a], &fb.faces[..first_b]) {
+        return true;
+    }
+    for p in pts {
+        for r in pair.a.ring(p.a as usize) {
+            fa.ring(&pair.a, r.neighbor);
+        }
+        for r in pair.b.ring(p.b as usize) {
+            fb.ring(&pair.b, r.neighbor);
+        }
+    }
+    // The pairs not tried yet: a new face of A with every face of B, and
+    // a first-ring face of A with every new face of B.
+    faces_meet(pair, posed, &fa.faces[first_a..fa.n], &fb.faces[..fb.n])
+        || faces_meet(pair, posed, &fa.faces[..first_a], &fb.faces[first_b..fb.n])
+}
+
+/// Up to [`LOCAL_FACES`] distinct faces of one body.
+struct LocalFaces {
+    faces: [u32; LOCAL_FACES],
+    n: usize,
+}
+
+impl Default for LocalFaces {
+    fn default() -> Self {
+        LocalFaces {
+            faces: [0; LOCAL_FACES],
+            n: 0,
+        }
+    }
+}
+
+impl LocalFaces {
+    /// Adds the faces around vertex `v` not held yet (while there is room).
+    fn ring(&mut self, body: &Polytope, v: u32) {
+        for r in body.ring(v as usize) {
+            if self.n < LOCAL_FACES && !self.faces[..self.n].contains(&r.face) {
+                self.faces[self.n] = r.face;
+                self.n += 1;
+            }
+        }
+    }
+}
+
+/// Exactly whether a fan triangle of one of A's faces `fa` meets one of
+/// B's faces `fb` (at the posed vertices).
+fn faces_meet(pair: &ConvexPair, posed: &Posed, fa: &[u32], fb: &[u32]) -> bool {
+    let fan = |c: &[u32], k: usize, at: &dyn Fn(u32) -> DVec3| [at(c[0]), at(c[k]), at(c[k + 1])];
+    let (at_a, at_b) = (|v| posed.a(v), |w| posed.b(w));
+    let boxed = |t: &[DVec3; 3]| (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+    for &f in fa {
+        let ca = pair.a.face(f as usize);
+        for k in 1..ca.len() - 1 {
+            let t = fan(ca, k, &at_a);
+            let (tlo, thi) = boxed(&t);
+            for &h in fb {
+                let cb = pair.b.face(h as usize);
+                for j in 1..cb.len() - 1 {
+                    let u = fan(cb, j, &at_b);
+                    let (ulo, uhi) = boxed(&u);
+                    // Closed boxes (exact comparisons of the corners):
+                    // disjoint boxes hold disjoint triangles.
+                    if tlo.cmpgt(uhi).any() || ulo.cmpgt(thi).any() {
+                        continue;
+                    }
+                    if !triangles_apart(&t, &u) && triangles_meet(&t, &u) {
+                        return true;
+                    }
+                }
+            }
+        }
+    }
+    false
 }
 
 /// How many feature axes [`separating_feature_axis`] tries.
@@ -406,9 +526,44 @@ pub(in crate::query) fn separating_feature_axis(
     if !v.is_finite() {
         return None;
     }
-    let pts = &g.simplex.pts[..g.simplex.len];
     let mut best = NearestAxes::<(u32, u32), FEATURE_AXES>::new(v);
-    let mut offer = |d: DVec3, warm: (u32, u32)| best.offer(d, warm);
+    for_each_feature_axis(pair, posed, g, v, |d, warm| best.offer(d, warm));
+    if let Some((d, _)) = best
+        .facing()
+        .find(|&(d, warm)| separated_along(pair, posed, d, warm, cert))
+    {
+        return Some(d);
+    }
+    // Second try, ranked by the local gap instead (below).
+    let local = LocalVertices::around(pair, posed, g);
+    let mut widest = NearestAxes::<(u32, u32), FEATURE_AXES>::new(v);
+    for_each_feature_axis(pair, posed, g, v, |d, warm| {
+        let len = d.length();
+        if len > 0.0 && len.is_finite() {
+            let d = d / len;
+            widest.offer_scored(d, local.gap(d), warm);
+        }
+    });
+    let separating = widest
+        .kept()
+        .find(|&(d, warm)| separated_along(pair, posed, d, warm, cert))
+        .map(|(d, _)| d);
+    separating
+}
+
+/// Offers every feature axis of GJK's final simplex (any length, oriented
+/// towards `v` = GJK's unit direction) with the support vertices to start
+/// from: the outward normals of A's faces around the simplex's vertices
+/// of A (negated: facing B), those of B's faces around its vertices of B,
+/// and the cross products of the edges leaving those vertices.
+fn for_each_feature_axis(
+    pair: &ConvexPair,
+    posed: &Posed,
+    g: &Gjk,
+    v: DVec3,
+    mut offer: impl FnMut(DVec3, (u32, u32)),
+) {
+    let pts = &g.simplex.pts[..g.simplex.len];
     for (i, p) in pts.iter().enumerate() {
         if pts[..i].iter().any(|q| q.a == p.a) {
             continue;
@@ -443,11 +598,69 @@ pub(in crate::query) fn separating_feature_axis(
             }
         }
     }
-    let separating = best
-        .facing()
-        .find(|&(d, warm)| separated_along(pair, posed, d, warm, cert))
-        .map(|(d, _)| d);
-    separating
+}
+
+/// The posed vertices of A and of B next to GJK's final simplex (its
+/// vertices and their neighbours), for ranking candidate axes by the gap
+/// they leave between these points alone.
+///
+/// When the bodies nearly touch, GJK's direction is the difference of two
+/// nearly equal points and can be off by far more than the angle between
+/// the candidate axes, so ranking them by closeness to it can leave the
+/// one separating axis out of the few tried. An axis separates only if it
+/// separates these points (`min d · a − max d · b > 0` over them), and
+/// the wrong ones mostly do not: a neighbour on the other side shows it.
+/// The ranking only chooses what [`separated_along`] tries; that decides
+/// exactly, so the ranking needs no error bound.
+struct LocalVertices {
+    a: [DVec3; LOCAL_VERTICES],
+    na: usize,
+    b: [DVec3; LOCAL_VERTICES],
+    nb: usize,
+}
+
+/// The most local vertices kept per body (the simplex's up to three
+/// distinct vertices and their rings; the rest are left out of the
+/// ranking, which only orders the tries).
+const LOCAL_VERTICES: usize = 48;
+
+impl LocalVertices {
+    fn around(pair: &ConvexPair, posed: &Posed, g: &Gjk) -> LocalVertices {
+        let mut out = LocalVertices {
+            a: [DVec3::ZERO; LOCAL_VERTICES],
+            na: 0,
+            b: [DVec3::ZERO; LOCAL_VERTICES],
+            nb: 0,
+        };
+        let push = |buf: &mut [DVec3; LOCAL_VERTICES], n: &mut usize, x: DVec3| {
+            if *n < LOCAL_VERTICES {
+                buf[*n] = x;
+                *n += 1;
+            }
+        };
+        for p in &g.simplex.pts[..g.simplex.len] {
+            push(&mut out.a, &mut out.na, posed.a(p.a));
+            for r in pair.a.ring(p.a as usize) {
+                push(&mut out.a, &mut out.na, posed.a(r.neighbor));
+            }
+            push(&mut out.b, &mut out.nb, posed.b(p.b));
+            for r in pair.b.ring(p.b as usize) {
+                push(&mut out.b, &mut out.nb, posed.b(r.neighbor));
+            }
+        }
+        out
+    }
+
+    /// `min d · a − max d · b` over the local vertices (floats).
+    fn gap(&self, d: DVec3) -> f64 {
+        let lo = self.a[..self.na]
+            .iter()
+            .fold(f64::INFINITY, |m, x| m.min(d.dot(*x)));
+        let hi = self.b[..self.nb]
+            .iter()
+            .fold(f64::NEG_INFINITY, |m, x| m.max(d.dot(*x)));
+        lo - hi
+    }
 }
 
 /// Exactly whether GJK's final simplex holds the origin (tested when the

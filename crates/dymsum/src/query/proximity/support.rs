@@ -279,6 +279,23 @@ impl<T: Copy + Default, const K: usize> NearestAxes<T, K> {
         }
     }
 
+    /// Offers the unit axis `d` with its own `score` in place of `d · v`
+    /// (kept when among the `K` largest).
+    pub(in crate::query) fn offer_scored(&mut self, d: DVec3, score: f64, payload: T) {
+        if score > self.best[K - 1].0 {
+            self.best[K - 1] = (score, d, payload);
+            self.best.sort_by(|x, y| y.0.total_cmp(&x.0));
+        }
+    }
+
+    /// Every kept axis, largest score first.
+    pub(in crate::query) fn kept(&self) -> impl Iterator<Item = (DVec3, T)> + '_ {
+        self.best
+            .iter()
+            .filter(|(score, _, _)| *score > f64::NEG_INFINITY)
+            .map(|&(_, d, t)| (d, t))
+    }
+
     /// The kept axes facing `v` (`axis · v > 0`), nearest first.
     pub(in crate::query) fn facing(&self) -> impl Iterator<Item = (DVec3, T)> + '_ {
         self.best
