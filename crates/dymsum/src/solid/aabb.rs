@@ -129,28 +129,10 @@ fn half_area(b: &Aabb) -> f64 {
     d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
 }
 
-/// The best bin boundary on axis `k`: `(cost, last bin of the left side,
-/// lowest centre, bins per unit)`, or `None` when every centre coincides
-/// on this axis.
-fn best_split_on(items: &[u32], boxes: &[Aabb], k: usize) -> Option<(f64, usize, f64, f64)> {
-    let n = items.len();
-    let (lo, hi) = items
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &i| {
-            let c = boxes[i as usize].centre(k);
-            (l.min(c), h.max(c))
-        });
-    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
-        return None;
-    }
-    let scale = BINS as f64 / (hi - lo);
-    let mut count = [0usize; BINS];
-    let mut bound = [Aabb::EMPTY; BINS];
-    for &i in items {
-        let b = bin_of(boxes[i as usize].centre(k), lo, scale);
-        count[b] += 1;
-        bound[b] = bound[b].join(&boxes[i as usize]);
-    }
+/// The best bin boundary of one axis, from its bins' counts and boxes:
+/// `(cost, last bin of the left side)`, or `None` when every item falls
+/// on one side.
+fn best_split_of(count: &[usize; BINS], bound: &[Aabb; BINS], n: usize) -> Option<(f64, usize)> {
     // Right sides' costs from the right, then the left sides from the left.
     let mut right_cost = [0.0f64; BINS];
     let (mut acc, mut c) = (Aabb::EMPTY, 0usize);
@@ -160,7 +142,7 @@ fn best_split_on(items: &[u32], boxes: &[Aabb], k: usize) -> Option<(f64, usize,
         right_cost[b] = c as f64 * half_area(&acc);
     }
     let (mut acc, mut c) = (Aabb::EMPTY, 0usize);
-    let mut best: Option<(f64, usize, f64, f64)> = None;
+    let mut best: Option<(f64, usize)> = None;
     for b in 0..BINS - 1 {
         acc = acc.join(&bound[b]);
         c += count[b];
@@ -169,7 +151,7 @@ fn best_split_on(items: &[u32], boxes: &[Aabb], k: usize) -> Option<(f64, usize,
         }
         let cost = c as f64 * half_area(&acc) + right_cost[b + 1];
         if best.is_none_or(|x| cost < x.0) {
-            best = Some((cost, b, lo, scale));
+            best = Some((cost, b));
         }
     }
     best
@@ -184,17 +166,41 @@ fn bin_of(x: f64, lo: f64, scale: f64) -> usize {
 /// children, and returns `mid` (strictly inside): the binned surface-area
 /// heuristic over the box centres on each axis (the split minimising
 /// `count · area` summed over both sides), or the median of the widest
-/// axis when every centre coincides. Any split is correct; this one makes
-/// the boxes of a node overlap less, so fewer pairs are visited.
-fn split_by_area(items: &mut [u32], boxes: &[Aabb]) -> usize {
+/// axis of `bound` (the items' box) when every centre coincides. Any
+/// split is correct; this one makes the boxes of a node overlap less, so
+/// fewer pairs are visited. `centres` are the boxes' centres and
+/// `(lo, hi)` the box of the items' centres: all three axes are binned in
+/// one pass over the items.
+fn split_by_area(
+    items: &mut [u32],
+    boxes: &[Aabb],
+    centres: &[[f64; 3]],
+    bound: &Aabb,
+    (lo, hi): ([f64; 3], [f64; 3]),
+) -> usize {
     let n = items.len();
+    let live: [bool; 3] = std::array::from_fn(|k| hi[k] > lo[k]);
+    let scale: [f64; 3] = std::array::from_fn(|k| BINS as f64 / (hi[k] - lo[k]));
+    let mut count = [[0usize; BINS]; 3];
+    let mut bins = [[Aabb::EMPTY; BINS]; 3];
+    for &i in items.iter() {
+        let (c, b) = (&centres[i as usize], &boxes[i as usize]);
+        for k in 0..3 {
+            if live[k] {
+                let j = bin_of(c[k], lo[k], scale[k]);
+                count[k][j] += 1;
+                bins[k][j] = bins[k][j].join(b);
+            }
+        }
+    }
     let best = (0..3)
-        .filter_map(|k| best_split_on(items, boxes, k).map(|b| (k, b)))
+        .filter(|&k| live[k])
+        .filter_map(|k| best_split_of(&count[k], &bins[k], n).map(|b| (k, b)))
         .min_by(|x, y| x.1 .0.total_cmp(&y.1 .0));
-    if let Some((k, (_, last, lo, scale))) = best {
+    if let Some((k, (_, last))) = best {
         let mut mid = 0;
         for j in 0..n {
-            if bin_of(boxes[items[j] as usize].centre(k), lo, scale) <= last {
+            if bin_of(centres[items[j] as usize][k], lo[k], scale[k]) <= last {
                 items.swap(mid, j);
                 mid += 1;
             }
@@ -203,9 +209,6 @@ fn split_by_area(items: &mut [u32], boxes: &[Aabb]) -> usize {
             return mid;
         }
     }
-    let bound = items
-        .iter()
-        .fold(Aabb::EMPTY, |b, &i| b.join(&boxes[i as usize]));
     let axis = (0..3)
         .max_by(|&a, &b| {
             let w = |k: usize| bound.hi[k] - bound.lo[k];
@@ -214,9 +217,7 @@ fn split_by_area(items: &mut [u32], boxes: &[Aabb]) -> usize {
         .unwrap_or(0);
     let mid = n / 2;
     items.select_nth_unstable_by(mid, |&a, &b| {
-        boxes[a as usize]
-            .centre(axis)
-            .total_cmp(&boxes[b as usize].centre(axis))
+        centres[a as usize][axis].total_cmp(&centres[b as usize][axis])
     });
     mid
 }
@@ -258,17 +259,27 @@ impl AabbTree {
             items: (0..boxes.len() as u32).collect(),
         };
         if !boxes.is_empty() {
-            tree.build(boxes, 0, boxes.len());
+            let centres: Vec<[f64; 3]> = boxes
+                .iter()
+                .map(|b| std::array::from_fn(|k| b.centre(k)))
+                .collect();
+            tree.build(boxes, &centres, 0, boxes.len());
         }
         tree
     }
 
-    fn build(&mut self, boxes: &[Aabb], start: usize, end: usize) -> u32 {
+    fn build(&mut self, boxes: &[Aabb], centres: &[[f64; 3]], start: usize, end: usize) -> u32 {
         let items = &mut self.items[start..end];
-        let bound = items
-            .iter()
-            .skip(1)
-            .fold(boxes[items[0] as usize], |b, &i| b.join(&boxes[i as usize]));
+        let first = items[0] as usize;
+        let (mut bound, mut lo, mut hi) = (boxes[first], centres[first], centres[first]);
+        for &i in &items[1..] {
+            bound = bound.join(&boxes[i as usize]);
+            let c = &centres[i as usize];
+            for k in 0..3 {
+                lo[k] = lo[k].min(c[k]);
+                hi[k] = hi[k].max(c[k]);
+            }
+        }
         let id = self.nodes.len() as u32;
         self.bounds.push(bound);
         if end - start <= LEAF {
@@ -278,10 +289,10 @@ impl AabbTree {
             });
             return id;
         }
-        let mid = split_by_area(items, boxes);
+        let mid = split_by_area(items, boxes, centres, &bound, (lo, hi));
         self.nodes.push(Node::Leaf { start: 0, end: 0 });
-        let left = self.build(boxes, start, start + mid);
-        let right = self.build(boxes, start + mid, end);
+        let left = self.build(boxes, centres, start, start + mid);
+        let right = self.build(boxes, centres, start + mid, end);
         self.nodes[id as usize] = Node::Inner { left, right };
         id
     }
