@@ -91,10 +91,11 @@ pub struct MeshBody {
     /// ([`MeshBody::join`]; `0` otherwise): winding numbers are summed per
     /// body.
     pub(crate) source_of: Vec<u32>,
-    pub(crate) tree: AabbTree,
-    /// One oriented box per node of `tree` (body frame;
-    /// [`crate::solid::obb`]).
-    pub(crate) obbs: Vec<Obb>,
+    /// The box tree over the triangles and one oriented box per node of it
+    /// (body frame; [`crate::solid::obb`]), built on first use
+    /// ([`MeshBody::tree`]): a body on the convex path
+    /// ([`MeshBody::as_convex`]) never reads them.
+    triangle_tree: std::sync::OnceLock<(AabbTree, Vec<Obb>)>,
     /// Each component's box (body frame).
     pub(crate) component_boxes: Vec<Aabb>,
     /// The solid components (their indices).
@@ -112,6 +113,26 @@ pub struct MeshBody {
 }
 
 impl MeshBody {
+    /// The box tree over the triangles (item `i` is triangle `i`), built
+    /// with [`MeshBody::obbs`] on first use.
+    pub(crate) fn tree(&self) -> &AabbTree {
+        &self.triangle_tree().0
+    }
+
+    /// One oriented box per node of [`MeshBody::tree`] (body frame).
+    pub(crate) fn obbs(&self) -> &[Obb] {
+        &self.triangle_tree().1
+    }
+
+    fn triangle_tree(&self) -> &(AabbTree, Vec<Obb>) {
+        self.triangle_tree.get_or_init(|| {
+            let (vertices, triangles) = (&self.vertices, &self.triangles);
+            let tree = AabbTree::new(&triangle_boxes(vertices, triangles));
+            let obbs = node_obbs(&tree, |i| triangles[i].map(|v| vertices[v as usize]));
+            (tree, obbs)
+        })
+    }
+
     /// Cleans `mesh` exactly and classifies its components
     /// ([`clean_soup`]), then builds the box tree.
     ///
@@ -296,8 +317,6 @@ impl MeshBody {
         report: MeshReport,
     ) -> MeshBody {
         let boxes = triangle_boxes(&vertices, &triangles);
-        let tree = AabbTree::new(&boxes);
-        let obbs = node_obbs(&tree, |i| triangles[i].map(|v| vertices[v as usize]));
         let mut component_boxes = vec![Aabb::EMPTY; components.len()];
         for (t, b) in boxes.iter().enumerate() {
             let c = component_of[t] as usize;
@@ -326,8 +345,7 @@ impl MeshBody {
             weights,
             source_of: vec![0; components.len()],
             components,
-            tree,
-            obbs,
+            triangle_tree: std::sync::OnceLock::new(),
             component_boxes,
             solid_components,
             solid_tree,
@@ -429,14 +447,14 @@ impl MeshBody {
         if let Some(c) = seen.iter().position(|&s| !s) {
             return bad(format!("component {c}'s vertex is not on its triangles"));
         }
-        self.tree.sanity_check()?;
+        self.tree().sanity_check()?;
         self.solid_tree.sanity_check()?;
         let boxes = triangle_boxes(&self.vertices, &self.triangles);
         let same = |a: &Aabb, b: &Aabb| a.lo == b.lo && a.hi == b.hi;
-        if boxes.len() != self.tree.boxes().len()
+        if boxes.len() != self.tree().boxes().len()
             || boxes
                 .iter()
-                .zip(self.tree.boxes())
+                .zip(self.tree().boxes())
                 .any(|(a, b)| !same(a, b))
         {
             return bad("the tree's boxes are not the triangles' boxes".into());
@@ -453,12 +471,12 @@ impl MeshBody {
         if let Some(v) = self.vertices.iter().position(|v| v.length() > self.reach) {
             return bad(format!("the reach is below vertex {v}'s norm"));
         }
-        let spans = self.tree.node_spans();
-        if self.obbs.len() != spans.len() {
+        let spans = self.tree().node_spans();
+        if self.obbs().len() != spans.len() {
             return bad("not one oriented box per tree node".into());
         }
-        for (n, (&(s, e), o)) in spans.iter().zip(&self.obbs).enumerate() {
-            let items = &self.tree.items()[s as usize..e as usize];
+        for (n, (&(s, e), o)) in spans.iter().zip(self.obbs()).enumerate() {
+            let items = &self.tree().items()[s as usize..e as usize];
             let corner = |&i: &u32| self.triangles[i as usize].map(|v| self.vertices[v as usize]);
             if !items.iter().flat_map(corner).all(|p| o.holds(p)) {
                 return bad(format!(

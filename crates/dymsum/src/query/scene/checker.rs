@@ -223,7 +223,16 @@ impl SceneChecker {
     /// [`QueryError::OutOfRange`] when the body or the scene has no
     /// triangles.
     pub fn new(body: &MeshBody, scene: &[MeshBody]) -> Result<SceneChecker, QueryError> {
+        // Every query walks both triangle trees (built on first use, as a
+        // body on the convex path never needs them): built here, so the
+        // first query costs what the others do, and on the caller's
+        // bodies, so that the checkers made from one body share its tree.
+        body.tree();
+        if let [one] = scene {
+            one.tree();
+        }
         let scene = MeshBody::join(scene);
+        scene.tree();
         if body.triangles.is_empty() {
             return Err(QueryError::OutOfRange("the body has no triangles".into()));
         }
@@ -308,14 +317,14 @@ impl SceneChecker {
     }
 
     pub(super) fn fit_node_cache(&self, s: &mut Scratch) {
-        let n = self.body.tree.bounds().len();
+        let n = self.body.tree().bounds().len();
         if s.node_cache.len() != n || s.at.epoch == 1 {
             s.node_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); n];
         }
         if s.obb_cache.len() != n || s.at.epoch == 1 {
             s.obb_cache = vec![std::cell::Cell::new((0, PosedObb::default())); n];
         }
-        let k = self.scene.tree.bounds().len();
+        let k = self.scene.tree().bounds().len();
         if s.scene_cache.len() != k || s.at.epoch == 1 {
             s.scene_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); k];
         }

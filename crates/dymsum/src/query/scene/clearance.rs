@@ -32,7 +32,7 @@ impl SceneChecker {
         s.at.start(self.body.vertices.len());
         self.fit_node_cache(s);
         let (m, t, pad) = (pose.rotation.matrix(), pose.translation, self.pad(&pose));
-        let bounds = self.body.tree.bounds();
+        let bounds = self.body.tree().bounds();
         let cache = std::mem::take(&mut s.node_cache);
         let epoch = s.at.epoch;
         let mut stack = std::mem::take(&mut s.stack);
@@ -44,10 +44,10 @@ impl SceneChecker {
             let (at, tris) = &mut *lazy.borrow_mut();
             tris.get(at, &self.body, &pose, i)
         };
-        let best = self.body.tree.nearest_pair(
+        let best = self.body.tree().nearest_pair(
             |n| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad)),
             |i| posed(i).1,
-            &self.scene.tree,
+            self.scene.tree(),
             &mut stack,
             |i, j| distance_lower_bound(&posed(i).0, &self.scene_triangle(j)),
         );

@@ -119,7 +119,7 @@ impl MeshBody {
             .for_each_meeting(&Aabb { lo: at, hi: at }, |k| {
                 candidates.push(self.solid_components[k])
             });
-        let (boxes, bounds) = (self.tree.boxes(), self.tree.bounds());
+        let (boxes, bounds) = (self.tree().boxes(), self.tree().bounds());
         inside_solid(
             self,
             |v| self.vertices[v as usize],
@@ -203,7 +203,7 @@ pub(crate) fn inside_solid(
             // (a joined scene's obstacles each count by themselves: one's
             // inward shell must not cancel another's solid).
             let mut winding: Vec<(u32, i64)> = Vec::new();
-            body.tree
+            body.tree()
                 .for_each_meeting_with(&node_box, &item_box, &ray, |t| {
                     let c = body.component_of[t] as usize;
                     if degenerate || parity[c] == 0 {

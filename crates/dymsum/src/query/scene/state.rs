@@ -64,7 +64,7 @@ impl SceneChecker {
         // coordinates (its centre and half-size, then the sums): grow it by
         // a bound on that too, taken once for the whole scene (its box's
         // largest coordinate bounds every box's).
-        let root = self.scene.tree.root();
+        let root = self.scene.tree().root();
         let mag = root
             .lo
             .iter()
@@ -72,11 +72,11 @@ impl SceneChecker {
             .fold(0.0f64, |m, x| m.max(x.abs()));
         let back_pad = back_pad + 16.0 * f64::EPSILON * (2.0 * mag + t.abs().max_element());
         let back = |o: &Aabb| o.transformed(&mi, ti, back_pad);
-        let bounds = self.body.tree.bounds();
+        let bounds = self.body.tree().bounds();
         let cache = std::mem::take(&mut s.node_cache);
         let epoch = s.at.epoch;
         let world = |n: usize| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad));
-        let scene = &self.scene.tree;
+        let scene = self.scene.tree();
         let mut stack = std::mem::take(&mut s.stack);
         // The body's triangles at the pose, each corner posed once per
         // query: a pair of triangles is kept only when the exact box of the
@@ -94,13 +94,13 @@ impl SceneChecker {
         // pose's matrix is close enough to a rotation for their test.
         let oriented = pose_skew(&m).is_some();
         let obb_cache = std::mem::take(&mut s.obb_cache);
-        let (body_obbs, scene_obbs) = (&self.body.obbs, &self.scene.obbs);
+        let (body_obbs, scene_obbs) = (self.body.obbs(), self.scene.obbs());
         let obb_apart = |n: usize, k: usize| {
             let a = &body_obbs[n];
             let posed = cached(&obb_cache, epoch, n, || a.posed(&m, t));
             scene_obbs[k].apart(&posed, a.h, a.fuzz, pad)
         };
-        let hit = self.body.tree.for_each_pair(
+        let hit = self.body.tree().for_each_pair(
             |n, k, o| {
                 world(n).within(o, 0.0)
                     && back_node(k, o).within(&bounds[n], 0.0)
@@ -148,7 +148,7 @@ impl SceneChecker {
         parity: &mut Vec<u8>,
     ) -> Result<bool, QueryError> {
         if !self.scene.solid_components.is_empty() {
-            let scene_box = self.scene.obbs.first();
+            let scene_box = self.scene.obbs().first();
             for &(_, v) in &self.body.components {
                 let p = s.at.get(&self.body.vertices, &pose, v);
                 // Outside the scene's oriented box: inside nothing of it.
@@ -166,7 +166,11 @@ impl SceneChecker {
         // The scene components with a corner in the body's box at the pose.
         let m = pose.rotation.matrix();
         let pad = 64.0 * f64::EPSILON * (self.body.reach + pose.translation.abs().max_element());
-        let reach = self.body.tree.root().transformed(&m, pose.translation, pad);
+        let reach = self
+            .body
+            .tree()
+            .root()
+            .transformed(&m, pose.translation, pad);
         let mut corners = Vec::new();
         self.scene_corners
             .for_each_meeting(&reach, |k| corners.push(k));
@@ -178,7 +182,7 @@ impl SceneChecker {
         // own frame and grown by the rounding bound (holding the posed
         // points), its triangles' boxes exact from their posed corners.
         let (t, pad) = (pose.translation, self.pad(&pose));
-        let bounds = self.body.tree.bounds();
+        let bounds = self.body.tree().bounds();
         let cache = std::mem::take(&mut s.node_cache);
         let epoch = s.at.epoch;
         let at = std::cell::RefCell::new(&mut s.at);
@@ -198,7 +202,7 @@ impl SceneChecker {
         let mi = m.transpose();
         let filter = pose_skew(&m).is_some();
         let size = self.body.reach + t.abs().max_element();
-        let body_box = self.body.obbs.first();
+        let body_box = self.body.obbs().first();
         let mut candidates = Vec::new();
         let mut out = Ok(false);
         for k in corners {

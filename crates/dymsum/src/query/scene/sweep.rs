@@ -116,7 +116,7 @@ impl SceneChecker {
             lo: lo.to_array(),
             hi: hi.to_array(),
         };
-        if !own.within(&self.scene.tree.boxes()[j], reach) {
+        if !own.within(&self.scene.tree().boxes()[j], reach) {
             return false;
         }
         let ends = [[hull[0], hull[1], hull[2]], [hull[3], hull[4], hull[5]]];
@@ -160,10 +160,10 @@ impl SceneChecker {
                 .join(&shifted(&a, shift))
                 .join(&shifted(&z, -shift))
         };
-        let (bounds, boxes) = (self.body.tree.bounds(), self.body.tree.boxes());
+        let (bounds, boxes) = (self.body.tree().bounds(), self.body.tree().boxes());
         let cache = std::mem::take(&mut s.node_cache);
         let epoch = s.at.epoch;
-        let scene = &self.scene.tree;
+        let scene = self.scene.tree();
         let mut stack = std::mem::take(&mut s.stack);
         let mut blocker = None;
         // Then the oriented boxes (`solid::obb`): a node's swept hulls lie
@@ -175,7 +175,7 @@ impl SceneChecker {
         let shift_len = shift.abs().element_sum() * (1.0 + 1e-12);
         let oriented = pose_skew(&ma).is_some();
         let obb_cache = std::mem::take(&mut s.obb_cache);
-        let (body_obbs, scene_obbs) = (&self.body.obbs, &self.scene.obbs);
+        let (body_obbs, scene_obbs) = (self.body.obbs(), self.scene.obbs());
         let obb_apart = |k: usize, j: usize| {
             let a = &body_obbs[k];
             let posed = cached(&obb_cache, epoch, k, || a.posed(&ma, ta));
@@ -187,7 +187,7 @@ impl SceneChecker {
                 + 1e-300;
             scene_obbs[j].apart(&posed, a.h, a.fuzz + swept_reach + reach, pad)
         };
-        let blocked = self.body.tree.for_each_pair(
+        let blocked = self.body.tree().for_each_pair(
             |k, j, o| {
                 cached(&cache, epoch, k, || swept(&bounds[k])).within(o, reach)
                     && !(oriented && obb_apart(k, j))
