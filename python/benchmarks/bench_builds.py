@@ -1,0 +1,158 @@
+"""Build time and memory per mesh: dymsum against python-fcl (issue 35).
+
+    pip install ./python trimesh python-fcl
+    python python/benchmarks/bench_builds.py DIR [DIR ...] [--repeats N]
+        [--memory] [--min-faces F]
+
+Every ``*.stl`` under the folders given (e.g. git checkouts of
+``ros-industrial/universal_robot`` and ``ros-industrial/abb``), read by
+trimesh as it is (``process=False``: unwelded, as robots ship them).
+
+Time: per mesh, what a planner builds before its first query, both
+tools timed alternately in one process, the median of ``--repeats``
+rounds: ``dymsum.MotionChecker((v, f), [(v, f)])`` (the mesh as the moving
+body and as the obstacle: two bodies, cleaned exactly, and the checker
+ready for its first query) against two fcl ``BVHModel`` (OBBRSS) and
+their ``CollisionObject``.
+
+Memory (``--memory``): each mesh in fresh processes, one per tool: the
+peak resident memory (``ru_maxrss``) after building, less the peak after
+loading the mesh and importing the tool.
+
+Prints one Markdown row per mesh and the geometric mean and worst of the
+ratios dymsum / fcl (below 1: dymsum is faster or smaller).
+"""
+
+import argparse
+import glob
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+
+def load(path):
+    import trimesh
+
+    m = trimesh.load(path, process=False, force="mesh")
+    return np.asarray(m.vertices, float), np.asarray(m.faces, np.int64)
+
+
+def build_fcl(fcl, v, f):
+    objects = []
+    for _ in range(2):
+        b = fcl.BVHModel()
+        b.beginModel(len(v), len(f))
+        b.addSubModel(v, f)
+        b.endModel()
+        objects.append(fcl.CollisionObject(b))
+    return objects
+
+
+def build_dymsum(dymsum, v, f):
+    return dymsum.MotionChecker((v, f), [(v, f)])
+
+
+def times(path, repeats):
+    import fcl
+
+    import dymsum
+
+    v, f = load(path)
+    td, tf = [], []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        built = build_dymsum(dymsum, v, f)
+        td.append(time.perf_counter() - t0)
+        del built
+        t0 = time.perf_counter()
+        built = build_fcl(fcl, v, f)
+        tf.append(time.perf_counter() - t0)
+        del built
+    return len(f), float(np.median(td)), float(np.median(tf))
+
+
+def peak_kib():
+    import resource
+
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+
+
+def memory_child(path, tool):
+    """Run in a fresh process: the peak resident memory the build adds, KiB."""
+    v, f = load(path)
+    if tool == "dymsum":
+        import dymsum
+
+        before = peak_kib()
+        built = build_dymsum(dymsum, v, f)
+    else:
+        import fcl
+
+        before = peak_kib()
+        built = build_fcl(fcl, v, f)
+    print(peak_kib() - before)
+    del built
+
+
+def memory(path, tool):
+    out = subprocess.run(
+        [sys.executable, __file__, "--child", tool, path], capture_output=True, text=True, check=True
+    )
+    return int(out.stdout.strip().splitlines()[-1])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("dirs", nargs="*")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--memory", action="store_true")
+    ap.add_argument("--min-faces", type=int, default=0)
+    ap.add_argument("--child", nargs=2, metavar=("TOOL", "MESH"), help=argparse.SUPPRESS)
+    a = ap.parse_args()
+    if a.child:
+        memory_child(a.child[1], a.child[0])
+        return
+    files = sorted(
+        {f for d in a.dirs for pattern in ("*.stl", "*.STL") for f in glob.glob(os.path.join(d, "**", pattern), recursive=True)}
+    )
+    header = "| mesh | triangles | build ms dymsum / fcl (ratio) |"
+    rule = "|---|---|---|"
+    if a.memory:
+        header += " added peak memory KiB dymsum / fcl (ratio) |"
+        rule += "---|"
+    print(header)
+    print(rule)
+    ratios, mem_ratios = [], []
+    for path in files:
+        try:
+            n, td, tf = times(path, a.repeats)
+        except Exception as e:  # noqa: BLE001 - a file trimesh cannot read is reported and skipped
+            print(f"skipped {path}: {e}", file=sys.stderr)
+            continue
+        if n < max(1, a.min_faces):
+            continue
+        ratios.append(td / tf)
+        row = f"| {os.path.basename(path)[:-4]} | {n} | {td * 1e3:.2f} / {tf * 1e3:.2f} ({td / tf:.2f}) |"
+        if a.memory:
+            md, mf = memory(path, "dymsum"), memory(path, "fcl")
+            mem_ratios.append(max(md, 1) / max(mf, 1))
+            row += f" {md} / {mf} ({mem_ratios[-1]:.2f}) |"
+        print(row, flush=True)
+    gm = lambda v: float(np.exp(np.mean(np.log(v)))) if v else float("nan")  # noqa: E731
+    print()
+    print(
+        f"Build time dymsum / fcl over {len(ratios)} meshes: geometric mean {gm(ratios):.2f}, "
+        f"worst {max(ratios or [0]):.2f}, {sum(r > 1 for r in ratios)} above 1"
+    )
+    if a.memory:
+        print(
+            f"Added peak memory dymsum / fcl: geometric mean {gm(mem_ratios):.2f}, "
+            f"worst {max(mem_ratios or [0]):.2f}, {sum(r > 1 for r in mem_ratios)} above 1"
+        )
+
+
+if __name__ == "__main__":
+    main()
