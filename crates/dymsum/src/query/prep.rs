@@ -127,6 +127,35 @@ pub(crate) struct BodyPrep {
     /// Caps holding each vertex's Gaussian cell and each edge's Gaussian
     /// arc (body frame): the certificates' quick rejections.
     pub(in crate::query) caps: crate::query::prep::GaussCaps,
+    /// Per direction of [`SEED_DIRECTIONS`], a vertex extreme along it
+    /// (body frame, floats): where GJK's first support search starts when
+    /// the last query's support vertex is further from the answer
+    /// ([`BodyPrep::seed`]).
+    pub(in crate::query) seeds: [u32; SEED_DIRECTIONS],
+}
+
+/// How many directions [`BodyPrep::seeds`] covers: the 26 of the cube's
+/// faces, edges and corners seen from its centre.
+pub(in crate::query) const SEED_DIRECTIONS: usize = 26;
+
+/// The unit directions of [`BodyPrep::seeds`].
+static SEED_UNITS: std::sync::LazyLock<[DVec3; SEED_DIRECTIONS]> =
+    std::sync::LazyLock::new(seed_directions);
+
+fn seed_directions() -> [DVec3; SEED_DIRECTIONS] {
+    let mut out = [DVec3::ZERO; SEED_DIRECTIONS];
+    let mut n = 0;
+    for x in -1..=1 {
+        for y in -1..=1 {
+            for z in -1..=1 {
+                if (x, y, z) != (0, 0, 0) {
+                    out[n] = DVec3::new(x as f64, y as f64, z as f64).normalize();
+                    n += 1;
+                }
+            }
+        }
+    }
+    out
 }
 
 impl BodyPrep {
@@ -163,7 +192,27 @@ impl BodyPrep {
             neg_edge: inverse(&neg.edge_map),
             neg,
             caps: crate::query::prep::GaussCaps::of(p),
+            seeds: SEED_UNITS.map(|d| {
+                let best = (0..p.vertex_count())
+                    .max_by(|&i, &j| d.dot(p.vertex(i)).total_cmp(&d.dot(p.vertex(j))));
+                best.unwrap_or(0) as u32
+            }),
         })
+    }
+
+    /// The seed vertex of the direction of [`SEED_DIRECTIONS`] nearest
+    /// `d` (body frame): a start for a support search along `d` that is
+    /// never far from the answer, whatever the last query was. Only a
+    /// start: the search itself decides.
+    pub(in crate::query) fn seed(&self, d: DVec3) -> u32 {
+        let mut best = (f64::NEG_INFINITY, 0);
+        for (k, e) in SEED_UNITS.iter().enumerate() {
+            let score = e.dot(d);
+            if score > best.0 {
+                best = (score, k);
+            }
+        }
+        self.seeds[best.1]
     }
 }
 

@@ -175,6 +175,15 @@ pub(in crate::query) fn gjk(
             simplex = Simplex::default();
         }
     }
+    if simplex.len == 0 {
+        // A fresh search: start each climb from the better of the last
+        // query's support vertex and the seed nearest its direction (the
+        // last query may have been at an unrelated pose).
+        let da = posed.pose_a.rotation.matrix().transpose() * -v;
+        let db = posed.pose_b.rotation.matrix().transpose() * v;
+        wa = better_start(at_a, -v, wa, pair.prep_a.seed(da));
+        wb = better_start(at_b, v, wb, pair.prep_b.seed(db));
+    }
     let mut enclosed = false;
     let mut separating = false;
     for _ in 0..MAX_ITERATIONS {
@@ -660,6 +669,16 @@ impl LocalVertices {
             .iter()
             .fold(f64::NEG_INFINITY, |m, x| m.max(d.dot(*x)));
         lo - hi
+    }
+}
+
+/// `seed` when it lies further along `dir` than `warm` (posed), else
+/// `warm`: a support search's start.
+fn better_start(at: impl Fn(u32) -> DVec3, dir: DVec3, warm: u32, seed: u32) -> u32 {
+    if dir.dot(at(seed)) > dir.dot(at(warm)) {
+        seed
+    } else {
+        warm
     }
 }
 
