@@ -15,9 +15,9 @@ body and as the obstacle: two bodies, cleaned exactly, and the checker
 ready for its first query) against two fcl ``BVHModel`` (OBBRSS) and
 their ``CollisionObject``.
 
-Memory (``--memory``): each mesh in fresh processes, one per tool: the
-peak resident memory (``ru_maxrss``) after building, less the peak after
-loading the mesh and importing the tool.
+Memory (``--memory``): each mesh in fresh processes, one per tool
+(``build_memory.py``): the peak resident memory during the build (VmHWM,
+reset just before it) less the resident memory before it.
 
 Prints one Markdown row per mesh and the geometric mean and worst of the
 ratios dymsum / fcl (below 1: dymsum is faster or smaller).
@@ -26,11 +26,12 @@ ratios dymsum / fcl (below 1: dymsum is faster or smaller).
 import argparse
 import glob
 import os
-import subprocess
 import sys
 import time
 
 import numpy as np
+
+from build_memory import build_memory
 
 
 def load(path):
@@ -74,47 +75,13 @@ def times(path, repeats):
     return len(f), float(np.median(td)), float(np.median(tf))
 
 
-def peak_kib():
-    import resource
-
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-
-
-def memory_child(path, tool):
-    """Run in a fresh process: the peak resident memory the build adds, KiB."""
-    v, f = load(path)
-    if tool == "dymsum":
-        import dymsum
-
-        before = peak_kib()
-        built = build_dymsum(dymsum, v, f)
-    else:
-        import fcl
-
-        before = peak_kib()
-        built = build_fcl(fcl, v, f)
-    print(peak_kib() - before)
-    del built
-
-
-def memory(path, tool):
-    out = subprocess.run(
-        [sys.executable, __file__, "--child", tool, path], capture_output=True, text=True, check=True
-    )
-    return int(out.stdout.strip().splitlines()[-1])
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("dirs", nargs="*")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--memory", action="store_true")
     ap.add_argument("--min-faces", type=int, default=0)
-    ap.add_argument("--child", nargs=2, metavar=("TOOL", "MESH"), help=argparse.SUPPRESS)
     a = ap.parse_args()
-    if a.child:
-        memory_child(a.child[1], a.child[0])
-        return
     files = sorted(
         {f for d in a.dirs for pattern in ("*.stl", "*.STL") for f in glob.glob(os.path.join(d, "**", pattern), recursive=True)}
     )
@@ -137,9 +104,14 @@ def main():
         ratios.append(td / tf)
         row = f"| {os.path.basename(path)[:-4]} | {n} | {td * 1e3:.2f} / {tf * 1e3:.2f} ({td / tf:.2f}) |"
         if a.memory:
-            md, mf = memory(path, "dymsum"), memory(path, "fcl")
-            mem_ratios.append(max(md, 1) / max(mf, 1))
-            row += f" {md} / {mf} ({mem_ratios[-1]:.2f}) |"
+            v, f = load(path)
+            m = build_memory(v, f, v, f)
+            md, mf = m["dymsum"].get("peak_kb"), m["fcl"].get("peak_kb")
+            if md is None or mf is None:
+                row += f" {m} |"
+            else:
+                mem_ratios.append(max(md, 1) / max(mf, 1))
+                row += f" {md} / {mf} ({mem_ratios[-1]:.2f}) |"
         print(row, flush=True)
     gm = lambda v: float(np.exp(np.mean(np.log(v)))) if v else float("nan")  # noqa: E731
     print()

@@ -73,7 +73,6 @@ import platform
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 import traceback
 import zlib
@@ -87,6 +86,7 @@ from dymsum.omplapp import Problem, load_problem
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+from build_memory import build_memory  # noqa: E402
 from omplapp_check import random_poses  # noqa: E402
 
 DEFAULT_DIR = "/work/omplapp-3d"
@@ -163,40 +163,6 @@ def fcl_confirms(f: "Fcl", a: np.ndarray, b: np.ndarray, t: float, width: float 
 # ---------------------------------------------------------------- a. build
 
 
-_MEMORY_CHILD = r"""
-import gc, json, sys, time
-import numpy as np
-def status():
-    out = {}
-    for line in open("/proc/self/status"):
-        k, _, v = line.partition(":")
-        if k in ("VmRSS", "VmHWM"):
-            out[k] = int(v.split()[0])
-    return out
-d = dict(np.load(sys.argv[1]))
-which = sys.argv[2]
-if which == "dymsum":
-    import dymsum
-    build = lambda: dymsum.MotionChecker((d["rv"], d["rf"]), [(d["ev"], d["ef"])])
-else:
-    import fcl
-    def bvh(v, f):
-        m = fcl.BVHModel(); m.beginModel(len(v), len(f)); m.addSubModel(v, f); m.endModel(); return m
-    build = lambda: (fcl.CollisionObject(bvh(d["rv"], d["rf"]), fcl.Transform()), fcl.CollisionObject(bvh(d["ev"], d["ef"]), fcl.Transform()))
-gc.collect()
-try:
-    with open("/proc/self/clear_refs", "w") as f:
-        f.write("5")  # resets VmHWM to the current VmRSS
-    reset = True
-except OSError:
-    reset = False
-before = status()
-t0 = time.perf_counter()
-built = build()
-seconds = time.perf_counter() - t0
-after = status()
-print(json.dumps({"rss_kb": after["VmRSS"] - before["VmRSS"], "peak_kb": after["VmHWM"] - before["VmRSS"] if reset else None, "seconds": seconds}))
-"""
 
 
 def part_build(p: Problem, repeats: int = 3) -> dict:
@@ -213,21 +179,12 @@ def part_build(p: Problem, repeats: int = 3) -> dict:
         Fcl(p)
         times.append(time.perf_counter() - t0)
     out["fcl_ms"] = median(times) * 1e3
-    with tempfile.TemporaryDirectory(prefix="bench-scenes-") as tmp:
-        arrays = pathlib.Path(tmp) / "mesh.npz"
-        np.savez(
-            arrays,
-            rv=np.ascontiguousarray(p.robot_vertices, float), rf=np.ascontiguousarray(p.robot_faces, np.int64),
-            ev=np.ascontiguousarray(p.env_vertices, float), ef=np.ascontiguousarray(p.env_faces, np.int64),
-        )
-        for which in ("dymsum", "fcl"):
-            done = subprocess.run([sys.executable, "-c", _MEMORY_CHILD, str(arrays), which], capture_output=True, text=True, timeout=600)
-            if done.returncode != 0:
-                out[f"{which}_memory_error"] = done.stderr.strip().splitlines()[-1:] or ["exit " + str(done.returncode)]
-                continue
-            m = json.loads(done.stdout.strip().splitlines()[-1])
-            out[f"{which}_rss_mb"] = m["rss_kb"] / 1024
-            out[f"{which}_peak_mb"] = None if m["peak_kb"] is None else m["peak_kb"] / 1024
+    for which, m in build_memory(p.robot_vertices, p.robot_faces, p.env_vertices, p.env_faces).items():
+        if "error" in m:
+            out[f"{which}_memory_error"] = m["error"]
+            continue
+        out[f"{which}_rss_mb"] = m["rss_kb"] / 1024
+        out[f"{which}_peak_mb"] = None if m["peak_kb"] is None else m["peak_kb"] / 1024
     return out
 
 
