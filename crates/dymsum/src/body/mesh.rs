@@ -541,17 +541,22 @@ pub fn exactly_convex_refuted_by_edges() -> u64 {
 /// corner of the second strictly above the first's plane, on the side its
 /// corners wind counter-clockwise (exact `orient3d`), a reflex edge.
 ///
-/// Such a mesh is not exactly convex, so the hull need not be built to
-/// say so. [`crate::polytope::Polytope::from_mesh`] under the strict
-/// policy accepts only a closed sphere oriented consistently and outwards
-/// whose every triangle lies in the plane of a face of the hull of its
-/// vertices; every vertex is then on the closed inner side of every
-/// triangle's plane, and no far corner is strictly above. Edges with
+/// Such a mesh takes the triangle path without its hull being built: a
+/// closed sphere whose every triangle lies in the plane of a hull face
+/// and faces outwards (what [`crate::polytope::Polytope::from_mesh`]
+/// accepts under the strict policy, robot parts included) has every
+/// vertex on the closed inner side of every triangle's plane, so no far
+/// corner strictly above. The strict comparison checks the orientation
+/// by the signed volume only, so it also accepts a surface that folds
+/// back inside a face plane (a layer turned inwards between two outward
+/// ones, all in the hull's planes: the same solid); such a fold can show
+/// a reflex edge here, and then only the convex fast path is lost: the
+/// body stays exact as triangles (an independent review found the case;
+/// the test below counts how often it happens on moved hulls). Edges with
 /// other than two users, or two users running the same way, are skipped:
-/// they witness nothing here, and the exact comparison refuses them
-/// anyway. `false` decides nothing (a mesh can have no reflex edge and
-/// still not be exactly convex: it winds twice, or is inward), and the
-/// hull is compared as before.
+/// they witness nothing. `false` decides nothing (a mesh can have no
+/// reflex edge and still not be exactly convex: it winds twice, or is
+/// inward), and the hull is compared as before.
 ///
 /// O(T log T) for T triangles: the 3T directed edges sorted by their
 /// undirected key, one `orient3d` (float-filtered) per shared edge until
@@ -634,16 +639,17 @@ mod join_tests {
     }
 
     /// The hull of a few points of a small grid (many coplanar corners),
-    /// its faces as fans, optionally one corner moved: the reflex-edge
-    /// filter never refuses a mesh the strict comparison accepts, never
-    /// refutes an unmoved hull, and the body's convex fast path is what
-    /// the strict comparison decides on the cleaned triangles.
+    /// its faces as fans, then one corner moved: the reflex-edge filter
+    /// never refutes an unmoved hull, refutes most moved ones, and the
+    /// body takes the convex fast path exactly where the strict
+    /// comparison accepts and no fold refuted it (rare: at most one in a
+    /// hundred refutations).
     #[test]
-    fn a_reflex_edge_refutes_only_meshes_the_strict_comparison_refuses() {
+    fn a_reflex_edge_costs_at_most_the_fast_path_of_a_fold() {
         use crate::polytope::{MeshPolicy, Polytope};
         use proptest::prelude::*;
         use proptest::test_runner::{Config, TestRunner};
-        let refuted = std::cell::Cell::new(0);
+        let (refuted, lost) = (std::cell::Cell::new(0), std::cell::Cell::new(0));
         let mut runner = TestRunner::new(Config::with_cases(400));
         let points = proptest::collection::vec(proptest::array::uniform3(-3i8..=3), 5..20);
         let moved = (
@@ -673,13 +679,14 @@ mod join_tests {
                         .map(|t| t.iter().map(|&i| i as usize).collect())
                         .collect(),
                 );
-                let strict = Polytope::from_mesh(&mesh, MeshPolicy::strict()).is_ok();
-                if has_reflex_edge(&vertices, &triangles) {
+                let refutes = has_reflex_edge(&vertices, &triangles);
+                if refutes {
                     refuted.set(refuted.get() + 1);
-                    prop_assert!(!strict);
                 }
                 // On the cleaned triangles (an inverted mesh is turned
-                // outwards), the filter never changes the decision.
+                // outwards): the fast path only where the strict
+                // comparison accepts, and there unless a reflex edge (a
+                // fold within a face plane) refuted it first.
                 if let Ok(body) = MeshBody::new(&mesh) {
                     if body.components.len() == 1 {
                         let cleaned = PolygonMesh::new(
@@ -690,16 +697,24 @@ mod join_tests {
                                 .collect(),
                         );
                         let strict = Polytope::from_mesh(&cleaned, MeshPolicy::strict()).is_ok();
-                        prop_assert_eq!(body.as_convex().is_some(), strict);
+                        let folded = has_reflex_edge(&body.vertices, &body.triangles);
+                        prop_assert_eq!(body.as_convex().is_some(), strict && !folded);
+                        if strict && folded {
+                            lost.set(lost.get() + 1);
+                        }
                     }
                 }
                 Ok(())
             })
             .unwrap();
-        let refuted = refuted.get();
+        let (refuted, lost) = (refuted.get(), lost.get());
         assert!(
             refuted > 50,
             "the filter refuted only {refuted} moved hulls"
+        );
+        assert!(
+            lost * 100 <= refuted,
+            "the filter took the fast path from {lost} exactly convex bodies"
         );
     }
 }
