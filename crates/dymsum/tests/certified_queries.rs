@@ -329,9 +329,10 @@ fn cylinder(n: usize, levels: usize, r: f64, len: f64, noise: f64, g: &mut ChaCh
 /// coplanar facets, and its simplex cannot show an overlap of less than
 /// rounding: 1,845 of these 6,000 decisions fell back to the exhaustive
 /// evaluation (~1 ms each on robot links). Feature axes ranked by the
-/// gap they leave between the simplex's neighbourhoods, and crossing
-/// triangles among the faces around it, certify all but 78 (apart
-/// states whose separating feature lies away from GJK's simplex).
+/// gap they leave between the simplex's neighbourhoods, the normals of
+/// the faces one edge further, and crossing triangles among the faces
+/// around it certify all but 34 (apart states whose separating feature
+/// lies further from GJK's simplex).
 #[test]
 fn regression_near_contact_of_tessellated_prisms_is_certified() {
     let mut r = rng(35);

@@ -31,8 +31,9 @@
 //!   face normals and edge cross products of the features around its
 //!   simplex are tried ([`separating_feature_axis`]): the three nearest
 //!   GJK's direction, then the three that leave the widest gap between
-//!   the simplex's neighbouring vertices; each is decided exactly as
-//!   above, so the choice needs no error bound.
+//!   the simplex's neighbouring vertices, then the three face normals one
+//!   edge further that do; each is decided exactly as above, so the
+//!   choice needs no error bound.
 //! * **overlapping by less than rounding**: two fan triangles, of faces
 //!   of A and of B around the simplex's vertices (then one edge further),
 //!   that meet exactly ([`local_faces_meet`]); each lies in its posed
@@ -553,7 +554,38 @@ pub(in crate::query) fn separating_feature_axis(
             widest.offer_scored(d, local.gap(d), warm);
         }
     });
-    let separating = widest
+    if let Some((d, _)) = widest
+        .kept()
+        .find(|&(d, warm)| separated_along(pair, posed, d, warm, cert))
+    {
+        return Some(d);
+    }
+    // Third try: the normals of the faces one edge further on both
+    // bodies (on a float32 cylinder GJK can end a few facets away from
+    // the nearest feature), ranked by the gap over the vertices around
+    // those faces.
+    let (mut fa, mut fb) = (LocalFaces::default(), LocalFaces::default());
+    let pts = &g.simplex.pts[..g.simplex.len];
+    for p in pts {
+        for r in pair.a.ring(p.a as usize) {
+            fa.ring(&pair.a, r.neighbor);
+        }
+        for r in pair.b.ring(p.b as usize) {
+            fb.ring(&pair.b, r.neighbor);
+        }
+    }
+    let wide = LocalVertices::of_faces(pair, posed, &fa.faces[..fa.n], &fb.faces[..fb.n]);
+    let warm = g.warm;
+    let mut further = NearestAxes::<(u32, u32), FEATURE_AXES>::new(v);
+    for &f in &fa.faces[..fa.n] {
+        let d = -posed.na(f);
+        further.offer_scored(d, wide.gap(d), warm);
+    }
+    for &h in &fb.faces[..fb.n] {
+        let d = posed.nb(h);
+        further.offer_scored(d, wide.gap(d), warm);
+    }
+    let separating = further
         .kept()
         .find(|&(d, warm)| separated_along(pair, posed, d, warm, cert))
         .map(|(d, _)| d);
@@ -631,7 +663,7 @@ struct LocalVertices {
 /// The most local vertices kept per body (the simplex's up to three
 /// distinct vertices and their rings; the rest are left out of the
 /// ranking, which only orders the tries).
-const LOCAL_VERTICES: usize = 48;
+const LOCAL_VERTICES: usize = 192;
 
 impl LocalVertices {
     fn around(pair: &ConvexPair, posed: &Posed, g: &Gjk) -> LocalVertices {
@@ -656,6 +688,28 @@ impl LocalVertices {
             for r in pair.b.ring(p.b as usize) {
                 push(&mut out.b, &mut out.nb, posed.b(r.neighbor));
             }
+        }
+        out
+    }
+
+    /// The corners of faces `fa` of A and `fb` of B (up to
+    /// [`LOCAL_VERTICES`] each, repeats allowed).
+    fn of_faces(pair: &ConvexPair, posed: &Posed, fa: &[u32], fb: &[u32]) -> LocalVertices {
+        let mut out = LocalVertices {
+            a: [DVec3::ZERO; LOCAL_VERTICES],
+            na: 0,
+            b: [DVec3::ZERO; LOCAL_VERTICES],
+            nb: 0,
+        };
+        let corners_a = fa.iter().flat_map(|&f| pair.a.face(f as usize).iter());
+        for (k, &v) in corners_a.take(LOCAL_VERTICES).enumerate() {
+            out.a[k] = posed.a(v);
+            out.na = k + 1;
+        }
+        let corners_b = fb.iter().flat_map(|&h| pair.b.face(h as usize).iter());
+        for (k, &w) in corners_b.take(LOCAL_VERTICES).enumerate() {
+            out.b[k] = posed.b(w);
+            out.nb = k + 1;
         }
         out
     }
