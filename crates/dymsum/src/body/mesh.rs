@@ -197,16 +197,22 @@ impl MeshBody {
             exactly_convex_refuted_by_edges_add();
             return None;
         }
-        let mesh = PolygonMesh::new(
+        let mesh = self.cleaned_mesh();
+        crate::polytope::Polytope::from_mesh(&mesh, crate::polytope::MeshPolicy::strict())
+            .ok()
+            .map(|(p, _)| p)
+    }
+
+    /// The cleaned triangles as a polygon mesh (what the strict convexity
+    /// comparison reads).
+    fn cleaned_mesh(&self) -> PolygonMesh {
+        PolygonMesh::new(
             self.vertices.iter().map(|v| v.to_array()).collect(),
             self.triangles
                 .iter()
                 .map(|t| t.iter().map(|&v| v as usize).collect())
                 .collect(),
-        );
-        crate::polytope::Polytope::from_mesh(&mesh, crate::polytope::MeshPolicy::strict())
-            .ok()
-            .map(|(p, _)| p)
+        )
     }
 
     /// The body as one convex polytope, when it is one solid component
@@ -689,14 +695,8 @@ mod join_tests {
                 // fold within a face plane) refuted it first.
                 if let Ok(body) = MeshBody::new(&mesh) {
                     if body.components.len() == 1 {
-                        let cleaned = PolygonMesh::new(
-                            body.vertices.iter().map(|p| p.to_array()).collect(),
-                            body.triangles
-                                .iter()
-                                .map(|t| t.iter().map(|&i| i as usize).collect())
-                                .collect(),
-                        );
-                        let strict = Polytope::from_mesh(&cleaned, MeshPolicy::strict()).is_ok();
+                        let strict =
+                            Polytope::from_mesh(&body.cleaned_mesh(), MeshPolicy::strict()).is_ok();
                         let folded = has_reflex_edge(&body.vertices, &body.triangles);
                         prop_assert_eq!(body.as_convex().is_some(), strict && !folded);
                         if strict && folded {
