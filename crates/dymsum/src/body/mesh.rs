@@ -134,7 +134,8 @@ impl MeshBody {
     }
 
     /// Cleans `mesh` exactly and classifies its components
-    /// ([`clean_soup`]), then builds the box tree.
+    /// ([`clean_soup`]); the box tree over its triangles is built on first
+    /// use.
     ///
     /// # Errors
     /// Those of [`clean_soup`]: no faces, a coordinate that is not finite,

@@ -428,25 +428,13 @@ const LOCAL_FACES: usize = 64;
 /// cylinders bisected to 2⁻⁴⁰ of contact the first ring held a crossing
 /// pair in nine of ten such states, the second in all).
 fn local_faces_meet(pair: &ConvexPair, posed: &Posed, g: &Gjk) -> bool {
-    let mut fa = LocalFaces::default();
-    let mut fb = LocalFaces::default();
-    let pts = &g.simplex.pts[..g.simplex.len];
-    for p in pts {
-        fa.ring(&pair.a, p.a);
-        fb.ring(&pair.b, p.b);
-    }
+    let (mut fa, mut fb) = (LocalFaces::default(), LocalFaces::default());
+    LocalFaces::around_simplex(pair, g, false, &mut fa, &mut fb);
     let (first_a, first_b) = (fa.n, fb.n);
     if faces_meet(pair, posed, &fa.faces[..first_a], &fb.faces[..first_b]) {
         return true;
     }
-    for p in pts {
-        for r in pair.a.ring(p.a as usize) {
-            fa.ring(&pair.a, r.neighbor);
-        }
-        for r in pair.b.ring(p.b as usize) {
-            fb.ring(&pair.b, r.neighbor);
-        }
-    }
+    LocalFaces::around_simplex(pair, g, true, &mut fa, &mut fb);
     // The pairs not tried yet: a new face of A with every face of B, and
     // a first-ring face of A with every new face of B.
     faces_meet(pair, posed, &fa.faces[first_a..fa.n], &fb.faces[..fb.n])
@@ -469,6 +457,23 @@ impl Default for LocalFaces {
 }
 
 impl LocalFaces {
+    /// Adds to `fa` and `fb` the faces of A and of B around the vertices of
+    /// GJK's final simplex, or, `further`, around their neighbours (one
+    /// edge further).
+    fn around_simplex(pair: &ConvexPair, g: &Gjk, further: bool, fa: &mut Self, fb: &mut Self) {
+        for p in &g.simplex.pts[..g.simplex.len] {
+            for (body, v, faces) in [(&pair.a, p.a, &mut *fa), (&pair.b, p.b, &mut *fb)] {
+                if further {
+                    for r in body.ring(v as usize) {
+                        faces.ring(body, r.neighbor);
+                    }
+                } else {
+                    faces.ring(body, v);
+                }
+            }
+        }
+    }
+
     /// Adds the faces around vertex `v` not held yet (while there is room).
     fn ring(&mut self, body: &Polytope, v: u32) {
         for r in body.ring(v as usize) {
@@ -565,15 +570,7 @@ pub(in crate::query) fn separating_feature_axis(
     // the nearest feature), ranked by the gap over the vertices around
     // those faces.
     let (mut fa, mut fb) = (LocalFaces::default(), LocalFaces::default());
-    let pts = &g.simplex.pts[..g.simplex.len];
-    for p in pts {
-        for r in pair.a.ring(p.a as usize) {
-            fa.ring(&pair.a, r.neighbor);
-        }
-        for r in pair.b.ring(p.b as usize) {
-            fb.ring(&pair.b, r.neighbor);
-        }
-    }
+    LocalFaces::around_simplex(pair, g, true, &mut fa, &mut fb);
     let wide = LocalVertices::of_faces(pair, posed, &fa.faces[..fa.n], &fb.faces[..fb.n]);
     let warm = g.warm;
     let mut further = NearestAxes::<(u32, u32), FEATURE_AXES>::new(v);
@@ -666,13 +663,17 @@ struct LocalVertices {
 const LOCAL_VERTICES: usize = 192;
 
 impl LocalVertices {
-    fn around(pair: &ConvexPair, posed: &Posed, g: &Gjk) -> LocalVertices {
-        let mut out = LocalVertices {
+    fn empty() -> LocalVertices {
+        LocalVertices {
             a: [DVec3::ZERO; LOCAL_VERTICES],
             na: 0,
             b: [DVec3::ZERO; LOCAL_VERTICES],
             nb: 0,
-        };
+        }
+    }
+
+    fn around(pair: &ConvexPair, posed: &Posed, g: &Gjk) -> LocalVertices {
+        let mut out = LocalVertices::empty();
         let push = |buf: &mut [DVec3; LOCAL_VERTICES], n: &mut usize, x: DVec3| {
             if *n < LOCAL_VERTICES {
                 buf[*n] = x;
@@ -695,12 +696,7 @@ impl LocalVertices {
     /// The corners of faces `fa` of A and `fb` of B (up to
     /// [`LOCAL_VERTICES`] each, repeats allowed).
     fn of_faces(pair: &ConvexPair, posed: &Posed, fa: &[u32], fb: &[u32]) -> LocalVertices {
-        let mut out = LocalVertices {
-            a: [DVec3::ZERO; LOCAL_VERTICES],
-            na: 0,
-            b: [DVec3::ZERO; LOCAL_VERTICES],
-            nb: 0,
-        };
+        let mut out = LocalVertices::empty();
         let corners_a = fa.iter().flat_map(|&f| pair.a.face(f as usize).iter());
         for (k, &v) in corners_a.take(LOCAL_VERTICES).enumerate() {
             out.a[k] = posed.a(v);
