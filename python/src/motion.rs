@@ -655,6 +655,31 @@ impl PyMotionChecker {
         self.inner.steps()
     }
 
+    /// A cheap refutation before a certificate: the ``t`` of the first
+    /// pose at ``k / segments`` (``0 < k < segments``) of the motion from
+    /// ``pose0`` to ``pose1`` (the poses ``check`` checks), visited in
+    /// bisection order and at most ``most`` of them, at which the body
+    /// collides (exact), or ``None`` when none does (which proves nothing:
+    /// ``check`` decides). GIL released.
+    #[pyo3(
+        signature = (pose0, pose1, segments, most = 7),
+        text_signature = "($self, pose0, pose1, segments, most=7)"
+    )]
+    fn sampled_contact(
+        &self,
+        py: Python<'_>,
+        pose0: Option<&Bound<'_, PyAny>>,
+        pose1: Option<&Bound<'_, PyAny>>,
+        segments: usize,
+        most: usize,
+    ) -> PyResult<Option<f64>> {
+        let p0 = convert::pose(pose0, "pose0")?;
+        let p1 = convert::pose(pose1, "pose1")?;
+        let inner = &self.inner;
+        py.detach(|| inner.sampled_contact(p0, p1, segments, most))
+            .map_err(|e| err_for("MotionChecker.sampled_contact", e))
+    }
+
     /// Checks the motion from ``pose0`` to ``pose1`` (4×4 homogeneous rigid
     /// transforms, or rotations about the origin), with the bracket
     /// ``t_contact - t_safe`` no wider than ``tolerance`` (in ``t``): a

@@ -9,6 +9,7 @@ before it; ``t_contact`` must collide (exact query).
 
 import numpy as np
 import pytest
+from scipy.spatial import ConvexHull
 from scipy.spatial.transform import Rotation, Slerp
 
 import dymsum
@@ -96,6 +97,41 @@ def test_bar_turning_past_a_corner_collides_between_free_samples():
     free = checker.check(turn(0), turn(-90))
     assert free.free and free.t_safe == 1.0 and free.t_contact is None
     assert repr(free) == "MotionCheck(free=True, t_safe=1.0, t_contact=None)"
+
+
+@pytest.mark.parametrize("triangles", [False, True])
+def test_sampled_contact_refutes_only_with_a_colliding_sample(triangles):
+    """``MotionChecker.sampled_contact``: the first colliding sample in
+    bisection order, at the pose ``check`` checks at that ``t``; ``None``
+    when none of the samples collides, even on a motion that does (only
+    ``check`` decides). On the convex path and on triangles alike."""
+    faces = ConvexHull(BLOCK).simplices
+    # Without its top: an open surface, taken as triangles.
+    open_block = (BLOCK, faces[BLOCK[faces].mean(axis=1)[:, 2] < 1])
+    checker = dymsum.MotionChecker(BAR, [open_block if triangles else BLOCK, WALL])
+    assert checker.info["path"] == ("triangles" if triangles else "convex")
+    rng = np.random.default_rng(5)
+    hits = misses = 0
+    while hits < 10 or misses < 10:
+        p0 = pose_of(Rotation.random(random_state=rng), rng.uniform(-2, 6, 3) * [1, 0.3, 0.3])
+        p1 = pose_of(Rotation.random(random_state=rng), rng.uniform(-2, 6, 3) * [1, 0.3, 0.3])
+        t = checker.sampled_contact(p0, p1, 16)
+        if t is None:
+            misses += 1
+            samples = interpolate(p0, p1, np.array([8, 4, 12, 2, 6, 10, 14]) / 16)
+            assert not checker.collides_many(samples).any()
+        else:
+            hits += 1
+            assert t * 16 == round(t * 16) and 0 < t < 1
+            assert checker.collides_at(interpolate(p0, p1, np.array([t]))[0])
+            assert not checker.check(p0, p1).free
+    # The bar turning past the block's corner collides between 0° and 45°.
+    assert checker.sampled_contact(turn(0), turn(90), 2) is None
+    assert not checker.check(turn(0), turn(90)).free
+    assert checker.sampled_contact(turn(0), turn(90), 1) is None
+    assert checker.sampled_contact(turn(0), turn(0), 16) is None
+    with pytest.raises(ValueError):
+        checker.sampled_contact(turn(0), np.full((4, 4), np.nan), 16)
 
 
 def test_colliding_at_the_start_has_no_safe_time():

@@ -524,6 +524,8 @@ class MotionChecker:
         """The straight motion from ``pose0`` to ``pose1`` (linear translation, slerp rotation)."""
     def check_many(self, poses0: _PosesLike, poses1: _PosesLike, tolerance: float = 1e-6) -> MotionChecks:
         """``check`` for K motions ((K, 4, 4) pose arrays), in parallel."""
+    def sampled_contact(self, pose0: _PoseLike, pose1: _PoseLike, segments: int, most: int = 7) -> Optional[float]:
+        """The first ``k / segments`` (bisection order, at most ``most``) at which the body collides, or ``None`` (proves nothing)."""
     def collides_at(self, pose: _PoseLike = None) -> bool:
         """Whether the body at ``pose`` touches or overlaps an obstacle (exact)."""
     def distance_at(self, pose: _PoseLike = None) -> float:

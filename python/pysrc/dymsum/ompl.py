@@ -384,7 +384,14 @@ def _validator_class() -> type:
         """An OMPL motion validator that accepts a motion only when dymsum
         certifies it free (``MotionChecker.check``), with both ends within
         the space's bounds; never by sampling. ``MotionUndecided`` (a motion
-        grazing an obstacle within rounding) counts as invalid.
+        grazing an obstacle within rounding) counts as invalid. The yes/no
+        ``checkMotion(s1, s2)`` first checks up to seven of the states OMPL's
+        own ``DiscreteMotionValidator`` would sample (the space's
+        ``validSegmentCount``, in bisection order) exactly
+        (``MotionChecker.sampled_contact``): a contact at one of them
+        refutes the motion at the sampled check's price (a colliding state
+        is a colliding motion); only a motion none of them refutes is
+        certified.
 
         ``CertifiedMotionValidator(space_information, checker,
         tolerance=1e-6)``: ``checker`` a ``dymsum.MotionChecker``;
@@ -392,7 +399,7 @@ def _validator_class() -> type:
         a bracket is returned (``check``, ``checkMotion`` with
         ``last_valid``). Install it with ``si.setMotionValidator(v)``
         (``setup_validators`` does). Counters: ``checked``, ``rejected``,
-        ``undecided``.
+        ``undecided``, ``sampled`` (rejected by a sampled state).
         """
 
         def __init__(self, space_information: Any, checker: MotionChecker, tolerance: float = 1e-6) -> None:
@@ -407,10 +414,12 @@ def _validator_class() -> type:
             self.checked = 0
             self.rejected = 0
             self.undecided = 0
+            self.sampled = 0
             self._space = si.getStateSpace()
             self._satisfies_bounds = self._space.satisfiesBounds  # no reference to si: no cycle
             self._poser = _Poser(self.kind)
             self._check = checker.check
+            self._sampled_contact = checker.sampled_contact
             self._state_checker = StateChecker(si, checker)
 
         def checkMotion(self, s1: Any, s2: Any, last_valid: Optional[list] = None) -> bool:  # noqa: N802
@@ -430,6 +439,13 @@ def _validator_class() -> type:
             pair = self._poser.pair(s1, s2)
             try:
                 if pair is not None:
+                    # Up to seven of the states OMPL's sampled check would
+                    # visit first: a colliding one refutes the motion.
+                    segments = int(self._space.validSegmentCount(s1, s2))
+                    if self._sampled_contact(pair[1], pair[0], segments) is not None:
+                        self.sampled += 1
+                        self.rejected += 1
+                        return False
                     # The motion backwards: the same states, and s2 (the new,
                     # unchecked end in a tree planner) is queried first.
                     free = self._check(pair[1], pair[0], self.decision_tolerance).free
@@ -515,7 +531,8 @@ def _validator_class() -> type:
         def __repr__(self) -> str:
             return (
                 f"dymsum.ompl.CertifiedMotionValidator({self.kind}, tolerance={self.tolerance}, "
-                f"checked={self.checked}, rejected={self.rejected}, undecided={self.undecided})"
+                f"checked={self.checked}, rejected={self.rejected}, undecided={self.undecided}, "
+                f"sampled={self.sampled})"
             )
 
     CertifiedMotionValidator.__module__ = __name__

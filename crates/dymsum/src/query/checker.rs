@@ -104,6 +104,58 @@ pub trait Checker: Sync {
     /// rounding; [`MotionError::BudgetExhausted`] past the budget.
     fn check(&self, from: Pose, to: Pose, tolerance: f64) -> Result<MotionCheck, MotionError>;
 
+    /// A cheap refutation before a certificate: the first time `k /
+    /// segments` (`0 < k < segments`, visited in bisection order, the
+    /// middle first, at most `most` of them) at which the body on the
+    /// straight motion from `from` to `to` ([`crate::query::Motion::at`],
+    /// the poses [`Checker::check`] checks) touches or overlaps an
+    /// obstacle (exact), or `None` when none does, which proves nothing:
+    /// the motion may still collide between the samples, and only
+    /// [`Checker::check`] certifies it free. A planner's yes/no motion
+    /// validator runs it with its sampled check's own count first, so that
+    /// a colliding motion costs what sampling costs (a colliding state is
+    /// a colliding motion):
+    ///
+    /// ```
+    /// use dymsum::query::{Checker, ConvexUnion, MotionChecker};
+    /// use dymsum::{DVec3, Polytope, Pose, Rotation};
+    /// let cuboid = |lo: [f64; 3], hi: [f64; 3]| {
+    ///     let c: Vec<[f64; 3]> = (0..8)
+    ///         .map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+    ///         .collect();
+    ///     ConvexUnion::from(Polytope::from_points(&c).unwrap())
+    /// };
+    /// let block = cuboid([2.0, -1.0, -1.0], [3.0, 1.0, 1.0]);
+    /// let checker = MotionChecker::new(&cuboid([-0.5; 3], [0.5; 3]), &[block])?;
+    /// let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
+    /// // Through the block: the middle sample (x = 2.5) collides.
+    /// assert_eq!(checker.sampled_contact(at(0.0), at(5.0), 8, 7)?, Some(0.5));
+    /// // Into the block only over the last 2% of the motion: none of the 7
+    /// // inner samples collides, and the certified check finds the contact.
+    /// assert_eq!(checker.sampled_contact(at(-6.0), at(1.6), 8, 7)?, None);
+    /// assert!(!checker.check(at(-6.0), at(1.6), 1e-6)?.is_free());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    /// Those of [`Checker::collides_at`].
+    fn sampled_contact(
+        &self,
+        from: Pose,
+        to: Pose,
+        segments: usize,
+        most: usize,
+    ) -> Result<Option<f64>, QueryError> {
+        let motion = crate::query::Motion::new(from, to);
+        for k in crate::query::interval_search::bisection_order(segments, most) {
+            let t = k as f64 / segments as f64;
+            if self.collides_at(motion.at(t))? {
+                return Ok(Some(t));
+            }
+        }
+        Ok(None)
+    }
+
     /// The work budget of one motion check, in intervals
     /// ([`crate::query::DEFAULT_BUDGET`] unless set).
     fn budget(&self) -> u64;

@@ -39,8 +39,12 @@
 //! # The search
 //! Intervals are examined left to right from `[0, limit]` (`limit` is `1`,
 //! or for one piece pair of the convex checker the earliest contact that
-//! another pair already bracketed): a stack whose right half is pushed
-//! first, so the intervals are examined in the order of their left ends,
+//! another pair already bracketed), cut first into a few equal pieces
+//! where the checker asks for them (the triangle checker, for motions
+//! that sweep the body farther than its own reach: a failed attempt to
+//! certify a wide interval costs as much as a success, so the wide
+//! intervals a long motion would surely halve are not tried); a stack
+//! whose right half is pushed first, so the intervals are examined in the order of their left ends,
 //! and each one examined starts where the certified ones before it end.
 //! Hence the invariant: **when `[a, b]` is examined, `[0, a]` is
 //! certified free**. Each examined interval:
@@ -165,8 +169,9 @@ impl<E> From<E> for Stop<E> {
 
 /// The first contact bracket `(t_safe, t_contact)` of `sweep` in
 /// `[0, limit]`, or `None` when all of it is certified free (module docs,
-/// "The search"). Each examined interval takes one step of `steps_left`;
-/// `stack` is a buffer.
+/// "The search"), starting from `pieces` equal intervals (at least one).
+/// Each examined interval takes one step of `steps_left`; `stack` is a
+/// buffer.
 ///
 /// # Errors
 /// [`Stop::Budget`] with none left, [`Stop::Undecided`] for a grazing
@@ -174,12 +179,25 @@ impl<E> From<E> for Stop<E> {
 pub(crate) fn first_contact<S: Sweep>(
     sweep: &mut S,
     limit: f64,
+    pieces: usize,
     tolerance: f64,
     steps_left: &mut u64,
     stack: &mut Vec<(f64, f64)>,
 ) -> Result<Option<(f64, f64)>, Stop<S::Error>> {
     stack.clear();
-    stack.push((0.0, limit));
+    // The first intervals: `[0, limit]` cut into `pieces` (module docs);
+    // neighbours share the same float end, computed by one expression.
+    let pieces = pieces.max(1);
+    let cut = |k: usize| {
+        if k == pieces {
+            limit
+        } else {
+            limit * (k as f64 / pieces as f64)
+        }
+    };
+    for k in (0..pieces).rev() {
+        stack.push((cut(k), cut(k + 1)));
+    }
     let mut known_free_end = f64::NAN;
     let mut probed_from = f64::NAN;
     while let Some((a, b)) = stack.pop() {
@@ -257,6 +275,23 @@ fn contact_ahead<S: Sweep>(
     Ok(None)
 }
 
+/// The indices `k` of `0 < k < segments` in bisection order (the middle
+/// first, then the quarters, then the eighths, …), at most `most` of them.
+pub(crate) fn bisection_order(segments: usize, most: usize) -> Vec<usize> {
+    let mut out: Vec<usize> = Vec::new();
+    let mut level = 2usize;
+    while out.len() < most.min(segments.saturating_sub(1)) && level <= 2 * segments.max(1) {
+        for j in (1..level).step_by(2) {
+            let k = (j * segments + level / 2) / level;
+            if k > 0 && k < segments && !out.contains(&k) && out.len() < most {
+                out.push(k);
+            }
+        }
+        level *= 2;
+    }
+    out
+}
+
 /// How far a body of a given reach strays over an interval of a motion
 /// beyond what its end poses show (module docs, "The margin").
 #[derive(Clone, Copy, Debug)]
@@ -310,6 +345,19 @@ impl SweepMargin {
 mod tests {
     use super::*;
 
+    /// Bisection order visits each inner index once, the middle first.
+    #[test]
+    fn bisection_order_visits_each_inner_sample_once_middle_first() {
+        assert_eq!(bisection_order(8, 100), vec![4, 2, 6, 1, 3, 5, 7]);
+        assert_eq!(bisection_order(8, 3), vec![4, 2, 6]);
+        assert!(bisection_order(1, 10).is_empty() && bisection_order(0, 10).is_empty());
+        for n in 2..60 {
+            let mut all = bisection_order(n, usize::MAX);
+            all.sort_unstable();
+            assert_eq!(all, (1..n).collect::<Vec<_>>(), "{n}");
+        }
+    }
+
     /// A sweep over `[0, 1]` that collides on `[hit, 1]` and certifies an
     /// interval when it ends at least `gap` before `hit`; counts its
     /// exact checks.
@@ -357,17 +405,20 @@ mod tests {
             }
         }
         let check = |limit: f64, tol: f64, hit: f64, gap: f64| {
-            let mut left = 1 << 20;
-            let found = first_contact(
-                &mut Strict(hit, gap),
-                limit,
-                tol,
-                &mut left,
-                &mut Vec::new(),
-            );
-            if let Ok(Some((a, c))) = found {
-                assert!(a < hit && c >= hit, "{a} {c}");
-                assert!(exactly_within(c, a, tol), "{a} {c} {tol}");
+            for pieces in [1, 3, 64] {
+                let mut left = 1 << 20;
+                let found = first_contact(
+                    &mut Strict(hit, gap),
+                    limit,
+                    pieces,
+                    tol,
+                    &mut left,
+                    &mut Vec::new(),
+                );
+                if let Ok(Some((a, c))) = found {
+                    assert!(a < hit && c >= hit, "{a} {c}");
+                    assert!(exactly_within(c, a, tol), "{a} {c} {tol}");
+                }
             }
         };
         check(
@@ -390,13 +441,54 @@ mod tests {
         }
     }
 
+    /// Cut into first pieces, the search still examines intervals left to
+    /// right from `0`, each starting where the certified ones before it
+    /// end, and the certified ones tile `[0, limit]` exactly: neighbouring
+    /// pieces share their float end.
+    #[test]
+    fn first_pieces_tile_the_interval_left_to_right() {
+        /// Certifies intervals no wider than `.0`; never collides; records
+        /// every interval it is asked about.
+        struct Narrow(f64, Vec<(f64, f64, bool)>);
+        impl Sweep for Narrow {
+            type Error = ();
+            fn certified_free(&mut self, a: f64, b: f64) -> Result<bool, ()> {
+                let ok = b - a <= self.0;
+                self.1.push((a, b, ok));
+                Ok(ok)
+            }
+            fn collides_at_time(&mut self, _t: f64) -> Result<bool, ()> {
+                Ok(false)
+            }
+        }
+        for (limit, width) in [(1.0, 0.3), (0.7, 0.01), (1.0, 1.0), (0.123_456_789, 0.05)] {
+            for pieces in [1, 2, 3, 7, 10, 64] {
+                let mut sweep = Narrow(width, Vec::new());
+                let mut left = 1 << 20;
+                let found =
+                    first_contact(&mut sweep, limit, pieces, 1e-6, &mut left, &mut Vec::new());
+                assert_eq!(found, Ok(None));
+                let mut end = 0.0;
+                for &(a, b, ok) in &sweep.1 {
+                    assert_eq!(a, end, "{limit} {pieces}");
+                    assert!(b > a);
+                    if ok {
+                        end = b;
+                    }
+                }
+                assert_eq!(end, limit);
+                assert!(sweep.1.iter().filter(|x| x.2).count() >= pieces.min(64));
+            }
+        }
+    }
+
     /// A search's answer: a bracket, `None` (free), or why it stopped.
     type Found = Result<Option<(f64, f64)>, Stop<()>>;
 
     /// The search over `[0, 1]`, and the steps it took.
     fn run(wall: &mut Wall, tol: f64, budget: u64) -> (Found, u64) {
         let mut left = budget;
-        let out = first_contact(wall, 1.0, tol, &mut left, &mut Vec::new());
+        let out = first_contact(wall, 1.0, 1, tol, &mut left, &mut Vec::new());
         (out, budget - left)
     }
 

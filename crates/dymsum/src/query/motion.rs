@@ -479,7 +479,7 @@ impl MotionChecker {
                 search: self.piece_search(idx, &motion),
                 scratch: &mut scratch,
             };
-            match first_contact(&mut sweep, limit, tolerance, &mut steps_left, &mut stack) {
+            match first_contact(&mut sweep, limit, 1, tolerance, &mut steps_left, &mut stack) {
                 Ok(Some((safe, contact))) => {
                     frontier = frontier.min(safe);
                     if best.is_none_or(|b| contact < b.1) {

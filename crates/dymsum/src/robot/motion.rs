@@ -149,7 +149,7 @@ use super::kinematics::norm_up;
 use super::model::{JointKind, Robot};
 use super::separation::PlaneCertificate;
 use crate::kernel::rotation::Pose;
-use crate::query::interval_search::{first_contact, Stop, Sweep};
+use crate::query::interval_search::{bisection_order, first_contact, Stop, Sweep};
 use crate::query::{MotionCheck, MotionError};
 
 /// The largest `|value|` joint `k` takes along the motion (values are
@@ -467,23 +467,6 @@ impl Sweep for RobotSweep<'_> {
     }
 }
 
-/// The indices `k` of `0 < k < segments` in bisection order (the middle
-/// first, then the quarters, then the eighths, …), at most `most` of them.
-fn bisection_order(segments: usize, most: usize) -> Vec<usize> {
-    let mut out: Vec<usize> = Vec::new();
-    let mut level = 2usize;
-    while out.len() < most.min(segments.saturating_sub(1)) && level <= 2 * segments.max(1) {
-        for j in (1..level).step_by(2) {
-            let k = (j * segments + level / 2) / level;
-            if k > 0 && k < segments && !out.contains(&k) && out.len() < most {
-                out.push(k);
-            }
-        }
-        level *= 2;
-    }
-    out
-}
-
 impl RobotChecker {
     /// A cheap refutation before a certificate: the first configuration
     /// `q(k / segments)` of the straight motion from `q0` to `q1` (values
@@ -582,7 +565,7 @@ impl RobotChecker {
         };
         let mut steps_left = budget.max(1);
         let mut stack = Vec::new();
-        match first_contact(&mut sweep, 1.0, tolerance, &mut steps_left, &mut stack) {
+        match first_contact(&mut sweep, 1.0, 1, tolerance, &mut steps_left, &mut stack) {
             Ok(None) => Ok(MotionCheck::Free),
             Ok(Some((t_safe, t_contact))) => Ok(MotionCheck::Collides {
                 t_safe: Some(t_safe),
@@ -774,19 +757,6 @@ mod tests {
         }
         // The bound is not vacuous: some motion comes within half of it.
         assert!(tight > 0.5, "{tight}");
-    }
-
-    /// Bisection order visits each inner index once, the middle first.
-    #[test]
-    fn bisection_order_visits_each_inner_sample_once_middle_first() {
-        assert_eq!(bisection_order(8, 100), vec![4, 2, 6, 1, 3, 5, 7]);
-        assert_eq!(bisection_order(8, 3), vec![4, 2, 6]);
-        assert!(bisection_order(1, 10).is_empty() && bisection_order(0, 10).is_empty());
-        for n in 2..60 {
-            let mut all = bisection_order(n, usize::MAX);
-            all.sort_unstable();
-            assert_eq!(all, (1..n).collect::<Vec<_>>(), "{n}");
-        }
     }
 
     /// `norm_up` is never below the Euclidean norm, at any scale (squares

@@ -152,6 +152,9 @@ pub(super) struct Scratch {
     pub(super) scene_cache: NodeCache,
     /// The body's oriented node boxes at the pose (state checks).
     pub(super) obb_cache: NodeCache<PosedObb>,
+    /// The exact boxes of the body triangles' swept hulls over an
+    /// interval (motion checks).
+    pub(super) swept_boxes: NodeCache,
     pub(super) stack: Vec<(u32, u32)>,
     pub(super) parity: Vec<u8>,
     pub(super) intervals: Vec<(f64, f64)>,

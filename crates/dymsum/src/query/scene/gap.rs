@@ -66,13 +66,15 @@ pub(crate) fn apart_by_more_than(
     };
     // The triangle's normal first (cheap, and it separates whatever lies
     // beside a large face), either way round; then the closest points.
-    let normal = (u[1] - u[0]).cross(u[2] - u[0]);
+    let normal = normalised_scale((u[1] - u[0]).cross(u[2] - u[0]));
     let along = |n: DVec3| {
         let n = normalised_scale(n);
         gap_along(hull, u, n, slack) > reach_times_norm(reach, n)
     };
-    along(normal)
-        || along(-normal)
+    let (ahead, behind) = gaps_both_ways(hull, u, normal, slack);
+    let needed = reach_times_norm(reach, normal);
+    ahead > needed
+        || behind > needed
         || near.iter().any(|t| {
             let (ct, cu) = closest_points(t, u);
             along(cu - ct)
@@ -102,8 +104,15 @@ fn normalised_scale(n: DVec3) -> DVec3 {
     if m == 0.0 || !m.is_finite() {
         return n;
     }
-    let e = (m.log2().floor() as i32).clamp(-1000, 1000);
-    n * 2f64.powi(-e)
+    // The exponent of `m` from its bits (`floor(log2 m)` for a normal
+    // `m`; subnormals are scaled by 2¹⁰⁰⁰), and `2⁻ᵉ` built from bits.
+    let biased = ((m.to_bits() >> 52) & 0x7ff) as i32;
+    let e = if biased == 0 {
+        -1000
+    } else {
+        (biased - 1023).clamp(-1000, 1000)
+    };
+    n * f64::from_bits(((1023 - e) as u64) << 52)
 }
 
 /// `reach · |n|`, rounded up.
@@ -115,23 +124,37 @@ fn reach_times_norm(reach: f64, n: DVec3) -> f64 {
 /// `−∞` for a zero or non-finite `n`. `shift` more `u S` is subtracted for
 /// points that are rounded differences from an origin (module docs).
 fn gap_along(t: &[DVec3], u: &[DVec3; 3], n: DVec3, shift: f64) -> f64 {
+    gaps_both_ways(t, u, n, shift).0
+}
+
+/// The lower bounds of [`gap_along`] for `n` and for `−n`, in one pass
+/// over the points (negating `n` negates every dot product exactly, and
+/// the error bound depends on `|n|` only). The error bound: the relative
+/// bounds, and an absolute one for products that fall below the normal
+/// range (each off by at most 2⁻¹⁰⁷⁵).
+fn gaps_both_ways(t: &[DVec3], u: &[DVec3; 3], n: DVec3, shift: f64) -> (f64, f64) {
     if !n.is_finite() || n == DVec3::ZERO {
-        return f64::NEG_INFINITY;
+        return (f64::NEG_INFINITY, f64::NEG_INFINITY);
     }
-    let max_t = t
-        .iter()
-        .map(|p| n.dot(*p))
-        .fold(f64::NEG_INFINITY, f64::max);
-    let min_u = u.iter().map(|p| n.dot(*p)).fold(f64::INFINITY, f64::min);
-    let m = t
-        .iter()
-        .chain(u.iter())
-        .fold(DVec3::ZERO, |m, p| m.max(p.abs()));
+    let (mut min_t, mut max_t) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut m = DVec3::ZERO;
+    for p in t {
+        let d = n.dot(*p);
+        min_t = min_t.min(d);
+        max_t = max_t.max(d);
+        m = m.max(p.abs());
+    }
+    let (mut min_u, mut max_u) = (f64::INFINITY, f64::NEG_INFINITY);
+    for p in u {
+        let d = n.dot(*p);
+        min_u = min_u.min(d);
+        max_u = max_u.max(d);
+        m = m.max(p.abs());
+    }
     let s = n.abs().dot(m);
-    let gap = min_u - max_t;
-    // The relative bounds, and an absolute one for products that fall
-    // below the normal range (each off by at most 2⁻¹⁰⁷⁵).
-    gap - ((8.0 + shift) * U * s + 2.0 * U * gap.abs() + 1e-300) * (1.0 + 8.0 * U)
+    let bound =
+        |gap: f64| gap - ((8.0 + shift) * U * s + 2.0 * U * gap.abs() + 1e-300) * (1.0 + 8.0 * U);
+    (bound(min_u - max_t), bound(min_t - max_u))
 }
 
 /// Closest points of two triangles, in floating point (a proposal only):
