@@ -149,7 +149,7 @@ mod motion;
 mod pair;
 mod prep;
 mod proximity;
-mod rounding;
+pub(crate) mod rounding;
 pub(crate) mod scene;
 mod tracker;
 mod union;

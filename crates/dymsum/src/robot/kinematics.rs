@@ -8,18 +8,6 @@ use super::error::RobotError;
 use super::model::{JointKind, Robot, Value};
 use crate::kernel::rotation::{Pose, Rotation};
 
-/// `|v|`, rounded up, without squaring small coordinates into underflow
-/// or large ones into overflow: the largest magnitude `m` times the length
-/// of `v / m` (every coordinate of which is at most 1, one of them 1),
-/// each of the half-dozen roundings below `u`, covered by `10⁻¹²`.
-pub(super) fn norm_up(v: DVec3) -> f64 {
-    let m = v.abs().max_element();
-    if !(m > 0.0 && m.is_finite()) {
-        return m;
-    }
-    m * (v / m).length() * (1.0 + 1e-12)
-}
-
 /// `a ∘ b`: `b` first, then `a`.
 pub fn compose(a: &Pose, b: &Pose) -> Pose {
     Pose::new(b.rotation.then(&a.rotation), a.apply(b.translation))

@@ -145,11 +145,11 @@
 
 use super::checker::RobotChecker;
 use super::error::RobotError;
-use super::kinematics::norm_up;
 use super::model::{JointKind, Robot};
 use super::separation::PlaneCertificate;
 use crate::kernel::rotation::Pose;
 use crate::query::interval_search::{bisection_order, first_contact, Stop, Sweep};
+use crate::query::rounding::norm_up;
 use crate::query::{MotionCheck, MotionError};
 
 /// The largest `|value|` joint `k` takes along the motion (values are
@@ -757,29 +757,6 @@ mod tests {
         }
         // The bound is not vacuous: some motion comes within half of it.
         assert!(tight > 0.5, "{tight}");
-    }
-
-    /// `norm_up` is never below the Euclidean norm, at any scale (squares
-    /// of 1e-200 would underflow, of 1e200 overflow), and within 1e-11 of
-    /// it.
-    #[test]
-    fn norms_are_rounded_up_at_every_scale() {
-        for scale in [1e-300, 1e-200, 1e-150, 1.0, 1e150, 1e200, 1e300] {
-            for v in [
-                DVec3::new(3.0, 4.0, 0.0),
-                DVec3::new(-1.0, 2.0, -2.0),
-                DVec3::new(0.0, 0.0, -7.0),
-            ] {
-                let exact = v.length();
-                let n = norm_up(v * scale) / scale;
-                assert!(
-                    n >= exact && n <= exact * (1.0 + 1e-11),
-                    "{v} at {scale}: {n}"
-                );
-            }
-        }
-        assert_eq!(norm_up(DVec3::ZERO), 0.0);
-        assert_eq!(norm_up(DVec3::new(f64::INFINITY, 0.0, 0.0)), f64::INFINITY);
     }
 
     /// Links carried alike by a turn of a joint above both do not move

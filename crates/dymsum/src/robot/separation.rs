@@ -40,8 +40,8 @@
 
 use glam::{DMat3, DVec3};
 
-use super::kinematics::norm_up;
 use crate::hull::{convex_hull, FloatPoints};
+use crate::query::rounding::norm_up;
 
 /// The unit roundoff of `f64`.
 const U: f64 = f64::EPSILON / 2.0;

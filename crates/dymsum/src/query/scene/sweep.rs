@@ -29,12 +29,17 @@
 //! oriented box is proven apart ([`crate::solid::obb`], certified) from
 //! the body node's box posed at `a`, grown by the node's *swept reach*:
 //! with `ρ` an upper bound on the norm of every point of the node's box
-//! (`|c|₁ + |h|₁ + fuzz`, rounded up) and `θ` one on `‖M(b) − M(a)‖`
-//! (the sum of the magnitudes of the float matrices' difference, rounded
-//! up; sums of magnitudes bound the Euclidean norms from above and cannot
-//! underflow as squares of coordinates below 1e-154 do: with Euclidean
-//! norms a body of size 1e-165 had a colliding motion called free, found
-//! by the review below, `tests/oriented_boxes.rs` pins it),
+//! (`(|c| + |h| + fuzz)(1 + 10⁻¹¹)`: a point is `c + Σ sᵢeᵢ` (plus the
+//! fuzz ball) with `|sᵢ| ≤ hᵢ` and axes orthonormal up to `β ≤ 2⁻⁴⁴`, so
+//! `|Σ sᵢeᵢ| ≤ |h|(1 + 3β)`; each norm rounded up by `query::rounding`'s
+//! `norm_up`, and the factor covers `3β` and the sum's roundings) and `θ` one on `‖M(b) − M(a)‖₂` (`spectral_norm_up`:
+//! `√(‖A‖₁‖A‖∞)`, Hölder's bound, at most `√3` times the norm where the
+//! sum of the entries' magnitudes used before is up to three times;
+//! both are taken of the vector or matrix divided by its largest
+//! magnitude and scaled back, so no square of a coordinate below 1e-154
+//! underflows: with plain Euclidean norms a body of size 1e-165 had a
+//! colliding motion called free, found by the review below,
+//! `tests/oriented_boxes.rs` pins it),
 //! each of the twelve points of a node triangle lies within
 //! `θρ + 2|Δt|₁ + 4·pad + 16u(size + 2|Δt|₁) + 10⁻³⁰⁰` of `M(a) p + t(a)` for the
 //! triangle's corner `p` (the other end's corners move by at most
@@ -70,6 +75,7 @@ use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::{MotionError, QueryError};
 use crate::query::interval_search::{first_contact, Sweep, SweepMargin};
 use crate::query::motion::Motion;
+use crate::query::rounding::{norm_up, spectral_norm_up};
 use crate::solid::aabb::Aabb;
 use crate::solid::obb::pose_skew;
 
@@ -172,9 +178,12 @@ impl SceneChecker {
         // computed (what `apart_by_more_than` certifies; module docs).
         let own_box = |i: usize| cached(&swept_boxes, epoch, i, || hull_box(&hull_of(i)));
         let mut blocker = None;
+        // The walk meets each body triangle's pairs one after another: its
+        // hull is kept for the next pair.
+        let mut last_hull: Option<(usize, [DVec3; 12])> = None;
         // Then the oriented boxes (`solid::obb`): a node's swept hulls lie
         // within `swept_reach` of its box posed at `from` (module docs).
-        let turn = entry_sum(mb - ma);
+        let turn = spectral_norm_up(mb - ma);
         let size = self.body.reach + ta.abs().max_element().max(tb.abs().max_element());
         // Norms as sums of magnitudes: never below the Euclidean norm and
         // never underflowing (squares of coordinates below 1e-154 would).
@@ -185,7 +194,7 @@ impl SceneChecker {
         let obb_apart = |k: usize, j: usize| {
             let a = &body_obbs[k];
             let posed = cached(&obb_cache, epoch, k, || a.posed(&ma, ta));
-            let radius = (a.c.abs().element_sum() + a.h.element_sum() + a.fuzz) * (1.0 + 1e-12);
+            let radius = (norm_up(a.c) + norm_up(a.h) + a.fuzz) * (1.0 + 1e-11);
             let swept_reach = turn * radius
                 + 2.0 * shift_len
                 + 4.0 * pad
@@ -206,7 +215,15 @@ impl SceneChecker {
             scene.bounds(),
             &mut stack,
             |i, j| {
-                let near = self.hull_near(&hull_of(i), j, reach);
+                let hull = match last_hull {
+                    Some((k, hull)) if k == i => hull,
+                    _ => {
+                        let hull = hull_of(i);
+                        last_hull = Some((i, hull));
+                        hull
+                    }
+                };
+                let near = self.hull_near(&hull, j, reach);
                 if near {
                     blocker = Some((i, j));
                 }
@@ -340,15 +357,6 @@ fn first_pieces(motion: &Motion, reach: f64, budget: u64) -> usize {
 /// higher mean time on 8 and 4 on 6. A short planner motion (a few
 /// degrees, a fraction of the reach) stays one piece.
 const PIECES_PER_REACH: f64 = 2.0;
-
-/// An upper bound on the spectral norm of `m`: the sum of its entries'
-/// magnitudes (at least the Frobenius norm, and no squares to underflow),
-/// rounded up past the few ulps the sum may lose.
-fn entry_sum(m: glam::DMat3) -> f64 {
-    let s =
-        m.x_axis.abs().element_sum() + m.y_axis.abs().element_sum() + m.z_axis.abs().element_sum();
-    s * (1.0 + 1e-12) + 1e-300
-}
 
 /// The whole body's search with a check's buffers: what the interval
 /// search runs (`query::interval_search`).
