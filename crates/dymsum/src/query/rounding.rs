@@ -104,21 +104,34 @@ pub(crate) fn pose_rounding_bound(reach: f64, (m, d): (f64, f64)) -> f64 {
 /// `|v|`, rounded up, without squaring small coordinates into underflow
 /// or large ones into overflow: the largest magnitude `m` times the length
 /// of `v / m` (every coordinate of which is at most 1, one of them 1),
-/// each of the half-dozen roundings below `u`, covered by `10⁻¹²`.
+/// each of the half-dozen roundings below `u`, covered by `10⁻¹²`, and
+/// [`SUBNORMAL_SLACK`] for the last product, which rounds to a multiple
+/// of `2⁻¹⁰⁷⁴` when `m` is subnormal. NaN for a NaN coordinate.
 pub(crate) fn norm_up(v: glam::DVec3) -> f64 {
+    if v.is_nan() {
+        return f64::NAN;
+    }
     let m = v.abs().max_element();
     if !(m > 0.0 && m.is_finite()) {
         return m;
     }
-    m * (v / m).length() * (1.0 + 1e-12)
+    m * (v / m).length() * (1.0 + 1e-12) + SUBNORMAL_SLACK
 }
+
+/// An absolute slack for products that round in the subnormal range
+/// (each off by at most `2⁻¹⁰⁷⁵`): `2⁻¹⁰⁷¹`.
+const SUBNORMAL_SLACK: f64 = 8.0 * 5e-324;
 
 /// An upper bound on the spectral norm of `m`: `√(‖m‖₁ ‖m‖∞)` (the
 /// largest column and row sums of magnitudes; Hölder), taken of `m`
 /// scaled by its largest magnitude so that the product neither underflows
 /// nor overflows, rounded up past the few ulps the sums, the product and
-/// the root may lose.
+/// the root may lose (and [`SUBNORMAL_SLACK`] for a subnormal scale). NaN
+/// for a NaN entry (no bound: every comparison with it fails).
 pub(crate) fn spectral_norm_up(m: glam::DMat3) -> f64 {
+    if m.is_nan() {
+        return f64::NAN;
+    }
     let cols = [m.x_axis.abs(), m.y_axis.abs(), m.z_axis.abs()];
     let big = cols[0].max(cols[1]).max(cols[2]).max_element();
     if !(big > 0.0 && big.is_finite()) {
@@ -129,7 +142,7 @@ pub(crate) fn spectral_norm_up(m: glam::DMat3) -> f64 {
     let row_sum = [0, 1, 2].map(|k| cols[0][k] + cols[1][k] + cols[2][k]);
     let one = col_sum[0].max(col_sum[1]).max(col_sum[2]);
     let inf = row_sum[0].max(row_sum[1]).max(row_sum[2]);
-    big * (one * inf).sqrt() * (1.0 + 1e-12)
+    big * (one * inf).sqrt() * (1.0 + 1e-12) + SUBNORMAL_SLACK
 }
 
 #[cfg(test)]
@@ -204,6 +217,17 @@ mod tests {
                 assert!(n <= exact * 1.7321, "{a} at {scale}: {n} > √3 {exact}");
             }
         }
+        // Subnormal scales: the last product's rounding is covered.
+        let m = f64::from_bits(1);
+        let (n, a) = (
+            norm_up(DVec3::new(m, m, 0.0)),
+            DMat3::from_cols_array(&[m, 0.0, 0.0, m, 0.0, 0.0, 0.0, 0.0, 0.0]),
+        );
+        assert!(n >= 2.0 * m && spectral_norm_up(a) >= 2.0 * m, "{n:e}");
+        assert!(norm_up(DVec3::new(f64::NAN, 0.0, 0.0)).is_nan());
+        let mut with_nan = DMat3::ZERO;
+        with_nan.y_axis.z = f64::NAN;
+        assert!(spectral_norm_up(with_nan).is_nan());
         assert_eq!(spectral_norm_up(DMat3::ZERO), 0.0);
         assert_eq!(
             spectral_norm_up(DMat3::from_diagonal(DVec3::new(0.0, f64::INFINITY, 0.0))),

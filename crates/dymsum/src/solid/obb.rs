@@ -72,8 +72,10 @@
 //! `3·10⁻⁴` of), the containment filters and the motion search's swept
 //! reach. It found one wrong answer, mended: the swept reach took
 //! Euclidean norms, whose squares underflow for bodies below `10⁻¹⁵⁴`,
-//! and called a colliding motion of a body of size `10⁻¹⁶⁵` free (now
-//! sums of magnitudes; `tests/oriented_boxes.rs` pins it). It also
+//! and called a colliding motion of a body of size `10⁻¹⁶⁵` free (then
+//! sums of magnitudes; since, norms of the vector or matrix scaled by its
+//! largest magnitude, `query::rounding`; `tests/oriented_boxes.rs` pins
+//! it). It also
 //! corrected the skew bound (`3ω + β`, above), the note on handedness and
 //! on the posed centre's rounding, and added an absolute floor to the
 //! containment filter's pad.

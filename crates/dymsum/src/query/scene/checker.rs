@@ -153,7 +153,8 @@ pub(super) struct Scratch {
     /// The body's oriented node boxes at the pose (state checks).
     pub(super) obb_cache: NodeCache<PosedObb>,
     /// The exact boxes of the body triangles' swept hulls over an
-    /// interval (motion checks).
+    /// interval (motion checks; sized on the first, and forgotten when the
+    /// epoch wraps, by whichever query wraps it).
     pub(super) swept_boxes: NodeCache,
     pub(super) stack: Vec<(u32, u32)>,
     pub(super) parity: Vec<u8>,
@@ -335,6 +336,7 @@ impl SceneChecker {
             // The epoch wrapped (or this is the first query): stamps from
             // the last cycle must not pass for this one's.
             s.tris.clear();
+            s.swept_boxes.clear();
         }
     }
 

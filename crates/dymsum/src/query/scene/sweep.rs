@@ -34,11 +34,12 @@
 //! `|Σ sᵢeᵢ| ≤ |h|(1 + 3β)`; each norm rounded up by `query::rounding`'s
 //! `norm_up`, and the factor covers `3β` and the sum's roundings) and `θ` one on `‖M(b) − M(a)‖₂` (`spectral_norm_up`:
 //! `√(‖A‖₁‖A‖∞)`, Hölder's bound, at most `√3` times the norm where the
-//! sum of the entries' magnitudes used before is up to three times;
+//! sum of the entries' magnitudes used before is up to `3√2` times on a
+//! difference of rotations;
 //! both are taken of the vector or matrix divided by its largest
 //! magnitude and scaled back, so no square of a coordinate below 1e-154
 //! underflows: with plain Euclidean norms a body of size 1e-165 had a
-//! colliding motion called free, found by the review below,
+//! colliding motion called free, found by the review in `solid::obb`,
 //! `tests/oriented_boxes.rs` pins it),
 //! each of the twelve points of a node triangle lies within
 //! `θρ + 2|Δt|₁ + 4·pad + 16u(size + 2|Δt|₁) + 10⁻³⁰⁰` of `M(a) p + t(a)` for the
@@ -63,6 +64,23 @@
 //! with the bound above certifying an interval
 //! (`SceneChecker::certified_apart`) and the exact state check
 //! (`scene::state`) checking a time.
+//!
+//! # Independent review (2026-11-29, second)
+//! Of the first pieces, the exact per-interval triangle boxes, the body
+//! normals as proposals (`super::gap`) and the Hölder and scaled
+//! Euclidean norms of the swept reach. Verified: `turn · radius` bounds
+//! every node point's displacement (the float difference of the matrices,
+//! the scaling and near-orthonormal axes included); the triangle boxes are
+//! those of the twelve points certified; the normal tested both ways gives
+//! the old bounds bit for bit; `normalised_scale` scales by an exact power
+//! of two at every magnitude; the first pieces keep the left-to-right
+//! invariant with shared float ends. Found and mended: the triangle boxes
+//! were forgotten only when the motion search itself wrapped the query
+//! counter, so after a wrap inside a state check a stale box could certify
+//! a crossing pose free (pinned by
+//! `regression_swept_boxes_are_forgotten_when_a_state_check_wraps_the_counter`);
+//! the norms lacked an absolute term for subnormal products and dropped
+//! NaN (both harmless where used, mended in `query::rounding`).
 
 use super::checker::{cached, shifted, Lazy, SceneChecker, Scratch};
 use std::sync::atomic::Ordering;
@@ -131,7 +149,7 @@ impl SceneChecker {
         s.at_b.start(n);
         self.fit_node_cache(s);
         let triangles = self.body.triangles.len();
-        if s.swept_boxes.len() != triangles || s.at.epoch == 1 {
+        if s.swept_boxes.len() != triangles {
             s.swept_boxes = vec![std::cell::Cell::new((0, Aabb::EMPTY)); triangles];
         }
         let scene = self.scene.tree();
@@ -379,5 +397,53 @@ impl Sweep for BodySweep<'_> {
 
     fn collides_at_time(&mut self, t: f64) -> Result<bool, QueryError> {
         self.checker.collides_with(self.motion.at(t), self.s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::MeshBody;
+    use crate::kernel::rotation::Rotation;
+    use crate::mesh::PolygonMesh;
+
+    /// Found by the independent review of the per-interval swept boxes:
+    /// when the query counter wrapped inside a state check, the boxes
+    /// stamped in the counter's last cycle passed for the next interval's,
+    /// and a pose where the body crosses the scene was certified free.
+    #[test]
+    fn regression_swept_boxes_are_forgotten_when_a_state_check_wraps_the_counter() {
+        let scene = PolygonMesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [10.0, 0.0, 0.0],
+                [11.0, 0.0, 0.0],
+                [10.0, 1.0, 0.0],
+            ],
+            vec![vec![0, 1, 2], vec![3, 4, 5]],
+        );
+        let body = PolygonMesh::new(
+            vec![[0.2, 0.2, -0.5], [0.2, 0.2, 0.5], [0.4, 0.1, 0.0]],
+            vec![vec![0, 1, 2]],
+        );
+        let checker = SceneChecker::new(
+            &MeshBody::new(&body).unwrap(),
+            &[MeshBody::new(&scene).unwrap()],
+        )
+        .unwrap();
+        let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
+        let mut s = checker.scratch();
+        assert!(!checker.collides_with(at(5.0), &mut s).unwrap());
+        assert!(checker.certified_apart(at(5.0), at(5.0), 0.0, &mut s));
+        let stamped = s.at.epoch;
+        assert!(checker.collides_at(at(0.0)).unwrap());
+        // The counter wraps inside a state check; the next interval takes
+        // the stamp the boxes at x = 5 carry.
+        s.at.epoch = u32::MAX;
+        let _ = checker.collides_with(at(5.0), &mut s).unwrap();
+        assert!(!checker.certified_apart(at(0.0), at(0.0), 0.0, &mut s));
+        assert_eq!(s.at.epoch, stamped);
     }
 }
