@@ -27,8 +27,10 @@ also counts a body inside a solid). With ``--motions M``, short motions
 from free near-contact states: turned by 1° to 5° about a random axis
 through the body's centre and moved by up to 2% of the obstacle's
 diagonal, one call each: dymsum's certified ``check(pose0, pose1)``
-(the contact bracketed to 1e-6, and to ``dymsum.ompl.DECISION_TOLERANCE``
-as the OMPL validator's ``checkMotion(s1, s2)`` asks) against discrete validation with fcl as OMPL's SE(3) space would make
+(the contact bracketed to 1e-6; and as the OMPL validator's
+``checkMotion(s1, s2)`` decides: ``sampled_contact`` on the discrete
+check's own states, then ``check`` backwards to
+``dymsum.ompl.DECISION_TOLERANCE``) against discrete validation with fcl as OMPL's SE(3) space would make
 it (``DiscreteMotionValidator``: states ``0.01 · extent`` apart in OMPL's
 SE(3) distance, the translation's length plus the quaternion angle, the
 extent the obstacle box's diagonal plus π/2; the end state included, the
@@ -115,17 +117,20 @@ def motions(fcl, checker, oa, ob, va, vb, starts, rng):
         except Exception:  # noqa: BLE001 - undecided or over budget: counted as not free, timed
             free = False
         td.append(time.perf_counter() - t0)
-        # What the OMPL validator's checkMotion(s1, s2) runs: the same
-        # certified answer, the contact bracketed only to 1/8.
-        t0 = time.perf_counter()
-        try:
-            checker.check(p0, p1, DECISION_TOLERANCE)
-        except Exception:  # noqa: BLE001 - as above
-            pass
-        tdec.append(time.perf_counter() - t0)
         q0, q1 = Rotation.from_matrix(p0[:3, :3]), Rotation.from_matrix(p1[:3, :3])
         dist = np.linalg.norm(p1[:3, 3] - p0[:3, 3]) + np.arccos(min(1.0, abs(np.dot(q0.as_quat(), q1.as_quat()))))
         steps = max(1, int(dist / (0.01 * extent)))
+        # What the OMPL validator's checkMotion(s1, s2) runs: up to seven of
+        # the sampled check's states first (a colliding one refutes), then
+        # the same certified answer backwards (the new end first), the
+        # contact bracketed only to 1/8.
+        t0 = time.perf_counter()
+        try:
+            if checker.sampled_contact(p1, p0, steps) is None:
+                checker.check(p1, p0, DECISION_TOLERANCE)
+        except Exception:  # noqa: BLE001 - as above
+            pass
+        tdec.append(time.perf_counter() - t0)
         t0 = time.perf_counter()
         ok = True
         for k in range(1, steps + 1):
