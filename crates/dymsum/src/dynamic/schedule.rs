@@ -243,15 +243,17 @@ mod tests {
     use super::*;
     use glam::DVec3;
 
-    /// The tests' random numbers (xorshift64; reproducible).
-    pub(super) struct R(pub(super) u64);
+    /// The tests' random numbers (`crate::kernel::test_rng`; reproducible).
+    pub(super) struct R(crate::kernel::test_rng::Xorshift);
 
     impl R {
+        /// The stream from `seed` (nonzero).
+        pub(super) fn new(seed: u64) -> R {
+            R(crate::kernel::test_rng::Xorshift::new(seed))
+        }
+
         pub(super) fn f(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+            self.0.unit()
         }
         pub(super) fn i(&mut self, n: usize) -> usize {
             (self.f() * n as f64) as usize % n
@@ -286,7 +288,7 @@ mod tests {
     /// the ring turns and the calendar is rebuilt), and a rebase.
     #[test]
     fn pops_exactly_the_due_items() {
-        let mut r = R(0x9e37_79b9_7f4a_7c15);
+        let mut r = R::new(0x9e37_79b9_7f4a_7c15);
         let mut next = || r.f();
         let n = 300;
         let mut keys: Vec<f64> = (0..n).map(|_| next() * 10.0).collect();
@@ -350,7 +352,7 @@ mod tests {
     /// bucket, rebases; against a plain scan.
     #[test]
     fn review_adversarial_calendar() {
-        let mut r = R(0x1234_5678_9abc_def1);
+        let mut r = R::new(0x1234_5678_9abc_def1);
         let mut next = || r.f();
         for n in [1usize, 2, 7, 100, 1000] {
             let mut keys: Vec<f64> = (0..n).map(|_| next() * 3.0).collect();
@@ -446,7 +448,7 @@ mod review_motion_tests {
     #[test]
     fn schedule_pops_what_the_scan_visits() {
         for seed in 1..25u64 {
-            let mut r = R(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+            let mut r = R::new(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
             let (gp, gq) = (seed % 2 == 0, seed % 3 == 0);
             let p = poly(&mut r, gp, 40);
             let q = poly(&mut r, gq, 40);
@@ -499,7 +501,7 @@ mod review_motion_tests {
     #[test]
     fn schedule_with_tie_runs() {
         for seed in 1..40u64 {
-            let mut r = R(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+            let mut r = R::new(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
             let np = 12 + r.i(40);
             let p = poly(&mut r, true, np);
             let q = if seed % 3 == 0 {
@@ -557,7 +559,7 @@ mod review_motion_tests {
     #[test]
     fn tie_run_across_rebase() {
         for seed in 1..6u64 {
-            let mut r = R(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
+            let mut r = R::new(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) | 1);
             let np = 12 + r.i(40);
             let p = poly(&mut r, true, np);
             let nq = 12 + r.i(40);
@@ -592,7 +594,7 @@ mod review_motion_tests {
     #[test]
     fn tiny_and_alternating_steps() {
         for seed in 1..30u64 {
-            let mut r = R(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
+            let mut r = R::new(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1);
             let np = 8 + r.i(50);
             let p = poly(&mut r, seed % 2 == 0, np);
             let nq = 8 + r.i(50);

@@ -18,5 +18,7 @@ pub(crate) mod exact;
 pub mod predicates;
 pub mod rotation;
 pub(crate) mod separation;
+#[cfg(test)]
+pub(crate) mod test_rng;
 
 pub use predicates::Sign;

@@ -200,13 +200,8 @@ mod tests {
     /// on a coarse grid (many touch exactly), judged by the exact test.
     #[test]
     fn never_proves_a_meeting_pair_apart() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % 5) as f64 - 2.0
-        };
+        let mut rng = crate::kernel::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = move || (rng.next_u64() % 5) as f64 - 2.0;
         let (mut proven, mut meeting) = (0, 0);
         for _ in 0..50_000 {
             let mut tri = || [(); 3].map(|_| v(next(), next(), next()));
@@ -232,13 +227,8 @@ mod tests {
     /// fails: checked by setting the slack to zero).
     #[test]
     fn rounding_never_makes_a_proof() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::kernel::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1du64);
+        let mut unit = move || rng.signed();
         let mut meeting = 0;
         for k in 0..200_000 {
             let mut pts = [(); 5].map(|_| v(unit(), unit(), unit()) * 1e3);

@@ -427,13 +427,8 @@ mod tests {
             0.0036183057259554586,
             0.0029883845840746634,
         );
-        let mut state = 0x1234_5678_9abc_def1u64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::kernel::test_rng::Xorshift::new(0x1234_5678_9abc_def1u64);
+        let mut unit = move || rng.unit();
         for _ in 0..20_000 {
             let (limit, tol) = (0.5 + 0.5 * unit(), 0.01 * unit() + 1e-9);
             let hit = unit() * 2.0 * tol;

@@ -192,13 +192,8 @@ mod tests {
             }
             (a * x).length()
         };
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::kernel::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15u64);
+        let mut unit = move || rng.signed();
         for k in 0..400 {
             let a = if k % 2 == 0 {
                 let q = DQuat::from_xyzw(unit(), unit(), unit(), unit()).normalize();

@@ -600,14 +600,11 @@ mod tests {
     use crate::robot::model::{JointSpec, LinkSpec, Mimic};
     use glam::DVec3;
 
-    struct Rng(u64);
+    struct Rng(crate::kernel::test_rng::Xorshift);
     impl Rng {
         /// Uniform in [−1, 1).
         fn unit(&mut self) -> f64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+            self.0.signed()
         }
         fn vec(&mut self) -> DVec3 {
             DVec3::new(self.unit(), self.unit(), self.unit())
@@ -687,7 +684,9 @@ mod tests {
     /// (`link_speed`) nor in another link's (`pair_speed`).
     #[test]
     fn links_move_no_faster_than_their_chain_bounds() {
-        let mut r = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut r = Rng(crate::kernel::test_rng::Xorshift::new(
+            0x9e37_79b9_7f4a_7c15,
+        ));
         let mut tight = 0.0f64;
         for _ in 0..300 {
             let size = 2 + r.below(6);

@@ -352,13 +352,8 @@ mod tests {
     /// exact-rational gap along the direction used).
     #[test]
     fn a_certificate_never_exceeds_the_distance() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::kernel::test_rng::Xorshift::new(0x2545_f491_4f6c_dd1du64);
+        let mut unit = move || rng.signed();
         let mut proved = 0;
         for round in 0..3000 {
             let scale = [1e-9, 1.0, 1e6][round % 3];

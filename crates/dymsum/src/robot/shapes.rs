@@ -137,13 +137,8 @@ mod tests {
     /// vertices' distance.
     #[test]
     fn primitives_are_held_by_their_polytopes() {
-        let mut state = 0x1234_5678_9abc_def1u64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::kernel::test_rng::Xorshift::new(0x1234_5678_9abc_def1u64);
+        let mut unit = move || rng.signed();
         let (r, l) = (0.3, 1.1);
         let shapes = [
             (sphere_polytope(r, 16).unwrap(), 0.0),

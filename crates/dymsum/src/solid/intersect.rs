@@ -265,13 +265,8 @@ mod tests {
         // Grid points (many exactly coplanar), tiny and huge scales, and
         // points one ulp off a plane: the filter never decides otherwise
         // than the exact signs.
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = crate::kernel::test_rng::Xorshift::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = || rng.next_u64();
         let exact = |plane: &[DVec3; 3], pts: &[DVec3; 3]| {
             let side = |p: DVec3| orient(plane[0], plane[1], plane[2], p);
             let s0 = side(pts[0]);

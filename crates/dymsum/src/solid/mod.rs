@@ -476,13 +476,8 @@ mod volume_sign_tests {
     /// cases and leaves the flat ones to the exact sum.
     #[test]
     fn the_filter_agrees_with_the_exact_sum_and_leaves_ties_to_it() {
-        let mut state = 0x1234_5678_9abc_def1u64;
-        let mut unit = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::kernel::test_rng::Xorshift::new(0x1234_5678_9abc_def1u64);
+        let mut unit = move || rng.signed();
         let (mut settled, mut flat_left) = (0, 0);
         for round in 0..3000 {
             // Powers of two, so that the flat shells below are exactly

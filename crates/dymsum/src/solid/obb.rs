@@ -342,13 +342,8 @@ mod tests {
     use crate::solid::intersect::triangles_meet;
 
     fn rng(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed | 1;
-        move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        }
+        let mut rng = crate::kernel::test_rng::Xorshift::new(seed | 1);
+        move || rng.signed()
     }
 
     #[test]
