@@ -32,6 +32,8 @@ fn main() {
         })
         .collect();
     let reps: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
+    // FORWARD=1: from the first pose (the validator asks backwards).
+    let forward = std::env::var("FORWARD").is_ok_and(|v| v == "1");
     let read = |f: &str| dymsum_io::formats::read_mesh(&dir.join(f)).expect("an OBJ file");
     let robot = MeshBody::new(&read("robot.obj")).expect("a robot");
     let env = MeshBody::new(&read("env.obj")).expect("an environment");
@@ -43,7 +45,11 @@ fn main() {
         let start = Instant::now();
         let mut out = None;
         for _ in 0..reps {
-            out = Some(checker.check(b, a, 0.125));
+            out = Some(if forward {
+                checker.check(a, b, 0.125)
+            } else {
+                checker.check(b, a, 0.125)
+            });
         }
         let us = start.elapsed().as_secs_f64() * 1e6 / reps as f64;
         let k = match out.unwrap() {
