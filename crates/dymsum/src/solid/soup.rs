@@ -650,7 +650,7 @@ impl<'a> Chain<'a> {
         let k = (0..3).find(|&k| pa[k] != pb[k]).unwrap_or(0);
         let points = self.points.get_or_insert_with(|| {
             let boxes: Vec<Aabb> = vertices.iter().map(|&p| Aabb { lo: p, hi: p }).collect();
-            AabbTree::new(&boxes)
+            AabbTree::over_points(&boxes)
         });
         let mut inside = Vec::new();
         points.for_each_meeting(&Aabb::of([pa, pb]), |v| {
