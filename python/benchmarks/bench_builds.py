@@ -2,11 +2,15 @@
 
     pip install ./python trimesh python-fcl
     python python/benchmarks/bench_builds.py DIR [DIR ...] [--repeats N]
-        [--memory] [--min-faces F]
+        [--memory] [--min-faces F] [--soup N[,N...]]
 
 Every ``*.stl`` under the folders given (e.g. git checkouts of
 ``ros-industrial/universal_robot`` and ``ros-industrial/abb``), read by
 trimesh as it is (``process=False``: unwelded, as robots ship them).
+``--soup`` adds synthetic soups of N triangles each (the issue's
+extremes): seeded random triangles, each with its own three vertices
+(nothing welded), sides up to 1 at random orientations, centres uniform
+in a cube of side ``10 N^(1/3)`` (so they rarely meet).
 
 Time: per mesh, what a planner builds before its first query, both
 tools timed alternately in one process, the median of ``--repeats``
@@ -56,12 +60,20 @@ def build_dymsum(dymsum, v, f):
     return dymsum.MotionChecker((v, f), [(v, f)])
 
 
-def times(path, repeats):
+def soup(n, seed=1):
+    """A seeded soup of ``n`` unwelded triangles (module docs)."""
+    rng = np.random.default_rng(seed)
+    centres = rng.uniform(0.0, 10.0 * n ** (1.0 / 3.0), size=(n, 1, 3))
+    v = (centres + rng.uniform(-0.5, 0.5, size=(n, 3, 3))).reshape(-1, 3)
+    return v, np.arange(3 * n, dtype=np.int64).reshape(n, 3)
+
+
+def times(mesh, repeats):
     import fcl
 
     import dymsum
 
-    v, f = load(path)
+    v, f = mesh
     td, tf = [], []
     for _ in range(repeats):
         t0 = time.perf_counter()
@@ -81,10 +93,13 @@ def main():
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--memory", action="store_true")
     ap.add_argument("--min-faces", type=int, default=0)
+    ap.add_argument("--soup", default="", help="comma-separated triangle counts of synthetic soups")
     a = ap.parse_args()
     files = sorted(
         {f for d in a.dirs for pattern in ("*.stl", "*.STL") for f in glob.glob(os.path.join(d, "**", pattern), recursive=True)}
     )
+    meshes = [(os.path.basename(p)[:-4], lambda p=p: load(p)) for p in files]
+    meshes += [(f"soup of {int(n)} triangles", lambda n=int(n): soup(n)) for n in a.soup.split(",") if n.strip()]
     header = "| mesh | triangles | build ms dymsum / fcl (ratio) |"
     rule = "|---|---|---|"
     if a.memory:
@@ -93,18 +108,19 @@ def main():
     print(header)
     print(rule)
     ratios, mem_ratios = [], []
-    for path in files:
+    for name, read in meshes:
         try:
-            n, td, tf = times(path, a.repeats)
+            mesh = read()
+            n, td, tf = times(mesh, a.repeats)
         except Exception as e:  # noqa: BLE001 - a file trimesh cannot read is reported and skipped
-            print(f"skipped {path}: {e}", file=sys.stderr)
+            print(f"skipped {name}: {e}", file=sys.stderr)
             continue
         if n < max(1, a.min_faces):
             continue
         ratios.append(td / tf)
-        row = f"| {os.path.basename(path)[:-4]} | {n} | {td * 1e3:.2f} / {tf * 1e3:.2f} ({td / tf:.2f}) |"
+        row = f"| {name} | {n} | {td * 1e3:.2f} / {tf * 1e3:.2f} ({td / tf:.2f}) |"
         if a.memory:
-            v, f = load(path)
+            v, f = mesh
             m = build_memory(v, f, v, f)
             md, mf = m["dymsum"].get("peak_kb"), m["fcl"].get("peak_kb")
             if md is None or mf is None:

@@ -34,13 +34,15 @@ fn main() {
     let reps: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
     // FORWARD=1: from the first pose (the validator asks backwards).
     let forward = std::env::var("FORWARD").is_ok_and(|v| v == "1");
+    // VERBOSE=1: each motion's time and intervals.
+    let verbose = std::env::var("VERBOSE").is_ok_and(|v| v == "1");
     let read = |f: &str| dymsum_io::formats::read_mesh(&dir.join(f)).expect("an OBJ file");
     let robot = MeshBody::new(&read("robot.obj")).expect("a robot");
     let env = MeshBody::new(&read("env.obj")).expect("an environment");
     let checker = SceneChecker::new(&robot, &[env]).expect("a checker");
     let mut times: [Vec<f64>; 3] = Default::default();
     let mut steps: [u64; 3] = [0; 3];
-    for &(a, b) in &motions {
+    for (i, &(a, b)) in motions.iter().enumerate() {
         let before = checker.steps();
         let start = Instant::now();
         let mut out = None;
@@ -58,6 +60,12 @@ fn main() {
             Err(_) => 2,
         };
         times[k].push(us);
+        if verbose {
+            println!(
+                "{i}: {us:.1} µs, {} intervals, {k}",
+                checker.steps() - before
+            );
+        }
         steps[k] += (checker.steps() - before) / reps as u64;
     }
     for (k, name) in ["free", "contact", "error"].iter().enumerate() {
