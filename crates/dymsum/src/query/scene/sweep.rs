@@ -153,15 +153,7 @@ impl SceneChecker {
             s.swept_boxes = vec![std::cell::Cell::new((0, Aabb::EMPTY)); triangles];
         }
         let scene = self.scene.tree();
-        let hull_box = |hull: &[DVec3; 12]| {
-            let (lo, hi) = hull[1..]
-                .iter()
-                .fold((hull[0], hull[0]), |(l, h), p| (l.min(*p), h.max(*p)));
-            Aabb {
-                lo: lo.to_array(),
-                hi: hi.to_array(),
-            }
-        };
+        let hull_box = |hull: &[DVec3; 12]| Aabb::of(hull.map(|p| p.to_array()));
         if let Some((i, j)) = s.blocker {
             let hull = self.swept_points((&mut s.at, &mut s.at_b), i, &from, &to);
             if hull_box(&hull).within(&scene.boxes()[j], reach) && self.hull_near(&hull, j, reach) {
@@ -310,7 +302,9 @@ impl SceneChecker {
             motion,
             s: &mut *s,
         };
-        let pieces = first_pieces(&motion, self.body.reach, self.budget);
+        let travel =
+            motion.angle() * self.body.reach + (to.translation - from.translation).length();
+        let pieces = first_pieces(travel, self.body.reach, self.budget);
         let found = first_contact(
             &mut sweep,
             1.0,
@@ -348,13 +342,11 @@ impl SceneChecker {
 
 /// How many equal intervals the search starts from
 /// (`query::interval_search`): [`PIECES_PER_REACH`] for each length of the
-/// body's reach that its farthest point travels (the turn times the
-/// reach, plus the translation), rounded up, from 1 to `budget / 64` (so
-/// a small budget is spent as before, on the halving) and at most 64. A
-/// schedule only: any cut is sound.
-fn first_pieces(motion: &Motion, reach: f64, budget: u64) -> usize {
-    let (a, b) = (motion.at(0.0).translation, motion.at(1.0).translation);
-    let travel = motion.angle() * reach + (b - a).length();
+/// body's reach that its farthest point travels (`travel`: the turn times
+/// the reach, plus the translation), rounded up, from 1 to `budget / 64`
+/// (so a small budget is spent as before, on the halving) and at most 64.
+/// A schedule only: any cut is sound.
+fn first_pieces(travel: f64, reach: f64, budget: u64) -> usize {
     let most = (budget / 64).clamp(1, 64) as f64;
     let pieces = (PIECES_PER_REACH * travel / reach).ceil();
     if pieces.is_finite() {
