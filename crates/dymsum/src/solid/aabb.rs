@@ -168,28 +168,20 @@ fn bin_of(x: f64, lo: f64, scale: f64) -> usize {
 /// `count · area` summed over both sides), or the median of the widest
 /// axis of `bound` (the items' box) when every centre coincides. Any
 /// split is correct; this one makes the boxes of a node overlap less, so
-/// fewer pairs are visited. `centres` are the boxes' centres and
-/// `(lo, hi)` the box of the items' centres: all three axes are binned in
-/// one pass over the items.
-fn split_by_area(
-    items: &mut [u32],
-    boxes: &[Aabb],
-    centres: &[[f64; 3]],
-    bound: &Aabb,
-    (lo, hi): ([f64; 3], [f64; 3]),
-) -> usize {
+/// fewer pairs are visited. `(lo, hi)` is the box of the items' centres:
+/// all three axes are binned in one pass over the items.
+fn split_by_area(items: &mut [Item], bound: &Aabb, (lo, hi): ([f64; 3], [f64; 3])) -> usize {
     let n = items.len();
     let live: [bool; 3] = std::array::from_fn(|k| hi[k] > lo[k]);
     let scale: [f64; 3] = std::array::from_fn(|k| BINS as f64 / (hi[k] - lo[k]));
     let mut count = [[0usize; BINS]; 3];
     let mut bins = [[Aabb::EMPTY; BINS]; 3];
-    for &i in items.iter() {
-        let (c, b) = (&centres[i as usize], &boxes[i as usize]);
+    for item in items.iter() {
         for k in 0..3 {
             if live[k] {
-                let j = bin_of(c[k], lo[k], scale[k]);
+                let j = bin_of(item.centre[k], lo[k], scale[k]);
                 count[k][j] += 1;
-                bins[k][j] = bins[k][j].join(b);
+                bins[k][j] = bins[k][j].join(&item.bound);
             }
         }
     }
@@ -200,7 +192,7 @@ fn split_by_area(
     if let Some((k, (_, last))) = best {
         let mut mid = 0;
         for j in 0..n {
-            if bin_of(centres[items[j] as usize][k], lo[k], scale[k]) <= last {
+            if bin_of(items[j].centre[k], lo[k], scale[k]) <= last {
                 items.swap(mid, j);
                 mid += 1;
             }
@@ -209,14 +201,14 @@ fn split_by_area(
             return mid;
         }
     }
-    split_at_median(items, centres, bound)
+    split_at_median(items, bound)
 }
 
 /// Reorders `items` so that `items[..mid]` and `items[mid..]` are the two
 /// halves along the widest axis of `bound` (the items' box), and returns
 /// `mid = n / 2`: the split of a k-d tree, linear in the items (what a
 /// tree over points needs; any split is correct).
-fn split_at_median(items: &mut [u32], centres: &[[f64; 3]], bound: &Aabb) -> usize {
+fn split_at_median<I: BuildItem>(items: &mut [I], bound: &Aabb) -> usize {
     let axis = (0..3)
         .max_by(|&a, &b| {
             let w = |k: usize| bound.hi[k] - bound.lo[k];
@@ -224,16 +216,67 @@ fn split_at_median(items: &mut [u32], centres: &[[f64; 3]], bound: &Aabb) -> usi
         })
         .unwrap_or(0);
     let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |&a, &b| {
-        centres[a as usize][axis].total_cmp(&centres[b as usize][axis])
-    });
+    items.select_nth_unstable_by(mid, |a, b| a.centre()[axis].total_cmp(&b.centre()[axis]));
     mid
 }
 
-/// How a node's items are split: the items, the boxes, their centres,
-/// the node's box and the box of its items' centres; returns the size of
-/// the first part (strictly inside).
-type Split = fn(&mut [u32], &[Aabb], &[[f64; 3]], &Aabb, ([f64; 3], [f64; 3])) -> usize;
+/// An item while its tree is built: its box, the box's centre and its
+/// number, side by side, so that every pass over a node's items reads
+/// memory in order (a tree of a million triangles no longer waits on a
+/// cache miss per item and level).
+trait BuildItem: Copy + Send {
+    fn bound(&self) -> Aabb;
+    fn centre(&self) -> [f64; 3];
+    fn index(&self) -> u32;
+}
+
+/// A box as it is built into a tree.
+#[derive(Clone, Copy)]
+struct Item {
+    bound: Aabb,
+    centre: [f64; 3],
+    index: u32,
+}
+
+impl BuildItem for Item {
+    fn bound(&self) -> Aabb {
+        self.bound
+    }
+    fn centre(&self) -> [f64; 3] {
+        self.centre
+    }
+    fn index(&self) -> u32 {
+        self.index
+    }
+}
+
+/// A point as it is built into a tree (its box is itself: less than half
+/// an [`Item`]'s memory, and the cleaning indexes every vertex).
+#[derive(Clone, Copy)]
+struct PointItem {
+    at: [f64; 3],
+    index: u32,
+}
+
+impl BuildItem for PointItem {
+    fn bound(&self) -> Aabb {
+        Aabb {
+            lo: self.at,
+            hi: self.at,
+        }
+    }
+    fn centre(&self) -> [f64; 3] {
+        self.at
+    }
+    fn index(&self) -> u32 {
+        self.index
+    }
+}
+
+/// How a node's items are split: the items, the node's box and the box of
+/// its items' centres; returns the size of the first part (strictly
+/// inside).
+type Split<I> = fn(&mut [I], &Aabb, ([f64; 3], [f64; 3])) -> usize;
 
 /// At most this many items per leaf.
 const LEAF: usize = 4;
@@ -265,52 +308,60 @@ impl std::fmt::Debug for AabbTree {
 impl AabbTree {
     /// Builds the tree of `boxes` (item `i` is `boxes[i]`).
     pub fn new(boxes: &[Aabb]) -> AabbTree {
-        AabbTree::with_split(boxes, split_by_area)
+        let items = boxes
+            .iter()
+            .enumerate()
+            .map(|(i, b)| Item {
+                bound: *b,
+                centre: std::array::from_fn(|k| b.centre(k)),
+                index: i as u32,
+            })
+            .collect();
+        AabbTree::with_split(boxes.to_vec(), items, split_by_area)
     }
 
     /// The tree over points (boxes of no extent; any boxes will do): split
     /// at the median of the widest axis, a k-d tree. The binned area
     /// heuristic of [`AabbTree::new`] has no areas to weigh here and costs
     /// several times more to build (the mesh cleaning's vertex index).
-    pub fn over_points(boxes: &[Aabb]) -> AabbTree {
-        AabbTree::with_split(boxes, |items, _, centres, bound, _| {
-            split_at_median(items, centres, bound)
+    pub fn over_points(points: &[[f64; 3]]) -> AabbTree {
+        let items = points
+            .iter()
+            .enumerate()
+            .map(|(i, &at)| PointItem {
+                at,
+                index: i as u32,
+            })
+            .collect();
+        let boxes = points.iter().map(|&p| Aabb { lo: p, hi: p }).collect();
+        AabbTree::with_split(boxes, items, |items, bound, _| {
+            split_at_median(items, bound)
         })
     }
 
-    /// The tree over `boxes`, each node's items split by `split` (as
-    /// [`split_by_area`]'s arguments).
-    fn with_split(boxes: &[Aabb], split: Split) -> AabbTree {
+    /// The tree over `boxes` (`items` the same, as built), each node's
+    /// items split by `split` (as [`split_by_area`]'s arguments).
+    fn with_split<I: BuildItem>(boxes: Vec<Aabb>, mut items: Vec<I>, split: Split<I>) -> AabbTree {
         let mut tree = AabbTree {
-            boxes: boxes.to_vec(),
+            boxes,
             bounds: Vec::new(),
             nodes: Vec::new(),
-            items: (0..boxes.len() as u32).collect(),
+            items: Vec::new(),
         };
-        if !boxes.is_empty() {
-            let centres: Vec<[f64; 3]> = boxes
-                .iter()
-                .map(|b| std::array::from_fn(|k| b.centre(k)))
-                .collect();
-            tree.build(boxes, &centres, split, 0, boxes.len());
+        if !items.is_empty() {
+            tree.build(&mut items, split, 0);
         }
+        tree.items = items.iter().map(|item| item.index()).collect();
         tree
     }
 
-    fn build(
-        &mut self,
-        boxes: &[Aabb],
-        centres: &[[f64; 3]],
-        split: Split,
-        start: usize,
-        end: usize,
-    ) -> u32 {
-        let items = &mut self.items[start..end];
-        let first = items[0] as usize;
-        let (mut bound, mut lo, mut hi) = (boxes[first], centres[first], centres[first]);
-        for &i in &items[1..] {
-            bound = bound.join(&boxes[i as usize]);
-            let c = &centres[i as usize];
+    /// Builds the node over `items` (at `start` in the tree's order).
+    fn build<I: BuildItem>(&mut self, items: &mut [I], split: Split<I>, start: usize) -> u32 {
+        let (mut bound, mut lo) = (items[0].bound(), items[0].centre());
+        let mut hi = lo;
+        for item in &items[1..] {
+            bound = bound.join(&item.bound());
+            let c = item.centre();
             for k in 0..3 {
                 lo[k] = lo[k].min(c[k]);
                 hi[k] = hi[k].max(c[k]);
@@ -318,17 +369,19 @@ impl AabbTree {
         }
         let id = self.nodes.len() as u32;
         self.bounds.push(bound);
-        if end - start <= LEAF {
+        let n = items.len();
+        if n <= LEAF {
             self.nodes.push(Node::Leaf {
                 start: start as u32,
-                end: end as u32,
+                end: (start + n) as u32,
             });
             return id;
         }
-        let mid = split(items, boxes, centres, &bound, (lo, hi));
+        let mid = split(items, &bound, (lo, hi));
         self.nodes.push(Node::Leaf { start: 0, end: 0 });
-        let left = self.build(boxes, centres, split, start, start + mid);
-        let right = self.build(boxes, centres, split, start + mid, end);
+        let (left_items, right_items) = items.split_at_mut(mid);
+        let left = self.build(left_items, split, start);
+        let right = self.build(right_items, split, start + mid);
         self.nodes[id as usize] = Node::Inner { left, right };
         id
     }
@@ -581,7 +634,8 @@ impl AabbTree {
         if self.nodes.is_empty() {
             return;
         }
-        let mut stack = vec![0u32];
+        let mut stack = NodeStack::new();
+        stack.push(0);
         while let Some(n) = stack.pop() {
             if !node_box(n as usize).meets(query) {
                 continue;
@@ -600,6 +654,43 @@ impl AabbTree {
                 }
             }
         }
+    }
+}
+
+/// A depth-first walk's stack of nodes: the first 64 inline, so that a
+/// query on a tree less than 64 deep allocates nothing (the mesh cleaning
+/// asks one per unbalanced edge, a state check several).
+struct NodeStack {
+    inline: [u32; 64],
+    len: usize,
+    spill: Vec<u32>,
+}
+
+impl NodeStack {
+    fn new() -> NodeStack {
+        NodeStack {
+            inline: [0; 64],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    fn push(&mut self, n: u32) {
+        if self.len < self.inline.len() {
+            self.inline[self.len] = n;
+            self.len += 1;
+        } else {
+            self.spill.push(n);
+        }
+    }
+
+    /// The last node pushed (the spill holds the newest once the inline
+    /// part is full).
+    fn pop(&mut self) -> Option<u32> {
+        self.spill.pop().or_else(|| {
+            self.len = self.len.checked_sub(1)?;
+            Some(self.inline[self.len])
+        })
     }
 }
 
@@ -624,6 +715,52 @@ mod tests {
             tree.for_each_meeting(q, |i| got.push(i));
             got.sort_unstable();
             let want: Vec<usize> = (0..boxes.len()).filter(|&i| boxes[i].meets(q)).collect();
+            assert_eq!(got, want);
+        }
+    }
+
+    #[test]
+    fn walks_keep_their_order_past_the_inline_stack() {
+        // Nested boxes all holding the origin: the walk visits every node.
+        // The stack itself stays last in, first out once it spills past
+        // its 64 inline entries.
+        let boxes: Vec<Aabb> = (0..300)
+            .map(|i| {
+                let r = 1.0 + i as f64;
+                Aabb::of([[-r, -r, -r], [r, r, 2.0 * r]])
+            })
+            .collect();
+        let tree = AabbTree::new(&boxes);
+        tree.sanity_check().expect("a valid tree");
+        let point = Aabb::of([[0.0; 3]]);
+        let mut got = Vec::new();
+        tree.for_each_meeting(&point, |i| got.push(i));
+        got.sort_unstable();
+        assert_eq!(got, (0..300).collect::<Vec<_>>());
+        let mut stack = NodeStack::new();
+        for n in 0..200 {
+            stack.push(n);
+        }
+        let popped: Vec<u32> = std::iter::from_fn(|| stack.pop()).collect();
+        assert_eq!(popped, (0..200).rev().collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn point_trees_find_every_point_in_a_box() {
+        let mut rng = crate::kernel::test_rng::Xorshift::new(7);
+        let points: Vec<[f64; 3]> = (0..2000)
+            .map(|_| std::array::from_fn(|_| (rng.unit() * 16.0).floor()))
+            .collect();
+        let tree = AabbTree::over_points(&points);
+        tree.sanity_check().expect("a valid tree");
+        for q in points.chunks(2).take(200) {
+            let query = Aabb::of([q[0], q[1]]);
+            let mut got = Vec::new();
+            tree.for_each_meeting(&query, |i| got.push(i));
+            got.sort_unstable();
+            let want: Vec<usize> = (0..points.len())
+                .filter(|&i| query.holds(points[i]))
+                .collect();
             assert_eq!(got, want);
         }
     }

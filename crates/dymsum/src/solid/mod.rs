@@ -294,6 +294,17 @@ fn check_topology(d: &DirectedEdges, face_of: impl Fn(usize) -> usize) -> Result
 /// ascending, in the order of their first face; every index below `n`.
 /// The one copy (also `nonconvex::check`'s shell count).
 pub(crate) fn shells<F: AsRef<[usize]>>(n: usize, faces: &[F]) -> Vec<Vec<usize>> {
+    let (order, starts) = shells_flat(n, faces);
+    starts
+        .windows(2)
+        .map(|w| order[w[0]..w[1]].to_vec())
+        .collect()
+}
+
+/// [`shells`] without a vector per component (a soup of a million loose
+/// triangles has a million): the faces of component `k` are
+/// `order[starts[k]..starts[k + 1]]`.
+pub(crate) fn shells_flat<F: AsRef<[usize]>>(n: usize, faces: &[F]) -> (Vec<usize>, Vec<usize>) {
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(p: &mut [usize], mut x: usize) -> usize {
         while p[x] != x {
@@ -311,17 +322,33 @@ pub(crate) fn shells<F: AsRef<[usize]>>(n: usize, faces: &[F]) -> Vec<Vec<usize>
             }
         }
     }
-    let mut index: HashMap<usize, usize> = HashMap::new();
-    let mut out: Vec<Vec<usize>> = Vec::new();
-    for (face, f) in faces.iter().enumerate() {
+    // Each face's component, numbered in the order of first faces; then
+    // the faces counted into place.
+    const NONE: usize = usize::MAX;
+    let mut number = vec![NONE; n];
+    let mut of_face = Vec::with_capacity(faces.len());
+    let mut sizes: Vec<usize> = Vec::new();
+    for f in faces {
         let root = find(&mut parent, f.as_ref()[0]);
-        let k = *index.entry(root).or_insert_with(|| {
-            out.push(Vec::new());
-            out.len() - 1
-        });
-        out[k].push(face);
+        if number[root] == NONE {
+            number[root] = sizes.len();
+            sizes.push(0);
+        }
+        of_face.push(number[root]);
+        sizes[number[root]] += 1;
     }
-    out
+    let mut starts = Vec::with_capacity(sizes.len() + 1);
+    starts.push(0);
+    for size in &sizes {
+        starts.push(starts.last().copied().unwrap_or(0) + size);
+    }
+    let mut next = starts.clone();
+    let mut order = vec![0; faces.len()];
+    for (face, &k) in of_face.iter().enumerate() {
+        order[next[k]] = face;
+        next[k] += 1;
+    }
+    (order, starts)
 }
 
 /// Rule 6 in one shell: the faces of the first pair of triangles (in

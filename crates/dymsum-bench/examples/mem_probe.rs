@@ -1,0 +1,42 @@
+//! The memory a mesh body's build needs (issue 35), in this process:
+//! `cargo run --release -p dymsum-bench --example mem_probe -- FILE`
+//! reads the mesh, resets the peak resident memory
+//! (`/proc/self/clear_refs`, Linux), then prints the peak and the resident
+//! memory added by `MeshBody::new`, then by a `SceneChecker` of the body
+//! against itself (its trees).
+use dymsum::query::{MeshBody, SceneChecker};
+
+/// (VmRSS, VmHWM) in KiB.
+fn status() -> (i64, i64) {
+    let s = std::fs::read_to_string("/proc/self/status").expect("Linux's /proc");
+    let get = |k: &str| {
+        s.lines()
+            .find(|l| l.starts_with(k))
+            .and_then(|l| l.split_whitespace().nth(1))
+            .and_then(|v| v.parse::<i64>().ok())
+            .expect("a field of /proc/self/status")
+    };
+    (get("VmRSS:"), get("VmHWM:"))
+}
+
+fn main() {
+    let f = std::env::args().nth(1).expect("a mesh file");
+    let mesh = dymsum_io::formats::read_mesh(std::path::Path::new(&f)).expect("a mesh");
+    std::fs::write("/proc/self/clear_refs", "5").expect("the peak reset");
+    let (rss0, _) = status();
+    let body = MeshBody::new(&mesh).expect("a body");
+    let (rss1, hwm1) = status();
+    println!(
+        "MeshBody::new: peak +{} KiB, stays +{} KiB",
+        hwm1 - rss0,
+        rss1 - rss0
+    );
+    let checker = SceneChecker::new(&body, std::slice::from_ref(&body)).expect("a checker");
+    let (rss2, hwm2) = status();
+    println!(
+        "with a checker: peak +{} KiB, stays +{} KiB",
+        hwm2 - rss0,
+        rss2 - rss0
+    );
+    std::hint::black_box(checker);
+}
