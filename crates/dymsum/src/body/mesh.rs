@@ -78,6 +78,23 @@ pub struct MeshReport {
 /// ```
 #[derive(Clone, Debug)]
 pub struct MeshBody {
+    /// What does not change once the body is assembled, shared by its
+    /// clones: a checker holds clones of its bodies, which copy no
+    /// triangles and share the box tree once built.
+    parts: std::sync::Arc<MeshParts>,
+    /// The body each component came from, when bodies were joined
+    /// ([`MeshBody::join`]; `0` otherwise): winding numbers are summed per
+    /// body.
+    pub(crate) source_of: Vec<u32>,
+    /// The body as one convex polytope, when it is one solid component
+    /// that is exactly convex.
+    convex: Option<crate::polytope::Polytope>,
+}
+
+/// A [`MeshBody`]'s triangles, components and trees (read through the body
+/// itself: `body.vertices`, `body.tree()`).
+#[derive(Debug)]
+pub struct MeshParts {
     pub(crate) vertices: Vec<DVec3>,
     pub(crate) triangles: Vec<[u32; 3]>,
     /// The component of each triangle.
@@ -87,10 +104,6 @@ pub struct MeshBody {
     pub(crate) weights: Vec<u32>,
     /// Each component's kind and one of its vertices.
     pub(crate) components: Vec<(ComponentKind, u32)>,
-    /// The body each component came from, when bodies were joined
-    /// ([`MeshBody::join`]; `0` otherwise): winding numbers are summed per
-    /// body.
-    pub(crate) source_of: Vec<u32>,
     /// The box tree over the triangles and one oriented box per node of it
     /// (body frame; [`crate::solid::obb`]), built on first use
     /// ([`MeshBody::tree`]): a body on the convex path
@@ -107,9 +120,14 @@ pub struct MeshBody {
     /// lies from its origin.
     pub(crate) reach: f64,
     report: MeshReport,
-    /// The body as one convex polytope, when it is one solid component
-    /// that is exactly convex.
-    convex: Option<crate::polytope::Polytope>,
+}
+
+impl std::ops::Deref for MeshBody {
+    type Target = MeshParts;
+
+    fn deref(&self) -> &MeshParts {
+        &self.parts
+    }
 }
 
 impl MeshBody {
@@ -346,18 +364,20 @@ impl MeshBody {
             * (3f64.sqrt() * (1.0 + 1e-12))
             + 1e-300;
         MeshBody {
-            vertices,
-            triangles,
-            component_of,
-            weights,
             source_of: vec![0; components.len()],
-            components,
-            triangle_tree: std::sync::OnceLock::new(),
-            component_boxes,
-            solid_components,
-            solid_tree,
-            reach,
-            report,
+            parts: std::sync::Arc::new(MeshParts {
+                vertices,
+                triangles,
+                component_of,
+                weights,
+                components,
+                triangle_tree: std::sync::OnceLock::new(),
+                component_boxes,
+                solid_components,
+                solid_tree,
+                reach,
+                report,
+            }),
             convex: None,
         }
     }

@@ -230,28 +230,35 @@ impl SceneChecker {
         // Every query walks both triangle trees (built on first use, as a
         // body on the convex path never needs them): built here, so the
         // first query costs what the others do, and on the caller's
-        // bodies, so that the checkers made from one body share its tree.
-        body.tree();
-        if let [one] = scene {
-            one.tree();
-        }
-        let scene = MeshBody::join(scene);
-        scene.tree();
+        // bodies, so that the checkers made from one body share its tree;
+        // the body's and the scene's on two cores.
+        let ((), scene) = rayon::join(
+            || {
+                body.tree();
+            },
+            || {
+                if let [one] = scene {
+                    one.tree();
+                }
+                let scene = MeshBody::join(scene);
+                scene.tree();
+                scene
+            },
+        );
         if body.triangles.is_empty() {
             return Err(QueryError::OutOfRange("the body has no triangles".into()));
         }
-        let corners: Vec<Aabb> = scene
+        let corners: Vec<[f64; 3]> = scene
             .components
             .iter()
-            .map(|&(_, v)| {
-                let p = scene.vertices[v as usize].to_array();
-                Aabb { lo: p, hi: p }
-            })
+            .map(|&(_, v)| scene.vertices[v as usize].to_array())
             .collect();
         Ok(SceneChecker {
             body: body.clone(),
             scene,
-            scene_corners: AabbTree::new(&corners),
+            // A point per component: a k-d tree (the area heuristic has no
+            // areas to weigh), as there may be one per triangle of a soup.
+            scene_corners: AabbTree::over_points(&corners),
             budget: DEFAULT_BUDGET,
             steps: AtomicU64::new(0),
             pool: Mutex::new(Vec::new()),
