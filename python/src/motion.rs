@@ -167,30 +167,72 @@ fn is_index_array(obj: &Bound<'_, PyAny>) -> PyResult<bool> {
 /// point cloud as its polytope); or another shape (a `Polytope`, a point
 /// array: convex).
 fn body_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Body> {
+    let mut built = build_bodies(obj.py(), vec![body_arg(obj, what)?])?;
+    Ok(built.pop().expect("one body asked, one built"))
+}
+
+/// A body argument as read from Python (the GIL held): built already, or a
+/// mesh to build ([`build_bodies`], on several cores with the GIL
+/// released).
+#[allow(clippy::large_enum_variant)] // a handful per call, moved once
+enum BodyArg {
+    Built(Body),
+    Mesh {
+        mesh: dymsum::PolygonMesh,
+        what: String,
+    },
+}
+
+/// Reads a body argument ([`body_of`]'s forms) without building a mesh.
+fn body_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<BodyArg> {
     let py = obj.py();
     convert::not_none(obj, what, BODY_FORMS)?;
     if let Ok(u) = obj.cast::<PyConvexUnion>() {
-        return Ok(Body::Convex(u.get().inner.clone()));
+        return Ok(BodyArg::Built(Body::Convex(u.get().inner.clone())));
     }
     if obj.cast::<PyPolytope>().is_err() {
         if let Some((v, f)) = convert::mesh_parts(obj)? {
             let mesh = convert::solid_from_parts(&v, &f, what)?;
-            return py
-                .detach(|| Body::from_mesh_with(&mesh, &BodyOptions::default()))
-                .map(|(body, _)| body)
-                .map_err(|e| err_for(what, body_error_text(&e, mesh.faces.len())));
+            return Ok(BodyArg::Mesh {
+                mesh,
+                what: what.to_string(),
+            });
         }
         if obj.is_instance_of::<pyo3::types::PyString>() || obj.hasattr("__fspath__")? {
             let spec = convert::path_string(obj)?;
             return py
                 .detach(|| load_body(&spec, &LoadOptions::default()))
-                .map(|loaded| loaded.body)
+                .map(|loaded| BodyArg::Built(loaded.body))
                 .map_err(|e| convert::load_error(e, Some(what)));
         }
     }
-    Ok(Body::Convex(ConvexUnion::from(
+    Ok(BodyArg::Built(Body::Convex(ConvexUnion::from(
         convert::shape(obj, what, MeshPolicy::default())?.polytope,
-    )))
+    ))))
+}
+
+/// The bodies of `args`, the meshes among them built by the core's ladder
+/// side by side (a body and its obstacles of a million triangles each take
+/// seconds apiece), with the GIL released; the first error in `args`'
+/// order is raised.
+fn build_bodies(py: Python<'_>, args: Vec<BodyArg>) -> PyResult<Vec<Body>> {
+    use rayon::prelude::*;
+    let built: Vec<Result<Body, (String, String)>> = py.detach(|| {
+        args.into_par_iter()
+            .map(|arg| match arg {
+                BodyArg::Built(body) => Ok(body),
+                BodyArg::Mesh { mesh, what } => {
+                    Body::from_mesh_with(&mesh, &BodyOptions::default())
+                        .map(|(body, _)| body)
+                        .map_err(|e| (what, body_error_text(&e, mesh.faces.len())))
+                }
+            })
+            .collect()
+    });
+    built
+        .into_iter()
+        .map(|b| b.map_err(|(what, text)| err_for(&what, text)))
+        .collect()
 }
 
 /// What a body argument accepts (error messages).
@@ -199,16 +241,22 @@ const BODY_FORMS: &str = "a ConvexUnion or a shape (an (N, 3) point array, a (ve
 
 /// The obstacles argument: a sequence of bodies, or one.
 pub(crate) fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
+    build_bodies(obj.py(), obstacle_args(obj)?)
+}
+
+/// Reads an obstacles argument ([`obstacles_of`]) without building its
+/// meshes.
+fn obstacle_args(obj: &Bound<'_, PyAny>) -> PyResult<Vec<BodyArg>> {
     convert::not_none(
         obj,
         "obstacles",
         "a sequence of ConvexUnions or shapes, or one (give [] for none)",
     )?;
     if let Some(placed) = placed_obstacle(obj, "obstacles")? {
-        return Ok(vec![placed]);
+        return Ok(vec![BodyArg::Built(placed)]);
     }
     if is_single_shape(obj)? {
-        return Ok(vec![body_of(obj, "obstacles")?]);
+        return Ok(vec![body_arg(obj, "obstacles")?]);
     }
     let mut out = Vec::new();
     let items = obj.try_iter().map_err(|_| {
@@ -223,8 +271,8 @@ pub(crate) fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
     for (i, item) in items.enumerate() {
         let (item, what) = (item?, format!("obstacles[{i}]"));
         match placed_obstacle(&item, &what)? {
-            Some(placed) => out.push(placed),
-            None => out.push(body_of(&item, &what)?),
+            Some(placed) => out.push(BodyArg::Built(placed)),
+            None => out.push(body_arg(&item, &what)?),
         }
     }
     Ok(out)
@@ -276,8 +324,10 @@ fn validator(
     budget: u64,
     what: &str,
 ) -> PyResult<Validator> {
-    let body = body_of(body, "body")?;
-    let obstacles = obstacles_of(obstacles)?;
+    let mut args = vec![body_arg(body, "body")?];
+    args.extend(obstacle_args(obstacles)?);
+    let mut obstacles = build_bodies(py, args)?;
+    let body = obstacles.remove(0);
     Ok(py
         .detach(|| Validator::new(&body, &obstacles))
         .map_err(|e| err_for(what, e))?
