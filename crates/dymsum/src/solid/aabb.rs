@@ -349,7 +349,14 @@ impl AabbTree {
             items: Vec::new(),
         };
         if !items.is_empty() {
+            // At most 2n - 1 nodes (every leaf holds an item): reserved
+            // once, so no doubling copies the arrays while the items are
+            // held too (the pages never written are never resident).
+            tree.bounds.reserve_exact(2 * items.len() - 1);
+            tree.nodes.reserve_exact(2 * items.len() - 1);
             tree.build(&mut items, split, 0);
+            tree.bounds.shrink_to_fit();
+            tree.nodes.shrink_to_fit();
         }
         tree.items = items.iter().map(|item| item.index()).collect();
         tree

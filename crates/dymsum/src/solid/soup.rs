@@ -192,7 +192,7 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
     // 1. Identical vertices.
     let mut first: HashMap<[u64; 3], usize> =
         HashMap::with_capacity_and_hasher(mesh.vertices.len(), Default::default());
-    let mut vertices: Vec<[f64; 3]> = Vec::new();
+    let mut vertices: Vec<[f64; 3]> = Vec::with_capacity(mesh.vertices.len());
     let remap: Vec<usize> = mesh
         .vertices
         .iter()
@@ -207,10 +207,12 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
     drop(first);
     let merged_vertices = mesh.vertices.len() - vertices.len();
     // 2. Fan triangles, degenerate ones set apart; 3. duplicates and backs.
-    let mut triangles: Vec<[usize; 3]> = Vec::new();
+    let fans: usize = mesh.faces.iter().map(|f| f.len().saturating_sub(2)).sum();
+    let mut triangles: Vec<[usize; 3]> = Vec::with_capacity(fans);
     // How often each kept triangle is listed as kept, less the other way.
-    let mut net: Vec<i32> = Vec::new();
-    let mut by_corners: HashMap<[usize; 3], usize> = HashMap::default();
+    let mut net: Vec<i32> = Vec::with_capacity(fans);
+    let mut by_corners: HashMap<[usize; 3], usize> =
+        HashMap::with_capacity_and_hasher(fans, Default::default());
     let (mut dropped_zero_area, mut dropped_duplicates, mut dropped_back_to_back) = (0, 0, 0);
     let mut polygons: HashMap<Vec<usize>, Vec<usize>> = HashMap::default();
     for (face, f) in mesh.faces.iter().enumerate() {
