@@ -211,23 +211,36 @@ fn body_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<BodyArg> {
     ))))
 }
 
+/// From this many faces in all on, the meshes are built side by side.
+const PARALLEL_FACES: usize = 20_000;
+
 /// The bodies of `args`, the meshes among them built by the core's ladder
 /// side by side (a body and its obstacles of a million triangles each take
 /// seconds apiece), with the GIL released; the first error in `args`'
 /// order is raised.
 fn build_bodies(py: Python<'_>, args: Vec<BodyArg>) -> PyResult<Vec<Body>> {
     use rayon::prelude::*;
+    let build = |arg| match arg {
+        BodyArg::Built(body) => Ok(body),
+        BodyArg::Mesh { mesh, what } => Body::from_mesh_with(&mesh, &BodyOptions::default())
+            .map(|(body, _)| body)
+            .map_err(|e| (what, body_error_text(&e, mesh.faces.len()))),
+    };
+    let faces: usize = args
+        .iter()
+        .map(|a| match a {
+            BodyArg::Mesh { mesh, .. } => mesh.faces.len(),
+            BodyArg::Built(_) => 0,
+        })
+        .sum();
+    // Small meshes build faster than a second thread starts (and a thread
+    // of its own grows its own heap).
     let built: Vec<Result<Body, (String, String)>> = py.detach(|| {
-        args.into_par_iter()
-            .map(|arg| match arg {
-                BodyArg::Built(body) => Ok(body),
-                BodyArg::Mesh { mesh, what } => {
-                    Body::from_mesh_with(&mesh, &BodyOptions::default())
-                        .map(|(body, _)| body)
-                        .map_err(|e| (what, body_error_text(&e, mesh.faces.len())))
-                }
-            })
-            .collect()
+        if faces >= PARALLEL_FACES {
+            args.into_par_iter().map(build).collect()
+        } else {
+            args.into_iter().map(build).collect()
+        }
     });
     built
         .into_iter()

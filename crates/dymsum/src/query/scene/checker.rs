@@ -219,6 +219,10 @@ impl std::fmt::Debug for SceneChecker {
     }
 }
 
+/// From this many triangles in the body and the scene together on, their
+/// trees are built on two cores.
+const PARALLEL_TREES: usize = 20_000;
+
 impl SceneChecker {
     /// Prepares `body` (in its own frame) against `scene` (bodies placed in
     /// the world frame, joined into one).
@@ -231,20 +235,27 @@ impl SceneChecker {
         // body on the convex path never needs them): built here, so the
         // first query costs what the others do, and on the caller's
         // bodies, so that the checkers made from one body share its tree;
-        // the body's and the scene's on two cores.
-        let ((), scene) = rayon::join(
-            || {
-                body.tree();
-            },
-            || {
-                if let [one] = scene {
-                    one.tree();
-                }
-                let scene = MeshBody::join(scene);
-                scene.tree();
-                scene
-            },
-        );
+        // the body's and the scene's on two cores when they are large
+        // (small ones build faster than a second thread starts).
+        let body_tree = || {
+            body.tree();
+        };
+        let scene_tree = || {
+            if let [one] = scene {
+                one.tree();
+            }
+            let scene = MeshBody::join(scene);
+            scene.tree();
+            scene
+        };
+        let triangles =
+            body.triangles.len() + scene.iter().map(|b| b.triangles.len()).sum::<usize>();
+        let scene = if triangles >= PARALLEL_TREES {
+            rayon::join(body_tree, scene_tree).1
+        } else {
+            body_tree();
+            scene_tree()
+        };
         if body.triangles.is_empty() {
             return Err(QueryError::OutOfRange("the body has no triangles".into()));
         }
