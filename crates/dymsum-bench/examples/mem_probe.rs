@@ -3,7 +3,9 @@
 //! reads the mesh, resets the peak resident memory
 //! (`/proc/self/clear_refs`, Linux), then prints the peak and the resident
 //! memory added by `MeshBody::new`, then by a `SceneChecker` of the body
-//! against itself (its trees).
+//! against itself (its trees). With `AS_PYTHON=1`, what Python's
+//! `MotionChecker((v, f), [(v, f)])` builds instead: two copies of the
+//! mesh through the ladder side by side, then the validator.
 use dymsum::query::{MeshBody, SceneChecker};
 
 /// (VmRSS, VmHWM) in KiB.
@@ -22,6 +24,38 @@ fn status() -> (i64, i64) {
 fn main() {
     let f = std::env::args().nth(1).expect("a mesh file");
     let mesh = dymsum_io::formats::read_mesh(std::path::Path::new(&f)).expect("a mesh");
+    if std::env::var("AS_PYTHON").is_ok_and(|v| v == "1") {
+        let copies = [mesh.clone(), mesh];
+        std::fs::write("/proc/self/clear_refs", "5").expect("the peak reset");
+        let (rss0, _) = status();
+        let build = |m: &dymsum::PolygonMesh| {
+            dymsum::query::Body::from_mesh_with(m, &Default::default())
+                .expect("a body")
+                .0
+        };
+        let bodies: Vec<dymsum::query::Body> = std::thread::scope(|s| {
+            let other = s.spawn(|| build(&copies[1]));
+            let first = build(&copies[0]);
+            vec![first, other.join().expect("the second build")]
+        });
+        drop(copies);
+        let (rss1, hwm1) = status();
+        println!(
+            "bodies: peak +{} KiB, stays +{} KiB",
+            hwm1 - rss0,
+            rss1 - rss0
+        );
+        let v = dymsum::query::Validator::new(&bodies[0], &bodies[1..]).expect("a validator");
+        drop(bodies);
+        let (rss2, hwm2) = status();
+        println!(
+            "validator: peak +{} KiB, stays +{} KiB",
+            hwm2 - rss0,
+            rss2 - rss0
+        );
+        std::hint::black_box(v);
+        return;
+    }
     std::fs::write("/proc/self/clear_refs", "5").expect("the peak reset");
     let (rss0, _) = status();
     let body = MeshBody::new(&mesh).expect("a body");
