@@ -33,11 +33,16 @@ fn main() {
                 .expect("a body")
                 .0
         };
-        let bodies: Vec<dymsum::query::Body> = std::thread::scope(|s| {
-            let other = s.spawn(|| build(&copies[1]));
-            let first = build(&copies[0]);
-            vec![first, other.join().expect("the second build")]
-        });
+        // Side by side from 20,000 faces in all, as Python builds them.
+        let bodies: Vec<dymsum::query::Body> = if 2 * copies[0].faces.len() >= 20_000 {
+            std::thread::scope(|s| {
+                let other = s.spawn(|| build(&copies[1]));
+                let first = build(&copies[0]);
+                vec![first, other.join().expect("the second build")]
+            })
+        } else {
+            copies.iter().map(build).collect()
+        };
         drop(copies);
         let (rss1, hwm1) = status();
         println!(

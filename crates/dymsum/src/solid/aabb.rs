@@ -541,12 +541,14 @@ impl AabbTree {
     /// given by functions (as in [`AabbTree::for_each_pair`]): node pairs
     /// whose boxes are farther apart than the best so far (by more than a
     /// relative `1e-12`, so rounding of the box distance drops nothing that
-    /// could matter) are skipped. `f64::INFINITY` when either tree is
-    /// empty.
+    /// could matter) are skipped, and so are those whose certified lower
+    /// bound `node_gap(a, b)` (e.g. oriented boxes', `0.0` for none) exceeds
+    /// the best. `f64::INFINITY` when either tree is empty.
     pub fn nearest_pair(
         &self,
         node_box: impl Fn(usize) -> Aabb,
         item_box: impl Fn(usize) -> Aabb,
+        node_gap: impl Fn(usize, usize) -> f64,
         other: &AabbTree,
         stack: &mut Vec<(u32, u32)>,
         mut dist: impl FnMut(usize, usize) -> f64,
@@ -560,7 +562,7 @@ impl AabbTree {
         stack.push((0, 0));
         while let Some((a, b)) = stack.pop() {
             let (ba, bb) = (node_box(a as usize), other.bounds[b as usize]);
-            if far(&ba, &bb, best) {
+            if far(&ba, &bb, best) || node_gap(a as usize, b as usize) > best {
                 continue;
             }
             match (&self.nodes[a as usize], &other.nodes[b as usize]) {

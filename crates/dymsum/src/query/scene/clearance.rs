@@ -6,6 +6,7 @@ use super::checker::{cached, SceneChecker, Scratch};
 use super::gap::distance_lower_bound;
 use crate::kernel::rotation::Pose;
 use crate::query::error::QueryError;
+use crate::solid::obb::pose_skew;
 
 impl SceneChecker {
     /// The clearance of the body at `pose` from the scene: `0` when they
@@ -44,15 +45,32 @@ impl SceneChecker {
             let (at, tris) = &mut *lazy.borrow_mut();
             tris.get(at, &self.body, &pose, i)
         };
+        // The oriented boxes' certified gap (`solid::obb`), when the
+        // pose's matrix is close enough to a rotation for their test: a
+        // slanted node's axis-aligned box is mostly empty, and its
+        // distance bounds little.
+        let oriented = pose_skew(&m).is_some();
+        let obb_cache = std::mem::take(&mut s.obb_cache);
+        let (body_obbs, scene_obbs) = (self.body.obbs(), self.scene.obbs());
+        let obb_gap = |n: usize, k: usize| {
+            if !oriented {
+                return 0.0;
+            }
+            let a = &body_obbs[n];
+            let posed = cached(&obb_cache, epoch, n, || a.posed(&m, t));
+            scene_obbs[k].gap(&posed, a.h, a.fuzz, pad)
+        };
         let best = self.body.tree().nearest_pair(
             |n| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad)),
             |i| posed(i).1,
+            obb_gap,
             self.scene.tree(),
             &mut stack,
             |i, j| distance_lower_bound(&posed(i).0, &self.scene_triangle(j)),
         );
         s.stack = stack;
         s.node_cache = cache;
+        s.obb_cache = obb_cache;
         Ok(best)
     }
 }
