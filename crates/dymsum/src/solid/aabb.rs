@@ -551,7 +551,7 @@ impl AabbTree {
         node_gap: impl Fn(usize, usize) -> f64,
         other: &AabbTree,
         stack: &mut Vec<(u32, u32)>,
-        mut dist: impl FnMut(usize, usize) -> f64,
+        mut dist: impl FnMut(usize, usize, f64) -> f64,
     ) -> f64 {
         let mut best = f64::INFINITY;
         if self.nodes.is_empty() || other.nodes.is_empty() {
@@ -571,7 +571,7 @@ impl AabbTree {
                         let bi = item_box(i as usize);
                         for &j in &other.items[*s2 as usize..*e2 as usize] {
                             if !far(&bi, &other.boxes[j as usize], best) {
-                                best = best.min(dist(i as usize, j as usize));
+                                best = best.min(dist(i as usize, j as usize, best));
                             }
                         }
                     }

@@ -3,7 +3,7 @@
 
 use super::checker::{cached, SceneChecker, Scratch};
 
-use super::gap::distance_lower_bound;
+use super::gap::distance_lower_bound_beyond;
 use crate::kernel::rotation::Pose;
 use crate::query::error::QueryError;
 use crate::solid::obb::pose_skew;
@@ -66,7 +66,7 @@ impl SceneChecker {
             obb_gap,
             self.scene.tree(),
             &mut stack,
-            |i, j| distance_lower_bound(&posed(i).0, &self.scene_triangle(j)),
+            |i, j, best| distance_lower_bound_beyond(&posed(i).0, &self.scene_triangle(j), best),
         );
         s.stack = stack;
         s.node_cache = cache;

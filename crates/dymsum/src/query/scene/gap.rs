@@ -102,6 +102,25 @@ pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
     gap / (n.length() * (1.0 + 8.0 * U)) * (1.0 - 4.0 * U)
 }
 
+/// [`distance_lower_bound`], or a cheaper bound when the gap along the line
+/// between the triangles' centroids already bounds the distance by
+/// `enough` or more: a caller keeping the least distance so far
+/// (`enough`) needs no tighter bound for such a pair, and skips the
+/// closest points (most of the cost).
+pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough: f64) -> f64 {
+    if enough.is_finite() {
+        let n = normalised_scale((u[0] + u[1] + u[2]) - (t[0] + t[1] + t[2]));
+        let gap = gap_along(t, u, n, 0.0);
+        if gap > 0.0 && gap.is_finite() {
+            let d = gap / (n.length() * (1.0 + 8.0 * U)) * (1.0 - 4.0 * U);
+            if d >= enough {
+                return d;
+            }
+        }
+    }
+    distance_lower_bound(t, u)
+}
+
 /// `n` scaled by a power of two (exactly, up to the last bits of components
 /// far smaller than the largest: any axis is valid) so that its largest
 /// component is near 1: its length neither underflows nor overflows. Zero
@@ -319,6 +338,24 @@ mod tests {
         let d = distance_lower_bound(&t, &v);
         assert!(d <= 1.0 && d > 1.0 - 1e-14, "{d}");
         assert_eq!(distance_lower_bound(&t, &t), 0.0);
+    }
+
+    #[test]
+    fn a_bound_beyond_the_best_is_still_below_the_distance() {
+        // The centroids' direction settles a far pair at `enough` or more
+        // without the closest points; a near pair gets the full bound.
+        let t = tri([0., 0., 0.], [1., 0., 0.], [0., 1., 0.]);
+        let v = tri([0.25, -1., 5.], [0.25, 1., 5.], [0.25, 0., 7.]);
+        let d = distance_lower_bound_beyond(&t, &v, 1.0);
+        assert!((1.0..=5.0).contains(&d), "{d}");
+        assert_eq!(
+            distance_lower_bound_beyond(&t, &v, 6.0),
+            distance_lower_bound(&t, &v)
+        );
+        assert_eq!(
+            distance_lower_bound_beyond(&t, &v, f64::INFINITY),
+            distance_lower_bound(&t, &v)
+        );
     }
 
     #[test]
