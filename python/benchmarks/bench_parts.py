@@ -2,7 +2,7 @@
 
     pip install ./python trimesh python-fcl scipy
     python python/benchmarks/bench_parts.py DIR [DIR ...] [--pairs N]
-        [--states N] [--seed S] [--min-faces F]
+        [--states N] [--seed S] [--min-faces F] [--motions M] [--distance D]
 
 Every ``*.stl`` under the folders given (e.g. git checkouts of
 ``ros-industrial/universal_robot`` and ``ros-industrial/abb``, or
@@ -34,7 +34,13 @@ check's own states, then ``check`` backwards to
 it (``DiscreteMotionValidator``: states ``0.01 · extent`` apart in OMPL's
 SE(3) distance, the translation's length plus the quaternion angle, the
 extent the obstacle box's diagonal plus π/2; the end state included, the
-start not). Prints Markdown tables.
+start not). With ``--distance D``, up to D free states per pair (the
+random ones, then the free ends of the near ones): dymsum's
+``distance_at(pose)`` (a certified lower bound within rounding) against
+``fcl.distance`` with a default request, one call each, interleaved;
+``above`` counts states where dymsum's bound exceeds fcl's distance by
+more than 1e-9 relative (fcl's is a float estimate). Prints Markdown
+tables.
 """
 
 import argparse
@@ -168,6 +174,7 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--min-faces", type=int, default=0)
     ap.add_argument("--motions", type=int, default=0)
+    ap.add_argument("--distance", type=int, default=0, help="free states per pair for distance_at against fcl.distance")
     a = ap.parse_args()
     import fcl
 
@@ -218,6 +225,22 @@ def main():
             many = (time.perf_counter() - t0) / len(poses)
             td, tf = np.array(td) * 1e6, np.array(tf) * 1e6
             row[what] = (len(poses), np.median(td), np.median(tf), np.percentile(td, 99), np.percentile(tf, 99), many * 1e6, tf.mean(), disagree)
+        if a.distance:
+            free = [p for p in random + near[1::2] if not checker.collides_at(p)][: a.distance]
+            tdd, tfd, above = [], [], 0
+            for p in free:
+                t0 = time.perf_counter()
+                mine = checker.distance_at(p)
+                t1 = time.perf_counter()
+                oa.setTransform(fcl.Transform(p[:3, :3], p[:3, 3]))
+                theirs = fcl.distance(oa, ob, fcl.DistanceRequest(), fcl.DistanceResult())
+                t2 = time.perf_counter()
+                tdd.append(t1 - t0)
+                tfd.append(t2 - t1)
+                above += mine > theirs * (1 + 1e-9) + 1e-12
+            if free:
+                tdd, tfd = np.array(tdd) * 1e6, np.array(tfd) * 1e6
+                row["distance"] = (len(free), np.median(tdd), np.median(tfd), np.percentile(tdd, 99), np.percentile(tfd, 99), above)
         if a.motions and near:
             row["motions"] = motions(fcl, checker, oa, ob, va, vb, near[1::2][: a.motions], rng)
         rows.append(row)
@@ -265,6 +288,19 @@ def main():
             f"Motions: ratio of medians, bracket 1e-6 gm {gm(mr):.2f} worst {max(mr or [0]):.2f}; "
             f"decision gm {gm(mdec):.2f} worst {max(mdec or [0]):.2f}"
         )
+    if a.distance:
+        print()
+        print("| body | obstacle | free states | distance_at µs median / fcl.distance (ratio) | p99 (ratio) | above fcl |")
+        print("|---|---|---|---|---|---|")
+        dr = []
+        for row in rows:
+            if "distance" not in row:
+                continue
+            n, md, mf, pd, pf, above = row["distance"]
+            dr.append(md / mf)
+            print(f"| {short(row['a'])} | {short(row['b'])} | {n} | {md:.0f} / {mf:.0f} ({md / mf:.2f}) | {pd:.0f} / {pf:.0f} ({pd / pf:.2f}) | {above} |")
+        print()
+        print(f"distance_at: ratio of medians gm {gm(dr):.2f} worst {max(dr or [0]):.2f}")
     print()
     print(
         f"Ratios (dymsum / fcl): median random gm {gm(ratios['random']):.2f} worst {max(ratios['random'] or [0]):.2f}; "
