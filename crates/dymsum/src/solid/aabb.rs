@@ -537,68 +537,87 @@ impl AabbTree {
         false
     }
 
-    /// The least of `dist(i, j)` over item pairs, with this tree's boxes
-    /// given by functions (as in [`AabbTree::for_each_pair`]): node pairs
-    /// whose boxes are farther apart than the best so far (by more than a
-    /// relative `1e-12`, so rounding of the box distance drops nothing that
-    /// could matter) are skipped, and so are those whose certified lower
-    /// bound `node_gap(a, b)` (e.g. oriented boxes', `0.0` for none) exceeds
-    /// the best. `f64::INFINITY` when either tree is empty.
+    /// The least of `dist(i, j, best)` over item pairs (`best` the least so
+    /// far: a pair may answer any lower bound of its own at least that
+    /// large), with this tree's boxes given by functions (as in
+    /// [`AabbTree::for_each_pair`]). Best first: node pairs are taken in
+    /// the order of a certified lower bound on their distance, the farther
+    /// of their boxes' distance (less a relative `1e-12`, so its rounding
+    /// drops nothing that could matter) and `node_gap(a, b)` (e.g. the
+    /// oriented boxes', `0.0` for none), and the walk ends when the next
+    /// bound exceeds the best (every pair left is at least as far).
+    /// `queue` is scratch. `f64::INFINITY` when either tree is empty.
     pub fn nearest_pair(
         &self,
         node_box: impl Fn(usize) -> Aabb,
         item_box: impl Fn(usize) -> Aabb,
         node_gap: impl Fn(usize, usize) -> f64,
         other: &AabbTree,
-        stack: &mut Vec<(u32, u32)>,
+        queue: &mut Vec<NearPair>,
         mut dist: impl FnMut(usize, usize, f64) -> f64,
     ) -> f64 {
         let mut best = f64::INFINITY;
         if self.nodes.is_empty() || other.nodes.is_empty() {
             return best;
         }
-        let far = |a: &Aabb, b: &Aabb, best: f64| a.distance(b) * (1.0 - 1e-12) > best;
-        stack.clear();
-        stack.push((0, 0));
-        while let Some((a, b)) = stack.pop() {
-            let (ba, bb) = (node_box(a as usize), other.bounds[b as usize]);
-            if far(&ba, &bb, best) || node_gap(a as usize, b as usize) > best {
-                continue;
+        let shrink = |d: f64| d * (1.0 - 1e-12);
+        let bound = |a: u32, b: u32| {
+            let boxes = shrink(node_box(a as usize).distance(&other.bounds[b as usize]));
+            boxes.max(node_gap(a as usize, b as usize))
+        };
+        queue.clear();
+        let mut heap = std::collections::BinaryHeap::from(std::mem::take(queue));
+        heap.push(NearPair(bound(0, 0), 0, 0));
+        while let Some(NearPair(lower, a, b)) = heap.pop() {
+            if lower > best {
+                break;
             }
             match (&self.nodes[a as usize], &other.nodes[b as usize]) {
                 (Node::Leaf { start, end }, Node::Leaf { start: s2, end: e2 }) => {
                     for &i in &self.items[*start as usize..*end as usize] {
                         let bi = item_box(i as usize);
                         for &j in &other.items[*s2 as usize..*e2 as usize] {
-                            if !far(&bi, &other.boxes[j as usize], best) {
+                            if shrink(bi.distance(&other.boxes[j as usize])) <= best {
                                 best = best.min(dist(i as usize, j as usize, best));
                             }
                         }
                     }
                 }
                 _ => {
-                    // The nearer child pair is examined first, so the
-                    // best distance tightens early and prunes more.
-                    let before = stack.len();
-                    self.descend(other, a, b, ba.size() >= bb.size(), stack);
-                    if stack.len() == before + 2 {
-                        let gap = |(x, y): (u32, u32)| {
-                            node_box(x as usize).distance(&other.bounds[y as usize])
-                        };
-                        let (first, second) = (stack[before + 1], stack[before]);
-                        if gap(second) < gap(first) {
-                            stack.swap(before, before + 1);
+                    let split_self = node_box(a as usize).size() >= other.bounds[b as usize].size();
+                    for (x, y) in self.children(other, a, b, split_self).into_iter().flatten() {
+                        let lower = bound(x, y);
+                        if lower <= best {
+                            heap.push(NearPair(lower, x, y));
                         }
                     }
                 }
             }
         }
+        *queue = heap.into_vec();
         best
     }
 
-    /// Pushes the child pairs of node pair `(a, b)` (not both leaves):
-    /// this tree's children when `b` is a leaf or when `split_self` (its
-    /// node is the larger), else `other`'s; the left child on top.
+    /// The two node pairs below `(a, b)`: `a`'s children when `split_self`
+    /// (or `b` is a leaf) and `a` has any, else `b`'s; `None` for two
+    /// leaves.
+    fn children(
+        &self,
+        other: &AabbTree,
+        a: u32,
+        b: u32,
+        split_self: bool,
+    ) -> Option<[(u32, u32); 2]> {
+        match (&self.nodes[a as usize], &other.nodes[b as usize]) {
+            (Node::Inner { left, right }, Node::Leaf { .. }) => Some([(*left, b), (*right, b)]),
+            (Node::Inner { left, right }, Node::Inner { .. }) if split_self => {
+                Some([(*left, b), (*right, b)])
+            }
+            (_, Node::Inner { left, right }) => Some([(a, *left), (a, *right)]),
+            (Node::Leaf { .. }, Node::Leaf { .. }) => None,
+        }
+    }
+
     fn descend(
         &self,
         other: &AabbTree,
@@ -607,20 +626,9 @@ impl AabbTree {
         split_self: bool,
         stack: &mut Vec<(u32, u32)>,
     ) {
-        match (&self.nodes[a as usize], &other.nodes[b as usize]) {
-            (Node::Inner { left, right }, Node::Leaf { .. }) => {
-                stack.push((*right, b));
-                stack.push((*left, b));
-            }
-            (Node::Inner { left, right }, Node::Inner { .. }) if split_self => {
-                stack.push((*right, b));
-                stack.push((*left, b));
-            }
-            (_, Node::Inner { left, right }) => {
-                stack.push((a, *right));
-                stack.push((a, *left));
-            }
-            (Node::Leaf { .. }, Node::Leaf { .. }) => {}
+        if let Some([first, second]) = self.children(other, a, b, split_self) {
+            stack.push(second);
+            stack.push(first);
         }
     }
 
@@ -663,6 +671,37 @@ impl AabbTree {
                 }
             }
         }
+    }
+}
+
+/// A node pair waiting in [`AabbTree::nearest_pair`]'s queue: its lower
+/// bound and the two nodes, ordered so that the least bound comes first
+/// out of a `BinaryHeap`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NearPair(f64, u32, u32);
+
+impl PartialEq for NearPair {
+    fn eq(&self, other: &NearPair) -> bool {
+        self.cmp(other) == std::cmp::Ordering::Equal
+    }
+}
+
+impl Eq for NearPair {}
+
+impl PartialOrd for NearPair {
+    fn partial_cmp(&self, other: &NearPair) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for NearPair {
+    /// Reversed (a max-heap pops the least bound), the nodes breaking ties
+    /// so the order is total and the walk deterministic.
+    fn cmp(&self, other: &NearPair) -> std::cmp::Ordering {
+        other
+            .0
+            .total_cmp(&self.0)
+            .then_with(|| (other.1, other.2).cmp(&(self.1, self.2)))
     }
 }
 

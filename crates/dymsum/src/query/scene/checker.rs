@@ -30,7 +30,7 @@ use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::MotionError;
 use crate::query::error::QueryError;
 use crate::query::interval_search::DEFAULT_BUDGET;
-use crate::solid::aabb::{Aabb, AabbTree};
+use crate::solid::aabb::{Aabb, AabbTree, NearPair};
 use crate::solid::obb::PosedObb;
 
 /// Body vertices posed on demand, each once per query: `pts[v]` is
@@ -157,6 +157,8 @@ pub(super) struct Scratch {
     /// epoch wraps, by whichever query wraps it).
     pub(super) swept_boxes: NodeCache,
     pub(super) stack: Vec<(u32, u32)>,
+    /// The clearance's queue of node pairs.
+    pub(super) near: Vec<NearPair>,
     pub(super) parity: Vec<u8>,
     pub(super) intervals: Vec<(f64, f64)>,
     /// The pair that last kept an interval from being certified (tried

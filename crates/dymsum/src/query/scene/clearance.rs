@@ -36,7 +36,7 @@ impl SceneChecker {
         let bounds = self.body.tree().bounds();
         let cache = std::mem::take(&mut s.node_cache);
         let epoch = s.at.epoch;
-        let mut stack = std::mem::take(&mut s.stack);
+        let mut near = std::mem::take(&mut s.near);
         // Each body triangle posed once (corners and exact box): the exact
         // box of the posed corners bounds the pair's distance from below
         // more tightly than the carried box of a slanted triangle.
@@ -65,10 +65,10 @@ impl SceneChecker {
             |i| posed(i).1,
             obb_gap,
             self.scene.tree(),
-            &mut stack,
+            &mut near,
             |i, j, best| distance_lower_bound_beyond(&posed(i).0, &self.scene_triangle(j), best),
         );
-        s.stack = stack;
+        s.near = near;
         s.node_cache = cache;
         s.obb_cache = obb_cache;
         Ok(best)
