@@ -22,13 +22,17 @@
 //! computed in `f64` and rounded); ASCII STL prints each `f32` in its
 //! shortest round-trip form.
 
-use std::collections::HashMap;
 use std::fmt::Write;
 use std::io::Cursor;
 
 use dymsum::PolygonMesh;
 
 use super::{capped, FormatError, Location};
+
+/// The merging map: foldhash (seeded per process, as std's maps are)
+/// hashes the coordinate bits several times faster than SipHash, which
+/// took most of reading a 46,000-triangle STL.
+type HashMap<K, V> = std::collections::HashMap<K, V, foldhash::fast::RandomState>;
 
 /// Builds a mesh from triangle corners, merging identical positions.
 #[derive(Default)]
@@ -113,7 +117,7 @@ fn read_binary(bytes: &[u8], name: &str) -> Result<PolygonMesh, FormatError> {
     let reader = stl_io::create_stl_reader(&mut cursor)
         .map_err(|e| FormatError::parse(name, Location::Byte(0), e.to_string()))?;
     let mut m = Merger {
-        index: HashMap::with_capacity(capped(count)),
+        index: HashMap::with_capacity_and_hasher(capped(count), Default::default()),
         vertices: Vec::with_capacity(capped(count)),
         faces: Vec::with_capacity(capped(count)),
     };
