@@ -7,8 +7,14 @@
 //! Boxes are the exact `f64` minimum and maximum of the corners (no
 //! rounding, no padding is needed), and two boxes meet when they overlap or
 //! touch on every axis, so no pair of triangles that touches is left out.
-//! Built by median splits of the box centres along the widest axis (the
-//! centres only choose the split; any split is correct).
+//! Built by the binned surface-area heuristic over the box centres
+//! ([`AabbTree::new`]) or by median splits along the widest axis, a k-d
+//! tree ([`AabbTree::over_points`]); the centres only choose the split, and
+//! any split is correct. The items are carried with their boxes while the
+//! tree is built, so each level reads memory in order. Walks: pairs of
+//! meeting boxes ([`AabbTree::for_each_pair`]), the boxes meeting a query
+//! ([`AabbTree::for_each_meeting`], no allocation below depth 64), and the
+//! nearest pair, best first ([`AabbTree::nearest_pair`]).
 
 use crate::sanity::SanityError;
 
