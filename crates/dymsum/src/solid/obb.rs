@@ -376,6 +376,23 @@ mod tests {
     use crate::kernel::rotation::Rotation;
     use crate::solid::intersect::triangles_meet;
 
+    /// The body triangle's and the scene triangle's fitted boxes, and the
+    /// posing's rounding pad at translation `t` (as the scene checker
+    /// takes it).
+    fn fitted_with_pad(body: &[DVec3; 3], u: &[DVec3; 3], t: DVec3) -> (Obb, Obb, f64) {
+        let pad = 64.0
+            * f64::EPSILON
+            * (body
+                .iter()
+                .map(|p| p.abs().max_element())
+                .fold(0.0, f64::max)
+                * 1.8
+                + t.abs().max_element());
+        let ob = Obb::fit(body, &Aabb::of(body.map(|p| p.to_array())));
+        let os = Obb::fit(u, &Aabb::of(u.map(|p| p.to_array())));
+        (ob, os, pad)
+    }
+
     fn rng(seed: u64) -> impl FnMut() -> f64 {
         let mut rng = crate::kernel::test_rng::Xorshift::new(seed | 1);
         move || rng.signed()
@@ -440,16 +457,7 @@ mod tests {
                 continue;
             }
             meeting += 1;
-            let pad = 64.0
-                * f64::EPSILON
-                * (body
-                    .iter()
-                    .map(|p| p.abs().max_element())
-                    .fold(0.0, f64::max)
-                    * 1.8
-                    + t.abs().max_element());
-            let ob = Obb::fit(&body, &Aabb::of(body.map(|p| p.to_array())));
-            let os = Obb::fit(&u, &Aabb::of(u.map(|p| p.to_array())));
+            let (ob, os, pad) = fitted_with_pad(&body, &u, t);
             assert!(pose_skew(&m).is_some());
             assert!(!os.apart(&ob.posed(&m, t), ob.h, ob.fuzz, pad), "{k}");
         }
@@ -488,16 +496,7 @@ mod tests {
             let body =
                 [(); 3].map(|_| mi * (near + DVec3::new(unit(), unit(), unit()) * scale) + ti);
             let posed = body.map(|p| m * p + t);
-            let pad = 64.0
-                * f64::EPSILON
-                * (body
-                    .iter()
-                    .map(|p| p.abs().max_element())
-                    .fold(0.0, f64::max)
-                    * 1.8
-                    + t.abs().max_element());
-            let ob = Obb::fit(&body, &Aabb::of(body.map(|p| p.to_array())));
-            let os = Obb::fit(&u, &Aabb::of(u.map(|p| p.to_array())));
+            let (ob, os, pad) = fitted_with_pad(&body, &u, t);
             let at = ob.posed(&m, t);
             let gap = os.gap(&at, ob.h, ob.fuzz, pad);
             assert_eq!(gap > 0.0, os.apart(&at, ob.h, ob.fuzz, pad), "{k}");
