@@ -326,7 +326,7 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
             let t = triangles[k];
             for e in 0..3 {
                 let key = edge_key(t[e], t[(e + 1) % 3]);
-                if weight[k] > 0 && pieces.get(&key).is_some_and(|p| p.len() > 2) {
+                if weight[k] > 0 && pieces.contains_key(&key) {
                     split.insert(key);
                 }
             }
@@ -421,7 +421,8 @@ pub fn clean_soup(mesh: &PolygonMesh) -> Result<CleanSoup, SolidError> {
 }
 
 /// Triangle `t` split at the vertices lying on its edges (`pieces`: each
-/// cut edge's vertices in order from its smaller vertex), into `out`: the
+/// edge with vertices inside it, its vertices in order from its smaller
+/// vertex, both ends included), into `out`: the
 /// same region, each part with `t`'s orientation and nonzero area (a fan
 /// from the corner opposite a cut edge, then the parts' own cut edges).
 fn split_at_vertices_on_edges(
@@ -431,7 +432,7 @@ fn split_at_vertices_on_edges(
 ) {
     for e in 0..3 {
         let (u, v, x) = (t[e], t[(e + 1) % 3], t[(e + 2) % 3]);
-        let Some(cut) = pieces.get(&edge_key(u, v)).filter(|p| p.len() > 2) else {
+        let Some(cut) = pieces.get(&edge_key(u, v)) else {
             continue;
         };
         let along: Vec<usize> = if u < v {

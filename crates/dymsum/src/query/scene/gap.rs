@@ -94,7 +94,14 @@ pub(crate) fn apart_by_more_than(
 /// `|n|` rounded up, rounded down.
 pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
     let (ct, cu) = closest_points(t, u);
-    let n = normalised_scale(cu - ct);
+    distance_bound_along(t, u, cu - ct)
+}
+
+/// A lower bound on the distance between triangles `t` and `u` from the
+/// gap along `d` (scaled first, [`normalised_scale`]), divided by `|d|`
+/// rounded up, rounded down; `0` without a positive gap.
+fn distance_bound_along(t: &[DVec3; 3], u: &[DVec3; 3], d: DVec3) -> f64 {
+    let n = normalised_scale(d);
     let gap = gap_along(t, u, n, 0.0);
     if gap <= 0.0 || !gap.is_finite() {
         return 0.0;
@@ -109,13 +116,9 @@ pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
 /// closest points (most of the cost).
 pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough: f64) -> f64 {
     if enough.is_finite() {
-        let n = normalised_scale((u[0] + u[1] + u[2]) - (t[0] + t[1] + t[2]));
-        let gap = gap_along(t, u, n, 0.0);
-        if gap > 0.0 && gap.is_finite() {
-            let d = gap / (n.length() * (1.0 + 8.0 * U)) * (1.0 - 4.0 * U);
-            if d >= enough {
-                return d;
-            }
+        let d = distance_bound_along(t, u, (u[0] + u[1] + u[2]) - (t[0] + t[1] + t[2]));
+        if d >= enough {
+            return d;
         }
     }
     distance_lower_bound(t, u)
