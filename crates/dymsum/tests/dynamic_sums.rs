@@ -1276,3 +1276,64 @@ fn kinetic_schedule_under_small_steps() {
         );
     }
 }
+
+/// Two equal bodies at the same orientation: every normal of one map lies
+/// on a normal of the other, so the first step cannot be certified and is
+/// recomputed; the steps after it start from a generic pose and must be
+/// incremental again (issue 36: no cold start a user would feel). Before,
+/// the first fallback made the next four steps recompute as well.
+#[test]
+fn a_degenerate_start_costs_one_recomputation() {
+    let mut r = rng(36);
+    for body in [
+        cuboid([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]),
+        random_polytope(Kind::Sphere, 30, &mut r),
+        random_polytope(Kind::Grid, 40, &mut r),
+    ] {
+        let mut sum = DynamicSum::new(&body, Pose::IDENTITY, &body, Pose::IDENTITY).unwrap();
+        let step = Rotation::from_axis_angle(DVec3::new(0.3, -0.5, 0.8), 0.0126).unwrap();
+        let mut recomputed = Vec::new();
+        for _ in 0..12 {
+            let report = sum.rotate_p_by(step);
+            recomputed.push(report.recomputed);
+            let fresh =
+                minkowski_sum_posed(&body, sum.pose_p(), &body, Pose::IDENTITY, Method::Walk)
+                    .unwrap();
+            assert_eq!(sum.facets(), fresh.facets());
+        }
+        assert!(
+            recomputed[1..].iter().all(|&r| !r),
+            "steps after the first recomputed: {recomputed:?}"
+        );
+    }
+}
+
+/// A motion too fast for incremental updates (steps just under the
+/// largest incremental step on a finely faceted body): every step falls
+/// back, and after the second fallback in a row the backoff recomputes
+/// without scanning first (`checked_normals == 0`), so most steps waste no
+/// scan. Every result is still the static sum.
+#[test]
+fn a_motion_too_fast_backs_off_from_the_second_fallback() {
+    let mut r = rng(37);
+    let body = random_polytope(Kind::Sphere, 300, &mut r);
+    let other = random_polytope(Kind::Sphere, 300, &mut r);
+    let mut sum = DynamicSum::new(&body, Pose::IDENTITY, &other, Pose::IDENTITY).unwrap();
+    let step = Rotation::from_axis_angle(DVec3::new(0.3, -0.5, 0.8), 0.7).unwrap();
+    let (mut scanned_fallbacks, mut skipped) = (0, 0);
+    for _ in 0..40 {
+        let report = sum.rotate_p_by(step);
+        assert!(report.recomputed, "a 0.7 rad step on 300-vertex bodies");
+        if report.checked_normals == 0 {
+            skipped += 1;
+        } else {
+            scanned_fallbacks += 1;
+        }
+        let fresh =
+            minkowski_sum_posed(&body, sum.pose_p(), &other, Pose::IDENTITY, Method::Walk).unwrap();
+        assert_eq!(sum.facets(), fresh.facets());
+    }
+    // Scans at steps 1, 2, 7, 16, 33 (skips of 4, 8, 16, …).
+    assert!(scanned_fallbacks <= 6, "{scanned_fallbacks} scans, {skipped} skipped");
+    assert!(skipped >= 30, "{scanned_fallbacks} scans, {skipped} skipped");
+}

@@ -5,13 +5,16 @@
 
 use super::*;
 
-/// Exponential backoff of the incremental attempt after fallbacks: a step
-/// that falls back because too many arcs are at risk makes the next `skip`
-/// steps at least 90% as large recompute without scanning first; each
-/// further fallback doubles the count (up to 64), an incremental step resets
-/// it. A one-off fallback (say, a degenerate start) costs a few steps; a
-/// motion too fast for incremental updates wastes a scan on at most one step
-/// in 64. Either way the result is exact: only the work differs.
+/// Exponential backoff of the incremental attempt after fallbacks. A first
+/// fallback skips nothing: it is most often a one-off (a degenerate start,
+/// such as two equal bodies at the same orientation, whose every normal is
+/// tied), and the next step, from a generic pose, is incremental again. A
+/// second fallback in a row makes the next 4 steps at least 90% as large
+/// recompute without scanning first; each further one doubles the count
+/// (up to 64), an incremental step resets it. So a degenerate start costs
+/// one recomputation, not five, and a motion too fast for incremental
+/// updates wastes a scan on at most one step in 64. Either way the result
+/// is exact: only the work differs.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Backoff {
     pub(super) theta: f64,
@@ -22,8 +25,13 @@ pub(super) struct Backoff {
 impl Backoff {
     pub(super) fn fell_back(&mut self, theta: f64) {
         self.theta = theta;
-        self.next = (self.next * 2).clamp(4, 64);
-        self.skip = self.next;
+        // 0 → 2 (a first fallback: nothing skipped), then 4, 8, …, 64.
+        self.next = if self.next == 0 {
+            2
+        } else {
+            (self.next * 2).clamp(4, 64)
+        };
+        self.skip = if self.next < 4 { 0 } else { self.next };
     }
 }
 
