@@ -33,6 +33,16 @@ fn main() {
         }
         return;
     }
+    if let Ok(n) = std::env::var("STEADY") {
+        // For profiles: one sum of the first pair through `n` steps.
+        let (p, q) = (load(&names[0]), load(&names[1]));
+        let mut dy = DynamicSum::new(&p, Pose::IDENTITY, &q, Pose::IDENTITY).unwrap();
+        let per_turn = std::env::var("PER_TURN").map_or(500.0, |s| s.parse().unwrap());
+        for r in paper_motion(per_turn, n.parse().unwrap(), 1) {
+            std::hint::black_box(dy.set_pose_p(Pose::new(r, DVec3::ZERO)));
+        }
+        return;
+    }
     if std::env::var("REPORTS").is_ok() {
         let (p, q) = (load(&names[0]), load(&names[1]));
         let mut dy = DynamicSum::new(&p, Pose::IDENTITY, &q, Pose::IDENTITY).unwrap();

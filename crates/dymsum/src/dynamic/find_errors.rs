@@ -98,7 +98,7 @@ pub(super) fn scan_side(
                 visit(f, state, out);
             }
         }
-        if out.checked * SCHEDULE_BELOW < n {
+        if n >= SCHEDULE_FROM && out.checked * SCHEDULE_BELOW < n {
             state.start_schedule(step);
         }
         return;
@@ -132,6 +132,10 @@ pub(super) fn scan_side(
 /// switches to the kinetic schedule; above `1/SCAN_ABOVE` due in a step, back
 /// to passes (hysteresis: `SCAN_ABOVE < SCHEDULE_BELOW`).
 const SCHEDULE_BELOW: usize = 8;
+/// Below this many normals a side always passes over all of them: the
+/// pass tests a lazy margin in a few instructions per normal, less than the
+/// schedule's bookkeeping (popping, re-keying, relinking) costs per step.
+const SCHEDULE_FROM: usize = 48;
 const SCAN_ABOVE: usize = 4;
 
 /// Whether face `f`'s normal is certified to stay in its cell over this
