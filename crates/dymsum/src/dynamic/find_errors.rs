@@ -92,12 +92,34 @@ pub(super) fn scan_side(
     };
     if state.scanning {
         // Many normals are due each step (large steps, or small cells): a
-        // pass over all of them is cheaper than a schedule.
-        for f in 0..n {
-            if !lazily_certified(f, state, step) {
-                visit(f, state, out);
+        // pass over all of them is cheaper than a schedule. The lazy test
+        // first, over the margin arrays in step (no bounds checks), then
+        // the visits: a visit changes only its own normal's state, so this
+        // visits the same normals in the same order as testing each just
+        // before its visit.
+        let mut due = std::mem::take(&mut state.due);
+        due.clear();
+        due.reserve(n);
+        if step.axis.is_none() {
+            let lazy = state
+                .margin
+                .iter()
+                .zip(&state.margin_at)
+                .zip(&state.dir_err);
+            for (f, ((&margin, &at), &delta)) in lazy.enumerate() {
+                // `lazily_certified` without tie certificates (no axis).
+                let lower = margin - (step.before - at);
+                if !(lower - step.theta > step.drift + delta) {
+                    due.push(f as u32);
+                }
             }
+        } else {
+            due.extend((0..n as u32).filter(|&f| !lazily_certified(f as usize, state, step)));
         }
+        for &f in &due {
+            visit(f as usize, state, out);
+        }
+        state.due = due;
         if n >= SCHEDULE_FROM && out.checked * SCHEDULE_BELOW < n {
             state.start_schedule(step);
         }

@@ -299,9 +299,11 @@ impl DynamicSum {
             self.q.ee[e2 as usize].push(e);
         }
         // Room for crossings to come, so that later toggles rarely grow a
-        // list (an allocation in the update path).
+        // list (an allocation in the update path): at least 8 in all and 4
+        // spare. (Asking for 8 more every time reallocated every list at
+        // each reload, such as the first step after a degenerate start.)
         for list in self.p.ee.iter_mut().chain(self.q.ee.iter_mut()) {
-            list.reserve(8);
+            list.reserve(8usize.saturating_sub(list.len()).max(4));
         }
         self.p.assign = overlay.fv;
         self.q.assign = overlay.vf;
