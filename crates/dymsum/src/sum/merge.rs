@@ -267,9 +267,13 @@ pub(crate) fn coplanar_groups(ops: &Operands, overlay: &Overlay) -> (UnionFind, 
     let mut degenerate = vec![false; total];
     let mut any = false;
     let (vp, vq) = (ops.view_p(), ops.view_q());
+    // P's normals, turned once each (a turned view rotates on every read,
+    // and each normal is read once per fv-facet and per ee-facet at it).
+    let np: Vec<_> = (0..m as u32).map(|f| vp.normal(f)).collect();
     for (f, &w) in overlay.fv.iter().enumerate() {
+        let nf = &np[f];
         for r in ops.q.ring(w as usize) {
-            if same_direction(&vp.normal(f as u32), &vq.normal(r.face)) {
+            if same_direction(nf, &vq.normal(r.face)) {
                 uf.union(f as u32, (m + r.face as usize) as u32);
                 any = true;
             }
@@ -279,7 +283,7 @@ pub(crate) fn coplanar_groups(ops: &Operands, overlay: &Overlay) -> (UnionFind, 
         let id = (m + n + k) as u32;
         let [f0, f1] = ops.p.edge(e as usize).faces;
         let [g0, g1] = ops.q.edge(e2 as usize).faces;
-        let (a, b) = (vp.normal(f0), vp.normal(f1));
+        let (a, b) = (np[f0 as usize], np[f1 as usize]);
         let (c, d) = (vq.normal(g0), vq.normal(g1));
         let (abc, abd) = (
             det3(&a, &b, &c) == Sign::Zero,
