@@ -53,14 +53,16 @@ fn main() {
         return;
     }
     let steps = 60;
-    println!("pair | construct µs | update 1 | 2 | 3 | 5 | 10 | 30 | 60 | mean of 60 | mean of 2..60");
+    println!(
+        "pair | construct µs | update 1 | 2 | 3 | 5 | 10 | 30 | 60 | mean of 60 | mean of 2..60"
+    );
     for pair in names.chunks(2) {
         let (p, q) = (load(&pair[0]), load(&pair[1]));
         let poses: Vec<Pose> = paper_motion(500.0, steps, 1)
             .into_iter()
             .map(|r| Pose::new(r, DVec3::ZERO))
             .collect();
-        let mut at = vec![Vec::with_capacity(runs); steps];
+        let mut at: Vec<Vec<f64>> = (0..steps).map(|_| Vec::with_capacity(runs)).collect();
         let mut build = Vec::with_capacity(runs);
         for _ in 0..runs {
             let t = Instant::now();

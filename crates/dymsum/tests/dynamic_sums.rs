@@ -1334,6 +1334,12 @@ fn a_motion_too_fast_backs_off_from_the_second_fallback() {
         assert_eq!(sum.facets(), fresh.facets());
     }
     // Scans at steps 1, 2, 7, 16, 33 (skips of 4, 8, 16, …).
-    assert!(scanned_fallbacks <= 6, "{scanned_fallbacks} scans, {skipped} skipped");
-    assert!(skipped >= 30, "{scanned_fallbacks} scans, {skipped} skipped");
+    assert!(
+        scanned_fallbacks <= 6,
+        "{scanned_fallbacks} scans, {skipped} skipped"
+    );
+    assert!(
+        skipped >= 30,
+        "{scanned_fallbacks} scans, {skipped} skipped"
+    );
 }

@@ -109,7 +109,8 @@ pub(super) fn scan_side(
             for (f, ((&margin, &at), &delta)) in lazy.enumerate() {
                 // `lazily_certified` without tie certificates (no axis).
                 let lower = margin - (step.before - at);
-                if !(lower - step.theta > step.drift + delta) {
+                let certified = lower - step.theta > step.drift + delta;
+                if !certified {
                     due.push(f as u32);
                 }
             }
