@@ -15,26 +15,8 @@
 use std::fmt::Write as _;
 use std::time::Instant;
 
-use dymsum::{DVec3, DynamicSum, Polytope, Pose};
+use dymsum::{DVec3, DynamicSum, Pose};
 use dymsum_bench::{load, paper_motion};
-
-fn off(poly: &Polytope) -> String {
-    let mesh = poly.to_mesh();
-    let mut s = format!("OFF\n{} {} 0\n", mesh.vertices.len(), mesh.faces.len());
-    for v in &mesh.vertices {
-        // `{:?}` prints the shortest decimal that reads back to the same
-        // double: the vertices are exact.
-        writeln!(s, "{:?} {:?} {:?}", v[0], v[1], v[2]).unwrap();
-    }
-    for f in &mesh.faces {
-        write!(s, "{}", f.len()).unwrap();
-        for i in f {
-            write!(s, " {i}").unwrap();
-        }
-        s.push('\n');
-    }
-    s
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -47,8 +29,11 @@ fn main() {
     let dir = std::path::Path::new(&args[3]);
     let repeats: usize = args.get(4).map_or(5, |r| r.parse().expect("REPEATS"));
     std::fs::create_dir_all(dir).unwrap();
-    std::fs::write(dir.join("p.off"), off(&p)).unwrap();
-    std::fs::write(dir.join("q.off"), off(&q)).unwrap();
+    // dymsum-io's OFF writer prints each coordinate's shortest round-trip
+    // decimal: the vertices are exact.
+    for (body, name) in [(&p, "p.off"), (&q, "q.off")] {
+        dymsum_io::formats::write_mesh(&dir.join(name), &body.to_mesh()).unwrap();
+    }
     // One more pose than steps: the sum starts at the first.
     let poses = paper_motion(500.0, steps + 1, 1);
     let mut rotations = String::new();

@@ -108,9 +108,7 @@ pub(super) fn scan_side(
                 .zip(&state.dir_err);
             for (f, ((&margin, &at), &delta)) in lazy.enumerate() {
                 // `lazily_certified` without tie certificates (no axis).
-                let lower = margin - (step.before - at);
-                let certified = lower - step.theta > step.drift + delta;
-                if !certified {
+                if !margin_certifies(margin, at, delta, step) {
                     due.push(f as u32);
                 }
             }
@@ -171,8 +169,7 @@ const SCAN_ABOVE: usize = 4;
 #[inline(always)]
 fn lazily_certified(f: usize, state: &Side, step: &StepBounds) -> bool {
     let delta = state.dir_err[f];
-    let lower = state.margin[f] - (step.before - state.margin_at[f]);
-    if lower - step.theta > step.drift + delta {
+    if margin_certifies(state.margin[f], state.margin_at[f], delta, step) {
         return true;
     }
     if let Some(k) = step.axis {
@@ -184,6 +181,15 @@ fn lazily_certified(f: usize, state: &Side, step: &StepBounds) -> bool {
         }
     }
     false
+}
+
+/// Whether a lazy margin `margin` computed at accumulated rotation `at`
+/// (less the rotation since) still exceeds this step's needs, for a normal
+/// with direction error `delta`.
+#[inline(always)]
+fn margin_certifies(margin: f64, at: f64, delta: f64, step: &StepBounds) -> bool {
+    let lower = margin - (step.before - at);
+    lower - step.theta > step.drift + delta
 }
 
 /// FindErrors and the fv-correction for face `f` (module docs).
