@@ -13,51 +13,73 @@ impl DynamicSum {
     /// normal of P that crossed exactly the arc `x` of Q flips the pairs
     /// (edge of that face, `x`), and symmetrically for Q. Toggles combine by
     /// parity; pairs on a re-walked arc are left to the re-walk.
+    ///
+    /// A pair `(e, x)` can be flipped by four crossings at most: P's two
+    /// faces at `e` crossing `x`, and Q's two faces at `x` crossing `e`
+    /// (a face crosses at most one arc in a step, its certified one). Each
+    /// face's crossing is marked, so a pair's flips are counted where it is
+    /// met, in O(1), and it is handled once, from the first of the four
+    /// that crossed (no sort of all the toggles).
     pub(super) fn apply_certified_crossings(
         &mut self,
         certified_p: &[(u32, u32)],
         certified_q: &[(u32, u32)],
         report: &mut UpdateReport,
     ) {
-        let mut pending = std::mem::take(&mut self.scratch_toggled);
-        pending.clear();
+        let step = self.step;
         for &(f, x) in certified_p {
-            pending.extend(self.ops.p.face_edges(f as usize).iter().map(|&e| (e, x)));
+            self.p.crossed[f as usize] = (step, x);
         }
         for &(g, y) in certified_q {
-            pending.extend(self.ops.q.face_edges(g as usize).iter().map(|&x| (y, x)));
+            self.q.crossed[g as usize] = (step, y);
         }
-        // Toggles combine by parity (both ends of an edge may cross the same
-        // arc in one step); pairs on re-walked arcs are left to the re-walk.
-        // Sorted by one u64 key: the pairs' order, cheaper comparisons.
-        pending.sort_unstable_by_key(|&(e, x)| (u64::from(e) << 32) | u64::from(x));
-        let mut i = 0;
-        while i < pending.len() {
-            let (e, x) = pending[i];
-            let mut j = i + 1;
-            while j < pending.len() && pending[j] == (e, x) {
-                j += 1;
-            }
-            let odd = (j - i) % 2 == 1;
-            i = j;
-            if !odd
-                || self.p.stamp[e as usize] == self.step
-                || self.q.stamp[x as usize] == self.step
-            {
-                continue;
-            }
-            let facet = Facet::Ee {
-                p_edge: e,
-                q_edge: x,
-            };
-            if self.toggle_pair(e, x) {
-                report.removed.push(facet);
-                report.ee_errors += 1;
-            } else {
-                report.added.push(facet);
+        for &(f, x) in certified_p {
+            for k in 0..self.ops.p.face_edges(f as usize).len() {
+                let e = self.ops.p.face_edges(f as usize)[k];
+                let first = usize::from(self.ops.p.edge(e as usize).faces[0] != f);
+                self.flip_by_parity(e, x, first, report);
             }
         }
-        self.scratch_toggled = pending;
+        for &(g, y) in certified_q {
+            for k in 0..self.ops.q.face_edges(g as usize).len() {
+                let x = self.ops.q.face_edges(g as usize)[k];
+                let first = 2 + usize::from(self.ops.q.edge(x as usize).faces[0] != g);
+                self.flip_by_parity(y, x, first, report);
+            }
+        }
+    }
+
+    /// The pair `(e, x)` met from crossing `from` of its four (module
+    /// docs of [`Self::apply_certified_crossings`]): toggled, and reported,
+    /// when `from` is the first of them that happened this step and an odd
+    /// number happened, unless an arc of the pair is re-walked.
+    fn flip_by_parity(&mut self, e: u32, x: u32, from: usize, report: &mut UpdateReport) {
+        let step = self.step;
+        let [f0, f1] = self.ops.p.edge(e as usize).faces;
+        let [g0, g1] = self.ops.q.edge(x as usize).faces;
+        let happened = [
+            self.p.crossed[f0 as usize] == (step, x),
+            self.p.crossed[f1 as usize] == (step, x),
+            self.q.crossed[g0 as usize] == (step, e),
+            self.q.crossed[g1 as usize] == (step, e),
+        ];
+        if happened[..from].contains(&true)
+            || happened.iter().filter(|&&h| h).count() % 2 == 0
+            || self.p.stamp[e as usize] == step
+            || self.q.stamp[x as usize] == step
+        {
+            return;
+        }
+        let facet = Facet::Ee {
+            p_edge: e,
+            q_edge: x,
+        };
+        if self.toggle_pair(e, x) {
+            report.removed.push(facet);
+            report.ee_errors += 1;
+        } else {
+            report.added.push(facet);
+        }
     }
 
     /// Flips the membership of the pair `(e, x)`; returns whether it was

@@ -216,7 +216,6 @@ pub struct DynamicSum {
     /// Q's half: its faces in P's cells (the vf-pairs), its arcs' crossings.
     q: Side,
     theta_acc: f64,
-    scratch_toggled: Vec<(u32, u32)>,
     /// Buffers of one step, reused (no allocation per step), and the
     /// crossings of the arc being re-walked.
     scratch: Option<Box<Scratch>>,
@@ -275,7 +274,7 @@ impl DynamicSum {
             p: Side::new(p),
             q: Side::new(q),
             theta_acc: 0.0,
-            scratch_toggled: Vec::new(),
+
             scratch: Some(Box::default()),
             fresh: Vec::new(),
             zeros: None,
@@ -590,6 +589,9 @@ struct Side {
     margin_at: Vec<f64>,
     /// Per edge: the last step that queued its arc for a re-walk.
     stamp: Vec<u32>,
+    /// Per face: the last step whose certified single crossing it made,
+    /// and the arc it crossed then.
+    crossed: Vec<(u32, u32)>,
     /// Per face: the rotation about the coordinate axis `tie_axis` it can
     /// still absorb with its persistent ties certified (see
     /// `ties::stays_in_cell_tied`); `NO_AXIS` when not certified that way;
@@ -622,6 +624,7 @@ impl Side {
             margin: vec![0.0; faces],
             margin_at: vec![0.0; faces],
             stamp: vec![0; edges],
+            crossed: vec![(0, 0); faces],
             tie_margin: vec![0.0; faces],
             tie_axis: vec![NO_AXIS; faces],
             tie_tick: vec![0; faces],
