@@ -239,13 +239,17 @@ fn visit_normal(
         }
     }
     if m1 <= EXACT_BELOW + delta {
-        let x = faces.normal(f as u32);
-        // A margin clearly below zero is certainly outside.
-        if m1 < -(EXACT_BELOW + delta) || !cells.in_cell(v, &x) {
-            let v2 = locate_certified(cpoly, cell_arcs, x_new, EXACT_BELOW + delta, v)
-                .unwrap_or_else(|| cells.locate(&x, v).0);
+        // A margin clearly below zero is certainly outside. The exact
+        // normal (a turned view's rotation and error bound) only when an
+        // exact predicate needs it.
+        if m1 < -(EXACT_BELOW + delta) || !cells.in_cell(v, &faces.normal(f as u32)) {
+            let (v2, m2) = locate_certified(cpoly, cell_arcs, x_new, EXACT_BELOW + delta, v)
+                .unwrap_or_else(|| {
+                    let v2 = cells.locate(&faces.normal(f as u32), v).0;
+                    (v2, margin(cpoly, cell_arcs, v2, x_new))
+                });
             state.assign[f] = v2;
-            m1 = margin(cpoly, cell_arcs, v2, x_new);
+            m1 = m2;
             out.changed.push(Change {
                 face: f as u32,
                 old: v,

@@ -64,21 +64,24 @@ pub(super) const EXACT_BELOW: f64 = 1e-12;
 pub(super) const SLACK: f64 = 1e-10;
 
 /// Hill climbing in floats on the unit ring arcs (oriented inwards): cross
-/// the most violated arc until every arc is clearly satisfied. Returns
-/// `None` as soon as a decision is within `thr` of zero (the exact
-/// [`GaussView::locate`] takes over) or after `V` steps.
+/// the most violated arc until every arc is clearly satisfied. Returns the
+/// cell and `x`'s [`margin`] in it (the same value: the same products,
+/// least taken exactly), or `None` as soon as a decision is within `thr`
+/// of zero (the exact [`GaussView::locate`] takes over) or after `V`
+/// steps.
 pub(super) fn locate_certified(
     poly: &Polytope,
     arcs: &[DVec3],
     x: DVec3,
     thr: f64,
     start: u32,
-) -> Option<u32> {
+) -> Option<(u32, f64)> {
     let mut v = start;
     for _ in 0..poly.vertex_count() {
         let off = poly.ring_offset(v as usize);
         let ring = poly.ring(v as usize);
         let mut worst = (thr, u32::MAX);
+        let mut least = f64::INFINITY;
         for (i, r) in ring.iter().enumerate() {
             let s = arcs[off + i].dot(x);
             if s.abs() <= thr {
@@ -87,9 +90,12 @@ pub(super) fn locate_certified(
             if s < -worst.0 {
                 worst = (-s, r.neighbor);
             }
+            if s < least {
+                least = s;
+            }
         }
         if worst.1 == u32::MAX {
-            return Some(v);
+            return Some((v, least));
         }
         v = worst.1;
     }
