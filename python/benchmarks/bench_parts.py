@@ -166,6 +166,24 @@ def _slerp(a, b, s):
     return (np.sin((1 - s) * th) * a + np.sin(s * th) * b) / np.sin(th)
 
 
+
+def interleaved(poses, mine, theirs, oa, fcl):
+    """Times `mine(p)` and fcl's `theirs(p)` (after posing `oa` at `p`, which
+    counts in fcl's time) pose by pose, interleaved: their times in µs and
+    the (mine, theirs) answers."""
+    td, tf, answers = [], [], []
+    for p in poses:
+        t0 = time.perf_counter()
+        m = mine(p)
+        t1 = time.perf_counter()
+        oa.setTransform(fcl.Transform(p[:3, :3], p[:3, 3]))
+        t = theirs(p)
+        t2 = time.perf_counter()
+        td.append(t1 - t0)
+        tf.append(t2 - t1)
+        answers.append((m, t))
+    return np.array(td) * 1e6, np.array(tf) * 1e6, answers
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("dirs", nargs="+")
@@ -208,38 +226,30 @@ def main():
         for what, poses in (("random", random), ("near", near)):
             if not poses:
                 continue
-            td, tf, disagree = [], [], 0
-            for p in poses:
-                t0 = time.perf_counter()
-                mine = checker.collides_at(p)
-                t1 = time.perf_counter()
-                oa.setTransform(fcl.Transform(p[:3, :3], p[:3, 3]))
-                theirs = fcl.collide(oa, ob, fcl.CollisionRequest(), fcl.CollisionResult()) > 0
-                t2 = time.perf_counter()
-                td.append(t1 - t0)
-                tf.append(t2 - t1)
-                disagree += mine != theirs
+            td, tf, answers = interleaved(
+                poses,
+                checker.collides_at,
+                lambda p: fcl.collide(oa, ob, fcl.CollisionRequest(), fcl.CollisionResult()) > 0,
+                oa,
+                fcl,
+            )
+            disagree = sum(mine != theirs for mine, theirs in answers)
             stack = np.stack(poses)
             t0 = time.perf_counter()
             checker.collides_many(stack)
             many = (time.perf_counter() - t0) / len(poses)
-            td, tf = np.array(td) * 1e6, np.array(tf) * 1e6
             row[what] = (len(poses), np.median(td), np.median(tf), np.percentile(td, 99), np.percentile(tf, 99), many * 1e6, tf.mean(), disagree)
         if a.distance:
             free = [p for p in random + near[1::2] if not checker.collides_at(p)][: a.distance]
-            tdd, tfd, above = [], [], 0
-            for p in free:
-                t0 = time.perf_counter()
-                mine = checker.distance_at(p)
-                t1 = time.perf_counter()
-                oa.setTransform(fcl.Transform(p[:3, :3], p[:3, 3]))
-                theirs = fcl.distance(oa, ob, fcl.DistanceRequest(), fcl.DistanceResult())
-                t2 = time.perf_counter()
-                tdd.append(t1 - t0)
-                tfd.append(t2 - t1)
-                above += mine > theirs * (1 + 1e-9) + 1e-12
+            tdd, tfd, answers = interleaved(
+                free,
+                checker.distance_at,
+                lambda p: fcl.distance(oa, ob, fcl.DistanceRequest(), fcl.DistanceResult()),
+                oa,
+                fcl,
+            )
+            above = sum(mine > theirs * (1 + 1e-9) + 1e-12 for mine, theirs in answers)
             if free:
-                tdd, tfd = np.array(tdd) * 1e6, np.array(tfd) * 1e6
                 row["distance"] = (len(free), np.median(tdd), np.median(tfd), np.percentile(tdd, 99), np.percentile(tfd, 99), above)
         if a.motions and near:
             row["motions"] = motions(fcl, checker, oa, ob, va, vb, near[1::2][: a.motions], rng)

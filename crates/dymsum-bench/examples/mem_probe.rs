@@ -21,6 +21,16 @@ fn status() -> (i64, i64) {
     (get("VmRSS:"), get("VmHWM:"))
 }
 
+/// Prints the peak and the resident memory added since `rss0` (KiB).
+fn report(what: &str, rss0: i64) {
+    let (rss, hwm) = status();
+    println!(
+        "{what}: peak +{} KiB, stays +{} KiB",
+        hwm - rss0,
+        rss - rss0
+    );
+}
+
 fn main() {
     let f = std::env::args().nth(1).expect("a mesh file");
     let mesh = dymsum_io::formats::read_mesh(std::path::Path::new(&f)).expect("a mesh");
@@ -44,38 +54,18 @@ fn main() {
             copies.iter().map(build).collect()
         };
         drop(copies);
-        let (rss1, hwm1) = status();
-        println!(
-            "bodies: peak +{} KiB, stays +{} KiB",
-            hwm1 - rss0,
-            rss1 - rss0
-        );
+        report("bodies", rss0);
         let v = dymsum::query::Validator::new(&bodies[0], &bodies[1..]).expect("a validator");
         drop(bodies);
-        let (rss2, hwm2) = status();
-        println!(
-            "validator: peak +{} KiB, stays +{} KiB",
-            hwm2 - rss0,
-            rss2 - rss0
-        );
+        report("validator", rss0);
         std::hint::black_box(v);
         return;
     }
     std::fs::write("/proc/self/clear_refs", "5").expect("the peak reset");
     let (rss0, _) = status();
     let body = MeshBody::new(&mesh).expect("a body");
-    let (rss1, hwm1) = status();
-    println!(
-        "MeshBody::new: peak +{} KiB, stays +{} KiB",
-        hwm1 - rss0,
-        rss1 - rss0
-    );
+    report("MeshBody::new", rss0);
     let checker = SceneChecker::new(&body, std::slice::from_ref(&body)).expect("a checker");
-    let (rss2, hwm2) = status();
-    println!(
-        "with a checker: peak +{} KiB, stays +{} KiB",
-        hwm2 - rss0,
-        rss2 - rss0
-    );
+    report("with a checker", rss0);
     std::hint::black_box(checker);
 }
