@@ -7,7 +7,6 @@ use crate::body::solid_shells;
 use crate::mesh::PolygonMesh;
 use crate::polytope::MeshPolicy;
 use crate::polytope::Polytope;
-use crate::solid::closed::triangles;
 
 /// How a non-convex closed mesh becomes convex pieces.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -235,6 +234,7 @@ fn volume_error(
 
 #[cfg(feature = "parry")]
 fn decompose(mesh: &PolygonMesh, d: Decomposition) -> Result<Vec<Polytope>, UnionMeshError> {
+    use crate::solid::closed::triangles;
     use parry3d_f64::transformation::vhacd::{VHACDParameters, VHACD};
     let Decomposition::Vhacd {
         resolution,
