@@ -25,7 +25,7 @@ use crate::kernel::Sign;
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
 use crate::query::proximity::gjk::Point;
-use crate::query::proximity::support::climb;
+use crate::query::proximity::support::climb_unposed;
 use glam::DVec3;
 
 /// The most expansion steps.
@@ -116,6 +116,8 @@ impl Epa {
     /// ends; `false` when a step broke the surface.
     fn grow(&mut self, pair: &ConvexPair, posed: &Posed, hint: Option<DVec3>) -> bool {
         let tol = posed.tol;
+        let to_a = posed.pose_a.rotation.matrix().transpose();
+        let to_b = posed.pose_b.rotation.matrix().transpose();
         // A hint (the last frame's contact normal): first grow the face it
         // points through towards the support point there, which under
         // coherent motion is next to the answer.
@@ -124,8 +126,8 @@ impl Epa {
                 .max_by(|&i, &j| self.tris[i].n.dot(h).total_cmp(&self.tris[j].n.dot(h)))
                 .expect("four faces");
             let start = self.pts[self.tris[f].v[0] as usize];
-            let (a, _) = climb(&pair.a, |v| posed.a(v), h, start.a);
-            let (b, _) = climb(&pair.b, |w| posed.b(w), -h, start.b);
+            let a = climb_unposed(&pair.a, &to_a, h, start.a);
+            let b = climb_unposed(&pair.b, &to_b, -h, start.b);
             let w = posed.a(a) - posed.b(b);
             let tri = self.tris[f];
             let known = self.pts.iter().any(|p| p.a == a && p.b == b);
@@ -139,8 +141,8 @@ impl Epa {
             };
             let tri = self.tris[f];
             let start = self.pts[tri.v[0] as usize];
-            let (a, _) = climb(&pair.a, |v| posed.a(v), tri.n, start.a);
-            let (b, _) = climb(&pair.b, |w| posed.b(w), -tri.n, start.b);
+            let a = climb_unposed(&pair.a, &to_a, tri.n, start.a);
+            let b = climb_unposed(&pair.b, &to_b, -tri.n, start.b);
             let w = posed.a(a) - posed.b(b);
             if tri.v.iter().any(|&i| {
                 let p = self.pts[i as usize];

@@ -52,7 +52,7 @@ use crate::kernel::Sign;
 use crate::polytope::Polytope;
 use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
-use crate::query::proximity::support::{climb, near_max, Marks, NearMax, NearestAxes};
+use crate::query::proximity::support::{climb_unposed, near_max, Marks, NearMax, NearestAxes};
 use crate::solid::intersect::triangles_meet;
 use glam::DVec3;
 
@@ -187,9 +187,11 @@ pub(in crate::query) fn gjk(
     }
     let mut enclosed = false;
     let mut separating = false;
+    let to_a = posed.pose_a.rotation.matrix().transpose();
+    let to_b = posed.pose_b.rotation.matrix().transpose();
     for _ in 0..MAX_ITERATIONS {
-        let (a, _) = climb(a_body, at_a, -v, wa);
-        let (b, _) = climb(b_body, at_b, v, wb);
+        let a = climb_unposed(a_body, &to_a, -v, wa);
+        let b = climb_unposed(b_body, &to_b, v, wb);
         (wa, wb) = (a, b);
         let w = posed.a(a) - posed.b(b);
         let vw = v.dot(w);

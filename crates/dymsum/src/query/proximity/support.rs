@@ -32,7 +32,7 @@
 //! `max d · v'` from above.
 
 use crate::polytope::Polytope;
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 /// Marks over a body's vertices with a generation stamp, so that a search
 /// clears nothing between uses.
@@ -101,6 +101,24 @@ pub(in crate::query) fn climb(
             return (v, best);
         }
     }
+}
+
+/// [`climb`] over `poly`'s own vertices for a world direction `dir`, with
+/// `to_body` the transpose of the body's rotation matrix: the direction is
+/// turned into the body's frame once, and no vertex is posed. A pose's
+/// translation adds the same to every vertex's value and a frame's power of
+/// two scales them all alike, so in exact arithmetic this is the vertex
+/// that climbing the posed vertices finds; in floats the two may differ
+/// only between vertices whose values tie to rounding, and a support vertex
+/// is a proposal that the callers' certificates check.
+#[inline]
+pub(in crate::query) fn climb_unposed(
+    poly: &Polytope,
+    to_body: &DMat3,
+    dir: DVec3,
+    start: u32,
+) -> u32 {
+    climb(poly, |v| poly.vertex(v as usize), *to_body * dir, start).0
 }
 
 /// A bound on the rounding of one float dot product `d · v'` with

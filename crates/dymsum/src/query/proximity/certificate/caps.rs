@@ -26,6 +26,7 @@ use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
 use crate::query::proximity::certificate::candidates::{DIRECTION_ERROR, OVERLAY_MISMATCH};
 use crate::query::proximity::gjk::{near_max_pair, CertScratch, Gjk};
+use crate::query::proximity::support::climb_unposed;
 use glam::DVec3;
 /// The most caps a penetration certificate uses.
 const MAX_CAPS: usize = 16;
@@ -51,6 +52,8 @@ pub(in crate::query) fn grow_polytope(
         let mut pts = [crate::query::proximity::gjk::Point::default(); 10];
         pts[..g.simplex.len].copy_from_slice(&g.simplex.pts[..g.simplex.len]);
         let mut k = g.simplex.len;
+        let to_a = posed.pose_a.rotation.matrix().transpose();
+        let to_b = posed.pose_b.rotation.matrix().transpose();
         for d in [
             DVec3::X,
             DVec3::NEG_X,
@@ -59,10 +62,8 @@ pub(in crate::query) fn grow_polytope(
             DVec3::Z,
             DVec3::NEG_Z,
         ] {
-            let (a, _) =
-                crate::query::proximity::support::climb(&pair.a, |v| posed.a(v), d, g.warm.0);
-            let (b, _) =
-                crate::query::proximity::support::climb(&pair.b, |w| posed.b(w), -d, g.warm.1);
+            let a = climb_unposed(&pair.a, &to_a, d, g.warm.0);
+            let b = climb_unposed(&pair.b, &to_b, -d, g.warm.1);
             if !pts[..k].iter().any(|p| p.a == a && p.b == b) {
                 pts[k] = crate::query::proximity::gjk::Point {
                     w: posed.a(a) - posed.b(b),
