@@ -3,7 +3,8 @@
 //! parts_probe -- DIR [PAIRS] [STATES]` prints, per seeded pair of the
 //! meshes in DIR, the build time and the medians and 99th percentiles of
 //! one call per state, random and near contact (`DISTANCE=1`:
-//! `distance_at` on the free states).
+//! `distance_at` on the free states; `DISTANCE=all`: on every state,
+//! `DISTANCE=colliding`: on the colliding ones).
 
 use std::time::Instant;
 
@@ -25,6 +26,10 @@ fn main() {
     // `DISTANCE=1`: time `distance_at` on the free states instead.
     let skip_parry = std::env::var("DYMSUM_ONLY").is_ok();
     let distance = std::env::var("DISTANCE").is_ok();
+    // `DISTANCE=all`: on the colliding states too (the answer is 0);
+    // `DISTANCE=colliding`: on those alone.
+    let every_state = std::env::var("DISTANCE").is_ok_and(|v| v == "all");
+    let colliding_only = std::env::var("DISTANCE").is_ok_and(|v| v == "colliding");
     let only: Option<String> = std::env::var("PAIR").ok();
     let all = parts(dir);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
@@ -52,7 +57,7 @@ fn main() {
         for (what, states) in [("random", &random), ("near", &near)] {
             let (mut ours, mut theirs) = (Vec::new(), Vec::new());
             for &p in states.iter() {
-                if distance && checker.collides_at(p).unwrap() {
+                if distance && !every_state && checker.collides_at(p).unwrap() != colliding_only {
                     continue;
                 }
                 let t = Instant::now();

@@ -551,7 +551,8 @@ impl AabbTree {
     /// of their boxes' distance (less a relative `1e-12`, so its rounding
     /// drops nothing that could matter) and `node_gap(a, b)` (e.g. the
     /// oriented boxes', `0.0` for none), and the walk ends when the next
-    /// bound exceeds the best (every pair left is at least as far).
+    /// bound exceeds the best (every pair left is at least as far) or the
+    /// best is zero (`dist` answers distances, never below zero).
     /// `queue` is scratch. `f64::INFINITY` when either tree is empty.
     pub fn nearest_pair(
         &self,
@@ -567,24 +568,34 @@ impl AabbTree {
             return best;
         }
         let shrink = |d: f64| d * (1.0 - 1e-12);
-        let bound = |a: u32, b: u32| {
+        // The boxes' distance, and `node_gap` (the costlier) only when the
+        // boxes leave the pair below `best`: a pair beyond it is dropped
+        // either way.
+        let bound = |a: u32, b: u32, best: f64| {
             let boxes = shrink(node_box(a as usize).distance(&other.bounds[b as usize]));
+            if boxes > best {
+                return boxes;
+            }
             boxes.max(node_gap(a as usize, b as usize))
         };
         queue.clear();
         let mut heap = std::collections::BinaryHeap::from(std::mem::take(queue));
-        heap.push(NearPair(bound(0, 0), 0, 0));
+        heap.push(NearPair(bound(0, 0, best), 0, 0));
         while let Some(NearPair(lower, a, b)) = heap.pop() {
-            if lower > best {
+            // Nothing is nearer than touching: a zero is final.
+            if lower > best || best <= 0.0 {
                 break;
             }
             match (&self.nodes[a as usize], &other.nodes[b as usize]) {
                 (Node::Leaf { start, end }, Node::Leaf { start: s2, end: e2 }) => {
-                    for &i in &self.items[*start as usize..*end as usize] {
+                    'leaf: for &i in &self.items[*start as usize..*end as usize] {
                         let bi = item_box(i as usize);
                         for &j in &other.items[*s2 as usize..*e2 as usize] {
                             if shrink(bi.distance(&other.boxes[j as usize])) <= best {
                                 best = best.min(dist(i as usize, j as usize, best));
+                                if best <= 0.0 {
+                                    break 'leaf;
+                                }
                             }
                         }
                     }
@@ -592,7 +603,7 @@ impl AabbTree {
                 _ => {
                     let split_self = node_box(a as usize).size() >= other.bounds[b as usize].size();
                     for (x, y) in self.children(other, a, b, split_self).into_iter().flatten() {
-                        let lower = bound(x, y);
+                        let lower = bound(x, y, best);
                         if lower <= best {
                             heap.push(NearPair(lower, x, y));
                         }

@@ -16,6 +16,9 @@ impl SceneChecker {
     /// the gap along the direction of its closest points found in floating
     /// point, `query::scene::gap`; the broad phase skips only pairs whose boxes
     /// are farther apart than the best so far). For clearance objectives.
+    /// The walk runs first: when its bound is positive no triangles meet,
+    /// so only containment is left to test (the state check's triangle
+    /// walk would repeat the work).
     ///
     /// # Errors
     /// Those of [`SceneChecker::collides_at`].
@@ -27,9 +30,7 @@ impl SceneChecker {
     }
 
     pub(super) fn clearance(&self, pose: Pose, s: &mut Scratch) -> Result<f64, QueryError> {
-        if self.collides_with(pose, s)? {
-            return Ok(0.0);
-        }
+        self.check_range(&pose)?;
         s.at.start(self.body.vertices.len());
         self.fit_node_cache(s);
         let (m, t, pad) = (pose.rotation.matrix(), pose.translation, self.pad(&pose));
@@ -71,6 +72,13 @@ impl SceneChecker {
         s.near = near;
         s.node_cache = cache;
         s.obb_cache = obb_cache;
+        // A positive bound proves every triangle pair apart (each pair was
+        // bounded, or dropped by a bound at least as large): no surfaces
+        // meet, and the bodies collide only when one holds the other. A
+        // zero bound is the answer whether or not they touch.
+        if best > 0.0 && self.one_inside_the_other(pose, s)? {
+            return Ok(0.0);
+        }
         Ok(best)
     }
 }
