@@ -165,22 +165,32 @@ fn gaps_both_ways(t: &[DVec3], u: &[DVec3; 3], n: DVec3, shift: f64) -> (f64, f6
     if !n.is_finite() || n == DVec3::ZERO {
         return (f64::NEG_INFINITY, f64::NEG_INFINITY);
     }
+    // `if x < m { x } else { m }` is one machine instruction where
+    // `f64::min` is several (it must return the number beside a NaN); it
+    // keeps `m` beside a NaN `x` alike, and the points are finite here.
+    let lesser = |x: f64, m: f64| if x < m { x } else { m };
+    let greater = |x: f64, m: f64| if x > m { x } else { m };
     let (mut min_t, mut max_t) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut m = DVec3::ZERO;
+    let (mut mx, mut my, mut mz) = (0.0f64, 0.0f64, 0.0f64);
+    let mut widen = |p: &DVec3| {
+        mx = greater(p.x.abs(), mx);
+        my = greater(p.y.abs(), my);
+        mz = greater(p.z.abs(), mz);
+    };
     for p in t {
         let d = n.dot(*p);
-        min_t = min_t.min(d);
-        max_t = max_t.max(d);
-        m = m.max(p.abs());
+        min_t = lesser(d, min_t);
+        max_t = greater(d, max_t);
+        widen(p);
     }
     let (mut min_u, mut max_u) = (f64::INFINITY, f64::NEG_INFINITY);
     for p in u {
         let d = n.dot(*p);
-        min_u = min_u.min(d);
-        max_u = max_u.max(d);
-        m = m.max(p.abs());
+        min_u = lesser(d, min_u);
+        max_u = greater(d, max_u);
+        widen(p);
     }
-    let s = n.abs().dot(m);
+    let s = n.abs().dot(DVec3::new(mx, my, mz));
     let bound =
         |gap: f64| gap - ((8.0 + shift) * U * s + 2.0 * U * gap.abs() + 1e-300) * (1.0 + 8.0 * U);
     (bound(min_u - max_t), bound(min_t - max_u))
