@@ -225,10 +225,13 @@ pub(crate) fn pose(obj: Option<&Bound<'_, PyAny>>, what: &str) -> PyResult<Pose>
 /// (any memory layout: C- or Fortran-ordered, transposed, sliced or
 /// negatively strided, read by its strides) holding a valid rigid
 /// transform (`None` otherwise, and the general path reads it, with its
-/// error messages).
+/// error messages). The 16 numbers are copied under the GIL rather than
+/// borrowed: numpy's shared-borrow registry costs about 1,000 instructions
+/// a call, more than the copy, on every single-pose query.
 pub(crate) fn rigid_4x4(obj: &Bound<'_, PyAny>) -> Option<Pose> {
-    let arr = obj.cast::<PyArray2<f64>>().ok()?.try_readonly().ok()?;
-    rigid_from_view(arr.as_array())
+    let arr = obj.cast::<PyArray2<f64>>().ok()?;
+    (arr.shape() == [4, 4]).then_some(())?;
+    rigid_from_view(arr.to_owned_array().view())
 }
 
 /// A rigid transform from a (4, 4) view indexed `[row, column]` (by its
