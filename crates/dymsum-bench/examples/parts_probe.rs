@@ -4,13 +4,24 @@
 //! meshes in DIR, the build time and the medians and 99th percentiles of
 //! one call per state, random and near contact (`DISTANCE=1`:
 //! `distance_at` on the free states; `DISTANCE=all`: on every state,
-//! `DISTANCE=colliding`: on the colliding ones).
+//! `DISTANCE=colliding`: on the colliding ones; `SLOWEST=k`: the k slowest
+//! states' checks again, each alone in `replay`, for a profiler's toggle).
 
 use std::time::Instant;
 
 use dymsum_bench::parts::{pair_states, part_checker, parts};
 use dymsum_bench::scenes::{parry_collides, parry_mesh};
 use rand::{Rng, SeedableRng};
+
+/// One check, alone in a function so that a profiler can collect it.
+#[inline(never)]
+fn replay(checker: &dymsum::query::SceneChecker, p: dymsum::Pose, distance: bool) {
+    if distance {
+        std::hint::black_box(checker.distance_at(p).unwrap());
+    } else {
+        std::hint::black_box(checker.collides_at(p).unwrap());
+    }
+}
 
 fn quantile(v: &mut [f64], q: f64) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -55,8 +66,8 @@ fn main() {
         let (ra, rb) = (parry_mesh(&pa.mesh), parry_mesh(&pb.mesh));
         let (random, near) = pair_states(&checker, &pa.mesh, &pb.mesh, n, 11);
         for (what, states) in [("random", &random), ("near", &near)] {
-            let (mut ours, mut theirs) = (Vec::new(), Vec::new());
-            for &p in states.iter() {
+            let (mut ours, mut theirs, mut which) = (Vec::new(), Vec::new(), Vec::new());
+            for (index, &p) in states.iter().enumerate() {
                 if distance && !every_state && checker.collides_at(p).unwrap() != colliding_only {
                     continue;
                 }
@@ -67,6 +78,7 @@ fn main() {
                     std::hint::black_box(checker.collides_at(p).unwrap());
                 }
                 ours.push(t.elapsed().as_secs_f64() * 1e6);
+                which.push(index);
                 if skip_parry {
                     theirs.push(1.0);
                     continue;
@@ -77,6 +89,19 @@ fn main() {
             }
             if ours.is_empty() {
                 continue;
+            }
+            // `SLOWEST=k`: the k slowest states' checks once more, each in
+            // `replay` (for `valgrind --toggle-collect='*replay*'`).
+            if let Some(k) = std::env::var("SLOWEST")
+                .ok()
+                .and_then(|v| v.parse::<usize>().ok())
+            {
+                let mut order: Vec<usize> = (0..ours.len()).collect();
+                order.sort_by(|&i, &j| ours[j].total_cmp(&ours[i]));
+                for &i in order.iter().take(k) {
+                    println!("{what} state {}: {:.1} µs", which[i], ours[i]);
+                    replay(&checker, states[which[i]], distance);
+                }
             }
             let (m1, m2) = (quantile(&mut ours, 0.5), quantile(&mut theirs, 0.5));
             let (q1, q2) = (quantile(&mut ours, 0.99), quantile(&mut theirs, 0.99));
