@@ -35,10 +35,16 @@ use crate::solid::obb::PosedObb;
 
 /// Body vertices posed on demand, each once per query: `pts[v]` is
 /// current when `stamp[v] == epoch`.
+///
+/// This buffer and [`LazyTriangles`]' are allocated zeroed (`vec![0; n]`
+/// of plain numbers asks the allocator for zeroed memory, which a large
+/// buffer gets as untouched pages) rather than filled: a query touches a
+/// few of a large body's entries, and filling them all made a checker's
+/// first query on a 45,000-triangle body take 6.6 ms, in page faults.
 #[derive(Default)]
 pub(super) struct Lazy {
-    pub(super) pts: Vec<DVec3>,
-    pub(super) stamp: Vec<u32>,
+    pts: Vec<[f64; 3]>,
+    stamp: Vec<u32>,
     pub(super) epoch: u32,
 }
 
@@ -47,9 +53,10 @@ impl Lazy {
     pub(super) fn start(&mut self, n: usize) {
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == 0 || self.stamp.len() != n {
-            self.stamp.clear();
-            self.stamp.resize(n, 0);
-            self.pts.resize(n, DVec3::ZERO);
+            self.stamp = vec![0; n];
+            if self.pts.len() != n {
+                self.pts = vec![[0.0; 3]; n];
+            }
             self.epoch = 1;
         }
     }
@@ -60,9 +67,9 @@ impl Lazy {
         let v = v as usize;
         if self.stamp[v] != self.epoch {
             self.stamp[v] = self.epoch;
-            self.pts[v] = pose.apply(vertices[v]);
+            self.pts[v] = pose.apply(vertices[v]).to_array();
         }
-        self.pts[v]
+        DVec3::from(self.pts[v])
     }
 }
 
@@ -72,7 +79,9 @@ impl Lazy {
 #[derive(Default)]
 pub(super) struct LazyTriangles {
     stamp: Vec<u32>,
-    corners: Vec<([DVec3; 3], Aabb)>,
+    /// The three corners, then the box's `lo` and `hi` (allocated zeroed,
+    /// see [`Lazy`]).
+    corners: Vec<[f64; 15]>,
 }
 
 impl LazyTriangles {
@@ -94,14 +103,31 @@ impl LazyTriangles {
     ) -> ([DVec3; 3], Aabb) {
         if self.stamp.len() != body.triangles.len() {
             self.stamp = vec![0; body.triangles.len()];
-            self.corners = vec![([DVec3::ZERO; 3], Aabb::EMPTY); body.triangles.len()];
+            self.corners = vec![[0.0; 15]; body.triangles.len()];
         }
+        let c = &mut self.corners[i];
         if self.stamp[i] != at.epoch {
             let t = body.triangles[i].map(|v| at.get(&body.vertices, pose, v));
-            self.corners[i] = (t, Aabb::of(t.map(|p| p.to_array())));
+            let b = Aabb::of(t.map(|p| p.to_array()));
+            for (k, x) in t
+                .iter()
+                .flat_map(|p| p.to_array())
+                .chain(b.lo)
+                .chain(b.hi)
+                .enumerate()
+            {
+                c[k] = x;
+            }
             self.stamp[i] = at.epoch;
         }
-        self.corners[i]
+        let p = |k: usize| DVec3::new(c[k], c[k + 1], c[k + 2]);
+        (
+            [p(0), p(3), p(6)],
+            Aabb {
+                lo: [c[9], c[10], c[11]],
+                hi: [c[12], c[13], c[14]],
+            },
+        )
     }
 }
 
