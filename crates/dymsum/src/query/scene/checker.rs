@@ -131,24 +131,83 @@ impl LazyTriangles {
     }
 }
 
-/// Node bounds computed on demand, each once per query (stamped with the
-/// query's epoch).
-type NodeCache<T = Aabb> = Vec<std::cell::Cell<(u32, T)>>;
+/// Node bounds computed on demand, each once per query: slot `n` holds the
+/// query's epoch (exact in an `f64`; `0` is no query's) and the value, as
+/// plain numbers, so that a cache is allocated zeroed (see [`Lazy`]). A
+/// query views it as cells ([`cells`]) to fill it from `Fn` closures.
+pub(super) type NodeCache<T = Aabb> = Vec<<T as Slot>::Raw>;
+
+/// A value kept in a [`NodeCache`] slot: its stamp and numbers.
+pub(super) trait Slot: Copy {
+    /// The slot: the stamp, then the value's numbers.
+    type Raw: Copy;
+    /// `stamp` and `self` as a slot.
+    fn pack(self, stamp: u32) -> Self::Raw;
+    /// A slot's stamp and value.
+    fn unpack(raw: Self::Raw) -> (u32, Self);
+}
+
+impl Slot for Aabb {
+    type Raw = [f64; 7];
+    #[inline]
+    fn pack(self, stamp: u32) -> [f64; 7] {
+        let [a, b, c] = self.lo;
+        let [d, e, f] = self.hi;
+        [f64::from(stamp), a, b, c, d, e, f]
+    }
+    #[inline]
+    fn unpack(r: [f64; 7]) -> (u32, Aabb) {
+        let b = Aabb {
+            lo: [r[1], r[2], r[3]],
+            hi: [r[4], r[5], r[6]],
+        };
+        (r[0] as u32, b)
+    }
+}
+
+impl Slot for PosedObb {
+    type Raw = [f64; 13];
+    #[inline]
+    fn pack(self, stamp: u32) -> [f64; 13] {
+        let mut r = [0.0; 13];
+        r[0] = f64::from(stamp);
+        for (k, v) in [self.c, self.f[0], self.f[1], self.f[2]].iter().enumerate() {
+            r[1 + 3 * k..4 + 3 * k].copy_from_slice(&v.to_array());
+        }
+        r
+    }
+    #[inline]
+    fn unpack(r: [f64; 13]) -> (u32, PosedObb) {
+        let v = |k: usize| DVec3::new(r[1 + 3 * k], r[2 + 3 * k], r[3 + 3 * k]);
+        (
+            r[0] as u32,
+            PosedObb {
+                c: v(0),
+                f: [v(1), v(2), v(3)],
+            },
+        )
+    }
+}
+
+/// A cache's slots as cells, for one query.
+pub(super) fn cells<R>(cache: &mut [R]) -> &[std::cell::Cell<R>] {
+    std::cell::Cell::from_mut(&mut cache[..]).as_slice_of_cells()
+}
 
 /// The value of node `n` from the cache, or computed and kept.
 #[inline]
-pub(super) fn cached<T: Copy>(
-    cache: &NodeCache<T>,
+pub(super) fn cached<T: Slot>(
+    cache: &[std::cell::Cell<T::Raw>],
     epoch: u32,
     n: usize,
     compute: impl Fn() -> T,
 ) -> T {
-    let (stamp, b) = cache[n].get();
+    let (stamp, b) = T::unpack(cache[n].get());
     if stamp == epoch {
         return b;
     }
     let b = compute();
-    cache[n].set((epoch, b));
+    cache[n].set(b.pack(epoch));
     b
 }
 
@@ -369,14 +428,14 @@ impl SceneChecker {
     pub(super) fn fit_node_cache(&self, s: &mut Scratch) {
         let n = self.body.tree().bounds().len();
         if s.node_cache.len() != n || s.at.epoch == 1 {
-            s.node_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); n];
+            s.node_cache = vec![[0.0; 7]; n];
         }
         if s.obb_cache.len() != n || s.at.epoch == 1 {
-            s.obb_cache = vec![std::cell::Cell::new((0, PosedObb::default())); n];
+            s.obb_cache = vec![[0.0; 13]; n];
         }
         let k = self.scene.tree().bounds().len();
         if s.scene_cache.len() != k || s.at.epoch == 1 {
-            s.scene_cache = vec![std::cell::Cell::new((0, Aabb::EMPTY)); k];
+            s.scene_cache = vec![[0.0; 7]; k];
         }
         if s.at.epoch == 1 {
             // The epoch wrapped (or this is the first query): stamps from

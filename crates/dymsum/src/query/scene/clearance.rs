@@ -1,7 +1,7 @@
 //! The clearance of a [`SceneChecker`]'s body at a pose: a certified lower
 //! bound within rounding of the distance (best-first over both trees).
 
-use super::checker::{cached, SceneChecker, Scratch};
+use super::checker::{cached, cells, SceneChecker, Scratch};
 
 use super::gap::distance_lower_bound_beyond;
 use crate::kernel::rotation::Pose;
@@ -35,7 +35,8 @@ impl SceneChecker {
         self.fit_node_cache(s);
         let (m, t, pad) = (pose.rotation.matrix(), pose.translation, self.pad(&pose));
         let bounds = self.body.tree().bounds();
-        let cache = std::mem::take(&mut s.node_cache);
+        let mut cache = std::mem::take(&mut s.node_cache);
+        let cache_cells = cells(&mut cache);
         let epoch = s.at.epoch;
         let mut near = std::mem::take(&mut s.near);
         // Each body triangle posed once (corners and exact box): the exact
@@ -51,18 +52,19 @@ impl SceneChecker {
         // slanted node's axis-aligned box is mostly empty, and its
         // distance bounds little.
         let oriented = pose_skew(&m).is_some();
-        let obb_cache = std::mem::take(&mut s.obb_cache);
+        let mut obb_cache = std::mem::take(&mut s.obb_cache);
+        let obb_cache_cells = cells(&mut obb_cache);
         let (body_obbs, scene_obbs) = (self.body.obbs(), self.scene.obbs());
         let obb_gap = |n: usize, k: usize| {
             if !oriented {
                 return 0.0;
             }
             let a = &body_obbs[n];
-            let posed = cached(&obb_cache, epoch, n, || a.posed(&m, t));
+            let posed = cached(obb_cache_cells, epoch, n, || a.posed(&m, t));
             scene_obbs[k].gap(&posed, a.h, a.fuzz, pad)
         };
         let best = self.body.tree().nearest_pair(
-            |n| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad)),
+            |n| cached(cache_cells, epoch, n, || bounds[n].transformed(&m, t, pad)),
             |i| posed(i).1,
             obb_gap,
             self.scene.tree(),

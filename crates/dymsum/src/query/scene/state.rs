@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::checker::{cached, SceneChecker, Scratch};
+use super::checker::{cached, cells, SceneChecker, Scratch};
 
 use super::inside::inside_solid;
 use crate::kernel::rotation::Pose;
@@ -73,9 +73,10 @@ impl SceneChecker {
         let back_pad = back_pad + 16.0 * f64::EPSILON * (2.0 * mag + t.abs().max_element());
         let back = |o: &Aabb| o.transformed(&mi, ti, back_pad);
         let bounds = self.body.tree().bounds();
-        let cache = std::mem::take(&mut s.node_cache);
+        let mut cache = std::mem::take(&mut s.node_cache);
+        let cache_cells = cells(&mut cache);
         let epoch = s.at.epoch;
-        let world = |n: usize| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad));
+        let world = |n: usize| cached(cache_cells, epoch, n, || bounds[n].transformed(&m, t, pad));
         let scene = self.scene.tree();
         let mut stack = std::mem::take(&mut s.stack);
         // The body's triangles at the pose, each corner posed once per
@@ -88,16 +89,18 @@ impl SceneChecker {
             let (at, tris) = &mut *lazy.borrow_mut();
             tris.get(at, &self.body, &pose, i)
         };
-        let scene_cache = std::mem::take(&mut s.scene_cache);
-        let back_node = |k: usize, o: &Aabb| cached(&scene_cache, epoch, k, || back(o));
+        let mut scene_cache = std::mem::take(&mut s.scene_cache);
+        let scene_cache_cells = cells(&mut scene_cache);
+        let back_node = |k: usize, o: &Aabb| cached(scene_cache_cells, epoch, k, || back(o));
         // Then the oriented boxes (`solid::obb`: certified), when the
         // pose's matrix is close enough to a rotation for their test.
         let oriented = pose_skew(&m).is_some();
-        let obb_cache = std::mem::take(&mut s.obb_cache);
+        let mut obb_cache = std::mem::take(&mut s.obb_cache);
+        let obb_cache_cells = cells(&mut obb_cache);
         let (body_obbs, scene_obbs) = (self.body.obbs(), self.scene.obbs());
         let obb_apart = |n: usize, k: usize| {
             let a = &body_obbs[n];
-            let posed = cached(&obb_cache, epoch, n, || a.posed(&m, t));
+            let posed = cached(obb_cache_cells, epoch, n, || a.posed(&m, t));
             scene_obbs[k].apart(&posed, a.h, a.fuzz, pad)
         };
         let hit = self.body.tree().for_each_pair(
@@ -183,11 +186,13 @@ impl SceneChecker {
         // points), its triangles' boxes exact from their posed corners.
         let (t, pad) = (pose.translation, self.pad(&pose));
         let bounds = self.body.tree().bounds();
-        let cache = std::mem::take(&mut s.node_cache);
+        let mut cache = std::mem::take(&mut s.node_cache);
+        let cache_cells = cells(&mut cache);
         let epoch = s.at.epoch;
         let at = std::cell::RefCell::new(&mut s.at);
         let vertex = |v: u32| at.borrow_mut().get(&self.body.vertices, &pose, v);
-        let node_box = |n: usize| cached(&cache, epoch, n, || bounds[n].transformed(&m, t, pad));
+        let node_box =
+            |n: usize| cached(cache_cells, epoch, n, || bounds[n].transformed(&m, t, pad));
         let item_box = |i: usize| Aabb::of(self.body.triangles[i].map(|v| vertex(v).to_array()));
         let component_box = |c: usize| self.body.component_boxes[c].transformed(&m, t, pad);
         // A scene corner carried back into the body's frame, known there

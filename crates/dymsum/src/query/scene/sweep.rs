@@ -82,7 +82,7 @@
 //! the norms lacked an absolute term for subnormal products and dropped
 //! NaN (both harmless where used, mended in `query::rounding`).
 
-use super::checker::{cached, shifted, Lazy, SceneChecker, Scratch};
+use super::checker::{cached, cells, shifted, Lazy, SceneChecker, Scratch};
 use std::sync::atomic::Ordering;
 
 use glam::DVec3;
@@ -150,7 +150,7 @@ impl SceneChecker {
         self.fit_node_cache(s);
         let triangles = self.body.triangles.len();
         if s.swept_boxes.len() != triangles {
-            s.swept_boxes = vec![std::cell::Cell::new((0, Aabb::EMPTY)); triangles];
+            s.swept_boxes = vec![[0.0; 7]; triangles];
         }
         let scene = self.scene.tree();
         let hull_box = |hull: &[DVec3; 12]| Aabb::of(hull.map(|p| p.to_array()));
@@ -175,8 +175,10 @@ impl SceneChecker {
                 .join(&shifted(&z, -shift))
         };
         let bounds = self.body.tree().bounds();
-        let cache = std::mem::take(&mut s.node_cache);
-        let swept_boxes = std::mem::take(&mut s.swept_boxes);
+        let mut cache = std::mem::take(&mut s.node_cache);
+        let cache_cells = cells(&mut cache);
+        let mut swept_boxes = std::mem::take(&mut s.swept_boxes);
+        let swept_boxes_cells = cells(&mut swept_boxes);
         let epoch = s.at.epoch;
         let mut stack = std::mem::take(&mut s.stack);
         let lazy = std::cell::RefCell::new((&mut s.at, &mut s.at_b));
@@ -186,7 +188,7 @@ impl SceneChecker {
         };
         // A triangle's box: the exact box of its swept hull's points, as
         // computed (what `apart_by_more_than` certifies; module docs).
-        let own_box = |i: usize| cached(&swept_boxes, epoch, i, || hull_box(&hull_of(i)));
+        let own_box = |i: usize| cached(swept_boxes_cells, epoch, i, || hull_box(&hull_of(i)));
         let mut blocker = None;
         // The walk meets each body triangle's pairs one after another: its
         // hull is kept for the next pair.
@@ -199,11 +201,12 @@ impl SceneChecker {
         // never underflowing (squares of coordinates below 1e-154 would).
         let shift_len = shift.abs().element_sum() * (1.0 + 1e-12);
         let oriented = pose_skew(&ma).is_some();
-        let obb_cache = std::mem::take(&mut s.obb_cache);
+        let mut obb_cache = std::mem::take(&mut s.obb_cache);
+        let obb_cache_cells = cells(&mut obb_cache);
         let (body_obbs, scene_obbs) = (self.body.obbs(), self.scene.obbs());
         let obb_apart = |k: usize, j: usize| {
             let a = &body_obbs[k];
-            let posed = cached(&obb_cache, epoch, k, || a.posed(&ma, ta));
+            let posed = cached(obb_cache_cells, epoch, k, || a.posed(&ma, ta));
             let radius = (norm_up(a.c) + norm_up(a.h) + a.fuzz) * (1.0 + 1e-11);
             let swept_reach = turn * radius
                 + 2.0 * shift_len
@@ -214,7 +217,7 @@ impl SceneChecker {
         };
         let blocked = self.body.tree().for_each_pair(
             |k, j, o| {
-                cached(&cache, epoch, k, || swept(&bounds[k])).within(o, reach)
+                cached(cache_cells, epoch, k, || swept(&bounds[k])).within(o, reach)
                     && !(oriented && obb_apart(k, j))
             },
             |k| bounds[k].size(),
