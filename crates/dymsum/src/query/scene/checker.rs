@@ -191,7 +191,7 @@ impl Slot for PosedObb {
 
 /// A cache's slots as cells, for one query.
 pub(super) fn cells<R>(cache: &mut [R]) -> &[std::cell::Cell<R>] {
-    std::cell::Cell::from_mut(&mut cache[..]).as_slice_of_cells()
+    std::cell::Cell::from_mut(cache).as_slice_of_cells()
 }
 
 /// The value of node `n` from the cache, or computed and kept.
