@@ -103,7 +103,9 @@ use crate::query::error::{MotionError, QueryError};
 use crate::query::interval_search::{first_contact, Stop, Sweep, SweepMargin, DEFAULT_BUDGET};
 use crate::query::pair::ConvexPair;
 use crate::query::pair::QueryStats;
-use crate::query::proximity::support::{climb, dot_error, near_max, Marks, NearestAxes};
+use crate::query::proximity::support::{
+    climb, climb_unposed, dot_error, near_max, Marks, NearestAxes,
+};
 use glam::DQuat;
 use glam::DVec3;
 
@@ -710,6 +712,7 @@ impl PieceSearch<'_> {
     fn separating_direction(&self, pa: Pose, pb: Pose) -> Option<(DVec3, f64, [u32; 3])> {
         let (body, obstacle) = (self.body, self.obstacle);
         let (ra, rb) = (pa.rotation.matrix(), pb.rotation.matrix());
+        let (to_a, to_b) = (ra.transpose(), rb.transpose());
         // About the obstacle's centre: the differences stay accurate when
         // both are far from the origin.
         let c = self.obstacle_ball.0;
@@ -717,8 +720,8 @@ impl PieceSearch<'_> {
         let (mut wa, mut wb, mut wo) = (0u32, 0u32, 0u32);
         // The point of the swept hull ⊖ obstacle minimising d · x.
         let mut support = |d: DVec3| -> DVec3 {
-            let (u, _) = climb(body, |v| body.vertex(v as usize), ra.transpose() * -d, wa);
-            let (w, _) = climb(body, |v| body.vertex(v as usize), rb.transpose() * -d, wb);
+            let u = climb_unposed(body, &to_a, -d, wa);
+            let w = climb_unposed(body, &to_b, -d, wb);
             let (o, _) = climb(obstacle, |v| obstacle.vertex(v as usize), d, wo);
             (wa, wb, wo) = (u, w, o);
             let (ha, hb) = (ra * body.vertex(u as usize), rb * body.vertex(w as usize));
