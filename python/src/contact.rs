@@ -245,7 +245,9 @@ impl PyContactTracker {
     /// How the pair's queries were answered: a dict with ``queries``,
     /// ``exhaustive_decisions`` and ``exhaustive_answers`` (the answers a
     /// certificate could not settle, found by the exhaustive exact method
-    /// instead).
+    /// instead), ``carried_polytopes`` (penetrations grown from the last
+    /// frame's EPA polytope) and ``carried_restarts`` (of those, the ones
+    /// that grew a fresh polytope instead).
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         stats_dict(py, self.inner.stats())
@@ -270,6 +272,8 @@ pub(crate) fn stats_dict<'py>(
     d.set_item("queries", s.queries)?;
     d.set_item("exhaustive_decisions", s.exhaustive_decisions)?;
     d.set_item("exhaustive_answers", s.exhaustive_answers)?;
+    d.set_item("carried_polytopes", s.carried_polytopes)?;
+    d.set_item("carried_restarts", s.carried_restarts)?;
     Ok(d)
 }
 

@@ -2,8 +2,10 @@
 //! `valgrind --tool=callgrind target/release/examples/tracker_probe A B [FRAMES]`
 //! runs `ContactTracker::update` along `tracker_timing`'s motion (500 steps
 //! per turn) and, with `PARRY=1`, parry's `contact` on the same frames
-//! instead.
-use dymsum::query::ConvexPair;
+//! instead; `STRATEGY=certified|sum` fixes the tracker's strategy (else
+//! `Auto`, which times both on its first frames: under a profiler its
+//! choice can differ from a native run's).
+use dymsum::query::{ContactTracker, ConvexPair, TrackerStrategy};
 use dymsum_bench::contact::{contact_motion, parry_pose, parry_shape};
 use dymsum_bench::load;
 
@@ -21,10 +23,17 @@ fn main() {
         }
     } else {
         let pair = ConvexPair::new(&a, &b).unwrap();
-        let mut tracker = pair.tracker(poses[0].0, poses[0].1).unwrap();
+        let strategy = match std::env::var("STRATEGY").as_deref() {
+            Ok("certified") => TrackerStrategy::Certified,
+            Ok("sum") => TrackerStrategy::DynamicSum,
+            _ => TrackerStrategy::Auto,
+        };
+        let mut tracker =
+            ContactTracker::with_strategy(&pair, poses[0].0, poses[0].1, strategy).unwrap();
         for &(pa, pb) in &poses {
             hits += usize::from(tracker.update(pa, pb).unwrap().intersects());
         }
+        eprintln!("{:?}", pair.stats());
     }
     eprintln!("{hits} of {frames} frames in contact");
 }

@@ -285,7 +285,7 @@ class ContactTracker:
     def active_strategy(self) -> str: ...
     @property
     def stats(self) -> dict[str, int]:
-        """queries, exhaustive_decisions, exhaustive_answers."""
+        """queries, exhaustive_decisions, exhaustive_answers, carried_polytopes, carried_restarts."""
 
 @final
 class Contacts:

@@ -413,6 +413,8 @@ impl MotionChecker {
                 queries: s.queries + p.queries,
                 exhaustive_decisions: s.exhaustive_decisions + p.exhaustive_decisions,
                 exhaustive_answers: s.exhaustive_answers + p.exhaustive_answers,
+                carried_polytopes: s.carried_polytopes + p.carried_polytopes,
+                carried_restarts: s.carried_restarts + p.carried_restarts,
             })
     }
 

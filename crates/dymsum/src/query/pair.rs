@@ -54,6 +54,12 @@ pub struct QueryStats {
     /// Depths or distances the local certificates could not settle,
     /// answered from the whole sum instead.
     pub exhaustive_answers: u64,
+    /// Penetrations whose EPA polytope was the last frame's, re-posed (a
+    /// tracker's frames in contact).
+    pub carried_polytopes: u64,
+    /// Of those, how many could not use it (a face turned, too many faces,
+    /// or its certificate failed) and grew a fresh one from GJK's simplex.
+    pub carried_restarts: u64,
 }
 
 /// The counters behind [`QueryStats`].
@@ -62,6 +68,8 @@ pub(in crate::query) struct Counters {
     pub(in crate::query) queries: std::sync::atomic::AtomicU64,
     pub(in crate::query) exhaustive_decisions: std::sync::atomic::AtomicU64,
     pub(in crate::query) exhaustive_answers: std::sync::atomic::AtomicU64,
+    pub(in crate::query) carried_polytopes: std::sync::atomic::AtomicU64,
+    pub(in crate::query) carried_restarts: std::sync::atomic::AtomicU64,
 }
 
 impl Counters {
@@ -77,12 +85,20 @@ impl Counters {
     pub(in crate::query) fn count_exhaustive_answer(&self) {
         Self::bump(&self.exhaustive_answers);
     }
+    pub(in crate::query) fn count_carried_polytope(&self, restarted: bool) {
+        Self::bump(&self.carried_polytopes);
+        if restarted {
+            Self::bump(&self.carried_restarts);
+        }
+    }
     pub(in crate::query) fn snapshot(&self) -> QueryStats {
         let get = |c: &std::sync::atomic::AtomicU64| c.load(std::sync::atomic::Ordering::Relaxed);
         QueryStats {
             queries: get(&self.queries),
             exhaustive_decisions: get(&self.exhaustive_decisions),
             exhaustive_answers: get(&self.exhaustive_answers),
+            carried_polytopes: get(&self.carried_polytopes),
+            carried_restarts: get(&self.carried_restarts),
         }
     }
 }

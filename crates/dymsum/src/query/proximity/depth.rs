@@ -23,16 +23,38 @@ use crate::query::proximity::scratch::Scratch;
 
 /// The certified penetration (frame units) from GJK's enclosing
 /// tetrahedron: EPA's polytope, its caps, and the check of the bound the
-/// caps assumed; `None` when a certificate cannot be made.
+/// caps assumed; `None` when a certificate cannot be made. With `carried`
+/// (the scratch's EPA polytope is the last query's, of this pair: a
+/// tracker's last frame) that polytope is re-posed and grown first
+/// ([`crate::query::proximity::epa::Epa::regrow`]); where that fails, from
+/// GJK's simplex as without.
 pub(in crate::query) fn penetration(
     pair: &ConvexPair,
     scratch: &mut Scratch,
     g: &Gjk,
+    carried: bool,
+) -> Option<Proximity> {
+    if carried {
+        let answer = penetration_from(pair, scratch, g, true);
+        pair.stats.count_carried_polytope(answer.is_none());
+        if answer.is_some() {
+            return answer;
+        }
+    }
+    penetration_from(pair, scratch, g, false)
+}
+
+/// [`penetration`] from the carried polytope or from GJK's simplex.
+fn penetration_from(
+    pair: &ConvexPair,
+    scratch: &mut Scratch,
+    g: &Gjk,
+    carried: bool,
 ) -> Option<Proximity> {
     let posed = &scratch.posed;
     let (tol, slack) = (posed.tol, value_slack(posed));
     let local = &mut scratch.local;
-    if !grow_polytope(pair, posed, g, scratch.normal, local) {
+    if !grow_polytope(pair, posed, g, scratch.normal, carried, local) {
         return None;
     }
     let mut c = polytope_depth(local) + 4.0 * (tol + slack);
@@ -54,6 +76,7 @@ pub(in crate::query) fn penetration(
             if let Proximity::Penetrating(contact) = &answer {
                 scratch.normal = Some(contact.normal);
             }
+            scratch.epa_carried = true;
             return Some(answer);
         }
         c = need * (1.0 + 1e-12);

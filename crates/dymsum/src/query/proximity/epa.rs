@@ -31,6 +31,22 @@ use glam::DVec3;
 /// The most expansion steps.
 pub(in crate::query) const MAX_STEPS: usize = 256;
 
+/// The most expansion steps from a carried polytope ([`Epa::regrow`]):
+/// under coherent motion it needs a few; more means the motion jumped, and
+/// a fresh start is cheaper.
+pub(in crate::query) const MAX_CARRIED_STEPS: usize = 12;
+
+/// How an expansion ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Grown {
+    /// The support plane of the nearest face is within the tie tolerance.
+    Converged,
+    /// The step budget ran out first (`K` is usable, coarser).
+    OutOfSteps,
+    /// A step broke the surface: `K` must not be used.
+    Broken,
+}
+
 /// A triangle of `K`, counter-clockwise seen from outside.
 #[derive(Clone, Copy, Debug)]
 pub(in crate::query) struct Tri {
@@ -62,7 +78,20 @@ pub(in crate::query) struct Epa {
     horizon: Vec<(u32, u8)>,
     /// Depth-first stack of one step.
     stack: Vec<(u32, u8, u8)>,
+    /// [`Epa::regrow`]'s buffers: the last query's points and faces, and
+    /// their new indices.
+    old_pts: Vec<Point>,
+    old_tris: Vec<Tri>,
+    remap: Vec<u32>,
+    /// The live faces of the last polytope grown from a fresh start.
+    fresh_faces: usize,
 }
+
+/// A carried `K` may have up to this many times the faces of the last
+/// fresh one ([`Epa::regrow`]): re-posing costs per face, and a polytope
+/// that kept growing frame after frame costs more to carry than a fresh
+/// start (a dozen expansions) does.
+const CARRIED_GROWTH: usize = 2;
 
 impl Epa {
     /// Grows `K` from a tetrahedron of `D'` points enclosing the origin.
@@ -108,13 +137,93 @@ impl Epa {
                 self.tris[i].adj[k] = j as u32;
             }
         }
-        self.grow(pair, posed, hint)
+        self.grow_fresh(pair, posed, hint)
+    }
+
+    /// Re-poses the last query's `K` at this query's poses and grows it
+    /// from there: a tracker's frames move the bodies a little, so the
+    /// last frame's polytope is nearly converged at the next one, where a
+    /// fresh start takes a dozen expansions. Its live faces are kept with
+    /// their adjacency, and their corners (pairs of vertex indices of A
+    /// and B, so still points of `D'`) are posed anew.
+    ///
+    /// Nothing here needs the re-posed surface to be convex: the
+    /// certificate asks only for a closed surface (every edge in two
+    /// faces, in opposite directions, which re-posing keeps) whose
+    /// vertices are points of `D'` and whose every face has the origin
+    /// strictly inside, checked exactly afterwards
+    /// ([`Epa::encloses_origin`]). A step on a slightly non-convex surface
+    /// whose horizon is not one loop fails as it would on a fresh one.
+    /// `false` when `K` is empty or has more than `CARRIED_GROWTH` times
+    /// the faces of the last fresh one, a face turned degenerate, a step broke the surface, or
+    /// [`MAX_CARRIED_STEPS`] steps did not reach the support plane (the
+    /// motion jumped): the caller then starts afresh.
+    pub(in crate::query) fn regrow(&mut self, pair: &ConvexPair, posed: &Posed) -> bool {
+        let live = self.live_faces();
+        if live < 4 || live > CARRIED_GROWTH * self.fresh_faces {
+            return false;
+        }
+        std::mem::swap(&mut self.pts, &mut self.old_pts);
+        std::mem::swap(&mut self.tris, &mut self.old_tris);
+        self.pts.clear();
+        self.tris.clear();
+        // New indices: the live faces' in order (the map's first block),
+        // then their corners' in order of first use (the second block).
+        let n_old_tris = self.old_tris.len();
+        self.remap.clear();
+        self.remap.resize(n_old_tris + self.old_pts.len(), u32::MAX);
+        let mut next = 0u32;
+        for (i, t) in self.old_tris.iter().enumerate() {
+            if t.alive {
+                self.remap[i] = next;
+                next += 1;
+            }
+        }
+        for i in 0..n_old_tris {
+            let t = self.old_tris[i];
+            if !t.alive {
+                continue;
+            }
+            let mut v = [0u32; 3];
+            for (k, &c) in t.v.iter().enumerate() {
+                let slot = n_old_tris + c as usize;
+                if self.remap[slot] == u32::MAX {
+                    self.remap[slot] = self.pts.len() as u32;
+                    let p = self.old_pts[c as usize];
+                    self.pts.push(Point {
+                        w: posed.a(p.a) - posed.b(p.b),
+                        a: p.a,
+                        b: p.b,
+                    });
+                }
+                v[k] = self.remap[slot];
+            }
+            if !self.add_tri(v) {
+                return false;
+            }
+            let adj = t.adj.map(|j| self.remap[j as usize]);
+            if adj.contains(&u32::MAX) {
+                return false;
+            }
+            let last = self.tris.len() - 1;
+            self.tris[last].adj = adj;
+        }
+        // Within a small budget, else the motion jumped: start afresh.
+        let grown = self.grow(pair, posed, None, MAX_CARRIED_STEPS) == Grown::Converged;
+        debug_assert!(!grown || self.sanity_check().is_ok());
+        grown
     }
 
     /// Expands `K` (towards `hint` first), then its nearest face until the
-    /// support plane is reached (within the tie tolerance) or the budget
-    /// ends; `false` when a step broke the surface.
-    fn grow(&mut self, pair: &ConvexPair, posed: &Posed, hint: Option<DVec3>) -> bool {
+    /// support plane is reached (within the tie tolerance) or `budget`
+    /// steps are spent.
+    fn grow(
+        &mut self,
+        pair: &ConvexPair,
+        posed: &Posed,
+        hint: Option<DVec3>,
+        budget: usize,
+    ) -> Grown {
         let tol = posed.tol;
         let to_a = posed.pose_a.rotation.matrix().transpose();
         let to_b = posed.pose_b.rotation.matrix().transpose();
@@ -132,12 +241,12 @@ impl Epa {
             let tri = self.tris[f];
             let known = self.pts.iter().any(|p| p.a == a && p.b == b);
             if !known && tri.n.dot(w) - tri.d > tol && !self.expand(f, Point { w, a, b }) {
-                return false;
+                return Grown::Broken;
             }
         }
-        for _ in 0..MAX_STEPS {
+        for _ in 0..budget {
             let Some(f) = self.nearest() else {
-                return true;
+                return Grown::Converged;
             };
             let tri = self.tris[f];
             let start = self.pts[tri.v[0] as usize];
@@ -149,13 +258,26 @@ impl Epa {
                 p.a == a && p.b == b
             }) || tri.n.dot(w) - tri.d <= tol
             {
-                return true;
+                return Grown::Converged;
             }
             if !self.expand(f, Point { w, a, b }) {
-                return false;
+                return Grown::Broken;
             }
         }
-        true
+        Grown::OutOfSteps
+    }
+
+    /// [`Epa::grow`] from a fresh start, keeping its size for
+    /// [`Epa::regrow`]; `false` when a step broke the surface.
+    fn grow_fresh(&mut self, pair: &ConvexPair, posed: &Posed, hint: Option<DVec3>) -> bool {
+        let grown = self.grow(pair, posed, hint, MAX_STEPS) != Grown::Broken;
+        self.fresh_faces = self.live_faces();
+        grown
+    }
+
+    /// How many faces `K` has.
+    fn live_faces(&self) -> usize {
+        self.tris.iter().filter(|t| t.alive).count()
     }
 
     /// The live face nearest the origin.
@@ -207,7 +329,7 @@ impl Epa {
                 self.tris[i].adj[k] = j as u32;
             }
         }
-        self.grow(pair, posed, hint)
+        self.grow_fresh(pair, posed, hint)
     }
 
     /// Adds the triangle `v` (outward normal from its corners); `false`
@@ -325,6 +447,33 @@ impl Epa {
     }
 }
 
+impl Epa {
+    /// The structure's invariants: every live face has three distinct
+    /// corners among the points, and across each of its edges a live face
+    /// holding the same edge in the opposite direction (so the live faces
+    /// close up). A description of the first broken one, if any.
+    pub(in crate::query) fn sanity_check(&self) -> Result<(), String> {
+        for (i, t) in self.tris.iter().enumerate().filter(|(_, t)| t.alive) {
+            let [a, b, c] = t.v;
+            if a == b || b == c || a == c || t.v.iter().any(|&v| v as usize >= self.pts.len()) {
+                return Err(format!("face {i} has corners {:?}", t.v));
+            }
+            for k in 0..3u8 {
+                let j = t.adj[k as usize] as usize;
+                if !self.tris.get(j).is_some_and(|n| n.alive) {
+                    return Err(format!("face {i} edge {k}: no live face across ({j})"));
+                }
+                if back_edge(self, i, k).is_none() {
+                    return Err(format!(
+                        "face {i} edge {k}: face {j} lacks the reverse edge"
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The index, in the triangle across edge `k` of triangle `t`, of the same
 /// edge (`None` if the adjacency is inconsistent).
 fn back_edge(epa: &Epa, t: usize, k: u8) -> Option<u8> {
@@ -332,4 +481,87 @@ fn back_edge(epa: &Epa, t: usize, k: u8) -> Option<u8> {
     let (p, q) = (tri.v[k as usize], tri.v[(k as usize + 1) % 3]);
     let n = epa.tris.get(tri.adj[k as usize] as usize)?;
     (0..3u8).find(|&m| n.v[m as usize] == q && n.v[(m as usize + 1) % 3] == p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::rotation::{Pose, Rotation};
+    use crate::query::proximity::gjk::{gjk, Simplex};
+    use crate::query::proximity::scratch::Scratch;
+    use crate::query::test_support::{boxes_and_hulls, Lcg};
+
+    /// The last frame's polytope re-posed ([`Epa::regrow`]) along motions
+    /// through deep contact (boxes turning by exact quarter turns among
+    /// them): it stays a closed surface, its points are its vertex pairs
+    /// posed at the new frame, and its nearest face lies within the tie
+    /// tolerance of a fresh polytope's (both are grown until the support
+    /// plane is within it of the depth).
+    #[test]
+    fn a_carried_polytope_stays_closed_and_is_posed_anew() {
+        let mut r = Lcg(11);
+        let shapes = boxes_and_hulls(&mut r, &[8, 30]);
+        let (mut regrown, mut compared) = (0, 0);
+        for a in &shapes {
+            for b in &shapes {
+                let pair = ConvexPair::new(a, b).unwrap();
+                let axis = r.unit();
+                let mut scratch = Scratch::default();
+                let mut carried = false;
+                for k in 0..48 {
+                    // Coherent steps, and a jump of an exact quarter
+                    // turn every twelve frames.
+                    let turn = std::f64::consts::FRAC_PI_2 * (k / 12) as f64 + 0.02 * k as f64;
+                    let pa = Pose::new(Rotation::from_axis_angle(axis, turn).unwrap(), DVec3::ZERO);
+                    let pb = Pose::new(
+                        Rotation::IDENTITY,
+                        DVec3::new(0.3 * (0.2 * k as f64).sin(), 0.1, 0.0),
+                    );
+                    scratch.posed.reset(&pair, pa, pb).unwrap();
+                    let posed = &scratch.posed;
+                    let g = gjk(
+                        &pair,
+                        posed,
+                        (0, 0),
+                        DVec3::ZERO,
+                        &Simplex::default(),
+                        false,
+                    );
+                    if !(g.enclosed && g.simplex.len == 4) {
+                        carried = false;
+                        continue;
+                    }
+                    let epa = &mut scratch.local.epa;
+                    if carried && epa.regrow(&pair, posed) {
+                        regrown += 1;
+                        epa.sanity_check().unwrap();
+                        for p in &epa.pts {
+                            assert_eq!(p.w, posed.a(p.a) - posed.b(p.b), "frame {k}");
+                        }
+                        let mut fresh = Epa::default();
+                        if fresh.run(&pair, posed, g.simplex.pts, None)
+                            && fresh.encloses_origin()
+                            && epa.encloses_origin()
+                        {
+                            compared += 1;
+                            let d = |e: &Epa| e.tris[e.nearest().unwrap()].d;
+                            assert!(
+                                (d(epa) - d(&fresh)).abs() <= 4.0 * posed.tol,
+                                "frame {k}: {} against {}",
+                                d(epa),
+                                d(&fresh)
+                            );
+                        }
+                    }
+                    let epa = &mut scratch.local.epa;
+                    carried = epa.run(&pair, posed, g.simplex.pts, None);
+                    epa.sanity_check().unwrap();
+                }
+            }
+        }
+        assert!(
+            regrown >= 100 && compared >= 100,
+            "{regrown} regrown, {compared} compared"
+        );
+    }
 }

@@ -149,6 +149,7 @@ use Certified::{Answer, Uncertified};
 /// near the answer by the certificates of
 /// [`crate::query::proximity::certificate`].
 fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Certified {
+    let carried = std::mem::take(&mut scratch.epa_carried);
     let warm = scratch.warm.clamp(pair);
     let g = gjk(
         pair,
@@ -161,7 +162,7 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Certified {
     scratch.remember(&g);
     let posed = &scratch.posed;
     if encloses_origin(posed, &g) {
-        return match penetration(pair, scratch, &g) {
+        return match penetration(pair, scratch, &g, carried) {
             Some(answer) => Answer(answer),
             None => Uncertified {
                 overlapping: Some(true),
@@ -197,7 +198,15 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Certified {
         along_v = false;
     }
     let local = &mut scratch.local;
-    if along_v && s.floor > 0.0 && single_facet(pair, posed, &g, n, len, s.floor, &mut local.facets)
+    // The facets' measured distances come out within a few ulps of GJK's
+    // float |v|, above it as often as below: a bound that assumes at most
+    // `len` would fail on half of them. Any `best` serves the arguments
+    // (the lens and the lateral reach widen with it), so a margin of
+    // 2^-30 of the distance keeps them from failing by an ulp.
+    let mut best = len * (1.0 + 2f64.powi(-30));
+    if along_v
+        && s.floor > 0.0
+        && single_facet(pair, posed, &g, n, best, s.floor, &mut local.facets)
     {
         let (answer, measured) = evaluate_in_frame(
             pair,
@@ -208,12 +217,11 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Certified {
             (&mut scratch.poly, &mut scratch.bounds),
         );
         if let Proximity::Separated(sep) = answer {
-            if !measured.is_nan() && sep.distance <= len {
+            if !measured.is_nan() && sep.distance <= best {
                 return Answer(answer);
             }
         }
     }
-    let mut best = len;
     for _ in 0..3 {
         separation_facets(pair, posed, &s, best, &mut scratch.cert, local);
         if local.facets.is_empty() {

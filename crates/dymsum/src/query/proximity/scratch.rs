@@ -24,6 +24,11 @@ pub(crate) struct Scratch {
     pub(in crate::query) simplex: Simplex,
     /// The last penetration's contact normal (EPA's first direction).
     pub(in crate::query) normal: Option<DVec3>,
+    /// `local.epa` holds the polytope of the last query on this scratch, a
+    /// certified penetration of the same pair: the next penetration
+    /// re-poses it rather than starting afresh. Taken (reset) by every
+    /// query, set by a certified penetration.
+    pub(in crate::query) epa_carried: bool,
     pub(in crate::query) cert: CertScratch,
     /// Every facet (the exhaustive evaluation).
     pub(in crate::query) all: FacetSet,
@@ -54,6 +59,7 @@ impl Scratch {
         self.gjk = None;
         self.simplex = Simplex::default();
         self.normal = None;
+        self.epa_carried = false;
     }
 }
 

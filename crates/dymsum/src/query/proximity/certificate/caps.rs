@@ -41,9 +41,12 @@ pub(in crate::query) fn grow_polytope(
     posed: &Posed,
     g: &Gjk,
     hint: Option<DVec3>,
+    carried: bool,
     local: &mut LocalScratch,
 ) -> bool {
-    let grown = if g.enclosed && g.simplex.len == 4 {
+    let grown = if carried {
+        local.epa.regrow(pair, posed)
+    } else if g.enclosed && g.simplex.len == 4 {
         local.epa.run(pair, posed, g.simplex.pts, hint)
     } else {
         // No enclosing tetrahedron (the origin on a face or an edge of
