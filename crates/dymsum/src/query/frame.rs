@@ -49,22 +49,27 @@ pub(in crate::query) use crate::kernel::bounds::up;
 /// query's scratch stay `Sync`; they compile to plain loads and stores.
 #[derive(Debug, Default)]
 struct Lazy {
-    vals: Vec<[AtomicU64; 3]>,
-    stamp: Vec<AtomicU32>,
+    slots: Vec<Slot>,
+}
+
+/// One lazily computed vector and the generation it was computed in, side
+/// by side (one bounds check and one cache line a read).
+#[derive(Debug, Default)]
+struct Slot {
+    stamp: AtomicU32,
+    vals: [AtomicU64; 3],
 }
 
 impl Clone for Lazy {
     fn clone(&self) -> Self {
         Lazy {
-            vals: self
-                .vals
+            slots: self
+                .slots
                 .iter()
-                .map(|v| v.each_ref().map(|x| AtomicU64::new(x.load(Relaxed))))
-                .collect(),
-            stamp: self
-                .stamp
-                .iter()
-                .map(|s| AtomicU32::new(s.load(Relaxed)))
+                .map(|s| Slot {
+                    stamp: AtomicU32::new(s.stamp.load(Relaxed)),
+                    vals: s.vals.each_ref().map(|x| AtomicU64::new(x.load(Relaxed))),
+                })
                 .collect(),
         }
     }
@@ -75,31 +80,37 @@ impl Lazy {
     /// generation counter wrapped). Values of an earlier query, of this
     /// pair or another, carry older stamps and are recomputed.
     fn reset(&mut self, n: usize, clear: bool) {
-        if self.vals.len() != n {
-            self.vals = (0..n).map(|_| Default::default()).collect();
-            self.stamp = (0..n).map(|_| AtomicU32::new(0)).collect();
+        if self.slots.len() != n {
+            self.slots = (0..n).map(|_| Slot::default()).collect();
         } else if clear {
-            self.stamp.iter_mut().for_each(|s| *s.get_mut() = 0);
+            self.slots.iter_mut().for_each(|s| *s.stamp.get_mut() = 0);
         }
     }
 
-    #[inline]
+    /// The value of slot `i`, computed by `f` unless this generation has.
+    /// The read is inlined at every caller; the computation is not.
+    #[inline(always)]
     fn get(&self, i: usize, gen: u32, f: impl FnOnce() -> DVec3) -> DVec3 {
-        let v = &self.vals[i];
-        if self.stamp[i].load(Relaxed) == gen {
+        let slot = &self.slots[i];
+        if slot.stamp.load(Relaxed) == gen {
             DVec3::new(
-                f64::from_bits(v[0].load(Relaxed)),
-                f64::from_bits(v[1].load(Relaxed)),
-                f64::from_bits(v[2].load(Relaxed)),
+                f64::from_bits(slot.vals[0].load(Relaxed)),
+                f64::from_bits(slot.vals[1].load(Relaxed)),
+                f64::from_bits(slot.vals[2].load(Relaxed)),
             )
         } else {
-            let x = f();
-            v[0].store(x.x.to_bits(), Relaxed);
-            v[1].store(x.y.to_bits(), Relaxed);
-            v[2].store(x.z.to_bits(), Relaxed);
-            self.stamp[i].store(gen, Relaxed);
-            x
+            Self::fill(slot, gen, f)
         }
+    }
+
+    #[inline(never)]
+    fn fill(slot: &Slot, gen: u32, f: impl FnOnce() -> DVec3) -> DVec3 {
+        let x = f();
+        slot.vals[0].store(x.x.to_bits(), Relaxed);
+        slot.vals[1].store(x.y.to_bits(), Relaxed);
+        slot.vals[2].store(x.z.to_bits(), Relaxed);
+        slot.stamp.store(gen, Relaxed);
+        x
     }
 }
 

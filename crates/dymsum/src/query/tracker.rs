@@ -5,8 +5,10 @@
 //! * **certified** (the default): the certified query of
 //!   [`crate::query::pair::ConvexPair::query`], warm-started from the last frame (GJK
 //!   from the last support vertices and direction; the searches from
-//!   there), so a frame of coherent motion costs a few support-function
-//!   steps plus the certificates;
+//!   there; in contact, EPA from the last frame's polytope re-posed, see
+//!   [`crate::query::pair::QueryStats::carried_polytopes`]), so a frame of
+//!   coherent motion costs a few support-function steps plus the
+//!   certificates;
 //! * **dynamic sum**: a [`DynamicSum`] of `A ⊕ (−B)` repaired from frame to
 //!   frame (DYMSUM updates, not recomputation) and every facet evaluated:
 //!   O(F) per frame, for callers who also want the sum itself

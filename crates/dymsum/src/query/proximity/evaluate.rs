@@ -21,7 +21,9 @@ use crate::query::frame::Posed;
 use crate::query::pair::ConvexPair;
 use crate::query::prep::Reflected;
 use crate::query::proximity::certificate::candidates::FacetSet;
-use crate::query::proximity::certificate::{separation_facets, single_facet, slab, slab_width};
+use crate::query::proximity::certificate::{
+    separation_facets, single_facet, slab, slab_width, two_facets,
+};
 use crate::query::proximity::depth::penetration;
 use crate::query::proximity::from_facets::evaluate_in_frame;
 use crate::query::proximity::gjk::{
@@ -206,7 +208,8 @@ fn certified(pair: &ConvexPair, scratch: &mut Scratch) -> Certified {
     let mut best = len * (1.0 + 2f64.powi(-30));
     if along_v
         && s.floor > 0.0
-        && single_facet(pair, posed, &g, n, best, s.floor, &mut local.facets)
+        && (single_facet(pair, posed, &g, n, best, s.floor, &mut local.facets)
+            || two_facets(pair, posed, &g, n, best, s.floor, &mut local.facets))
     {
         let (answer, measured) = evaluate_in_frame(
             pair,

@@ -115,15 +115,14 @@ pub(in crate::query) fn penetration_facets(
         if cos < MIN_CAP_COS || local.caps.len() == MAX_CAPS {
             return false;
         }
-        local.caps.push((t.n, cos));
+        // The searches start from the face's first corner: a support
+        // point of D' near the cap's direction.
+        let corner = local.epa.pts[t.v[0] as usize];
+        local.caps.push((t.n, cos, (corner.a, corner.b)));
     }
     local.facets.clear();
-    let warm = (
-        local.epa.pts.first().map_or(0, |p| p.a),
-        local.epa.pts.first().map_or(0, |p| p.b),
-    );
     for i in 0..local.caps.len() {
-        let (m, cos) = local.caps[i];
+        let (m, cos, warm) = local.caps[i];
         let chord = (2.0 - 2.0 * cos).max(0.0).sqrt() * (1.0 + 1e-12) + 1e-300;
         let delta = DIRECTION_ERROR + OVERLAY_MISMATCH;
         let tau_a = 2.0 * (chord + delta) * posed.rho_a;

@@ -49,7 +49,7 @@ pub(in crate::query) mod caps;
 pub(in crate::query) mod slab;
 
 pub(in crate::query) use caps::{grow_polytope, penetration_facets, polytope_depth};
-pub(in crate::query) use slab::{separation_facets, single_facet, slab, slab_width};
+pub(in crate::query) use slab::{separation_facets, single_facet, slab, slab_width, two_facets};
 
 use crate::gauss::edges_cross;
 use crate::query::frame::Posed;
@@ -99,7 +99,9 @@ pub(in crate::query) struct LocalScratch {
     edges_b: Vec<(u32, Circle, (DVec3, f64))>,
     edge_marks_a: Marks,
     edge_marks_b: Marks,
-    caps: Vec<(DVec3, f64)>,
+    /// The penetration's caps: centre, cosine, and the vertices of A and
+    /// B its searches start from.
+    caps: Vec<(DVec3, f64, (u32, u32))>,
     /// A cap's projected points (the separation's lateral bound).
     points: Vec<DVec3>,
 }

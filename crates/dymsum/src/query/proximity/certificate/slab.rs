@@ -20,6 +20,26 @@
 //! final simplex's features (exact to rounding at any distance; by the
 //! separating axis theorem one of them separates) are tried instead
 //! (`gjk::separating_feature_axis`), before the exhaustive evaluation.
+//!
+//! # One facet, two facets
+//! Before the slab's search, two shortcuts settle most separations of a
+//! tracker's frames from GJK's final simplex alone. Every point of `D'`
+//! that could measure at most `best` lies in the *lens* `n · x ≥ floor`,
+//! `|x| ≤ best` (plus rounding), within `reach` of the axis along `n`
+//! ([`lens_reach`]). **One facet** ([`single_facet`]): a triangle simplex
+//! labels a facet `F`, confirmed on the overlay exactly, whose projection
+//! holds the lens with room `reach` to each side. **Two facets**
+//! ([`two_facets`]): a segment simplex from a vertex of one body to an
+//! edge of the other labels an edge `S` of `D'`; the two facets at the
+//! ends of its Gaussian arc, found exactly, lie on opposite sides of `S`
+//! in the projection and hold the lens with room to every side but `S`.
+//! Either way every point of `D'` in the lens lies in the facets found,
+//! and since facets of a convex polytope meet only along their
+//! boundaries (inside the lens, only interior points of `S`, in no third
+//! facet), no other facet can measure at most `best`. The bound `best` is
+//! GJK's `|v|` widened by `2^-30` of itself: the facets' measured distance
+//! comes out within an ulp or two of `|v|`, on either side, and any bound
+//! serves once the answer is checked to measure at most it.
 
 use super::{collect, Circle, Keep, LocalScratch, ANY};
 use crate::gauss::edges_cross;
@@ -295,7 +315,7 @@ impl Lateral {
     }
 }
 
-/// The separation's shortcut (module docs, "one facet"): when GJK's final
+/// The separation's first shortcut (module docs, "One facet, two facets"): when GJK's final
 /// simplex is a triangle whose three points label one facet `F` of the
 /// overlay (three vertices of one face of A against one vertex of B, or the
 /// reverse, or two edges), `F` is confirmed on the overlay with its exact
@@ -332,12 +352,6 @@ pub(in crate::query) fn single_facet(
             .iter()
             .map(|r| r.face)
             .find(|&f| v[1..].iter().all(|x| p.face(f as usize).contains(x)))
-    };
-    let edge_between = |p: &crate::polytope::Polytope, u: u32, w: u32| {
-        p.ring(u as usize)
-            .iter()
-            .find(|r| r.neighbor == w)
-            .map(|r| r.edge)
     };
     facets.clear();
     // The facet's corners in D' (for the lens test).
@@ -399,14 +413,9 @@ pub(in crate::query) fn single_facet(
         }
         _ => return false,
     }
-    // The lens: lateral reach, with the rounding of the posed points.
-    let err_p = 4.0 * (posed.eta_a + posed.eta_b) + 32.0 * f64::EPSILON * posed.scale;
-    let far = best + err_p;
-    if !(floor > 0.0 && far > floor) {
+    let Some(reach) = lens_reach(posed, best, floor) else {
         return false;
-    }
-    let margin = err_p + 64.0 * f64::EPSILON * posed.scale;
-    let reach = (far * far - floor * floor).sqrt() * (1.0 + 4.0 * f64::EPSILON) + margin;
+    };
     // The origin's projection along n must lie inside the corners'
     // projected polygon (convex: one turning sense about n) with room
     // `reach` to every side.
@@ -432,6 +441,203 @@ pub(in crate::query) fn single_facet(
     true
 }
 
+/// The lens's lateral reach ([`single_facet`]): every point of `D'` with
+/// `n · x ≥ floor` whose distance could measure at most `best` lies within
+/// it of the axis along `n`, with the rounding of the posed points and of
+/// the projections; `None` when `floor` does not certify a separation.
+fn lens_reach(posed: &Posed, best: f64, floor: f64) -> Option<f64> {
+    let err_p = 4.0 * (posed.eta_a + posed.eta_b) + 32.0 * f64::EPSILON * posed.scale;
+    let far = best + err_p;
+    if !(floor > 0.0 && far > floor) {
+        return None;
+    }
+    let margin = err_p + 64.0 * f64::EPSILON * posed.scale;
+    Some((far * far - floor * floor).sqrt() * (1.0 + 4.0 * f64::EPSILON) + margin)
+}
+
+/// The edge of `p` from vertex `u` to vertex `w`, if they are adjacent.
+fn edge_between(p: &crate::polytope::Polytope, u: u32, w: u32) -> Option<u32> {
+    p.ring(u as usize)
+        .iter()
+        .find(|r| r.neighbor == w)
+        .map(|r| r.edge)
+}
+
+/// The most corners a facet of the two-facet shortcut may have.
+const MAX_CORNERS: usize = 64;
+
+/// A facet's corners as labels: (vertex of A, vertex of B), the corner
+/// being `A'[a] − B'[b]`.
+type Corners = ([(u32, u32); MAX_CORNERS], usize);
+
+/// The separation's second shortcut (module docs, "One facet, two facets"): when
+/// GJK's final simplex is a segment from one vertex of one body to an
+/// edge of the other, the nearest point lies on that edge `S` of `D'` (if
+/// it is one), between the two facets at the ends of its Gaussian arc:
+/// for a vertex `a` of A and an edge `e` of B, the arc of `−e` inside `a`'s
+/// cell ends at a face of `−B` inside the cell (a vf-facet) or where it
+/// leaves the cell across an arc of A at `a` (an ee-facet); likewise with
+/// the bodies' roles swapped. Both are found with the overlay's exact
+/// predicates, and exactly two must be. When the lens of the one-facet
+/// shortcut lies, in the projection along `n`, on the inner side of every
+/// side of both facets other than `S`, with room `reach`, and the two
+/// facets lie on opposite sides of `S` (so their projections cover the
+/// lens), every point of `D'` in the lens lies in one of them, and any
+/// other facet meets them only on their boundaries, which inside the lens
+/// are interior points of `S`, in no third facet. So the two facets
+/// alone decide the separation. Puts them into `facets` and returns
+/// `true`; else `false`.
+pub(in crate::query) fn two_facets(
+    pair: &ConvexPair,
+    posed: &Posed,
+    g: &Gjk,
+    n: DVec3,
+    best: f64,
+    floor: f64,
+    facets: &mut FacetSet,
+) -> bool {
+    if g.simplex.len != 2 {
+        return false;
+    }
+    let Some(reach) = lens_reach(posed, best, floor) else {
+        return false;
+    };
+    let (p0, p1) = (g.simplex.pts[0], g.simplex.pts[1]);
+    let (a, b) = (&pair.a, &pair.b);
+    let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
+    let prep = &pair.prep_b;
+    facets.clear();
+    let mut polys: [Corners; 2] = [([(0, 0); MAX_CORNERS], 0); 2];
+    let mut found = 0;
+    let mut add = |labels: &mut dyn Iterator<Item = (u32, u32)>| {
+        if found == 2 {
+            return false;
+        }
+        let (c, k) = &mut polys[found];
+        *k = 0;
+        for l in labels {
+            if *k == MAX_CORNERS {
+                return false;
+            }
+            c[*k] = l;
+            *k += 1;
+        }
+        found += 1;
+        true
+    };
+    let shared;
+    if p0.a == p1.a && p0.b != p1.b {
+        // A vertex of A against an edge of B.
+        let (v, b0, b1) = (p0.a, p0.b, p1.b);
+        let Some(e) = edge_between(b, b0, b1) else {
+            return false;
+        };
+        let e2 = prep.neg_edge[e as usize];
+        shared = [(v, b0), (v, b1)];
+        for gf in b.edge(e as usize).faces {
+            let gq = prep.neg_face[gf as usize];
+            if vp.in_cell(v, &vq.normal(gq)) {
+                facets.vf.push((gq, v));
+                if !add(&mut b.face(gf as usize).iter().map(|&w| (v, w))) {
+                    return false;
+                }
+            }
+        }
+        for r in a.ring(v as usize) {
+            if edges_cross(&vp, r.edge, &vq, e2) {
+                facets.ee.push((r.edge, e2));
+                let u = r.neighbor;
+                if !add(&mut [(v, b0), (u, b0), (u, b1), (v, b1)].into_iter()) {
+                    return false;
+                }
+            }
+        }
+    } else if p0.b == p1.b && p0.a != p1.a {
+        // An edge of A against a vertex of B.
+        let (w, a0, a1) = (p0.b, p0.a, p1.a);
+        let Some(e) = edge_between(a, a0, a1) else {
+            return false;
+        };
+        let wq = prep.neg_vertex[w as usize];
+        shared = [(a0, w), (a1, w)];
+        for f in a.edge(e as usize).faces {
+            if vq.in_cell(wq, &vp.normal(f)) {
+                facets.fv.push((f, wq));
+                if !add(&mut a.face(f as usize).iter().map(|&u| (u, w))) {
+                    return false;
+                }
+            }
+        }
+        for r in b.ring(w as usize) {
+            let e2 = prep.neg_edge[r.edge as usize];
+            if edges_cross(&vp, e, &vq, e2) {
+                facets.ee.push((e, e2));
+                let x = r.neighbor;
+                if !add(&mut [(a0, w), (a1, w), (a1, x), (a0, x)].into_iter()) {
+                    return false;
+                }
+            }
+        }
+    } else {
+        return false;
+    }
+    if found != 2 {
+        return false;
+    }
+    // Each facet: the side of its interior off S (relative to S directed
+    // from shared[0] to shared[1]), after checking the room to its other
+    // sides.
+    let project = |x: DVec3| x - n.dot(x) * n;
+    let at = |(u, w): (u32, u32)| project(posed.a(u) - posed.b(w));
+    let mut off_s = [0.0f64; 2];
+    for (k, (labels, len)) in polys.iter().enumerate() {
+        let labels = &labels[..*len];
+        let m = labels.len();
+        // The polygon's turning sense about n (twice its signed area).
+        let mut area = 0.0;
+        for i in 0..m {
+            area += at(labels[i]).cross(at(labels[(i + 1) % m])).dot(n);
+        }
+        let sense = area.signum();
+        if area.is_nan() || area == 0.0 {
+            return false;
+        }
+        let mut s_dir = 0.0;
+        for i in 0..m {
+            let (l0, l1) = (labels[i], labels[(i + 1) % m]);
+            if (l0, l1) == (shared[0], shared[1]) {
+                s_dir = 1.0;
+                continue;
+            }
+            if (l0, l1) == (shared[1], shared[0]) {
+                s_dir = -1.0;
+                continue;
+            }
+            let (p, q) = (at(l0), at(l1));
+            let d = q - p;
+            let len = d.length();
+            if len.is_nan() || len <= 0.0 {
+                return false;
+            }
+            // The origin's signed distance from the side's line, positive
+            // on the polygon's inner side.
+            if d.cross(-p).dot(n) / len * sense <= reach {
+                return false;
+            }
+        }
+        if s_dir == 0.0 {
+            return false; // S is not a side of this facet
+        }
+        off_s[k] = sense * s_dir;
+    }
+    let both = off_s[0] == -off_s[1];
+    #[cfg(test)]
+    if both {
+        tests::TWO_FACETS.with(|c| c.set(c.get() + 1));
+    }
+    both
+}
+
 /// The slab width that covers every facet which could measure at most
 /// `best` (module docs).
 pub(in crate::query) fn slab_width(posed: &Posed, best: f64, floor: f64) -> f64 {
@@ -439,4 +645,189 @@ pub(in crate::query) fn slab_width(posed: &Posed, best: f64, floor: f64) -> f64 
         + 4.0 * (posed.eta_a + posed.eta_b)
         + 32.0 * f64::EPSILON * posed.scale
         + 1e-300
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::kernel::rotation::{Pose, Rotation};
+    use crate::polytope::Polytope;
+    use crate::query::test_support::{boxed, Lcg};
+    use crate::query::ConvexPair;
+    use glam::DVec3;
+
+    std::thread_local! {
+        /// How often [`super::two_facets`] settled a separation.
+        pub(super) static TWO_FACETS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+    }
+
+    /// Separations whose nearest points are a vertex of one body and an
+    /// edge of the other (boxes at random poses and at quarter turns on a
+    /// grid, a pyramid over a 40-gon, a random hull): the two-facet shortcut
+    /// settles many of them, and every answer (in a test build) is
+    /// compared with evaluating every facet (`evaluate::evaluate`).
+    #[test]
+    fn the_two_facet_shortcut_equals_evaluating_every_facet() {
+        let mut r = Lcg(23);
+        let mut cone: Vec<DVec3> = (0..40)
+            .map(|i| {
+                let t = i as f64 / 40.0 * std::f64::consts::TAU;
+                DVec3::new(t.cos(), t.sin(), 0.0)
+            })
+            .collect();
+        cone.push(DVec3::new(0.0, 0.0, 2.0));
+        let hull: Vec<DVec3> = (0..30).map(|_| r.unit()).collect();
+        let shapes = [
+            boxed(0.5, 0.5, 0.5),
+            boxed(1.0, 0.25, 0.5),
+            Polytope::from_dvec3s(&cone).unwrap(),
+            Polytope::from_dvec3s(&hull).unwrap(),
+        ];
+        TWO_FACETS.with(|c| c.set(0));
+        let mut queries = 0;
+        for a in &shapes {
+            for b in &shapes {
+                let pair = ConvexPair::new(a, b).unwrap();
+                for k in 0..60 {
+                    let rot = if k % 3 == 0 {
+                        Rotation::from_axis_angle(DVec3::Z, std::f64::consts::FRAC_PI_2 * k as f64)
+                    } else {
+                        Rotation::from_axis_angle(r.unit(), 3.0 * r.next())
+                    }
+                    .unwrap();
+                    // At quarter turns, offsets on a half-unit grid: the
+                    // nearest points often a corner of D', where a third
+                    // facet ties with the two.
+                    let offset = if k % 3 == 0 {
+                        let grid = |r: &mut Lcg| (r.next() * 6.0).round() * 0.5;
+                        DVec3::new(2.0 + grid(&mut r).abs(), grid(&mut r), grid(&mut r))
+                    } else {
+                        r.unit() * (3.5 + r.next().abs())
+                    };
+                    pair.query(
+                        Pose::new(rot, DVec3::ZERO),
+                        Pose::new(Rotation::IDENTITY, offset),
+                    )
+                    .unwrap();
+                    queries += 1;
+                }
+            }
+        }
+        let used = TWO_FACETS.with(|c| c.get());
+        assert!(used * 20 >= queries, "{used} of {queries} queries");
+    }
+
+    /// The shortcut's checks against adversarial simplices: every segment
+    /// from a vertex of one body to an edge of the other is offered as
+    /// GJK's final simplex, with the true direction and floor. Whenever
+    /// the shortcut accepts one and its facets measure at most the bound
+    /// (what `evaluate` asks before answering), they give exactly the
+    /// answer of evaluating every facet.
+    #[test]
+    fn the_two_facet_shortcut_accepts_only_what_it_proves() {
+        use crate::query::proximity::evaluate::{evaluate, to_world, Facets};
+        use crate::query::proximity::from_facets::evaluate_in_frame;
+        use crate::query::proximity::gjk::{Gjk, Point, Simplex};
+        use crate::query::proximity::scratch::Scratch;
+        use crate::query::Proximity;
+        let mut r = Lcg(29);
+        let mut cone: Vec<DVec3> = (0..12)
+            .map(|i| {
+                let t = i as f64 / 12.0 * std::f64::consts::TAU;
+                DVec3::new(t.cos(), t.sin(), 0.0)
+            })
+            .collect();
+        cone.push(DVec3::new(0.0, 0.0, 2.0));
+        let hull: Vec<DVec3> = (0..12).map(|_| r.unit()).collect();
+        let shapes = [
+            boxed(0.5, 0.5, 0.5),
+            Polytope::from_dvec3s(&cone).unwrap(),
+            Polytope::from_dvec3s(&hull).unwrap(),
+        ];
+        let (mut accepted, mut offered) = (0, 0);
+        for a in &shapes {
+            for b in &shapes {
+                let pair = ConvexPair::new(a, b).unwrap();
+                for k in 0..12 {
+                    let rot = if k % 3 == 0 {
+                        Rotation::from_axis_angle(DVec3::Z, std::f64::consts::FRAC_PI_2 * k as f64)
+                    } else {
+                        Rotation::from_axis_angle(r.unit(), 3.0 * r.next())
+                    }
+                    .unwrap();
+                    let (pa, pb) = (
+                        Pose::new(rot, DVec3::ZERO),
+                        Pose::new(Rotation::IDENTITY, r.unit() * (3.5 + r.next().abs())),
+                    );
+                    let mut fresh = Scratch::default();
+                    let want = evaluate(&pair, pa, pb, Facets::Exhaustive, &mut fresh).unwrap();
+                    let Proximity::Separated(sep) = want else {
+                        continue;
+                    };
+                    let mut scratch = Scratch::default();
+                    scratch.posed.reset(&pair, pa, pb).unwrap();
+                    let posed = &scratch.posed;
+                    let n = -sep.direction;
+                    let len = crate::kernel::exact::mul_pow2(sep.distance, posed.k);
+                    let width = super::slab_width(posed, len, len * (1.0 - 2f64.powi(-20)));
+                    let s = super::slab(&pair, posed, n, width, (0, 0), &mut scratch.cert);
+                    assert!(s.floor > 0.0);
+                    let best = len * (1.0 + 2f64.powi(-30));
+                    let point = |u: u32, w: u32| Point {
+                        w: posed.a(u) - posed.b(w),
+                        a: u,
+                        b: w,
+                    };
+                    let mut segments = Vec::new();
+                    for u in 0..a.vertex_count() as u32 {
+                        for e in 0..b.edge_count() {
+                            let [w0, w1] = b.edge(e).vertices;
+                            segments.push([point(u, w0), point(u, w1)]);
+                        }
+                    }
+                    for w in 0..b.vertex_count() as u32 {
+                        for e in 0..a.edge_count() {
+                            let [u0, u1] = a.edge(e).vertices;
+                            segments.push([point(u0, w), point(u1, w)]);
+                        }
+                    }
+                    for seg in segments {
+                        let mut pts = [Point::default(); 4];
+                        pts[..2].copy_from_slice(&seg);
+                        let g = Gjk {
+                            simplex: Simplex { pts, len: 2 },
+                            v: n * len,
+                            enclosed: false,
+                            separating: false,
+                            warm: (0, 0),
+                        };
+                        offered += 1;
+                        let facets = &mut scratch.local.facets;
+                        if !super::two_facets(&pair, posed, &g, n, best, s.floor, facets) {
+                            continue;
+                        }
+                        let (got, measured) = evaluate_in_frame(
+                            &pair,
+                            posed,
+                            facets,
+                            false,
+                            &mut scratch.cands,
+                            (&mut scratch.poly, &mut scratch.bounds),
+                        );
+                        let Proximity::Separated(got_sep) = got else {
+                            panic!("two facets of a separation measured an overlap");
+                        };
+                        if measured.is_nan() || got_sep.distance > best {
+                            continue;
+                        }
+                        accepted += 1;
+                        assert_eq!(to_world(posed, got).unwrap(), want, "{seg:?}");
+                    }
+                }
+            }
+        }
+        assert!(
+            accepted >= 20,
+            "{accepted} of {offered} offered segments accepted"
+        );
+    }
 }
