@@ -217,5 +217,8 @@ def test_tracker_strategies_give_the_static_answers():
         elif strategy == "certified":
             assert t.last_update["facets"] == 0
             assert t.stats["queries"] >= 61 and t.stats["exhaustive_answers"] == 0
+            # The frames in contact re-pose the last frame's EPA polytope.
+            assert t.stats["carried_polytopes"] > 0
+            assert 0 <= t.stats["carried_restarts"] <= t.stats["carried_polytopes"]
     with pytest.raises(ValueError, match="strategy"):
         dymsum.ContactTracker(a, b, strategy="fast")

@@ -593,10 +593,14 @@ pub(in crate::query) fn two_facets(
     for (k, (labels, len)) in polys.iter().enumerate() {
         let labels = &labels[..*len];
         let m = labels.len();
+        let mut corners = [DVec3::ZERO; MAX_CORNERS];
+        for (c, &l) in corners.iter_mut().zip(labels) {
+            *c = at(l);
+        }
         // The polygon's turning sense about n (twice its signed area).
         let mut area = 0.0;
         for i in 0..m {
-            area += at(labels[i]).cross(at(labels[(i + 1) % m])).dot(n);
+            area += corners[i].cross(corners[(i + 1) % m]).dot(n);
         }
         let sense = area.signum();
         if area.is_nan() || area == 0.0 {
@@ -613,7 +617,7 @@ pub(in crate::query) fn two_facets(
                 s_dir = -1.0;
                 continue;
             }
-            let (p, q) = (at(l0), at(l1));
+            let (p, q) = (corners[i], corners[(i + 1) % m]);
             let d = q - p;
             let len = d.length();
             if len.is_nan() || len <= 0.0 {
