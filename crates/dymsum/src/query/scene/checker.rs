@@ -36,11 +36,12 @@ use crate::solid::obb::PosedObb;
 /// Body vertices posed on demand, each once per query: `pts[v]` is
 /// current when `stamp[v] == epoch`.
 ///
-/// This buffer and [`LazyTriangles`]' are allocated zeroed (`vec![0; n]`
-/// of plain numbers asks the allocator for zeroed memory, which a large
-/// buffer gets as untouched pages) rather than filled: a query touches a
-/// few of a large body's entries, and filling them all made a checker's
-/// first query on a 45,000-triangle body take 6.6 ms, in page faults.
+/// This buffer is allocated zeroed (`vec![0; n]` of plain numbers asks the
+/// allocator for zeroed memory, which a large buffer gets as untouched
+/// pages) rather than filled: a query touches a few of a large body's
+/// entries, and filling them all made a checker's first query on a
+/// 45,000-triangle body take 6.6 ms, in page faults. [`LazyTriangles`],
+/// eight times larger, goes further and allocates by pages.
 #[derive(Default)]
 pub(super) struct Lazy {
     pts: Vec<[f64; 3]>,
@@ -79,16 +80,24 @@ impl Lazy {
 #[derive(Default)]
 pub(super) struct LazyTriangles {
     stamp: Vec<u32>,
-    /// The three corners, then the box's `lo` and `hi` (allocated zeroed,
-    /// see [`Lazy`]).
-    corners: Vec<[f64; 15]>,
+    /// The three corners, then the box's `lo` and `hi`, in pages of
+    /// [`TRIANGLE_PAGE`] triangles, each allocated when a triangle in it is
+    /// first posed: a scratch's first query on a large body touches a few
+    /// pages, not the whole buffer (which an allocator reusing freed memory
+    /// must clear: a 45,000-triangle body's first parallel query took 8 ms
+    /// after other checkers had been dropped, 1 ms once its scratch
+    /// existed).
+    pages: Vec<Vec<[f64; 15]>>,
 }
+
+/// Triangles per page of [`LazyTriangles`].
+const TRIANGLE_PAGE: usize = 256;
 
 impl LazyTriangles {
     /// Forgets every triangle (the stamps restart with the epoch).
     pub(super) fn clear(&mut self) {
         self.stamp.clear();
-        self.corners.clear();
+        self.pages.clear();
     }
 
     /// Triangle `i` of `body` at `pose`, its corners posed by `at` (whose
@@ -101,11 +110,16 @@ impl LazyTriangles {
         pose: &Pose,
         i: usize,
     ) -> ([DVec3; 3], Aabb) {
-        if self.stamp.len() != body.triangles.len() {
-            self.stamp = vec![0; body.triangles.len()];
-            self.corners = vec![[0.0; 15]; body.triangles.len()];
+        let n = body.triangles.len();
+        if self.stamp.len() != n {
+            self.stamp = vec![0; n];
+            self.pages = vec![Vec::new(); n.div_ceil(TRIANGLE_PAGE)];
         }
-        let c = &mut self.corners[i];
+        let page = &mut self.pages[i / TRIANGLE_PAGE];
+        if page.is_empty() {
+            *page = vec![[0.0; 15]; TRIANGLE_PAGE];
+        }
+        let c = &mut page[i % TRIANGLE_PAGE];
         if self.stamp[i] != at.epoch {
             let t = body.triangles[i].map(|v| at.get(&body.vertices, pose, v));
             let b = Aabb::of(t.map(|p| p.to_array()));
