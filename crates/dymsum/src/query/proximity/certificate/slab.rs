@@ -659,6 +659,36 @@ mod tests {
     use crate::query::ConvexPair;
     use glam::DVec3;
 
+    /// Two boxes, a pyramid over a regular `n`-gon (height 2) and a hull
+    /// of `m` random unit vectors.
+    fn shapes(r: &mut Lcg, n: usize, m: usize) -> [Polytope; 4] {
+        let mut pyramid: Vec<DVec3> = (0..n)
+            .map(|i| {
+                let t = i as f64 / n as f64 * std::f64::consts::TAU;
+                DVec3::new(t.cos(), t.sin(), 0.0)
+            })
+            .collect();
+        pyramid.push(DVec3::new(0.0, 0.0, 2.0));
+        let hull: Vec<DVec3> = (0..m).map(|_| r.unit()).collect();
+        [
+            boxed(0.5, 0.5, 0.5),
+            boxed(1.0, 0.25, 0.5),
+            Polytope::from_dvec3s(&pyramid).unwrap(),
+            Polytope::from_dvec3s(&hull).unwrap(),
+        ]
+    }
+
+    /// The `k`-th orientation of the tests: every third an exact quarter
+    /// turn about z (parallel faces with the boxes), the others random.
+    fn turn(k: usize, r: &mut Lcg) -> Rotation {
+        if k % 3 == 0 {
+            Rotation::from_axis_angle(DVec3::Z, std::f64::consts::FRAC_PI_2 * k as f64)
+        } else {
+            Rotation::from_axis_angle(r.unit(), 3.0 * r.next())
+        }
+        .unwrap()
+    }
+
     std::thread_local! {
         /// How often [`super::two_facets`] settled a separation.
         pub(super) static TWO_FACETS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
@@ -672,32 +702,14 @@ mod tests {
     #[test]
     fn the_two_facet_shortcut_equals_evaluating_every_facet() {
         let mut r = Lcg(23);
-        let mut cone: Vec<DVec3> = (0..40)
-            .map(|i| {
-                let t = i as f64 / 40.0 * std::f64::consts::TAU;
-                DVec3::new(t.cos(), t.sin(), 0.0)
-            })
-            .collect();
-        cone.push(DVec3::new(0.0, 0.0, 2.0));
-        let hull: Vec<DVec3> = (0..30).map(|_| r.unit()).collect();
-        let shapes = [
-            boxed(0.5, 0.5, 0.5),
-            boxed(1.0, 0.25, 0.5),
-            Polytope::from_dvec3s(&cone).unwrap(),
-            Polytope::from_dvec3s(&hull).unwrap(),
-        ];
+        let shapes = shapes(&mut r, 40, 30);
         TWO_FACETS.with(|c| c.set(0));
         let mut queries = 0;
         for a in &shapes {
             for b in &shapes {
                 let pair = ConvexPair::new(a, b).unwrap();
                 for k in 0..60 {
-                    let rot = if k % 3 == 0 {
-                        Rotation::from_axis_angle(DVec3::Z, std::f64::consts::FRAC_PI_2 * k as f64)
-                    } else {
-                        Rotation::from_axis_angle(r.unit(), 3.0 * r.next())
-                    }
-                    .unwrap();
+                    let rot = turn(k, &mut r);
                     // At quarter turns, offsets on a half-unit grid: the
                     // nearest points often a corner of D', where a third
                     // facet ties with the two.
@@ -734,30 +746,13 @@ mod tests {
         use crate::query::proximity::scratch::Scratch;
         use crate::query::Proximity;
         let mut r = Lcg(29);
-        let mut cone: Vec<DVec3> = (0..12)
-            .map(|i| {
-                let t = i as f64 / 12.0 * std::f64::consts::TAU;
-                DVec3::new(t.cos(), t.sin(), 0.0)
-            })
-            .collect();
-        cone.push(DVec3::new(0.0, 0.0, 2.0));
-        let hull: Vec<DVec3> = (0..12).map(|_| r.unit()).collect();
-        let shapes = [
-            boxed(0.5, 0.5, 0.5),
-            Polytope::from_dvec3s(&cone).unwrap(),
-            Polytope::from_dvec3s(&hull).unwrap(),
-        ];
+        let shapes = shapes(&mut r, 12, 12);
         let (mut accepted, mut offered) = (0, 0);
         for a in &shapes {
             for b in &shapes {
                 let pair = ConvexPair::new(a, b).unwrap();
                 for k in 0..12 {
-                    let rot = if k % 3 == 0 {
-                        Rotation::from_axis_angle(DVec3::Z, std::f64::consts::FRAC_PI_2 * k as f64)
-                    } else {
-                        Rotation::from_axis_angle(r.unit(), 3.0 * r.next())
-                    }
-                    .unwrap();
+                    let rot = turn(k, &mut r);
                     let (pa, pb) = (
                         Pose::new(rot, DVec3::ZERO),
                         Pose::new(Rotation::IDENTITY, r.unit() * (3.5 + r.next().abs())),
