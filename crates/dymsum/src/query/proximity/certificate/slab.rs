@@ -423,14 +423,9 @@ pub(in crate::query) fn single_facet(
     let mut sense = 0.0f64;
     for i in 0..k {
         let (p, q) = (project(corners[i]), project(corners[(i + 1) % k]));
-        let d = q - p;
-        let len = d.length();
-        if len.is_nan() || len <= 0.0 {
+        let Some(side) = origin_from_side(p, q, n) else {
             return false;
-        }
-        // Signed distance of the origin from the side's line, positive to
-        // the left about n.
-        let side = d.cross(-p).dot(n) / len;
+        };
         if sense == 0.0 {
             sense = side.signum();
         }
@@ -439,6 +434,15 @@ pub(in crate::query) fn single_facet(
         }
     }
     true
+}
+
+/// The signed distance of the origin from the line through the projected
+/// corners `p` and `q` (projections along the unit `n`), positive to the
+/// left of `p → q` about `n`; `None` when they coincide.
+fn origin_from_side(p: DVec3, q: DVec3, n: DVec3) -> Option<f64> {
+    let d = q - p;
+    let len = d.length();
+    (len > 0.0).then(|| d.cross(-p).dot(n) / len)
 }
 
 /// The lens's lateral reach ([`single_facet`]): every point of `D'` with
@@ -617,15 +621,11 @@ pub(in crate::query) fn two_facets(
                 s_dir = -1.0;
                 continue;
             }
-            let (p, q) = (corners[i], corners[(i + 1) % m]);
-            let d = q - p;
-            let len = d.length();
-            if len.is_nan() || len <= 0.0 {
+            // Positive on the polygon's inner side.
+            let Some(side) = origin_from_side(corners[i], corners[(i + 1) % m], n) else {
                 return false;
-            }
-            // The origin's signed distance from the side's line, positive
-            // on the polygon's inner side.
-            if d.cross(-p).dot(n) / len * sense <= reach {
+            };
+            if side * sense <= reach {
                 return false;
             }
         }
