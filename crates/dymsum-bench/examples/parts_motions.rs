@@ -4,10 +4,13 @@
 //! of 1° to 5° about a random axis through the body's box centre, and a
 //! move of up to 1% of the obstacle's diagonal; prints the median and
 //! 99th percentile of `SceneChecker::check` and the interval counts.
+//! With `DECISION=1` each motion is decided as the OMPL validator decides
+//! it: `sampled_contact` on the discrete check's states (`SEGMENTS`, 2 by
+//! default), then `check` backwards with the contact bracketed to 1/8.
 
 use std::time::Instant;
 
-use dymsum::query::MotionCheck;
+use dymsum::query::{Checker, MotionCheck};
 use dymsum::{DVec3, Pose, Rotation};
 use dymsum_bench::parts::{pair_states, part_checker, parts};
 use rand::{Rng, SeedableRng};
@@ -23,6 +26,11 @@ fn main() {
     let (pa, pb) = (find(a), find(b));
     let checker = part_checker(&pa.mesh, &pb.mesh);
     let (_, near) = pair_states(&checker, &pa.mesh, &pb.mesh, n, 11);
+    let decision = std::env::var("DECISION").is_ok_and(|v| v == "1");
+    let segments: usize = std::env::var("SEGMENTS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(2);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
     let centre = {
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
@@ -62,10 +70,27 @@ fn main() {
         );
         let before = checker.steps();
         let t = Instant::now();
-        let r = checker.check(*p0, p1, 1e-6);
+        let r = if decision {
+            match checker.sampled_contact(p1, *p0, segments, 7) {
+                Ok(Some(t)) => Ok(MotionCheck::Collides {
+                    t_safe: None,
+                    t_contact: t,
+                }),
+                _ => checker.check(p1, *p0, 0.125),
+            }
+        } else {
+            checker.check(*p0, p1, 1e-6)
+        };
         times.push(t.elapsed().as_secs_f64() * 1e6);
         steps.push(checker.steps() - before);
         free += usize::from(matches!(r, Ok(MotionCheck::Free)));
+        if std::env::var("VERBOSE").is_ok() {
+            println!(
+                "{:>9.0} µs {:>5} intervals {r:?}",
+                times[times.len() - 1],
+                steps[steps.len() - 1]
+            );
+        }
     }
     let mut sorted = times.clone();
     sorted.sort_by(f64::total_cmp);

@@ -24,6 +24,18 @@
 //! components near 1 (no underflow of `|n|`), and `|n|` is rounded up by
 //! a relative `8u`.
 //!
+//! # Edges within rounding
+//! When the closest points join two edges, the direction `c_U − c_T`
+//! carries their rounding divided by their distance: two unit-long edges
+//! `1e-12` apart (a near-contact pose, or the end of a motion grazing
+//! one) get a direction off by about `1e-4` rad, along which the edges'
+//! far ends overlap by `1e-4`, and no interval next to such a pose was
+//! ever certified (a motion leaving it was undecided). So the common
+//! normal of those two edges, their cross product (off by a few ulps of
+//! the edges' lengths, independent of their distance), is proposed too,
+//! both ways. It is one more axis: the bound along it is valid as every
+//! other one is, and a bad proposal only fails to certify.
+//!
 //! The gap is the same about any origin, so [`apart_by_more_than`] takes
 //! it about the triangle's first corner `c`: far from the origin the
 //! points' coordinates are large but their differences from `c` small, and
@@ -74,17 +86,26 @@ pub(crate) fn apart_by_more_than(
         let n = normalised_scale(n);
         gap_along(hull, u, n, slack) > reach_times_norm(reach, n)
     };
-    let normal_either_way = |t: &[DVec3; 3]| {
-        let n = normalised_scale((t[1] - t[0]).cross(t[2] - t[0]));
+    let normal_either_way_of = |n: DVec3| {
+        let n = normalised_scale(n);
         let (ahead, behind) = gaps_both_ways(hull, u, n, slack);
         let needed = reach_times_norm(reach, n);
         ahead > needed || behind > needed
     };
+    let normal_either_way = |t: &[DVec3; 3]| normal_either_way_of((t[1] - t[0]).cross(t[2] - t[0]));
     normal_either_way(u)
         || near.iter().any(normal_either_way)
         || near.iter().any(|t| {
-            let (ct, cu) = closest_points(t, u);
-            along(cu - ct)
+            let closest = closest_points(t, u);
+            along(closest.cu - closest.ct)
+                || closest.edges.is_some_and(|(i, j)| {
+                    // The common normal of the two edges: exact up to the
+                    // edges' rounding, where the closest points' direction
+                    // is off by their rounding over their distance (module
+                    // docs, "Edges within rounding").
+                    let n = (t[(i + 1) % 3] - t[i]).cross(u[(j + 1) % 3] - u[j]);
+                    normal_either_way_of(n)
+                })
         })
 }
 
@@ -93,8 +114,19 @@ pub(crate) fn apart_by_more_than(
 /// direction of their closest points found in floating point, divided by
 /// `|n|` rounded up, rounded down.
 pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
-    let (ct, cu) = closest_points(t, u);
-    distance_bound_along(t, u, cu - ct)
+    let closest = closest_points(t, u);
+    let bound = distance_bound_along(t, u, closest.cu - closest.ct);
+    match closest.edges {
+        // The edges' common normal, both ways (module docs, "Edges within
+        // rounding"): the better of two valid bounds.
+        Some((i, j)) => {
+            let n = (t[(i + 1) % 3] - t[i]).cross(u[(j + 1) % 3] - u[j]);
+            bound
+                .max(distance_bound_along(t, u, n))
+                .max(distance_bound_along(t, u, -n))
+        }
+        None => bound,
+    }
 }
 
 /// A lower bound on the distance between triangles `t` and `u` from the
@@ -209,10 +241,14 @@ fn gaps_both_ways(t: &[DVec3], u: &[DVec3; 3], n: DVec3, shift: f64) -> (f64, f6
 /// the face, gives the closest pair; else the nearest of the edge pairs
 /// does. Most pairs stop at the edge pair that holds their closest points
 /// (about half the cost of trying every candidate).
-fn closest_points(t: &[DVec3; 3], u: &[DVec3; 3]) -> (DVec3, DVec3) {
+fn closest_points(t: &[DVec3; 3], u: &[DVec3; 3]) -> Closest {
     let et = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
     let eu = [u[1] - u[0], u[2] - u[1], u[0] - u[2]];
-    let mut best = (t[0], u[0]);
+    let mut best = Closest {
+        ct: t[0],
+        cu: u[0],
+        edges: None,
+    };
     let mut best_d = f64::INFINITY;
     for i in 0..3 {
         for j in 0..3 {
@@ -220,7 +256,11 @@ fn closest_points(t: &[DVec3; 3], u: &[DVec3; 3]) -> (DVec3, DVec3) {
             let v = b - a;
             let d = v.length_squared();
             if d <= best_d {
-                best = (a, b);
+                best = Closest {
+                    ct: a,
+                    cu: b,
+                    edges: Some((i, j)),
+                };
                 best_d = d;
                 let off_t = (t[(i + 2) % 3] - a).dot(v);
                 let off_u = (u[(j + 2) % 3] - b).dot(v);
@@ -230,17 +270,31 @@ fn closest_points(t: &[DVec3; 3], u: &[DVec3; 3]) -> (DVec3, DVec3) {
             }
         }
     }
+    let face = |ct, cu| Closest {
+        ct,
+        cu,
+        edges: None,
+    };
     if let Some((p, q)) = corner_over_face(t, &et, u) {
         if (q - p).length_squared() < best_d {
-            return (p, q);
+            return face(p, q);
         }
     }
     if let Some((q, p)) = corner_over_face(u, &eu, t) {
         if (q - p).length_squared() < best_d {
-            return (p, q);
+            return face(p, q);
         }
     }
     best
+}
+
+/// The closest points of two triangles found in floating point
+/// ([`closest_points`]), and the edges they lie on (indices `i` of `t`'s
+/// edge `t[i] t[i+1]` and `j` of `u`'s) when they join two edges.
+struct Closest {
+    ct: DVec3,
+    cu: DVec3,
+    edges: Option<(usize, usize)>,
 }
 
 /// The corner of `u` nearest the plane of `t` (edges `et`) and its foot
@@ -469,7 +523,7 @@ mod tests {
                 continue;
             }
             checked += 1;
-            let (p, q) = closest_points(&t, &u);
+            let Closest { ct: p, cu: q, .. } = closest_points(&t, &u);
             let want = closest_points_of_every_candidate(&t, &u);
             let got = p.distance(q);
             assert!(
@@ -478,6 +532,35 @@ mod tests {
             );
         }
         assert!(checked > 20_000, "{checked}");
+    }
+
+    #[test]
+    fn edges_within_rounding_of_each_other_are_certified_by_their_common_normal() {
+        // Two skew edges 1e-12 apart, the triangles on either side of the
+        // gap, turned and moved at random: the closest points' direction
+        // is off by their rounding over 1e-12 (about 1e-4 rad), so along
+        // it the unit-long edges overlap; the edges' cross product
+        // certifies half the distance every time, and never the distance.
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let gap = 1e-12;
+        for _ in 0..500 {
+            let axis = DVec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            );
+            let turn = glam::DQuat::from_axis_angle(axis.normalize(), rng.random_range(0.0..3.0));
+            let off = DVec3::new(rng.random_range(-2.0..2.0), 0.3, -0.7);
+            let pose = |p: [f64; 3]| turn * DVec3::from(p) + off;
+            let (a, b) = (rng.random_range(0.2..0.8), rng.random_range(0.2..0.8));
+            let t = [[-a, 0., 0.], [1. - a, 0., 0.], [0.1, 0.3, -1.]].map(pose);
+            let u = [[0., -b, gap], [0., 1. - b, gap], [0.2, -0.1, 1.]].map(pose);
+            assert!(apart(&t, &u, 0.5 * gap), "{t:?} {u:?}");
+            assert!(!apart(&t, &u, gap), "{t:?} {u:?}");
+            let d = distance_lower_bound(&t, &u);
+            assert!(d > 0.5 * gap && d <= gap, "{d}");
+        }
     }
 
     #[test]
