@@ -75,6 +75,22 @@
 //! over: an interval sweeping through it is never certified, and halving
 //! goes on until a checked time lies inside it.
 //!
+//! # Reuse across halving
+//! Certifying `[a, b]` is a statement about the exact motion at every
+//! time of `[a, b]`, so whatever part of it holds also holds over every
+//! interval cut from `[a, b]`. A sweep may therefore answer an interval
+//! it did not certify with what it left uncertified ([`Within`]: the
+//! pairs of parts, say, that no test separated over `[a, b]`), and the
+//! search hands that to both halves: an interval cut from `[a, b]` is
+//! certified once those parts alone are, every other part having been
+//! certified over `[a, b]` already. A sweep's record is a stack of its own
+//! (`query::scene::sweep`): the search examines intervals depth first,
+//! so when an interval is examined, every interval examined after the one
+//! it was cut from, and not its ancestor, is finished, and the record
+//! above its range can be dropped. The search itself only carries the
+//! token; a sweep that records nothing answers [`Within::EVERYTHING`]
+//! (the default).
+//!
 //! Each right end is checked once and each left end probed once (the
 //! exact answers at the same time do not change: only work is saved). The
 //! budget counts examined intervals, so the same check gives the same
@@ -138,7 +154,59 @@ pub(crate) trait Sweep {
     /// Whether the body at the float pose of time `t` touches or overlaps
     /// an obstacle (exact).
     fn collides_at_time(&mut self, t: f64) -> Result<bool, Self::Error>;
+
+    /// [`Sweep::certified_free`] for an interval cut from one whose
+    /// examination left `within` uncertified (module docs, "Reuse across
+    /// halving"; [`Within::EVERYTHING`] for a first piece): `None` when
+    /// `[a, b]` is certified free, else what its own examination left
+    /// uncertified, for the intervals cut from it. The default examines
+    /// everything every time.
+    fn certified_free_within(
+        &mut self,
+        a: f64,
+        b: f64,
+        within: Within,
+    ) -> Result<Option<Within>, Self::Error> {
+        let _ = within;
+        Ok((!self.certified_free(a, b)?).then_some(Within::EVERYTHING))
+    }
 }
+
+/// What the examination of an interval left uncertified, handed to the
+/// intervals cut from it (module docs, "Reuse across halving"): a range
+/// `start..end` of the sweep's own record of uncertified parts, or one of
+/// the two tokens for all of them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Within {
+    /// The record's first entry.
+    pub(crate) start: u32,
+    /// One past the record's last entry.
+    pub(crate) end: u32,
+}
+
+impl Within {
+    /// Everything: a first piece, or nothing recorded.
+    pub(crate) const EVERYTHING: Within = Within {
+        start: u32::MAX,
+        end: u32::MAX,
+    };
+
+    /// Everything, after an examination that found too many uncertified
+    /// parts to record: the sweep may try the last blocking part first.
+    pub(crate) const CROWDED: Within = Within {
+        start: u32::MAX,
+        end: u32::MAX - 1,
+    };
+
+    /// Whether this names a range of the record (neither token).
+    pub(crate) fn is_range(self) -> bool {
+        self.start != u32::MAX
+    }
+}
+
+/// An interval waiting to be examined: `(a, b)` and what the interval it
+/// was cut from left uncertified.
+pub(crate) type Pending = (f64, f64, Within);
 
 /// Why a search stopped without an answer.
 #[derive(Debug, PartialEq)]
@@ -182,7 +250,7 @@ pub(crate) fn first_contact<S: Sweep>(
     pieces: usize,
     tolerance: f64,
     steps_left: &mut u64,
-    stack: &mut Vec<(f64, f64)>,
+    stack: &mut Vec<Pending>,
 ) -> Result<Option<(f64, f64)>, Stop<S::Error>> {
     stack.clear();
     // The first intervals: `[0, limit]` cut into `pieces` (module docs);
@@ -196,18 +264,18 @@ pub(crate) fn first_contact<S: Sweep>(
         }
     };
     for k in (0..pieces).rev() {
-        stack.push((cut(k), cut(k + 1)));
+        stack.push((cut(k), cut(k + 1), Within::EVERYTHING));
     }
     let mut known_free_end = f64::NAN;
     let mut probed_from = f64::NAN;
-    while let Some((a, b)) = stack.pop() {
+    while let Some((a, b, within)) = stack.pop() {
         if *steps_left == 0 {
             return Err(Stop::Budget { t_safe: a });
         }
         *steps_left -= 1;
-        if sweep.certified_free(a, b)? {
+        let Some(left) = sweep.certified_free_within(a, b, within)? else {
             continue;
-        }
+        };
         let width = b - a;
         if !exceeds(b, a, tolerance) && b != known_free_end {
             if sweep.collides_at_time(b)? {
@@ -225,8 +293,8 @@ pub(crate) fn first_contact<S: Sweep>(
             return Err(Stop::Undecided { t_safe: a, t: b });
         }
         let m = 0.5 * (a + b);
-        stack.push((m, b));
-        stack.push((a, m));
+        stack.push((m, b, left));
+        stack.push((a, m, left));
     }
     Ok(None)
 }

@@ -100,7 +100,9 @@ use crate::polytope::Polytope;
 use crate::query::answer::Proximity;
 use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::{MotionError, QueryError};
-use crate::query::interval_search::{first_contact, Stop, Sweep, SweepMargin, DEFAULT_BUDGET};
+use crate::query::interval_search::{
+    first_contact, Pending, Stop, Sweep, SweepMargin, DEFAULT_BUDGET,
+};
 use crate::query::pair::ConvexPair;
 use crate::query::pair::QueryStats;
 use crate::query::proximity::support::{
@@ -204,7 +206,7 @@ struct Scratch {
     marks_a: Marks,
     marks_b: Marks,
     set: Vec<u32>,
-    stack: Vec<(f64, f64)>,
+    stack: Vec<Pending>,
 }
 
 /// A body and obstacles prepared for many motion checks (a planner's

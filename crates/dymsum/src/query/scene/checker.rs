@@ -29,7 +29,7 @@ use crate::kernel::rotation::Pose;
 use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::MotionError;
 use crate::query::error::QueryError;
-use crate::query::interval_search::DEFAULT_BUDGET;
+use crate::query::interval_search::{Pending, DEFAULT_BUDGET};
 use crate::solid::aabb::{Aabb, AabbTree, NearPair};
 use crate::solid::obb::PosedObb;
 
@@ -259,7 +259,10 @@ pub(super) struct Scratch {
     /// The clearance's queue of node pairs.
     pub(super) near: Vec<NearPair>,
     pub(super) parity: Vec<u8>,
-    pub(super) intervals: Vec<(f64, f64)>,
+    pub(super) intervals: Vec<Pending>,
+    /// The triangle pairs that intervals left uncertified, for the
+    /// intervals cut from them (`super::sweep`, "Reuse across halving").
+    pub(super) front: Vec<(u32, u32)>,
     /// The pair that last kept an interval from being certified (tried
     /// first next time).
     pub(super) blocker: Option<(usize, usize)>,

@@ -65,6 +65,22 @@
 //! (`SceneChecker::certified_apart`) and the exact state check
 //! (`scene::state`) checking a time.
 //!
+//! # Reuse across halving
+//! An interval the walk does not certify records, in the check's scratch,
+//! the triangle pairs it could not certify (up to [`FRONT_MOST`]), and
+//! goes on walking past them: every other pair of the two trees was
+//! certified over that interval, by a node box, an oriented box, a
+//! triangle's box or its swept hull, each a statement about the exact
+//! motion over the whole interval, so over every interval cut from it.
+//! The halves then test the recorded pairs alone, with their own (smaller)
+//! margin, and record which of those they could not certify in turn
+//! (`query::interval_search`, "Reuse across halving", for why the record
+//! is a stack). A walk that finds more pairs than it may record stops at
+//! the next one, as a walk recording nothing does, and the halves walk
+//! the trees again, trying the last blocking pair first. Near a contact
+//! the record is the few pairs there: the halving towards a grazing pose
+//! costs a few microseconds an interval, not a walk.
+//!
 //! # Independent review (2026-11-29, second)
 //! Of the first pieces, the exact per-interval triangle boxes, the body
 //! normals as proposals (`super::gap`) and the Hölder and scaled
@@ -91,7 +107,7 @@ use super::gap::apart_by_more_than;
 use crate::kernel::rotation::Pose;
 use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::{MotionError, QueryError};
-use crate::query::interval_search::{first_contact, Sweep, SweepMargin};
+use crate::query::interval_search::{first_contact, Sweep, SweepMargin, Within};
 use crate::query::motion::Motion;
 use crate::query::rounding::{norm_up, spectral_norm_up};
 use crate::solid::aabb::Aabb;
@@ -144,6 +160,41 @@ impl SceneChecker {
         reach: f64,
         s: &mut Scratch,
     ) -> bool {
+        self.walk_apart(from, to, reach, s, 0, true) == Walk::Apart
+    }
+
+    /// [`SceneChecker::certified_apart`] for an interval cut from one that
+    /// left `within` uncertified (`query::interval_search`, "Reuse across
+    /// halving"; module docs): `None` when certified, else the pairs it
+    /// leaves uncertified, recorded in `s.front`.
+    fn certified_apart_within(
+        &self,
+        from: Pose,
+        to: Pose,
+        reach: f64,
+        within: Within,
+        s: &mut Scratch,
+    ) -> Option<Within> {
+        if within.is_range() {
+            return self.pairs_apart(from, to, reach, within, s);
+        }
+        let start = s.front.len();
+        match self.walk_apart(from, to, reach, s, FRONT_MOST, within == Within::CROWDED) {
+            Walk::Apart => None,
+            Walk::Recorded => Some(Within {
+                start: start as u32,
+                end: s.front.len() as u32,
+            }),
+            Walk::Crowded => {
+                s.front.truncate(start);
+                Some(Within::CROWDED)
+            }
+        }
+    }
+
+    /// Starts an interval's examination: a new epoch for the lazily posed
+    /// vertices at both ends and the per-interval caches.
+    fn begin_interval(&self, s: &mut Scratch) {
         let n = self.body.vertices.len();
         s.at.start(n);
         s.at_b.start(n);
@@ -152,12 +203,72 @@ impl SceneChecker {
         if s.swept_boxes.len() != triangles {
             s.swept_boxes = vec![[0.0; 7]; triangles];
         }
+    }
+
+    /// Whether the swept hull of body triangle `i` (`hull`) may come
+    /// within `reach` of scene triangle `j`: its exact box within reach of
+    /// the triangle's box, and not certified apart.
+    fn pair_near(&self, hull: &[DVec3; 12], j: usize, reach: f64) -> bool {
+        hull_box(hull).within(&self.scene.tree().boxes()[j], reach)
+            && self.hull_near(hull, j, reach)
+    }
+
+    /// The pairs of `within` (a range of `s.front`) over `[from, to]`:
+    /// `None` when every one is certified apart, else the range of those
+    /// that are not, appended to the record after dropping what lies above
+    /// `within` (`query::interval_search`, "Reuse across halving": those
+    /// entries belong to finished intervals).
+    fn pairs_apart(
+        &self,
+        from: Pose,
+        to: Pose,
+        reach: f64,
+        within: Within,
+        s: &mut Scratch,
+    ) -> Option<Within> {
+        self.begin_interval(s);
+        s.front.truncate(within.end as usize);
+        let start = s.front.len();
+        let mut last_hull: Option<(u32, [DVec3; 12])> = None;
+        for k in within.start as usize..within.end as usize {
+            let (i, j) = s.front[k];
+            let hull = match last_hull {
+                Some((h, hull)) if h == i => hull,
+                _ => {
+                    let hull = self.swept_points((&mut s.at, &mut s.at_b), i as usize, &from, &to);
+                    last_hull = Some((i, hull));
+                    hull
+                }
+            };
+            if self.pair_near(&hull, j as usize, reach) {
+                s.front.push((i, j));
+            }
+        }
+        (s.front.len() > start).then_some(Within {
+            start: start as u32,
+            end: s.front.len() as u32,
+        })
+    }
+
+    /// The walk of [`SceneChecker::certified_apart`]: the last blocking
+    /// pair tried first when `blocker_first`; up to `record` pairs not
+    /// certified are appended to `s.front` and the walk goes on past
+    /// them, and the next one stops it ([`Walk::Crowded`]).
+    fn walk_apart(
+        &self,
+        from: Pose,
+        to: Pose,
+        reach: f64,
+        s: &mut Scratch,
+        record: usize,
+        blocker_first: bool,
+    ) -> Walk {
+        self.begin_interval(s);
         let scene = self.scene.tree();
-        let hull_box = |hull: &[DVec3; 12]| Aabb::of(hull.map(|p| p.to_array()));
-        if let Some((i, j)) = s.blocker {
+        if let Some((i, j)) = s.blocker.filter(|_| blocker_first) {
             let hull = self.swept_points((&mut s.at, &mut s.at_b), i, &from, &to);
-            if hull_box(&hull).within(&scene.boxes()[j], reach) && self.hull_near(&hull, j, reach) {
-                return false;
+            if self.pair_near(&hull, j, reach) {
+                return Walk::Crowded;
             }
         }
         let (ma, ta, mb, tb) = (
@@ -181,6 +292,8 @@ impl SceneChecker {
         let swept_boxes_cells = cells(&mut swept_boxes);
         let epoch = s.at.epoch;
         let mut stack = std::mem::take(&mut s.stack);
+        let mut front = std::mem::take(&mut s.front);
+        let mut recorded = 0;
         let lazy = std::cell::RefCell::new((&mut s.at, &mut s.at_b));
         let hull_of = |i: usize| {
             let (at, at_b) = &mut *lazy.borrow_mut();
@@ -236,21 +349,33 @@ impl SceneChecker {
                         hull
                     }
                 };
-                let near = self.hull_near(&hull, j, reach);
-                if near {
-                    blocker = Some((i, j));
+                if !self.hull_near(&hull, j, reach) {
+                    return false;
                 }
-                near
+                blocker.get_or_insert((i, j));
+                if recorded < record {
+                    front.push((i as u32, j as u32));
+                    recorded += 1;
+                    return false;
+                }
+                true
             },
         );
         s.stack = stack;
+        s.front = front;
         s.node_cache = cache;
         s.swept_boxes = swept_boxes;
         s.obb_cache = obb_cache;
-        if blocked {
+        if blocker.is_some() {
             s.blocker = blocker;
         }
-        !blocked
+        if blocked {
+            Walk::Crowded
+        } else if recorded > 0 {
+            Walk::Recorded
+        } else {
+            Walk::Apart
+        }
     }
 
     /// Whether every triangle of the body at `pose` is more than `reach`
@@ -297,6 +422,7 @@ impl SceneChecker {
             });
         }
         let motion = Motion::new(from, to);
+        s.front.clear();
         let mut intervals = std::mem::take(&mut s.intervals);
         let mut steps_left = self.budget;
         let mut sweep = BodySweep {
@@ -393,6 +519,42 @@ impl Sweep for BodySweep<'_> {
     fn collides_at_time(&mut self, t: f64) -> Result<bool, QueryError> {
         self.checker.collides_with(self.motion.at(t), self.s)
     }
+
+    fn certified_free_within(
+        &mut self,
+        a: f64,
+        b: f64,
+        within: Within,
+    ) -> Result<Option<Within>, QueryError> {
+        let reach = self.margin.inflation(b - a);
+        let (from, to) = (self.motion.at(a), self.motion.at(b));
+        Ok(self
+            .checker
+            .certified_apart_within(from, to, reach, within, self.s))
+    }
+}
+
+/// How a walk of the body's tree over an interval ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Walk {
+    /// Every pair certified.
+    Apart,
+    /// Some pairs not certified, all recorded.
+    Recorded,
+    /// Stopped at a pair not certified, with more than could be recorded
+    /// (or none to be).
+    Crowded,
+}
+
+/// The most triangle pairs one walk records for the intervals cut from
+/// its interval (module docs, "Reuse across halving"): past it, the walk
+/// stops as a walk recording nothing would, at the next pair not
+/// certified, and the halves walk the trees again.
+const FRONT_MOST: usize = 512;
+
+/// The exact box of a swept hull's twelve points, as computed.
+fn hull_box(hull: &[DVec3; 12]) -> Aabb {
+    Aabb::of(hull.map(|p| p.to_array()))
 }
 
 #[cfg(test)]
@@ -401,6 +563,136 @@ mod tests {
     use crate::body::MeshBody;
     use crate::kernel::rotation::Rotation;
     use crate::mesh::PolygonMesh;
+
+    /// The search as it ran before "Reuse across halving": every interval
+    /// walks both trees (the trait's default `certified_free_within`).
+    struct WalkEveryTime<'a>(BodySweep<'a>);
+
+    impl Sweep for WalkEveryTime<'_> {
+        type Error = QueryError;
+
+        fn certified_free(&mut self, a: f64, b: f64) -> Result<bool, QueryError> {
+            self.0.certified_free(a, b)
+        }
+
+        fn collides_at_time(&mut self, t: f64) -> Result<bool, QueryError> {
+            self.0.collides_at_time(t)
+        }
+    }
+
+    /// A random hull of `n` points of radius about `r` at `c`, as a mesh.
+    fn blob(rng: &mut impl rand::Rng, n: usize, r: f64, c: DVec3) -> PolygonMesh {
+        let points: Vec<[f64; 3]> = (0..n)
+            .map(|_| {
+                let p = DVec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                );
+                (c + p.normalize_or_zero() * r).to_array()
+            })
+            .collect();
+        crate::Polytope::from_points(&points).unwrap().to_mesh()
+    }
+
+    /// Halving with the record of uncertified pairs answers as walking
+    /// every interval does: on short motions from near-contact poses
+    /// (where the record is a few pairs) and on long ones through the
+    /// scene (where a walk finds more pairs than it may record), every
+    /// verdict agrees and every contact found is one.
+    #[test]
+    fn halving_on_the_recorded_pairs_answers_as_walking_every_interval() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(36);
+        let body = MeshBody::new(&blob(&mut rng, 300, 1.0, DVec3::ZERO)).unwrap();
+        let scene: Vec<MeshBody> = (0..3)
+            .map(|k| {
+                let c = DVec3::new(2.2 * k as f64 - 2.2, 0.0, 0.0);
+                MeshBody::new(&blob(&mut rng, 300, 0.9, c)).unwrap()
+            })
+            .collect();
+        let checker = SceneChecker::new(&body, &scene).unwrap();
+        let (mut near, mut crowded, mut both_free) = (0, 0, 0);
+        for k in 0..60 {
+            let long = k % 4 == 3;
+            let axis = DVec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            )
+            .normalize();
+            let turn = Rotation::from_axis_angle(axis, rng.random_range(0.0..1.0)).unwrap();
+            // A free pose within 2^-40 of contact, bisected along z.
+            let base = Pose::new(turn, DVec3::new(rng.random_range(-2.0..2.0), 0.3, 0.0));
+            let lift = |z: f64| Pose::new(base.rotation, base.translation + DVec3::Z * z);
+            let (mut lo, mut hi) = (0.0, 4.0);
+            if !checker.collides_at(lift(lo)).unwrap() || checker.collides_at(lift(hi)).unwrap() {
+                continue;
+            }
+            for _ in 0..40 {
+                let mid = 0.5 * (lo + hi);
+                if checker.collides_at(lift(mid)).unwrap() {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let from = lift(hi);
+            let degrees = if long { 60.0 } else { 3.0 };
+            let spin = Rotation::from_axis_angle(
+                axis.cross(DVec3::Z).normalize_or(DVec3::X),
+                rng.random_range(-degrees..degrees) * std::f64::consts::PI / 180.0,
+            )
+            .unwrap();
+            let shift = DVec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            ) * if long { 2.0 } else { 0.02 };
+            let to = Pose::new(from.rotation.then(&spin), from.translation + shift);
+            for (a, b) in [(from, to), (to, from)] {
+                if checker.collides_at(a).unwrap() {
+                    continue;
+                }
+                let recorded = checker.check(a, b, 1e-6);
+                let motion = Motion::new(a, b);
+                let mut s = checker.scratch();
+                let plain = {
+                    let mut walk = WalkEveryTime(BodySweep {
+                        checker: &checker,
+                        margin: SweepMargin::new(
+                            motion.angle(),
+                            motion.translation_extent(),
+                            checker.body.reach,
+                        ),
+                        motion,
+                        s: &mut s,
+                    });
+                    let mut left = checker.budget;
+                    first_contact(&mut walk, 1.0, 1, 1e-6, &mut left, &mut Vec::new())
+                };
+                checker.give_back(s);
+                match (&recorded, &plain) {
+                    (Ok(MotionCheck::Free), Ok(None)) => both_free += 1,
+                    (Ok(MotionCheck::Collides { t_contact, .. }), Ok(Some((_, c)))) => {
+                        assert!(checker.collides_at(motion.at(*t_contact)).unwrap());
+                        assert!(checker.collides_at(motion.at(*c)).unwrap());
+                    }
+                    (Err(_), Err(_)) => {}
+                    _ => panic!("{recorded:?} against {plain:?}"),
+                }
+                if long {
+                    crowded += 1;
+                } else {
+                    near += 1;
+                }
+            }
+        }
+        assert!(
+            near > 40 && crowded > 10 && both_free > 20,
+            "{near} {crowded} {both_free}"
+        );
+    }
 
     /// Found by the independent review of the per-interval swept boxes:
     /// when the query counter wrapped inside a state check, the boxes
