@@ -4,7 +4,8 @@
 //! of 1° to 5° about a random axis through the body's box centre, and a
 //! move of up to 1% of the obstacle's diagonal; prints the median and
 //! 99th percentile of `SceneChecker::check` and the interval counts.
-//! With `DECISION=1` each motion is decided as the OMPL validator decides
+//! `REPEAT=k` runs the motions k times (the random turns differ each
+//! round). With `DECISION=1` each motion is decided as the OMPL validator decides
 //! it: `sampled_contact` on the discrete check's states (`SEGMENTS`, 2 by
 //! default), then `check` backwards with the contact bracketed to 1/8.
 
@@ -49,7 +50,14 @@ fn main() {
         (hi - lo).length()
     };
     let (mut times, mut free, mut steps) = (Vec::new(), 0, Vec::new());
-    for p0 in near.iter().skip(1).step_by(2) {
+    // `REPEAT=k` runs the same motions k times (for profiles).
+    let repeat: usize = std::env::var("REPEAT")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1);
+    let starts: Vec<Pose> = near.iter().skip(1).step_by(2).copied().collect();
+    let starts = starts.iter().cycle().take(starts.len() * repeat);
+    for p0 in starts {
         let axis = DVec3::new(
             rng.random_range(-1.0..1.0),
             rng.random_range(-1.0..1.0),

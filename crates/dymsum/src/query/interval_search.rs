@@ -91,7 +91,9 @@
 //! token; a sweep that records nothing answers [`Within::EVERYTHING`]
 //! (the default).
 //!
-//! Each right end is checked once and each left end probed once (the
+//! Each right end is checked once and each left end probed once, and a
+//! time already checked free (the last right end or probe) is not checked
+//! again (the
 //! exact answers at the same time do not change: only work is saved). The
 //! budget counts examined intervals, so the same check gives the same
 //! answer on any machine and under any load.
@@ -285,7 +287,7 @@ pub(crate) fn first_contact<S: Sweep>(
         }
         if width <= tolerance / STUCK && a != probed_from {
             probed_from = a;
-            if let Some(c) = contact_ahead(sweep, a, limit, tolerance)? {
+            if let Some(c) = contact_ahead(sweep, a, limit, tolerance, &mut known_free_end)? {
                 return Ok(Some((a, c)));
             }
         }
@@ -320,11 +322,17 @@ fn exceeds(t: f64, a: f64, tolerance: f64) -> bool {
 /// The first of `a + tolerance / 2^k` (`k` from `PROBES − 1` down to `0`,
 /// each at most `limit`, one ulp back when rounded past the tolerance) at
 /// which the body collides, if any (module docs, step 4).
+///
+/// A time equal to `known_free` (checked free before) is not checked
+/// again, and the last time checked free is left there: near a grazing end
+/// every probe clamps to `limit`, which the search would otherwise check
+/// once per halving.
 fn contact_ahead<S: Sweep>(
     sweep: &mut S,
     a: f64,
     limit: f64,
     tolerance: f64,
+    known_free: &mut f64,
 ) -> Result<Option<f64>, S::Error> {
     let mut last = a;
     for k in (0..PROBES).rev() {
@@ -334,8 +342,11 @@ fn contact_ahead<S: Sweep>(
             t = f64::from_bits(t.to_bits() - 1);
         }
         if t > last {
-            if sweep.collides_at_time(t)? {
-                return Ok(Some(t));
+            if t != *known_free {
+                if sweep.collides_at_time(t)? {
+                    return Ok(Some(t));
+                }
+                *known_free = t;
             }
             last = t;
         }
@@ -589,6 +600,35 @@ mod tests {
         seen.sort_by(f64::total_cmp);
         seen.dedup();
         assert_eq!(seen.len(), wall.checks.len());
+    }
+
+    /// Towards a grazing end every probe clamps to the end, checked free
+    /// already: no time is checked twice (the end was checked once per
+    /// halving level), and the motion is certified.
+    #[test]
+    fn a_grazing_end_is_checked_once() {
+        /// Certifies intervals no wider than their distance from `1`
+        /// (or `1e-9`); never collides; records the times checked.
+        struct Grazing(Vec<f64>);
+        impl Sweep for Grazing {
+            type Error = ();
+            fn certified_free(&mut self, a: f64, b: f64) -> Result<bool, ()> {
+                Ok(b - a <= (1.0 - b).max(1e-9))
+            }
+            fn collides_at_time(&mut self, t: f64) -> Result<bool, ()> {
+                self.0.push(t);
+                Ok(false)
+            }
+        }
+        let mut sweep = Grazing(Vec::new());
+        let mut left = DEFAULT_BUDGET;
+        let out = first_contact(&mut sweep, 1.0, 1, 0.125, &mut left, &mut Vec::new());
+        assert_eq!(out, Ok(None));
+        let mut seen = sweep.0.clone();
+        seen.sort_by(f64::total_cmp);
+        seen.dedup();
+        assert_eq!(seen.len(), sweep.0.len(), "{:?}", sweep.0);
+        assert!(sweep.0.contains(&1.0));
     }
 
     #[test]
