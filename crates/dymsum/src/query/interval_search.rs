@@ -409,6 +409,16 @@ impl SweepMargin {
         self.pose_error
     }
 
+    /// The sagitta of the turn over an interval of width `width` for a
+    /// radius of 1 (`2 sin²(δ/4)`), rounded up: a point `ρ` from the
+    /// turn's axis strays at most `ρ` times this from its chord.
+    pub(crate) fn sagitta_per_radius(&self, width: f64) -> f64 {
+        let q = (self.turn(width) / 4.0)
+            .min(std::f64::consts::FRAC_PI_4)
+            .sin();
+        2.0 * q * q * (1.0 + 1e-12)
+    }
+
     /// `s + e`: the sagitta of the turn over an interval of width `width`
     /// and the poses' rounding, rounded up.
     pub(crate) fn inflation(&self, width: f64) -> f64 {

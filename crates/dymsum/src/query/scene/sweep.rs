@@ -65,6 +65,39 @@
 //! (`SceneChecker::certified_apart`) and the exact state check
 //! (`scene::state`) checking a time.
 //!
+//! # In the body's frame
+//! A pair the swept hull leaves uncertified is tried once more, in the
+//! body's frame, where the body triangle `P` stands still and the scene
+//! triangle `U` moves: a body face turning near a scene corner tilts
+//! against every fixed axis of the world by its length times the turn, a
+//! loss of the first order in the interval's width, so that near a
+//! contact the certified intervals shrank with the distance left (tens
+//! of intervals per halving of it on robot parts); along the body face's
+//! own normal the loss is the sagitta alone.
+//!
+//! Over `[a, b]` a scene point `y` is at `R(t)ᵀ (y − T(t))` in the body's
+//! frame. With `λ = (t − a)/(b − a)`, `y − T(t) = (1 − λ) q_a + λ q_b`
+//! (`q_a = y − T(a)`, `q_b = y − T(b)`), and `R(t)ᵀ = E(t) R(a)ᵀ` with
+//! `E(t)` the turn about one fixed axis through the body's origin by at
+//! most `δ` (the slerp's constant rate; the same turn as the world's, seen
+//! from the body). So `R(t)ᵀ q` runs on an arc of angle at most `δ` and
+//! radius at most `|q|` from `R(a)ᵀ q` to `R(b)ᵀ q`, within the sagitta
+//! `2 |q| sin²(δ/4)` of their chord, and `R(t)ᵀ (y − T(t))` lies within
+//! `s' = 2 ρ sin²(δ/4)` (`ρ ≥ |q_a|, |q_b|`) of the hull of the four points
+//! `R(a)ᵀ q_a, R(b)ᵀ q_b, R(b)ᵀ q_a, R(a)ᵀ q_b`; `U`'s points, convex
+//! combinations of its corners, within `s'` of the hull of its corners'
+//! twelve. The twelve are computed from the float poses as
+//! `fl(M̃ᵀ fl(y − T̃))`: per `query::rounding`, `|M̃ − R| ≤ 675u` and the
+//! product rounds by `5.3u |q̃|`, and `fl(y − T̃)` is within `2.01u D +
+//! 1.02u M` (the translation) plus `u (Y + M)` (the subtraction; `Y` the
+//! largest coordinate of `U`) of `y − T` per coordinate, so every point is
+//! within `e' = 2⁻⁴³ ρ + 6u (M + D + Y)` of the exact one, and `ρ` is
+//! the largest float `|q̃|` rounded up plus that `6u (M + D + Y)`. The
+//! body triangle is the body's own floats, exact. If the hull of the
+//! twelve is more than `s' + e'` from `P` ([`super::gap`]), no point of
+//! `U` meets `P` at any `t` of `[a, b]` (a rigid motion keeps distances).
+//! Nothing else changes: the pair is dropped only when certified.
+//!
 //! # Reuse across halving
 //! An interval the walk does not certify records, in the check's scratch,
 //! the triangle pairs it could not certify (up to [`FRONT_MOST`]), and
@@ -101,7 +134,7 @@
 use super::checker::{cached, cells, shifted, Lazy, SceneChecker, Scratch};
 use std::sync::atomic::Ordering;
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 use super::gap::apart_by_more_than;
 use crate::kernel::rotation::Pose;
@@ -139,9 +172,48 @@ impl SceneChecker {
     /// Whether swept hull `hull` comes within `reach` of scene triangle
     /// `j` (not certified apart), its exact box already within `reach` of
     /// the triangle's box.
-    fn hull_near(&self, hull: &[DVec3; 12], j: usize, reach: f64) -> bool {
+    fn hull_near(
+        &self,
+        hull: &[DVec3; 12],
+        i: usize,
+        j: usize,
+        reach: f64,
+        frame: Option<&BodyFrame>,
+    ) -> bool {
         let ends = [[hull[0], hull[1], hull[2]], [hull[3], hull[4], hull[5]]];
-        !apart_by_more_than(hull, &ends, &self.scene_triangle(j), reach)
+        if apart_by_more_than(hull, &ends, &self.scene_triangle(j), reach) {
+            return false;
+        }
+        !frame.is_some_and(|f| self.apart_in_body_frame(i, j, f))
+    }
+
+    /// Whether body triangle `i` stays apart from scene triangle `j` over
+    /// the interval of `frame`, certified in the body's frame (module docs,
+    /// "In the body's frame"): the scene triangle's twelve relative points
+    /// against the body triangle as given, more than their sagitta and
+    /// rounding apart.
+    fn apart_in_body_frame(&self, i: usize, j: usize, frame: &BodyFrame) -> bool {
+        let u = self.scene_triangle(j);
+        let p = self.body.triangles[i].map(|v| self.body.vertices[v as usize]);
+        let mut pts = [DVec3::ZERO; 12];
+        let (mut radius, mut y_max) = (0.0f64, 0.0f64);
+        for (k, y) in u.iter().enumerate() {
+            let (qa, qb) = (*y - frame.ta, *y - frame.tb);
+            radius = radius.max(norm_up(qa)).max(norm_up(qb));
+            y_max = y_max.max(y.abs().max_element());
+            pts[k] = frame.ma_t * qa;
+            pts[3 + k] = frame.mb_t * qb;
+            pts[6 + k] = frame.mb_t * qa;
+            pts[9 + k] = frame.ma_t * qb;
+        }
+        // Every relative point within `e'` of the exact motion's, and `ρ`
+        // at least every exact `|y − T|` (module docs).
+        let ulps = 6.0 * U * (frame.m_plus_d + y_max);
+        let radius = radius + ulps;
+        let rounding = radius * (1.0 / (1u64 << 43) as f64) + ulps;
+        let margin = (radius * frame.sagitta_per_radius + rounding) * (1.0 + 8.0 * U) + 1e-300;
+        let ends = [[pts[0], pts[1], pts[2]], [pts[3], pts[4], pts[5]]];
+        apart_by_more_than(&pts, &ends, &p, margin)
     }
 
     /// Whether the body's triangles swept over `[from, to]` (poses at the
@@ -160,7 +232,7 @@ impl SceneChecker {
         reach: f64,
         s: &mut Scratch,
     ) -> bool {
-        self.walk_apart(from, to, reach, s, 0, true) == Walk::Apart
+        self.walk_apart(from, to, reach, None, s, 0, true) == Walk::Apart
     }
 
     /// [`SceneChecker::certified_apart`] for an interval cut from one that
@@ -171,15 +243,16 @@ impl SceneChecker {
         &self,
         from: Pose,
         to: Pose,
-        reach: f64,
+        (reach, frame): (f64, Option<&BodyFrame>),
         within: Within,
         s: &mut Scratch,
     ) -> Option<Within> {
         if within.is_range() {
-            return self.pairs_apart(from, to, reach, within, s);
+            return self.pairs_apart(from, to, (reach, frame), within, s);
         }
         let start = s.front.len();
-        match self.walk_apart(from, to, reach, s, FRONT_MOST, within == Within::CROWDED) {
+        let crowded = within == Within::CROWDED;
+        match self.walk_apart(from, to, reach, frame, s, FRONT_MOST, crowded) {
             Walk::Apart => None,
             Walk::Recorded => Some(Within {
                 start: start as u32,
@@ -208,9 +281,16 @@ impl SceneChecker {
     /// Whether the swept hull of body triangle `i` (`hull`) may come
     /// within `reach` of scene triangle `j`: its exact box within reach of
     /// the triangle's box, and not certified apart.
-    fn pair_near(&self, hull: &[DVec3; 12], j: usize, reach: f64) -> bool {
+    fn pair_near(
+        &self,
+        hull: &[DVec3; 12],
+        i: usize,
+        j: usize,
+        reach: f64,
+        frame: Option<&BodyFrame>,
+    ) -> bool {
         hull_box(hull).within(&self.scene.tree().boxes()[j], reach)
-            && self.hull_near(hull, j, reach)
+            && self.hull_near(hull, i, j, reach, frame)
     }
 
     /// The pairs of `within` (a range of `s.front`) over `[from, to]`:
@@ -222,7 +302,7 @@ impl SceneChecker {
         &self,
         from: Pose,
         to: Pose,
-        reach: f64,
+        (reach, frame): (f64, Option<&BodyFrame>),
         within: Within,
         s: &mut Scratch,
     ) -> Option<Within> {
@@ -240,7 +320,7 @@ impl SceneChecker {
                     hull
                 }
             };
-            if self.pair_near(&hull, j as usize, reach) {
+            if self.pair_near(&hull, i as usize, j as usize, reach, frame) {
                 s.front.push((i, j));
             }
         }
@@ -254,11 +334,13 @@ impl SceneChecker {
     /// pair tried first when `blocker_first`; up to `record` pairs not
     /// certified are appended to `s.front` and the walk goes on past
     /// them, and the next one stops it ([`Walk::Crowded`]).
+    #[allow(clippy::too_many_arguments)]
     fn walk_apart(
         &self,
         from: Pose,
         to: Pose,
         reach: f64,
+        frame: Option<&BodyFrame>,
         s: &mut Scratch,
         record: usize,
         blocker_first: bool,
@@ -267,7 +349,7 @@ impl SceneChecker {
         let scene = self.scene.tree();
         if let Some((i, j)) = s.blocker.filter(|_| blocker_first) {
             let hull = self.swept_points((&mut s.at, &mut s.at_b), i, &from, &to);
-            if self.pair_near(&hull, j, reach) {
+            if self.pair_near(&hull, i, j, reach, frame) {
                 return Walk::Crowded;
             }
         }
@@ -349,7 +431,7 @@ impl SceneChecker {
                         hull
                     }
                 };
-                if !self.hull_near(&hull, j, reach) {
+                if !self.hull_near(&hull, i, j, reach, frame) {
                     return false;
                 }
                 blocker.get_or_insert((i, j));
@@ -528,11 +610,38 @@ impl Sweep for BodySweep<'_> {
     ) -> Result<Option<Within>, QueryError> {
         let reach = self.margin.inflation(b - a);
         let (from, to) = (self.motion.at(a), self.motion.at(b));
+        let (m, d) = self.motion.translation_extent();
+        let frame = BodyFrame {
+            ma_t: from.rotation.matrix().transpose(),
+            mb_t: to.rotation.matrix().transpose(),
+            ta: from.translation,
+            tb: to.translation,
+            sagitta_per_radius: self.margin.sagitta_per_radius(b - a),
+            m_plus_d: m + d,
+        };
         Ok(self
             .checker
-            .certified_apart_within(from, to, reach, within, self.s))
+            .certified_apart_within(from, to, (reach, Some(&frame)), within, self.s))
     }
 }
+
+/// An interval's end poses for the test in the body's frame (module docs,
+/// "In the body's frame").
+pub(super) struct BodyFrame {
+    /// The transposed rotation matrices of the float poses at the ends.
+    ma_t: DMat3,
+    mb_t: DMat3,
+    /// Their translations.
+    ta: DVec3,
+    tb: DVec3,
+    /// The turn's sagitta per unit radius, rounded up.
+    sagitta_per_radius: f64,
+    /// `M + D` of the motion (`query::rounding`).
+    m_plus_d: f64,
+}
+
+/// `2⁻⁵³`, the unit roundoff of `f64`.
+const U: f64 = f64::EPSILON / 2.0;
 
 /// How a walk of the body's tree over an interval ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -564,19 +673,32 @@ mod tests {
     use crate::kernel::rotation::Rotation;
     use crate::mesh::PolygonMesh;
 
-    /// The search as it ran before "Reuse across halving": every interval
-    /// walks both trees (the trait's default `certified_free_within`).
+    /// The search without "Reuse across halving": every interval walks
+    /// both trees, with the same tests (the record is dropped each time).
     struct WalkEveryTime<'a>(BodySweep<'a>);
 
     impl Sweep for WalkEveryTime<'_> {
         type Error = QueryError;
 
         fn certified_free(&mut self, a: f64, b: f64) -> Result<bool, QueryError> {
-            self.0.certified_free(a, b)
+            Ok(self
+                .certified_free_within(a, b, Within::EVERYTHING)?
+                .is_none())
         }
 
         fn collides_at_time(&mut self, t: f64) -> Result<bool, QueryError> {
             self.0.collides_at_time(t)
+        }
+
+        fn certified_free_within(
+            &mut self,
+            a: f64,
+            b: f64,
+            _within: Within,
+        ) -> Result<Option<Within>, QueryError> {
+            self.0.s.front.clear();
+            let left = self.0.certified_free_within(a, b, Within::EVERYTHING)?;
+            Ok(left.map(|_| Within::EVERYTHING))
         }
     }
 
@@ -692,6 +814,71 @@ mod tests {
             near > 40 && crowded > 10 && both_free > 20,
             "{near} {crowded} {both_free}"
         );
+    }
+
+    /// A body face tilting over a scene corner `1e-6` above it: every
+    /// fixed axis of the world loses the face's length times the turn
+    /// (`1e-3` rad, about twice the corner's height), so the swept hull
+    /// alone leaves the interval uncertified; in the body's frame the
+    /// corner stays `1e-6` above the face, and the interval is certified.
+    #[test]
+    fn a_face_tilting_over_a_corner_is_certified_in_the_body_frame() {
+        let face = PolygonMesh::new(
+            vec![[-1.0, -1.0, 0.0], [2.0, -1.0, 0.0], [-1.0, 2.0, 0.0]],
+            vec![vec![0, 1, 2]],
+        );
+        let spike = PolygonMesh::new(
+            vec![[0.0, 0.0, 1e-6], [0.1, 0.0, 1.0], [0.0, 0.1, 1.0]],
+            vec![vec![0, 1, 2]],
+        );
+        let checker = SceneChecker::new(
+            &MeshBody::new(&face).unwrap(),
+            &[MeshBody::new(&spike).unwrap()],
+        )
+        .unwrap();
+        let tilt = |deg: f64| {
+            Pose::new(
+                Rotation::from_axis_angle(DVec3::X, deg.to_radians()).unwrap(),
+                DVec3::ZERO,
+            )
+        };
+        let (from, to) = (tilt(0.0), tilt(1e-3f64.to_degrees()));
+        let motion = Motion::new(from, to);
+        let mut s = checker.scratch();
+        let mut sweep = BodySweep {
+            checker: &checker,
+            margin: SweepMargin::new(
+                motion.angle(),
+                motion.translation_extent(),
+                checker.body.reach,
+            ),
+            motion,
+            s: &mut s,
+        };
+        assert!(!sweep.certified_free(0.0, 1.0).unwrap());
+        assert_eq!(
+            sweep
+                .certified_free_within(0.0, 1.0, Within::EVERYTHING)
+                .unwrap(),
+            None
+        );
+        // Lifted 2e-6 while tilting, the face passes the corner: never
+        // certified, in either frame.
+        let lifted = Pose::new(to.rotation, DVec3::new(0.0, 0.0, 2e-6));
+        let through = Motion::new(from, lifted);
+        sweep.motion = through;
+        sweep.margin = SweepMargin::new(
+            through.angle(),
+            through.translation_extent(),
+            checker.body.reach,
+        );
+        assert!(sweep
+            .certified_free_within(0.0, 1.0, Within::EVERYTHING)
+            .unwrap()
+            .is_some());
+        checker.give_back(s);
+        assert!(checker.check(from, to, 1e-6).unwrap().is_free());
+        assert!(!checker.check(from, lifted, 1e-6).unwrap().is_free());
     }
 
     /// Found by the independent review of the per-interval swept boxes:
