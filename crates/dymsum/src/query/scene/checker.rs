@@ -263,6 +263,9 @@ pub(super) struct Scratch {
     /// The triangle pairs that intervals left uncertified, for the
     /// intervals cut from them (`super::sweep`, "Reuse across halving").
     pub(super) front: Vec<(u32, u32)>,
+    /// Whether the last interval examined was certified (a walk records
+    /// only then; `super::sweep`).
+    pub(super) last_certified: bool,
     /// The pair that last kept an interval from being certified (tried
     /// first next time).
     pub(super) blocker: Option<(usize, usize)>,
