@@ -142,6 +142,19 @@ fn a_thin_plate_is_never_stepped_over() {
     assert!(checker
         .collides_at(at(-1000.0 + 2000.0 * t_contact, 0.0, 0.0))
         .unwrap());
+    // At the OMPL validator's tolerance (1/8) the crossing lasts 8e-7 of
+    // the motion, far less than the tolerance: still found, and bracketed.
+    for end in [1500.0, 1000.0, 3000.0] {
+        let out = checker
+            .check(at(-1000.0, 0.0, 0.0), at(end, 0.0, 0.0), 0.125)
+            .unwrap();
+        let MotionCheck::Collides { t_safe, t_contact } = out else {
+            panic!("the plate is crossed: {out:?}");
+        };
+        assert!(t_contact - t_safe.unwrap() <= 0.125);
+        let x = -1000.0 + (end + 1000.0) * t_contact;
+        assert!(checker.collides_at(at(x, 0.0, 0.0)).unwrap(), "{x}");
+    }
     // Sliding along it, 1e-6 away: free, in few intervals.
     let near = checker
         .check(

@@ -54,7 +54,15 @@
 //!    ([`MotionError::BudgetExhausted`](crate::query::MotionError::BudgetExhausted));
 //! 2. is done when certified free;
 //! 3. once no wider than the tolerance, has its right end `b` checked
-//!    exactly: a contact there is the bracket `(a, b)`;
+//!    exactly: a contact there is the bracket `(a, b)`; an interval that
+//!    left a record ("Reuse across halving") only once it is
+//!    [`STUCK`] times narrower than the tolerance: near a grazing pose
+//!    most right ends are free, each a state check near contact, while
+//!    halving on a record costs a few pair tests (a contact is then
+//!    bracketed by the probes of step 4 or by a right end once stuck,
+//!    both at most the tolerance wide, as before; it takes up to ten more
+//!    halvings, and a contact that lasts less than the interval's width
+//!    is found once the interval is narrower than it, as before);
 //! 4. once [`STUCK`] times narrower than the tolerance (halving keeps
 //!    ending just before a contact that no halving point hits: the body
 //!    within the margin of an obstacle it is about to enter), has the
@@ -279,7 +287,11 @@ pub(crate) fn first_contact<S: Sweep>(
             continue;
         };
         let width = b - a;
-        if !exceeds(b, a, tolerance) && b != known_free_end {
+        // An interval that left a record of what it could not certify
+        // has its right end checked once stuck, not at every level below
+        // the tolerance (module docs, step 3).
+        let checked_end = !left.is_range() || width <= tolerance / STUCK;
+        if !exceeds(b, a, tolerance) && b != known_free_end && checked_end {
             if sweep.collides_at_time(b)? {
                 return Ok(Some((a, b)));
             }
