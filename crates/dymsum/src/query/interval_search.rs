@@ -67,9 +67,13 @@
 //!    ending just before a contact that no halving point hits: the body
 //!    within the margin of an obstacle it is about to enter), has the
 //!    times `a + tol/128`, `a + tol/64`, …, `a + tol` checked, nearest
-//!    first, each clamped to `limit` (and one ulp back when the sum rounds
-//!    past the tolerance): since `[0, a]` is certified, a contact at any
-//!    of them is a valid bracket, the nearest the tightest;
+//!    first, each rounded down to a multiple of an eighth of its offset
+//!    (so the left ends of a grazing stretch probe the same times, each
+//!    checked once) and clamped to `limit` (and an ulp back while it
+//!    rounds past the tolerance): since `[0, a]` is certified, a contact
+//!    at any of them is a valid bracket, the nearest the tightest (each
+//!    offset at least `7/8` of its nominal one, so the first probe past a
+//!    contact at `c` is at most `16/7 (c − a)` past `a`, or `tol/128`);
 //! 5. once no wider than [`MIN_WIDTH`] (the body within rounding of an
 //!    obstacle, grazing), is undecided
 //!    ([`MotionError::Undecided`](crate::query::MotionError::Undecided))
@@ -100,8 +104,8 @@
 //! (the default).
 //!
 //! Each right end is checked once and each left end probed once, and a
-//! time already checked free (the last right end or probe) is not checked
-//! again (the
+//! time among the last sixteen checked free (right ends and probes) is
+//! not checked again (the
 //! exact answers at the same time do not change: only work is saved). The
 //! budget counts examined intervals, so the same check gives the same
 //! answer on any machine and under any load.
@@ -276,7 +280,7 @@ pub(crate) fn first_contact<S: Sweep>(
     for k in (0..pieces).rev() {
         stack.push((cut(k), cut(k + 1), Within::EVERYTHING));
     }
-    let mut known_free_end = f64::NAN;
+    let mut free = FreeTimes::new();
     let mut probed_from = f64::NAN;
     while let Some((a, b, within)) = stack.pop() {
         if *steps_left == 0 {
@@ -291,15 +295,15 @@ pub(crate) fn first_contact<S: Sweep>(
         // has its right end checked once stuck, not at every level below
         // the tolerance (module docs, step 3).
         let checked_end = !left.is_range() || width <= tolerance / STUCK;
-        if !exceeds(b, a, tolerance) && b != known_free_end && checked_end {
+        if !exceeds(b, a, tolerance) && checked_end && !free.contains(b) {
             if sweep.collides_at_time(b)? {
                 return Ok(Some((a, b)));
             }
-            known_free_end = b;
+            free.insert(b);
         }
         if width <= tolerance / STUCK && a != probed_from {
             probed_from = a;
-            if let Some(c) = contact_ahead(sweep, a, limit, tolerance, &mut known_free_end)? {
+            if let Some(c) = contact_ahead(sweep, a, limit, tolerance, &mut free)? {
                 return Ok(Some((a, c)));
             }
         }
@@ -344,26 +348,62 @@ fn contact_ahead<S: Sweep>(
     a: f64,
     limit: f64,
     tolerance: f64,
-    known_free: &mut f64,
+    free: &mut FreeTimes,
 ) -> Result<Option<f64>, S::Error> {
     let mut last = a;
     for k in (0..PROBES).rev() {
-        let mut t = (a + tolerance / f64::from(1u32 << k)).min(limit);
-        if exceeds(t, a, tolerance) {
+        let step = tolerance / f64::from(1u32 << k);
+        // `a + step` rounded down to a multiple of `step / 8` (module
+        // docs, step 4): neighbouring left ends probe the same times.
+        let grid = step / 8.0;
+        let mut t = (((a + step) / grid).floor() * grid).min(limit);
+        for _ in 0..4 {
+            if !exceeds(t, a, tolerance) {
+                break;
+            }
             // Rounded past the tolerance: one ulp back (`t > a ≥ 0`).
             t = f64::from_bits(t.to_bits() - 1);
         }
-        if t > last {
-            if t != *known_free {
+        if t > last && !exceeds(t, a, tolerance) {
+            if !free.contains(t) {
                 if sweep.collides_at_time(t)? {
                     return Ok(Some(t));
                 }
-                *known_free = t;
+                free.insert(t);
             }
             last = t;
         }
     }
     Ok(None)
+}
+
+/// The last times the search checked free ([`FREE_TIMES`] of them): none
+/// is checked twice while remembered.
+struct FreeTimes {
+    times: [f64; FREE_TIMES],
+    next: usize,
+}
+
+/// How many times checked free the search remembers: two left ends'
+/// probes.
+const FREE_TIMES: usize = 2 * PROBES as usize;
+
+impl FreeTimes {
+    fn new() -> FreeTimes {
+        FreeTimes {
+            times: [f64::NAN; FREE_TIMES],
+            next: 0,
+        }
+    }
+
+    fn contains(&self, t: f64) -> bool {
+        self.times.contains(&t)
+    }
+
+    fn insert(&mut self, t: f64) {
+        self.times[self.next] = t;
+        self.next = (self.next + 1) % FREE_TIMES;
+    }
 }
 
 /// The indices `k` of `0 < k < segments` in bisection order (the middle
@@ -615,8 +655,9 @@ mod tests {
             a + 1e-7 <= 0.3 + 1e-12 && c >= 0.3 && c - a <= 1e-6,
             "{a} {c}"
         );
-        // Nearest first: the first probe past the wall is taken.
-        assert!(c - a <= 2.0 * (0.3 - a).max(1e-6 / 128.0), "{a} {c}");
+        // Nearest first: the first probe past the wall is taken (each
+        // offset at least 7/8 of its nominal one, module docs).
+        assert!(c - a <= 16.0 / 7.0 * (0.3 - a).max(1e-6 / 128.0), "{a} {c}");
         // No time is checked twice.
         let mut seen = wall.checks.clone();
         seen.sort_by(f64::total_cmp);
