@@ -58,22 +58,27 @@
 //!    left a record ("Reuse across halving") only once it is
 //!    [`STUCK`] times narrower than the tolerance: near a grazing pose
 //!    most right ends are free, each a state check near contact, while
-//!    halving on a record costs a few pair tests (a contact is then
-//!    bracketed by the probes of step 4 or by a right end once stuck,
-//!    both at most the tolerance wide, as before; it takes up to ten more
-//!    halvings, and a contact that lasts less than the interval's width
-//!    is found once the interval is narrower than it, as before);
+//!    halving on a record costs a few pair tests. A contact is then
+//!    bracketed by a probe of step 4 or by a right end once stuck, both
+//!    at most the tolerance wide, about ten halvings later than before; a
+//!    crossing lasting `d` is found once the interval is narrower than
+//!    `min(d, tol/1024)`, if the search gets there: a grazing stretch
+//!    just before it can now end the search undecided or out of budget
+//!    where the right end inside the crossing used to bracket it at once
+//!    (only work and the kind of answer change, never its truth);
 //! 4. once [`STUCK`] times narrower than the tolerance (halving keeps
 //!    ending just before a contact that no halving point hits: the body
 //!    within the margin of an obstacle it is about to enter), has the
 //!    times `a + tol/128`, `a + tol/64`, …, `a + tol` checked, nearest
-//!    first, each rounded down to a multiple of an eighth of its offset
-//!    (so the left ends of a grazing stretch probe the same times, each
-//!    checked once) and clamped to `limit` (and an ulp back while it
-//!    rounds past the tolerance): since `[0, a]` is certified, a contact
-//!    at any of them is a valid bracket, the nearest the tightest (each
-//!    offset at least `7/8` of its nominal one, so the first probe past a
-//!    contact at `c` is at most `16/7 (c − a)` past `a`, or `tol/128`);
+//!    first, each rounded down to a multiple of the largest power of two
+//!    at most an eighth of its offset (an exact float: so the left ends of
+//!    a grazing stretch probe the same times, each checked once) and
+//!    clamped to `limit` (and an ulp back while it rounds past the
+//!    tolerance): since `[0, a]` is certified, a contact at any of them
+//!    is a valid bracket, the nearest the tightest (each offset at least
+//!    `7/8` of its nominal one, less the half ulp of `a + offset`'s
+//!    rounding, so the first probe past a contact at `c` is at most about
+//!    `16/7 (c − a)` past `a`, or `tol/128`);
 //! 5. once no wider than [`MIN_WIDTH`] (the body within rounding of an
 //!    obstacle, grazing), is undecided
 //!    ([`MotionError::Undecided`](crate::query::MotionError::Undecided))
@@ -103,9 +108,9 @@
 //! token; a sweep that records nothing answers [`Within::EVERYTHING`]
 //! (the default).
 //!
-//! Each right end is checked once and each left end probed once, and a
-//! time among the last sixteen checked free (right ends and probes) is
-//! not checked again (the
+//! Each right end is checked at most once and each left end probed at
+//! most once, and a time among the last sixteen checked free (right ends
+//! and probes) is not checked again (the
 //! exact answers at the same time do not change: only work is saved). The
 //! budget counts examined intervals, so the same check gives the same
 //! answer on any machine and under any load.
@@ -120,6 +125,20 @@
 //! precisely after it: the margin certifies the exact motion (a float
 //! pose of an inner time may lie up to the rounding bound from it), and
 //! `t_safe = 0` rests on the caller's exact check of the start pose.
+//!
+//! # Independent review (2026-11-30)
+//! Of the right ends checked once stuck after a record, the probes on a
+//! grid and the times remembered free. Verified: every answer still comes
+//! from an exact check at a time `t` with `t − a` at most the tolerance,
+//! tested exactly ([`exceeds`], exact for `t ≤ a` too), with `[0, a]`
+//! certified; no probe falls at or before `a` (an offset of at least
+//! about `2⁻⁴⁵`, hundreds of ulps of any `a < 1`); a NaN never passes;
+//! only times answered free are remembered, and the remembered times are
+//! local to one search. Found and mended: the grid was `step/8`, not a
+//! power of two, so its multiples rounded and a probe's offset could fall
+//! an ulp below the stated `7/8` (and the first past `tol/128` by 1.5
+//! ulps); the doc promised a short crossing would be found "as before",
+//! which holds only below `tol/1024` (stated now in step 3).
 
 use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
 
@@ -336,13 +355,14 @@ fn exceeds(t: f64, a: f64, tolerance: f64) -> bool {
 }
 
 /// The first of `a + tolerance / 2^k` (`k` from `PROBES − 1` down to `0`,
-/// each at most `limit`, one ulp back when rounded past the tolerance) at
-/// which the body collides, if any (module docs, step 4).
+/// each rounded down to its grid, at most `limit`, an ulp back while
+/// rounded past the tolerance) at which the body collides, if any (module
+/// docs, step 4).
 ///
-/// A time equal to `known_free` (checked free before) is not checked
-/// again, and the last time checked free is left there: near a grazing end
-/// every probe clamps to `limit`, which the search would otherwise check
-/// once per halving.
+/// A time in `free` (checked free before) is not checked again, and each
+/// time checked free goes there: near a grazing end every probe clamps to
+/// `limit`, and the left ends of a grazing stretch share their grid's
+/// times, which the search would otherwise check once per left end.
 fn contact_ahead<S: Sweep>(
     sweep: &mut S,
     a: f64,
@@ -353,9 +373,10 @@ fn contact_ahead<S: Sweep>(
     let mut last = a;
     for k in (0..PROBES).rev() {
         let step = tolerance / f64::from(1u32 << k);
-        // `a + step` rounded down to a multiple of `step / 8` (module
-        // docs, step 4): neighbouring left ends probe the same times.
-        let grid = step / 8.0;
+        // `a + step` rounded down to a multiple of the largest power of
+        // two at most `step / 8` (module docs, step 4): the multiples are
+        // exact floats, and neighbouring left ends probe the same times.
+        let grid = power_of_two_below(step / 8.0);
         let mut t = (((a + step) / grid).floor() * grid).min(limit);
         for _ in 0..4 {
             if !exceeds(t, a, tolerance) {
@@ -375,6 +396,16 @@ fn contact_ahead<S: Sweep>(
         }
     }
     Ok(None)
+}
+
+/// The largest power of two at most `x`, for a positive normal `x` (its
+/// exponent's bits alone); `x` itself otherwise.
+fn power_of_two_below(x: f64) -> f64 {
+    if x.is_normal() && x > 0.0 {
+        f64::from_bits(x.to_bits() & 0xfff0_0000_0000_0000)
+    } else {
+        x
+    }
 }
 
 /// The last times the search checked free ([`FREE_TIMES`] of them): none
