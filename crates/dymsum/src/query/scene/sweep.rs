@@ -169,12 +169,13 @@ use std::sync::atomic::Ordering;
 use glam::{DMat3, DVec3};
 
 use super::gap::apart_by_more_than;
+use crate::kernel::bounds::U;
 use crate::kernel::rotation::Pose;
 use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::{MotionError, QueryError};
 use crate::query::interval_search::{first_contact, Sweep, SweepMargin, Within};
 use crate::query::motion::Motion;
-use crate::query::rounding::{norm_up, spectral_norm_up};
+use crate::query::rounding::{norm_up, pose_rounding_bound, spectral_norm_up};
 use crate::solid::aabb::Aabb;
 use crate::solid::obb::pose_skew;
 
@@ -240,9 +241,11 @@ impl SceneChecker {
         }
         // Every relative point within `e'` of the exact motion's, and `ρ`
         // at least every exact `|y − T|` (module docs).
-        let ulps = 6.0 * U * (frame.m_plus_d + y_max);
-        let radius = radius + ulps;
-        let rounding = radius * (1.0 / (1u64 << 43) as f64) + ulps;
+        // The world's bound with `M + D + Y` for `M + D` (module docs):
+        // its part without a reach for `ρ`'s slack, all of it for `e'`.
+        let extent = (frame.m_plus_d + y_max, 0.0);
+        let radius = radius + pose_rounding_bound(0.0, extent);
+        let rounding = pose_rounding_bound(radius, extent);
         let margin = (radius * frame.sagitta_per_radius + rounding) * (1.0 + 8.0 * U) + 1e-300;
         let ends = [[pts[0], pts[1], pts[2]], [pts[3], pts[4], pts[5]]];
         apart_by_more_than(&pts, &ends, &p, margin)
@@ -684,9 +687,6 @@ pub(super) struct BodyFrame {
     /// `M + D` of the motion (`query::rounding`).
     m_plus_d: f64,
 }
-
-/// `2⁻⁵³`, the unit roundoff of `f64`.
-const U: f64 = f64::EPSILON / 2.0;
 
 /// How a walk of the body's tree over an interval ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
