@@ -555,12 +555,7 @@ impl SceneChecker {
         s.last_certified = false;
         let mut intervals = std::mem::take(&mut s.intervals);
         let mut steps_left = self.budget;
-        let mut sweep = BodySweep {
-            checker: self,
-            margin: SweepMargin::new(motion.angle(), motion.translation_extent(), self.body.reach),
-            motion,
-            s: &mut *s,
-        };
+        let mut sweep = BodySweep::new(self, motion, &mut *s);
         let travel =
             motion.angle() * self.body.reach + (to.translation - from.translation).length();
         let pieces = first_pieces(travel, self.body.reach, self.budget);
@@ -635,6 +630,22 @@ struct BodySweep<'a> {
     /// The body's margin over the motion.
     margin: SweepMargin,
     s: &'a mut Scratch,
+}
+
+impl<'a> BodySweep<'a> {
+    /// The search of `motion` by `checker` on the buffers `s`.
+    fn new(checker: &'a SceneChecker, motion: Motion, s: &'a mut Scratch) -> BodySweep<'a> {
+        BodySweep {
+            checker,
+            margin: SweepMargin::new(
+                motion.angle(),
+                motion.translation_extent(),
+                checker.body.reach,
+            ),
+            motion,
+            s,
+        }
+    }
 }
 
 impl Sweep for BodySweep<'_> {
@@ -834,16 +845,7 @@ mod tests {
                 let motion = Motion::new(a, b);
                 let mut s = checker.scratch();
                 let plain = {
-                    let mut walk = WalkEveryTime(BodySweep {
-                        checker: &checker,
-                        margin: SweepMargin::new(
-                            motion.angle(),
-                            motion.translation_extent(),
-                            checker.body.reach,
-                        ),
-                        motion,
-                        s: &mut s,
-                    });
+                    let mut walk = WalkEveryTime(BodySweep::new(&checker, motion, &mut s));
                     let mut left = checker.budget;
                     first_contact(&mut walk, 1.0, 1, 1e-6, &mut left, &mut Vec::new())
                 };
@@ -899,16 +901,7 @@ mod tests {
         let (from, to) = (tilt(0.0), tilt(1e-3f64.to_degrees()));
         let motion = Motion::new(from, to);
         let mut s = checker.scratch();
-        let mut sweep = BodySweep {
-            checker: &checker,
-            margin: SweepMargin::new(
-                motion.angle(),
-                motion.translation_extent(),
-                checker.body.reach,
-            ),
-            motion,
-            s: &mut s,
-        };
+        let mut sweep = BodySweep::new(&checker, motion, &mut s);
         assert!(!sweep.certified_free(0.0, 1.0).unwrap());
         assert_eq!(
             sweep
@@ -920,12 +913,7 @@ mod tests {
         // certified, in either frame.
         let lifted = Pose::new(to.rotation, DVec3::new(0.0, 0.0, 2e-6));
         let through = Motion::new(from, lifted);
-        sweep.motion = through;
-        sweep.margin = SweepMargin::new(
-            through.angle(),
-            through.translation_extent(),
-            checker.body.reach,
-        );
+        let mut sweep = BodySweep::new(&checker, through, &mut s);
         assert!(sweep
             .certified_free_within(0.0, 1.0, Within::EVERYTHING)
             .unwrap()
