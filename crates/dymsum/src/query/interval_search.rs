@@ -207,8 +207,8 @@ pub(crate) trait Sweep {
 
 /// What the examination of an interval left uncertified, handed to the
 /// intervals cut from it (module docs, "Reuse across halving"): a range
-/// `start..end` of the sweep's own record of uncertified parts, or one of
-/// the two tokens for all of them.
+/// `start..end` of the sweep's own record of uncertified parts, or the
+/// token for all of them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Within {
     /// The record's first entry.
@@ -218,20 +218,14 @@ pub(crate) struct Within {
 }
 
 impl Within {
-    /// Everything: a first piece, or nothing recorded.
+    /// Everything: a first piece, or an interval whose examination
+    /// recorded nothing (or found more than the sweep may record).
     pub(crate) const EVERYTHING: Within = Within {
         start: u32::MAX,
         end: u32::MAX,
     };
 
-    /// Everything, after an examination that found too many uncertified
-    /// parts to record: the sweep may try the last blocking part first.
-    pub(crate) const CROWDED: Within = Within {
-        start: u32::MAX,
-        end: u32::MAX - 1,
-    };
-
-    /// Whether this names a range of the record (neither token).
+    /// Whether this names a range of the record (not the token).
     pub(crate) fn is_range(self) -> bool {
         self.start != u32::MAX
     }

@@ -240,9 +240,9 @@ impl SceneChecker {
             pts[9 + k] = frame.ma_t * qb;
         }
         // Every relative point within `e'` of the exact motion's, and `ρ`
-        // at least every exact `|y − T|` (module docs).
-        // The world's bound with `M + D + Y` for `M + D` (module docs):
-        // its part without a reach for `ρ`'s slack, all of it for `e'`.
+        // at least every exact `|y − T|` (module docs): the world's bound
+        // with `M + D + Y` for `M + D`, its part without a reach for `ρ`'s
+        // slack, all of it for `e'`.
         let extent = (frame.m_plus_d + y_max, 0.0);
         let radius = radius + pose_rounding_bound(0.0, extent);
         let rounding = pose_rounding_bound(radius, extent);
@@ -304,7 +304,7 @@ impl SceneChecker {
                 }),
                 Walk::Crowded => {
                     s.front.truncate(start);
-                    Some(Within::CROWDED)
+                    Some(Within::EVERYTHING)
                 }
             }
         };
