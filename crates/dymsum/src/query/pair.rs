@@ -4,7 +4,7 @@
 
 use crate::polytope::Polytope;
 use crate::query::error::QueryError;
-use crate::query::prep::{BodyPrep, Reflected};
+use crate::query::prep::{BodyPrep, Reflected, Reflection};
 
 /// Two convex bodies prepared for repeated queries: `B`'s reflection is
 /// built once. Use it (or a [`crate::query::ContactTracker`]) instead of the free functions
@@ -36,6 +36,8 @@ pub struct ConvexPair {
     pub(in crate::query) b: Polytope,
     pub(in crate::query) prep_a: std::sync::Arc<BodyPrep>,
     pub(in crate::query) prep_b: std::sync::Arc<BodyPrep>,
+    /// B's reflection and the maps into it (kept by B's preparation).
+    pub(in crate::query) refl_b: std::sync::Arc<Reflection>,
     pub(in crate::query) stats: std::sync::Arc<Counters>,
 }
 
@@ -104,10 +106,10 @@ impl Counters {
 }
 
 impl ConvexPair {
-    /// Prepares `a` and `b`: the data each body's queries need (its
-    /// reflection, one convex hull; bounds and balls) is computed on the
-    /// body's first query and kept by its [`Polytope`] handle, so pairing
-    /// bodies again costs nothing. The pair keeps its own handles on the
+    /// Prepares `a` and `b`: the data each body's queries need (bounds,
+    /// balls and caps; B's reflection as well, the first time the body is
+    /// someone's B) is computed on the body's first query and kept by its
+    /// [`Polytope`] handle, so pairing bodies again costs nothing. The pair keeps its own handles on the
     /// bodies (cheap clones); a clone of the pair shares everything.
     ///
     /// # Errors
@@ -116,11 +118,13 @@ impl ConvexPair {
     /// negated vertices fails, [`QueryError::Inconsistent`] if its faces or
     /// edges do not match the original's (a bug in dymsum either way).
     pub fn new(a: &Polytope, b: &Polytope) -> Result<Self, QueryError> {
+        let prep_b = BodyPrep::of_cached(b);
         Ok(ConvexPair {
             a: a.clone(),
             b: b.clone(),
-            prep_a: BodyPrep::of_cached(a)?,
-            prep_b: BodyPrep::of_cached(b)?,
+            prep_a: BodyPrep::of_cached(a),
+            refl_b: prep_b.reflection(b)?,
+            prep_b,
             stats: std::sync::Arc::new(Counters::default()),
         })
     }
@@ -134,13 +138,13 @@ impl ConvexPair {
     }
     /// B's reflection.
     pub fn reflected_b(&self) -> &Reflected {
-        &self.prep_b.neg
+        &self.refl_b.neg
     }
 
     /// B's reflection (crate-internal shorthand).
     #[inline]
     pub(crate) fn neg_b(&self) -> &Reflected {
-        &self.prep_b.neg
+        &self.refl_b.neg
     }
 
     /// How this pair's queries (and its clones' and trackers') were

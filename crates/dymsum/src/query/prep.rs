@@ -125,13 +125,11 @@ pub(crate) struct BodyPrep {
     /// Error bounds of the arc normals under any rotation, exactly as the
     /// overlay's operands compute them (the body as A).
     pub(in crate::query) arc_err: Vec<f64>,
-    /// The reflection `−body` (the body as B).
-    pub(in crate::query) neg: Reflected,
-    /// Vertex, face and edge → the same of the reflection (the inverses of
-    /// [`Reflected`]'s maps).
-    pub(in crate::query) neg_vertex: Vec<u32>,
-    pub(in crate::query) neg_face: Vec<u32>,
-    pub(in crate::query) neg_edge: Vec<u32>,
+    /// What the body needs as B ([`BodyPrep::reflection`]): made when a
+    /// pair first takes it as B, so that a body only ever A (a planner's
+    /// robot) never holds it: it is a second polytope, about 70% of the
+    /// rest of this preparation.
+    reflection: std::sync::OnceLock<std::sync::Arc<Reflection>>,
     /// Caps holding each vertex's Gaussian cell and each edge's Gaussian
     /// arc (body frame): the certificates' quick rejections.
     pub(in crate::query) caps: crate::query::prep::GaussCaps,
@@ -140,6 +138,41 @@ pub(crate) struct BodyPrep {
     /// the last query's support vertex is further from the answer
     /// ([`BodyPrep::seed`]).
     pub(in crate::query) seeds: [u32; SEED_DIRECTIONS],
+}
+
+/// What a body needs as B: its reflection `−B` and the maps into it.
+#[derive(Debug)]
+pub(crate) struct Reflection {
+    /// The reflection `−body`.
+    pub(in crate::query) neg: Reflected,
+    /// Vertex, face and edge → the same of the reflection (the inverses of
+    /// [`Reflected`]'s maps).
+    pub(in crate::query) neg_vertex: Vec<u32>,
+    pub(in crate::query) neg_face: Vec<u32>,
+    pub(in crate::query) neg_edge: Vec<u32>,
+}
+
+impl Reflection {
+    /// The reflection of `p` and its maps.
+    ///
+    /// # Errors
+    /// Those of [`Reflected::new`] (internal only).
+    fn of(p: &Polytope) -> Result<Reflection, QueryError> {
+        let neg = Reflected::new(p)?;
+        let inverse = |map: &[u32]| {
+            let mut inv = vec![0; map.len()];
+            for (i, &j) in map.iter().enumerate() {
+                inv[j as usize] = i as u32;
+            }
+            inv
+        };
+        Ok(Reflection {
+            neg_vertex: inverse(&neg.vertex_map),
+            neg_face: inverse(&neg.face_map),
+            neg_edge: inverse(&neg.edge_map),
+            neg,
+        })
+    }
 }
 
 /// How many directions [`BodyPrep::seeds`] covers: the 26 of the cube's
@@ -169,43 +202,43 @@ fn seed_directions() -> [DVec3; SEED_DIRECTIONS] {
 impl BodyPrep {
     /// The data of `p`, computed on its first query and kept with the
     /// polytope (shared by every handle of it).
-    ///
-    /// # Errors
-    /// Those of [`Reflected::new`] (internal only).
-    pub(crate) fn of_cached(p: &Polytope) -> Result<std::sync::Arc<BodyPrep>, QueryError> {
-        p.derived(|| BodyPrep::of(p).map(std::sync::Arc::new))
+    pub(crate) fn of_cached(p: &Polytope) -> std::sync::Arc<BodyPrep> {
+        p.derived(|| std::sync::Arc::new(BodyPrep::of(p)))
     }
 
-    /// Computes the data of `p`.
+    /// What `p`, whose preparation this is, needs as B: made on the first
+    /// call and kept (two threads asking at once may both make it; one is
+    /// kept).
     ///
     /// # Errors
     /// Those of [`Reflected::new`] (internal only).
-    pub(crate) fn of(p: &Polytope) -> Result<BodyPrep, QueryError> {
+    pub(crate) fn reflection(
+        &self,
+        p: &Polytope,
+    ) -> Result<std::sync::Arc<Reflection>, QueryError> {
+        if let Some(r) = self.reflection.get() {
+            return Ok(r.clone());
+        }
+        let made = std::sync::Arc::new(Reflection::of(p)?);
+        Ok(self.reflection.get_or_init(|| made).clone())
+    }
+
+    /// Computes the data of `p` (its reflection only when asked).
+    fn of(p: &Polytope) -> BodyPrep {
         let (mut arcs, mut arc_err) = (Vec::new(), Vec::new());
         crate::sum::rotate_arcs(p, None, &mut arcs, &mut arc_err);
-        let neg = Reflected::new(p)?;
-        let inverse = |map: &[u32]| {
-            let mut inv = vec![0; map.len()];
-            for (i, &j) in map.iter().enumerate() {
-                inv[j as usize] = i as u32;
-            }
-            inv
-        };
-        Ok(BodyPrep {
+        BodyPrep {
             balls: crate::query::prep::FeatureBalls::of(p),
             bounds: crate::query::prep::BodyBounds::of(p),
             arc_err,
-            neg_vertex: inverse(&neg.vertex_map),
-            neg_face: inverse(&neg.face_map),
-            neg_edge: inverse(&neg.edge_map),
-            neg,
+            reflection: std::sync::OnceLock::new(),
             caps: crate::query::prep::GaussCaps::of(p),
             seeds: SEED_UNITS.map(|d| {
                 let best = (0..p.vertex_count())
                     .max_by(|&i, &j| d.dot(p.vertex(i)).total_cmp(&d.dot(p.vertex(j))));
                 best.unwrap_or(0) as u32
             }),
-        })
+        }
     }
 
     /// The seed vertex of the direction of [`SEED_DIRECTIONS`] nearest
@@ -386,4 +419,47 @@ impl GaussCaps {
 #[inline]
 pub(in crate::query) fn mean(points: impl Iterator<Item = DVec3>, n: usize) -> DVec3 {
     points.fold(DVec3::ZERO, |s, p| s + p) / n as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::query::ConvexPair;
+
+    fn cube(half: f64, centre: [f64; 3]) -> Polytope {
+        let corners: Vec<[f64; 3]> = (0..8)
+            .map(|i| [0, 1, 2].map(|k| centre[k] + if i >> k & 1 == 0 { -half } else { half }))
+            .collect();
+        Polytope::from_points(&corners).expect("a cube")
+    }
+
+    /// A body only ever A (a planner's robot) holds no reflection; the
+    /// first pair that takes it as B makes it, and later pairs share it.
+    #[test]
+    fn only_a_body_taken_as_b_holds_its_reflection() {
+        let (robot, wall) = (cube(0.5, [0.0; 3]), cube(1.0, [3.0, 0.0, 0.0]));
+        let pair = ConvexPair::new(&robot, &wall).expect("a pair");
+        assert!(BodyPrep::of_cached(&robot).reflection.get().is_none());
+        assert!(BodyPrep::of_cached(&wall).reflection.get().is_some());
+        assert!(std::sync::Arc::ptr_eq(
+            &pair.refl_b,
+            &ConvexPair::new(&wall, &wall).expect("a pair").refl_b
+        ));
+        let swapped = ConvexPair::new(&wall, &robot).expect("a pair");
+        let made = BodyPrep::of_cached(&robot)
+            .reflection(&robot)
+            .expect("made");
+        assert!(std::sync::Arc::ptr_eq(&swapped.refl_b, &made));
+        // The reflection's maps take the reflection's features back to the
+        // body's and the inverses take them forth.
+        for (v, &w) in made.neg_vertex.iter().enumerate() {
+            assert_eq!(made.neg.vertex_map[w as usize] as usize, v);
+            assert_eq!(made.neg.polytope.vertex(w as usize), -robot.vertex(v));
+        }
+        // The answers do not depend on which pair made it.
+        let at =
+            |x: f64| crate::Pose::new(crate::Rotation::IDENTITY, glam::DVec3::new(x, 0.0, 0.0));
+        assert!(swapped.intersects(at(0.0), at(2.0)).expect("a verdict"));
+        assert!(!swapped.intersects(at(0.0), at(5.0)).expect("a verdict"));
+    }
 }
