@@ -172,29 +172,30 @@ fn body_of(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Body> {
 }
 
 /// A body argument as read from Python (the GIL held): built already, or a
-/// mesh to build ([`build_bodies`], on several cores with the GIL
-/// released).
+/// mesh's arrays to convert and build ([`build_bodies`]: converted with
+/// the GIL held, built with it released).
 #[allow(clippy::large_enum_variant)] // a handful per call, moved once
-enum BodyArg {
+enum BodyArg<'py> {
     Built(Body),
     Mesh {
-        mesh: dymsum::PolygonMesh,
+        vertices: Bound<'py, PyAny>,
+        faces: Bound<'py, PyAny>,
         what: String,
     },
 }
 
 /// Reads a body argument ([`body_of`]'s forms) without building a mesh.
-fn body_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<BodyArg> {
+fn body_arg<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<BodyArg<'py>> {
     let py = obj.py();
     convert::not_none(obj, what, BODY_FORMS)?;
     if let Ok(u) = obj.cast::<PyConvexUnion>() {
         return Ok(BodyArg::Built(Body::Convex(u.get().inner.clone())));
     }
     if obj.cast::<PyPolytope>().is_err() {
-        if let Some((v, f)) = convert::mesh_parts(obj)? {
-            let mesh = convert::solid_from_parts(&v, &f, what)?;
+        if let Some((vertices, faces)) = convert::mesh_parts(obj)? {
             return Ok(BodyArg::Mesh {
-                mesh,
+                vertices,
+                faces,
                 what: what.to_string(),
             });
         }
@@ -211,40 +212,36 @@ fn body_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<BodyArg> {
     ))))
 }
 
-/// From this many faces in all on, the meshes are built side by side.
-const PARALLEL_FACES: usize = 20_000;
-
-/// The bodies of `args`, the meshes among them built by the core's ladder
-/// side by side (a body and its obstacles of a million triangles each take
-/// seconds apiece), with the GIL released; the first error in `args`'
-/// order is raised.
-fn build_bodies(py: Python<'_>, args: Vec<BodyArg>) -> PyResult<Vec<Body>> {
-    use rayon::prelude::*;
-    let build = |arg| match arg {
-        BodyArg::Built(body) => Ok(body),
-        BodyArg::Mesh { mesh, what } => Body::from_mesh_with(&mesh, &BodyOptions::default())
-            .map(|(body, _)| body)
-            .map_err(|e| (what, body_error_text(&e, mesh.faces.len()))),
-    };
-    let faces: usize = args
-        .iter()
-        .map(|a| match a {
-            BodyArg::Mesh { mesh, .. } => mesh.faces.len(),
-            BodyArg::Built(_) => 0,
+/// The bodies of `args`, in order, the meshes among them converted from
+/// their arrays (the GIL held) and built by the core's ladder (the GIL
+/// released) one at a time; the first error in `args`' order is raised.
+///
+/// One at a time, although a body and its obstacles of a million
+/// triangles each take seconds apiece: each build parallelises its own
+/// large steps (the soup's edge chain), while two cleanings side by side
+/// peak at twice one's temporaries, which the worker thread's heap then
+/// keeps as holes that the trees built next cannot use; and a mesh is
+/// converted just before its build and dropped after it. On soups of
+/// 10⁴–10⁶ triangles as body and obstacle (`bench_builds.py --memory`),
+/// side by side added 1.32–1.38× python-fcl's peak memory; one at a time,
+/// with the checker's trees one after the other (`SceneChecker::new`),
+/// 0.78–0.83×, for 0.72–0.76× fcl's build time instead of 0.45–0.56×
+/// (docs/BENCHMARKS.md, "Builds one at a time").
+fn build_bodies(py: Python<'_>, args: Vec<BodyArg<'_>>) -> PyResult<Vec<Body>> {
+    args.into_iter()
+        .map(|arg| match arg {
+            BodyArg::Built(body) => Ok(body),
+            BodyArg::Mesh {
+                vertices,
+                faces,
+                what,
+            } => {
+                let mesh = convert::solid_from_parts(&vertices, &faces, &what)?;
+                py.detach(|| Body::from_mesh_with(&mesh, &BodyOptions::default()))
+                    .map(|(body, _)| body)
+                    .map_err(|e| err_for(&what, body_error_text(&e, mesh.faces.len())))
+            }
         })
-        .sum();
-    // Small meshes build faster than a second thread starts (and a thread
-    // of its own grows its own heap).
-    let built: Vec<Result<Body, (String, String)>> = py.detach(|| {
-        if faces >= PARALLEL_FACES {
-            args.into_par_iter().map(build).collect()
-        } else {
-            args.into_iter().map(build).collect()
-        }
-    });
-    built
-        .into_iter()
-        .map(|b| b.map_err(|(what, text)| err_for(&what, text)))
         .collect()
 }
 
@@ -259,7 +256,7 @@ pub(crate) fn obstacles_of(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Body>> {
 
 /// Reads an obstacles argument ([`obstacles_of`]) without building its
 /// meshes.
-fn obstacle_args(obj: &Bound<'_, PyAny>) -> PyResult<Vec<BodyArg>> {
+fn obstacle_args<'py>(obj: &Bound<'py, PyAny>) -> PyResult<Vec<BodyArg<'py>>> {
     convert::not_none(
         obj,
         "obstacles",

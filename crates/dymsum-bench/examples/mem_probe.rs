@@ -5,7 +5,10 @@
 //! memory added by `MeshBody::new`, then by a `SceneChecker` of the body
 //! against itself (its trees). With `AS_PYTHON=1`, what Python's
 //! `MotionChecker((v, f), [(v, f)])` builds instead: two copies of the
-//! mesh through the ladder side by side, then the validator.
+//! mesh, each converted (copied) just before it goes through the ladder,
+//! one at a time, then the validator; with `SIDE_BY_SIDE=1` as well, both
+//! copied first and built on two threads (as Python built them before:
+//! docs/BENCHMARKS.md, "Builds one at a time").
 use dymsum::query::{MeshBody, SceneChecker};
 
 /// (VmRSS, VmHWM) in KiB.
@@ -35,7 +38,9 @@ fn main() {
     let f = std::env::args().nth(1).expect("a mesh file");
     let mesh = dymsum_io::formats::read_mesh(std::path::Path::new(&f)).expect("a mesh");
     if std::env::var("AS_PYTHON").is_ok_and(|v| v == "1") {
-        let copies = [mesh.clone(), mesh];
+        // The input stays (Python's arrays); the copies the bindings
+        // convert it into count, each made just before its build and
+        // dropped after it.
         std::fs::write("/proc/self/clear_refs", "5").expect("the peak reset");
         let (rss0, _) = status();
         let build = |m: &dymsum::PolygonMesh| {
@@ -43,17 +48,17 @@ fn main() {
                 .expect("a body")
                 .0
         };
-        // Side by side from 20,000 faces in all, as Python builds them.
-        let bodies: Vec<dymsum::query::Body> = if 2 * copies[0].faces.len() >= 20_000 {
-            std::thread::scope(|s| {
-                let other = s.spawn(|| build(&copies[1]));
-                let first = build(&copies[0]);
-                vec![first, other.join().expect("the second build")]
-            })
-        } else {
-            copies.iter().map(build).collect()
-        };
-        drop(copies);
+        let bodies: Vec<dymsum::query::Body> =
+            if std::env::var("SIDE_BY_SIDE").is_ok_and(|v| v == "1") {
+                let (first, second) = (mesh.clone(), mesh.clone());
+                std::thread::scope(|s| {
+                    let other = s.spawn(move || build(&second));
+                    let first = build(&first);
+                    vec![first, other.join().expect("the second build")]
+                })
+            } else {
+                (0..2).map(|_| build(&mesh.clone())).collect()
+            };
         report("bodies", rss0);
         let v = dymsum::query::Validator::new(&bodies[0], &bodies[1..]).expect("a validator");
         drop(bodies);

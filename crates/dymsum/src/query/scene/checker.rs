@@ -326,10 +326,6 @@ impl std::fmt::Debug for SceneChecker {
     }
 }
 
-/// From this many triangles in the body and the scene together on, their
-/// trees are built on two cores.
-const PARALLEL_TREES: usize = 20_000;
-
 impl SceneChecker {
     /// Prepares `body` (in its own frame) against `scene` (bodies placed in
     /// the world frame, joined into one).
@@ -341,28 +337,19 @@ impl SceneChecker {
         // Every query walks both triangle trees (built on first use, as a
         // body on the convex path never needs them): built here, so the
         // first query costs what the others do, and on the caller's
-        // bodies, so that the checkers made from one body share its tree;
-        // the body's and the scene's on two cores when they are large
-        // (small ones build faster than a second thread starts).
-        let body_tree = || {
-            body.tree();
-        };
-        let scene_tree = || {
-            if let [one] = scene {
-                one.tree();
-            }
-            let scene = MeshBody::join(scene);
-            scene.tree();
-            scene
-        };
-        let triangles =
-            body.triangles.len() + scene.iter().map(|b| b.triangles.len()).sum::<usize>();
-        let scene = if triangles >= PARALLEL_TREES {
-            rayon::join(body_tree, scene_tree).1
-        } else {
-            body_tree();
-            scene_tree()
-        };
+        // bodies, so that the checkers made from one body share its tree.
+        // One after the other on this thread, not side by side: a tree
+        // built on a worker thread grows that thread's heap, while here it
+        // reuses what the bodies' cleaning freed. On a 100,000-triangle
+        // soup as body and obstacle, the peak fell from 100–120 MB to 73
+        // MB (`mem_probe`), for about a third more time
+        // (docs/BENCHMARKS.md, "Builds one at a time").
+        body.tree();
+        if let [one] = scene {
+            one.tree();
+        }
+        let scene = MeshBody::join(scene);
+        scene.tree();
         if body.triangles.is_empty() {
             return Err(QueryError::OutOfRange("the body has no triangles".into()));
         }
