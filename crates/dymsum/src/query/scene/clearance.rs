@@ -78,7 +78,7 @@ impl SceneChecker {
         // bounded, or dropped by a bound at least as large): no surfaces
         // meet, and the bodies collide only when one holds the other. A
         // zero bound is the answer whether or not they touch.
-        if best > 0.0 && self.one_inside_the_other(pose, s)? {
+        if best > 0.0 && self.one_inside_the_other(pose, s, 0..usize::MAX)? {
             return Ok(0.0);
         }
         Ok(best)
