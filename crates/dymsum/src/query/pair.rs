@@ -109,8 +109,9 @@ impl ConvexPair {
     /// Prepares `a` and `b`: the data each body's queries need (bounds,
     /// balls and caps; B's reflection as well, the first time the body is
     /// someone's B) is computed on the body's first query and kept by its
-    /// [`Polytope`] handle, so pairing bodies again costs nothing. The pair keeps its own handles on the
-    /// bodies (cheap clones); a clone of the pair shares everything.
+    /// [`Polytope`] handle, so pairing bodies again costs nothing. The
+    /// pair keeps its own handles on the bodies (cheap clones); a clone of
+    /// the pair shares everything.
     ///
     /// # Errors
     /// Only internal errors of the reflection ([`Reflected::new`]), for a polytope built by this crate:
