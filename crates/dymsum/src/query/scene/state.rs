@@ -371,20 +371,16 @@ mod tests {
         assert!(!checker.collides_at(at(0.0)).unwrap());
     }
 
-    /// A closed box `[lo, hi]` as six quads, outward.
+    /// A closed box `[lo, hi]` (exact here: the sizes and centres are
+    /// short binary fractions).
     fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> PolygonMesh {
-        let v: Vec<[f64; 3]> = (0..8)
-            .map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
-            .collect();
-        let faces = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        PolygonMesh::new(v, faces.iter().map(|f| f.to_vec()).collect())
+        let (lo, hi) = (DVec3::from(lo), DVec3::from(hi));
+        let mut mesh = crate::robot::shapes::box_mesh(hi - lo);
+        let centre = (lo + hi) * 0.5;
+        for v in &mut mesh.vertices {
+            *v = (DVec3::from(*v) + centre).to_array();
+        }
+        mesh
     }
 
     /// Containment asked first (module docs) answers as the walk followed
