@@ -6,8 +6,10 @@
 //!
 //! Before the walk, the first [`POINTS_ASKED_FIRST`] points of the
 //! containment test (a body component's vertex in a scene solid, a scene
-//! component's corner in a body solid, in the test's order, after its box
-//! filters) are asked; one inside decides a collision. Where one body lies
+//! component's corner in a body solid, in the test's order, counted before
+//! its box filters, so that the first asking scans at most that many
+//! however many the filters drop: a soup's thousands of components wait
+//! for the walk) are asked; one inside decides a collision. Where one body lies
 //! deep in the other, the walk meets many triangle pairs that are close
 //! but do not cross before it reaches one that does, while a ray decides
 //! at once: on the 16 seeded robot part pairs and the irb6640 visual
@@ -38,8 +40,9 @@
 //! first point, so an error is returned exactly where it was before.
 //!
 //! An independent review (2026-11-30) checked this argument and the code:
-//! the numbering of points is the same in both askings (counted after the
-//! deterministic box filters and early returns), the shared caches are
+//! the numbering of points is the same in both askings (then counted after
+//! the deterministic box filters; since the review, before them, which
+//! depends on nothing but the order, the same in both), the shared caches are
 //! written with identical values, `parity` is reset on every path, and no
 //! new panic is reachable. Its randomized comparison, 24,000 poses of
 //! bodies against one to three obstacles (boxes on a quarter grid, nested
@@ -194,7 +197,7 @@ impl SceneChecker {
 
     /// A body component inside a scene solid, or a scene component inside
     /// a body solid, asking only the points whose index, counted from 0 in
-    /// the test's order after its box filters, is in `asked`: exact when
+    /// the test's order before its box filters, is in `asked`: exact when
     /// no triangles meet; "inside" is a collision in any case (module
     /// docs, "Containment first").
     pub(super) fn one_inside_the_other(
@@ -216,22 +219,27 @@ impl SceneChecker {
         parity: &mut Vec<u8>,
         asked: std::ops::Range<usize>,
     ) -> Result<bool, QueryError> {
-        // The points that pass the box filters, counted in order: the one
-        // counted `number` has index `number − 1`, asked when in `asked`.
+        // The points, counted in order before the box filters (so that an
+        // asking of a few scans only a few, however many the filters
+        // drop): the one counted `number` has index `number − 1`, asked
+        // when in `asked`.
         let mut number = 0usize;
         if !self.scene.solid_components.is_empty() {
             let scene_box = self.scene.obbs().first();
             for &(_, v) in &self.body.components {
+                number += 1;
+                if number > asked.end {
+                    return Ok(false);
+                }
+                if number <= asked.start {
+                    continue;
+                }
                 let p = s.at.get(&self.body.vertices, &pose, v);
                 // Outside the scene's oriented box: inside nothing of it.
                 if scene_box.is_some_and(|o| o.excludes(p, 0.0)) {
                     continue;
                 }
-                number += 1;
-                if number > asked.end {
-                    return Ok(false);
-                }
-                if number > asked.start && self.scene.inside_solid(p, parity)? {
+                if self.scene.inside_solid(p, parity)? {
                     return Ok(true);
                 }
             }
@@ -284,6 +292,13 @@ impl SceneChecker {
         let mut candidates = Vec::new();
         let mut out = Ok(false);
         for k in corners {
+            number += 1;
+            if number > asked.end {
+                break;
+            }
+            if number <= asked.start {
+                continue;
+            }
             let p = self.scene.vertices[self.scene.components[k].1 as usize];
             let back = mi * (p - t);
             let back_pad = size * (1.0 / (1u64 << 36) as f64)
@@ -291,13 +306,6 @@ impl SceneChecker {
                 + 16.0 * f64::EPSILON * (p.abs().max_element() + t.abs().max_element())
                 + 1e-300;
             if filter && body_box.is_some_and(|o| o.excludes(back, back_pad)) {
-                continue;
-            }
-            number += 1;
-            if number > asked.end {
-                break;
-            }
-            if number <= asked.start {
                 continue;
             }
             candidates.clear();
