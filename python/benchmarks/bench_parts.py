@@ -23,8 +23,8 @@ dymsum's ``collides_at(pose)`` against ``setTransform`` +
 percentiles in µs, and their ratios (dymsum / fcl: below 1 is faster);
 ``collides_many`` on all states at once, per state (the median of five
 such calls: one call of a few milliseconds is at the mercy of the
-machine), against the fcl loop's mean. Disagreements are counted (fcl rounds; dymsum is exact and
-also counts a body inside a solid). With ``--motions M``, short motions
+machine), against the fcl loop's mean. Disagreements are counted (fcl
+rounds; dymsum is exact and also counts a body inside a solid). With ``--motions M``, short motions
 from free near-contact states: turned by 1° to 5° about a random axis
 through the body's centre and moved by up to 2% of the obstacle's
 diagonal, one call each: dymsum's certified ``check(pose0, pose1)``
