@@ -113,20 +113,9 @@ pub(crate) fn apart_by_more_than(
 /// rounding of it (`0` when they meet or nearly): the gap along the
 /// direction of their closest points found in floating point, divided by
 /// `|n|` rounded up, rounded down.
+#[cfg(test)]
 pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
-    let closest = closest_points(t, u);
-    let bound = distance_bound_along(t, u, closest.cu - closest.ct);
-    match closest.edges {
-        // The edges' common normal, both ways (module docs, "Edges within
-        // rounding"): the better of two valid bounds.
-        Some((i, j)) => {
-            let n = (t[(i + 1) % 3] - t[i]).cross(u[(j + 1) % 3] - u[j]);
-            bound
-                .max(distance_bound_along(t, u, n))
-                .max(distance_bound_along(t, u, -n))
-        }
-        None => bound,
-    }
+    distance_lower_bound_beyond(t, u, f64::INFINITY)
 }
 
 /// A lower bound on the distance between triangles `t` and `u` from the
@@ -134,18 +123,37 @@ pub(crate) fn distance_lower_bound(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
 /// rounded up, rounded down; `0` without a positive gap.
 fn distance_bound_along(t: &[DVec3; 3], u: &[DVec3; 3], d: DVec3) -> f64 {
     let n = normalised_scale(d);
-    let gap = gap_along(t, u, n, 0.0);
+    bound_from_gap(gap_along(t, u, n, 0.0), n)
+}
+
+/// The better of the bounds along `d` and along `−d`
+/// ([`distance_bound_along`] each), in one pass over the corners: dividing
+/// by the same positive `|d|` keeps the order of the two gaps.
+fn distance_bound_either_way(t: &[DVec3; 3], u: &[DVec3; 3], d: DVec3) -> f64 {
+    let n = normalised_scale(d);
+    let (ahead, behind) = gaps_both_ways(t, u, n, 0.0);
+    bound_from_gap(ahead.max(behind), n)
+}
+
+/// `gap / |n|`, `|n|` rounded up and the quotient rounded down; `0`
+/// without a positive gap.
+fn bound_from_gap(gap: f64, n: DVec3) -> f64 {
     if gap <= 0.0 || !gap.is_finite() {
         return 0.0;
     }
     gap / (n.length() * (1.0 + 8.0 * U)) * (1.0 - 4.0 * U)
 }
 
-/// [`distance_lower_bound`], or a cheaper bound when the gap along the line
-/// between the triangles' centroids already bounds the distance by
-/// `enough` or more: a caller keeping the least distance so far
-/// (`enough`) needs no tighter bound for such a pair, and skips the
-/// closest points (most of the cost).
+/// A lower bound on the distance between triangles `t` and `u` as
+/// [`distance_lower_bound`] gives it, or any lower bound of at least
+/// `enough`: a caller keeping the least distance so far (`enough`) needs
+/// no tighter bound for a pair that cannot lower it. So the gap along the
+/// line between the triangles' centroids comes first (when it reaches
+/// `enough` the closest points, most of the cost, are skipped), and the
+/// edges' common normal only when the closest points' direction leaves
+/// the bound below `enough`. The caller's least (`enough.min(bound)`) is
+/// the same as with the full bound: each step returns early only with a
+/// bound of at least `enough`.
 pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough: f64) -> f64 {
     if enough.is_finite() {
         let d = distance_bound_along(t, u, (u[0] + u[1] + u[2]) - (t[0] + t[1] + t[2]));
@@ -153,7 +161,17 @@ pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough
             return d;
         }
     }
-    distance_lower_bound(t, u)
+    let closest = closest_points(t, u);
+    let bound = distance_bound_along(t, u, closest.cu - closest.ct);
+    match closest.edges {
+        // The edges' common normal, both ways (module docs, "Edges within
+        // rounding"): the better of two valid bounds.
+        Some((i, j)) if bound < enough => {
+            let n = (t[(i + 1) % 3] - t[i]).cross(u[(j + 1) % 3] - u[j]);
+            bound.max(distance_bound_either_way(t, u, n))
+        }
+        _ => bound,
+    }
 }
 
 /// `n` scaled by a power of two (exactly, up to the last bits of components
@@ -466,6 +484,43 @@ mod tests {
             distance_lower_bound_beyond(&t, &v, f64::INFINITY),
             distance_lower_bound(&t, &v)
         );
+    }
+
+    #[test]
+    fn the_least_so_far_is_the_same_as_with_the_full_bound() {
+        // `distance_lower_bound_beyond` may stop early only with a bound
+        // of at least `enough`: the caller's least is unchanged, on random,
+        // sliver and edge-to-edge pairs and thresholds about the distance.
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(36);
+        let mut early = 0;
+        for k in 0..20_000 {
+            let scale = 10f64.powi(k % 5 - 2);
+            let mut point = |r: f64| {
+                DVec3::new(
+                    rng.random_range(-r..r),
+                    rng.random_range(-r..r),
+                    rng.random_range(-r..r),
+                ) * scale
+            };
+            let t = [point(1.0), point(1.0), point(1.0)];
+            let shift = point(3.0);
+            let u = if k % 2 == 0 {
+                [point(1.0) + shift, point(1.0) + shift, point(1.0) + shift]
+            } else {
+                let a = point(1.0) + shift;
+                [a, a + point(1e-3), point(1.0) + shift]
+            };
+            let full = distance_lower_bound(&t, &u);
+            for f in [0.0, 0.5, 0.999, 1.0, 1.001, 2.0, 10.0] {
+                let enough = full * f + if f == 0.0 { 1e-300 } else { 0.0 };
+                let got = distance_lower_bound_beyond(&t, &u, enough);
+                assert_eq!(enough.min(got), enough.min(full), "{t:?} {u:?} {enough}");
+                assert!(got <= full || got >= enough);
+                early += usize::from(got != full);
+            }
+        }
+        assert!(early > 1_000, "{early}");
     }
 
     /// Every candidate of the closest pair (the six corner–face and the
