@@ -155,7 +155,7 @@ fn bound_from_gap(gap: f64, n: DVec3) -> f64 {
 /// the same as with the full bound: each step returns early only with a
 /// bound of at least `enough`.
 pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough: f64) -> f64 {
-    if enough.is_finite() {
+    if enough.is_finite() && centroids_apart_by(t, u) >= 0.5 * enough {
         let d = distance_bound_along(t, u, (u[0] + u[1] + u[2]) - (t[0] + t[1] + t[2]));
         if d >= enough {
             return d;
@@ -172,6 +172,20 @@ pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough
         }
         _ => bound,
     }
+}
+
+/// The distance between the triangles' centroids less each one's radius
+/// about its centroid, in floating point (a guess only): the centroids'
+/// direction proves about this much, and nothing when it is small.
+fn centroids_apart_by(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
+    let (ct, cu) = ((t[0] + t[1] + t[2]) / 3.0, (u[0] + u[1] + u[2]) / 3.0);
+    let radius = |v: &[DVec3; 3], c: DVec3| {
+        v.iter()
+            .map(|p| (*p - c).length_squared())
+            .fold(0.0, f64::max)
+            .sqrt()
+    };
+    ct.distance(cu) - radius(t, ct) - radius(u, cu)
 }
 
 /// `n` scaled by a power of two (exactly, up to the last bits of components
