@@ -155,7 +155,7 @@ fn bound_from_gap(gap: f64, n: DVec3) -> f64 {
 /// the same as with the full bound: each step returns early only with a
 /// bound of at least `enough`.
 pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough: f64) -> f64 {
-    if enough.is_finite() && centroids_apart_by(t, u) >= 0.5 * enough {
+    if enough.is_finite() && centroids_apart_by(t, u, 0.5 * enough) {
         let d = distance_bound_along(t, u, (u[0] + u[1] + u[2]) - (t[0] + t[1] + t[2]));
         if d >= enough {
             return d;
@@ -174,18 +174,21 @@ pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough
     }
 }
 
-/// The distance between the triangles' centroids less each one's radius
-/// about its centroid, in floating point (a guess only): the centroids'
-/// direction proves about this much, and nothing when it is small.
-fn centroids_apart_by(t: &[DVec3; 3], u: &[DVec3; 3]) -> f64 {
-    let (ct, cu) = ((t[0] + t[1] + t[2]) / 3.0, (u[0] + u[1] + u[2]) / 3.0);
-    let radius = |v: &[DVec3; 3], c: DVec3| {
+/// Whether the triangles' centroids are apart by `need` beyond the
+/// triangles' radii about them, in floating point (a guess only: the
+/// centroids' direction then proves about that much, and nothing when
+/// the centroids lie within the radii). One square root: `r_t + r_u` is
+/// at most `√(2 (r_t² + r_u²))`.
+fn centroids_apart_by(t: &[DVec3; 3], u: &[DVec3; 3], need: f64) -> bool {
+    let third = 1.0 / 3.0;
+    let (ct, cu) = ((t[0] + t[1] + t[2]) * third, (u[0] + u[1] + u[2]) * third);
+    let radius_squared = |v: &[DVec3; 3], c: DVec3| {
         v.iter()
             .map(|p| (*p - c).length_squared())
             .fold(0.0, f64::max)
-            .sqrt()
     };
-    ct.distance(cu) - radius(t, ct) - radius(u, cu)
+    let reach = need + (2.0 * (radius_squared(t, ct) + radius_squared(u, cu))).sqrt();
+    ct.distance_squared(cu) >= reach * reach
 }
 
 /// `n` scaled by a power of two (exactly, up to the last bits of components
