@@ -61,6 +61,20 @@
 //! proof): `S` sums every length, so an infinite or NaN one makes the
 //! slack infinite or NaN.
 //!
+//! **The gap** ([`Obb::gap`], the clearance's lower bound on a node
+//! pair's distance). An axis `n` whose projections are `g > 0` apart
+//! beyond the slack above puts every point pair at least `g / |n|` apart.
+//! A face axis is unit up to `2⁻³⁸`; an edge axis is the cross product of
+//! two such axes, computed from `C` within the slack, so `|n| ≤ 1 + 2⁻³⁶`.
+//! Over one box's three face axes, orthonormal up to `2⁻³⁸`,
+//! `|x − y|² ≥ Σ gᵢ² / (1 + 2⁻³⁶)`. The gap is the largest of these,
+//! divided by `1 + 2⁻²⁰`, which covers `|n|`, the face sums' skew and the
+//! few roundings of the squares, their sum, its root and the quotient
+//! (each a relative `u`). Until 2026-11-30 it was divided by `1.01`, the
+//! apart test's loose bound on the axes' length: every node pair's bound
+//! was 1% below what it proves, and a clearance query between parallel
+//! surfaces took every leaf pair within 1% of the least distance.
+//!
 //! # Independent review (2026-11-29)
 //! A second reading checked the fitting (23,000 adversarial point clouds:
 //! collinear, coincident, slivers, scales `10⁻³²⁰` to `10²⁵⁰`, offsets to
@@ -93,6 +107,9 @@ const MAX_FIT_SKEW: f64 = 1.0 / (1u64 << 44) as f64;
 const SLACK: f64 = 1.0 / (1u64 << 30) as f64;
 /// The fitting's relative fuzz (module docs).
 const FUZZ: f64 = 1.0 / (1u64 << 38) as f64;
+/// A bound on every separating axis's length, rounding included, for
+/// [`Obb::gap`] (the apart test's slack uses `1.01`, looser than it needs).
+const AXIS_LENGTH: f64 = 1.0 + 1.0 / (1u64 << 20) as f64;
 /// Absolute fuzz, for underflow.
 const TINY: f64 = 1e-300;
 
@@ -205,8 +222,10 @@ impl Obb {
     /// apart, so `|x − y| ≥ gᵢ / |n|`, and over a box's three face axes,
     /// orthonormal up to `2⁻³⁸`, `|x − y|² ≥ Σ gᵢ² / (1 + 2⁻³⁶)`. The
     /// largest of the two face-axis sums' roots and the nine edge axes'
-    /// gaps, divided by 1.01 (no axis is longer, module docs, and the
-    /// frames' skew is far below it); `0` when no axis shows a gap.
+    /// gaps, divided by `1 + 2⁻²⁰` (`AXIS_LENGTH`): no axis is longer
+    /// than `1 + 2⁻³⁶` (face axes orthonormal up to `2⁻³⁸`, an edge axis
+    /// the cross product of two of them), and the sum, its root and the
+    /// quotient add a few `u`; `0` when no axis shows a gap.
     #[inline]
     pub fn gap(&self, a: &PosedObb, ha: DVec3, fuzz_a: f64, pad: f64) -> f64 {
         let (mut faces, mut edges) = ([0.0f64; 2], 0.0f64);
@@ -218,7 +237,7 @@ impl Obb {
             }
             false
         });
-        faces[0].sqrt().max(faces[1].sqrt()).max(edges) / 1.01
+        faces[0].sqrt().max(faces[1].sqrt()).max(edges) / AXIS_LENGTH
     }
 
     /// Each of the fifteen separating axes' projected gap between `a` and
@@ -518,6 +537,36 @@ mod tests {
             positive += usize::from(gap > 0.1 * sampled);
         }
         assert!(positive > 300, "{positive}");
+    }
+
+    #[test]
+    fn the_gap_of_parallel_flat_boxes_is_their_distance_less_its_slack() {
+        // A triangle and its copy moved along its normal by `d`, the copy
+        // given as a body at a random pose: both boxes are flat, so the
+        // gap is the distance less the test's slack (far below 0.1%:
+        // dividing by 1.01 for the axes' length, as once, fails this),
+        // and never more than `d` (the triangles' exact distance, up to
+        // the rounding of their corners, far below the slack).
+        let mut unit = rng(0x51ab);
+        for k in 0..3_000 {
+            let scale = [1e-3, 1.0, 1e3][k % 3];
+            let off = DVec3::new(unit(), unit(), unit()) * scale * 100.0;
+            let u: [DVec3; 3] = [(); 3].map(|_| DVec3::new(unit(), unit(), unit()) * scale + off);
+            let n = (u[1] - u[0]).cross(u[2] - u[0]);
+            if n.length() < 0.1 * scale * scale {
+                continue;
+            }
+            let d = scale * (0.05 + unit().abs());
+            let shifted = u.map(|p| p + n.normalize() * d);
+            let rot = Rotation::from_axis_angle(DVec3::new(unit(), unit(), unit()), 3.0 * unit())
+                .unwrap();
+            let (m, t) = (rot.matrix(), DVec3::new(unit(), unit(), unit()) * scale);
+            let body = shifted.map(|p| m.transpose() * (p - t));
+            let (ob, os, pad) = fitted_with_pad(&body, &u, t);
+            let gap = os.gap(&ob.posed(&m, t), ob.h, ob.fuzz, pad);
+            assert!(gap <= d, "{k}: gap {gap} above the distance {d}");
+            assert!(gap >= 0.999 * d, "{k}: gap {gap} for a distance {d}");
+        }
     }
 
     #[test]
