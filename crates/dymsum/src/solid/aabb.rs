@@ -96,21 +96,7 @@ impl Aabb {
     #[inline]
     pub fn distance(&self, o: &Aabb) -> f64 {
         let gap = |k: usize| (self.lo[k] - o.hi[k]).max(o.lo[k] - self.hi[k]).max(0.0);
-        let g = [gap(0), gap(1), gap(2)];
-        let m = g[0].max(g[1]).max(g[2]);
-        if m == 0.0 || !m.is_finite() {
-            return m;
-        }
-        // Squares neither overflow nor lose the largest gap to underflow
-        // between 2⁻⁴⁰⁰ and 2⁴⁰⁰ (no division then: it is the slow part).
-        if (f64::from_bits(0x26f0_0000_0000_0000)..f64::from_bits(0x58f0_0000_0000_0000))
-            .contains(&m)
-        {
-            return (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
-        }
-        // Scaled by the largest gap: no overflow or underflow in squaring.
-        let (a, b, c) = (g[0] / m, g[1] / m, g[2] / m);
-        m * (a * a + b * b + c * c).sqrt()
+        gaps_norm([gap(0), gap(1), gap(2)])
     }
 
     /// Whether the closed box holds `p`.
@@ -130,6 +116,25 @@ impl Aabb {
         // Halves first: no overflow near f64::MAX.
         0.5 * self.lo[k] + 0.5 * self.hi[k]
     }
+}
+
+/// `√(g₀² + g₁² + g₂²)` of three gaps at least `0`, in floating point
+/// (within a few `u` of it, relative) at every scale: the squares are
+/// taken directly while the largest gap lies between `2⁻⁴⁰⁰` and `2⁴⁰⁰`
+/// (no division: it is the slow part), else of the gaps scaled by the
+/// largest (a subnormal square would round up by far more than `u`, and
+/// a huge one overflow). `0`, `∞` or NaN when the largest gap is.
+#[inline]
+pub(crate) fn gaps_norm(g: [f64; 3]) -> f64 {
+    let m = g[0].max(g[1]).max(g[2]);
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    if (f64::from_bits(0x26f0_0000_0000_0000)..f64::from_bits(0x58f0_0000_0000_0000)).contains(&m) {
+        return (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
+    }
+    let (a, b, c) = (g[0] / m, g[1] / m, g[2] / m);
+    m * (a * a + b * b + c * c).sqrt()
 }
 
 /// The bins of the surface-area split.
