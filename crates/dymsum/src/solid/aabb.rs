@@ -304,7 +304,7 @@ const LEAF: usize = 2;
 const LARGE_TREE_LEAF: usize = 4;
 
 /// Trees over more items than this keep `LARGE_TREE_LEAF` per leaf.
-const SMALL_TREE: usize = 1 << 16;
+const SMALL_TREE: usize = 1 << 12;
 
 #[derive(Clone, Copy)]
 enum Node {
@@ -439,10 +439,12 @@ impl AabbTree {
     /// every nearby node of a finer mesh meets, and a near-contact state
     /// check of such a pair tested thousands of triangle pairs (a robot
     /// base of 7,992 triangles against a link of 84: 69% fewer
-    /// instructions with two a leaf, 2–11% more on ordinary pairs). Over
-    /// more than `SMALL_TREE` items the node arrays are most of the
-    /// memory (soups of 10⁵–10⁶ triangles: 0.78–0.83 of python-fcl's peak
-    /// with four a leaf, 0.86–0.96 with two), so large trees keep four.
+    /// instructions with two a leaf, 2–11% more on ordinary pairs). Such
+    /// large triangles are a coarse mesh's; on a fine one the nodes, their
+    /// oriented boxes and the queries' caches of them are much of the
+    /// memory (a soup of 10⁴ triangles: 0.80 of python-fcl's peak with
+    /// four a leaf, 0.99 with two), so trees over more than `SMALL_TREE`
+    /// items keep four.
     fn leaf_size(n: usize) -> usize {
         if n <= SMALL_TREE {
             LEAF
@@ -835,7 +837,7 @@ mod tests {
                 .max()
                 .unwrap()
         };
-        let small = AabbTree::new(&boxes(1000));
+        let small = AabbTree::new(&boxes(SMALL_TREE));
         small.sanity_check().unwrap();
         assert!(most_in_a_leaf(&small) <= LEAF);
         let large = AabbTree::new(&boxes(SMALL_TREE + 1));
