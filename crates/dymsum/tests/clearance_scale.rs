@@ -6,58 +6,13 @@
 //! boxes' face sums were squared unscaled, and the clearance came out
 //! 1.157 times the distance at `2⁻⁵⁴⁰` and 8.8 times at `2⁶⁰⁰`.
 use dymsum::query::{MeshBody, SceneChecker};
-use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
+use dymsum::{DVec3, Pose, Rotation};
 
-struct Rng(u64);
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let d = DVec3::new(self.unit(), self.unit(), self.unit());
-            if (0.01..=1.0).contains(&d.length_squared()) {
-                return d.normalize();
-            }
-        }
-    }
-}
-
-fn slivers(rng: &mut Rng, n: usize, centre: DVec3, flat: bool) -> Vec<[f64; 3]> {
-    let mut vertices = Vec::new();
-    for _ in 0..n {
-        let mut p = centre + DVec3::new(rng.unit(), rng.unit(), rng.unit()) * 2.0;
-        let mut d = rng.direction();
-        if flat {
-            p.z = centre.z;
-            d.z = 0.0;
-            d = d.normalize();
-        }
-        let len = 2.5 + 1.5 * rng.unit();
-        let side = if flat {
-            DVec3::Z.cross(d)
-        } else {
-            d.cross(rng.direction())
-                .normalize_or(d.any_orthonormal_vector())
-        };
-        let width = 10f64.powf(-0.8 + 0.8 * rng.unit());
-        let q = p + d * len;
-        vertices.extend([p, q, p + d * (0.5 * len) + side * width].map(|v| v.to_array()));
-    }
-    vertices
-}
+mod common;
+use common::{sliver_corners as slivers, soup, Rng};
 
 fn mesh(v: &[[f64; 3]], s: f64) -> MeshBody {
-    let n = v.len() / 3;
-    let faces = (0..n).map(|t| vec![3 * t, 3 * t + 1, 3 * t + 2]).collect();
-    MeshBody::new(&PolygonMesh::new(
-        v.iter().map(|p| p.map(|x| x * s)).collect(),
-        faces,
-    ))
-    .unwrap()
+    MeshBody::new(&soup(v, s)).unwrap()
 }
 
 #[test]

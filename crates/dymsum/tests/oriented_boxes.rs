@@ -10,44 +10,12 @@
 use dymsum::query::{surfaces_touch, MeshBody, MotionCheck, MotionError, SceneChecker};
 use dymsum::{DVec3, PolygonMesh, Pose, Rotation};
 
-struct Rng(u64);
+mod common;
+use common::{sliver_corners, soup, Rng};
 
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let d = DVec3::new(self.unit(), self.unit(), self.unit());
-            if (0.01..=1.0).contains(&d.length_squared()) {
-                return d.normalize();
-            }
-        }
-    }
-}
-
-/// `n` slivers: from a point in a box of side 4 about `centre`, a long
-/// edge of length 1 to 4 in a random direction, a third corner 0.025 to
-/// 1 off its middle.
+/// `n` slivers about `centre` ([`common::sliver_corners`]).
 fn slivers(rng: &mut Rng, n: usize, centre: DVec3) -> PolygonMesh {
-    let mut vertices = Vec::new();
-    for _ in 0..n {
-        let p = centre + DVec3::new(rng.unit(), rng.unit(), rng.unit()) * 2.0;
-        let d = rng.direction();
-        let len = 2.5 + 1.5 * rng.unit();
-        let side = d
-            .cross(rng.direction())
-            .normalize_or(d.any_orthonormal_vector());
-        let width = 10f64.powf(-0.8 + 0.8 * rng.unit());
-        let q = p + d * len;
-        vertices.extend([p, q, p + d * (0.5 * len) + side * width].map(|v| v.to_array()));
-    }
-    let faces = (0..n).map(|t| vec![3 * t, 3 * t + 1, 3 * t + 2]).collect();
-    PolygonMesh::new(vertices, faces)
+    soup(&sliver_corners(rng, n, centre, false), 1.0)
 }
 
 fn touch(a: &PolygonMesh, pose: Pose, b: &PolygonMesh) -> bool {

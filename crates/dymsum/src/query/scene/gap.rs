@@ -518,23 +518,26 @@ mod tests {
         );
     }
 
+    /// A point with coordinates uniform in `[−r, r)`, times `scale`.
+    fn random_point(rng: &mut impl rand::Rng, r: f64, scale: f64) -> DVec3 {
+        DVec3::new(
+            rng.random_range(-r..r),
+            rng.random_range(-r..r),
+            rng.random_range(-r..r),
+        ) * scale
+    }
+
     #[test]
     fn the_least_so_far_is_the_same_as_with_the_full_bound() {
         // `distance_lower_bound_beyond` may stop early only with a bound
         // of at least `enough`: the caller's least is unchanged, on random,
         // sliver and edge-to-edge pairs and thresholds about the distance.
-        use rand::{Rng, SeedableRng};
+        use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(36);
         let mut early = 0;
         for k in 0..20_000 {
             let scale = 10f64.powi(k % 5 - 2);
-            let mut point = |r: f64| {
-                DVec3::new(
-                    rng.random_range(-r..r),
-                    rng.random_range(-r..r),
-                    rng.random_range(-r..r),
-                ) * scale
-            };
+            let mut point = |r: f64| random_point(&mut rng, r, scale);
             let t = [point(1.0), point(1.0), point(1.0)];
             let shift = point(3.0);
             let u = if k % 2 == 0 {
@@ -577,20 +580,14 @@ mod tests {
 
     #[test]
     fn the_early_stop_finds_the_nearest_candidate() {
-        use rand::{Rng, SeedableRng};
+        use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(35);
         let mut checked = 0;
         for k in 0..40_000 {
             // Spread, sliver and nearly parallel triangles at scales
             // from 1e-3 to 1e3.
             let scale = 10f64.powi(k % 7 - 3);
-            let mut point = |r: f64| {
-                DVec3::new(
-                    rng.random_range(-r..r),
-                    rng.random_range(-r..r),
-                    rng.random_range(-r..r),
-                ) * scale
-            };
+            let mut point = |r: f64| random_point(&mut rng, r, scale);
             let t = [point(1.0), point(1.0), point(1.0)];
             let shift = point(2.0);
             let u = match k % 3 {
