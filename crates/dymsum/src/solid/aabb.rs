@@ -439,7 +439,7 @@ impl AabbTree {
     /// every nearby node of a finer mesh meets, and a near-contact state
     /// check of such a pair tested thousands of triangle pairs (a robot
     /// base of 7,992 triangles against a link of 84: 69% fewer
-    /// instructions with two a leaf, 2–11% more on ordinary pairs). Such
+    /// instructions with two a leaf, 0–6% more on ordinary pairs). Such
     /// large triangles are a coarse mesh's; on a fine one the nodes, their
     /// oriented boxes and the queries' caches of them are much of the
     /// memory (a soup of 10⁴ triangles: 0.80 of python-fcl's peak with
@@ -483,8 +483,9 @@ impl AabbTree {
     }
 
     /// Checks the tree's invariants exactly: every item listed once, every
-    /// leaf at most its leaf size of items, every node's bound holding its children's
-    /// bounds or its items' boxes, children built after their parent.
+    /// leaf at most its leaf size of items, every node's bound holding its
+    /// children's bounds or its items' boxes, children built after their
+    /// parent.
     pub fn sanity_check(&self) -> Result<(), SanityError> {
         let bad = |node: usize, reason: &str| {
             Err(SanityError::BoxTree {

@@ -252,8 +252,9 @@ impl Obb {
     /// largest of the two face-axis sums' roots and the nine edge axes'
     /// gaps, divided by `1 + 2⁻²⁰` (`AXIS_LENGTH`): no axis is longer
     /// than `1 + 2⁻³⁶` (face axes orthonormal up to `2⁻³⁸`, an edge axis
-    /// the cross product of two of them), and the sum, its root and the
-    /// quotient add a few `u`; `0` when no axis shows a gap.
+    /// the cross product of two of them), and the sums (of the gaps
+    /// scaled where their squares would not be normal, `gaps_norm`), their
+    /// roots and the quotient add a few `u`; `0` when no axis shows a gap.
     #[inline]
     pub fn gap(&self, a: &PosedObb, ha: DVec3, fuzz_a: f64, pad: f64) -> f64 {
         let (mut faces, mut edges) = ([0.0f64; 6], 0.0f64);

@@ -155,10 +155,14 @@ fn bound_from_gap(gap: f64, n: DVec3) -> f64 {
 /// the same as with the full bound: each step returns early only with a
 /// bound of at least `enough`.
 pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough: f64) -> f64 {
-    if enough.is_finite() && centroids_apart_by(t, u, 0.5 * enough) {
-        let d = distance_bound_along(t, u, (u[0] + u[1] + u[2]) - (t[0] + t[1] + t[2]));
-        if d >= enough {
-            return d;
+    if enough.is_finite() {
+        // Three times each centroid: their difference is the axis.
+        let (st, su) = (t[0] + t[1] + t[2], u[0] + u[1] + u[2]);
+        if centroids_apart_by(t, u, (st, su), 0.5 * enough) {
+            let d = distance_bound_along(t, u, su - st);
+            if d >= enough {
+                return d;
+            }
         }
     }
     let closest = closest_points(t, u);
@@ -177,11 +181,11 @@ pub(crate) fn distance_lower_bound_beyond(t: &[DVec3; 3], u: &[DVec3; 3], enough
 /// Whether the triangles' centroids are apart by `need` beyond the
 /// triangles' radii about them, in floating point (a guess only: the
 /// centroids' direction then proves about that much, and nothing when
-/// the centroids lie within the radii). One square root: `r_t + r_u` is
-/// at most `√(2 (r_t² + r_u²))`.
-fn centroids_apart_by(t: &[DVec3; 3], u: &[DVec3; 3], need: f64) -> bool {
+/// the centroids lie within the radii), given the sums of their corners.
+/// One square root: `r_t + r_u` is at most `√(2 (r_t² + r_u²))`.
+fn centroids_apart_by(t: &[DVec3; 3], u: &[DVec3; 3], (st, su): (DVec3, DVec3), need: f64) -> bool {
     let third = 1.0 / 3.0;
-    let (ct, cu) = ((t[0] + t[1] + t[2]) * third, (u[0] + u[1] + u[2]) * third);
+    let (ct, cu) = (st * third, su * third);
     let radius_squared = |v: &[DVec3; 3], c: DVec3| {
         v.iter()
             .map(|p| (*p - c).length_squared())
