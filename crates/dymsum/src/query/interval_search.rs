@@ -36,6 +36,25 @@
 //! [`SweepMargin::inflation`] is `s + e`: a checker certifies `[a, b]`
 //! only when its swept set is more than that apart from every obstacle.
 //!
+//! # The bow
+//! The margin is the same over the whole interval, while a point strays
+//! from its chord only inside it. With `λ = (t − a)/(b − a)`, a body point
+//! is at `f(λ) = R(a) E(λ) p + T(λ)`, `T` linear in `λ` and `E(λ)` the
+//! turn about the fixed axis at the constant rate `δ`: `f'' = R(a) E''(λ)
+//! p`, so `|f''| ≤ δ² |p|`. Along any direction `n`, `n·f` is then within
+//! `λ(1 − λ)/2` times its largest second derivative of its chord (the
+//! error of linear interpolation): `n·f(λ) ≥ (1 − λ) n·f(0) + λ n·f(1) −
+//! λ(1 − λ) |n| δ² r / 2` ([`bow`]). With `A` and `B` certified gaps along
+//! `n` between a convex part of the body and an obstacle at the two ends
+//! (each less `e|n|`), the gap on the way is at least `(1 − λ) A + λ B −
+//! λ(1 − λ) c`, `c = |n| δ² r / 2`, positive on all of `[0, 1]` exactly
+//! when `A > 0`, `B > 0` and `(√A + √B)² > c`
+//! ([`bowed_chord_stays_positive`]). Where the margin needs the sagitta
+//! below the clearance at the nearer end, this needs about `c` below the
+//! clearance at the farther one: an interval that leaves a grazing pose
+//! to first order is certified whole. Both motion checkers try it where
+//! the swept set leaves an interval uncertified.
+//!
 //! # The search
 //! Intervals are examined left to right from `[0, limit]` (`limit` is `1`,
 //! or for one piece pair of the convex checker the earliest contact that
@@ -140,6 +159,7 @@
 //! ulps); the doc promised a short crossing would be found "as before",
 //! which holds only below `tol/1024` (stated now in step 3).
 
+use crate::kernel::bounds::U;
 use crate::query::rounding::{pose_rounding_bound, ANGLE_ROUNDING};
 
 /// The default work budget of a motion check
@@ -507,9 +527,75 @@ impl SweepMargin {
     }
 }
 
+/// The bow of a point's path over an interval (module docs, "The bow"):
+/// a point at most `reach` from the body's origin, turned by at most
+/// `turn`, is at most `λ(1 − λ)` times `turn² reach / 2` (rounded up) from
+/// its chord at the fraction `λ` of the interval.
+pub(crate) fn bow(turn: f64, reach: f64) -> f64 {
+    0.5 * turn * turn * reach * (1.0 + 8.0 * U)
+}
+
+/// Whether `(1 − λ) a + λ b − λ(1 − λ) c > 0` for every `λ` in `[0, 1]`,
+/// certified (module docs, "The bow"), for `a` and `b` each within one
+/// rounding of its exact value (one subtraction each) and `c ≥ 0` rounded
+/// up: both ends positive and `(√a + √b)² > c`, since for `0 < λ < 1` the
+/// expression over `λ(1 − λ)` is `a/λ + b/(1 − λ) − c`, whose least value
+/// over `λ` is `(√a + √b)² − c` (at `λ = √a/(√a + √b)`). The left side
+/// takes four roundings, each within a relative `u`, and `a` and `b` one
+/// more each: a relative `16u` covers them. A product `ab` below
+/// `10⁻²⁹⁰`, whose rounding in the subnormal range is not relative, is
+/// left out (a smaller left side).
+pub(crate) fn bowed_chord_stays_positive(a: f64, b: f64, c: f64) -> bool {
+    if !(a > 0.0 && b > 0.0) {
+        return false;
+    }
+    let ab = a * b;
+    let root = if ab > 1e-290 { 2.0 * ab.sqrt() } else { 0.0 };
+    (a + b + root) * (1.0 - 16.0 * U) > c
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The least of `(1 − λ) a + λ b − λ(1 − λ) c` is `(√a + √b)² − c`
+    /// over `λ(1 − λ)`: on integers below 2²⁰ and `λ = k/1024`, where
+    /// every value is exact, a curve said positive is positive at every
+    /// `λ`, and one whose least value clears `c` by a relative `10⁻⁹` is
+    /// said positive.
+    #[test]
+    fn a_bowed_chord_is_said_positive_exactly_when_it_stays_positive() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(37);
+        let (mut yes, mut no) = (0, 0);
+        for k in 0..20_000 {
+            let big = 1u64 << (k % 20 + 1);
+            let mut draw = || rng.random_range(1..big) as f64;
+            let (a, b) = (draw(), draw());
+            let c = (a.sqrt() + b.sqrt()).powi(2) * rng.random_range(0.9..1.1);
+            let c = c.round();
+            let said = bowed_chord_stays_positive(a, b, c);
+            if said {
+                yes += 1;
+                for j in 0..=1024 {
+                    let l = j as f64 / 1024.0;
+                    let q = (1.0 - l) * a + l * b - l * (1.0 - l) * c;
+                    assert!(q > 0.0, "{a} {b} {c} at {l}: {q}");
+                }
+            } else {
+                no += 1;
+                assert!(
+                    (a.sqrt() + b.sqrt()).powi(2) <= c * (1.0 + 1e-9),
+                    "{a} {b} {c} refused"
+                );
+            }
+        }
+        assert!(yes > 5_000 && no > 5_000, "{yes} {no}");
+        // Either end at or below zero is never positive.
+        assert!(!bowed_chord_stays_positive(0.0, 1.0, 0.0));
+        assert!(!bowed_chord_stays_positive(1.0, -1e-300, 0.0));
+        assert!(!bowed_chord_stays_positive(f64::NAN, 1.0, 0.0));
+    }
 
     /// Bisection order visits each inner index once, the middle first.
     #[test]

@@ -76,6 +76,20 @@
 //! far from the origin this bound rarely helps, the gap does) and three
 //! times the pose error `e` (the pose at `a`, and both translations).
 //!
+//! # Between the ends
+//! Where the swept hull's gap along GJK's direction, or along a feature
+//! axis, does not exceed `s + e`, the same axis is tried against the bow
+//! of `query::interval_search` ("The bow"): the gaps of the piece posed
+//! at `a` alone and at `b` alone ([`GapTerms`], the same terms and
+//! roundings as the swept hull's, per end), each less `e|n|`, against
+//! `|n| δ² r / 2` with `r` the piece's reach. It certifies an interval
+//! that leaves a grazing pose to first order along a fixed axis (a
+//! translation away, a turn about an axis through the contact); a body
+//! face leaving an obstacle's corner while turning tilts against every
+//! fixed axis by its length times the turn, and still halves as before
+//! (the scene checker tries such pairs in the body's frame too,
+//! `scene::sweep`).
+//!
 //! # The search
 //! Each piece of the body against each obstacle piece runs the interval
 //! search of `query::interval_search` (left to right over `[0, limit]`,
@@ -101,7 +115,8 @@ use crate::query::answer::Proximity;
 use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::{MotionError, QueryError};
 use crate::query::interval_search::{
-    first_contact, Pending, Stop, Sweep, SweepMargin, DEFAULT_BUDGET,
+    bow, bowed_chord_stays_positive, first_contact, Pending, Stop, Sweep, SweepMargin,
+    DEFAULT_BUDGET,
 };
 use crate::query::pair::ConvexPair;
 use crate::query::pair::QueryStats;
@@ -678,13 +693,14 @@ impl PieceSearch<'_> {
         let Some((n, estimate, hints)) = self.separating_direction(pa, pb) else {
             return Ok(false);
         };
-        if self.gap(pa, pb, n, hints, s) > inflate {
+        if self.gap(pa, pb, n, hints, s) > inflate || self.ends_apart((a, b), (pa, pb), n, hints, s)
+        {
             return Ok(true);
         }
         // Nearly touching, GJK's direction is off by about ε·size/distance:
         // face normals and edge cross products of the features GJK ended
         // on are exact to rounding whatever the distance.
-        if self.feature_gap(pa, pb, n, hints, inflate, s) {
+        if self.feature_gap((a, b), (pa, pb), n, hints, inflate, s) {
             return Ok(true);
         }
         // Apart in floats by more than the inflation but not certified
@@ -773,8 +789,8 @@ impl PieceSearch<'_> {
     /// ([`Self::gap`]), so only the choice of direction changes here.
     fn feature_gap(
         &self,
-        pa: Pose,
-        pb: Pose,
+        interval: (f64, f64),
+        (pa, pb): (Pose, Pose),
         v: DVec3,
         hints: [u32; 3],
         inflate: f64,
@@ -798,9 +814,10 @@ impl PieceSearch<'_> {
                 }
             }
         }
-        let certified = best
-            .facing()
-            .any(|(d, ())| self.gap(pa, pb, d, hints, s) * (1.0 - 4.0 * f64::EPSILON) > inflate);
+        let certified = best.facing().any(|(d, ())| {
+            self.gap(pa, pb, d, hints, s) * (1.0 - 4.0 * f64::EPSILON) > inflate
+                || self.ends_apart(interval, (pa, pb), d, hints, s)
+        });
         certified
     }
 
@@ -810,12 +827,49 @@ impl PieceSearch<'_> {
     /// the obstacle's vertices less `c`, rounded, and every rounding
     /// bounded in the local coordinates' size, not in the world's.
     fn gap(&self, pa: Pose, pb: Pose, n: DVec3, hints: [u32; 3], s: &mut Scratch) -> f64 {
+        let g = self.gap_terms(pa, pb, n, hints, s);
+        g.lower(g.turned[0].max(g.turned[1]), g.moved[0].max(g.moved[1]))
+    }
+
+    /// The same bounds for the piece at each end alone, posed at `a` and
+    /// at `b` (module docs, "Between the ends").
+    fn end_gaps(&self, pa: Pose, pb: Pose, n: DVec3, hints: [u32; 3], s: &mut Scratch) -> [f64; 2] {
+        let g = self.gap_terms(pa, pb, n, hints, s);
+        [0, 1].map(|k| g.lower(g.turned[k], g.moved[k]))
+    }
+
+    /// Whether the piece stays apart from the obstacle piece over `[a, b]`
+    /// by the bow of its path (module docs, "Between the ends"): the gaps
+    /// of the two ends along `n` (`|n| ≤ 1 + 4ε`), each less the pose
+    /// error, against the bow of the piece's reach.
+    fn ends_apart(
+        &self,
+        (a, b): (f64, f64),
+        (pa, pb): (Pose, Pose),
+        n: DVec3,
+        hints: [u32; 3],
+        s: &mut Scratch,
+    ) -> bool {
+        let [ga, gb] = self.end_gaps(pa, pb, n, hints, s);
+        let long = 1.0 + 4.0 * f64::EPSILON;
+        let e = self.margin.pose_error() * long * (1.0 + 4.0 * f64::EPSILON);
+        let c = bow(self.margin.turn(b - a), self.reach) * long * (1.0 + 4.0 * f64::EPSILON);
+        bowed_chord_stays_positive(ga - e, gb - e, c)
+    }
+
+    /// The terms of [`PieceSearch::gap`] along `n`, per end (module docs).
+    fn gap_terms(
+        &self,
+        pa: Pose,
+        pb: Pose,
+        n: DVec3,
+        hints: [u32; 3],
+        s: &mut Scratch,
+    ) -> GapTerms {
         let (body, obstacle) = (self.body, self.obstacle);
-        let r = self.reach;
         let c = self.obstacle_ball.0;
-        // max over the swept hull of −n · x: the body's max along Rᵀ(−n)
-        // (the float Rᵀ(−n) off by at most 4ε, times r) plus the
-        // translations'.
+        // max over the piece turned as at each end of −n · x: the body's
+        // max along Rᵀ(−n) (the float Rᵀ(−n) off by at most 4ε, times r).
         let (sb, _) = self.scales;
         let mut body_max = |d: DVec3, start: u32| {
             near_max(
@@ -837,9 +891,6 @@ impl PieceSearch<'_> {
         // product rounds by γ₃ Σ|nₖ||xₖ|: 8u Σ|nₖ| max|xₖ| covers both.
         let (ta, tb) = (pa.translation - c, pb.translation - c);
         let local = ta.abs().max(tb.abs()).max_element();
-        let ut = (-n).dot(ta).max((-n).dot(tb)) + dot_error(n, local);
-        let turned = ua.max(ub);
-        let hull_max = turned + 8.0 * f64::EPSILON * r + ut;
         // The obstacle's vertices less c, each within η = 2u·scale of the
         // exact difference (an exact translate of the obstacle): the
         // near-extreme search bounds the rounded ones' maximum, and η|n|
@@ -859,13 +910,42 @@ impl PieceSearch<'_> {
         )
         .upper
             + eta * (1.0 + 4.0 * f64::EPSILON);
-        // min_H' n · x − max_O n · o = −max_H' (−n · x) − max_O n · o,
-        // less the rounding of the sums above (two for the hull's, one for
-        // the difference, one for this subtraction, and the additions of
-        // the error terms to `ut`, the near-extreme maxima and `η`: each at
-        // most u of the terms' sizes, nine in all, taken as 16u).
-        let sizes = turned.abs() + 8.0 * f64::EPSILON * r + ut.abs() + obstacle_max.abs();
-        -hull_max - obstacle_max - 8.0 * f64::EPSILON * sizes - 1e-300
+        GapTerms {
+            turned: [ua, ub],
+            moved: [(-n).dot(ta), (-n).dot(tb)],
+            dot_error: dot_error(n, local),
+            turn_error: 8.0 * f64::EPSILON * self.reach,
+            obstacle_max,
+        }
+    }
+}
+
+/// The terms of a gap along a direction `n` ([`PieceSearch::gap_terms`]):
+/// per end, the body piece's maximum along `−n` turned as there (rounded
+/// up) and the translation's `−n · (T − c)`; their roundings; and the
+/// obstacle's maximum along `n`, rounded up.
+struct GapTerms {
+    turned: [f64; 2],
+    moved: [f64; 2],
+    dot_error: f64,
+    turn_error: f64,
+    obstacle_max: f64,
+}
+
+impl GapTerms {
+    /// `min n · x − max_O n · o` for the set of the body's points whose
+    /// turned part is at most `turned` and moved part at most `moved`
+    /// along `−n`, rounded down: `min_H' n · x − max_O n · o = −max_H'
+    /// (−n · x) − max_O n · o`, less the rounding of the sums (two for
+    /// the body's, one for the difference, one for this subtraction, and
+    /// the additions of the error terms to the moved part, the
+    /// near-extreme maxima and `η`: each at most u of the terms' sizes,
+    /// nine in all, taken as 16u).
+    fn lower(&self, turned: f64, moved: f64) -> f64 {
+        let ut = moved + self.dot_error;
+        let hull_max = turned + self.turn_error + ut;
+        let sizes = turned.abs() + self.turn_error + ut.abs() + self.obstacle_max.abs();
+        -hull_max - self.obstacle_max - 8.0 * f64::EPSILON * sizes - 1e-300
     }
 }
 

@@ -64,6 +64,7 @@
 //! of `x − c` per coordinate, which moves each side's extreme dot product
 //! by at most `1.01u S`: `2.02u S` more, covered by `11u S` in all.
 
+use crate::query::interval_search::bowed_chord_stays_positive;
 use glam::DVec3;
 
 /// `2⁻⁵³`, the unit roundoff of `f64`.
@@ -162,24 +163,6 @@ pub(crate) fn apart_between_ends(
                     holds((t[(i + 1) % 3] - t[i]).cross(u[(j + 1) % 3] - u[j]))
                 })
         })
-}
-
-/// Whether `(1 − λ) a + λ b − λ(1 − λ) c > 0` for every `λ` in `[0, 1]`,
-/// certified, for `a` and `b` within a rounding of their exact values
-/// (computed by one subtraction each) and `c ≥ 0` rounded up: both ends
-/// positive and `(√a + √b)² > c`, since for `0 < λ < 1` the expression
-/// over `λ(1 − λ)` is `a/λ + b/(1 − λ) − c`, whose least value over `λ`
-/// is `(√a + √b)² − c`. The few roundings of `a + b + 2√(ab)` (and the
-/// subtractions that made `a` and `b`) are covered by a relative `16u`;
-/// a product `ab` in the subnormal range, which may round up by more
-/// than that, is left out (a smaller left side).
-fn bowed_chord_stays_positive(a: f64, b: f64, c: f64) -> bool {
-    if !(a > 0.0 && b > 0.0) {
-        return false;
-    }
-    let ab = a * b;
-    let root = if ab > 1e-290 { 2.0 * ab.sqrt() } else { 0.0 };
-    (a + b + root) * (1.0 - 16.0 * U) > c
 }
 
 /// A lower bound on the distance between triangles `t` and `u`, within
@@ -633,45 +616,6 @@ mod tests {
             }
         }
         assert!(early > 1_000, "{early}");
-    }
-
-    /// The least of `(1 − λ) a + λ b − λ(1 − λ) c` is `(√a + √b)² − c`
-    /// over `λ(1 − λ)`: on integers below 2²⁰ and `λ = k/1024`, where
-    /// every value is exact, a curve said positive is positive at every
-    /// `λ`, and one whose least value clears `c` by a relative `10⁻⁹` is
-    /// said positive.
-    #[test]
-    fn a_bowed_chord_is_said_positive_exactly_when_it_stays_positive() {
-        use rand::{Rng, SeedableRng};
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(37);
-        let (mut yes, mut no) = (0, 0);
-        for k in 0..20_000 {
-            let big = 1u64 << (k % 20 + 1);
-            let mut draw = || rng.random_range(1..big) as f64;
-            let (a, b) = (draw(), draw());
-            let c = (a.sqrt() + b.sqrt()).powi(2) * rng.random_range(0.9..1.1);
-            let c = c.round();
-            let said = bowed_chord_stays_positive(a, b, c);
-            if said {
-                yes += 1;
-                for j in 0..=1024 {
-                    let l = j as f64 / 1024.0;
-                    let q = (1.0 - l) * a + l * b - l * (1.0 - l) * c;
-                    assert!(q > 0.0, "{a} {b} {c} at {l}: {q}");
-                }
-            } else {
-                no += 1;
-                assert!(
-                    (a.sqrt() + b.sqrt()).powi(2) <= c * (1.0 + 1e-9),
-                    "{a} {b} {c} refused"
-                );
-            }
-        }
-        assert!(yes > 5_000 && no > 5_000, "{yes} {no}");
-        // Either end at or below zero is never positive.
-        assert!(!bowed_chord_stays_positive(0.0, 1.0, 0.0));
-        assert!(!bowed_chord_stays_positive(1.0, -1e-300, 0.0));
-        assert!(!bowed_chord_stays_positive(f64::NAN, 1.0, 0.0));
     }
 
     /// A corner turning on an arc of radius 1 by `δ = 0.1` towards a wall

@@ -107,26 +107,17 @@
 //! a motion stays near). A pair both tests above leave uncertified is
 //! tried once more, against a bound that vanishes at the ends.
 //!
-//! With `λ = (t − a)/(b − a)`, a body point `p` is at `f(λ) = R(t) p +
-//! T(t)`, `T` linear in `λ` and `R(t) = R(a) E(λ)` with `E(λ)` the turn
-//! about a fixed axis through the body's origin at the slerp's constant
-//! rate, at most `δ` (`SweepMargin::turn`) over the interval; so `f'' =
-//! R(a) E''(λ) p` and `|f''| ≤ δ² |p|`. For any direction `n`, `n·f` is a
-//! function of `λ` whose distance from its chord is at most `λ(1 − λ)/2`
-//! times its largest second derivative (the error of linear
-//! interpolation): `n·f(λ) ≥ (1 − λ) n·f(0) + λ n·f(1) − λ(1 − λ) δ² |p|
-//! |n| / 2`. The triangle's points are convex combinations of its
-//! corners, `f(0)` and `f(1)` are affine in them and within `e` of their
-//! float poses, and `|p| ≤ r`, the largest norm of the corners (rounded
-//! up). So with `A` and `B` the certified gaps along `n` between the
-//! scene triangle and the triangle's float corners at `a` and at `b`
-//! (`super::gap`), less `e |n|`, the gap at `λ` is at least `(1 − λ) A +
-//! λ B − λ(1 − λ) c`, `c = δ² r |n| / 2` (rounded up), which is positive
-//! on all of `[0, 1]` exactly when `A > 0`, `B > 0` and `(√A + √B)² > c`
-//! (`super::gap`, "Between the ends"). Where the uniform margin needs the
-//! sagitta below the clearance at the nearer end, this needs about `c`
-//! below the clearance at the farther one: an interval that leaves a
-//! grazing pose to first order is certified whole.
+//! The bound is `query::interval_search`'s ("The bow"): a body point `p`
+//! strays from its chord by at most `λ(1 − λ) δ² |p| / 2`, and `|p| ≤ r`,
+//! the largest norm of the triangle's corners (rounded up: the
+//! triangle's points are convex combinations of its corners). Along an
+//! axis `n`, with `A` and `B` the certified gaps between the scene
+//! triangle and the body triangle's float corners at `a` and at `b`
+//! (`super::gap`, "Between the ends"), each less `e |n|` (the corners'
+//! float poses are within `e` of the exact ones, and `f(0)`, `f(1)` are
+//! affine in the triangle's points), the gap at `λ` is at least `(1 − λ)
+//! A + λ B − λ(1 − λ) c`, `c = δ² r |n| / 2` (rounded up), positive on
+//! all of `[0, 1]` exactly when `A > 0`, `B > 0` and `(√A + √B)² > c`.
 //!
 //! In the body's frame (above), the scene point is at `x(λ) = E(λ) w(λ)`
 //! with `w(λ) = R(a)ᵀ (y − T(t))` linear in `λ`, `|w| ≤ ρ` and `|w'| =
@@ -216,7 +207,7 @@ use crate::kernel::bounds::U;
 use crate::kernel::rotation::Pose;
 use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::{MotionError, QueryError};
-use crate::query::interval_search::{first_contact, Sweep, SweepMargin, Within};
+use crate::query::interval_search::{bow, first_contact, Sweep, SweepMargin, Within};
 use crate::query::motion::Motion;
 use crate::query::rounding::{norm_up, pose_rounding_bound, spectral_norm_up};
 use crate::solid::aabb::Aabb;
@@ -271,7 +262,7 @@ impl SceneChecker {
             .map(|v| norm_up(self.body.vertices[v as usize]))
             .into_iter()
             .fold(0.0, f64::max);
-        let bow = world_bow(f.turn, reach_of_triangle);
+        let bow = bow(f.turn, reach_of_triangle);
         if apart_between_ends(&ends, &u, f.pose_error, bow) {
             return false;
         }
@@ -797,14 +788,6 @@ const FRONT_MOST: usize = 512;
 /// `u32::MAX` (about 1 MB).
 const FRONT_KEPT: usize = 1 << 16;
 
-/// The bow of a body point's path over an interval (module docs, "Between
-/// the ends"): at most `λ(1 − λ)` times this from its chord, for a turn
-/// `δ` (rounded up) and a point at most `reach` from the body's origin:
-/// `δ² reach / 2`, rounded up.
-fn world_bow(turn: f64, reach: f64) -> f64 {
-    0.5 * turn * turn * reach * (1.0 + 8.0 * U)
-}
-
 /// The bow of a scene point's path in the body's frame (module docs,
 /// "Between the ends"), for a turn `δ`, the point at most `radius` from
 /// the body's origin and the translation moving by at most `shift`:
@@ -1057,7 +1040,7 @@ mod tests {
             let (ta, tb) = (motion.at(a).translation, motion.at(b).translation);
             let radius = (y - ta).length().max((y - tb).length());
             let bows = [
-                world_bow(delta, p.length()),
+                bow(delta, p.length()),
                 body_frame_bow(delta, radius, (tb - ta).length()),
                 body_frame_bow(delta, radius, 0.0),
             ];
