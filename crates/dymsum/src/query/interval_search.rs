@@ -542,11 +542,13 @@ pub(crate) fn bow(turn: f64, reach: f64) -> f64 {
 /// expression over `λ(1 − λ)` is `a/λ + b/(1 − λ) − c`, whose least value
 /// over `λ` is `(√a + √b)² − c` (at `λ = √a/(√a + √b)`). The left side
 /// takes four roundings, each within a relative `u`, and `a` and `b` one
-/// more each: a relative `16u` covers them. A product `ab` below
-/// `10⁻²⁹⁰`, whose rounding in the subnormal range is not relative, is
-/// left out (a smaller left side).
+/// more each: a relative `16u` covers them while every value is a normal
+/// number, so `a` and `b` below the least normal one are refused (in the
+/// subnormal range a rounding is not relative; found by the independent
+/// review: harmless there, but only by an argument of its own), and a
+/// product `ab` below `10⁻²⁹⁰` is left out (a smaller left side).
 pub(crate) fn bowed_chord_stays_positive(a: f64, b: f64, c: f64) -> bool {
-    if !(a > 0.0 && b > 0.0) {
+    if !(a >= f64::MIN_POSITIVE && b >= f64::MIN_POSITIVE) {
         return false;
     }
     let ab = a * b;

@@ -84,6 +84,26 @@
 //! it proves, and a clearance query between parallel surfaces took every
 //! leaf pair within 1% of the least distance.
 //!
+//! # The swept test
+//! [`Obb::swept_apart`], for the motion search (`query::scene::sweep`):
+//! over an interval every point of a body node lies within the search's
+//! margin of the hull of the node's box posed at both ends and each moved
+//! by the other end's translation (the swept hull of the search, for a
+//! box instead of a triangle). Along an axis `n` (the scene box's face
+//! axes, then the body box's posed at either end) the projections of the
+//! four posed copies are the two ends' (centre `n·(c' − cᴮ)`, radius
+//! `Σ hⱼ |n·fⱼ|`, exact for any `n` and orthonormal `fⱼ`, as in the
+//! fifteen-axis test), and each moved by `±n·shift`; their hull projects
+//! onto the range of the four, and the test declares it apart when that
+//! range clears the scene box's radius `Σ hᴮᵢ |n·eᵢ|` by more than the
+//! slack above (with `S` summed over both ends, `3|c' − cᴮ|₁` for
+//! `|T|₁`, and `|shift|₁`, which bounds the shift's projection and its
+//! rounding) plus the margin. The float shift is the search's, whose
+//! rounding the search's margin covers (as it does for the triangles'
+//! hulls). On the worst robot-part pairs of the motion benchmark it cut
+//! the triangle pairs a walk tests by 70% to 87% (with the scene box's
+//! axes alone, 15% to 35%).
+//!
 //! # Independent review (2026-11-30): the gap
 //! A second reading checked "The gap" against an exact rational oracle:
 //! 120,000 node pairs of one to three triangles (parallel planes, slanted,
@@ -241,6 +261,56 @@ impl Obb {
             apart
         });
         apart
+    }
+
+    /// Whether the hull of a body node's box posed at both ends of an
+    /// interval (`ends`, each as [`Obb::apart`]'s `a`) and each moved by
+    /// the float difference `shift` of the end translations (the first
+    /// forwards, the second back), grown by `margin`, is proven apart from
+    /// this box along one of this box's face axes (module docs, "The swept
+    /// test"). `false` proves nothing.
+    #[inline]
+    pub fn swept_apart(
+        &self,
+        ends: [&PosedObb; 2],
+        shift: DVec3,
+        ha: DVec3,
+        fuzz_a: f64,
+        pad: f64,
+        margin: f64,
+    ) -> bool {
+        let hb = self.h.to_array();
+        let sizes = |a: &PosedObb| {
+            a.c.abs().max_element() + 3.0 * (a.c - self.c).abs().element_sum() + ha.element_sum()
+        };
+        let s = sizes(ends[0])
+            + sizes(ends[1])
+            + self.c.abs().max_element()
+            + self.h.element_sum()
+            + shift.abs().element_sum();
+        let slack = SLACK * s + 1.01 * (fuzz_a + self.fuzz) + 2.0 * pad + margin;
+        let apart_along = |n: DVec3| {
+            let d = n.dot(shift);
+            let hb = hb[0] * n.dot(self.axes[0]).abs()
+                + hb[1] * n.dot(self.axes[1]).abs()
+                + hb[2] * n.dot(self.axes[2]).abs();
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for (a, moved) in [(ends[0], d), (ends[1], -d)] {
+                let t = n.dot(a.c - self.c);
+                let r = ha.x * n.dot(a.f[0]).abs()
+                    + ha.y * n.dot(a.f[1]).abs()
+                    + ha.z * n.dot(a.f[2]).abs();
+                for t in [t, t + moved] {
+                    lo = lo.min(t - r);
+                    hi = hi.max(t + r);
+                }
+            }
+            lo - hb > slack || -hi - hb > slack
+        };
+        // This box's face axes, then the body box's at either end.
+        self.axes.iter().any(|&n| apart_along(n))
+            || ends[0].f.iter().any(|&n| apart_along(n))
+            || ends[1].f.iter().any(|&n| apart_along(n))
     }
 
     /// A certified lower bound on the distance between every point of `a`
@@ -434,7 +504,7 @@ pub(crate) fn node_obbs(tree: &AabbTree, corners: impl Fn(usize) -> [DVec3; 3]) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::kernel::rotation::Rotation;
+    use crate::kernel::rotation::{Pose, Rotation};
     use crate::solid::intersect::triangles_meet;
 
     /// The body triangle's and the scene triangle's fitted boxes, and the
@@ -457,6 +527,84 @@ mod tests {
     fn rng(seed: u64) -> impl FnMut() -> f64 {
         let mut rng = crate::kernel::test_rng::Xorshift::new(seed | 1);
         move || rng.signed()
+    }
+
+    /// The swept test ("The swept test") on random triangles' boxes and
+    /// random motions passing near a scene triangle at a random time:
+    /// whenever it proves the body's box swept over the motion apart from
+    /// the scene's, the triangles themselves meet at none of 400 times
+    /// along it (an exact test of the posed floats), and it proves a
+    /// good share of the pairs.
+    #[test]
+    fn a_box_proven_apart_over_a_motion_never_meets_on_the_way() {
+        use crate::query::interval_search::SweepMargin;
+        use crate::query::Motion;
+        let mut unit = rng(11);
+        let (mut proven, mut tried) = (0, 0);
+        for k in 0..4_000 {
+            let mut point = |r: f64| DVec3::new(unit(), unit(), unit()) * r;
+            let centre = point(2.0);
+            let body = [
+                point(0.5) + centre,
+                point(0.5) + centre,
+                point(0.5) + centre,
+            ];
+            let turn = |p: DVec3, a: f64| Rotation::from_axis_angle(p, a).unwrap();
+            let from = Pose::new(turn(point(1.0), 1.0), point(1.0));
+            let to = Pose::new(
+                turn(point(1.0), 1.0 + 0.3 * point(1.0).x),
+                from.translation + point(0.2),
+            );
+            let motion = Motion::new(from, to);
+            let posed = |t: f64| {
+                let p = motion.at(t);
+                body.map(|v| p.apply(v))
+            };
+            let near = posed(0.5 + 0.5 * point(1.0).x)[k % 3];
+            let off = 10f64.powi(-(k as i32 % 6)) * (1.0 + point(1.0).x.abs());
+            let seed = near + point(1.0).normalize_or(DVec3::X) * off;
+            let u = [seed, seed + point(0.5), seed + point(0.5)];
+            let (ob, os, _) = fitted_with_pad(&body, &u, DVec3::ZERO);
+            let reach = 1.8
+                * body
+                    .iter()
+                    .map(|p| p.abs().max_element())
+                    .fold(0.0, f64::max);
+            let margin = SweepMargin::new(motion.angle(), motion.translation_extent(), reach);
+            let (ma, mb) = (from.rotation.matrix(), to.rotation.matrix());
+            let pad = 64.0
+                * f64::EPSILON
+                * (reach
+                    + from
+                        .translation
+                        .abs()
+                        .max(to.translation.abs())
+                        .max_element());
+            let ends = [
+                ob.posed(&ma, from.translation),
+                ob.posed(&mb, to.translation),
+            ];
+            let shift = to.translation - from.translation;
+            tried += 1;
+            if !os.swept_apart(
+                [&ends[0], &ends[1]],
+                shift,
+                ob.h,
+                ob.fuzz,
+                pad,
+                margin.inflation(1.0),
+            ) {
+                continue;
+            }
+            proven += 1;
+            for j in 0..=400 {
+                assert!(
+                    !triangles_meet(&posed(j as f64 / 400.0), &u),
+                    "{body:?} {u:?} {k}"
+                );
+            }
+        }
+        assert!(20 * proven > tried, "{proven} of {tried}");
     }
 
     #[test]

@@ -249,8 +249,11 @@ pub(super) struct Scratch {
     /// The scene's node bounds carried back into the body's frame at the
     /// pose (state checks).
     pub(super) scene_cache: NodeCache,
-    /// The body's oriented node boxes at the pose (state checks).
+    /// The body's oriented node boxes at the pose (state checks; an
+    /// interval's start in motion checks).
     pub(super) obb_cache: NodeCache<PosedObb>,
+    /// The body's oriented node boxes at an interval's end.
+    pub(super) obb_cache_b: NodeCache<PosedObb>,
     /// The exact boxes of the body triangles' swept hulls over an
     /// interval (motion checks; sized on the first, and forgotten when the
     /// epoch wraps, by whichever query wraps it).
@@ -439,6 +442,9 @@ impl SceneChecker {
         }
         if s.obb_cache.len() != n || s.at.epoch == 1 {
             s.obb_cache = vec![[0.0; 13]; n];
+        }
+        if s.obb_cache_b.len() != n || s.at.epoch == 1 {
+            s.obb_cache_b = vec![[0.0; 13]; n];
         }
         let k = self.scene.tree().bounds().len();
         if s.scene_cache.len() != k || s.at.epoch == 1 {

@@ -46,12 +46,8 @@
 //! way is at least `q(λ) = (1 − λ) A + λ B − λ(1 − λ) c|n|`. For `0 < λ <
 //! 1`, `q(λ)/(λ(1 − λ)) = A/λ + B/(1 − λ) − c|n|`, whose least value is
 //! `(√A + √B)² − c|n|` (at `λ = √A/(√A + √B)`), so `q > 0` on `[0, 1]`
-//! exactly when `A > 0`, `B > 0` and `(√A + √B)² > c|n|`. The left side
-//! is computed in floats from `A` and `B` (each one subtraction from its
-//! certified gap) in five operations, each within a relative `u`, so it
-//! is reduced by a relative `16u`; a product `AB` below `10⁻²⁹⁰` (where
-//! the absolute rounding of a subnormal product is no longer relative) is
-//! left out, which only lowers it. The axes are those proposed above, for
+//! exactly when `A > 0`, `B > 0` and `(√A + √B)² > c|n|`, decided with
+//! its roundings by `query::interval_search`'s `bowed_chord_stays_positive`. The axes are those proposed above, for
 //! both ends: the scene triangle's normal, the ends' normals, the closest
 //! points of each end and the scene triangle, and their edges' common
 //! normal, each both ways.
