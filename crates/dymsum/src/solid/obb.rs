@@ -101,8 +101,8 @@
 //! rounding) plus the margin. The float shift is the search's, whose
 //! rounding the search's margin covers (as it does for the triangles'
 //! hulls). On the worst robot-part pairs of the motion benchmark it cut
-//! the triangle pairs a walk tests by 70% to 87% (with the scene box's
-//! axes alone, 15% to 35%).
+//! the triangle pairs a walk tests by 85% to 87% (with the scene box's
+//! axes alone, 28% to 83%).
 //!
 //! # Independent review (2026-11-30): the gap
 //! A second reading checked "The gap" against an exact rational oracle:

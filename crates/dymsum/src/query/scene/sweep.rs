@@ -54,7 +54,7 @@
 //! (the swept hull above, for the node's box: `solid::obb`, "The swept
 //! test"), which is second order in the turn where the grown reach is
 //! first: on the worst robot-part pairs it cut the triangle pairs a walk
-//! tests by 70% to 87%. A slide
+//! tests by 85% to 87%. A slide
 //! along a wall certifies in one interval (the hull stays on its side);
 //! the sagitta is second order in the interval's width. Containment
 //! cannot begin without triangles meeting, and the body is not inside
