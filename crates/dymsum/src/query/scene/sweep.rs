@@ -541,15 +541,16 @@ impl SceneChecker {
                 + 4.0 * pad
                 + 8.0 * f64::EPSILON * (size + 2.0 * shift_len)
                 + 1e-300;
-            if scene_obbs[j].apart(&posed, a.h, a.fuzz + swept_reach + reach, pad) {
-                return true;
-            }
-            // The box's own swept hull (`solid::obb`, "The swept test"):
-            // second order in the turn where the reach above is first.
-            oriented_b && {
+            // The box's own swept hull first (`solid::obb`, "The swept
+            // test"): second order in the turn where the reach below is
+            // first.
+            if oriented_b && {
                 let posed_b = cached(obb_cache_b_cells, epoch, k, || a.posed(&mb, tb));
                 scene_obbs[j].swept_apart([&posed, &posed_b], shift, a.h, a.fuzz, pad, reach)
+            } {
+                return true;
             }
+            scene_obbs[j].apart(&posed, a.h, a.fuzz + swept_reach + reach, pad)
         };
         let blocked = self.body.tree().for_each_pair(
             |k, j, o| {
