@@ -368,10 +368,10 @@ fn blob(r: &mut ChaCha8Rng, n: usize, c: DVec3) -> Polytope {
 
 /// Short motions (turns of 1° to 5°, moves of up to 8% of the size) from
 /// free poses within 2⁻⁴² of contact: every verdict agrees with 400
-/// sampled poses, and a quarter of the free ones are certified in one or
-/// two intervals (`query::interval_search`, "The bow": with the sagitta
-/// alone as the margin, an interval next to a grazing pose was certified
-/// only once its sagitta fell below the clearance there).
+/// sampled poses, and the free ones are certified in a few intervals
+/// each (`query::interval_search`, "The bow": with the sagitta alone as
+/// the margin, an interval next to a grazing pose was certified only once
+/// its sagitta fell below the clearance there).
 #[test]
 fn motions_leaving_a_grazing_pose_are_certified_in_few_steps() {
     let mut r = rng(41);
@@ -430,12 +430,11 @@ fn motions_leaving_a_grazing_pose_are_certified_in_few_steps() {
         steps.len() >= 10 && undecided <= 10,
         "{steps:?}, {undecided} undecided"
     );
-    // A body face leaving an obstacle's corner tilts against every fixed
-    // axis by its length times the turn: those motions still take tens of
-    // intervals (the convex checker has no test in the body's frame).
-    // With the sagitta alone none took fewer than 29.
-    let quick = steps.iter().filter(|&&k| k <= 2).count();
-    assert!(4 * quick >= steps.len(), "{steps:?}");
+    // With the sagitta alone none took fewer than 29 (median 65); with the
+    // bow along the swept hull's GJK direction alone, a quarter took one
+    // or two (the rest: their swept hull overlapped in floats).
+    steps.sort_unstable();
+    assert!(steps[steps.len() / 2] <= 4, "{steps:?}");
 }
 
 /// A corner turning 0.2 rad on an arc of radius 10 pokes `0.01` into a

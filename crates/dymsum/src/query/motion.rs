@@ -84,11 +84,17 @@
 //! roundings as the swept hull's, per end), each less `e|n|`, against
 //! `|n| δ² r / 2` with `r` the piece's reach. It certifies an interval
 //! that leaves a grazing pose to first order along a fixed axis (a
-//! translation away, a turn about an axis through the contact); a body
+//! translation away, a turn about an axis through the contact). Where
+//! GJK finds the swept hull overlapping the obstacle in floats, which its
+//! decoupled turn and translation allow where the motion does not (a turn
+//! towards the obstacle while moving away from it), the direction of GJK
+//! between the piece posed at `a` and the obstacle, and its feature axes,
+//! are tried against the bow instead: any axis gives valid gaps. A body
 //! face leaving an obstacle's corner while turning tilts against every
-//! fixed axis by its length times the turn, and still halves as before
-//! (the scene checker tries such pairs in the body's frame too,
-//! `scene::sweep`).
+//! fixed axis by its length times the turn, and still halves (the scene
+//! checker tries such pairs in the body's frame too, `scene::sweep`; a
+//! test in the body's frame here changed no figure of the robot-part
+//! benchmark and was not kept).
 //!
 //! # The search
 //! Each piece of the body against each obstacle piece runs the interval
@@ -691,7 +697,17 @@ impl PieceSearch<'_> {
         // GJK between the swept hull and the obstacle, then the gap along
         // its direction, bounded rigorously.
         let Some((n, estimate, hints)) = self.separating_direction(pa, pb) else {
-            return Ok(false);
+            // The swept hull overlaps the obstacle in floats, which its
+            // decoupled turn and translation allow where the motion does
+            // not (a turn towards the obstacle while moving away): the
+            // ends may still be apart (module docs, "Between the ends"),
+            // along the direction at the start and its feature axes.
+            return Ok(self
+                .separating_direction(pa, pa)
+                .is_some_and(|(n, _, hints)| {
+                    self.ends_apart((a, b), (pa, pb), n, hints, s)
+                        || self.feature_gap((a, b), (pa, pb), n, hints, inflate, s)
+                }));
         };
         if self.gap(pa, pb, n, hints, s) > inflate || self.ends_apart((a, b), (pa, pb), n, hints, s)
         {
