@@ -466,3 +466,35 @@ fn an_arc_through_a_wall_between_clear_ends_is_never_free() {
         MotionCheck::Free => panic!("an arc through a wall called free"),
     }
 }
+
+/// The same arc seen from the body (`query::motion`, "Between the ends",
+/// the body's frame): a slab turning 0.2 rad about the origin, its near
+/// face at radius `10 − 0.01`, and an obstacle's corner at radius 10.
+/// From the body the corner runs on an arc that pokes `0.01` into the
+/// slab at the apex, while at both ends it is clear by about `0.04`.
+/// Never free.
+#[test]
+fn an_obstacle_corner_through_a_turning_slab_is_never_free() {
+    let slab = cuboid([9.99, -5.0, -5.0], [11.0, 5.0, 5.0]);
+    let spike = Polytope::from_points(&[
+        [10.0, 0.0, 0.0],
+        [5.0, 0.1, 0.1],
+        [5.0, -0.1, 0.1],
+        [5.0, 0.0, -0.1],
+    ])
+    .unwrap();
+    let checker =
+        MotionChecker::new(&ConvexUnion::from(slab), &[ConvexUnion::from(spike)]).unwrap();
+    let yaw = |a: f64| Pose::new(Rotation::from_axis_angle(DVec3::Z, a).unwrap(), DVec3::ZERO);
+    let (from, to) = (yaw(-0.1), yaw(0.1));
+    assert!(!checker.collides_at(from).unwrap() && !checker.collides_at(to).unwrap());
+    assert!(checker.collides_at(yaw(0.0)).unwrap());
+    match checker.check(from, to, 1e-6).unwrap() {
+        MotionCheck::Collides { t_contact, .. } => {
+            assert!(checker
+                .collides_at(Motion::new(from, to).at(t_contact))
+                .unwrap());
+        }
+        MotionCheck::Free => panic!("a corner through a turning slab called free"),
+    }
+}
