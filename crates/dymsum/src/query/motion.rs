@@ -101,7 +101,9 @@
 //! about the obstacle ball's centre `c`, plus `R̃m·(c − T̃)` and its
 //! rounding. `R̃ m` is within `681u |m|` of `R m` and `T̃` within `6u (M +
 //! D)` of `T` (`query::rounding`), so with `ρ ≥ |o − T|` for every
-//! obstacle point (`|c − T̃| + ` the ball's radius, rounded up) each end's
+//! obstacle point (`|c − T̃| + ` the ball's radius `+ 6u (M + D)`, rounded
+//! up; `o − T(λ)` is linear in `λ`, so the ends' largest bounds it over
+//! the interval) each end's
 //! gap is at least the computed one less `pose_rounding_bound(ρ)`. An
 //! obstacle point seen from the body, `R(t)ᵀ (o − T(t))`, strays from its
 //! chord by at most `λ(1 − λ) (δ² ρ / 2 + δ |T(b) − T(a)|)` (the bow in
@@ -109,6 +111,24 @@
 //! at most the float difference's norm (rounded up) plus two translation
 //! roundings. On the robot-part benchmark's seventh sample it took two
 //! convex pairs from 1,452 and 516 µs a decision to 61 and 56.
+//!
+//! # Independent review (2026-11-30): between the ends
+//! Of the per-end gaps (bit for bit the swept hull's gap when combined),
+//! the fallback where GJK finds the swept hull overlapping, and the test
+//! in the body's frame. Verified: the hints only seed certified
+//! near-extreme searches, any axis gives valid gaps; `−near_max(−m)`
+//! bounds the piece's side; `R̃ m` and `T̃` are used consistently, their
+//! errors inside `pose_rounding_bound(ρ)`; the ball's radius bounds the
+//! obstacle about its centre; the ends' `ρ` bounds the interval (`o −
+//! T(λ)` is linear); the `|m|` factor and the sign. Found: `ρ` bounded
+//! `|o − T̃|`, not `|o − T|` for the exact `T` (a few ulps of the
+//! coordinates; now `6u (M + D)` more), and the feature axes were
+//! normalised with squares that underflow below about `10⁻⁷⁷`
+//! (`NearestAxes::offer` now divides by the largest magnitude first).
+//! Tried to break it: about 2,900 motions whose obstacle corner dips into
+//! the body between clear ends, scales `10⁻¹⁵⁰` to `10¹⁰⁰`, turns to
+//! nearly π: none called free (a halved bow gave 833 wrong answers);
+//! pinned as `tests/review_convex_dips.rs`.
 //!
 //! # The search
 //! Each piece of the body against each obstacle piece runs the interval
@@ -948,8 +968,11 @@ impl PieceSearch<'_> {
                 + eta * (1.0 + 4.0 * f64::EPSILON);
             let to_centre = c - pose.translation;
             let moved = w.dot(to_centre) + dot_error(w, to_centre.abs().max_element());
-            // Every obstacle point within `ρ` of the body's origin here.
-            let rho = (norm_up(to_centre) + radius) * (1.0 + 1e-12);
+            // Every obstacle point within `ρ` of the body's origin here,
+            // about the exact translation (within `6u (M + D)` of the
+            // float one; found missing by the independent review).
+            let rho =
+                (norm_up(to_centre) + radius + pose_rounding_bound(0.0, extent)) * (1.0 + 1e-12);
             reach = reach.max(rho);
             // `R̃ m` within `681u |m|` of `R m`, `T̃` within `6u (M + D)`
             // of `T` (`query::rounding`): `pose_rounding_bound` of `ρ`.

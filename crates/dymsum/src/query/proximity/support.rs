@@ -285,10 +285,17 @@ impl<T: Copy + Default, const K: usize> NearestAxes<T, K> {
     /// Offers the axis along `d` (any length; a zero or non-finite one is
     /// ignored).
     pub(in crate::query) fn offer(&mut self, d: DVec3, payload: T) {
-        let len = d.length();
-        if !(len > 0.0 && len.is_finite()) {
+        // Divided by its largest magnitude first, so that no square
+        // underflows (an edge cross product of parts below 1e-77 has
+        // subnormal squares, and its "unit" axis came out far from unit
+        // length, which the gaps along it assume; found by the independent
+        // review of 2026-11-30).
+        let m = d.abs().max_element();
+        if !(m > 0.0 && m.is_finite()) {
             return;
         }
+        let d = d / m;
+        let len = d.length();
         let d = d / len;
         let score = d.dot(self.v);
         if score > self.best[K - 1].0 {
