@@ -929,43 +929,16 @@ impl PieceSearch<'_> {
         hints: [u32; 3],
         s: &mut Scratch,
     ) -> bool {
-        let (body, obstacle) = (self.body, self.obstacle);
         let (c, radius) = self.obstacle_ball;
-        let (sb, _) = self.scales;
         // min over the piece of m · p: the body frame's, no pose.
-        let body_max = near_max(
-            body,
-            |v| body.vertex(v as usize),
-            -m,
-            hints[0],
-            0.0,
-            0.0,
-            sb,
-            &mut s.marks_a,
-            &mut s.set,
-        )
-        .upper;
-        let so = self.obstacle_local_scale;
-        let eta = f64::EPSILON * so;
+        let body_max = self.piece_max(-m, hints[0], s);
         let extent = self.motion.translation_extent();
         let mut reach = 0.0f64;
         let mut end_gap = |pose: Pose| {
             // The obstacle seen from the body at this end along `m`:
             // `max (R m) · (o − T)`, with `R m` as rounded.
             let w = pose.rotation.matrix() * m;
-            let obstacle_max = near_max(
-                obstacle,
-                |v| obstacle.vertex(v as usize) - c,
-                w,
-                hints[2],
-                0.0,
-                eta,
-                so,
-                &mut s.marks_b,
-                &mut s.set,
-            )
-            .upper
-                + eta * (1.0 + 4.0 * f64::EPSILON);
+            let obstacle_max = self.obstacle_max(w, hints[2], s);
             let to_centre = c - pose.translation;
             let moved = w.dot(to_centre) + dot_error(w, to_centre.abs().max_element());
             // Every obstacle point within `ρ` of the body's origin here,
@@ -992,6 +965,49 @@ impl PieceSearch<'_> {
         bowed_chord_stays_positive(ga, gb, c_bow)
     }
 
+    /// A rigorous upper bound on `max_p d · p` over the body piece's
+    /// vertices (its own frame), the near-extreme search from `start`.
+    fn piece_max(&self, d: DVec3, start: u32, s: &mut Scratch) -> f64 {
+        let body = self.body;
+        near_max(
+            body,
+            |v| body.vertex(v as usize),
+            d,
+            start,
+            0.0,
+            0.0,
+            self.scales.0,
+            &mut s.marks_a,
+            &mut s.set,
+        )
+        .upper
+    }
+
+    /// A rigorous upper bound on `max_o n · (o − c)` over the obstacle
+    /// piece's exact vertices, `c` the obstacle ball's centre: the
+    /// vertices less `c`, each within `η = 2u·scale` of the exact
+    /// difference (an exact translate of the obstacle), so the
+    /// near-extreme search bounds the rounded ones' maximum, and `η|n|`
+    /// more bounds the exact ones' (`|n| ≤ 1 + 4ε`).
+    fn obstacle_max(&self, n: DVec3, start: u32, s: &mut Scratch) -> f64 {
+        let (obstacle, c) = (self.obstacle, self.obstacle_ball.0);
+        let so = self.obstacle_local_scale;
+        let eta = f64::EPSILON * so;
+        near_max(
+            obstacle,
+            |v| obstacle.vertex(v as usize) - c,
+            n,
+            start,
+            0.0,
+            eta,
+            so,
+            &mut s.marks_b,
+            &mut s.set,
+        )
+        .upper
+            + eta * (1.0 + 4.0 * f64::EPSILON)
+    }
+
     /// The terms of [`PieceSearch::gap`] along `n`, per end (module docs).
     fn gap_terms(
         &self,
@@ -1001,50 +1017,16 @@ impl PieceSearch<'_> {
         hints: [u32; 3],
         s: &mut Scratch,
     ) -> GapTerms {
-        let (body, obstacle) = (self.body, self.obstacle);
         let c = self.obstacle_ball.0;
         // max over the piece turned as at each end of −n · x: the body's
         // max along Rᵀ(−n) (the float Rᵀ(−n) off by at most 4ε, times r).
-        let (sb, _) = self.scales;
-        let mut body_max = |d: DVec3, start: u32| {
-            near_max(
-                body,
-                |v| body.vertex(v as usize),
-                d,
-                start,
-                0.0,
-                0.0,
-                sb,
-                &mut s.marks_a,
-                &mut s.set,
-            )
-            .upper
-        };
-        let ua = body_max(pa.rotation.matrix().transpose() * -n, hints[0]);
-        let ub = body_max(pb.rotation.matrix().transpose() * -n, hints[1]);
+        let ua = self.piece_max(pa.rotation.matrix().transpose() * -n, hints[0], s);
+        let ub = self.piece_max(pb.rotation.matrix().transpose() * -n, hints[1], s);
         // fl(T − c) is within u|T − c| a coordinate of T − c, and the dot
         // product rounds by γ₃ Σ|nₖ||xₖ|: 8u Σ|nₖ| max|xₖ| covers both.
         let (ta, tb) = (pa.translation - c, pb.translation - c);
         let local = ta.abs().max(tb.abs()).max_element();
-        // The obstacle's vertices less c, each within η = 2u·scale of the
-        // exact difference (an exact translate of the obstacle): the
-        // near-extreme search bounds the rounded ones' maximum, and η|n|
-        // more bounds the exact ones'.
-        let so = self.obstacle_local_scale;
-        let eta = f64::EPSILON * so;
-        let obstacle_max = near_max(
-            obstacle,
-            |v| obstacle.vertex(v as usize) - c,
-            n,
-            hints[2],
-            0.0,
-            eta,
-            so,
-            &mut s.marks_b,
-            &mut s.set,
-        )
-        .upper
-            + eta * (1.0 + 4.0 * f64::EPSILON);
+        let obstacle_max = self.obstacle_max(n, hints[2], s);
         GapTerms {
             turned: [ua, ub],
             moved: [(-n).dot(ta), (-n).dot(tb)],
