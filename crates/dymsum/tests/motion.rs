@@ -437,22 +437,23 @@ fn motions_leaving_a_grazing_pose_are_certified_in_few_steps() {
     assert!(steps[steps.len() / 2] <= 4, "{steps:?}");
 }
 
-/// A corner turning 0.2 rad on an arc of radius 10 pokes `0.01` into a
-/// wall at its apex, while at both ends it is clear of it by about
-/// `0.04`: the chord between the ends stays clear, only the bow of the
-/// arc meets the wall (`query::interval_search`, "The bow"). Never free.
-#[test]
-fn an_arc_through_a_wall_between_clear_ends_is_never_free() {
-    let spike = Polytope::from_points(&[
+/// A spike with its corner at radius 10 on the x axis, its base at 5.
+fn spike() -> Polytope {
+    Polytope::from_points(&[
         [10.0, 0.0, 0.0],
         [5.0, 0.1, 0.1],
         [5.0, -0.1, 0.1],
         [5.0, 0.0, -0.1],
     ])
-    .unwrap();
-    let wall = cuboid([9.99, -5.0, -5.0], [11.0, 5.0, 5.0]);
+    .unwrap()
+}
+
+/// `body` turning 0.2 rad about z against `obstacle`, clear at both ends
+/// and colliding at the middle: the check finds an exact contact, never
+/// "free".
+fn turning_through_the_middle_is_never_free(body: Polytope, obstacle: Polytope) {
     let checker =
-        MotionChecker::new(&ConvexUnion::from(spike), &[ConvexUnion::from(wall)]).unwrap();
+        MotionChecker::new(&ConvexUnion::from(body), &[ConvexUnion::from(obstacle)]).unwrap();
     let yaw = |a: f64| Pose::new(Rotation::from_axis_angle(DVec3::Z, a).unwrap(), DVec3::ZERO);
     let (from, to) = (yaw(-0.1), yaw(0.1));
     assert!(!checker.collides_at(from).unwrap() && !checker.collides_at(to).unwrap());
@@ -463,8 +464,18 @@ fn an_arc_through_a_wall_between_clear_ends_is_never_free() {
                 .collides_at(Motion::new(from, to).at(t_contact))
                 .unwrap());
         }
-        MotionCheck::Free => panic!("an arc through a wall called free"),
+        MotionCheck::Free => panic!("a motion through an obstacle called free"),
     }
+}
+
+/// A corner turning 0.2 rad on an arc of radius 10 pokes `0.01` into a
+/// wall at its apex, while at both ends it is clear of it by about
+/// `0.04`: the chord between the ends stays clear, only the bow of the
+/// arc meets the wall (`query::interval_search`, "The bow"). Never free.
+#[test]
+fn an_arc_through_a_wall_between_clear_ends_is_never_free() {
+    let wall = cuboid([9.99, -5.0, -5.0], [11.0, 5.0, 5.0]);
+    turning_through_the_middle_is_never_free(spike(), wall);
 }
 
 /// The same arc seen from the body (`query::motion`, "Between the ends",
@@ -476,25 +487,5 @@ fn an_arc_through_a_wall_between_clear_ends_is_never_free() {
 #[test]
 fn an_obstacle_corner_through_a_turning_slab_is_never_free() {
     let slab = cuboid([9.99, -5.0, -5.0], [11.0, 5.0, 5.0]);
-    let spike = Polytope::from_points(&[
-        [10.0, 0.0, 0.0],
-        [5.0, 0.1, 0.1],
-        [5.0, -0.1, 0.1],
-        [5.0, 0.0, -0.1],
-    ])
-    .unwrap();
-    let checker =
-        MotionChecker::new(&ConvexUnion::from(slab), &[ConvexUnion::from(spike)]).unwrap();
-    let yaw = |a: f64| Pose::new(Rotation::from_axis_angle(DVec3::Z, a).unwrap(), DVec3::ZERO);
-    let (from, to) = (yaw(-0.1), yaw(0.1));
-    assert!(!checker.collides_at(from).unwrap() && !checker.collides_at(to).unwrap());
-    assert!(checker.collides_at(yaw(0.0)).unwrap());
-    match checker.check(from, to, 1e-6).unwrap() {
-        MotionCheck::Collides { t_contact, .. } => {
-            assert!(checker
-                .collides_at(Motion::new(from, to).at(t_contact))
-                .unwrap());
-        }
-        MotionCheck::Free => panic!("a corner through a turning slab called free"),
-    }
+    turning_through_the_middle_is_never_free(slab, spike());
 }
