@@ -740,12 +740,13 @@ impl PieceSearch<'_> {
             return Ok(self
                 .separating_direction(pa, pa)
                 .is_some_and(|(n, _, hints)| {
-                    self.ends_apart((a, b), (pa, pb), n, hints, s)
+                    self.ends_apart((a, b), &self.gap_terms(pa, pb, n, hints, s))
                         || self.feature_gap((a, b), (pa, pb), n, hints, inflate, s)
                 }));
         };
-        if self.gap(pa, pb, n, hints, s) > inflate || self.ends_apart((a, b), (pa, pb), n, hints, s)
-        {
+        // One set of near-extreme bounds for the swept hull and its ends.
+        let terms = self.gap_terms(pa, pb, n, hints, s);
+        if terms.swept() > inflate || self.ends_apart((a, b), &terms) {
             return Ok(true);
         }
         // Nearly touching, GJK's direction is off by about ε·size/distance:
@@ -825,7 +826,7 @@ impl PieceSearch<'_> {
         }
         // Normalised after scaling by a power of two: the length of a
         // vector whose squares are subnormal is off by far more than the
-        // unit length `gap` assumes.
+        // unit length the gaps assume.
         let (down, up) = power_of_two_scale(v.abs().max_element());
         let scaled = v * down;
         let len = scaled.length();
@@ -837,7 +838,7 @@ impl PieceSearch<'_> {
     /// the body's face normals at both end poses, and cross products of
     /// their edges), the [`FEATURE_AXES`] nearest GJK's direction `v`,
     /// exceeds `inflate`. Any unit direction gives a rigorous gap
-    /// ([`Self::gap`]), so only the choice of direction changes here.
+    /// ([`GapTerms::swept`]), so only the choice of direction changes here.
     fn feature_gap(
         &self,
         interval: (f64, f64),
@@ -866,8 +867,9 @@ impl PieceSearch<'_> {
             }
         }
         let certified = best.facing().any(|(d, ())| {
-            self.gap(pa, pb, d, hints, s) * (1.0 - 4.0 * f64::EPSILON) > inflate
-                || self.ends_apart(interval, (pa, pb), d, hints, s)
+            let terms = self.gap_terms(pa, pb, d, hints, s);
+            terms.swept() * (1.0 - 4.0 * f64::EPSILON) > inflate
+                || self.ends_apart(interval, &terms)
         });
         // The body's faces around its support vertices, in the body's
         // frame, where they stand still (module docs, "Between the ends").
@@ -881,36 +883,12 @@ impl PieceSearch<'_> {
             })
     }
 
-    /// A rigorous lower bound on `min_{H ⊕ [T]} n · x − max_O n · o`
-    /// (for `|n| ≤ 1 + 4ε`), computed about the obstacle ball's centre `c`
-    /// (the difference is the same about any point): the translations and
-    /// the obstacle's vertices less `c`, rounded, and every rounding
-    /// bounded in the local coordinates' size, not in the world's.
-    fn gap(&self, pa: Pose, pb: Pose, n: DVec3, hints: [u32; 3], s: &mut Scratch) -> f64 {
-        let g = self.gap_terms(pa, pb, n, hints, s);
-        g.lower(g.turned[0].max(g.turned[1]), g.moved[0].max(g.moved[1]))
-    }
-
-    /// The same bounds for the piece at each end alone, posed at `a` and
-    /// at `b` (module docs, "Between the ends").
-    fn end_gaps(&self, pa: Pose, pb: Pose, n: DVec3, hints: [u32; 3], s: &mut Scratch) -> [f64; 2] {
-        let g = self.gap_terms(pa, pb, n, hints, s);
-        [0, 1].map(|k| g.lower(g.turned[k], g.moved[k]))
-    }
-
     /// Whether the piece stays apart from the obstacle piece over `[a, b]`
     /// by the bow of its path (module docs, "Between the ends"): the gaps
-    /// of the two ends along `n` (`|n| ≤ 1 + 4ε`), each less the pose
-    /// error, against the bow of the piece's reach.
-    fn ends_apart(
-        &self,
-        (a, b): (f64, f64),
-        (pa, pb): (Pose, Pose),
-        n: DVec3,
-        hints: [u32; 3],
-        s: &mut Scratch,
-    ) -> bool {
-        let [ga, gb] = self.end_gaps(pa, pb, n, hints, s);
+    /// of the two ends along the axis of `terms` (`|n| ≤ 1 + 4ε`), each
+    /// less the pose error, against the bow of the piece's reach.
+    fn ends_apart(&self, (a, b): (f64, f64), terms: &GapTerms) -> bool {
+        let [ga, gb] = terms.ends();
         let long = 1.0 + 4.0 * f64::EPSILON;
         let e = self.margin.pose_error() * long * (1.0 + 4.0 * f64::EPSILON);
         let c = bow(self.margin.turn(b - a), self.reach) * long * (1.0 + 4.0 * f64::EPSILON);
@@ -1008,7 +986,7 @@ impl PieceSearch<'_> {
             + eta * (1.0 + 4.0 * f64::EPSILON)
     }
 
-    /// The terms of [`PieceSearch::gap`] along `n`, per end (module docs).
+    /// The terms of [`GapTerms::swept`] along `n`, per end (module docs).
     fn gap_terms(
         &self,
         pa: Pose,
@@ -1050,6 +1028,24 @@ struct GapTerms {
 }
 
 impl GapTerms {
+    /// A rigorous lower bound on `min_{H ⊕ [T]} n · x − max_O n · o`
+    /// (for `|n| ≤ 1 + 4ε`), computed about the obstacle ball's centre `c`
+    /// (the difference is the same about any point): the translations and
+    /// the obstacle's vertices less `c`, rounded, and every rounding
+    /// bounded in the local coordinates' size, not in the world's.
+    fn swept(&self) -> f64 {
+        self.lower(
+            self.turned[0].max(self.turned[1]),
+            self.moved[0].max(self.moved[1]),
+        )
+    }
+
+    /// The same bounds for the piece at each end alone, posed at `a` and
+    /// at `b` (module docs, "Between the ends").
+    fn ends(&self) -> [f64; 2] {
+        [0, 1].map(|k| self.lower(self.turned[k], self.moved[k]))
+    }
+
     /// `min n · x − max_O n · o` for the set of the body's points whose
     /// turned part is at most `turned` and moved part at most `moved`
     /// along `−n`, rounded down: `min_H' n · x − max_O n · o = −max_H'
