@@ -74,7 +74,7 @@ fn run_pair(na: &str, nb: &str) {
     let tracker_us = t0.elapsed().as_secs_f64() * 1e6 / frames as f64;
 
     // The dynamic update alone (no query), for the split.
-    let neg_b = dymsum::query::Reflected::new(&b).unwrap();
+    let neg_b = dymsum::query::Reflected::new(&b);
     let mut dynamic = dymsum::DynamicSum::new(
         &a,
         poses[0].0,

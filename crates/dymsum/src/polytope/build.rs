@@ -223,6 +223,9 @@ impl Polytope {
         for (c, &k) in hull.vertices.iter().enumerate() {
             corner[ids[k]] = c;
         }
+        // The hull's own lists are no longer needed: freed before the
+        // comparison's working memory is taken (it set the build's peak).
+        drop(hull);
         let frame = Frame::new(&pts);
         let tolerance = frame.length(policy.relative_tolerance * frame.diagonal);
         let check = compare_with_hull(

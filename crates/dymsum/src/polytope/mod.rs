@@ -40,6 +40,7 @@
 pub mod build;
 mod convexity;
 mod error;
+mod reflect;
 mod sanity;
 pub(crate) mod topology;
 
@@ -129,13 +130,16 @@ struct PolytopeData {
     /// axis-aligned plates on their cheap paths even when the normal itself
     /// is not a float.
     normal_support: Vec<u8>,
-    /// Per face: [`Polytope::refined_normal`], computed once (the arcs, the
-    /// Gaussian map's check and every exact fallback of a predicate on
-    /// normals read it).
-    refined_normals: Vec<(DDVec, f64)>,
+    /// Per face: the power of two the normal is scaled by (its largest
+    /// component in `[0.5, 1)`). [`Polytope::refined_normal`] is computed
+    /// from it and the defining triple when asked: only the arcs (once, at
+    /// construction) and the exact fallbacks of predicates on normals read
+    /// it, and keeping it cost 48 bytes a face.
+    normal_scale: Vec<f64>,
     arc_normals: Vec<DVec3>,
     arc_err: Vec<f64>,
-    unit_normals: Vec<DVec3>,
+    /// Per face: `1 / |normal|`; the unit normal is `normal · inv_normal_len`
+    /// (bit for bit glam's `normalize`), computed when asked.
     inv_normal_len: Vec<f64>,
     ring_start: Vec<u32>,
     ring: Vec<RingEntry>,
@@ -218,10 +222,11 @@ impl Polytope {
     pub fn inverse_normal_length(&self, f: usize) -> f64 {
         self.data.inv_normal_len[f]
     }
-    /// The unit outward normal of face `f` (a float construction).
+    /// The unit outward normal of face `f` (a float construction:
+    /// `normal(f).normalize()`, bit for bit).
     #[inline]
     pub fn unit_normal(&self, f: usize) -> DVec3 {
-        self.data.unit_normals[f]
+        self.data.normals[f] * self.data.inv_normal_len[f]
     }
     /// The ring of vertex `v`: its faces counter-clockwise seen from outside,
     /// i.e. the corners and arcs of its Gaussian cell.
@@ -358,12 +363,19 @@ impl Polytope {
             normal_err.push(err);
             normal_scale.push(scale);
         }
-        let refined_normals = normal_triple
+        // The refined normals, kept only while the arcs are computed.
+        let refined: Vec<(DDVec, f64)> = normal_triple
             .iter()
             .zip(&normal_scale)
             .map(|(t, &s)| refine_normal(t.map(|v| framed[v as usize]), s))
             .collect();
-        let unit_normals = normals.iter().map(|n| n.normalize()).collect();
+        let (arc_normals, arc_err) = edges
+            .iter()
+            .map(|e| {
+                accurate_arc_normal(&refined[e.faces[0] as usize], &refined[e.faces[1] as usize])
+            })
+            .unzip();
+        drop(refined);
         let inv_normal_len = normals.iter().map(|n| 1.0 / n.length()).collect();
         let data = PolytopeData {
             vertices,
@@ -375,26 +387,18 @@ impl Polytope {
             normal_triple,
             normal_err,
             normal_support,
-            refined_normals,
-            arc_normals: Vec::new(),
-            arc_err: Vec::new(),
-            unit_normals,
+            normal_scale,
+            arc_normals,
+            arc_err,
             inv_normal_len,
             ring_start,
             ring,
             frame,
             derived: Default::default(),
         };
-        let mut poly = Polytope {
+        let poly = Polytope {
             data: std::sync::Arc::new(data),
         };
-        let (arcs, errs) = (0..poly.edge_count())
-            .map(|e| poly.accurate_arc_normal(e))
-            .unzip();
-        // The handle is unique here, so this borrows without copying.
-        let data = std::sync::Arc::make_mut(&mut poly.data);
-        data.arc_normals = arcs;
-        data.arc_err = errs;
         poly.check_gauss_map()?;
         Ok(poly)
     }
@@ -451,33 +455,12 @@ impl Polytope {
     }
 
     /// The exact normal of face `f`, scaled like [`Polytope::normal`], in
-    /// double-double, with a bound on its error.
-    #[inline]
+    /// double-double, with a bound on its error (computed from the face's
+    /// defining triple, in the polytope's frame).
     pub fn refined_normal(&self, f: usize) -> (DDVec, f64) {
-        self.data.refined_normals[f]
-    }
-
-    /// The normal of the great circle of edge `e`'s Gaussian arc,
-    /// `n(left) × n(right)` of the exact (scaled) normals, rounded once from
-    /// double-double, and a bound on its error. `det[n(left), n(right), x]`
-    /// is then one dot product, even for very short arcs.
-    fn accurate_arc_normal(&self, e: usize) -> (DVec3, f64) {
-        let [f0, f1] = self.data.edges[e].faces;
-        let ((a, ea), (b, eb)) = (
-            self.refined_normal(f0 as usize),
-            self.refined_normal(f1 as usize),
-        );
-        let c = dd::cross(&a, &b);
-        let m = DVec3::new(c[0].hi + c[0].lo, c[1].hi + c[1].lo, c[2].hi + c[2].lo);
-        let mag = |v: &DDVec| {
-            v.iter().map(|d| d.abs_hi()).fold(0.0, f64::max) * 1.7320508075688774 * 1.01
-        };
-        let (na, nb) = (mag(&a) + ea, mag(&b) + eb);
-        let err = ea * nb
-            + na * eb
-            + 32.0 * U * U * na * nb
-            + U * 1.7320508075688774 * m.abs().max_element() * 1.01;
-        (m, 1.01 * err + f64::MIN_POSITIVE)
+        let triple =
+            self.data.normal_triple[f].map(|v| self.to_frame(self.data.vertices[v as usize]));
+        refine_normal(triple, self.data.normal_scale[f])
     }
 
     /// Great-circle normals of all edge arcs (`n(left) × n(right)`, accurate to a few ulps).
@@ -673,6 +656,25 @@ fn refine_normal([a, b, c]: [DVec3; 3], s: f64) -> (DDVec, f64) {
     let err = (32.0 * U * U * (b - a).length() * (c - a).length() + 64.0 * TINY) * s * 1.01;
     (n, err)
 }
+/// The normal of the great circle of an edge's Gaussian arc,
+/// `n(left) × n(right)` of the exact (scaled) normals, rounded once from
+/// their double-double refinements `left`, `right`, and a bound on its
+/// error. `det[n(left), n(right), x]` is then one dot product, even for
+/// very short arcs.
+fn accurate_arc_normal((a, ea): &(DDVec, f64), (b, eb): &(DDVec, f64)) -> (DVec3, f64) {
+    let (ea, eb) = (*ea, *eb);
+    let c = dd::cross(a, b);
+    let m = DVec3::new(c[0].hi + c[0].lo, c[1].hi + c[1].lo, c[2].hi + c[2].lo);
+    let mag =
+        |v: &DDVec| v.iter().map(|d| d.abs_hi()).fold(0.0, f64::max) * 1.7320508075688774 * 1.01;
+    let (na, nb) = (mag(a) + ea, mag(b) + eb);
+    let err = ea * nb
+        + na * eb
+        + 32.0 * U * U * na * nb
+        + U * 1.7320508075688774 * m.abs().max_element() * 1.01;
+    (m, 1.01 * err + f64::MIN_POSITIVE)
+}
+
 /// The smallest positive subnormal, `2^-1074`.
 const TINY: f64 = 5e-324;
 

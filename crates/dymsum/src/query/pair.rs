@@ -4,7 +4,7 @@
 
 use crate::polytope::Polytope;
 use crate::query::error::QueryError;
-use crate::query::prep::{BodyPrep, Reflected, Reflection};
+use crate::query::prep::{BodyPrep, Reflected};
 
 /// Two convex bodies prepared for repeated queries: `B`'s reflection is
 /// built once. Use it (or a [`crate::query::ContactTracker`]) instead of the free functions
@@ -36,8 +36,8 @@ pub struct ConvexPair {
     pub(in crate::query) b: Polytope,
     pub(in crate::query) prep_a: std::sync::Arc<BodyPrep>,
     pub(in crate::query) prep_b: std::sync::Arc<BodyPrep>,
-    /// B's reflection and the maps into it (kept by B's preparation).
-    pub(in crate::query) refl_b: std::sync::Arc<Reflection>,
+    /// B's reflection, numbered as B (kept by B's preparation).
+    pub(in crate::query) refl_b: std::sync::Arc<Reflected>,
     pub(in crate::query) stats: std::sync::Arc<Counters>,
 }
 
@@ -114,17 +114,16 @@ impl ConvexPair {
     /// the pair shares everything.
     ///
     /// # Errors
-    /// Only internal errors of the reflection ([`Reflected::new`]), for a polytope built by this crate:
-    /// [`QueryError::Reflect`] if rebuilding the reflected body from the
-    /// negated vertices fails, [`QueryError::Inconsistent`] if its faces or
-    /// edges do not match the original's (a bug in dymsum either way).
+    /// None for polytopes built by this crate: B's reflection is read off
+    /// B ([`Reflected::new`]) and cannot fail. The result stays so that a
+    /// preparation that can fail may be added without changing callers.
     pub fn new(a: &Polytope, b: &Polytope) -> Result<Self, QueryError> {
         let prep_b = BodyPrep::of_cached(b);
         Ok(ConvexPair {
             a: a.clone(),
             b: b.clone(),
             prep_a: BodyPrep::of_cached(a),
-            refl_b: prep_b.reflection(b)?,
+            refl_b: prep_b.reflection(b),
             prep_b,
             stats: std::sync::Arc::new(Counters::default()),
         })
@@ -139,13 +138,13 @@ impl ConvexPair {
     }
     /// B's reflection.
     pub fn reflected_b(&self) -> &Reflected {
-        &self.refl_b.neg
+        &self.refl_b
     }
 
     /// B's reflection (crate-internal shorthand).
     #[inline]
     pub(crate) fn neg_b(&self) -> &Reflected {
-        &self.refl_b.neg
+        &self.refl_b
     }
 
     /// How this pair's queries (and its clones' and trackers') were

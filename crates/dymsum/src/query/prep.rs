@@ -8,102 +8,25 @@ use crate::kernel::bounds::up;
 use crate::kernel::exact::{frame_exponent, mul_pow2, mul_pow2_vec};
 use crate::kernel::rotation::Pose;
 use crate::polytope::Polytope;
-use crate::query::error::QueryError;
 use glam::DVec3;
-use std::collections::HashMap;
 
-/// The point reflection `−B` of a body, with the maps from its features back
-/// to `B`'s (a reflection renumbers vertices, faces and edges).
+/// The point reflection `−B` of a body ([`Polytope::point_reflection`]),
+/// numbered as `B`: vertex `i` of `−B` is `−b_i`, and faces and edges keep
+/// their numbers, so a feature of `−B` names the same feature of `B`.
 #[derive(Clone, Debug)]
 pub struct Reflected {
     /// `−B` as a polytope.
     pub polytope: Polytope,
-    /// Vertex of `−B` → vertex of `B`.
-    pub vertex_map: Vec<u32>,
-    /// Face of `−B` → face of `B`.
-    pub face_map: Vec<u32>,
-    /// Edge of `−B` → edge of `B`.
-    pub edge_map: Vec<u32>,
-}
-
-pub(in crate::query) fn bits(v: DVec3) -> [u64; 3] {
-    [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
 }
 
 impl Reflected {
-    /// Reflects `b` through the origin (exact: negation is exact).
-    ///
-    /// # Errors
-    /// Only internal errors, for a polytope built by this crate:
-    /// [`QueryError::Reflect`] if rebuilding the reflected body from the
-    /// negated vertices fails, [`QueryError::Inconsistent`] if its faces or
-    /// edges do not match the original's (a bug in dymsum either way).
-    pub fn new(b: &Polytope) -> Result<Reflected, QueryError> {
-        let neg: Vec<DVec3> = b.vertices().iter().map(|&v| -v).collect();
-        // `−B`'s faces are `B`'s, their vertices negated (exact) and their
-        // order reversed (a point reflection turns orientation round): no
-        // hull to compute again, which took 40% of a convex body's build.
-        // The maps below check the result against `B` as before.
-        let faces: Vec<Vec<u32>> = b
-            .faces()
-            .map(|f| f.iter().rev().copied().collect())
-            .collect();
-        let polytope = Polytope::from_faces(neg.clone(), &faces)?;
-        let index: HashMap<[u64; 3], u32> = neg
-            .iter()
-            .enumerate()
-            .map(|(i, &v)| (bits(v), i as u32))
-            .collect();
-        let bad = || QueryError::Inconsistent("the reflected body's vertices differ".into());
-        let vertex_map = polytope
-            .vertices()
-            .iter()
-            .map(|&v| index.get(&bits(v)).copied().ok_or_else(bad))
-            .collect::<Result<Vec<u32>, _>>()?;
-        if polytope.vertex_count() != b.vertex_count()
-            || polytope.face_count() != b.face_count()
-            || polytope.edge_count() != b.edge_count()
-        {
-            return Err(bad());
+    /// Reflects `b` through the origin: exact (negation is exact) and
+    /// linear in `b`'s size, nothing decided again
+    /// ([`Polytope::point_reflection`]).
+    pub fn new(b: &Polytope) -> Reflected {
+        Reflected {
+            polytope: b.point_reflection(),
         }
-        let key = |vs: &mut Vec<u32>| {
-            vs.sort_unstable();
-            vs.clone()
-        };
-        let faces: HashMap<Vec<u32>, u32> = b
-            .faces()
-            .enumerate()
-            .map(|(f, vs)| (key(&mut vs.to_vec()), f as u32))
-            .collect();
-        let face_map = polytope
-            .faces()
-            .map(|vs| {
-                let mut m: Vec<u32> = vs.iter().map(|&v| vertex_map[v as usize]).collect();
-                faces.get(&key(&mut m)).copied().ok_or_else(bad)
-            })
-            .collect::<Result<Vec<u32>, _>>()?;
-        let edge_key = |[x, y]: [u32; 2]| (x.min(y), x.max(y));
-        let edges: HashMap<(u32, u32), u32> = b
-            .edges()
-            .iter()
-            .enumerate()
-            .map(|(e, ed)| (edge_key(ed.vertices), e as u32))
-            .collect();
-        let edge_map = polytope
-            .edges()
-            .iter()
-            .map(|ed| {
-                let [x, y] = ed.vertices;
-                let k = edge_key([vertex_map[x as usize], vertex_map[y as usize]]);
-                edges.get(&k).copied().ok_or_else(bad)
-            })
-            .collect::<Result<Vec<u32>, _>>()?;
-        Ok(Reflected {
-            polytope,
-            vertex_map,
-            face_map,
-            edge_map,
-        })
     }
 
     /// The pose of `−B` for `B` at `pose`: `−(R b + t) = R(−b) − t`.
@@ -129,7 +52,7 @@ pub(crate) struct BodyPrep {
     /// pair first takes it as B, so that a body only ever A (a planner's
     /// robot) never holds it: it is a second polytope, about 70% of the
     /// rest of this preparation.
-    reflection: std::sync::OnceLock<std::sync::Arc<Reflection>>,
+    reflection: std::sync::OnceLock<std::sync::Arc<Reflected>>,
     /// Caps holding each vertex's Gaussian cell and each edge's Gaussian
     /// arc (body frame): the certificates' quick rejections.
     pub(in crate::query) caps: crate::query::prep::GaussCaps,
@@ -138,41 +61,6 @@ pub(crate) struct BodyPrep {
     /// the last query's support vertex is further from the answer
     /// ([`BodyPrep::seed`]).
     pub(in crate::query) seeds: [u32; SEED_DIRECTIONS],
-}
-
-/// What a body needs as B: its reflection `−B` and the maps into it.
-#[derive(Debug)]
-pub(crate) struct Reflection {
-    /// The reflection `−body`.
-    pub(in crate::query) neg: Reflected,
-    /// Vertex, face and edge → the same of the reflection (the inverses of
-    /// [`Reflected`]'s maps).
-    pub(in crate::query) neg_vertex: Vec<u32>,
-    pub(in crate::query) neg_face: Vec<u32>,
-    pub(in crate::query) neg_edge: Vec<u32>,
-}
-
-impl Reflection {
-    /// The reflection of `p` and its maps.
-    ///
-    /// # Errors
-    /// Those of [`Reflected::new`] (internal only).
-    fn of(p: &Polytope) -> Result<Reflection, QueryError> {
-        let neg = Reflected::new(p)?;
-        let inverse = |map: &[u32]| {
-            let mut inv = vec![0; map.len()];
-            for (i, &j) in map.iter().enumerate() {
-                inv[j as usize] = i as u32;
-            }
-            inv
-        };
-        Ok(Reflection {
-            neg_vertex: inverse(&neg.vertex_map),
-            neg_face: inverse(&neg.face_map),
-            neg_edge: inverse(&neg.edge_map),
-            neg,
-        })
-    }
 }
 
 /// How many directions [`BodyPrep::seeds`] covers: the 26 of the cube's
@@ -209,18 +97,10 @@ impl BodyPrep {
     /// What `p`, whose preparation this is, needs as B: made on the first
     /// call and kept (two threads asking at once may both make it; one is
     /// kept).
-    ///
-    /// # Errors
-    /// Those of [`Reflected::new`] (internal only).
-    pub(crate) fn reflection(
-        &self,
-        p: &Polytope,
-    ) -> Result<std::sync::Arc<Reflection>, QueryError> {
-        if let Some(r) = self.reflection.get() {
-            return Ok(r.clone());
-        }
-        let made = std::sync::Arc::new(Reflection::of(p)?);
-        Ok(self.reflection.get_or_init(|| made).clone())
+    pub(crate) fn reflection(&self, p: &Polytope) -> std::sync::Arc<Reflected> {
+        self.reflection
+            .get_or_init(|| std::sync::Arc::new(Reflected::new(p)))
+            .clone()
     }
 
     /// Computes the data of `p` (its reflection only when asked).
@@ -446,15 +326,11 @@ mod tests {
             &ConvexPair::new(&wall, &wall).expect("a pair").refl_b
         ));
         let swapped = ConvexPair::new(&wall, &robot).expect("a pair");
-        let made = BodyPrep::of_cached(&robot)
-            .reflection(&robot)
-            .expect("made");
+        let made = BodyPrep::of_cached(&robot).reflection(&robot);
         assert!(std::sync::Arc::ptr_eq(&swapped.refl_b, &made));
-        // The reflection's maps take the reflection's features back to the
-        // body's and the inverses take them forth.
-        for (v, &w) in made.neg_vertex.iter().enumerate() {
-            assert_eq!(made.neg.vertex_map[w as usize] as usize, v);
-            assert_eq!(made.neg.polytope.vertex(w as usize), -robot.vertex(v));
+        // The reflection keeps the body's numbering.
+        for v in 0..robot.vertex_count() {
+            assert_eq!(made.polytope.vertex(v), -robot.vertex(v));
         }
         // The answers do not depend on which pair made it.
         let at =

@@ -85,12 +85,12 @@ pub struct CObstacle {
 }
 
 impl CObstacle {
-    /// Prepares `robot` (reflects it: one convex hull) against `obstacle`.
+    /// Prepares `robot` (reflects it, [`Reflected::new`]) against `obstacle`.
     ///
     /// # Errors
-    /// Only internal errors of the reflection, as [`ConvexPair::new`](crate::query::pair::ConvexPair::new).
+    /// None for polytopes built by this crate, as [`ConvexPair::new`](crate::query::pair::ConvexPair::new).
     pub fn new(robot: &Polytope, obstacle: &Polytope) -> Result<Self, QueryError> {
-        let neg_robot = Reflected::new(robot)?;
+        let neg_robot = Reflected::new(robot);
         Ok(CObstacle {
             reaches: Reaches::of(&neg_robot.polytope, obstacle),
             neg_robot: std::sync::Arc::new(neg_robot),

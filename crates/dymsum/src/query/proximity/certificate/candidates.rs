@@ -248,7 +248,6 @@ pub(in crate::query) fn fv_candidate(
     f: u32,
     w: u32,
 ) -> Candidate {
-    let w = pair.neg_b().vertex_map[w as usize];
     let n = posed.na(f);
     Candidate {
         features: FeaturePair::FaceVertex {
@@ -269,7 +268,6 @@ pub(in crate::query) fn vf_candidate(
     g: u32,
     u: u32,
 ) -> Candidate {
-    let g = pair.neg_b().face_map[g as usize];
     let n = -posed.nb(g);
     Candidate {
         features: FeaturePair::VertexFace {
@@ -321,10 +319,9 @@ pub(in crate::query) fn push_ee_candidate(
     out: &mut Vec<Candidate>,
 ) {
     let (a, b) = (&pair.a, &pair.b);
-    let e2b = pair.neg_b().edge_map[e2 as usize];
     let ordered = |[x, y]: [u32; 2]| if x < y { [x, y] } else { [y, x] };
     let [u1, u2] = ordered(a.edge(e as usize).vertices);
-    let [w1, w2] = ordered(b.edge(e2b as usize).vertices);
+    let [w1, w2] = ordered(b.edge(e2 as usize).vertices);
     // X up to sign in floats, with a bound on its error.
     let (m, q) = (vp.arc(e), vq.arc(e2));
     let (em, eq) = (vp.arc_errs[e as usize], vq.arc_errs[e2 as usize]);
@@ -382,7 +379,7 @@ pub(in crate::query) fn push_ee_candidate(
     out.push(Candidate {
         features: FeaturePair::EdgeEdge {
             a_edge: e,
-            b_edge: e2b,
+            b_edge: e2,
         },
         n,
         h: lower_bound(posed, n, u1, w1),

@@ -156,7 +156,6 @@ pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
 {
     let (a, b) = (&pair.a, &pair.b);
     let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
-    let refl = &pair.refl_b;
     local.in_a.start(a.vertex_count());
     local.in_b.start(b.vertex_count());
     for &v in &cert.set_a {
@@ -185,8 +184,8 @@ pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
             }) else {
                 continue;
             };
-            let (wq, _) = vq.locate(&vp.normal(r.face), refl.neg_vertex[w as usize]);
-            if local.in_b.is_marked(pair.neg_b().vertex_map[wq as usize]) {
+            let (wq, _) = vq.locate(&vp.normal(r.face), w);
+            if local.in_b.is_marked(wq) {
                 local.facets.fv.push((r.face, wq));
             }
         }
@@ -206,7 +205,7 @@ pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
             }) else {
                 continue;
             };
-            let g = refl.neg_face[r.face as usize];
+            let g = r.face;
             let (ua, _) = vp.locate(&vq.normal(g), u);
             if local.in_a.is_marked(ua) {
                 local.facets.vf.push((g, ua));
@@ -246,11 +245,7 @@ pub(in crate::query) fn collect<FA, FB, EA, EB, P>(
             {
                 if let Some(c) = (keep.edge_b)(r.edge) {
                     let (ac, cos) = caps_b.arcs[r.edge as usize];
-                    local.edges_b.push((
-                        refl.neg_edge[r.edge as usize],
-                        c,
-                        (-rot_b.apply(ac), cos),
-                    ));
+                    local.edges_b.push((r.edge, c, (-rot_b.apply(ac), cos)));
                 }
             }
         }

@@ -346,7 +346,6 @@ pub(in crate::query) fn single_facet(
     bv.sort_unstable();
     let distinct = |v: &[u32; 3]| 1 + usize::from(v[1] != v[0]) + usize::from(v[2] != v[1]);
     let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
-    let refl = &pair.refl_b;
     let face_with = |p: &crate::polytope::Polytope, v: &[u32; 3]| {
         p.ring(v[0] as usize)
             .iter()
@@ -362,7 +361,7 @@ pub(in crate::query) fn single_facet(
             let Some(f) = face_with(a, &av) else {
                 return false;
             };
-            let w = refl.neg_vertex[bv[0] as usize];
+            let w = bv[0];
             if !vq.in_cell(w, &vp.normal(f)) {
                 return false;
             }
@@ -381,7 +380,7 @@ pub(in crate::query) fn single_facet(
             let Some(gb) = face_with(b, &bv) else {
                 return false;
             };
-            let gq = refl.neg_face[gb as usize];
+            let gq = gb;
             if !vp.in_cell(av[0], &vq.normal(gq)) {
                 return false;
             }
@@ -402,7 +401,7 @@ pub(in crate::query) fn single_facet(
             let (Some(e), Some(eb)) = (edge_between(a, a0, a1), edge_between(b, b0, b1)) else {
                 return false;
             };
-            let e2 = refl.neg_edge[eb as usize];
+            let e2 = eb;
             if !edges_cross(&vp, e, &vq, e2) {
                 return false;
             }
@@ -509,7 +508,6 @@ pub(in crate::query) fn two_facets(
     let (p0, p1) = (g.simplex.pts[0], g.simplex.pts[1]);
     let (a, b) = (&pair.a, &pair.b);
     let (vp, vq) = (posed.view_a(pair), posed.view_neg_b(pair));
-    let refl = &pair.refl_b;
     facets.clear();
     let mut polys: [Corners; 2] = [([(0, 0); MAX_CORNERS], 0); 2];
     let mut found = 0;
@@ -536,10 +534,10 @@ pub(in crate::query) fn two_facets(
         let Some(e) = edge_between(b, b0, b1) else {
             return false;
         };
-        let e2 = refl.neg_edge[e as usize];
+        let e2 = e;
         shared = [(v, b0), (v, b1)];
         for gf in b.edge(e as usize).faces {
-            let gq = refl.neg_face[gf as usize];
+            let gq = gf;
             if vp.in_cell(v, &vq.normal(gq)) {
                 facets.vf.push((gq, v));
                 if !add(&mut b.face(gf as usize).iter().map(|&w| (v, w))) {
@@ -562,7 +560,7 @@ pub(in crate::query) fn two_facets(
         let Some(e) = edge_between(a, a0, a1) else {
             return false;
         };
-        let wq = refl.neg_vertex[w as usize];
+        let wq = w;
         shared = [(a0, w), (a1, w)];
         for f in a.edge(e as usize).faces {
             if vq.in_cell(wq, &vp.normal(f)) {
@@ -573,7 +571,7 @@ pub(in crate::query) fn two_facets(
             }
         }
         for r in b.ring(w as usize) {
-            let e2 = refl.neg_edge[r.edge as usize];
+            let e2 = r.edge;
             if edges_cross(&vp, e, &vq, e2) {
                 facets.ee.push((e, e2));
                 let x = r.neighbor;
