@@ -363,7 +363,8 @@ impl Polytope {
             normal_err.push(err);
             normal_scale.push(scale);
         }
-        // The refined normals, kept only while the arcs are computed.
+        // The refined normals, kept only while the arcs are computed and the
+        // Gaussian map checked.
         let refined: Vec<(DDVec, f64)> = normal_triple
             .iter()
             .zip(&normal_scale)
@@ -375,7 +376,6 @@ impl Polytope {
                 accurate_arc_normal(&refined[e.faces[0] as usize], &refined[e.faces[1] as usize])
             })
             .unzip();
-        drop(refined);
         let inv_normal_len = normals.iter().map(|n| 1.0 / n.length()).collect();
         let data = PolytopeData {
             vertices,
@@ -399,7 +399,7 @@ impl Polytope {
         let poly = Polytope {
             data: std::sync::Arc::new(data),
         };
-        poly.check_gauss_map()?;
+        poly.check_gauss_map(&refined)?;
         Ok(poly)
     }
 
@@ -410,21 +410,28 @@ impl Polytope {
 
     /// Checks exactly that every Gaussian cell is a strictly convex spherical
     /// polygon: every corner strictly left of every arc of its cell.
-    fn check_gauss_map(&self) -> Result<(), PolytopeError> {
+    /// `refined` holds every face's [`Polytope::refined_normal`], computed
+    /// once by the caller (the exact fallbacks of nearly coplanar faces read
+    /// them many times).
+    fn check_gauss_map(&self, refined: &[(DDVec, f64)]) -> Result<(), PolytopeError> {
         use crate::kernel::predicates::det3;
+        let normal = |f: u32| RefinedNormal {
+            normal: self.face_normal(f),
+            refined: refined[f as usize],
+        };
         for v in 0..self.vertex_count() {
             let r = self.ring(v);
             if r.len() < 3 {
                 return Err(PolytopeError::DegenerateGaussMap { vertex: v });
             }
             for i in 0..r.len() {
-                let a = self.face_normal(r[i].face);
-                let b = self.face_normal(r[(i + 1) % r.len()].face);
+                let a = normal(r[i].face);
+                let b = normal(r[(i + 1) % r.len()].face);
                 for (j, e) in r.iter().enumerate() {
                     if j == i || j == (i + 1) % r.len() {
                         continue;
                     }
-                    if !det3(&a, &b, &self.face_normal(e.face)).is_positive() {
+                    if !det3(&a, &b, &normal(e.face)).is_positive() {
                         return Err(PolytopeError::DegenerateGaussMap { vertex: v });
                     }
                 }
@@ -500,6 +507,46 @@ impl Polytope {
     pub fn exact_normal(&self, f: usize) -> ExactVec {
         let [a, b, c] = self.data.normal_triple[f].map(|v| self.data.vertices[v as usize]);
         exact::cross(&exact::sub(b, a), &exact::sub(c, a))
+    }
+}
+
+/// A face normal whose refinement is already computed (the construction's
+/// checks): the same predicate argument as [`FaceNormal`], bit for bit.
+struct RefinedNormal<'a> {
+    normal: FaceNormal<'a>,
+    refined: (DDVec, f64),
+}
+
+impl ExactVector for RefinedNormal<'_> {
+    #[inline]
+    fn approx(&self) -> DVec3 {
+        self.normal.approx()
+    }
+    #[inline]
+    fn error(&self) -> f64 {
+        self.normal.error()
+    }
+    #[inline]
+    fn index(&self) -> u32 {
+        self.normal.index()
+    }
+    fn exact(&self) -> ExactVec {
+        self.normal.exact()
+    }
+    fn refined(&self) -> (DDVec, f64) {
+        self.refined
+    }
+    #[inline]
+    fn exact_float(&self) -> Option<DVec3> {
+        self.normal.exact_float()
+    }
+    #[inline]
+    fn exact_components(&self) -> [Option<f64>; 3] {
+        self.normal.exact_components()
+    }
+    #[inline]
+    fn zero_mask(&self) -> u8 {
+        self.normal.zero_mask()
     }
 }
 
