@@ -29,6 +29,23 @@
 //! cell stays strictly convex and no exact check is needed again. The
 //! tests compare the result with a polytope built from the negated
 //! vertices and reversed faces by the general constructor.
+//!
+//! # Review
+//! An independent review (2026-11-30) checked each item above against the
+//! crate's uses: half-edges, edge orientation and rings as `HalfEdges::new`
+//! defines them, the triple (only `exact_normal` and `refined_normal` read
+//! it, and nothing assumes it starts at the face's first corner), and no
+//! code depending on edge numbering or ring starts. It confirmed that the
+//! maps the queries kept between `B` and `−B` were identities for vertices
+//! and faces before (the constructor keeps both orders), and that every
+//! use of the edge map became the identity. One change it noted: `−B`'s
+//! float normals are now exactly `B`'s negated, where the constructor
+//! chose another defining triple (from the reversed face's first corner),
+//! so float outputs built on them (a C-obstacle's unit normals) may move
+//! by an ulp; every exact sign is unchanged. Its suggested checks are in
+//! the tests: refined normals negated exactly and within their bounds,
+//! unit normals bit for bit glam's `normalize`, the zero patterns, and
+//! each half-edge against its edge's orientation.
 
 use super::{Edge, Polytope, PolytopeData, RingEntry};
 
@@ -108,6 +125,7 @@ mod tests {
     use super::*;
     use crate::kernel::exact::{cross, dot};
     use crate::kernel::test_rng::Xorshift;
+    use crate::kernel::predicates::ExactVector;
     use crate::kernel::Sign;
     use glam::DVec3;
 
@@ -193,6 +211,31 @@ mod tests {
                 assert_eq!(q.normal(f), -p.normal(f));
                 assert_eq!(q.normal_error(f), p.normal_error(f));
                 assert_eq!(q.unit_normal(f), -p.unit_normal(f));
+                assert_eq!(q.unit_normal(f), q.normal(f).normalize());
+                assert_eq!(q.inverse_normal_length(f), p.inverse_normal_length(f));
+                assert_eq!(
+                    q.face_normal(f as u32).zero_mask(),
+                    p.face_normal(f as u32).zero_mask()
+                );
+                // The refinement, computed from the triple, is negated
+                // exactly and lies within its bounds of the float normal.
+                let ((rq, eq), (rp, ep)) = (q.refined_normal(f), p.refined_normal(f));
+                assert_eq!((rq, eq), (rp.map(|x| -x), ep));
+                let gap = (0..3)
+                    .map(|i| (rq[i].hi + rq[i].lo - q.normal(f)[i]).abs())
+                    .fold(0.0, f64::max);
+                assert!(gap <= eq + q.normal_error(f), "face {f}: {gap:e}");
+                // Half-edge k runs from corner k to corner k + 1, on the
+                // left of its edge when the edge runs that way.
+                let (face, edges) = (q.face(f), q.face_edges(f));
+                for k in 0..face.len() {
+                    let (from, to) = (face[k], face[(k + 1) % face.len()]);
+                    let edge = q.edge(edges[k] as usize);
+                    let left = if edge.vertices == [from, to] { 0 } else { 1 };
+                    assert_eq!(edge.vertices[left], from, "face {f}, half-edge {k}");
+                    assert_eq!(edge.vertices[1 - left], to, "face {f}, half-edge {k}");
+                    assert_eq!(edge.faces[left], f as u32, "face {f}, half-edge {k}");
+                }
             }
             for (e, &g) in to_r.iter().enumerate() {
                 let (a, b) = (q.edge(e), r.edge(g as usize));
