@@ -124,8 +124,8 @@ impl Polytope {
 mod tests {
     use super::*;
     use crate::kernel::exact::{cross, dot};
-    use crate::kernel::test_rng::Xorshift;
     use crate::kernel::predicates::ExactVector;
+    use crate::kernel::test_rng::Xorshift;
     use crate::kernel::Sign;
     use glam::DVec3;
 

@@ -110,8 +110,12 @@
 //! swept hull is as close as that end, so an interval leaving a pose
 //! `10⁻¹²` from contact was certified only once its sagitta fell below
 //! `10⁻¹²` (tens of intervals per motion on robot parts, thousands where
-//! a motion stays near). A pair both tests above leave uncertified is
-//! tried once more, against a bound that vanishes at the ends.
+//! a motion stays near). A pair is also tried against a bound that
+//! vanishes at the ends; where the interval's frame allows it, that test
+//! comes first (in the world, then in the body's frame), and the swept
+//! hull's second: each certifies alone, so the order changes no answer,
+//! and on robot parts near contact the swept hull failed on about half
+//! the pairs the walk tests (`docs/BENCHMARKS.md`, "The bow first").
 //!
 //! The bound is `query::interval_search`'s ("The bow"): a body point `p`
 //! strays from its chord by at most `λ(1 − λ) δ² |p| / 2`, and `|p| ≤ r`,
@@ -276,11 +280,8 @@ impl SceneChecker {
     ) -> bool {
         let ends = [[hull[0], hull[1], hull[2]], [hull[3], hull[4], hull[5]]];
         let u = self.scene_triangle(j);
-        if apart_by_more_than(hull, &ends, &u, reach) {
-            return false;
-        }
         let Some(f) = frame else {
-            return true;
+            return !apart_by_more_than(hull, &ends, &u, reach);
         };
         // Between the ends (module docs): each point of the triangle runs
         // on an arc about the body's origin, radius at most the triangle's
@@ -290,7 +291,9 @@ impl SceneChecker {
             .into_iter()
             .fold(0.0, f64::max);
         let bow = bow(f.turn, reach_of_triangle);
-        if apart_between_ends(&ends, &u, f.pose_error, bow) {
+        if apart_between_ends(&ends, &u, f.pose_error, bow)
+            || apart_by_more_than(hull, &ends, &u, reach)
+        {
             return false;
         }
         !self.apart_in_body_frame(i, j, f)
@@ -324,14 +327,11 @@ impl SceneChecker {
         let rounding = pose_rounding_bound(radius, extent);
         let margin = (radius * frame.sagitta_per_radius + rounding) * (1.0 + 8.0 * U) + 1e-300;
         let ends = [[pts[0], pts[1], pts[2]], [pts[3], pts[4], pts[5]]];
-        if apart_by_more_than(&pts, &ends, &p, margin) {
-            return true;
-        }
         // Between the ends (module docs): the relative point's second
         // derivative is at most `δ² ρ + 2 δ |T(b) − T(a)|`.
         let shift = norm_up(frame.tb - frame.ta) * (1.0 + 4.0 * U) + 2.0 * rounding;
         let bow = body_frame_bow(frame.turn, radius, shift);
-        apart_between_ends(&ends, &p, rounding, bow)
+        apart_between_ends(&ends, &p, rounding, bow) || apart_by_more_than(&pts, &ends, &p, margin)
     }
 
     /// Whether the body's triangles swept over `[from, to]` (poses at the
