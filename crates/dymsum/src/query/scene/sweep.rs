@@ -541,14 +541,22 @@ impl SceneChecker {
                 + 4.0 * pad
                 + 8.0 * f64::EPSILON * (size + 2.0 * shift_len)
                 + 1e-300;
-            // The box's own swept hull first (`solid::obb`, "The swept
-            // test"): second order in the turn where the reach below is
-            // first.
-            if oriented_b && {
+            // The box's own swept hull (`solid::obb`, "The swept test"):
+            // second order in the turn where the reach below is first. When
+            // it applies it is the only test: the first-order reach after
+            // it certified too few pairs to pay for itself (4–9% of a
+            // near-contact decision's instructions on robot parts,
+            // docs/BENCHMARKS.md, "The bow first").
+            if oriented_b {
                 let posed_b = cached(obb_cache_b_cells, epoch, k, || a.posed(&mb, tb));
-                scene_obbs[j].swept_apart([&posed, &posed_b], shift, a.h, a.fuzz, pad, reach)
-            } {
-                return true;
+                return scene_obbs[j].swept_apart(
+                    [&posed, &posed_b],
+                    shift,
+                    a.h,
+                    a.fuzz,
+                    pad,
+                    reach,
+                );
             }
             scene_obbs[j].apart(&posed, a.h, a.fuzz + swept_reach + reach, pad)
         };
