@@ -535,12 +535,6 @@ impl SceneChecker {
         let obb_apart = |k: usize, j: usize| {
             let a = &body_obbs[k];
             let posed = cached(obb_cache_cells, epoch, k, || a.posed(&ma, ta));
-            let radius = (norm_up(a.c) + norm_up(a.h) + a.fuzz) * (1.0 + 1e-11);
-            let swept_reach = turn * radius
-                + 2.0 * shift_len
-                + 4.0 * pad
-                + 8.0 * f64::EPSILON * (size + 2.0 * shift_len)
-                + 1e-300;
             // The box's own swept hull (`solid::obb`, "The swept test"):
             // second order in the turn where the reach below is first. When
             // it applies it is the only test: the first-order reach after
@@ -558,6 +552,12 @@ impl SceneChecker {
                     reach,
                 );
             }
+            let radius = (norm_up(a.c) + norm_up(a.h) + a.fuzz) * (1.0 + 1e-11);
+            let swept_reach = turn * radius
+                + 2.0 * shift_len
+                + 4.0 * pad
+                + 8.0 * f64::EPSILON * (size + 2.0 * shift_len)
+                + 1e-300;
             scene_obbs[j].apart(&posed, a.h, a.fuzz + swept_reach + reach, pad)
         };
         let blocked = self.body.tree().for_each_pair(
