@@ -66,17 +66,7 @@ pub fn points(kind: Kind, n: usize, r: &mut ChaCha8Rng) -> Vec<DVec3> {
                 r.random_range(-1.0..1.0),
                 r.random_range(-1.0..1.0),
             ),
-            Kind::Sphere => loop {
-                let p = DVec3::new(
-                    r.random_range(-1.0..1.0),
-                    r.random_range(-1.0..1.0),
-                    r.random_range(-1.0..1.0),
-                );
-                let l = p.length();
-                if l > 0.1 && l <= 1.0 {
-                    break p / l;
-                }
-            },
+            Kind::Sphere => random_unit(r),
         })
         .collect()
 }
@@ -86,6 +76,23 @@ pub fn random_polytope(kind: Kind, n: usize, r: &mut ChaCha8Rng) -> Polytope {
         let pts = points(kind, n, r);
         if let Ok(p) = Polytope::from_dvec3s(&pts) {
             return p;
+        }
+    }
+}
+
+/// A random unit vector, uniform on the sphere: a point of the cube
+/// `[−1, 1)³` kept when its length is in `(0.1, 1]`, then normalised (the
+/// sphere kind of [`points`]; the tests' seeded draws share it).
+pub fn random_unit(r: &mut ChaCha8Rng) -> DVec3 {
+    loop {
+        let v = DVec3::new(
+            r.random_range(-1.0..1.0),
+            r.random_range(-1.0..1.0),
+            r.random_range(-1.0..1.0),
+        );
+        let l = v.length();
+        if l > 0.1 && l <= 1.0 {
+            return v / l;
         }
     }
 }
@@ -773,9 +780,9 @@ pub mod far_small {
         Polytope::from_dvec3s(&pts).unwrap()
     }
 
-    /// A random unit vector (the sphere kind of [`super::points`]).
+    /// A random unit vector ([`super::random_unit`]).
     fn unit(r: &mut ChaCha8Rng) -> DVec3 {
-        super::points(Kind::Sphere, 1, r)[0]
+        super::random_unit(r)
     }
 
     /// A small random turn (at most `max` radians about a random axis).

@@ -15,7 +15,9 @@
 
 use dymsum::query::{ConvexPair, Proximity, QueryStats, TrackerStrategy};
 use dymsum::{DVec3, Polytope, Pose, Rotation};
-use dymsum_testkit::{box_points, proptest_cases, random_polytope, random_rotation, rng, Kind};
+use dymsum_testkit::{
+    box_points, proptest_cases, random_polytope, random_rotation, random_unit as unit, rng, Kind,
+};
 use proptest::prelude::*;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -49,20 +51,6 @@ fn scaled(p: &Polytope, s: f64, off: DVec3) -> Polytope {
 /// A round hull: `n` points on a sphere.
 fn round(n: usize, r: &mut ChaCha8Rng) -> Polytope {
     random_polytope(Kind::Sphere, n, r)
-}
-
-fn unit(r: &mut ChaCha8Rng) -> DVec3 {
-    loop {
-        let v = DVec3::new(
-            r.random_range(-1.0..1.0),
-            r.random_range(-1.0..1.0),
-            r.random_range(-1.0..1.0),
-        );
-        let l = v.length();
-        if l > 0.1 && l <= 1.0 {
-            return v / l;
-        }
-    }
 }
 
 /// The shapes of the families.

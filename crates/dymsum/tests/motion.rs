@@ -8,23 +8,9 @@
 
 use dymsum::query::{ConvexUnion, Motion, MotionCheck, MotionChecker, MotionError};
 use dymsum::{DVec3, Polytope, Pose, Rotation};
-use dymsum_testkit::{cuboid, random_polytope, random_rotation, rng, Kind};
+use dymsum_testkit::{cuboid, random_polytope, random_rotation, random_unit as unit, rng, Kind};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-
-fn unit(r: &mut ChaCha8Rng) -> DVec3 {
-    loop {
-        let v = DVec3::new(
-            r.random_range(-1.0..1.0),
-            r.random_range(-1.0..1.0),
-            r.random_range(-1.0..1.0),
-        );
-        let l = v.length();
-        if l > 0.1 && l <= 1.0 {
-            return v / l;
-        }
-    }
-}
 
 /// The check's answer against `samples` + 1 evenly spaced poses.
 fn check_against_samples(

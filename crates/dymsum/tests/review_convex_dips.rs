@@ -11,23 +11,9 @@
 
 use dymsum::query::{ConvexUnion, Motion, MotionCheck, MotionChecker};
 use dymsum::{DVec3, Polytope, Pose, Rotation};
-use dymsum_testkit::{random_rotation, rng};
+use dymsum_testkit::{random_rotation, random_unit as unit, rng};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-
-fn unit(r: &mut ChaCha8Rng) -> DVec3 {
-    loop {
-        let v = DVec3::new(
-            r.random_range(-1.0..1.0),
-            r.random_range(-1.0..1.0),
-            r.random_range(-1.0..1.0),
-        );
-        let l = v.length();
-        if l > 0.1 && l <= 1.0 {
-            return v / l;
-        }
-    }
-}
 
 fn exact_point(from: Pose, to: Pose, t: f64, o: DVec3) -> DVec3 {
     // body-frame image of world point o at time t (float approximation)
