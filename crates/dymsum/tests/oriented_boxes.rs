@@ -140,3 +140,97 @@ fn review_a_tiny_body_turning_through_a_triangle_is_not_called_free() {
         );
     }
 }
+
+/// Big triangles two to a leaf whose box is thick while each triangle is
+/// flat (`solid::obb`, "Triangles' own boxes"): quads of side 200 folded
+/// along a diagonal by 1° to 20°, and thin walls (a triangle and its
+/// reverse 0.01 to 1 apart), in a box of side 400.
+fn folds_and_walls(rng: &mut Rng) -> PolygonMesh {
+    let mut corners = Vec::new();
+    for k in 0..10 {
+        let centre = DVec3::new(rng.unit(), rng.unit(), rng.unit()) * 200.0;
+        let u = rng.direction();
+        let v = u.cross(rng.direction()).normalize();
+        let n = u.cross(v);
+        let (a, b, c) = (centre - u * 100.0, centre + u * 100.0, centre + v * 100.0);
+        if k % 2 == 0 {
+            let fold = (1.0 + 19.0 * rng.unit().abs()).to_radians();
+            let d = centre - v * (100.0 * fold.cos()) + n * (100.0 * fold.sin());
+            corners.extend([a, b, c, b, a, d].map(|p| p.to_array()));
+        } else {
+            let off = n * 10f64.powf(-1.0 + rng.unit());
+            corners.extend([a, b, c, b + off, a + off, c + off].map(|p| p.to_array()));
+        }
+    }
+    soup(&corners, 1.0)
+}
+
+/// A small sliver body against big folded and doubled triangles, and the
+/// other way round: at random poses about a point of a big triangle, and
+/// within 2⁻⁴⁰ of contact, the state check equals `surfaces_touch`. Both
+/// branches of the triangles' own boxes are taken (a scene leaf against a
+/// body node, a body leaf against a scene node); dropping a leaf when only
+/// one of its triangles is apart gives wrong answers here.
+#[test]
+fn thick_leaves_of_flat_triangles_agree_with_surfaces_touch() {
+    let mut rng = Rng(0x5851_f42d_4c95_7f2d);
+    let (mut states, mut touching) = (0, 0);
+    for case in 0..8 {
+        let big = folds_and_walls(&mut rng);
+        let small = slivers(&mut rng, 60, DVec3::ZERO);
+        let big_is_body = case % 2 == 1;
+        let (body, scene) = if big_is_body {
+            (&big, &small)
+        } else {
+            (&small, &big)
+        };
+        let checker = SceneChecker::new(
+            &MeshBody::new(body).unwrap(),
+            &[MeshBody::new(scene).unwrap()],
+        )
+        .unwrap();
+        for _ in 0..30 {
+            let f =
+                &big.faces[(rng.unit().abs() * big.faces.len() as f64) as usize % big.faces.len()];
+            let corner = |i: usize| DVec3::from(big.vertices[f[i]]);
+            let (s, r) = (rng.unit().abs(), rng.unit().abs());
+            let on = corner(0)
+                + (corner(1) - corner(0)) * (0.5 * s)
+                + (corner(2) - corner(0)) * (0.5 * r);
+            let rot = Rotation::from_axis_angle(rng.direction(), 3.0 * rng.unit()).unwrap();
+            let dir = rng.direction();
+            // The small mesh's origin `16 x` from `on` along `dir`.
+            let at = |x: f64| {
+                if big_is_body {
+                    let m = rot.matrix();
+                    Pose::new(rot, -(m * on) - dir * (16.0 * x))
+                } else {
+                    Pose::new(rot, on + dir * (16.0 * x))
+                }
+            };
+            let mut poses = vec![at(rng.unit().abs())];
+            let (mut lo, mut hi) = (0.0, 1.0);
+            if checker.collides_at(at(lo)).unwrap() && !checker.collides_at(at(hi)).unwrap() {
+                for _ in 0..40 {
+                    let mid = 0.5 * (lo + hi);
+                    if checker.collides_at(at(mid)).unwrap() {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                poses.extend([at(lo), at(hi)]);
+            }
+            for &p in &poses {
+                let got = checker.collides_at(p).unwrap();
+                assert_eq!(got, touch(body, p, scene), "case {case} pose {p:?}");
+                states += 1;
+                touching += usize::from(got);
+            }
+        }
+    }
+    assert!(
+        states > 300 && touching > 60 && states - touching > 60,
+        "{states} {touching}"
+    );
+}

@@ -458,6 +458,15 @@ impl AabbTree {
         &self.bounds
     }
 
+    /// Node `n`'s items when it is a leaf.
+    #[inline]
+    pub fn leaf_items(&self, n: usize) -> Option<&[u32]> {
+        match self.nodes[n] {
+            Node::Leaf { start, end } => Some(&self.items[start as usize..end as usize]),
+            Node::Inner { .. } => None,
+        }
+    }
+
     /// The items in tree order: node `n`'s items are
     /// `items()[s..e]` with `(s, e) = node_spans()[n]`.
     pub fn items(&self) -> &[u32] {

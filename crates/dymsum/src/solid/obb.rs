@@ -104,6 +104,36 @@
 //! the triangle pairs a walk tests by 85% to 87% (with the scene box's
 //! axes alone, 28% to 83%).
 //!
+//! # Triangles' own boxes
+//! A leaf holds two to four triangles. Where they meet at an angle, or
+//! are the two sides of a thin wall, the leaf's box is as thick as the
+//! angle or the wall makes it, while each triangle is flat: a small part
+//! near a big one's surface fits whole inside such a box, and the walk
+//! then met every node of the small part's tree with that leaf
+//! (`example-robot-data`'s Centauro hip against the TIAGo Pro arm link 6:
+//! 11,000 node pairs and as many triangle pairs a state, none meeting).
+//! [`Obb::of_triangle`] fits a box to one triangle's corners along the
+//! triangle's own axes: its unit normal (first, so that the plane is the
+//! first axis tried), its longest edge's direction, their cross product,
+//! checked orthonormal within `MAX_FIT_SKEW` as the principal axes are
+//! (else the coordinate axes). "Fitting" holds for any such axes, so the
+//! box holds the triangle. A scene triangle's box is a scene-frame box like
+//! a node's. A body triangle's box is fitted to its *posed* corners, the
+//! very floats the exact test reads, so it already is a scene-frame box:
+//! it enters the fifteen-axis test posed by the identity ([`Obb::unposed`],
+//! `ω = 0`, the frame orthonormal within `β`) with `pad = 0`, since no
+//! point of it is rounded again. A pair of a leaf and a node whose boxes
+//! were not parted is dropped when *every* triangle of the leaf is proven
+//! apart from the node's box: each triangle pair below it has one of those
+//! triangles and a triangle inside that box. The state check tries this
+//! only where the leaf's box is thicker (its least half-width) than the
+//! other node's box is wide (its largest): against a wider node the flat
+//! boxes part about as seldom as the leaf's did. The boxes are kept in a
+//! small direct-mapped cache (`query::scene::checker`): a scene
+//! triangle's for every query, a body triangle's for its query. On that
+//! pair the state checks' instructions fell 21-fold (docs/BENCHMARKS.md,
+//! "Triangles' own boxes").
+//!
 //! # Independent review (2026-11-30): the gap
 //! A second reading checked "The gap" against an exact rational oracle:
 //! 120,000 node pairs of one to three triangles (parallel planes, slanted,
@@ -201,8 +231,38 @@ impl Obb {
     pub fn fit(points: &[DVec3], around: &Aabb) -> Obb {
         let (lo, hi) = (DVec3::from(around.lo), DVec3::from(around.hi));
         let c0 = 0.5 * lo + 0.5 * hi;
-        let d = (0.5 * hi - 0.5 * lo).max_element();
         let axes = principal_axes(points, c0).unwrap_or([DVec3::X, DVec3::Y, DVec3::Z]);
+        Obb::fit_along(points, around, axes)
+    }
+
+    /// The box of one triangle (module docs, "Triangles' own boxes"): its
+    /// unit normal first, then its longest edge's direction and their
+    /// cross product, so that the box is flat; the coordinate axes when
+    /// these are not orthonormal within `MAX_FIT_SKEW` (a degenerate
+    /// triangle).
+    pub fn of_triangle(t: &[DVec3; 3]) -> Obb {
+        let around = Aabb::of(t.iter().map(|p| p.to_array()));
+        let axes = triangle_axes(t).unwrap_or([DVec3::X, DVec3::Y, DVec3::Z]);
+        Obb::fit_along(t, &around, axes)
+    }
+
+    /// This box as a posed one at the identity (its points are where they
+    /// are: no rounding to cover, `pad` zero, [`Obb::apart`]'s `a`).
+    #[inline]
+    pub fn unposed(&self) -> PosedObb {
+        PosedObb {
+            c: self.c,
+            f: self.axes,
+        }
+    }
+
+    /// The box of `points` along `axes` (orthonormal within
+    /// `MAX_FIT_SKEW`: module docs, "Fitting"), whose axis-aligned box is
+    /// `around`.
+    fn fit_along(points: &[DVec3], around: &Aabb, axes: [DVec3; 3]) -> Obb {
+        let (lo, hi) = (DVec3::from(around.lo), DVec3::from(around.hi));
+        let c0 = 0.5 * lo + 0.5 * hi;
+        let d = (0.5 * hi - 0.5 * lo).max_element();
         let (mut plo, mut phi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
         for &p in points {
             let q = p - c0;
@@ -429,11 +489,38 @@ fn principal_axes(points: &[DVec3], c0: DVec3) -> Option<[DVec3; 3]> {
     let e0 = v[0].try_normalize()?;
     let e1 = (v[1] - e0 * e0.dot(v[1])).try_normalize()?;
     let e2 = e0.cross(e1).try_normalize()?;
-    let axes = [e0, e1, e2];
+    orthonormal([e0, e1, e2])
+}
+
+/// A triangle's unit normal, its longest edge's direction and their cross
+/// product (right-handed, orthonormal within `MAX_FIT_SKEW`), or `None`
+/// for a triangle too degenerate to have them.
+fn triangle_axes(t: &[DVec3; 3]) -> Option<[DVec3; 3]> {
+    let edges = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
+    let longest = (0..3)
+        .max_by(|&a, &b| {
+            edges[a]
+                .length_squared()
+                .total_cmp(&edges[b].length_squared())
+        })
+        .unwrap_or(0);
+    let e = edges[longest].try_normalize()?;
+    let n = edges[longest]
+        .cross(edges[(longest + 1) % 3])
+        .try_normalize()?;
+    let n = (n - e * e.dot(n)).try_normalize()?;
+    let f = n.cross(e).try_normalize()?;
+    orthonormal([n, e, f])
+}
+
+/// `axes` when every `|fl(eᵢ·eⱼ) − δᵢⱼ| + 8u ≤ MAX_FIT_SKEW` (module
+/// docs, "Fitting"), else `None`.
+fn orthonormal(axes: [DVec3; 3]) -> Option<[DVec3; 3]> {
     for i in 0..3 {
         for j in 0..3 {
             let want = if i == j { 1.0 } else { 0.0 };
-            if (axes[i].dot(axes[j]) - want).abs() + 8.0 * U > MAX_FIT_SKEW {
+            let off = (axes[i].dot(axes[j]) - want).abs() + 8.0 * U;
+            if off.is_nan() || off > MAX_FIT_SKEW {
                 return None;
             }
         }
@@ -605,6 +692,67 @@ mod tests {
             }
         }
         assert!(20 * proven > tried, "{proven} of {tried}");
+    }
+
+    /// A triangle's own box ("Triangles' own boxes") holds its corners,
+    /// is flat (its first axis the normal, half-width within rounding of
+    /// zero) unless the triangle is degenerate, and is never proven apart
+    /// from a touching triangle's box, posed (the scene side) or fitted to
+    /// posed corners and unposed (the body side), at scales `10⁻³` to
+    /// `10⁶`, far from the origin, and for collinear and repeated corners.
+    #[test]
+    fn triangle_boxes_are_flat_and_never_part_touching_triangles() {
+        let mut unit = rng(0x9e37_79b9_7f4a_7c15);
+        let mut meeting = 0;
+        for k in 0..20_000 {
+            let scale = [1e-3, 1.0, 1e3, 1e6][k % 4];
+            let off = DVec3::new(unit(), unit(), unit()) * scale * 100.0;
+            let mut u: [DVec3; 3] =
+                [(); 3].map(|_| DVec3::new(unit(), unit(), unit()) * scale + off);
+            match k % 50 {
+                0 => u[2] = u[0] + (u[1] - u[0]) * 0.25,
+                1 => u[2] = u[1],
+                2 => u = [u[0]; 3],
+                _ => {}
+            }
+            let own = Obb::of_triangle(&u);
+            for p in u {
+                assert!(own.holds(p), "{k}: {u:?}");
+            }
+            if k % 50 >= 3 {
+                let n = (u[1] - u[0]).cross(u[2] - u[0]).normalize();
+                assert!(own.axes[0].dot(n).abs() > 1.0 - 1e-9, "{k}");
+                assert!(own.h.x <= 1e-12 * (scale * 100.0), "{k}: {:?}", own.h);
+            }
+            let (s, r) = (unit().abs(), unit().abs());
+            let on = u[0] + (u[1] - u[0]) * (s * 0.5) + (u[2] - u[0]) * (r * 0.5);
+            let rot = Rotation::from_axis_angle(DVec3::new(unit(), unit(), unit()), 3.0 * unit())
+                .unwrap();
+            let (m, t) = (rot.matrix(), DVec3::new(unit(), unit(), unit()) * scale);
+            let (mi, ti) = (m.transpose(), -(m.transpose() * t));
+            let body = [
+                mi * on + ti,
+                mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
+                mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
+            ];
+            let posed = body.map(|p| m * p + t);
+            if !triangles_meet(&posed, &u) {
+                continue;
+            }
+            meeting += 1;
+            let (ob, os, pad) = fitted_with_pad(&body, &u, t);
+            assert!(!own.apart(&ob.posed(&m, t), ob.h, ob.fuzz, pad), "{k}");
+            let posed_own = Obb::of_triangle(&posed);
+            assert!(
+                !os.apart(&posed_own.unposed(), posed_own.h, posed_own.fuzz, 0.0),
+                "{k}"
+            );
+            assert!(
+                !own.apart(&posed_own.unposed(), posed_own.h, posed_own.fuzz, 0.0),
+                "{k}"
+            );
+        }
+        assert!(meeting > 5_000, "{meeting}");
     }
 
     #[test]

@@ -31,7 +31,7 @@ use crate::query::error::MotionError;
 use crate::query::error::QueryError;
 use crate::query::interval_search::{Pending, DEFAULT_BUDGET};
 use crate::solid::aabb::{Aabb, AabbTree, NearPair};
-use crate::solid::obb::PosedObb;
+use crate::solid::obb::{Obb, PosedObb};
 
 /// Body vertices posed on demand, each once per query: `pts[v]` is
 /// current when `stamp[v] == epoch`.
@@ -203,6 +203,50 @@ impl Slot for PosedObb {
     }
 }
 
+/// Triangles' own boxes (`solid::obb`, "Triangles' own boxes") in a
+/// small direct-mapped cache: slot `i mod TRIANGLE_BOX_SLOTS` keeps
+/// triangle `i`'s box and the stamp it was computed for (a scene
+/// triangle's box holds for every query; a body triangle's for its
+/// query's epoch). The walk meets the same few thick leaves many times
+/// in a query, and a planner's next query meets them again.
+pub(super) type TriangleBoxes = Vec<TriangleBox>;
+
+/// A slot of [`TriangleBoxes`]: the triangle's number, the stamp, the box.
+pub(super) type TriangleBox = (u32, u32, Obb);
+
+/// Slots of a [`TriangleBoxes`] cache.
+pub(super) const TRIANGLE_BOX_SLOTS: usize = 128;
+
+/// A cache of [`TRIANGLE_BOX_SLOTS`] empty slots (stamp `0` is nobody's).
+pub(super) fn triangle_boxes() -> TriangleBoxes {
+    let empty = Obb {
+        c: DVec3::ZERO,
+        axes: [DVec3::X, DVec3::Y, DVec3::Z],
+        h: DVec3::ZERO,
+        fuzz: 0.0,
+    };
+    vec![(u32::MAX, 0, empty); TRIANGLE_BOX_SLOTS]
+}
+
+/// Triangle `i`'s own box for `stamp` from `cache`, or fitted to
+/// `corners()` and kept.
+#[inline]
+pub(super) fn triangle_box(
+    cache: &[std::cell::Cell<TriangleBox>],
+    i: usize,
+    stamp: u32,
+    corners: impl FnOnce() -> [DVec3; 3],
+) -> Obb {
+    let slot = &cache[i % TRIANGLE_BOX_SLOTS];
+    let (key, at, b) = slot.get();
+    if key as usize == i && at == stamp {
+        return b;
+    }
+    let b = Obb::of_triangle(&corners());
+    slot.set((i as u32, stamp, b));
+    b
+}
+
 /// A cache's slots as cells, for one query.
 pub(super) fn cells<R>(cache: &mut [R]) -> &[std::cell::Cell<R>] {
     std::cell::Cell::from_mut(cache).as_slice_of_cells()
@@ -258,6 +302,10 @@ pub(super) struct Scratch {
     /// interval (motion checks; sized on the first, and forgotten when the
     /// epoch wraps, by whichever query wraps it).
     pub(super) swept_boxes: NodeCache,
+    /// The scene's and the body's (posed) triangles' own boxes (state
+    /// checks; `state`).
+    pub(super) scene_triangle_boxes: TriangleBoxes,
+    pub(super) body_triangle_boxes: TriangleBoxes,
     pub(super) stack: Vec<(u32, u32)>,
     /// The clearance's queue of node pairs.
     pub(super) near: Vec<NearPair>,
@@ -449,6 +497,12 @@ impl SceneChecker {
         let k = self.scene.tree().bounds().len();
         if s.scene_cache.len() != k || s.at.epoch == 1 {
             s.scene_cache = vec![[0.0; 7]; k];
+        }
+        if s.scene_triangle_boxes.len() != TRIANGLE_BOX_SLOTS {
+            s.scene_triangle_boxes = triangle_boxes();
+        }
+        if s.body_triangle_boxes.len() != TRIANGLE_BOX_SLOTS || s.at.epoch == 1 {
+            s.body_triangle_boxes = triangle_boxes();
         }
         if s.at.epoch == 1 {
             // The epoch wrapped (or this is the first query): stamps from
