@@ -173,9 +173,8 @@ impl SceneChecker {
         // leaf's triangles is tried with its own flat box (`solid::obb`,
         // "Triangles' own boxes"). A body triangle's box is fitted to its
         // posed corners, the very floats the exact test reads: no rounding
-        // of the pose to cover.
-        // The scene's boxes hold for every query (stamp 1), the body's for
-        // this one.
+        // of the pose to cover. The scene's boxes hold for every query
+        // (stamp 1), the body's for this one.
         let body_tree = self.body.tree();
         let mut scene_boxes = std::mem::take(&mut s.scene_triangle_boxes);
         let scene_boxes_cells = cells(&mut scene_boxes);
@@ -183,10 +182,12 @@ impl SceneChecker {
         let body_boxes_cells = cells(&mut body_boxes);
         let leaf_triangles_apart = |n: usize, k: usize| {
             let (a, b) = (&body_obbs[n], &scene_obbs[k]);
-            // Only a leaf thicker than the other node is worth it: against
-            // a node wider than the leaf is thick, the triangles' boxes
-            // part what the leaf's could not about as seldom as it did
-            // (a few % of the instructions on the ROS-Industrial parts).
+            // Only a leaf thicker than the other node is wide is worth it:
+            // against a wider node the triangles' boxes part what the
+            // leaf's could not about as seldom as it did (tried at every
+            // such pair, the ROS-Industrial pairs' state checks took 8–19%
+            // more instructions; docs/BENCHMARKS.md, "Triangles' own
+            // boxes").
             if b.h.min_element() > a.h.max_element() {
                 match scene.leaf_items(k) {
                     Some(items)
