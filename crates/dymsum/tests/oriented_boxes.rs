@@ -22,6 +22,30 @@ fn touch(a: &PolygonMesh, pose: Pose, b: &PolygonMesh) -> bool {
     surfaces_touch(a, pose, b, Pose::IDENTITY).unwrap()
 }
 
+/// The pose `at(first)`, and where `at(0)` collides and `at(1)` does not,
+/// the ends of a 40-step bisection between them (within 2⁻⁴⁰ of contact);
+/// with the free end's parameter (`1` when there is none).
+fn random_and_grazing(
+    checker: &SceneChecker,
+    at: impl Fn(f64) -> Pose,
+    first: f64,
+) -> (Vec<Pose>, f64) {
+    let mut poses = vec![at(first)];
+    let (mut lo, mut hi) = (0.0, 1.0);
+    if checker.collides_at(at(lo)).unwrap() && !checker.collides_at(at(hi)).unwrap() {
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if checker.collides_at(at(mid)).unwrap() {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        poses.extend([at(lo), at(hi)]);
+    }
+    (poses, hi)
+}
+
 #[test]
 fn sliver_soups_agree_with_surfaces_touch_and_motions_with_sampling() {
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
@@ -39,19 +63,7 @@ fn sliver_soups_agree_with_surfaces_touch_and_motions_with_sampling() {
             let r = Rotation::from_axis_angle(rng.direction(), 3.0 * rng.unit()).unwrap();
             let dir = rng.direction();
             let at = |s: f64| Pose::new(r, DVec3::splat(far) + dir * (16.0 * s));
-            let mut poses = vec![at(rng.unit().abs())];
-            let (mut lo, mut hi) = (0.0, 1.0);
-            if checker.collides_at(at(lo)).unwrap() && !checker.collides_at(at(hi)).unwrap() {
-                for _ in 0..40 {
-                    let mid = 0.5 * (lo + hi);
-                    if checker.collides_at(at(mid)).unwrap() {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                poses.extend([at(lo), at(hi)]);
-            }
+            let (poses, hi) = random_and_grazing(&checker, at, rng.unit().abs());
             for &p in &poses {
                 let got = checker.collides_at(p).unwrap();
                 assert_eq!(got, touch(&a, p, &b), "case {case} pose {p:?}");
@@ -208,19 +220,7 @@ fn thick_leaves_of_flat_triangles_agree_with_surfaces_touch() {
                     Pose::new(rot, on + dir * (16.0 * x))
                 }
             };
-            let mut poses = vec![at(rng.unit().abs())];
-            let (mut lo, mut hi) = (0.0, 1.0);
-            if checker.collides_at(at(lo)).unwrap() && !checker.collides_at(at(hi)).unwrap() {
-                for _ in 0..40 {
-                    let mid = 0.5 * (lo + hi);
-                    if checker.collides_at(at(mid)).unwrap() {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                poses.extend([at(lo), at(hi)]);
-            }
+            let (poses, _) = random_and_grazing(&checker, at, rng.unit().abs());
             for &p in &poses {
                 let got = checker.collides_at(p).unwrap();
                 assert_eq!(got, touch(body, p, scene), "case {case} pose {p:?}");

@@ -634,6 +634,27 @@ mod tests {
         (ob, os, pad)
     }
 
+    /// A random pose `(m, t)` and a body triangle in its own frame, posed
+    /// back by the pose's inverse so that posing it (as a query would)
+    /// puts a corner near `on` and the others within `scale` of it: the
+    /// pose, the body triangle and its posed corners.
+    fn body_through(
+        unit: &mut impl FnMut() -> f64,
+        on: DVec3,
+        scale: f64,
+    ) -> (DMat3, DVec3, [DVec3; 3], [DVec3; 3]) {
+        let rot =
+            Rotation::from_axis_angle(DVec3::new(unit(), unit(), unit()), 3.0 * unit()).unwrap();
+        let (m, t) = (rot.matrix(), DVec3::new(unit(), unit(), unit()) * scale);
+        let (mi, ti) = (m.transpose(), -(m.transpose() * t));
+        let body = [
+            mi * on + ti,
+            mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
+            mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
+        ];
+        (m, t, body, body.map(|p| m * p + t))
+    }
+
     fn rng(seed: u64) -> impl FnMut() -> f64 {
         let mut rng = crate::kernel::test_rng::Xorshift::new(seed | 1);
         move || rng.signed()
@@ -753,16 +774,7 @@ mod tests {
             }
             let (s, r) = (unit().abs(), unit().abs());
             let on = u[0] + (u[1] - u[0]) * (s * 0.5) + (u[2] - u[0]) * (r * 0.5);
-            let rot = Rotation::from_axis_angle(DVec3::new(unit(), unit(), unit()), 3.0 * unit())
-                .unwrap();
-            let (m, t) = (rot.matrix(), DVec3::new(unit(), unit(), unit()) * scale);
-            let (mi, ti) = (m.transpose(), -(m.transpose() * t));
-            let body = [
-                mi * on + ti,
-                mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
-                mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
-            ];
-            let posed = body.map(|p| m * p + t);
+            let (m, t, body, posed) = body_through(&mut unit, on, scale);
             if !triangles_meet(&posed, &u) {
                 continue;
             }
@@ -825,18 +837,7 @@ mod tests {
             } else {
                 u[0] + (u[1] - u[0]) * (s * 0.5) + (u[2] - u[0]) * (r * 0.5)
             };
-            let rot = Rotation::from_axis_angle(DVec3::new(unit(), unit(), unit()), 3.0 * unit())
-                .unwrap();
-            let (m, t) = (rot.matrix(), DVec3::new(unit(), unit(), unit()) * scale);
-            // The body triangle in its own frame: posed back by the inverse
-            // (so posing it lands near `on`), then posed as a query would.
-            let (mi, ti) = (m.transpose(), -(m.transpose() * t));
-            let body = [
-                mi * on + ti,
-                mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
-                mi * (on + DVec3::new(unit(), unit(), unit()) * scale) + ti,
-            ];
-            let posed = body.map(|p| m * p + t);
+            let (m, t, body, posed) = body_through(&mut unit, on, scale);
             if !triangles_meet(&posed, &u) {
                 continue;
             }
