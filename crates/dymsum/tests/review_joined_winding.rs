@@ -1,6 +1,6 @@
 //! Review (B): `SceneChecker::new` joins the obstacles into one `MeshBody`
 //! (query/scene/checker.rs, `MeshBody::join`), and `inside_solid`
-//! (query/scene/inside.rs) sums the signed crossings of *all* candidate
+//! (now body/winding.rs) sums the signed crossings of *all* candidate
 //! solid components into one winding number. A mesh may keep a shell
 //! inward (LIMITS.md: "a shell consistent as given keeps its orientation";
 //! only a negative total volume turns the mesh): its region has winding

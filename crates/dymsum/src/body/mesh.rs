@@ -6,6 +6,7 @@
 use glam::DVec3;
 
 use super::error::BodyError;
+use super::inside_grid::InsideGrid;
 use super::union::ConvexUnion;
 use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;
@@ -89,6 +90,11 @@ pub struct MeshBody {
     /// The body as one convex polytope, when it is one solid component
     /// that is exactly convex.
     convex: Option<crate::polytope::Polytope>,
+    /// Its empty cells classified as inside a solid or not
+    /// ([`super::inside_grid`]), built on first use and shared by its
+    /// clones; per body, not per [`MeshParts`], as the answer depends on
+    /// `source_of`.
+    inside_grid: std::sync::Arc<std::sync::OnceLock<InsideGrid>>,
 }
 
 /// A [`MeshBody`]'s triangles, components and trees (read through the body
@@ -140,6 +146,12 @@ impl MeshBody {
     /// One oriented box per node of [`MeshBody::tree`] (body frame).
     pub(crate) fn obbs(&self) -> &[Obb] {
         &self.triangle_tree().1
+    }
+
+    /// The body's classified cells ([`super::inside_grid`]), built on
+    /// first use (after the tree, which its rays walk).
+    pub(crate) fn inside_grid(&self) -> &InsideGrid {
+        self.inside_grid.get_or_init(|| InsideGrid::new(self))
     }
 
     fn triangle_tree(&self) -> &(AabbTree, Vec<Obb>) {
@@ -283,6 +295,10 @@ impl MeshBody {
             // vertices, triangles and components give the same trees),
             // without the work: a robot's checker joins each link alone.
             let mut joined = one.clone();
+            if joined.source_of.iter().any(|&s| s != 0) {
+                // Its grid's regions were classified per source.
+                joined.inside_grid = Default::default();
+            }
             joined.source_of.fill(0);
             joined.convex = None;
             return joined;
@@ -379,6 +395,7 @@ impl MeshBody {
                 report,
             }),
             convex: None,
+            inside_grid: Default::default(),
         }
     }
 
@@ -437,7 +454,8 @@ impl MeshBody {
     /// enclosing ones), each component's vertex one of its triangles'
     /// corners, finite coordinates, the trees sound
     /// (the box tree's own `sanity_check`) over exactly the triangles' and the
-    /// solid components' boxes, the reach above every vertex norm.
+    /// solid components' boxes, the reach above every vertex norm, the
+    /// inside grid's own invariants once it is built.
     ///
     /// # Errors
     /// [`SanityError::MeshBody`] naming the broken invariant and where (a
@@ -510,6 +528,9 @@ impl MeshBody {
                     "node {n}'s oriented box misses a corner of its triangles"
                 ));
             }
+        }
+        if let Some(grid) = self.inside_grid.get() {
+            grid.sanity_check()?;
         }
         Ok(())
     }

@@ -9,9 +9,11 @@
 //! `query`.
 
 mod error;
+pub(crate) mod inside_grid;
 mod ladder;
 pub mod mesh;
 mod union;
+pub(crate) mod winding;
 
 pub use error::BodyError;
 #[cfg(feature = "union-mesh")]

@@ -120,6 +120,41 @@ pub(crate) fn triangle_box_apart(t: &[DVec3; 3], lo: DVec3, hi: DVec3) -> bool {
         .any(|&k| e.iter().any(|&f| apart(k.cross(f))))
 }
 
+/// A triangle's plane as a separating axis against many boxes, certified
+/// as [`triangle_box_apart`]'s (module docs) with one slack for all: the
+/// points' magnitude is bounded once by `mag`, at least every coordinate's
+/// of the triangle and of every box asked (a larger bound only makes the
+/// slack larger).
+pub(crate) struct PlaneAxis {
+    normal: DVec3,
+    span: (f64, f64),
+    slack: f64,
+}
+
+impl PlaneAxis {
+    /// The plane of triangle `t`, for boxes whose coordinates and `t`'s are
+    /// within `mag` coordinatewise.
+    #[inline]
+    pub(crate) fn new(t: &[DVec3; 3], mag: DVec3) -> PlaneAxis {
+        let normal = (t[1] - t[0]).cross(t[2] - t[1]);
+        PlaneAxis {
+            normal,
+            span: span(normal, t),
+            slack: slack(normal, mag),
+        }
+    }
+
+    /// A proof that the triangle and the closed box `[lo, hi]` are disjoint
+    /// (the box on one side of the plane); `false` proves nothing.
+    #[inline]
+    pub(crate) fn parts(&self, lo: DVec3, hi: DVec3) -> bool {
+        let a = self.normal;
+        let near = DVec3::select(a.cmpge(DVec3::ZERO), lo, hi);
+        let far = DVec3::select(a.cmpge(DVec3::ZERO), hi, lo);
+        spans_apart(self.span, (a.dot(near), a.dot(far)), self.slack)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -13,7 +13,7 @@
 //! triangles only when their exact boxes are apart, the narrow phase is
 //! the exact closed triangle–triangle test, and containment the exact
 //! winding number of the other body's enclosing triangles about a point,
-//! by signed ray crossings ([`super::inside`]; per obstacle in a scene).
+//! by signed ray crossings ([`crate::body::winding`]; per obstacle in a scene).
 //! When no triangles meet, a component lies where that winding number is
 //! not zero exactly when any one of its points does (it is connected and
 //! meets no triangle, and the winding number changes only across
@@ -395,12 +395,16 @@ impl SceneChecker {
         // soup as body and obstacle, the peak fell from 100–120 MB to 73
         // MB (`mem_probe`), for about a third more time
         // (docs/BENCHMARKS.md, "Builds one at a time").
+        // So are the grids their containment reads (`body::inside_grid`).
         body.tree();
+        body.inside_grid();
         if let [one] = scene {
             one.tree();
+            one.inside_grid();
         }
         let scene = MeshBody::join(scene);
         scene.tree();
+        scene.inside_grid();
         if body.triangles.is_empty() {
             return Err(QueryError::OutOfRange("the body has no triangles".into()));
         }

@@ -1,15 +1,14 @@
 //! Contact between bodies given as triangle meshes of any topology: the
 //! scene checker ([`SceneChecker`]: `checker` the checker and its buffers,
 //! `state` exact state checks, `clearance`, `sweep` the certified motion
-//! search, `gap` the rigorous gaps, `inside` containment by the winding
-//! number), [`Validator`] (one entry for convex pieces and triangles,
+//! search, `gap` the rigorous gaps; containment by the winding number is the
+//! body's, `body::winding`), [`Validator`] (one entry for convex pieces and triangles,
 //! [`Body`]), and [`surfaces_touch`] (`surfaces`: whether two meshes touch
 //! as surfaces). The bodies themselves live in [`crate::body`].
 
 mod checker;
 mod clearance;
 pub(crate) mod gap;
-mod inside;
 mod state;
 mod surfaces;
 mod sweep;

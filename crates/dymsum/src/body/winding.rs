@@ -4,7 +4,9 @@
 //!
 //! Precondition: the point is on no triangle of the body (the scenes'
 //! checker asks only after finding that no triangles of the two bodies
-//! meet, and the point is a corner of one of them).
+//! meet, and the point is a corner of one of them). A point in a classified
+//! cell of the body's [`super::inside_grid`] is answered from the cell
+//! instead, with the same answer (that module's docs).
 //!
 //! The ray is the segment from `p` to `q = p + L d`, `L` large enough that
 //! `q` lies outside the body's box. It *crosses* triangle `abc` when `p`
@@ -29,8 +31,8 @@
 //! each obstacle's components are summed by themselves (one obstacle's
 //! inward shell, winding `−1` and inside it, must not cancel another
 //! obstacle's solid around the same point). With every sign exact the answer is exact. A
-//! point for which all directions are degenerate gets
-//! [`QueryError::OutOfRange`] naming it, never a guess.
+//! point for which all directions are degenerate gets no answer (`None`;
+//! the queries return `QueryError::OutOfRange` naming it), never a guess.
 //!
 //! # Second reading (2026-11-28)
 //! An independent review found the cycle argument sound (every solid
@@ -47,7 +49,6 @@ use glam::DVec3;
 
 use crate::body::MeshBody;
 use crate::kernel::predicates::{orient, Sign};
-use crate::query::error::QueryError;
 use crate::solid::aabb::Aabb;
 use crate::solid::collinear;
 
@@ -111,8 +112,19 @@ fn crossing(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Crossing {
 impl MeshBody {
     /// Whether `p` (in the body's frame, on none of its triangles) lies
     /// where the winding number of its enclosing triangles is not zero,
-    /// exactly ([`super::inside`]). `parity` is a scratch buffer.
-    pub(crate) fn inside_solid(&self, p: DVec3, parity: &mut Vec<u8>) -> Result<bool, QueryError> {
+    /// exactly ([`super::winding`]): read from the body's grid where it
+    /// knows ([`super::inside_grid`]), else by a ray. `parity` is a scratch
+    /// buffer.
+    pub(crate) fn inside_solid(&self, p: DVec3, parity: &mut Vec<u8>) -> Option<bool> {
+        match self.inside_grid().classify(p, 0.0) {
+            Some(inside) => Some(inside),
+            None => self.inside_by_ray(p, parity),
+        }
+    }
+
+    /// [`MeshBody::inside_solid`] by a ray alone (the grid's own regions
+    /// are classified by it).
+    pub(crate) fn inside_by_ray(&self, p: DVec3, parity: &mut Vec<u8>) -> Option<bool> {
         let mut candidates = Vec::new();
         let at = p.to_array();
         self.solid_tree
@@ -133,20 +145,16 @@ impl MeshBody {
     }
 }
 
-/// Whether the winding number about `p` of the solid components
-/// `candidates` of `body` (those whose box, `component_boxes[c]`, holds
-/// `p`; the others wind zero times about it) is not zero, whose vertices
-/// are `vertices` (posed) and whose tree's bounds are `bounds` over
-/// triangle boxes `boxes` (module docs; `p` on no triangle of the body).
-/// The ray leaves the candidates' joint box the shortest way first.
-/// `parity` is a scratch buffer marking the candidates (all zero between
-/// calls).
 /// Whether `p` lies inside a solid among the `candidates` components of
-/// `body` (module docs), with the body's vertex `v` at `vertex(v)`, and
-/// boxes holding what the tree's node `n`, triangle `t` and component `c`
-/// hold there: `node_box(n)`, `item_box(t)`, `component_box(c)` (boxes
-/// larger than the exact ones only make the walk reach more triangles;
-/// each is then decided exactly).
+/// `body` (those whose box holds `p`; the others wind zero times about
+/// it), exactly (module docs; `p` on no triangle of the body), with the
+/// body's vertex `v` at `vertex(v)`, and boxes holding what the tree's node
+/// `n`, triangle `t` and component `c` hold there: `node_box(n)`,
+/// `item_box(t)`, `component_box(c)` (boxes larger than the exact ones
+/// only make the walk reach more triangles; each is then decided exactly).
+/// The ray leaves the candidates' joint box the shortest way first;
+/// `None` when every direction is degenerate. `parity` is a scratch buffer
+/// marking the candidates (all zero between calls).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn inside_solid(
     body: &MeshBody,
@@ -157,9 +165,9 @@ pub(crate) fn inside_solid(
     candidates: &[u32],
     p: DVec3,
     parity: &mut Vec<u8>,
-) -> Result<bool, QueryError> {
+) -> Option<bool> {
     if candidates.is_empty() {
-        return Ok(false);
+        return Some(false);
     }
     let joint = candidates
         .iter()
@@ -231,14 +239,10 @@ pub(crate) fn inside_solid(
                 parity[c as usize] = 0;
             }
             if !degenerate {
-                break 'directions Ok(winding.iter().any(|e| e.1 != 0));
+                break 'directions Some(winding.iter().any(|e| e.1 != 0));
             }
         }
-        Err(QueryError::OutOfRange(format!(
-            "whether the point {:?} lies inside a solid could not be decided: every ray from \
-             it passes through an edge or lies in a face's plane",
-            p.to_array()
-        )))
+        None
     };
     out
 }

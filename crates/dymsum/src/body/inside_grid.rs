@@ -1,0 +1,601 @@
+//! Containment at a cost that does not grow with the triangles: a grid
+//! over a body's solids, in the body's own frame, whose cells that meet no
+//! triangle of a solid are classified once, as inside a solid or outside
+//! every one ([`InsideGrid`]). A point that lies in such a cell is
+//! answered by reading it; any other point by a ray ([`super::winding`]).
+//!
+//! # Why a cell's answer is each of its points' answer
+//! A solid component's winding number about a point (its triangles' signed
+//! ray crossings, [`super::winding`]) changes only where the point crosses
+//! one of its triangles. A closed cell that meets no triangle of any solid
+//! component is connected, so every point of it has the same winding
+//! numbers (per obstacle of a joined scene); so has the union of two such
+//! cells that share a face, which is connected too and meets no triangle.
+//! The empty cells therefore fall into regions (connected through shared
+//! faces) on which "inside some solid" is one answer: the exact ray from
+//! the centre of one cell of the region (the midpoint of two floats lies
+//! between them, so in the cell, on no triangle) decides it. A region
+//! whose rays are degenerate in every direction (never seen), and every
+//! cell that meets a triangle, stay unclassified, and points there are
+//! decided by their own rays.
+//!
+//! A cell is *empty* when the certified separating-axis test
+//! ([`triangle_box_apart`]) parts it from every triangle of a solid
+//! component whose box reaches it (the test is made on blocks of cells
+//! first and split down to single cells only where it cannot part the
+//! block). A test that cannot part them marks the cell as meeting the
+//! triangle: a false "meets" only sends that cell's points to the ray.
+//!
+//! # Asking
+//! [`InsideGrid::classify`] answers for a point known to within `e` per
+//! coordinate (`e = 0`: the point itself) when the box of half-width `e`
+//! about it lies in one classified cell: every point of that box then has
+//! the cell's answer. The box's ends are computed widened (`2e` plus four
+//! ulps of the coordinate), so that their rounding cannot narrow it, and
+//! compared with the cell's planes exactly. How a posed body's point is
+//! carried back into the body's frame, and why the answer there is the
+//! answer at the pose, is `query::scene::state`'s ("The grid at a pose").
+//!
+//! # Size
+//! About two cells per triangle of the solids (at least 27, at most
+//! [`MAX_CELLS`]), near-cubic, one byte each; building marks each
+//! triangle's cells (the blocks its box reaches, split where the test
+//! cannot part them) and casts one ray per region, at most [`MAX_RAYS`]
+//! (regions beyond that stay unclassified).
+
+use glam::DVec3;
+
+use super::MeshBody;
+use crate::kernel::separation::PlaneAxis;
+use crate::sanity::SanityError;
+use crate::solid::aabb::Aabb;
+use crate::solid::soup::ComponentKind;
+
+/// The most cells a grid has (one byte each).
+pub(crate) const MAX_CELLS: usize = 1 << 18;
+
+/// The most regions a grid classifies by a ray each.
+pub(crate) const MAX_RAYS: usize = 1024;
+
+/// A cell that meets a triangle of a solid, or a region left
+/// unclassified: its points are asked by a ray.
+const UNKNOWN: u8 = 0;
+const OUTSIDE: u8 = 1;
+const INSIDE: u8 = 2;
+/// While building: empty, its region not yet walked.
+const EMPTY: u8 = 3;
+
+/// A body's empty cells classified as inside a solid or outside every one
+/// (module docs).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct InsideGrid {
+    /// The cells' planes along each axis, nondecreasing: cell `i` along
+    /// axis `k` is `[planes[k][i], planes[k][i + 1]]`.
+    planes: [Vec<f64>; 3],
+    /// Each cell's class (`UNKNOWN`, `OUTSIDE`, `INSIDE`), `x` fastest.
+    cells: Vec<u8>,
+}
+
+impl InsideGrid {
+    /// The grid of `body`'s solid components (empty when it has none).
+    pub(crate) fn new(body: &MeshBody) -> InsideGrid {
+        let is_solid =
+            |t: usize| body.components[body.component_of[t] as usize].0 == ComponentKind::Solid;
+        let solid = (0..body.triangles.len()).filter(|&t| is_solid(t)).count();
+        let around = body.solid_components.iter().fold(Aabb::EMPTY, |b, &c| {
+            b.join(&body.component_boxes[c as usize])
+        });
+        let (lo, hi) = (DVec3::from(around.lo), DVec3::from(around.hi));
+        let extent = hi - lo;
+        if solid == 0 || !(extent.min_element() > 0.0 && extent.is_finite()) {
+            return InsideGrid::default();
+        }
+        let target = (2 * solid).clamp(27, MAX_CELLS) as f64;
+        // Near-cubic cells: edge `h` with about `target` of them in the box
+        // (from the logarithms, which neither overflow nor underflow).
+        let log_h = (extent.x.ln() + extent.y.ln() + extent.z.ln() - target.ln()) / 3.0;
+        let counts = [0, 1, 2].map(|k| {
+            let n = (extent[k].ln() - log_h).exp().round();
+            if n.is_finite() {
+                (n as usize).clamp(1, 1024)
+            } else {
+                1
+            }
+        });
+        if counts.iter().product::<usize>() > MAX_CELLS {
+            return InsideGrid::default();
+        }
+        let planes = [0, 1, 2].map(|k| {
+            let n = counts[k];
+            let mut p: Vec<f64> = (0..=n)
+                .map(|i| (lo[k] + extent[k] * (i as f64 / n as f64)).min(hi[k]))
+                .collect();
+            p[0] = lo[k];
+            p[n] = hi[k];
+            p
+        });
+        let mut grid = InsideGrid {
+            planes,
+            cells: vec![EMPTY; counts.iter().product()],
+        };
+        let mag = lo.abs().max(hi.abs());
+        for t in (0..body.triangles.len()).filter(|&t| is_solid(t)) {
+            let tri = body.triangles[t].map(|v| body.vertices[v as usize]);
+            grid.mark_meeting(&tri, mag);
+        }
+        grid.classify_regions(body);
+        grid
+    }
+
+    /// The number of cells along each axis.
+    fn counts(&self) -> [usize; 3] {
+        [0, 1, 2].map(|k| self.planes[k].len().saturating_sub(1))
+    }
+
+    fn index(&self, c: [usize; 3]) -> usize {
+        let n = self.counts();
+        c[0] + n[0] * (c[1] + n[1] * c[2])
+    }
+
+    /// The cells `from..=to` (per axis) as one box.
+    fn block(&self, from: [usize; 3], to: [usize; 3]) -> (DVec3, DVec3) {
+        let lo = [0, 1, 2].map(|k| self.planes[k][from[k]]);
+        let hi = [0, 1, 2].map(|k| self.planes[k][to[k] + 1]);
+        (DVec3::from(lo), DVec3::from(hi))
+    }
+
+    /// The cells along axis `k` that meet `[lo, hi]` (`from > to` when
+    /// none): those with `planes[i] <= hi` and `lo <= planes[i + 1]`,
+    /// found from the planes' even spacing and settled by comparing with
+    /// the planes themselves.
+    fn cells_meeting(&self, k: usize, lo: f64, hi: f64) -> (usize, usize) {
+        let p = &self.planes[k];
+        let n = p.len() - 1;
+        let scale = n as f64 / (p[n] - p[0]);
+        let guess = |x: f64| ((x - p[0]) * scale).clamp(0.0, (n - 1) as f64) as usize;
+        let mut from = guess(lo);
+        while from > 0 && p[from] >= lo {
+            from -= 1;
+        }
+        while from < n - 1 && p[from + 1] < lo {
+            from += 1;
+        }
+        let mut to = guess(hi);
+        while to < n - 1 && p[to + 1] <= hi {
+            to += 1;
+        }
+        while to > 0 && p[to] > hi {
+            to -= 1;
+        }
+        if p[from] > hi || p[to + 1] < lo {
+            return (1, 0);
+        }
+        (from, to)
+    }
+
+    /// Marks `UNKNOWN` every cell the triangle may meet: those its box
+    /// reaches, split into blocks its plane parts from it where it can
+    /// (`mag` bounds every coordinate of the grid and the triangle).
+    fn mark_meeting(&mut self, tri: &[DVec3; 3], mag: DVec3) {
+        let lo = tri[0].min(tri[1]).min(tri[2]);
+        let hi = tri[0].max(tri[1]).max(tri[2]);
+        let mut from = [0; 3];
+        let mut to = [0; 3];
+        for k in 0..3 {
+            (from[k], to[k]) = self.cells_meeting(k, lo[k], hi[k]);
+            if from[k] > to[k] {
+                return;
+            }
+        }
+        if from == to {
+            // The triangle lies in this cell.
+            let i = self.index(from);
+            self.cells[i] = UNKNOWN;
+            return;
+        }
+        let plane = PlaneAxis::new(tri, mag);
+        if (0..3).map(|k| to[k] - from[k] + 1).product::<usize>() <= 16 {
+            // A few cells: each tested, unless already marked.
+            for z in from[2]..=to[2] {
+                for y in from[1]..=to[1] {
+                    for x in from[0]..=to[0] {
+                        let i = self.index([x, y, z]);
+                        if self.cells[i] != UNKNOWN {
+                            let (lo, hi) = self.block([x, y, z], [x, y, z]);
+                            if !plane.parts(lo, hi) {
+                                self.cells[i] = UNKNOWN;
+                            }
+                        }
+                    }
+                }
+            }
+            return;
+        }
+        self.mark_block(&plane, from, to);
+    }
+
+    fn mark_block(&mut self, plane: &PlaneAxis, from: [usize; 3], to: [usize; 3]) {
+        if from == to && self.cells[self.index(from)] == UNKNOWN {
+            return;
+        }
+        let (lo, hi) = self.block(from, to);
+        if plane.parts(lo, hi) {
+            return;
+        }
+        let widest = (0..3).max_by_key(|&k| to[k] - from[k]).unwrap_or(0);
+        if from[widest] == to[widest] {
+            let i = self.index(from);
+            self.cells[i] = UNKNOWN;
+            return;
+        }
+        let mid = (from[widest] + to[widest]) / 2;
+        let (mut left_to, mut right_from) = (to, from);
+        left_to[widest] = mid;
+        right_from[widest] = mid + 1;
+        self.mark_block(plane, from, left_to);
+        self.mark_block(plane, right_from, to);
+    }
+
+    /// Walks the empty cells' regions (through shared faces) and classifies
+    /// each by one ray from its first cell's centre (module docs), at most
+    /// [`MAX_RAYS`] of them, writing the class as it walks.
+    fn classify_regions(&mut self, body: &MeshBody) {
+        let n = self.counts();
+        let at = |i: usize| [i % n[0], i / n[0] % n[1], i / (n[0] * n[1])];
+        let mut stack: Vec<u32> = Vec::new();
+        let mut parity = Vec::new();
+        let mut rays = 0;
+        for start in 0..self.cells.len() {
+            if self.cells[start] != EMPTY {
+                continue;
+            }
+            let class = if rays < MAX_RAYS {
+                rays += 1;
+                let (lo, hi) = self.block(at(start), at(start));
+                match body.inside_by_ray(0.5 * lo + 0.5 * hi, &mut parity) {
+                    Some(true) => INSIDE,
+                    Some(false) => OUTSIDE,
+                    None => UNKNOWN,
+                }
+            } else {
+                UNKNOWN
+            };
+            self.cells[start] = class;
+            stack.push(start as u32);
+            while let Some(i) = stack.pop() {
+                let c = at(i as usize);
+                for k in 0..3 {
+                    for next in [c[k].wrapping_sub(1), c[k] + 1] {
+                        if next >= n[k] {
+                            continue;
+                        }
+                        let mut d = c;
+                        d[k] = next;
+                        let j = self.index(d);
+                        if self.cells[j] == EMPTY {
+                            self.cells[j] = class;
+                            stack.push(j as u32);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether the point `x` of the body's frame lies inside a solid, when
+    /// the grid knows: the box of half-width `e` about it lies in one
+    /// classified cell (module docs, "Asking"); `None` otherwise.
+    #[inline]
+    pub(crate) fn classify(&self, x: DVec3, e: f64) -> Option<bool> {
+        if self.cells.is_empty() {
+            return None;
+        }
+        let mut index = 0;
+        let mut stride = 1;
+        for k in 0..3 {
+            let (lo, hi) = if e == 0.0 {
+                (x[k], x[k])
+            } else {
+                let w = 2.0 * e + 4.0 * f64::EPSILON * x[k].abs();
+                (x[k] - w, x[k] + w)
+            };
+            let p = &self.planes[k];
+            let n = p.len() - 1;
+            // The cell with `p[i] <= lo < p[i + 1]`, from the planes' even
+            // spacing, settled by comparing with them.
+            let scale = n as f64 / (p[n] - p[0]);
+            let mut i = ((lo - p[0]) * scale).clamp(0.0, (n - 1) as f64) as usize;
+            while i > 0 && p[i] > lo {
+                i -= 1;
+            }
+            while i < n - 1 && p[i + 1] <= lo {
+                i += 1;
+            }
+            if !(p[i] <= lo && hi <= p[i + 1]) {
+                return None;
+            }
+            index += i * stride;
+            stride *= n;
+        }
+        match self.cells[index] {
+            INSIDE => Some(true),
+            OUTSIDE => Some(false),
+            _ => None,
+        }
+    }
+
+    /// The cells' planes along each axis (for tests).
+    #[cfg(test)]
+    pub(crate) fn planes(&self) -> &[Vec<f64>; 3] {
+        &self.planes
+    }
+
+    /// The share of cells classified.
+    #[cfg(test)]
+    pub(crate) fn classified(&self) -> f64 {
+        let known = self.cells.iter().filter(|&&c| c != UNKNOWN).count();
+        known as f64 / self.cells.len().max(1) as f64
+    }
+
+    /// Checks the grid's invariants: nondecreasing finite planes, one cell
+    /// per triple of intervals, each cell's class a final one.
+    ///
+    /// # Errors
+    /// [`SanityError::MeshBody`] naming the broken invariant.
+    pub(crate) fn sanity_check(&self) -> Result<(), SanityError> {
+        let bad = |reason: &str| {
+            Err(SanityError::MeshBody {
+                reason: format!("inside grid: {reason}"),
+            })
+        };
+        if self.cells.is_empty() {
+            return Ok(());
+        }
+        for p in &self.planes {
+            if p.len() < 2 || p.iter().any(|q| !q.is_finite()) || p.windows(2).any(|w| w[0] > w[1])
+            {
+                return bad("planes not finite and nondecreasing");
+            }
+        }
+        if self.cells.len() != self.counts().iter().product::<usize>() {
+            return bad("not one cell per triple of intervals");
+        }
+        if self.cells.iter().any(|&c| c > INSIDE) {
+            return bad("a cell left mid-build");
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::mesh::PolygonMesh;
+    use crate::solid::intersect::triangles_meet;
+    use rand::{Rng, SeedableRng};
+
+    /// Outward quads of the unit cube's corners `i` (bit k: coordinate k
+    /// high).
+    const OUT: [[usize; 4]; 6] = [
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+    ];
+
+    /// Appends the box `[lo, hi]`, outward or inward, each face cut into
+    /// `cuts` × `cuts` quads at equal steps (exact where the steps are; one
+    /// quad of the exact corners when `cuts` is 1).
+    pub(crate) fn push_box(
+        m: &mut PolygonMesh,
+        lo: [f64; 3],
+        hi: [f64; 3],
+        outward: bool,
+        cuts: usize,
+    ) {
+        let corner =
+            |i: usize| DVec3::from([0, 1, 2].map(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }));
+        for f in OUT {
+            let (a, b, d) = (corner(f[0]), corner(f[1]), corner(f[3]));
+            let at = |i: usize, j: usize| match (cuts, i, j) {
+                (1, _, _) => corner(f[[[0, 3], [1, 2]][i][j]]).to_array(),
+                _ => {
+                    let (u, v) = (i as f64 / cuts as f64, j as f64 / cuts as f64);
+                    (a + (b - a) * u + (d - a) * v).to_array()
+                }
+            };
+            for i in 0..cuts {
+                for j in 0..cuts {
+                    let base = m.vertices.len();
+                    m.vertices
+                        .extend([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+                    let mut q = vec![base, base + 1, base + 2, base + 3];
+                    if !outward {
+                        q.reverse();
+                    }
+                    m.faces.push(q);
+                }
+            }
+        }
+    }
+
+    /// Boxes `[lo, hi]`, each outward or inward, as one body, each face cut
+    /// into 4 × 4 quads (so that the grid is fine enough to classify cells
+    /// of them; the cuts are exact, at quarters of the edges).
+    fn boxes(list: &[([f64; 3], [f64; 3], bool)]) -> MeshBody {
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        for &(lo, hi, outward) in list {
+            push_box(&mut m, lo, hi, outward, 4);
+        }
+        MeshBody::new(&m).unwrap()
+    }
+
+    /// The hull of `n` random points on a sphere of radius `r` about `c`.
+    fn ball(n: usize, c: [f64; 3], r: f64, seed: u64) -> PolygonMesh {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let points: Vec<[f64; 3]> = (0..n)
+            .map(|_| loop {
+                let v = DVec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                );
+                if (0.01..1.0).contains(&v.length_squared()) {
+                    break (DVec3::from(c) + v.normalize() * r).to_array();
+                }
+            })
+            .collect();
+        crate::polytope::Polytope::from_points(&points)
+            .unwrap()
+            .to_mesh()
+    }
+
+    /// Bodies whose grids classify cells of every kind: a cavity, nested
+    /// and touching solids, a joined scene whose obstacles wind apart (an
+    /// inward box inside another obstacle's solid), a fine convex ball and
+    /// a ball with a box-shaped cavity.
+    fn bodies() -> Vec<MeshBody> {
+        // A cavity holding a small solid within one cell.
+        let cavity = boxes(&[
+            ([0.0; 3], [9.0; 3], true),
+            ([3.0; 3], [6.0; 3], false),
+            ([4.625; 3], [4.75; 3], true),
+        ]);
+        let nested = boxes(&[([0.0; 3], [9.0; 3], true), ([3.0; 3], [6.0; 3], true)]);
+        let touching = boxes(&[
+            ([0.0; 3], [4.0, 8.0, 8.0], true),
+            ([4.0, 0.0, 0.0], [8.0; 3], true),
+        ]);
+        let a = boxes(&[([0.0; 3], [10.0; 3], true), ([20.0; 3], [23.0; 3], false)]);
+        let b = boxes(&[([18.0; 3], [25.0; 3], true)]);
+        let joined = MeshBody::join(&[a, b]);
+        let fine = MeshBody::new(&ball(400, [1.0, -2.0, 0.5], 3.0, 1)).unwrap();
+        let mut hollow = ball(300, [0.0; 3], 5.0, 2);
+        let base = hollow.vertices.len();
+        for i in 0..8 {
+            hollow
+                .vertices
+                .push([0, 1, 2].map(|k| if i >> k & 1 == 0 { -1.5 } else { 1.5 }));
+        }
+        for f in OUT {
+            hollow
+                .faces
+                .push(f.iter().rev().map(|v| v + base).collect());
+        }
+        let hollow = MeshBody::new(&hollow).unwrap();
+        vec![cavity, nested, touching, joined, fine, hollow]
+    }
+
+    /// Whether `p` lies on a triangle of one of `body`'s solids (exact).
+    fn on_a_solid(body: &MeshBody, p: DVec3) -> bool {
+        (0..body.triangles.len()).any(|t| {
+            body.components[body.component_of[t] as usize].0 == ComponentKind::Solid
+                && triangles_meet(
+                    &[p; 3],
+                    &body.triangles[t].map(|v| body.vertices[v as usize]),
+                )
+        })
+    }
+
+    /// Every point the grid answers for is on no triangle of a solid, and
+    /// its ray answers the same: random points, the cells' corners and
+    /// centres, the triangles' centroids and points just off them on both
+    /// sides, and points of the boxes about random points the grid answers
+    /// for with a half-width.
+    #[test]
+    fn classified_cells_answer_as_the_ray() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        for (b, body) in bodies().iter().enumerate() {
+            let grid = body.inside_grid();
+            grid.sanity_check().unwrap();
+            let (mut answered, mut inside) = (0, 0);
+            let mut check = |p: DVec3, answer: Option<bool>| {
+                if let Some(v) = answer {
+                    answered += 1;
+                    inside += usize::from(v);
+                    assert!(!on_a_solid(body, p), "body {b}: {p} is on a solid");
+                    assert_eq!(
+                        body.inside_by_ray(p, &mut Vec::new()),
+                        Some(v),
+                        "body {b}: {p}"
+                    );
+                }
+            };
+            let planes = grid.planes.clone();
+            let (lo, hi) = (
+                planes.each_ref().map(|p| p[0]),
+                planes.each_ref().map(|p| p[p.len() - 1]),
+            );
+            for _ in 0..3000 {
+                let p = DVec3::from([0, 1, 2].map(|k| {
+                    let w = hi[k] - lo[k];
+                    rng.random_range(lo[k] - 0.1 * w..hi[k] + 0.1 * w)
+                }));
+                check(p, grid.classify(p, 0.0));
+                let e = 0.05 * rng.random_range(0.0..1.0) * (hi[0] - lo[0]);
+                if let Some(v) = grid.classify(p, e) {
+                    for corner in 0..8 {
+                        let q = p + DVec3::from([0, 1, 2].map(|k| {
+                            if corner >> k & 1 == 0 {
+                                -e
+                            } else {
+                                e
+                            }
+                        }));
+                        check(q, Some(v));
+                    }
+                }
+            }
+            for tri in &body.triangles {
+                let [a, b, c] = tri.map(|v| body.vertices[v as usize]);
+                let (centroid, normal) = ((a + b + c) / 3.0, (b - a).cross(c - a).normalize());
+                for off in [-1e-3, 0.0, 1e-3] {
+                    let p = centroid + normal * off;
+                    check(p, grid.classify(p, 0.0));
+                }
+            }
+            let n = grid.counts();
+            for z in 0..=n[2] {
+                for y in 0..=n[1] {
+                    for x in 0..=n[0] {
+                        let corner = DVec3::new(planes[0][x], planes[1][y], planes[2][z]);
+                        check(corner, grid.classify(corner, 0.0));
+                        if x < n[0] && y < n[1] && z < n[2] {
+                            let (lo, hi) = grid.block([x, y, z], [x, y, z]);
+                            let centre = 0.5 * lo + 0.5 * hi;
+                            check(centre, grid.classify(centre, 0.0));
+                        }
+                    }
+                }
+            }
+            assert!(answered > 100, "body {b}: only {answered} points answered");
+            assert!(
+                inside > 10,
+                "body {b}: only {inside} points answered inside"
+            );
+        }
+    }
+
+    /// The grid does the work it is for: most cells of a fine ball are
+    /// classified, its centre is answered inside, and a cavity's centre
+    /// outside.
+    #[test]
+    fn grids_classify_most_of_a_fine_solid() {
+        let b = bodies();
+        // The cavity's small solid lies in one cell (what the first test
+        // needs to see a triangle inside one cell marked).
+        let small = b[0].inside_grid();
+        assert_eq!(small.counts(), [10; 3]);
+        assert!(small.planes[0][5] < 4.625 && 4.75 < small.planes[0][6]);
+        let fine = b[4].inside_grid();
+        assert!(fine.classified() > 0.5, "{}", fine.classified());
+        assert_eq!(fine.classify(DVec3::new(1.0, -2.0, 0.5), 0.0), Some(true));
+        assert_eq!(b[5].inside_grid().classify(DVec3::ZERO, 0.0), Some(false));
+        assert_eq!(
+            b[5].inside_grid().classify(DVec3::new(3.0, 0.0, 0.0), 0.0),
+            Some(true)
+        );
+    }
+}
