@@ -5,6 +5,7 @@
 //! triangles of any topology. The command line, Python and Rust take a
 //! mesh through it alike.
 
+use super::mesh::{exactly_convex_refuted_by_edges_add, has_reflex_edge};
 use super::{Body, ConvexUnion, MeshBody, MeshReport};
 use crate::mesh::PolygonMesh;
 use crate::polytope::{ConvexityReport, MeshPolicy, Polytope};
@@ -154,22 +155,27 @@ impl Body {
 }
 
 /// The union of a mesh's shells when it is a closed solid of at least two
-/// shells, each exactly convex.
+/// shells, each exactly convex: the shells tried in order, and the first
+/// that is not ends the search (without building the others' hulls).
 fn exactly_convex_shells(mesh: &PolygonMesh) -> Option<ConvexUnion> {
-    let shells = solid_shells(mesh).ok()?;
-    if shells.len() < 2 {
+    let solid = check_solid_mesh(mesh).ok()?;
+    if solid.shells.len() < 2 {
         return None;
     }
-    let pieces: Option<Vec<Polytope>> = shells.into_iter().map(|s| s.convex).collect();
+    let pieces: Option<Vec<Polytope>> = solid
+        .shells
+        .iter()
+        .map(|shell| shell_polytope(&shell_mesh(mesh, shell)))
+        .collect();
     ConvexUnion::new(pieces?)
 }
 
 /// One shell of a mesh given as a solid: its faces' fan triangles as a mesh
 /// of their own, and its polytope when it is exactly convex.
+#[cfg(feature = "union-mesh")]
 pub(crate) struct Shell {
     /// The shell's triangles, with only their vertices (read by
     /// `nonconvex`'s decomposition).
-    #[cfg_attr(not(feature = "union-mesh"), allow(dead_code))]
     pub(crate) mesh: PolygonMesh,
     /// The shell as a polytope, when exactly convex
     /// ([`MeshPolicy::strict`]).
@@ -181,26 +187,51 @@ pub(crate) struct Shell {
 ///
 /// # Errors
 /// Those of [`check_solid_mesh`].
+#[cfg(feature = "union-mesh")]
 pub(crate) fn solid_shells(mesh: &PolygonMesh) -> Result<Vec<Shell>, SolidError> {
     let solid = check_solid_mesh(mesh)?;
     Ok(solid
         .shells
         .iter()
         .map(|shell| {
-            let fans = shell.iter().flat_map(|&f| {
-                let face = &mesh.faces[f];
-                face[1..].windows(2).map(move |w| [face[0], w[0], w[1]])
-            });
-            let mesh = submesh(&mesh.vertices, fans);
-            let convex = Polytope::from_mesh(&mesh, MeshPolicy::strict())
-                .ok()
-                .map(|(p, _)| p);
+            let mesh = shell_mesh(mesh, shell);
+            let convex = shell_polytope(&mesh);
             Shell { mesh, convex }
         })
         .collect())
 }
 
-/// The mesh of some triangles, with only their vertices.
+/// The fan triangles of a shell's faces, with only their vertices.
+fn shell_mesh(mesh: &PolygonMesh, shell: &[usize]) -> PolygonMesh {
+    let fans = shell.iter().flat_map(|&f| {
+        let face = &mesh.faces[f];
+        face[1..].windows(2).map(move |w| [face[0], w[0], w[1]])
+    });
+    submesh(&mesh.vertices, fans)
+}
+
+/// A shell's polytope when it is exactly convex ([`MeshPolicy::strict`]):
+/// refuted without its hull when two of its triangles fold inwards at an
+/// edge (`has_reflex_edge`, which no shell the strict comparison accepts
+/// has; counted in [`crate::body::mesh::exactly_convex_refuted_by_edges`]).
+/// On example-robot-data's Z1 link 3 (33,580 triangles, many shells), the
+/// hulls of every shell were 98% of the ladder's 1.8 s.
+fn shell_polytope(shell: &PolygonMesh) -> Option<Polytope> {
+    let vertices: Vec<glam::DVec3> = shell.vertices.iter().map(|&v| v.into()).collect();
+    let triangles: Vec<[u32; 3]> = shell
+        .faces
+        .iter()
+        .map(|f| [f[0] as u32, f[1] as u32, f[2] as u32])
+        .collect();
+    if has_reflex_edge(&vertices, &triangles) {
+        exactly_convex_refuted_by_edges_add();
+        return None;
+    }
+    Polytope::from_mesh(shell, MeshPolicy::strict())
+        .ok()
+        .map(|(p, _)| p)
+}
+
 fn submesh(vertices: &[[f64; 3]], tris: impl Iterator<Item = [usize; 3]>) -> PolygonMesh {
     let mut map = std::collections::HashMap::new();
     let mut v = Vec::new();
@@ -218,4 +249,69 @@ fn submesh(vertices: &[[f64; 3]], tris: impl Iterator<Item = [usize; 3]>) -> Pol
         );
     }
     PolygonMesh::new(v, faces)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::robot::shapes::box_mesh;
+    use glam::DVec3;
+
+    /// Appends `part` moved by `by` to `mesh`.
+    fn push(mesh: &mut PolygonMesh, part: &PolygonMesh, by: [f64; 3]) {
+        let base = mesh.vertices.len();
+        mesh.vertices.extend(
+            part.vertices
+                .iter()
+                .map(|v| [0, 1, 2].map(|k| v[k] + by[k])),
+        );
+        mesh.faces.extend(
+            part.faces
+                .iter()
+                .map(|f| f.iter().map(|v| v + base).collect()),
+        );
+    }
+
+    /// An L-shaped prism: a closed solid with one reflex edge.
+    fn ell() -> PolygonMesh {
+        let outline = [
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ];
+        let mut vertices = Vec::new();
+        for z in [0.0, 1.0] {
+            vertices.extend(outline.iter().map(|p| [p[0], p[1], z]));
+        }
+        let mut faces = vec![(0..6).rev().collect::<Vec<_>>(), (6..12).collect()];
+        for i in 0..6 {
+            let j = (i + 1) % 6;
+            faces.push(vec![i, j, j + 6, i + 6]);
+        }
+        PolygonMesh::new(vertices, faces)
+    }
+
+    /// A shell that folds inwards is refuted without its hull, the first
+    /// such shell ends the rung, and convex shells still make it.
+    #[test]
+    fn a_shell_that_folds_inwards_builds_no_hull() {
+        let cube = box_mesh(DVec3::ONE);
+        let shell = shell_mesh(&ell(), &(0..ell().faces.len()).collect::<Vec<_>>());
+        let before = crate::body::mesh::exactly_convex_refuted_by_edges();
+        assert!(shell_polytope(&shell).is_none());
+        assert!(crate::body::mesh::exactly_convex_refuted_by_edges() > before);
+        assert!(Polytope::from_mesh(&shell, MeshPolicy::strict()).is_err());
+        let mut mixed = ell();
+        push(&mut mixed, &cube, [5.0, 0.0, 0.0]);
+        let (_, report) = Body::from_mesh_with(&mixed, &BodyOptions::default()).unwrap();
+        assert_eq!(report.rung, Rung::Triangles);
+        let mut two = PolygonMesh::new(Vec::new(), Vec::new());
+        push(&mut two, &cube, [0.0; 3]);
+        push(&mut two, &cube, [5.0, 0.0, 0.0]);
+        let (_, report) = Body::from_mesh_with(&two, &BodyOptions::default()).unwrap();
+        assert_eq!((report.rung, report.pieces), (Rung::ConvexShells, 2));
+    }
 }

@@ -573,13 +573,14 @@ pub(crate) fn placed_polytope(
 static EXACTLY_CONVEX_REFUTED_BY_EDGES: std::sync::atomic::AtomicU64 =
     std::sync::atomic::AtomicU64::new(0);
 
-fn exactly_convex_refuted_by_edges_add() {
+pub(crate) fn exactly_convex_refuted_by_edges_add() {
     EXACTLY_CONVEX_REFUTED_BY_EDGES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
 }
 
-/// How many bodies were found not exactly convex by their edges alone,
-/// without building their hull (the rest of the one-solid bodies build it
-/// and compare): a counter for benchmarks, process-wide.
+/// How many bodies (and shells of the body ladder's convex-shells rung)
+/// were found not exactly convex by their edges alone, without building
+/// their hull (the rest of the one-solid bodies build it and compare): a
+/// counter for benchmarks, process-wide.
 pub fn exactly_convex_refuted_by_edges() -> u64 {
     EXACTLY_CONVEX_REFUTED_BY_EDGES.load(std::sync::atomic::Ordering::Relaxed)
 }
