@@ -13,8 +13,10 @@
 //! cells that share a face, which is connected too and meets no triangle.
 //! The empty cells therefore fall into regions (connected through shared
 //! faces) on which "inside some solid" is one answer: the exact ray from
-//! the centre of one cell of the region (the midpoint of two floats lies
-//! between them, so in the cell, on no triangle) decides it. A region
+//! the centre of one cell of the region (the computed midpoint of its
+//! planes, clamped to them: for a cell of zero width at an odd multiple
+//! of the least subnormal the midpoint rounds outside it; so in the cell,
+//! on no triangle) decides it. A region
 //! whose rays are degenerate in every direction (never seen), and every
 //! cell that meets a triangle, stay unclassified, and points there are
 //! decided by their own rays.
@@ -37,8 +39,9 @@
 //! answer at the pose, is `query::scene::state`'s ("The grid at a pose").
 //!
 //! # Size
-//! About two cells per triangle of the solids (at least 27, at most
-//! [`MAX_CELLS`]), near-cubic, one byte each; building marks each
+//! About two cells per triangle of the solids (at least 27; fewer where
+//! the near-cubic counts, at most 1024 an axis, would exceed
+//! [`MAX_CELLS`]), one byte each; building marks each
 //! triangle's cells (the blocks its box reaches, split where the test
 //! cannot part them) and casts one ray per region, at most [`MAX_RAYS`]
 //! (regions beyond that stay unclassified).
@@ -90,20 +93,25 @@ impl InsideGrid {
         if solid == 0 || !(extent.min_element() > 0.0 && extent.is_finite()) {
             return InsideGrid::default();
         }
-        let target = (2 * solid).clamp(27, MAX_CELLS) as f64;
         // Near-cubic cells: edge `h` with about `target` of them in the box
-        // (from the logarithms, which neither overflow nor underflow).
-        let log_h = (extent.x.ln() + extent.y.ln() + extent.z.ln() - target.ln()) / 3.0;
-        let counts = [0, 1, 2].map(|k| {
-            let n = (extent[k].ln() - log_h).exp().round();
-            if n.is_finite() {
-                (n as usize).clamp(1, 1024)
-            } else {
-                1
-            }
-        });
-        if counts.iter().product::<usize>() > MAX_CELLS {
-            return InsideGrid::default();
+        // (from the logarithms, which neither overflow nor underflow),
+        // fewer while the rounded and clamped counts exceed the most.
+        let counts_for = |target: f64| {
+            let log_h = (extent.x.ln() + extent.y.ln() + extent.z.ln() - target.ln()) / 3.0;
+            [0, 1, 2].map(|k| {
+                let n = (extent[k].ln() - log_h).exp().round();
+                if n.is_finite() {
+                    (n as usize).clamp(1, 1024)
+                } else {
+                    1
+                }
+            })
+        };
+        let mut target = (2 * solid).clamp(27, MAX_CELLS) as f64;
+        let mut counts = counts_for(target);
+        while counts.iter().product::<usize>() > MAX_CELLS {
+            target *= 0.75;
+            counts = counts_for(target);
         }
         let planes = [0, 1, 2].map(|k| {
             let n = counts[k];
@@ -252,7 +260,8 @@ impl InsideGrid {
             let class = if rays < MAX_RAYS {
                 rays += 1;
                 let (lo, hi) = self.block(at(start), at(start));
-                match body.inside_by_ray(0.5 * lo + 0.5 * hi, &mut parity) {
+                let centre = (0.5 * lo + 0.5 * hi).clamp(lo, hi);
+                match body.inside_by_ray(centre, &mut parity) {
                     Some(true) => INSIDE,
                     Some(false) => OUTSIDE,
                     None => UNKNOWN,
@@ -576,6 +585,37 @@ pub(crate) mod tests {
                 "body {b}: only {inside} points answered inside"
             );
         }
+    }
+
+    /// A cube 8 least subnormals wide, each face cut 8 × 8: its grid has
+    /// cells of zero width at odd multiples of the least subnormal, whose
+    /// computed midpoint rounds outside them; the inside region's first
+    /// cell is one, and its ray from the cube's corner called the whole
+    /// inside outside (found by the review recorded in `scene::state`).
+    #[test]
+    fn a_region_is_asked_from_inside_its_first_cell_at_subnormal_sizes() {
+        let t = f64::from_bits(1);
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut m, [0.0; 3], [8.0 * t; 3], true, 8);
+        let body = MeshBody::new(&m).unwrap();
+        assert_eq!(body.report().solids, 1);
+        let grid = body.inside_grid();
+        let n = grid.counts();
+        for z in 0..n[2] {
+            for y in 0..n[1] {
+                for x in 0..n[0] {
+                    let (lo, hi) = grid.block([x, y, z], [x, y, z]);
+                    let centre = (0.5 * lo + 0.5 * hi).clamp(lo, hi);
+                    if let Some(v) = grid.classify(centre, 0.0) {
+                        assert!(!on_a_solid(&body, centre), "{centre}");
+                        assert_eq!(body.inside_by_ray(centre, &mut Vec::new()), Some(v));
+                    }
+                }
+            }
+        }
+        let middle = DVec3::splat(4.0 * t);
+        assert_eq!(body.inside_by_ray(middle, &mut Vec::new()), Some(true));
+        assert_ne!(grid.classify(middle, 0.0), Some(false));
     }
 
     /// The grid does the work it is for: most cells of a fine ball are

@@ -31,8 +31,11 @@
 //! each obstacle's components are summed by themselves (one obstacle's
 //! inward shell, winding `−1` and inside it, must not cancel another
 //! obstacle's solid around the same point). With every sign exact the answer is exact. A
-//! point for which all directions are degenerate gets no answer (`None`;
-//! the queries return `QueryError::OutOfRange` naming it), never a guess.
+//! point for which all directions are degenerate gets no answer from the
+//! ray (`inside_by_ray` returns `None`; the queries then return
+//! `QueryError::OutOfRange` naming it), never a guess; `inside_solid`
+//! answers from a classified cell of the grid whatever that point's own
+//! rays do.
 //!
 //! # Second reading (2026-11-28)
 //! An independent review found the cycle argument sound (every solid

@@ -35,9 +35,12 @@
 //! the points asked are corners of triangles the bodies keep, the test
 //! reads only kept triangles, and every kept one is in the walked trees,
 //! so a point on one is a contact, which collides. An error of the first
-//! asking (no ray decides, never seen) is not final: the walk may still
-//! meet, and only when it does not is the containment asked again from the
-//! first point, so an error is returned exactly where it was before.
+//! asking (a point neither read from the grid nor decided by a ray, never
+//! seen) is not final: the walk may still meet, and only when it does not
+//! is the containment asked again from the first point, so an error is
+//! returned exactly where the walk-then-containment order returns one (both
+//! askings read the same grid; since the grid, at a subset of the states
+//! that returned one before it).
 //!
 //! An independent review (2026-11-30) checked this argument and the code:
 //! the numbering of points is the same in both askings (then counted after
@@ -55,12 +58,14 @@
 //! A scene corner `p` is asked about the body's solids at the pose `(M, t)`
 //! (`M` the rounded matrix, `det M > 0`, `MᵀM` within `2⁻⁴⁰` of the
 //! identity, else the grid is not read). The answer wanted is the winding
-//! number about `p` of the posed float vertices `Pᵢ = fl(M vᵢ + t)`. The
-//! map `B(x) = Mᵀ(x − t)`, in exact arithmetic, is affine with positive
-//! determinant, so it keeps every winding number: the answer is the
-//! winding number of the triangles on `B(Pᵢ)` about `B(p)`. Each `B(Pᵢ)`
-//! lies within `e₁` of `vᵢ` per coordinate (the posing's rounding, and
-//! `MᵀM − I` times the body's size), and the computed corner carried back,
+//! numbers (per source) about `p` of the posed float vertices
+//! `Pᵢ = fl(M vᵢ + t)`. The map `B(x) = Mᵀ(x − t)`, in exact arithmetic, is
+//! affine and invertible, so it keeps whether each winding number is zero
+//! (with positive determinant, each number itself): the answer is that of
+//! the triangles on `B(Pᵢ)` about `B(p)`. Each `B(Pᵢ)` lies within `e₁` of
+//! `vᵢ` per coordinate (`Mᵀ` times the posing's rounding, up to √3 times
+//! it, which twice `pad` covers, and `MᵀM − I` times the body's size),
+//! and the computed corner carried back,
 //! `back = fl(Mᵀ(p − t))`, within `e₂` of `B(p)` (its rounding); the
 //! corner filter's `back_pad` bounds `e₁ + e₂` (the comment at it). Move
 //! each vertex straight from `vᵢ` to `B(Pᵢ)`: every point of every
@@ -74,8 +79,24 @@
 //! the pose, and `p` is on no triangle; otherwise the ray decides, as
 //! before. On the Centauro pelvis against the G1 ankle roll link
 //! (example-robot-data, 300 random states), where the rays through the
-//! posed pelvis were 92% of the slow states, the random median fell from
-//! 6.3 to 2.5 µs (docs/BENCHMARKS.md, "Inside grids").
+//! posed pelvis were 92% of the slow states, the instructions fell from
+//! 95.5 to 18.3 million (docs/BENCHMARKS.md, "Inside grids").
+//!
+//! An independent review (2026-11-30, night) found the grid's argument,
+//! the index arithmetic (200,000 `classify` calls against exact rationals,
+//! points on planes, NaN, infinities, half-widths to 10³⁰⁸) and this
+//! pose argument sound (the worst `(e₁ + e₂) / back_pad` over random
+//! poses at every scale, in exact rationals: 5.7 · 10⁻⁵), and 144,311
+//! state checks agreed with an oracle that reads no grid (placed bodies,
+//! `surfaces_touch` and the ray; cavities, nested, touching and joined
+//! solids, corners on grid planes and cell corners, scales 2⁻⁶⁰ to 2¹⁷).
+//! It found one wrong answer, at subnormal sizes, mended: a region was
+//! asked from its first cell's computed midpoint, which rounds outside a
+//! cell of zero width at an odd multiple of the least subnormal (a cube 8
+//! of them wide was called empty inside); the midpoint is now clamped to
+//! the cell (`body::inside_grid`'s test
+//! `a_region_is_asked_from_inside_its_first_cell_at_subnormal_sizes`).
+//! Its wording remarks are applied.
 //!
 //! [`MeshBody::inside_solid`]: crate::body::MeshBody
 
@@ -103,7 +124,8 @@ impl SceneChecker {
     ///
     /// # Errors
     /// [`QueryError::OutOfRange`] when a posed coordinate is not finite, or
-    /// (never seen) when no ray decides a containment.
+    /// (never seen) when a containment is neither read from the grid nor
+    /// decided by a ray.
     pub fn collides_at(&self, pose: Pose) -> Result<bool, QueryError> {
         let mut s = self.scratch();
         let out = self.collides_with(pose, &mut s);
@@ -434,7 +456,8 @@ impl SceneChecker {
     }
 }
 
-/// The error of a point whose containment no ray decides (never seen).
+/// The error of a point whose containment is neither read from the grid nor
+/// decided by a ray (never seen).
 fn undecided(p: DVec3) -> QueryError {
     QueryError::OutOfRange(format!(
         "whether the point {:?} lies inside a solid could not be decided: every ray from it \
