@@ -2,7 +2,8 @@
 //! pieces or triangles of any topology; [`ConvexUnion`]; [`MeshBody`] with
 //! its box trees and [`MeshReport`]). A mesh is read into a body by
 //! [`Body::from_mesh`] (the cleaning of `solid::soup`, the winding-number
-//! meaning of inside), or by the ladder of [`Body::from_mesh_with`]
+//! meaning of inside: `winding` by a ray, read from `inside_grid`'s
+//! classified cells where it can), or by the ladder of [`Body::from_mesh_with`]
 //! (convex, convex shells, triangles; the hull when asked) with a
 //! [`BodyReport`] of what it did; an obstacle given in its own frame is
 //! placed by [`Body::placed`]; the questions asked of bodies live in
