@@ -152,6 +152,14 @@ impl InsideGrid {
         (DVec3::from(lo), DVec3::from(hi))
     }
 
+    /// The cell along axis `k` that `x` would lie in if the planes were
+    /// exactly evenly spaced (a start, settled by comparing with them).
+    fn guess(&self, k: usize, x: f64) -> usize {
+        let p = &self.planes[k];
+        let n = p.len() - 1;
+        ((x - p[0]) * (n as f64 / (p[n] - p[0]))).clamp(0.0, (n - 1) as f64) as usize
+    }
+
     /// The cells along axis `k` that meet `[lo, hi]` (`from > to` when
     /// none): those with `planes[i] <= hi` and `lo <= planes[i + 1]`,
     /// found from the planes' even spacing and settled by comparing with
@@ -159,16 +167,14 @@ impl InsideGrid {
     fn cells_meeting(&self, k: usize, lo: f64, hi: f64) -> (usize, usize) {
         let p = &self.planes[k];
         let n = p.len() - 1;
-        let scale = n as f64 / (p[n] - p[0]);
-        let guess = |x: f64| ((x - p[0]) * scale).clamp(0.0, (n - 1) as f64) as usize;
-        let mut from = guess(lo);
+        let mut from = self.guess(k, lo);
         while from > 0 && p[from] >= lo {
             from -= 1;
         }
         while from < n - 1 && p[from + 1] < lo {
             from += 1;
         }
-        let mut to = guess(hi);
+        let mut to = self.guess(k, hi);
         while to < n - 1 && p[to + 1] <= hi {
             to += 1;
         }
@@ -207,13 +213,7 @@ impl InsideGrid {
             for z in from[2]..=to[2] {
                 for y in from[1]..=to[1] {
                     for x in from[0]..=to[0] {
-                        let i = self.index([x, y, z]);
-                        if self.cells[i] != UNKNOWN {
-                            let (lo, hi) = self.block([x, y, z], [x, y, z]);
-                            if !plane.parts(lo, hi) {
-                                self.cells[i] = UNKNOWN;
-                            }
-                        }
+                        self.mark_cell(&plane, [x, y, z]);
                     }
                 }
             }
@@ -222,8 +222,20 @@ impl InsideGrid {
         self.mark_block(&plane, from, to);
     }
 
+    /// Marks cell `c` unless it is marked already or the plane parts it.
+    fn mark_cell(&mut self, plane: &PlaneAxis, c: [usize; 3]) {
+        let i = self.index(c);
+        if self.cells[i] != UNKNOWN {
+            let (lo, hi) = self.block(c, c);
+            if !plane.parts(lo, hi) {
+                self.cells[i] = UNKNOWN;
+            }
+        }
+    }
+
     fn mark_block(&mut self, plane: &PlaneAxis, from: [usize; 3], to: [usize; 3]) {
-        if from == to && self.cells[self.index(from)] == UNKNOWN {
+        if from == to {
+            self.mark_cell(plane, from);
             return;
         }
         let (lo, hi) = self.block(from, to);
@@ -231,11 +243,6 @@ impl InsideGrid {
             return;
         }
         let widest = (0..3).max_by_key(|&k| to[k] - from[k]).unwrap_or(0);
-        if from[widest] == to[widest] {
-            let i = self.index(from);
-            self.cells[i] = UNKNOWN;
-            return;
-        }
         let mid = (from[widest] + to[widest]) / 2;
         let (mut left_to, mut right_from) = (to, from);
         left_to[widest] = mid;
@@ -312,8 +319,7 @@ impl InsideGrid {
             let n = p.len() - 1;
             // The cell with `p[i] <= lo < p[i + 1]`, from the planes' even
             // spacing, settled by comparing with them.
-            let scale = n as f64 / (p[n] - p[0]);
-            let mut i = ((lo - p[0]) * scale).clamp(0.0, (n - 1) as f64) as usize;
+            let mut i = self.guess(k, lo);
             while i > 0 && p[i] > lo {
                 i -= 1;
             }
@@ -383,17 +389,6 @@ pub(crate) mod tests {
     use crate::solid::intersect::triangles_meet;
     use rand::{Rng, SeedableRng};
 
-    /// Outward quads of the unit cube's corners `i` (bit k: coordinate k
-    /// high).
-    const OUT: [[usize; 4]; 6] = [
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-    ];
-
     /// Appends the box `[lo, hi]`, outward or inward, each face cut into
     /// `cuts` × `cuts` quads at equal steps (exact where the steps are; one
     /// quad of the exact corners when `cuts` is 1).
@@ -404,9 +399,11 @@ pub(crate) mod tests {
         outward: bool,
         cuts: usize,
     ) {
+        // The corners numbered as `box_mesh`'s (bit k: coordinate k high),
+        // its outward quads.
         let corner =
             |i: usize| DVec3::from([0, 1, 2].map(|k| if i >> k & 1 == 0 { lo[k] } else { hi[k] }));
-        for f in OUT {
+        for f in crate::robot::shapes::box_mesh(DVec3::ONE).faces {
             let (a, b, d) = (corner(f[0]), corner(f[1]), corner(f[3]));
             let at = |i: usize, j: usize| match (cuts, i, j) {
                 (1, _, _) => corner(f[[[0, 3], [1, 2]][i][j]]).to_array(),
@@ -482,17 +479,7 @@ pub(crate) mod tests {
         let joined = MeshBody::join(&[a, b]);
         let fine = MeshBody::new(&ball(400, [1.0, -2.0, 0.5], 3.0, 1)).unwrap();
         let mut hollow = ball(300, [0.0; 3], 5.0, 2);
-        let base = hollow.vertices.len();
-        for i in 0..8 {
-            hollow
-                .vertices
-                .push([0, 1, 2].map(|k| if i >> k & 1 == 0 { -1.5 } else { 1.5 }));
-        }
-        for f in OUT {
-            hollow
-                .faces
-                .push(f.iter().rev().map(|v| v + base).collect());
-        }
+        push_box(&mut hollow, [-1.5; 3], [1.5; 3], false, 1);
         let hollow = MeshBody::new(&hollow).unwrap();
         vec![cavity, nested, touching, joined, fine, hollow]
     }
