@@ -15,7 +15,11 @@
 //! triangle at either end) and `U` found in floating point (the usual
 //! vertex–triangle and edge–edge candidates), so the bound is the
 //! distance up to rounding when the hull is one triangle; a bad proposal
-//! only makes it smaller, never wrong. The dot products are rounded, and
+//! only makes it smaller, never wrong. Each axis is tried both ways (one
+//! pass over the points gives both gaps), and the largest magnitudes per
+//! coordinate, the same for every axis, and the closest points are found
+//! once per pair of triangles ([`Pair`]) for the tests of both
+//! [`Pair::apart_between_ends`] and [`Pair::hull_apart_by_more_than`]. The dot products are rounded, and
 //! the bound subtracts their error: each is off by at most
 //! `γ₃ Σₖ |nₖ| |xₖ|` (`γ₃ = 3u/(1 − 3u)`, `u = 2⁻⁵³`), bounded here by
 //! `4u · S`, `S = Σₖ |nₖ| maxᵢ |xᵢₖ|` over all the points, and the two
@@ -71,59 +75,11 @@ const U: f64 = f64::EPSILON / 2.0;
 /// `near` (module docs). `false` means only "not proved".
 pub(crate) fn apart_by_more_than(
     hull: &[DVec3],
-    near: &[[DVec3; 3]],
+    near: &[[DVec3; 3]; 2],
     u: &[DVec3; 3],
     reach: f64,
 ) -> bool {
-    // About the triangle's first corner (module docs), for hulls of at
-    // most twelve points (the motion search's).
-    const MAX: usize = 12;
-    let c = u[0];
-    let mut buf = [DVec3::ZERO; MAX];
-    let (hull, u, near_buf, slack) = if hull.len() <= MAX && near.len() <= 2 {
-        for (b, p) in buf.iter_mut().zip(hull) {
-            *b = *p - c;
-        }
-        let mut nb = [[DVec3::ZERO; 3]; 2];
-        for (b, t) in nb.iter_mut().zip(near) {
-            *b = t.map(|p| p - c);
-        }
-        (&buf[..hull.len()], &u.map(|p| p - c), Some(nb), 3.0)
-    } else {
-        (hull, u, None, 0.0)
-    };
-    let near = match &near_buf {
-        Some(nb) => &nb[..near.len()],
-        None => near,
-    };
-    // The triangle's normal first (cheap, and it separates whatever lies
-    // beside a large face), either way round; then the normals of the
-    // triangles `near`; then the closest points.
-    let along = |n: DVec3| {
-        let n = normalised_scale(n);
-        gap_along(hull, u, n, slack) > reach_times_norm(reach, n)
-    };
-    let normal_either_way_of = |n: DVec3| {
-        let n = normalised_scale(n);
-        let (ahead, behind) = gaps_both_ways(hull, u, n, slack);
-        let needed = reach_times_norm(reach, n);
-        ahead > needed || behind > needed
-    };
-    let normal_either_way = |t: &[DVec3; 3]| normal_either_way_of((t[1] - t[0]).cross(t[2] - t[0]));
-    normal_either_way(u)
-        || near.iter().any(normal_either_way)
-        || near.iter().any(|t| {
-            let closest = closest_points(t, u);
-            along(closest.cu - closest.ct)
-                || closest.edges.is_some_and(|(i, j)| {
-                    // The common normal of the two edges: exact up to the
-                    // edges' rounding, where the closest points' direction
-                    // is off by their rounding over their distance (module
-                    // docs, "Edges within rounding").
-                    let n = (t[(i + 1) % 3] - t[i]).cross(u[(j + 1) % 3] - u[j]);
-                    normal_either_way_of(n)
-                })
-        })
+    Pair::new(near, u).hull_apart_by_more_than(hull, reach)
 }
 
 /// Whether a triangle that moves from the corners `ends[0]` to the
@@ -131,34 +87,134 @@ pub(crate) fn apart_by_more_than(
 /// of its points runs within `rounding` of the given ends and within
 /// `λ(1 − λ) bow` of the chord between them at the fraction `λ` of the way
 /// (module docs, "Between the ends"). `false` means only "not proved".
+#[cfg(test)]
 pub(crate) fn apart_between_ends(
     ends: &[[DVec3; 3]; 2],
     u: &[DVec3; 3],
     rounding: f64,
     bow: f64,
 ) -> bool {
-    // About the triangle's first corner, as `apart_by_more_than`.
-    let c = u[0];
-    let ends = ends.map(|t| t.map(|p| p - c));
-    let u = u.map(|p| p - c);
-    let holds = |n: DVec3| {
-        let n = normalised_scale(n);
-        let (a_ahead, a_behind) = gaps_both_ways(&ends[0], &u, n, 3.0);
-        let (b_ahead, b_behind) = gaps_both_ways(&ends[1], &u, n, 3.0);
-        let (e, curve) = (reach_times_norm(rounding, n), reach_times_norm(bow, n));
-        bowed_chord_stays_positive(a_ahead - e, b_ahead - e, curve)
-            || bowed_chord_stays_positive(a_behind - e, b_behind - e, curve)
-    };
-    let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]);
-    holds(normal(&u))
-        || ends.iter().any(|t| holds(normal(t)))
-        || ends.iter().any(|t| {
-            let closest = closest_points(t, &u);
-            holds(closest.cu - closest.ct)
+    Pair::new(ends, u).apart_between_ends(rounding, bow)
+}
+
+/// A body triangle at the two ends of an interval and a scene triangle,
+/// about the scene triangle's first corner (module docs), with what the
+/// tests along the proposed axes share: each triangle's largest
+/// magnitudes per coordinate (for the dot products' error bound) and the
+/// closest points of each end and the scene triangle, found once for
+/// both [`Pair::apart_between_ends`] and
+/// [`Pair::hull_apart_by_more_than`] (the same proposals from the same
+/// floats: the answers are those of two separate calls).
+pub(crate) struct Pair {
+    /// The scene triangle's first corner, the origin of the others.
+    origin: DVec3,
+    ends: [[DVec3; 3]; 2],
+    u: [DVec3; 3],
+    ends_magnitudes: [DVec3; 2],
+    u_magnitudes: DVec3,
+    closest: [Option<Closest>; 2],
+}
+
+impl Pair {
+    /// The pair of the body triangle's corners `ends` (at the interval's
+    /// two ends) and scene triangle `u`.
+    pub(crate) fn new(ends: &[[DVec3; 3]; 2], u: &[DVec3; 3]) -> Pair {
+        let origin = u[0];
+        let ends = ends.map(|t| t.map(|p| p - origin));
+        let u = u.map(|p| p - origin);
+        Pair {
+            origin,
+            ends,
+            u,
+            ends_magnitudes: ends.map(|t| magnitudes(&t)),
+            u_magnitudes: magnitudes(&u),
+            closest: [None, None],
+        }
+    }
+
+    /// The closest points of end `k` and the scene triangle
+    /// ([`closest_points`]), found once.
+    fn closest(&mut self, k: usize) -> Closest {
+        let (t, u) = (&self.ends[k], &self.u);
+        *self.closest[k].get_or_insert_with(|| closest_points(t, u))
+    }
+
+    /// The axes proposed for the pair, in order (module docs): the scene
+    /// triangle's normal, each end's normal, then for each end the
+    /// direction of its closest points and, when they join two edges,
+    /// the edges' common normal; `holds` is tried on each until it
+    /// holds.
+    fn any_axis(&mut self, mut holds: impl FnMut(&Pair, DVec3) -> bool) -> bool {
+        let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]);
+        if holds(self, normal(&self.u))
+            || holds(self, normal(&self.ends[0]))
+            || holds(self, normal(&self.ends[1]))
+        {
+            return true;
+        }
+        (0..2).any(|k| {
+            let closest = self.closest(k);
+            holds(self, closest.cu - closest.ct)
                 || closest.edges.is_some_and(|(i, j)| {
-                    holds((t[(i + 1) % 3] - t[i]).cross(u[(j + 1) % 3] - u[j]))
+                    // The common normal of the two edges: exact up to the
+                    // edges' rounding, where the closest points' direction
+                    // is off by their rounding over their distance (module
+                    // docs, "Edges within rounding").
+                    let (t, u) = (&self.ends[k], &self.u);
+                    holds(self, (t[(i + 1) % 3] - t[i]).cross(u[(j + 1) % 3] - u[j]))
                 })
         })
+    }
+
+    /// Whether the triangle moving between the ends stays apart from the
+    /// scene triangle all the way, each of its points within `rounding`
+    /// of the given ends and within `λ(1 − λ) bow` of the chord between
+    /// them (module docs, "Between the ends"). `false` means only "not
+    /// proved".
+    pub(crate) fn apart_between_ends(&mut self, rounding: f64, bow: f64) -> bool {
+        self.any_axis(|p, n| {
+            let n = normalised_scale(n);
+            let u = span(&p.u, n);
+            let ends = [0, 1].map(|k| {
+                let mags = p.ends_magnitudes[k].max(p.u_magnitudes);
+                gaps_of(span(&p.ends[k], n), u, mags, n, 3.0)
+            });
+            let [(a_ahead, a_behind), (b_ahead, b_behind)] = ends;
+            let length = n.length();
+            let (e, curve) = (times_norm(rounding, length), times_norm(bow, length));
+            bowed_chord_stays_positive(a_ahead - e, b_ahead - e, curve)
+                || bowed_chord_stays_positive(a_behind - e, b_behind - e, curve)
+        })
+    }
+
+    /// Whether the distance between the hull of `hull` (points in the
+    /// world, as the ends) and the scene triangle certainly exceeds
+    /// `reach`, along the pair's axes (module docs). `false` means only
+    /// "not proved".
+    pub(crate) fn hull_apart_by_more_than(&mut self, hull: &[DVec3], reach: f64) -> bool {
+        // About the scene triangle's first corner (module docs), on the
+        // stack for hulls of at most twelve points (the motion search's).
+        const MAX: usize = 12;
+        let mut buf = [DVec3::ZERO; MAX];
+        let heap: Vec<DVec3>;
+        let hull: &[DVec3] = if hull.len() <= MAX {
+            for (b, p) in buf.iter_mut().zip(hull) {
+                *b = *p - self.origin;
+            }
+            &buf[..hull.len()]
+        } else {
+            heap = hull.iter().map(|p| *p - self.origin).collect();
+            &heap
+        };
+        let mags = magnitudes(hull).max(self.u_magnitudes);
+        // Every axis either way round (one pass gives both gaps).
+        self.any_axis(|p, n| {
+            let n = normalised_scale(n);
+            let (ahead, behind) = gaps_of(span(hull, n), span(&p.u, n), mags, n, 3.0);
+            let needed = reach_times_norm(reach, n);
+            ahead > needed || behind > needed
+        })
+    }
 }
 
 /// A lower bound on the distance between triangles `t` and `u`, within
@@ -269,7 +325,12 @@ fn normalised_scale(n: DVec3) -> DVec3 {
 
 /// `reach · |n|`, rounded up.
 fn reach_times_norm(reach: f64, n: DVec3) -> f64 {
-    reach * n.length() * (1.0 + 8.0 * U)
+    times_norm(reach, n.length())
+}
+
+/// `reach · |n|`, rounded up, for `length` the computed `|n|`.
+fn times_norm(reach: f64, length: f64) -> f64 {
+    reach * length * (1.0 + 8.0 * U)
 }
 
 /// A lower bound on `min_{y ∈ u} n·y − max_{x ∈ t} n·x` (module docs):
@@ -281,39 +342,72 @@ fn gap_along(t: &[DVec3], u: &[DVec3; 3], n: DVec3, shift: f64) -> f64 {
 
 /// The lower bounds of [`gap_along`] for `n` and for `−n`, in one pass
 /// over the points (negating `n` negates every dot product exactly, and
-/// the error bound depends on `|n|` only). The error bound: the relative
-/// bounds, and an absolute one for products that fall below the normal
-/// range (each off by at most 2⁻¹⁰⁷⁵).
+/// the error bound depends on `|n|` only).
 fn gaps_both_ways(t: &[DVec3], u: &[DVec3; 3], n: DVec3, shift: f64) -> (f64, f64) {
-    if !n.is_finite() || n == DVec3::ZERO {
-        return (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    let mags = magnitudes(t).max(magnitudes(u));
+    gaps_of(span(t, n), span(u, n), mags, n, shift)
+}
+
+/// `if x < m { x } else { m }`: one machine instruction where `f64::min`
+/// is several (it must return the number beside a NaN); it keeps `m`
+/// beside a NaN `x` alike, and the points are finite here.
+fn lesser(x: f64, m: f64) -> f64 {
+    if x < m {
+        x
+    } else {
+        m
     }
-    // `if x < m { x } else { m }` is one machine instruction where
-    // `f64::min` is several (it must return the number beside a NaN); it
-    // keeps `m` beside a NaN `x` alike, and the points are finite here.
-    let lesser = |x: f64, m: f64| if x < m { x } else { m };
-    let greater = |x: f64, m: f64| if x > m { x } else { m };
-    let (mut min_t, mut max_t) = (f64::INFINITY, f64::NEG_INFINITY);
+}
+
+/// `if x > m { x } else { m }`, as [`lesser`].
+fn greater(x: f64, m: f64) -> f64 {
+    if x > m {
+        x
+    } else {
+        m
+    }
+}
+
+/// The least and the greatest of the computed `n·p` over `points`.
+fn span(points: &[DVec3], n: DVec3) -> (f64, f64) {
+    let (mut least, mut most) = (f64::INFINITY, f64::NEG_INFINITY);
+    for p in points {
+        let d = n.dot(*p);
+        least = lesser(d, least);
+        most = greater(d, most);
+    }
+    (least, most)
+}
+
+/// The largest magnitude of each coordinate over `points` (`0` for none):
+/// the same for every axis, so found once per set of points.
+fn magnitudes(points: &[DVec3]) -> DVec3 {
     let (mut mx, mut my, mut mz) = (0.0f64, 0.0f64, 0.0f64);
-    let mut widen = |p: &DVec3| {
+    for p in points {
         mx = greater(p.x.abs(), mx);
         my = greater(p.y.abs(), my);
         mz = greater(p.z.abs(), mz);
-    };
-    for p in t {
-        let d = n.dot(*p);
-        min_t = lesser(d, min_t);
-        max_t = greater(d, max_t);
-        widen(p);
     }
-    let (mut min_u, mut max_u) = (f64::INFINITY, f64::NEG_INFINITY);
-    for p in u {
-        let d = n.dot(*p);
-        min_u = lesser(d, min_u);
-        max_u = greater(d, max_u);
-        widen(p);
+    DVec3::new(mx, my, mz)
+}
+
+/// The lower bounds of [`gap_along`] for `n` and for `−n` from the spans
+/// of `n·x` over `t` and `u` ([`span`]) and the largest magnitudes `mags`
+/// of each coordinate over both (`S = Σₖ |nₖ| magsₖ`, module docs): the
+/// relative bounds, and an absolute one for products that fall below the
+/// normal range (each off by at most 2⁻¹⁰⁷⁵); `−∞` for a zero or
+/// non-finite `n`.
+fn gaps_of(
+    (min_t, max_t): (f64, f64),
+    (min_u, max_u): (f64, f64),
+    mags: DVec3,
+    n: DVec3,
+    shift: f64,
+) -> (f64, f64) {
+    if !n.is_finite() || n == DVec3::ZERO {
+        return (f64::NEG_INFINITY, f64::NEG_INFINITY);
     }
-    let s = n.abs().dot(DVec3::new(mx, my, mz));
+    let s = n.abs().dot(mags);
     let bound =
         |gap: f64| gap - ((8.0 + shift) * U * s + 2.0 * U * gap.abs() + 1e-300) * (1.0 + 8.0 * U);
     (bound(min_u - max_t), bound(min_t - max_u))
@@ -397,6 +491,7 @@ fn closest_points(t: &[DVec3; 3], u: &[DVec3; 3]) -> Closest {
 /// The closest points of two triangles found in floating point
 /// ([`closest_points`]), and the edges they lie on (indices `i` of `t`'s
 /// edge `t[i] t[i+1]` and `j` of `u`'s) when they join two edges.
+#[derive(Clone, Copy)]
 struct Closest {
     ct: DVec3,
     cu: DVec3,
@@ -512,7 +607,7 @@ mod tests {
     }
 
     fn apart(t: &[DVec3; 3], u: &[DVec3; 3], reach: f64) -> bool {
-        apart_by_more_than(t, &[*t], u, reach)
+        apart_by_more_than(t, &[*t, *t], u, reach)
     }
 
     #[test]
