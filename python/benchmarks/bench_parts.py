@@ -3,12 +3,14 @@
     pip install ./python trimesh python-fcl scipy
     python python/benchmarks/bench_parts.py DIR [DIR ...] [--pairs N]
         [--states N] [--seed S] [--min-faces F] [--motions M] [--distance D]
+        [--pair A,B ...]
 
 Every ``*.stl`` under the folders given (e.g. git checkouts of
 ``ros-industrial/universal_robot`` and ``ros-industrial/abb``, or
 ``example-robot-data``'s ``robots`` folder), read by trimesh as it is
 (``process=False``: unwelded, as robots ship them). ``--pairs`` seeded
-pairs (body, obstacle) of those meshes, each with ``--states`` seeded
+pairs (body, obstacle) of those meshes (or, with ``--pair A,B``, the
+first meshes whose paths contain ``A`` and ``B``), each with ``--states`` seeded
 rotations and directions: the body's box centre put on the obstacle's,
 turned, and moved along the direction by a fraction of the two
 diagonals: *random* states a uniform fraction in [0, 0.6], *near*
@@ -194,6 +196,7 @@ def main():
     ap.add_argument("--min-faces", type=int, default=0)
     ap.add_argument("--motions", type=int, default=0)
     ap.add_argument("--distance", type=int, default=0, help="free states per pair for distance_at against fcl.distance")
+    ap.add_argument("--pair", action="append", default=[], help="A,B: the meshes whose paths contain A and B, instead of seeded pairs (repeatable)")
     a = ap.parse_args()
     import fcl
 
@@ -213,8 +216,14 @@ def main():
     print(f"{len(names)} meshes from {', '.join(a.dirs)}", file=sys.stderr)
     rng = np.random.default_rng(a.seed)
     rows = []
-    for _ in range(a.pairs):
-        fa, fb = rng.choice(len(names), 2)
+    def named(part):
+        found = [k for k, n in enumerate(names) if part in n]
+        if not found:
+            sys.exit(f"--pair: no mesh's path contains {part!r}")
+        return found[0]
+
+    picks = [tuple(named(x) for x in p.split(",", 1)) for p in a.pair] or [rng.choice(len(names), 2) for _ in range(a.pairs)]
+    for fa, fb in picks:
         (va, ta), (vb, tb) = meshes[names[fa]], meshes[names[fb]]
         t0 = time.perf_counter()
         checker = dymsum.MotionChecker((va, ta), [(vb, tb)])

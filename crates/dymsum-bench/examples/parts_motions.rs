@@ -8,6 +8,7 @@
 //! round). With `DECISION=1` each motion is decided as the OMPL validator decides
 //! it: `sampled_contact` on the discrete check's states (`SEGMENTS`, 2 by
 //! default), then `check` backwards with the contact bracketed to 1/8.
+//! `ONLY=k` times the k-th motion alone (`VERBOSE=1` lists them).
 
 use std::time::Instant;
 
@@ -56,8 +57,10 @@ fn main() {
         .and_then(|v| v.parse().ok())
         .unwrap_or(1);
     let starts: Vec<Pose> = near.iter().skip(1).step_by(2).copied().collect();
+    // `ONLY=k`: the k-th start alone (its turn is drawn as in the full run).
+    let only: Option<usize> = std::env::var("ONLY").ok().and_then(|v| v.parse().ok());
     let starts = starts.iter().cycle().take(starts.len() * repeat);
-    for p0 in starts {
+    for (k, p0) in starts.enumerate() {
         let axis = DVec3::new(
             rng.random_range(-1.0..1.0),
             rng.random_range(-1.0..1.0),
@@ -76,6 +79,9 @@ fn main() {
             p0.rotation.then(&turn),
             turn.apply(p0.translation - c) + c + shift,
         );
+        if only.is_some_and(|o| o != k) {
+            continue;
+        }
         let before = checker.steps();
         let t = Instant::now();
         let r = if decision {
