@@ -5,7 +5,8 @@
 //! one call per state, random and near contact (`DISTANCE=1`:
 //! `distance_at` on the free states; `DISTANCE=all`: on every state,
 //! `DISTANCE=colliding`: on the colliding ones; `SLOWEST=k`: the k slowest
-//! states' checks again, each alone in `replay`, for a profiler's toggle).
+//! states' checks again, each alone in `replay`, for a profiler's toggle;
+//! `MIDDLE=k`: the k states nearest the median time, likewise).
 
 use std::time::Instant;
 
@@ -102,6 +103,31 @@ fn main() {
                     println!("{what} state {}: {:.1} µs", which[i], ours[i]);
                     replay(&checker, states[which[i]], distance);
                 }
+            }
+            // `MIDDLE=k`: the k states nearest the median time, each once
+            // more in `replay` (what a typical check costs, for a profile).
+            if let Some(k) = std::env::var("MIDDLE")
+                .ok()
+                .and_then(|v| v.parse::<usize>().ok())
+            {
+                let mut order: Vec<usize> = (0..ours.len()).collect();
+                order.sort_by(|&i, &j| ours[i].total_cmp(&ours[j]));
+                let from = (order.len() / 2).saturating_sub(k / 2);
+                let t = Instant::now();
+                let mut calls = 0;
+                for &i in order.iter().skip(from).take(k) {
+                    replay(&checker, states[which[i]], distance);
+                    calls += 1;
+                }
+                let cold = t.elapsed().as_secs_f64() * 1e6 / calls.max(1) as f64;
+                let t = Instant::now();
+                for &i in order.iter().skip(from).take(k) {
+                    for _ in 0..100 {
+                        replay(&checker, states[which[i]], distance);
+                    }
+                }
+                let warm = t.elapsed().as_secs_f64() * 1e6 / (100 * calls.max(1)) as f64;
+                println!("{what}: {calls} middle states, {cold:.2} µs each once, {warm:.2} µs each repeated");
             }
             let (m1, m2) = (quantile(&mut ours, 0.5), quantile(&mut theirs, 0.5));
             let (q1, q2) = (quantile(&mut ours, 0.99), quantile(&mut theirs, 0.99));

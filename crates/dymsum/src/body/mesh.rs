@@ -97,6 +97,14 @@ pub struct MeshBody {
     inside_grid: std::sync::Arc<std::sync::OnceLock<InsideGrid>>,
 }
 
+/// The most components whose vertices get a tree
+/// ([`MeshBody::component_points`]).
+pub(crate) const MOST_COMPONENT_POINTS: usize = 1 << 16;
+
+/// The fewest components whose vertices get a tree
+/// ([`MeshBody::component_points`]).
+pub(crate) const FEWEST_COMPONENT_POINTS: usize = 16;
+
 /// A [`MeshBody`]'s triangles, components and trees (read through the body
 /// itself: `body.vertices`, `body.tree()`).
 #[derive(Debug)]
@@ -115,6 +123,11 @@ pub struct MeshParts {
     /// ([`MeshBody::tree`]): a body on the convex path
     /// ([`MeshBody::as_convex`]) never reads them.
     triangle_tree: std::sync::OnceLock<(AabbTree, Vec<Obb>)>,
+    /// A tree over each component's vertex of `components` (a point box
+    /// each, body frame; item `c` is component `c`), built on first use
+    /// ([`MeshBody::component_points`]), for bodies of at most
+    /// [`MOST_COMPONENT_POINTS`] components.
+    component_points: std::sync::OnceLock<Option<AabbTree>>,
     /// Each component's box (body frame).
     pub(crate) component_boxes: Vec<Aabb>,
     /// The solid components (their indices).
@@ -152,6 +165,32 @@ impl MeshBody {
     /// first use (after the tree, which its rays walk).
     pub(crate) fn inside_grid(&self) -> &InsideGrid {
         self.inside_grid.get_or_init(|| InsideGrid::new(self))
+    }
+
+    /// The tree over the components' vertices (item `c` at component
+    /// `c`'s vertex of `components`), built on first use; `None` past
+    /// [`MOST_COMPONENT_POINTS`] components (a soup's: its memory would
+    /// rival the triangles' tree) or for fewer than
+    /// [`FEWEST_COMPONENT_POINTS`] (a loop over them costs less).
+    pub(crate) fn component_points(&self) -> Option<&AabbTree> {
+        self.component_points
+            .get_or_init(|| {
+                let n = self.components.len();
+                (FEWEST_COMPONENT_POINTS..=MOST_COMPONENT_POINTS)
+                    .contains(&n)
+                    .then(|| {
+                        let points: Vec<Aabb> = self
+                            .components
+                            .iter()
+                            .map(|&(_, v)| {
+                                let at = self.vertices[v as usize].to_array();
+                                Aabb { lo: at, hi: at }
+                            })
+                            .collect();
+                        AabbTree::new(&points)
+                    })
+            })
+            .as_ref()
     }
 
     fn triangle_tree(&self) -> &(AabbTree, Vec<Obb>) {
@@ -388,6 +427,7 @@ impl MeshBody {
                 weights,
                 components,
                 triangle_tree: std::sync::OnceLock::new(),
+                component_points: std::sync::OnceLock::new(),
                 component_boxes,
                 solid_components,
                 solid_tree,
@@ -512,6 +552,19 @@ impl MeshBody {
                 .any(|(&c, b)| !same(&self.component_boxes[c as usize], b))
         {
             return bad("the solid tree's boxes are not the solid components' boxes".into());
+        }
+        if let Some(points) = self.component_points() {
+            points.sanity_check()?;
+            let at = |v: u32| self.vertices[v as usize].to_array();
+            if points.boxes().len() != self.components.len()
+                || self
+                    .components
+                    .iter()
+                    .zip(points.boxes())
+                    .any(|(&(_, v), b)| b.lo != at(v) || b.hi != at(v))
+            {
+                return bad("the component points' tree is not the components' vertices".into());
+            }
         }
         if let Some(v) = self.vertices.iter().position(|v| v.length() > self.reach) {
             return bad(format!("the reach is below vertex {v}'s norm"));

@@ -310,6 +310,9 @@ pub(super) struct Scratch {
     /// The clearance's queue of node pairs.
     pub(super) near: Vec<NearPair>,
     pub(super) parity: Vec<u8>,
+    /// The points a containment test asks (`state`: the body components
+    /// near the scene's solids, the scene components near the body).
+    pub(super) asked: Vec<usize>,
     pub(super) intervals: Vec<Pending>,
     /// The triangle pairs that intervals left uncertified, for the
     /// intervals cut from them (`super::sweep`, "Reuse across halving").
