@@ -351,8 +351,9 @@ impl Obb {
     /// interval (`ends`, each as [`Obb::apart`]'s `a`) and each moved by
     /// the float difference `shift` of the end translations (the first
     /// forwards, the second back), grown by `margin`, is proven apart from
-    /// this box along one of this box's face axes (module docs, "The swept
-    /// test"). `false` proves nothing.
+    /// this box along one of nine axes: this box's face axes, then the
+    /// body box's at either end (module docs, "The swept test"). `false`
+    /// proves nothing.
     #[inline]
     pub fn swept_apart(
         &self,
@@ -393,7 +394,8 @@ impl Obb {
         // This box's face axes, then the body box's at either end. The
         // axes' products are shared between them (`n·x` and `x·n` are the
         // same products summed in the same order: the same floats), so an
-        // axis of the second end costs a third of one of this box's.
+        // axis of the second end takes half the dot products of one of
+        // this box's.
         let (e, fa, fb) = (&self.axes, &ends[0].f, &ends[1].f);
         let abs_dots = |n: DVec3, x: &[DVec3; 3]| x.map(|x| n.dot(x).abs());
         let (mut e_a, mut e_b, mut a_b) = ([[0.0; 3]; 3], [[0.0; 3]; 3], [[0.0; 3]; 3]);

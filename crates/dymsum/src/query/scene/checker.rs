@@ -279,7 +279,6 @@ pub(super) fn shifted(b: &Aabb, shift: DVec3) -> Aabb {
     }
 }
 
-/// The buffers of one query (kept between queries by the checker).
 /// The scene triangles met over one interval, in the body's frame
 /// (`super::sweep`'s `relative_triangle`), each computed once: a scene
 /// triangle near the body meets many body triangles (on the Cassie shin
@@ -324,8 +323,10 @@ impl RelativeTriangles {
 /// (`super::sweep`'s `relative_triangle`).
 pub(super) struct RelativeTriangle {
     pub(super) scene_triangle: u32,
-    /// Its corners at both ends, then each moved by the other end's
-    /// translation (the swept hull's twelve points).
+    /// Its corners relative to the body at both ends (`R(a)ᵀ q_a`,
+    /// `R(b)ᵀ q_b`), then each end's rotation with the other end's
+    /// translation (`R(b)ᵀ q_a`, `R(a)ᵀ q_b`): the twelve points of the
+    /// module docs of `super::sweep`, "In the body's frame".
     pub(super) points: [DVec3; 12],
     /// `e'`, the points' rounding.
     pub(super) rounding: f64,
@@ -336,6 +337,7 @@ pub(super) struct RelativeTriangle {
     pub(super) bow: f64,
 }
 
+/// The buffers of one query (kept between queries by the checker).
 #[derive(Default)]
 pub(super) struct Scratch {
     /// The body's vertices at the pose (at an interval's start).

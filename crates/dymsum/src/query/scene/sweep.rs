@@ -48,8 +48,9 @@
 //! errs by at most `pad` a coordinate, each float shift by an ulp of the
 //! sizes). The hull of points within that distance of the posed box lies
 //! within it too (a ball around a convex set is convex), and the test
-//! adds `s + e` to the grown distance. A node pair the grown box leaves
-//! is tried once more against the hull of the node's box posed at both
+//! adds `s + e` to the grown distance. Where both end poses' matrices
+//! are close enough to rotations for the oriented test, the node's box
+//! is instead tested against the hull of the node's box posed at both
 //! ends and each moved by the other end's translation, grown by `s + e`
 //! (the swept hull above, for the node's box: `solid::obb`, "The swept
 //! test"), which is second order in the turn where the grown reach is
@@ -59,7 +60,8 @@
 //! robot parts the oriented boxes parted only 4–10% of such pairs, at
 //! about 1,500 instructions a test (skipping them saved 3–5% of a
 //! decision's instructions on four pairs, the same decisions and
-//! intervals; docs/BENCHMARKS.md). A culling test only drops pairs, so
+//! intervals; docs/BENCHMARKS.md, "Motions: fewer products a pair"). A
+//! culling test only drops pairs, so
 //! where it is skipped nothing is certified that would not be. A slide
 //! along a wall certifies in one interval (the hull stays on its side);
 //! the sagitta is second order in the interval's width. Containment
@@ -109,9 +111,10 @@
 //! twelve is more than `s' + e'` from `P` ([`super::gap`]), no point of
 //! `U` meets `P` at any `t` of `[a, b]` (a rigid motion keeps distances).
 //! Nothing else changes: the pair is dropped only when certified. The
-//! twelve points, `ρ`, `e'` and the bow below depend on the scene
-//! triangle and the interval alone, so each scene triangle's are computed
-//! once an interval, for every body triangle it meets
+//! twelve points, `ρ`, `e'`, the swept hull's margin and the bow below
+//! depend on the scene triangle and the interval alone, so each scene
+//! triangle's are computed once an interval, for every body triangle it
+//! meets
 //! (`RelativeTriangles`, `relative_triangle`; on the Cassie shin against
 //! Talos's gripper an interval meets 47 to 100 scene triangles in 360 to
 //! 540 pairs).
@@ -235,6 +238,25 @@
 //! 2 to 5 ms on robot parts where stopping at the first takes
 //! microseconds). Each recording walk follows a certified walk, so it at
 //! most doubles what walking cost without a record.
+//!
+//! # Independent review (2026-12-01, second): shared work
+//! Of the scene triangles' relative points computed once an interval
+//! (`RelativeTriangles`), the leaves' skipped oriented test, and the
+//! swept oriented test's shared products (`solid::obb`). Verified: the
+//! cached values read only the scene triangle and the interval's frame,
+//! never the body triangle; a stale entry cannot be read (`start` empties
+//! the entries, and an entry is valid only when it names the triangle
+//! asked); one frame is built per interval, right after `start`; the
+//! world's tests, their order and the frame order are unchanged; a
+//! skipped culling test only lets more pairs reach the certified tests,
+//! so it can cost a certification, never make an answer "free"; glam's
+//! `DVec3::dot` is `x x' + y y' + z z'` in that order without fused
+//! products, so `n·x` and `x·n` are the same floats, the shared indices
+//! are right, and the axis order and early exit are as before (over the
+//! pinned test's 200,000 samples every one of the nine axes is the first
+//! to part some). Its remarks (a misplaced doc comment, a dropped code
+//! comment, the oriented test's description above, a reference, two
+//! ratios and the twelve points' order) are applied.
 //!
 //! # Independent review (2026-11-30, second): between the ends
 //! Of "Between the ends" and `super::gap`'s `apart_between_ends`.
@@ -360,7 +382,10 @@ impl SceneChecker {
             .fold(0.0, f64::max);
         let bow = bow(f.turn, reach_of_triangle);
         let hull_adds = swept_hull_may_add(reach, f.pose_error, bow);
-        // The world's pair only where it is tried.
+        // The world's pair only where it is tried. The frame that
+        // certified the last pair first (module docs, "The swept hull
+        // after the bow"): each certifies alone, so the order changes no
+        // answer, only what a pair costs.
         let in_world = || {
             let mut pair = Pair::new(&ends, &u);
             pair.apart_between_ends(f.pose_error, bow)
