@@ -373,20 +373,20 @@ impl SceneChecker {
         let Some(f) = frame else {
             return !apart_by_more_than(hull, &ends, &u, reach);
         };
-        // Between the ends (module docs): each point of the triangle runs
-        // on an arc about the body's origin, radius at most the triangle's
-        // reach, turning by `δ`.
-        let reach_of_triangle = self.body.triangles[i]
-            .map(|v| norm_up(self.body.vertices[v as usize]))
-            .into_iter()
-            .fold(0.0, f64::max);
-        let bow = bow(f.turn, reach_of_triangle);
-        let hull_adds = swept_hull_may_add(reach, f.pose_error, bow);
-        // The world's pair only where it is tried. The frame that
+        // The world's test only where it is tried. The frame that
         // certified the last pair first (module docs, "The swept hull
         // after the bow"): each certifies alone, so the order changes no
         // answer, only what a pair costs.
         let in_world = || {
+            // Between the ends (module docs): each point of the triangle
+            // runs on an arc about the body's origin, radius at most the
+            // triangle's reach, turning by `δ`.
+            let reach_of_triangle = self.body.triangles[i]
+                .map(|v| norm_up(self.body.vertices[v as usize]))
+                .into_iter()
+                .fold(0.0, f64::max);
+            let bow = bow(f.turn, reach_of_triangle);
+            let hull_adds = swept_hull_may_add(reach, f.pose_error, bow);
             let mut pair = Pair::new(&ends, &u);
             pair.apart_between_ends(f.pose_error, bow)
                 || (hull_adds && pair.hull_apart_by_more_than(hull, reach))
