@@ -347,6 +347,29 @@ impl Obb {
         apart
     }
 
+    /// The slack of [`Obb::swept_apart`] before its margin (module docs,
+    /// "The swept test"): the relative slack of the sizes summed over both
+    /// ends (`3|c' − cᴮ|₁` for `|T|₁`) and the shift, both boxes' fuzz and
+    /// the posing's pad.
+    fn swept_slack(
+        &self,
+        ends: [&PosedObb; 2],
+        shift: DVec3,
+        ha: DVec3,
+        fuzz_a: f64,
+        pad: f64,
+    ) -> f64 {
+        let sizes = |a: &PosedObb| {
+            a.c.abs().max_element() + 3.0 * (a.c - self.c).abs().element_sum() + ha.element_sum()
+        };
+        let s = sizes(ends[0])
+            + sizes(ends[1])
+            + self.c.abs().max_element()
+            + self.h.element_sum()
+            + shift.abs().element_sum();
+        SLACK * s + 1.01 * (fuzz_a + self.fuzz) + 2.0 * pad
+    }
+
     /// Whether the hull of a body node's box posed at both ends of an
     /// interval (`ends`, each as [`Obb::apart`]'s `a`) and each moved by
     /// the float difference `shift` of the end translations (the first
@@ -365,15 +388,7 @@ impl Obb {
         margin: f64,
     ) -> bool {
         let hb = self.h.to_array();
-        let sizes = |a: &PosedObb| {
-            a.c.abs().max_element() + 3.0 * (a.c - self.c).abs().element_sum() + ha.element_sum()
-        };
-        let s = sizes(ends[0])
-            + sizes(ends[1])
-            + self.c.abs().max_element()
-            + self.h.element_sum()
-            + shift.abs().element_sum();
-        let slack = SLACK * s + 1.01 * (fuzz_a + self.fuzz) + 2.0 * pad + margin;
+        let slack = self.swept_slack(ends, shift, ha, fuzz_a, pad) + margin;
         let (ca, cb) = (ends[0].c - self.c, ends[1].c - self.c);
         // Along `n`, given `|n·eₖ|` (this box's axes), `|n·fₘ|` at either
         // end.
@@ -776,15 +791,8 @@ mod tests {
         (fuzz_a, pad, margin): (f64, f64, f64),
     ) -> bool {
         let hb = b.h.to_array();
-        let sizes = |a: &PosedObb| {
-            a.c.abs().max_element() + 3.0 * (a.c - b.c).abs().element_sum() + ha.element_sum()
-        };
-        let s = sizes(ends[0])
-            + sizes(ends[1])
-            + b.c.abs().max_element()
-            + b.h.element_sum()
-            + shift.abs().element_sum();
-        let slack = SLACK * s + 1.01 * (fuzz_a + b.fuzz) + 2.0 * pad + margin;
+        // The slack is shared; the axes' products are what is compared.
+        let slack = b.swept_slack(ends, shift, ha, fuzz_a, pad) + margin;
         let apart_along = |n: DVec3| {
             let d = n.dot(shift);
             let hb = hb[0] * n.dot(b.axes[0]).abs()

@@ -61,10 +61,10 @@
 //! about 1,500 instructions a test (skipping them saved 3–5% of a
 //! decision's instructions on four pairs, the same decisions and
 //! intervals; docs/BENCHMARKS.md, "Motions: fewer products a pair"). A
-//! culling test only drops pairs, so
-//! where it is skipped nothing is certified that would not be. A slide
-//! along a wall certifies in one interval (the hull stays on its side);
-//! the sagitta is second order in the interval's width. Containment
+//! culling test only drops pairs, so where it is skipped nothing is
+//! certified that would not be. A slide along a wall certifies in one
+//! interval (the hull stays on its side); the sagitta is second order in
+//! the interval's width. Containment
 //! cannot begin without triangles meeting, and the body is not inside
 //! anything at `t = 0` (checked first), so the certified intervals,
 //! examined left to right from `0`, are free of every contact.
@@ -114,10 +114,9 @@
 //! twelve points, `ρ`, `e'`, the swept hull's margin and the bow below
 //! depend on the scene triangle and the interval alone, so each scene
 //! triangle's are computed once an interval, for every body triangle it
-//! meets
-//! (`RelativeTriangles`, `relative_triangle`; on the Cassie shin against
-//! Talos's gripper an interval meets 47 to 100 scene triangles in 360 to
-//! 540 pairs).
+//! meets (`RelativeTriangles`, `relative_triangle`; on the Cassie shin
+//! against Talos's gripper an interval meets 47 to 100 scene triangles in
+//! 360 to 540 pairs).
 //!
 //! # Between the ends
 //! The margin `s + e` above is the same over the whole interval, while a
@@ -164,11 +163,11 @@
 //! Where the bowed chord's test did not certify a pair, the swept hull's
 //! (margin `m`, the ends' rounding `e`) is tried only where it may
 //! certify what the bow did not. If it holds along an axis `n` (scaled,
-//! `|n| ≥ 1` but for subnormal proposals, below), every hull point's gap bound exceeds `m |n|`, and the hull
-//! holds both ends' corners, whose gap bounds are at least the hull's
-//! (the same error formula on fewer points, monotone in the gap), so the
-//! bow's `A` and `B` (those bounds less `e |n|`) exceed `(m − e) |n|`, and
-//! `(√A + √B)² > 4 (m − e) |n|`. The bow's test then holds along the same
+//! `|n| ≥ 1` but for subnormal proposals, below), every hull point's gap
+//! bound exceeds `m |n|`, and the hull holds both ends' corners, whose
+//! gap bounds are at least the hull's (the same error formula on fewer
+//! points, monotone in the gap), so the bow's `A` and `B` (those bounds
+//! less `e |n|`) exceed `(m − e) |n|`, and `(√A + √B)² > 4 (m − e) |n|`. The bow's test then holds along the same
 //! axis (the same proposals, `super::gap::Pair`) whenever `4 (m − e) >
 //! c (1 + 10⁻⁹)` (the factor covers the roundings of both sides; `m − e`
 //! above `10⁻¹⁴⁰` keeps `A B` above the test's least product and the ends
