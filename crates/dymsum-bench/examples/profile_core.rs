@@ -29,16 +29,19 @@ fn main() {
             if mode == "update" {
                 let mut dy = DynamicSum::new(&p, poses[0], &q, Pose::IDENTITY).unwrap();
                 let (mut checked, mut fv, mut rewalked, mut crossings) = (0, 0, 0, 0);
+                let (mut recomputed, mut recovered) = (0, 0);
                 for pose in &poses[1..] {
                     let r = dy.set_pose_p(*pose);
                     checked += r.checked_normals;
                     fv += r.fv_errors;
                     rewalked += r.rewalked_arcs;
                     crossings += r.certified_crossings;
+                    recomputed += usize::from(r.recomputed);
+                    recovered += usize::from(r.recovered.is_some());
                 }
                 let n = (poses.len() - 1) as f64;
                 eprintln!(
-                    "per update: {:.1} normals checked, {:.1} fv-errors, {:.1} certified crossings, {:.1} arcs re-walked; {} facets",
+                    "per update: {:.1} normals checked, {:.1} fv-errors, {:.1} certified crossings, {:.1} arcs re-walked; {} facets; {recomputed} recomputed ({recovered} recovered)",
                     checked as f64 / n,
                     fv as f64 / n,
                     crossings as f64 / n,

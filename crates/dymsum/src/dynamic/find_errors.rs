@@ -243,11 +243,14 @@ fn visit_normal(
         // normal (a turned view's rotation and error bound) only when an
         // exact predicate needs it.
         if m1 < -(EXACT_BELOW + delta) || !cells.in_cell(v, &faces.normal(f as u32)) {
-            let (v2, m2) = locate_certified(cpoly, cell_arcs, x_new, EXACT_BELOW + delta, v)
-                .unwrap_or_else(|| {
-                    let v2 = cells.locate(&faces.normal(f as u32), v).0;
-                    (v2, margin(cpoly, cell_arcs, v2, x_new))
-                });
+            let (v2, m2, new_side) =
+                match locate_certified(cpoly, cell_arcs, x_new, EXACT_BELOW + delta, v) {
+                    Some(l) => (l.cell, l.margin, Some(l.least_off_start)),
+                    None => {
+                        let v2 = cells.locate(&faces.normal(f as u32), v).0;
+                        (v2, margin(cpoly, cell_arcs, v2, x_new), None)
+                    }
+                };
             state.assign[f] = v2;
             m1 = m2;
             out.changed.push(Change {
@@ -262,6 +265,7 @@ fn visit_normal(
                 (v, x_old),
                 (v2, x_new),
                 step.theta + delta,
+                new_side,
             ) {
                 Some(arc) => out.certified.push((f as u32, arc)),
                 None => out.uncertain.push(f as u32),

@@ -63,10 +63,21 @@ pub(super) const EXACT_BELOW: f64 = 1e-12;
 /// Slack added to the drift bound to cover float error in margins.
 pub(super) const SLACK: f64 = 1e-10;
 
+/// Where [`locate_certified`] ended: the cell, `x`'s [`margin`] in it, and
+/// the least value of `x` on the cell's arcs other than the one shared with
+/// the start cell (the new side of [`single_crossing`]).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Located {
+    pub(super) cell: u32,
+    pub(super) margin: f64,
+    pub(super) least_off_start: f64,
+}
+
 /// Hill climbing in floats on the unit ring arcs (oriented inwards): cross
 /// the most violated arc until every arc is clearly satisfied. Returns the
 /// cell and `x`'s [`margin`] in it (the same value: the same products,
-/// least taken exactly), or `None` as soon as a decision is within `thr`
+/// least taken exactly) with the least of them off the arc shared with
+/// `start` ([`Located`]), or `None` as soon as a decision is within `thr`
 /// of zero (the exact [`GaussView::locate`] takes over) or after `V`
 /// steps.
 pub(super) fn locate_certified(
@@ -75,13 +86,14 @@ pub(super) fn locate_certified(
     x: DVec3,
     thr: f64,
     start: u32,
-) -> Option<(u32, f64)> {
+) -> Option<Located> {
     let mut v = start;
     for _ in 0..poly.vertex_count() {
         let off = poly.ring_offset(v as usize);
         let ring = poly.ring(v as usize);
         let mut worst = (thr, u32::MAX);
         let mut least = f64::INFINITY;
+        let mut least_off_start = f64::INFINITY;
         for (i, r) in ring.iter().enumerate() {
             let s = arcs[off + i].dot(x);
             if s.abs() <= thr {
@@ -93,9 +105,16 @@ pub(super) fn locate_certified(
             if s < least {
                 least = s;
             }
+            if s < least_off_start && r.neighbor != start {
+                least_off_start = s;
+            }
         }
         if worst.1 == u32::MAX {
-            return Some((v, least));
+            return Some(Located {
+                cell: v,
+                margin: least,
+                least_off_start,
+            });
         }
         v = worst.1;
     }
@@ -108,13 +127,17 @@ pub(super) fn locate_certified(
 /// arc of `w`. Then the path (no longer than `reach`) stays in `v ∪ w`,
 /// whose common boundary is `x`, and meets `x`'s great circle at most twice
 /// (a small circle meets a great circle in at most two points) and an odd
-/// number of times: exactly once.
+/// number of times: exactly once. `new_side`, where known, is the least
+/// value of `x_new` on the arcs of `w` other than `x` ([`Located`]'s
+/// `least_off_start`: the same products), which settles the new side
+/// without recomputing them.
 pub(super) fn single_crossing(
     poly: &Polytope,
     arcs: &[DVec3],
     (v, x_old): (u32, DVec3),
     (w, x_new): (u32, DVec3),
     reach: f64,
+    new_side: Option<f64>,
 ) -> Option<u32> {
     let x = poly.ring(v as usize).iter().find(|r| r.neighbor == w)?.edge;
     let clear = |cell: u32, pos: DVec3| {
@@ -124,5 +147,7 @@ pub(super) fn single_crossing(
             .enumerate()
             .all(|(i, r)| r.edge == x || arcs[off + i].dot(pos) > reach)
     };
-    (clear(v, x_old) && clear(w, x_new)).then_some(x)
+    let new_clear = new_side.map_or_else(|| clear(w, x_new), |least| least > reach);
+    debug_assert_eq!(new_clear, clear(w, x_new), "the located cell's values");
+    (clear(v, x_old) && new_clear).then_some(x)
 }
