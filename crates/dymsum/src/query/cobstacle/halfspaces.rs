@@ -27,6 +27,35 @@
 //! the mesh. Each plane touches the slice: `d` exceeds the largest `n·x` by
 //! a few units of rounding of the coordinates.
 //!
+//! **An fv-plane's robot term in O(1).** For the plane of an fv-facet
+//! (face `f` of P turned, `n = fl(M n̂)` with `M` P's rotation matrix and
+//! `n̂` the face's float unit normal), the search's result, the largest
+//! float `n·p'` over every vertex, is the largest over `f`'s own vertices
+//! `V_f` whenever every vertex `u` next to the face (`N_f`: adjacent to a
+//! vertex of `V_f`, not in it) lies below every vertex `v` of it by
+//! `d·(p_v − p_u) > 2(η|n| + err)`, `d = Mᵀn` (then no other vertex's float
+//! value can exceed the best face vertex's: below). Once per C-obstacle,
+//! [`face_depths`] bounds `n̂·(p_v − p_u)` from below over those pairs
+//! (`depth`, float rounding included) and `|p_v − p_u|` from above
+//! (`span`); per plane, `|d − n̂| ≤ ‖MᵀM − I‖ + |fl(M n̂) − M n̂| < 10⁻¹³`
+//! (the matrix's entries are within `2⁻⁴⁷` of a rotation's), so `depth −
+//! 10⁻¹³·span > 2(η|n| + err)` certifies the pairs, and the term is the
+//! face vertices' largest value plus `err`, the same float as the search's.
+//! Why the pairs suffice: the exact posed vertices `M p + t` form a convex
+//! polytope with P's graph, on which `φ = n·(M p + t)` is linear. The best
+//! face vertex beats its face neighbours (it is the face's best) and its
+//! other neighbours (the pairs), so it is a local, hence global, maximum of
+//! `φ`; and the best vertex off the face is adjacent to the face (else it
+//! beats all its neighbours, all off the face, and is a global maximum too,
+//! so the maximisers form a face of the polytope holding it and the face's
+//! best vertex, whose connected graph leads from the face to it through a
+//! vertex of `N_f` as high as the maximum: excluded by the pairs). So every
+//! vertex `u` off the face has `φ(u) < φ(v*) − 2(η|n| + err)`, and its
+//! float value `≤ φ(u) + η|n| + err` is below the best face vertex's `≥
+//! φ(v*) − η|n| − err`. Where the bound does not hold (a face with a
+//! neighbour almost in its plane, a body far from the origin) the search
+//! runs as before.
+//!
 //! The cost is that of the facets: a few dot products per facet, no merge,
 //! no vertex sums and no convexity check.
 //!
@@ -52,6 +81,7 @@
 
 use crate::dynamic::DynamicSum;
 use crate::kernel::rotation::Rotation;
+use crate::polytope::Polytope;
 use crate::query::cobstacle::slices::{CObstacle, Reaches};
 use crate::query::error::QueryError;
 use crate::query::frame::up;
@@ -103,6 +133,82 @@ impl HalfSpaces {
     }
 }
 
+/// Per face `f` of a polytope, the data of the fv-planes' O(1) certificate
+/// (module docs): `depth ≤ n̂·(p_v − p_u)` and `span ≥ |p_v − p_u|` over
+/// the vertices `v` of the face and `u` adjacent to them off it.
+#[derive(Clone, Copy, Debug)]
+pub(in crate::query) struct FaceDepth {
+    depth: f64,
+    span: f64,
+}
+
+/// [`FaceDepth`] of every face of `poly` (O(Σ face size × neighbours)).
+pub(in crate::query) fn face_depths(poly: &Polytope) -> Vec<FaceDepth> {
+    (0..poly.face_count())
+        .map(|f| {
+            let n = poly.unit_normal(f);
+            let l1 = n.x.abs() + n.y.abs() + n.z.abs();
+            let on_face = poly.face(f);
+            let mut out = FaceDepth {
+                depth: f64::INFINITY,
+                span: 0.0,
+            };
+            for &v in on_face {
+                for r in poly.ring(v as usize) {
+                    let u = r.neighbor;
+                    if on_face.contains(&u) {
+                        continue;
+                    }
+                    for &w in on_face {
+                        let diff = poly.vertex(w as usize) - poly.vertex(u as usize);
+                        // The difference's rounding (u|diff| a coordinate) and
+                        // the dot product's (3u): within 5ε|n̂|₁|diff|∞.
+                        let err = 5.0 * f64::EPSILON * l1 * diff.abs().max_element() + 1e-300;
+                        out.depth = out.depth.min(n.dot(diff) - err);
+                        out.span = out.span.max(diff.length() * (1.0 + 4.0 * f64::EPSILON));
+                    }
+                }
+            }
+            if out.depth == f64::INFINITY {
+                // No vertex off the face (not a solid): never certified.
+                out.depth = f64::NEG_INFINITY;
+            }
+            out
+        })
+        .collect()
+}
+
+/// The robot term of an fv-plane of face `face` with normal `n` in O(1)
+/// when its [`FaceDepth`] certifies it (module docs): the largest float
+/// `n·p'` over the face's vertices plus `err`, the same float as
+/// [`near_max_upper`]'s; else `None`.
+#[inline]
+fn face_top(
+    poly: &Polytope,
+    posed: &[DVec3],
+    face: usize,
+    n: DVec3,
+    bounds: Posed,
+    depth: FaceDepth,
+) -> Option<f64> {
+    let err = dot_error(n, bounds.scale);
+    let slack = 2.0 * (bounds.eta * n.length() + err);
+    // The rounding of these few operations is far below the factor (a NaN
+    // certifies nothing).
+    let certified = depth.depth - 1e-13 * depth.span > slack * (1.0 + 1e-9);
+    if !certified {
+        return None;
+    }
+    let mut best = f64::NEG_INFINITY;
+    for &v in poly.face(face) {
+        let x = n.dot(posed[v as usize]);
+        if x > best {
+            best = x;
+        }
+    }
+    Some(best + err)
+}
+
 /// The bounds on one posed operand: `scale` its coordinates' magnitude,
 /// `eta` the rounding of a posed vertex.
 #[derive(Clone, Copy, Debug)]
@@ -145,6 +251,10 @@ struct Scratch {
     /// it did not (tests).
     #[cfg(test)]
     vf_hits: (usize, usize),
+    /// How many fv-planes' robot terms the face depths certified, and how
+    /// many fell back to the search (tests).
+    #[cfg(test)]
+    fv_certified: (usize, usize),
 }
 
 /// The bits of a vector (a cache key: `-0.0` and `0.0` differ).
@@ -156,7 +266,7 @@ fn bits(v: DVec3) -> [u64; 3] {
 /// The half-spaces of the sum held by `sum` (module docs).
 fn sum_halfspaces(
     sum: &DynamicSum,
-    reach: Reaches,
+    (reach, depths): (Reaches, &[FaceDepth]),
     scratch: &mut Scratch,
 ) -> Result<HalfSpaces, QueryError> {
     let ops: &Operands = sum.operands();
@@ -234,16 +344,43 @@ fn sum_halfspaces(
             }
             (c, u1, w1)
         };
-        let sp = near_max_upper(
-            &ops.p,
-            |v| posed_p[v as usize],
-            n,
-            u,
-            bp.eta,
-            bp.scale,
-            &mut scratch.marks_p,
-            &mut scratch.set,
-        );
+        let certified = if id < m {
+            face_top(&ops.p, posed_p, id, n, bp, depths[id])
+        } else {
+            None
+        };
+        #[cfg(test)]
+        if id < m {
+            let count = &mut scratch.fv_certified;
+            *if certified.is_some() {
+                &mut count.0
+            } else {
+                &mut count.1
+            } += 1;
+        }
+        let search_p = |marks: &mut Marks, set: &mut Vec<u32>| {
+            near_max_upper(
+                &ops.p,
+                |v| posed_p[v as usize],
+                n,
+                u,
+                bp.eta,
+                bp.scale,
+                marks,
+                set,
+            )
+        };
+        let sp = match certified {
+            Some(sp) => {
+                debug_assert_eq!(
+                    sp.to_bits(),
+                    search_p(&mut scratch.marks_p, &mut scratch.set).to_bits(),
+                    "the face's certified term is the search's"
+                );
+                sp
+            }
+            None => search_p(&mut scratch.marks_p, &mut scratch.set),
+        };
         let mut search_q = || {
             near_max_upper(
                 &ops.q,
@@ -321,7 +458,8 @@ impl CObstacle {
                 "halfspaces_of: the dynamic sum is not of this C-obstacle's bodies".into(),
             ));
         }
-        SCRATCH.with(|c| sum_halfspaces(sum, self.reaches, &mut c.borrow_mut()))
+        let depths = (self.reaches, self.face_depths());
+        SCRATCH.with(|c| sum_halfspaces(sum, depths, &mut c.borrow_mut()))
     }
 
     /// The slice at one orientation as half-spaces, computed from scratch
@@ -333,7 +471,11 @@ impl CObstacle {
     pub fn halfspace_slice(&self, orientation: Rotation) -> Result<HalfSpaces, QueryError> {
         let mut sum = None;
         let s = self.advance(&mut sum, orientation)?;
-        sum_halfspaces(s, self.reaches(), &mut Scratch::default())
+        sum_halfspaces(
+            s,
+            (self.reaches(), self.face_depths()),
+            &mut Scratch::default(),
+        )
     }
 
     /// The slices as half-spaces, in order, by one dynamic sum moved from
@@ -346,14 +488,14 @@ impl CObstacle {
         &self,
         orientations: &[Rotation],
     ) -> Result<Vec<HalfSpaces>, QueryError> {
-        let reach = self.reaches();
+        let bounds = (self.reaches(), self.face_depths());
         let mut scratch = Scratch::default();
         let mut sum = None;
         orientations
             .iter()
             .map(|&r| {
                 let s = self.advance(&mut sum, r)?;
-                sum_halfspaces(s, reach, &mut scratch)
+                sum_halfspaces(s, bounds, &mut scratch)
             })
             .collect()
     }
@@ -490,7 +632,7 @@ mod tests {
     }
 
     fn random_body(rng: &mut ChaCha8Rng, n: usize, kind: u32) -> Polytope {
-        let pts: Vec<[f64; 3]> = (0..n)
+        let mut pts: Vec<[f64; 3]> = (0..n)
             .map(|_| {
                 let v = DVec3::new(
                     rng.random_range(-1.0..1.0),
@@ -503,19 +645,30 @@ mod tests {
                     // A grid: coplanar faces, merged planes.
                     1 => (v * 4.0).round().to_array(),
                     // Far from the origin, tiny.
-                    _ => (v * 1e-3 + DVec3::new(1e3, -2e3, 5e2)).to_array(),
+                    2 => (v * 1e-3 + DVec3::new(1e3, -2e3, 5e2)).to_array(),
+                    // Farther and tinier: the rounding of the posed
+                    // vertices is near the faces' depths.
+                    3 => (v * 1e-10 + DVec3::new(1e3, -2e3, 5e2)).to_array(),
+                    // A dome of faces at angles near 1e-13: neighbours
+                    // almost in a face's plane.
+                    _ => [v.x, v.y, -(v.x * v.x + v.y * v.y) * 5e-14],
                 }
             })
             .collect();
+        if kind == 4 {
+            pts.push([0.0, 0.0, -1.0]);
+        }
         Polytope::from_points(&pts).unwrap()
     }
 
     #[test]
     fn fast_halfspaces_equal_the_reference_on_random_rotations() {
         let mut rng = ChaCha8Rng::seed_from_u64(22);
-        let mut hits = (0, 0);
-        for case in 0..9u32 {
-            let robot = random_body(&mut rng, 40 + 20 * case as usize, case % 3);
+        let (mut hits, mut faces) = ((0, 0), (0, 0));
+        for case in 0..13u32 {
+            // The robot's kinds 3 and 4 make the face depths fall back.
+            let kind = if case < 9 { case % 3 } else { 3 + case % 2 };
+            let robot = random_body(&mut rng, 40 + 20 * (case % 9) as usize, kind);
             let obstacle = random_body(&mut rng, 60, (case / 3) % 3);
             let cobst = CObstacle::new(&robot, &obstacle).unwrap();
             // Random orientations, and a run of small steps about one axis
@@ -538,7 +691,8 @@ mod tests {
             let mut sum = None;
             for (k, &r) in turns.iter().enumerate() {
                 let s = cobst.advance(&mut sum, r).unwrap();
-                let fast = sum_halfspaces(s, cobst.reaches(), &mut scratch).unwrap();
+                let bounds = (cobst.reaches(), cobst.face_depths());
+                let fast = sum_halfspaces(s, bounds, &mut scratch).unwrap();
                 let slow = reference_halfspaces(s, cobst.reaches(), &mut reference).unwrap();
                 assert_eq!(fast.len(), slow.len(), "case {case}, slice {k}");
                 for (i, ((a, b), (c, d))) in fast
@@ -566,9 +720,14 @@ mod tests {
             );
             hits.0 += scratch.vf_hits.0;
             hits.1 += scratch.vf_hits.1;
+            faces.0 += scratch.fv_certified.0;
+            faces.1 += scratch.fv_certified.1;
         }
         // The Q-side terms of vf-planes are carried over between slices.
         assert!(hits.0 > hits.1, "{hits:?}");
+        // Most fv-planes' robot terms are certified by the face depths, and
+        // the search decides the others.
+        assert!(faces.0 > 2 * faces.1 && faces.1 > 100, "{faces:?}");
     }
 }
 
@@ -618,7 +777,7 @@ mod timing {
             let (tu, _) = run(&mut |s| s.facet_count());
             let mut scratch = Scratch::default();
             let (tf, nf) = run(&mut |s| {
-                sum_halfspaces(s, cobst.reaches(), &mut scratch)
+                sum_halfspaces(s, (cobst.reaches(), cobst.face_depths()), &mut scratch)
                     .unwrap()
                     .len()
             });

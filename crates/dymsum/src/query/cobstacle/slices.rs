@@ -82,6 +82,9 @@ pub struct CObstacle {
     obstacle: Polytope,
     /// The bodies' reach, for the half-space slices.
     pub(in crate::query) reaches: Reaches,
+    /// The reflected robot's face depths (the half-space slices' O(1)
+    /// offsets, `halfspaces.rs`).
+    face_depths: std::sync::Arc<[crate::query::cobstacle::halfspaces::FaceDepth]>,
 }
 
 impl CObstacle {
@@ -93,9 +96,18 @@ impl CObstacle {
         let neg_robot = Reflected::new(robot);
         Ok(CObstacle {
             reaches: Reaches::of(&neg_robot.polytope, obstacle),
+            face_depths: crate::query::cobstacle::halfspaces::face_depths(&neg_robot.polytope)
+                .into(),
             neg_robot: std::sync::Arc::new(neg_robot),
             obstacle: obstacle.clone(),
         })
+    }
+
+    /// The reflected robot's face depths (`halfspaces.rs`).
+    pub(in crate::query) fn face_depths(
+        &self,
+    ) -> &[crate::query::cobstacle::halfspaces::FaceDepth] {
+        &self.face_depths
     }
 
     /// The reflected robot `−A`.
