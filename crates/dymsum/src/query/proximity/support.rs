@@ -194,8 +194,54 @@ pub(in crate::query) fn near_max_upper(
     let err = dot_error(dir, scale);
     let slack = 2.0 * (eta * dir.length() + err);
     let tau0 = slack + slack;
-    let best = near_set(poly, &at, dir, start, dir.dot(at(start)), tau0, marks, set);
+    let value = dir.dot(at(start));
+    if let Some(best) = near_pair(poly, &at, dir, start, value, tau0) {
+        return best + err;
+    }
+    let best = near_set(poly, &at, dir, start, value, tau0, marks, set);
     best + err
+}
+
+/// [`near_set`]'s result in its common cases, without its marks and list:
+/// the search admits no neighbour of `start` (a vertex maximum), or exactly
+/// one, `b`, and none of `b`'s (an edge). `None` when it would admit more
+/// (then the search runs). The same vertices are read in the same order
+/// against the same thresholds: a vertex the search has seen and not
+/// admitted is skipped there, and read again here against a threshold no
+/// lower (the best only rises), so it is not admitted here either; a NaN
+/// is never admitted by either.
+#[inline]
+fn near_pair(
+    poly: &Polytope,
+    at: &impl Fn(u32) -> DVec3,
+    dir: DVec3,
+    start: u32,
+    value: f64,
+    tau0: f64,
+) -> Option<f64> {
+    let mut best = value;
+    let mut admitted = None;
+    for r in poly.ring(start as usize) {
+        let x = dir.dot(at(r.neighbor));
+        if x >= best - tau0 {
+            if admitted.is_some() {
+                return None;
+            }
+            admitted = Some(r.neighbor);
+            if x > best {
+                best = x;
+            }
+        }
+    }
+    let Some(b) = admitted else {
+        return Some(best);
+    };
+    for r in poly.ring(b as usize) {
+        if r.neighbor != start && dir.dot(at(r.neighbor)) >= best - tau0 {
+            return None;
+        }
+    }
+    Some(best)
 }
 
 /// The breadth-first search shared by [`near_max_upper`] and
@@ -327,5 +373,102 @@ impl<T: Copy + Default, const K: usize> NearestAxes<T, K> {
             .iter()
             .filter(|(score, _, _)| *score > 0.0)
             .map(|&(_, d, t)| (d, t))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernel::rotation::{Pose, Rotation};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// [`near_max_upper`] (with its mark-free common cases) is the largest
+    /// float `dir · v'` over every posed vertex plus `err`, bit for bit,
+    /// from any start: spheres (vertex and edge maxima), grids (exact ties
+    /// along face normals and axes) and bodies far from the origin, along
+    /// random directions, face normals and edge-perpendicular directions.
+    #[test]
+    fn the_upper_bound_is_the_largest_float_value_from_any_start() {
+        let mut rng = ChaCha8Rng::seed_from_u64(35);
+        let (mut marks, mut set) = (Marks::default(), Vec::new());
+        let mut unit = |rng: &mut ChaCha8Rng| {
+            DVec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            )
+        };
+        for case in 0..60 {
+            let pts: Vec<[f64; 3]> = (0..20 + 3 * case)
+                .map(|_| {
+                    let v = unit(&mut rng);
+                    match case % 3 {
+                        0 => v.normalize_or_zero().to_array(),
+                        1 => (v * 3.0).round().to_array(),
+                        _ => (v * 1e-6 + DVec3::new(3e2, -1e2, 7e1)).to_array(),
+                    }
+                })
+                .collect();
+            let poly = Polytope::from_points(&pts).unwrap();
+            let pose = if case % 2 == 0 {
+                Pose::IDENTITY
+            } else {
+                Pose::new(
+                    Rotation::from_axis_angle(unit(&mut rng), 1.0).unwrap(),
+                    unit(&mut rng) * 10.0,
+                )
+            };
+            let posed: Vec<DVec3> = (0..poly.vertex_count())
+                .map(|v| pose.apply(poly.vertex(v)))
+                .collect();
+            let scale = posed
+                .iter()
+                .map(|p| p.abs().max_element())
+                .fold(0.0, f64::max);
+            let eta = 8.0 * f64::EPSILON * scale;
+            let mut dirs: Vec<DVec3> = (0..poly.face_count())
+                .map(|f| pose.rotation.apply(poly.unit_normal(f)))
+                .collect();
+            dirs.extend((0..poly.edge_count()).map(|e| {
+                let [a, b] = poly.edge(e).vertices;
+                let along = posed[b as usize] - posed[a as usize];
+                along.cross(unit(&mut rng)).cross(along).normalize_or_zero()
+            }));
+            dirs.extend((0..20).map(|_| unit(&mut rng).normalize_or_zero()));
+            for dir in dirs.into_iter().filter(|d| *d != DVec3::ZERO) {
+                let best = posed.iter().map(|p| dir.dot(*p)).fold(f64::MIN, f64::max);
+                let want = best + dot_error(dir, scale);
+                // The lowest vertex (many neighbours above it), and random
+                // ones.
+                let lowest = (0..poly.vertex_count() as u32)
+                    .min_by(|&a, &b| {
+                        dir.dot(posed[a as usize])
+                            .total_cmp(&dir.dot(posed[b as usize]))
+                    })
+                    .unwrap();
+                let starts = [lowest, rng.random_range(0..poly.vertex_count() as u32)];
+                for start in starts
+                    .into_iter()
+                    .chain((0..2).map(|_| rng.random_range(0..poly.vertex_count() as u32)))
+                {
+                    let got = near_max_upper(
+                        &poly,
+                        |v| posed[v as usize],
+                        dir,
+                        start,
+                        eta,
+                        scale,
+                        &mut marks,
+                        &mut set,
+                    );
+                    assert_eq!(
+                        got.to_bits(),
+                        want.to_bits(),
+                        "case {case}, {dir}, from {start}"
+                    );
+                }
+            }
+        }
     }
 }
