@@ -392,7 +392,7 @@ mod tests {
     fn the_upper_bound_is_the_largest_float_value_from_any_start() {
         let mut rng = ChaCha8Rng::seed_from_u64(35);
         let (mut marks, mut set) = (Marks::default(), Vec::new());
-        let mut unit = |rng: &mut ChaCha8Rng| {
+        let unit = |rng: &mut ChaCha8Rng| {
             DVec3::new(
                 rng.random_range(-1.0..1.0),
                 rng.random_range(-1.0..1.0),
