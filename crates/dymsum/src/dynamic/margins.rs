@@ -96,7 +96,9 @@ pub(super) fn locate_certified(
         let mut least_off_start = f64::INFINITY;
         for (i, r) in ring.iter().enumerate() {
             let s = arcs[off + i].dot(x);
-            if s.abs() <= thr {
+            // Also a NaN (a NaN rotation) goes to the exact path.
+            let clear = s.abs() > thr;
+            if !clear {
                 return None;
             }
             if s < -worst.0 {

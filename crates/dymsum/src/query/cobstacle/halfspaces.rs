@@ -37,16 +37,19 @@
 //! value can exceed the best face vertex's: below). Once per C-obstacle,
 //! [`face_depths`] bounds `n̂·(p_v − p_u)` from below over those pairs
 //! (`depth`, float rounding included) and `|p_v − p_u|` from above
-//! (`span`); per plane, `|d − n̂| ≤ ‖MᵀM − I‖ + |fl(M n̂) − M n̂| < 10⁻¹³`
-//! (the matrix's entries are within `2⁻⁴⁷` of a rotation's), so `depth −
-//! 10⁻¹³·span > 2(η|n| + err)` certifies the pairs, and the term is the
-//! face vertices' largest value plus `err`, the same float as the search's.
+//! (`span`, without squares); per plane, `|d − n̂| ≤ ‖MᵀM − I‖·|n̂| +
+//! ‖Mᵀ‖·|fl(M n̂) − M n̂| < 10⁻¹³` (`|n̂|` and `‖M‖` within `10⁻¹⁵` of 1,
+//! the matrix's entries within `2⁻⁴⁷` of a rotation's: `‖MᵀM − I‖ ≲
+//! 4.3·10⁻¹⁴`), so `depth − 10⁻¹³·span > 2(η|n| + err)` certifies the
+//! pairs, and the term is the face vertices' largest value plus `err`, the
+//! same float as the search's.
 //! Why the pairs suffice: the exact posed vertices `M p + t` form a convex
 //! polytope with P's graph, on which `φ = n·(M p + t)` is linear. The best
 //! face vertex beats its face neighbours (it is the face's best) and its
 //! other neighbours (the pairs), so it is a local, hence global, maximum of
 //! `φ`; and the best vertex off the face is adjacent to the face (else it
-//! beats all its neighbours, all off the face, and is a global maximum too,
+//! is at least as high as all its neighbours, all off the face, and is a
+//! global maximum too,
 //! so the maximisers form a face of the polytope holding it and the face's
 //! best vertex, whose connected graph leads from the face to it through a
 //! vertex of `N_f` as high as the maximum: excluded by the pairs). So every
@@ -55,6 +58,20 @@
 //! φ(v*) − η|n| − err`. Where the bound does not hold (a face with a
 //! neighbour almost in its plane, a body far from the origin) the search
 //! runs as before.
+//!
+//! *Independent review (2026-12-01).* A second reading checked the
+//! convexity argument (including ties), the `10⁻¹³` bound against the
+//! snapped matrices, the depths' rounding allowance and the bit identity
+//! with the search, and found: the span was computed from squares, which
+//! underflow to 0 for parts below about 10⁻¹⁶² (a hand-built wedge at
+//! scale 2⁻⁶⁰⁰ turned by 1.18·10⁻⁷ about z was certified below the
+//! search's value); `halfspaces_of` indexed the depths of its own robot
+//! for any sum with as many vertices (a panic, or another body's depths);
+//! the depths took O(Σ|f|²·degree). All three are mended (no squares, the
+//! depths only for a sum of the very same bodies, a face-local origin:
+//! O(Σ|f|·degree)), with a test at scales 2^±600 and snapped turns
+//! (`face_depths_hold_at_extreme_scales_and_snapped_turns`); that test does
+//! not isolate the `10⁻¹³·span` term (it passes without it).
 //!
 //! The cost is that of the facets: a few dot products per facet, no merge,
 //! no vertex sums and no convexity check.
@@ -142,38 +159,69 @@ pub(in crate::query) struct FaceDepth {
     span: f64,
 }
 
-/// [`FaceDepth`] of every face of `poly` (O(Σ face size × neighbours)).
+/// [`FaceDepth`] of every face of `poly`, in O(Σ face size × degree):
+/// with `o` a vertex of the face, `n̂·(p_v − p_u) = n̂·(p_v − o) − n̂·(p_u − o)`
+/// exactly, so the least over the pairs is bounded by the least face term
+/// less the largest neighbour term, each term's rounding bounded by
+/// `5ε|n̂|₁|p − o|∞` (the difference's `ε/2` a coordinate and the dot
+/// product's `3ε/2`, with room), and `|p_v − p_u| ≤ |p_v − o| + |p_u − o|`,
+/// each length bounded by `√3` times its largest coordinate (no squares:
+/// they would underflow for parts below about 10⁻¹⁵⁴). A NaN or an overflow
+/// certifies nothing.
 pub(in crate::query) fn face_depths(poly: &Polytope) -> Vec<FaceDepth> {
+    let mut on_face = vec![u32::MAX; poly.vertex_count()];
     (0..poly.face_count())
         .map(|f| {
             let n = poly.unit_normal(f);
             let l1 = n.x.abs() + n.y.abs() + n.z.abs();
-            let on_face = poly.face(f);
-            let mut out = FaceDepth {
-                depth: f64::INFINITY,
-                span: 0.0,
+            let face = poly.face(f);
+            for &v in face {
+                on_face[v as usize] = f as u32;
+            }
+            let o = poly.vertex(face[0] as usize);
+            // A term `n̂·(p − o)` with its rounding bound, and `|p − o|`
+            // bounded.
+            let term = |p: u32| {
+                let diff = poly.vertex(p as usize) - o;
+                let big = diff.abs().max_element();
+                let err = 5.0 * f64::EPSILON * l1 * big + 1e-300;
+                (
+                    n.dot(diff),
+                    err,
+                    big * 1.7320508075688774 * (1.0 + 4.0 * f64::EPSILON),
+                )
             };
-            for &v in on_face {
+            let (mut lowest, mut reach_face) = (f64::INFINITY, 0.0f64);
+            for &v in face {
+                let (x, err, len) = term(v);
+                lowest = lowest.min(x - err);
+                reach_face = reach_face.max(len);
+            }
+            let (mut highest, mut reach_off) = (f64::NEG_INFINITY, 0.0f64);
+            for &v in face {
                 for r in poly.ring(v as usize) {
-                    let u = r.neighbor;
-                    if on_face.contains(&u) {
+                    if on_face[r.neighbor as usize] == f as u32 {
                         continue;
                     }
-                    for &w in on_face {
-                        let diff = poly.vertex(w as usize) - poly.vertex(u as usize);
-                        // The difference's rounding (u|diff| a coordinate) and
-                        // the dot product's (3u): within 5ε|n̂|₁|diff|∞.
-                        let err = 5.0 * f64::EPSILON * l1 * diff.abs().max_element() + 1e-300;
-                        out.depth = out.depth.min(n.dot(diff) - err);
-                        out.span = out.span.max(diff.length() * (1.0 + 4.0 * f64::EPSILON));
-                    }
+                    let (x, err, len) = term(r.neighbor);
+                    highest = highest.max(x + err);
+                    reach_off = reach_off.max(len);
                 }
             }
-            if out.depth == f64::INFINITY {
-                // No vertex off the face (not a solid): never certified.
-                out.depth = f64::NEG_INFINITY;
+            // The difference's own rounding, with room.
+            let depth = (lowest - highest) - 2.0 * f64::EPSILON * (lowest.abs() + highest.abs());
+            if depth.is_nan() || highest == f64::NEG_INFINITY {
+                // No vertex off the face (not a solid), or a NaN: never
+                // certified.
+                return FaceDepth {
+                    depth: f64::NEG_INFINITY,
+                    span: f64::INFINITY,
+                };
             }
-            out
+            FaceDepth {
+                depth,
+                span: (reach_face + reach_off) * (1.0 + 2.0 * f64::EPSILON),
+            }
         })
         .collect()
 }
@@ -218,8 +266,9 @@ struct Posed {
 }
 
 impl Posed {
-    /// `|R v + t| ≤ r(1 + 2⁻⁴⁰) + |t|`; each coordinate of `fl(R v + t)`
-    /// within `√3·u(4.02 r + |t|) < 8u(r + |t|)` of `R v + t` (`query::slabs`).
+    /// `|R v + t| ≤ r(1 + 2⁻⁴⁰) + |t|`; `fl(R v + t)` within `√3·u(4.02 r +
+    /// |t|) < 8u(r + |t|)` of `R v + t` (the vector's length, as `η|n|`
+    /// needs; `query::slabs`).
     fn of(reach: f64, translation: DVec3) -> Posed {
         let t = up(translation.length());
         Posed {
@@ -344,10 +393,10 @@ fn sum_halfspaces(
             }
             (c, u1, w1)
         };
-        let certified = if id < m {
-            face_top(&ops.p, posed_p, id, n, bp, depths[id])
-        } else {
-            None
+        // No depths (a sum not of this C-obstacle's own bodies): the search.
+        let certified = match depths.get(id).filter(|_| id < m) {
+            Some(&depth) => face_top(&ops.p, posed_p, id, n, bp, depth),
+            None => None,
         };
         #[cfg(test)]
         if id < m {
@@ -458,8 +507,15 @@ impl CObstacle {
                 "halfspaces_of: the dynamic sum is not of this C-obstacle's bodies".into(),
             ));
         }
-        let depths = (self.reaches, self.face_depths());
-        SCRATCH.with(|c| sum_halfspaces(sum, depths, &mut c.borrow_mut()))
+        // The face depths are the reflected robot's: only for a sum of the
+        // very same bodies (`map_par`'s; a sum of equal copies is read out
+        // by the searches).
+        let depths = if sum.p().same_data(self.reflected_robot()) {
+            self.face_depths()
+        } else {
+            &[]
+        };
+        SCRATCH.with(|c| sum_halfspaces(sum, (self.reaches, depths), &mut c.borrow_mut()))
     }
 
     /// The slice at one orientation as half-spaces, computed from scratch
@@ -659,6 +715,74 @@ mod tests {
             pts.push([0.0, 0.0, -1.0]);
         }
         Polytope::from_points(&pts).unwrap()
+    }
+
+    /// The face depths at extreme scales (2⁻⁶⁰⁰: a span computed from
+    /// squares underflowed to 0, found by the review of 2026-12-01) and
+    /// under rotations whose matrices are snapped (a turn of 1.18e-7 about
+    /// z, quarter turns and turns near them), on a body with a vertex
+    /// almost in a tilted face's plane: every plane the same as the
+    /// reference's (and, in debug builds, every certified term the
+    /// search's).
+    #[test]
+    fn face_depths_hold_at_extreme_scales_and_snapped_turns() {
+        let turns: Vec<Rotation> = [
+            (DVec3::Z, 1.18e-7),
+            (DVec3::Z, std::f64::consts::FRAC_PI_2),
+            (DVec3::X, std::f64::consts::FRAC_PI_2 + 1e-9),
+            (DVec3::new(1.0, 1.0, 0.0), std::f64::consts::PI - 3e-8),
+            (DVec3::new(0.3, -0.2, 1.0), 0.7),
+        ]
+        .iter()
+        .map(|&(axis, angle)| Rotation::from_axis_angle(axis, angle).unwrap())
+        .collect();
+        let mut certified = 0;
+        for scale in [2f64.powi(-600), 1.0, 2f64.powi(600)] {
+            for delta in [0.0, 5e-15, 1e-14, 1e-12] {
+                // A tilted face z = x, a vertex `delta` below its plane
+                // across an edge, and a sphere's points below.
+                let mut pts = vec![
+                    [0.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [1.0, 0.0, 1.0],
+                    [-1.0, 1.0, -1.0 - delta],
+                ];
+                pts.extend((0..12).map(|k| {
+                    let a = k as f64 * 0.52;
+                    [
+                        0.6 * a.cos(),
+                        0.5 + 0.6 * a.sin(),
+                        -2.5 - 0.1 * (k % 3) as f64,
+                    ]
+                }));
+                let pts: Vec<[f64; 3]> = pts.iter().map(|p| p.map(|c| c * scale)).collect();
+                let robot = Polytope::from_points(&pts).unwrap();
+                let obstacle = Polytope::from_points(
+                    &(0..8)
+                        .map(|i| {
+                            [i & 1, (i >> 1) & 1, (i >> 2) & 1].map(|b| (b as f64 + 3.0) * scale)
+                        })
+                        .collect::<Vec<_>>(),
+                )
+                .unwrap();
+                let cobst = CObstacle::new(&robot, &obstacle).unwrap();
+                let (mut scratch, mut reference) = (Scratch::default(), Scratch::default());
+                let mut sum = None;
+                for &r in &turns {
+                    let s = cobst.advance(&mut sum, r).unwrap();
+                    let bounds = (cobst.reaches(), cobst.face_depths());
+                    let (Ok(fast), Ok(slow)) = (
+                        sum_halfspaces(s, bounds, &mut scratch),
+                        reference_halfspaces(s, cobst.reaches(), &mut reference),
+                    ) else {
+                        continue;
+                    };
+                    assert_eq!(fast, slow, "scale {scale}, delta {delta}, {r:?}");
+                }
+                certified += scratch.fv_certified.0;
+            }
+        }
+        assert!(certified > 0);
     }
 
     #[test]

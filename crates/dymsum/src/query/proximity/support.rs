@@ -202,7 +202,9 @@ pub(in crate::query) fn near_max_upper(
     best + err
 }
 
-/// [`near_set`]'s result in its common cases, without its marks and list:
+/// [`near_set`]'s result in its common cases, without its marks and list
+/// (read by the independent review of 2026-12-01: when it answers, its
+/// answer is the search's):
 /// the search admits no neighbour of `start` (a vertex maximum), or exactly
 /// one, `b`, and none of `b`'s (an edge). `None` when it would admit more
 /// (then the search runs). The same vertices are read in the same order
