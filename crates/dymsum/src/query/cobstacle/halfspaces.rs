@@ -35,7 +35,7 @@
 //! vertex of `V_f`, not in it) lies below every vertex `v` of it by
 //! `d·(p_v − p_u) > 2(η|n| + err)`, `d = Mᵀn` (then no other vertex's float
 //! value can exceed the best face vertex's: below). Once per C-obstacle,
-//! [`face_depths`] bounds `n̂·(p_v − p_u)` from below over those pairs
+//! `face_depths.rs` bounds `n̂·(p_v − p_u)` from below over those pairs
 //! (`depth`, float rounding included) and `|p_v − p_u|` from above
 //! (`span`, without squares); per plane, `|d − n̂| ≤ ‖MᵀM − I‖·|n̂| +
 //! ‖Mᵀ‖·|fl(M n̂) − M n̂| < 10⁻¹³` (`|n̂|` and `‖M‖` within `10⁻¹⁵` of 1,
@@ -99,6 +99,7 @@
 use crate::dynamic::DynamicSum;
 use crate::kernel::rotation::Rotation;
 use crate::polytope::Polytope;
+use crate::query::cobstacle::face_depths::FaceDepth;
 use crate::query::cobstacle::slices::{CObstacle, Reaches};
 use crate::query::error::QueryError;
 use crate::query::frame::up;
@@ -148,82 +149,6 @@ impl HalfSpaces {
     pub fn into_parts(self) -> (Vec<DVec3>, Vec<f64>) {
         (self.normals, self.offsets)
     }
-}
-
-/// Per face `f` of a polytope, the data of the fv-planes' O(1) certificate
-/// (module docs): `depth ≤ n̂·(p_v − p_u)` and `span ≥ |p_v − p_u|` over
-/// the vertices `v` of the face and `u` adjacent to them off it.
-#[derive(Clone, Copy, Debug)]
-pub(in crate::query) struct FaceDepth {
-    depth: f64,
-    span: f64,
-}
-
-/// [`FaceDepth`] of every face of `poly`, in O(Σ face size × degree):
-/// with `o` a vertex of the face, `n̂·(p_v − p_u) = n̂·(p_v − o) − n̂·(p_u − o)`
-/// exactly, so the least over the pairs is bounded by the least face term
-/// less the largest neighbour term, each term's rounding bounded by
-/// `5ε|n̂|₁|p − o|∞` (the difference's `ε/2` a coordinate and the dot
-/// product's `3ε/2`, with room), and `|p_v − p_u| ≤ |p_v − o| + |p_u − o|`,
-/// each length bounded by `√3` times its largest coordinate (no squares:
-/// they would underflow for parts below about 10⁻¹⁵⁴). A NaN or an overflow
-/// certifies nothing.
-pub(in crate::query) fn face_depths(poly: &Polytope) -> Vec<FaceDepth> {
-    let mut on_face = vec![u32::MAX; poly.vertex_count()];
-    (0..poly.face_count())
-        .map(|f| {
-            let n = poly.unit_normal(f);
-            let l1 = n.x.abs() + n.y.abs() + n.z.abs();
-            let face = poly.face(f);
-            for &v in face {
-                on_face[v as usize] = f as u32;
-            }
-            let o = poly.vertex(face[0] as usize);
-            // A term `n̂·(p − o)` with its rounding bound, and `|p − o|`
-            // bounded.
-            let term = |p: u32| {
-                let diff = poly.vertex(p as usize) - o;
-                let big = diff.abs().max_element();
-                let err = 5.0 * f64::EPSILON * l1 * big + 1e-300;
-                (
-                    n.dot(diff),
-                    err,
-                    big * 1.7320508075688774 * (1.0 + 4.0 * f64::EPSILON),
-                )
-            };
-            let (mut lowest, mut reach_face) = (f64::INFINITY, 0.0f64);
-            for &v in face {
-                let (x, err, len) = term(v);
-                lowest = lowest.min(x - err);
-                reach_face = reach_face.max(len);
-            }
-            let (mut highest, mut reach_off) = (f64::NEG_INFINITY, 0.0f64);
-            for &v in face {
-                for r in poly.ring(v as usize) {
-                    if on_face[r.neighbor as usize] == f as u32 {
-                        continue;
-                    }
-                    let (x, err, len) = term(r.neighbor);
-                    highest = highest.max(x + err);
-                    reach_off = reach_off.max(len);
-                }
-            }
-            // The difference's own rounding, with room.
-            let depth = (lowest - highest) - 2.0 * f64::EPSILON * (lowest.abs() + highest.abs());
-            if depth.is_nan() || highest == f64::NEG_INFINITY {
-                // No vertex off the face (not a solid), or a NaN: never
-                // certified.
-                return FaceDepth {
-                    depth: f64::NEG_INFINITY,
-                    span: f64::INFINITY,
-                };
-            }
-            FaceDepth {
-                depth,
-                span: (reach_face + reach_off) * (1.0 + 2.0 * f64::EPSILON),
-            }
-        })
-        .collect()
 }
 
 /// The robot term of an fv-plane of face `face` with normal `n` in O(1)

@@ -4,6 +4,7 @@
 //! and certified slabs that hold every slice over a range of orientations
 //! ([`slabs`]).
 
+pub(in crate::query) mod face_depths;
 pub(in crate::query) mod halfspaces;
 pub mod slabs;
 pub(in crate::query) mod slices;

@@ -84,7 +84,7 @@ pub struct CObstacle {
     pub(in crate::query) reaches: Reaches,
     /// The reflected robot's face depths (the half-space slices' O(1)
     /// offsets, `halfspaces.rs`).
-    face_depths: std::sync::Arc<[crate::query::cobstacle::halfspaces::FaceDepth]>,
+    face_depths: std::sync::Arc<[crate::query::cobstacle::face_depths::FaceDepth]>,
 }
 
 impl CObstacle {
@@ -96,17 +96,17 @@ impl CObstacle {
         let neg_robot = Reflected::new(robot);
         Ok(CObstacle {
             reaches: Reaches::of(&neg_robot.polytope, obstacle),
-            face_depths: crate::query::cobstacle::halfspaces::face_depths(&neg_robot.polytope)
+            face_depths: crate::query::cobstacle::face_depths::face_depths(&neg_robot.polytope)
                 .into(),
             neg_robot: std::sync::Arc::new(neg_robot),
             obstacle: obstacle.clone(),
         })
     }
 
-    /// The reflected robot's face depths (`halfspaces.rs`).
+    /// The reflected robot's face depths (`face_depths.rs`).
     pub(in crate::query) fn face_depths(
         &self,
-    ) -> &[crate::query::cobstacle::halfspaces::FaceDepth] {
+    ) -> &[crate::query::cobstacle::face_depths::FaceDepth] {
         &self.face_depths
     }
 
