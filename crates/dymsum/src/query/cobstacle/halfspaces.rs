@@ -49,10 +49,10 @@
 //! other neighbours (the pairs), so it is a local, hence global, maximum of
 //! `φ`; and the best vertex off the face is adjacent to the face (else it
 //! is at least as high as all its neighbours, all off the face, and is a
-//! global maximum too,
-//! so the maximisers form a face of the polytope holding it and the face's
-//! best vertex, whose connected graph leads from the face to it through a
-//! vertex of `N_f` as high as the maximum: excluded by the pairs). So every
+//! global maximum too, so the maximisers form a face of the polytope
+//! holding it and the face's best vertex, whose connected graph leads from
+//! the face to it through a vertex of `N_f` as high as the maximum:
+//! excluded by the pairs). So every
 //! vertex `u` off the face has `φ(u) < φ(v*) − 2(η|n| + err)`, and its
 //! float value `≤ φ(u) + η|n| + err` is below the best face vertex's `≥
 //! φ(v*) − η|n| − err`. Where the bound does not hold (a face with a
@@ -103,7 +103,7 @@ use crate::query::cobstacle::face_depths::FaceDepth;
 use crate::query::cobstacle::slices::{CObstacle, Reaches};
 use crate::query::error::QueryError;
 use crate::query::frame::up;
-use crate::query::proximity::support::{dot_error, near_max_upper, Marks};
+use crate::query::proximity::support::{dot_error, near_max_upper, search_slack, Marks};
 use crate::sum::merge::coplanar_groups;
 use crate::sum::{Operands, Overlay};
 use glam::DVec3;
@@ -164,8 +164,7 @@ fn face_top(
     bounds: Posed,
     depth: FaceDepth,
 ) -> Option<f64> {
-    let err = dot_error(n, bounds.scale);
-    let slack = 2.0 * (bounds.eta * n.length() + err);
+    let (err, slack) = search_slack(n, bounds.eta, bounds.scale);
     // The rounding of these few operations is far below the factor (a NaN
     // certifies nothing).
     let certified = depth.depth - 1e-13 * depth.span > slack * (1.0 + 1e-9);

@@ -128,6 +128,16 @@ pub(in crate::query) fn dot_error(d: DVec3, scale: f64) -> f64 {
     4.0 * f64::EPSILON * (d.x.abs() + d.y.abs() + d.z.abs()) * scale + 1e-300
 }
 
+/// One dot product's rounding bound `err` along `dir` and the slack
+/// `2(η|dir| + err)` a near-extreme search allows for (module docs; `eta`
+/// bounds a posed vertex's rounding, `scale` its coordinates): shared by
+/// the searches and by certificates that must give the same floats.
+#[inline]
+pub(in crate::query) fn search_slack(dir: DVec3, eta: f64, scale: f64) -> (f64, f64) {
+    let err = dot_error(dir, scale);
+    (err, 2.0 * (eta * dir.length() + err))
+}
+
 /// The result of [`near_max`].
 #[derive(Clone, Copy, Debug)]
 pub(in crate::query) struct NearMax {
@@ -191,8 +201,7 @@ pub(in crate::query) fn near_max_upper(
     marks: &mut Marks,
     set: &mut Vec<u32>,
 ) -> f64 {
-    let err = dot_error(dir, scale);
-    let slack = 2.0 * (eta * dir.length() + err);
+    let (err, slack) = search_slack(dir, eta, scale);
     let tau0 = slack + slack;
     let value = dir.dot(at(start));
     if let Some(best) = near_pair(poly, &at, dir, start, value, tau0) {
@@ -304,8 +313,7 @@ fn near_search(
     marks: &mut Marks,
     set: &mut Vec<u32>,
 ) -> (f64, f64, f64) {
-    let err = dot_error(dir, scale);
-    let slack = 2.0 * (eta * dir.length() + err);
+    let (err, slack) = search_slack(dir, eta, scale);
     let tau0 = tau.max(slack) + slack;
     let (top, value) = climb(poly, at, dir, start);
     let best = near_set(poly, at, dir, top, value, tau0, marks, set);
