@@ -6,7 +6,9 @@
 //! `distance_at` on the free states; `DISTANCE=all`: on every state,
 //! `DISTANCE=colliding`: on the colliding ones; `SLOWEST=k`: the k slowest
 //! states' checks again, each alone in `replay`, for a profiler's toggle;
-//! `MIDDLE=k`: the k states nearest the median time, likewise).
+//! `MIDDLE=k`: the k states nearest the median time, likewise; `SEED=s`:
+//! another sample of pairs; `KIND=random` or `KIND=near`: those states
+//! alone; `VERDICTS` set: the medians split by dymsum's answer).
 
 use std::time::Instant;
 
@@ -44,7 +46,12 @@ fn main() {
     let colliding_only = std::env::var("DISTANCE").is_ok_and(|v| v == "colliding");
     let only: Option<String> = std::env::var("PAIR").ok();
     let all = parts(dir);
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    // `SEED=s`: another seeded sample of pairs (3 unless told).
+    let seed: u64 = std::env::var("SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(3);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let mut picks = Vec::new();
     if let Some(p) = only {
         let (a, b) = p.split_once(',').expect("PAIR=a,b");
@@ -67,6 +74,10 @@ fn main() {
         let (ra, rb) = (parry_mesh(&pa.mesh), parry_mesh(&pb.mesh));
         let (random, near) = pair_states(&checker, &pa.mesh, &pb.mesh, n, 11);
         for (what, states) in [("random", &random), ("near", &near)] {
+            // `KIND=random` or `KIND=near`: that kind of state alone.
+            if std::env::var("KIND").is_ok_and(|k| k != what) {
+                continue;
+            }
             let (mut ours, mut theirs, mut which) = (Vec::new(), Vec::new(), Vec::new());
             for (index, &p) in states.iter().enumerate() {
                 if distance && !every_state && checker.collides_at(p).unwrap() != colliding_only {
@@ -129,12 +140,32 @@ fn main() {
                 let warm = t.elapsed().as_secs_f64() * 1e6 / (100 * calls.max(1)) as f64;
                 println!("{what}: {calls} middle states, {cold:.2} µs each once, {warm:.2} µs each repeated");
             }
+            if std::env::var("VERDICTS").is_ok() {
+                for answer in [true, false] {
+                    let (mut a, mut b) = (Vec::new(), Vec::new());
+                    for (k, &i) in which.iter().enumerate() {
+                        if checker.collides_at(states[i]).unwrap() == answer {
+                            a.push(ours[k]);
+                            b.push(theirs[k]);
+                        }
+                    }
+                    if !a.is_empty() {
+                        println!(
+                            "{what} {}: {} states, median {:.2} µs, parry {:.2} µs",
+                            if answer { "colliding" } else { "free" },
+                            a.len(),
+                            quantile(&mut a, 0.5),
+                            quantile(&mut b, 0.5)
+                        );
+                    }
+                }
+            }
             let (m1, m2) = (quantile(&mut ours, 0.5), quantile(&mut theirs, 0.5));
             let (q1, q2) = (quantile(&mut ours, 0.99), quantile(&mut theirs, 0.99));
             ratios_med.push(m1 / m2);
             ratios_p99.push(q1 / q2);
             println!(
-                "{:>40} {:>6} | {:>40} {:>6} {what:>6} build {:7.1} ms  median {m1:9.1} µs parry {m2:8.1} ({:5.2}x)  p99 {q1:9.1} parry {q2:8.1} ({:5.2}x)",
+                "{:>40} {:>6} | {:>40} {:>6} {what:>6} build {:7.1} ms  median {m1:9.2} µs parry {m2:8.2} ({:5.2}x)  p99 {q1:9.1} parry {q2:8.1} ({:5.2}x)",
                 &pa.name[pa.name.len().saturating_sub(40)..],
                 pa.mesh.faces.len(),
                 &pb.name[pb.name.len().saturating_sub(40)..],

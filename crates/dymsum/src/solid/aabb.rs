@@ -717,8 +717,23 @@ impl AabbTree {
     }
 
     /// Calls `f` with every item whose box meets `query`.
-    pub fn for_each_meeting(&self, query: &Aabb, f: impl FnMut(usize)) {
-        self.for_each_meeting_with(|n| self.bounds[n], |i| self.boxes[i], query, f);
+    pub fn for_each_meeting(&self, query: &Aabb, mut f: impl FnMut(usize)) {
+        self.meeting_while(
+            |n| self.bounds[n],
+            |i| self.boxes[i],
+            query,
+            |i| {
+                f(i);
+                true
+            },
+        );
+    }
+
+    /// Calls `f` with the items whose box meets `query`, in the order of
+    /// [`AabbTree::for_each_meeting`], until `f` returns `false` (the
+    /// first `k` of a long list without listing the rest).
+    pub fn for_each_meeting_while(&self, query: &Aabb, f: impl FnMut(usize) -> bool) {
+        self.meeting_while(|n| self.bounds[n], |i| self.boxes[i], query, f);
     }
 
     /// [`AabbTree::for_each_meeting`] with node `n`'s box `node_box(n)` and
@@ -732,6 +747,21 @@ impl AabbTree {
         query: &Aabb,
         mut f: impl FnMut(usize),
     ) {
+        self.meeting_while(node_box, item_box, query, |i| {
+            f(i);
+            true
+        });
+    }
+
+    /// The one traversal of the three above: depth first, left before
+    /// right, items in leaf order, stopping when `f` returns `false`.
+    fn meeting_while(
+        &self,
+        node_box: impl Fn(usize) -> Aabb,
+        item_box: impl Fn(usize) -> Aabb,
+        query: &Aabb,
+        mut f: impl FnMut(usize) -> bool,
+    ) {
         if self.nodes.is_empty() {
             return;
         }
@@ -744,8 +774,8 @@ impl AabbTree {
             match self.nodes[n as usize] {
                 Node::Leaf { start, end } => {
                     for &i in &self.items[start as usize..end as usize] {
-                        if item_box(i as usize).meets(query) {
-                            f(i as usize);
+                        if item_box(i as usize).meets(query) && !f(i as usize) {
+                            return;
                         }
                     }
                 }
