@@ -595,7 +595,7 @@ impl SceneChecker {
         }
         // The scene components with a corner in the body's box at the pose.
         let m = pose.rotation.matrix();
-        let pad = 64.0 * f64::EPSILON * (self.body.reach + pose.translation.abs().max_element());
+        let pad = self.pad(&pose);
         let reach = self
             .body
             .tree()
@@ -1042,7 +1042,7 @@ mod tests {
     #[test]
     fn the_roots_test_parts_no_touching_pair() {
         use rand::{Rng, SeedableRng};
-        let wedge = PolygonMesh::new(
+        let tetrahedron = PolygonMesh::new(
             vec![
                 [0.0, 0.0, 0.0],
                 [3.0, 0.1, 0.2],
@@ -1051,7 +1051,7 @@ mod tests {
             ],
             vec![vec![0, 2, 1], vec![0, 1, 3], vec![0, 3, 2], vec![1, 2, 3]],
         );
-        let bodies = [cuboid([-0.5, -0.25, -1.0], [0.75, 0.5, 1.0]), wedge];
+        let bodies = [cuboid([-0.5, -0.25, -1.0], [0.75, 0.5, 1.0]), tetrahedron];
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(35);
         let mut touching = 0;
         for trial in 0..600 {
