@@ -42,6 +42,21 @@
 //! askings read the same grid; since the grid, at a subset of the states
 //! that returned one before it).
 //!
+//! Since "Segments between points" (`body::winding`), a point may take
+//! its windings along a segment from the point asked before it. Where no
+//! point asked lies on a triangle, each answer is still the point's own
+//! (the segment's count is exact, and a point no ray decides may now be
+//! decided: errors at a subset again), so the argument above stands.
+//! Where one does, the bodies touch and the state collides; a later
+//! point's windings may then be off by that triangle's weight, and its
+//! answer differ from its own ray's (an independent review saw it in
+//! about 1% of its contact states' first askings). A wrong "inside" is
+//! still a collision; a wrong "outside" or an error in the first asking
+//! is not final, and the walk meets at that triangle. The full asking
+//! comes only after a walk that met nothing, when no point lies on a
+//! triangle, and the segments' last point is not carried from one asking
+//! to the other.
+//!
 //! An independent review (2026-11-30) checked this argument and the code:
 //! the numbering of points is the same in both askings (then counted after
 //! the deterministic box filters; since the review, before them, which
@@ -209,7 +224,7 @@ use glam::{DMat3, DVec3};
 
 use super::checker::{cached, cells, triangle_box, SceneChecker, Scratch};
 
-use crate::body::winding::inside_solid;
+use crate::body::winding::{segment_is_shorter, some_winds, Known, Placed};
 use crate::kernel::rotation::Pose;
 use crate::kernel::separation::{triangle_box_apart, triangles_apart};
 use crate::query::checker::Checker;
@@ -553,13 +568,16 @@ impl SceneChecker {
         if !self.scene.solid_components.is_empty() {
             let scene_box = self.scene.obbs().first();
             let components = &self.body.components;
+            // The last point decided and its windings (module docs,
+            // "Segments between points").
+            let mut known = None;
             let mut ask = |c: usize| {
                 let p = s.at.get(&self.body.vertices, &pose, components[c].1);
                 // Outside the scene's oriented box: inside nothing of it.
                 if scene_box.is_some_and(|o| o.excludes(p, 0.0)) {
                     return None;
                 }
-                match self.scene.inside_solid(p, parity) {
+                match self.scene.inside_solid(p, &mut known, parity) {
                     Some(true) => Some(Ok(true)),
                     Some(false) => None,
                     None => Some(Err(undecided(p))),
@@ -629,6 +647,16 @@ impl SceneChecker {
             |n: usize| cached(cache_cells, epoch, n, || bounds[n].transformed(&m, t, pad));
         let item_box = |i: usize| Aabb::of(self.body.triangles[i].map(|v| vertex(v).to_array()));
         let component_box = |c: usize| self.body.component_boxes[c].transformed(&m, t, pad);
+        let placed = Placed {
+            body: &self.body,
+            vertex,
+            node_box,
+            item_box,
+            component_box,
+        };
+        // The last corner decided and its windings (module docs, "Segments
+        // between points").
+        let mut known: Option<Known> = None;
         // A scene corner carried back into the body's frame, known there
         // up to `back_pad` per coordinate: a point of the posed body's
         // hull carried back lies within it of the body-frame hull (the
@@ -666,31 +694,50 @@ impl SceneChecker {
                     out = Ok(true);
                     break;
                 }
+                known = Some(Known::outside(p));
                 continue;
             }
-            candidates.clear();
-            candidates.extend(self.body.solid_components.iter().filter(|&&c| {
-                let near_back = || {
-                    let at = back.to_array();
-                    let point = Aabb { lo: at, hi: at };
-                    self.body.component_boxes[c as usize].within(&point, back_pad)
-                };
-                component_box(c as usize).holds(p.to_array()) && (!filter || near_back())
-            }));
-            match inside_solid(
-                &self.body,
-                vertex,
-                node_box,
-                item_box,
-                component_box,
-                &candidates,
-                p,
-                parity,
-            ) {
-                Some(false) => {}
-                Some(true) => {
-                    out = Ok(true);
-                    break;
+            // From the last corner decided where the segment is the
+            // shorter way (the posed body's box bounds the ray's), else by
+            // a ray.
+            let from = known
+                .as_ref()
+                .filter(|k| segment_is_shorter(k.at, p, &(placed.node_box)(0)));
+            let along = from.and_then(|k| {
+                let segment = Aabb::of([k.at.to_array(), p.to_array()]);
+                candidates.clear();
+                candidates.extend(
+                    self.body
+                        .solid_components
+                        .iter()
+                        .filter(|&&c| (placed.component_box)(c as usize).meets(&segment)),
+                );
+                placed.windings_along(&candidates, k, p, parity)
+            });
+            let windings = match along {
+                Some(w) => Some(w),
+                None => {
+                    candidates.clear();
+                    candidates.extend(self.body.solid_components.iter().filter(|&&c| {
+                        let near_back = || {
+                            let at = back.to_array();
+                            let point = Aabb { lo: at, hi: at };
+                            self.body.component_boxes[c as usize].within(&point, back_pad)
+                        };
+                        (placed.component_box)(c as usize).holds(p.to_array())
+                            && (!filter || near_back())
+                    }));
+                    placed.windings_by_ray(&candidates, p, parity)
+                }
+            };
+            match windings {
+                Some(windings) => {
+                    let inside = some_winds(&windings);
+                    known = Some(Known { at: p, windings });
+                    if inside {
+                        out = Ok(true);
+                        break;
+                    }
                 }
                 None => {
                     out = Err(undecided(p));
@@ -1007,7 +1054,10 @@ mod tests {
             let mut parity = Vec::new();
             let inside = checker.body.components.iter().any(|&(_, v)| {
                 let p = s.at.get(&checker.body.vertices, &pose, v);
-                checker.scene.inside_solid(p, &mut parity).unwrap()
+                checker
+                    .scene
+                    .inside_solid(p, &mut None, &mut parity)
+                    .unwrap()
             });
             let corners = checker.body.components.len()..usize::MAX;
             let out = inside
