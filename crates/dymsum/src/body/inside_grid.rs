@@ -22,7 +22,7 @@
 //! decided by their own rays.
 //!
 //! A cell is *empty* when the certified separating-axis test
-//! ([`triangle_box_apart`]) parts it from every triangle of a solid
+//! along the triangle's plane ([`PlaneAxis`]) parts it from every triangle of a solid
 //! component whose box reaches it (the test is made on blocks of cells
 //! first and split down to single cells only where it cannot part the
 //! block). A test that cannot part them marks the cell as meeting the

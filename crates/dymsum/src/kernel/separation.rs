@@ -92,36 +92,10 @@ pub(crate) fn triangles_apart(t: &[DVec3; 3], u: &[DVec3; 3]) -> bool {
     et.iter().any(|&e| eu.iter().any(|&f| apart(e.cross(f))))
 }
 
-/// A proof that closed triangle `t` and the closed box `[lo, hi]` are
-/// disjoint: some axis among the box's three, the triangle's normal and
-/// the nine cross products of the box's axes with the triangle's edges
-/// separates them, certified despite rounding (module docs; a box corner
-/// projects to `Σ a_k c_k` with `c_k` either `lo_k` or `hi_k`, a 3-term
-/// dot product like any other point). `false` proves nothing.
-#[inline]
-pub(crate) fn triangle_box_apart(t: &[DVec3; 3], lo: DVec3, hi: DVec3) -> bool {
-    let mag = magnitude(t.iter()).max(lo.abs()).max(hi.abs());
-    let apart = |a: DVec3| {
-        let near = DVec3::select(a.cmpge(DVec3::ZERO), lo, hi);
-        let far = DVec3::select(a.cmpge(DVec3::ZERO), hi, lo);
-        spans_apart(span(a, t), (a.dot(near), a.dot(far)), slack(a, mag))
-    };
-    // The box's own axes: the triangle's box against it, exactly.
-    let (tlo, thi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
-    if thi.cmplt(lo).any() || tlo.cmpgt(hi).any() {
-        return true;
-    }
-    let e = [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
-    if apart(e[0].cross(e[1])) {
-        return true;
-    }
-    [DVec3::X, DVec3::Y, DVec3::Z]
-        .iter()
-        .any(|&k| e.iter().any(|&f| apart(k.cross(f))))
-}
-
 /// A triangle's plane as a separating axis against many boxes, certified
-/// as [`triangle_box_apart`]'s (module docs) with one slack for all: the
+/// (module docs; a box corner projects to `Σ a_k c_k` with `c_k` either
+/// `lo_k` or `hi_k`, a 3-term dot product like any other point) with one
+/// slack for all: the
 /// points' magnitude is bounded once by `mag`, at least every coordinate's
 /// of the triangle and of every box asked (a larger bound only makes the
 /// slack larger).
@@ -199,16 +173,14 @@ mod tests {
     }
 
     #[test]
-    fn triangle_and_box() {
+    fn a_triangles_plane_parts_boxes() {
         let t = [v(0., 0., 0.), v(10., 10., 0.), v(10., 10.01, 0.)];
-        // A box off the sliver's diagonal but inside its box.
-        assert!(triangle_box_apart(&t, v(6., 1., -1.), v(8., 3., 1.)));
-        // A box the sliver crosses, and one it touches at a corner.
-        assert!(!triangle_box_apart(&t, v(4., 4., -1.), v(6., 6., 1.)));
-        assert!(!triangle_box_apart(&t, v(10., 10.01, 0.), v(11., 11., 1.)));
-        // A box entirely apart on an axis.
-        assert!(triangle_box_apart(&t, v(-3., -3., 0.5), v(20., 20., 1.)));
-        assert!(!triangle_box_apart(&t, v(-3., -3., 0.), v(20., 20., 1.)));
+        let plane = PlaneAxis::new(&t, v(20., 20., 1.));
+        // A box entirely above the plane, and one touching it.
+        assert!(plane.parts(v(-3., -3., 0.5), v(20., 20., 1.)));
+        assert!(!plane.parts(v(-3., -3., 0.), v(20., 20., 1.)));
+        // A box the plane crosses, off the sliver: the plane cannot part it.
+        assert!(!plane.parts(v(6., 1., -1.), v(8., 3., 1.)));
     }
 
     /// The exact oracle: a corner of `t` in the box, or `t` meeting one of
@@ -248,7 +220,8 @@ mod tests {
                 proven += 1;
             }
             let (lo, hi) = (u[0].min(u[1]), u[0].max(u[1]));
-            if triangle_box_apart(&t, lo, hi) {
+            let mag = t.iter().fold(lo.abs().max(hi.abs()), |m, p| m.max(p.abs()));
+            if PlaneAxis::new(&t, mag).parts(lo, hi) {
                 assert!(!triangle_meets_box(&t, lo, hi), "{t:?} {lo} {hi}");
             }
         }
