@@ -68,6 +68,13 @@
 //! zero times about both, so its crossings sum to zero whether counted or
 //! not), and the sum is kept per source, as the ray's is.
 //!
+//! Where many points lie in a small box (a part's shells at a pose), the
+//! triangles whose boxes meet that box are listed once (up to a bound),
+//! and each segment between two of those points reads the list instead of
+//! walking the tree: a triangle the segment crosses has a point in the
+//! segment's box, which lies in the points' box, so its box (which holds
+//! it) meets that box and it is listed.
+//!
 //! A point is *known* when its windings were found by a ray or a segment,
 //! or when the grid says it is outside (every source winds zero times
 //! there: a classified cell's answer holds for its points,
@@ -212,7 +219,7 @@ impl MeshBody {
                         .for_each_meeting(&Aabb::of([k.at.to_array(), p.to_array()]), |c| {
                             candidates.push(self.solid_components[c])
                         });
-                    placed.windings_along(&candidates, k, p, parity)
+                    placed.windings_along(&candidates, k, p, None, parity)
                 });
                 let windings = match along {
                     Some(w) => w,
@@ -366,7 +373,7 @@ where
                 continue; // not far enough (only at the limits of f64)
             }
             let mut windings = Vec::new();
-            if self.count_crossings(candidates, p, q, 1, &mut windings, parity) {
+            if self.count_crossings(candidates, p, q, 1, None, &mut windings, parity) {
                 return Some(windings);
             }
         }
@@ -378,16 +385,36 @@ where
     /// the `candidates` components (every solid component whose box meets
     /// the segment's; module docs, "Segments between points"); `None` where
     /// the segment is degenerate.
+    ///
+    /// With `listed`, the triangles are taken from that list instead of the
+    /// tree: it must hold every triangle whose box meets the segment's
+    /// ([`Placed::triangles_meeting`] of a box holding both ends).
     pub(crate) fn windings_along(
         &self,
         candidates: &[u32],
         from: &Known,
         p: DVec3,
+        listed: Option<&[usize]>,
         parity: &mut Vec<u8>,
     ) -> Option<Windings> {
         let mut windings = from.windings.clone();
-        self.count_crossings(candidates, from.at, p, -1, &mut windings, parity)
+        self.count_crossings(candidates, from.at, p, -1, listed, &mut windings, parity)
             .then_some(windings)
+    }
+
+    /// The triangles whose boxes meet `region`, or `None` where there are
+    /// more than `most`.
+    pub(crate) fn triangles_meeting(&self, region: &Aabb, most: usize) -> Option<Vec<usize>> {
+        let mut listed = Vec::new();
+        let mut within = true;
+        self.body
+            .tree()
+            .meeting_while(&self.node_box, &self.item_box, region, |t| {
+                listed.push(t);
+                within = listed.len() <= most;
+                within
+            });
+        within.then_some(listed)
     }
 
     /// Adds to `windings`, `sign` times, the signed crossings of the
@@ -395,12 +422,14 @@ where
     /// components (a crossing counts the triangle's weight, `+` where `p`
     /// lies on its positive side); `false` where the segment is degenerate
     /// (`windings` then means nothing).
+    #[allow(clippy::too_many_arguments)]
     fn count_crossings(
         &self,
         candidates: &[u32],
         p: DVec3,
         q: DVec3,
         sign: i64,
+        listed: Option<&[usize]>,
         windings: &mut Windings,
         parity: &mut Vec<u8>,
     ) -> bool {
@@ -416,26 +445,32 @@ where
             lo: p.min(q).to_array(),
             hi: p.max(q).to_array(),
         };
-        body.tree()
-            .for_each_meeting_with(&self.node_box, &self.item_box, &segment, |t| {
-                let c = body.component_of[t] as usize;
-                if degenerate || parity[c] == 0 {
-                    return;
-                }
-                let tri = body.triangles[t].map(&self.vertex);
-                match crossing(p, q, tri) {
-                    Crossing::Crosses(positive) => {
-                        let w = i64::from(body.weights[t]) * if positive { sign } else { -sign };
-                        let source = body.source_of[c];
-                        match windings.iter_mut().find(|e| e.0 == source) {
-                            Some(e) => e.1 += w,
-                            None => windings.push((source, w)),
-                        }
+        let mut count = |t: usize| {
+            let c = body.component_of[t] as usize;
+            if degenerate || parity[c] == 0 {
+                return;
+            }
+            let tri = body.triangles[t].map(&self.vertex);
+            match crossing(p, q, tri) {
+                Crossing::Crosses(positive) => {
+                    let w = i64::from(body.weights[t]) * if positive { sign } else { -sign };
+                    let source = body.source_of[c];
+                    match windings.iter_mut().find(|e| e.0 == source) {
+                        Some(e) => e.1 += w,
+                        None => windings.push((source, w)),
                     }
-                    Crossing::Misses => {}
-                    Crossing::Degenerate => degenerate = true,
                 }
-            });
+                Crossing::Misses => {}
+                Crossing::Degenerate => degenerate = true,
+            }
+        };
+        match listed {
+            Some(list) => list.iter().for_each(|&t| count(t)),
+            None => {
+                body.tree()
+                    .for_each_meeting_with(&self.node_box, &self.item_box, &segment, count)
+            }
+        }
         for &c in candidates {
             parity[c as usize] = 0;
         }
@@ -593,14 +628,22 @@ mod tests {
                     .copied()
                     .filter(|&c| body.component_boxes[c as usize].meets(&segment))
                     .collect();
-                for candidates in [&all, &meeting] {
-                    match placed.windings_along(candidates, &known, p, &mut parity) {
+                // The triangles listed once for a box holding both ends
+                // serve as the tree does.
+                let list = placed.triangles_meeting(&segment, usize::MAX).unwrap();
+                for (candidates, listed) in
+                    [(&all, None), (&meeting, None), (&all, Some(&list[..]))]
+                {
+                    match placed.windings_along(candidates, &known, p, listed, &mut parity) {
                         Some(w) => {
                             along += 1;
                             assert_eq!(normal(w), normal(expected.clone()), "round {round}");
                         }
                         None => degenerate += 1,
                     }
+                }
+                if list.len() > 1 {
+                    assert!(placed.triangles_meeting(&segment, list.len() - 1).is_none());
                 }
                 // `inside_solid` answers as the ray does, whichever way.
                 let mut carried = Some(Known {
@@ -618,7 +661,7 @@ mod tests {
                 };
             }
         }
-        assert!(along > 3_000, "{along} segments decided");
+        assert!(along > 4_000, "{along} segments decided");
         assert!(degenerate < along / 10, "{degenerate} degenerate segments");
         // A segment in a face's plane through the face is degenerate: no
         // answer, never a guess.
@@ -629,7 +672,13 @@ mod tests {
         let all = body.solid_components.clone();
         assert!(body
             .unposed()
-            .windings_along(&all, &from, DVec3::new(2.0, 0.5, 1.0), &mut Vec::new())
+            .windings_along(
+                &all,
+                &from,
+                DVec3::new(2.0, 0.5, 1.0),
+                None,
+                &mut Vec::new()
+            )
             .is_none());
     }
 }

@@ -755,7 +755,7 @@ impl AabbTree {
 
     /// The one traversal of the three above: depth first, left before
     /// right, items in leaf order, stopping when `f` returns `false`.
-    fn meeting_while(
+    pub(crate) fn meeting_while(
         &self,
         node_box: impl Fn(usize) -> Aabb,
         item_box: impl Fn(usize) -> Aabb,

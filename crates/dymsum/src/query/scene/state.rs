@@ -252,6 +252,11 @@ use crate::solid::aabb::Aabb;
 use crate::solid::intersect::triangles_meet;
 use crate::solid::obb::pose_skew;
 
+/// The most triangles the segments between scene corners read from a list
+/// made once, instead of walking the tree each ("Segments between points"
+/// in `body::winding`): where the corners spread wider, each walks.
+const TRIANGLES_LISTED_MOST: usize = 64;
+
 /// How many points a state check asks about containment before it walks
 /// the trees (module docs, "Containment first"): enough for the few
 /// components of a robot part; a soup's thousands wait for the walk.
@@ -693,6 +698,13 @@ impl SceneChecker {
         let size = self.body.reach + t.abs().max_element();
         let body_box = self.body.obbs().first();
         let mut candidates = Vec::new();
+        // The box of the corners listed, and the body's triangles whose
+        // boxes meet it, listed once at the first segment (module docs of
+        // `body::winding`, "Segments between points"): every segment runs
+        // between two of those corners, inside that box.
+        let corner = |k: usize| self.scene.vertices[self.scene.components[k].1 as usize];
+        let region = Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
+        let mut listed: Option<Option<Vec<usize>>> = None;
         let mut out = Ok(false);
         for &k in &corners {
             number += 1;
@@ -702,7 +714,7 @@ impl SceneChecker {
             if number <= asked.start {
                 continue;
             }
-            let p = self.scene.vertices[self.scene.components[k].1 as usize];
+            let p = corner(k);
             let back = mi * (p - t);
             let back_pad = back_pad(size, pad, p, t);
             if filter && body_box.is_some_and(|o| o.excludes(back, back_pad)) {
@@ -731,7 +743,10 @@ impl SceneChecker {
                         .iter()
                         .filter(|&&c| (placed.component_box)(c as usize).meets(&segment)),
                 );
-                placed.windings_along(&candidates, k, p, parity)
+                let list = listed.get_or_insert_with(|| {
+                    placed.triangles_meeting(&region, TRIANGLES_LISTED_MOST)
+                });
+                placed.windings_along(&candidates, k, p, list.as_deref(), parity)
             });
             let windings = match along {
                 Some(w) => Some(w),
