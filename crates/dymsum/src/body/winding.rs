@@ -73,7 +73,13 @@
 //! and each segment between two of those points reads the list instead of
 //! walking the tree: a triangle the segment crosses has a point in the
 //! segment's box, which lies in the points' box, so its box (which holds
-//! it) meets that box and it is listed.
+//! it) meets that box and it is listed; those whose boxes miss the
+//! segment's are skipped, as the tree's walk skips them (a far triangle
+//! in the plane of both ends would make the segment degenerate). An
+//! independent review (2026-12-01) checked that every segment's ends are
+//! corners of the list's box, that every crossed triangle is listed, and
+//! the bound's stop at 64 and 65; its remark, the skipping above, is
+//! applied.
 //!
 //! A point is *known* when its windings were found by a ray or a segment,
 //! or when the grid says it is outside (every source winds zero times
@@ -387,8 +393,9 @@ where
     /// the segment is degenerate.
     ///
     /// With `listed`, the triangles are taken from that list instead of the
-    /// tree: it must hold every triangle whose box meets the segment's
-    /// ([`Placed::triangles_meeting`] of a box holding both ends).
+    /// tree (those whose boxes meet the segment's, as the walk would reach
+    /// them): it must hold every one of those ([`Placed::triangles_meeting`]
+    /// of a box holding both ends).
     pub(crate) fn windings_along(
         &self,
         candidates: &[u32],
@@ -465,7 +472,13 @@ where
             }
         };
         match listed {
-            Some(list) => list.iter().for_each(|&t| count(t)),
+            // Those whose boxes meet the segment's, as the tree's walk
+            // reaches: a far triangle in the plane of both ends would call
+            // the segment degenerate.
+            Some(list) => list
+                .iter()
+                .filter(|&&t| (self.item_box)(t).meets(&segment))
+                .for_each(|&t| count(t)),
             None => {
                 body.tree()
                     .for_each_meeting_with(&self.node_box, &self.item_box, &segment, count)
@@ -680,5 +693,47 @@ mod tests {
                 &mut Vec::new()
             )
             .is_none());
+    }
+
+    /// A listed triangle far along a segment's own plane must not make it
+    /// degenerate (the tree's walk never reaches it): an L-shaped prism,
+    /// and a segment inside it level with the inner wall at `y = 1`.
+    #[test]
+    fn a_listed_far_face_in_the_segments_plane_is_skipped() {
+        let l = [
+            [0.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 3.0],
+            [0.0, 3.0],
+        ];
+        let mut vertices: Vec<[f64; 3]> = l.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        vertices.extend(l.iter().map(|p| [p[0], p[1], 1.0]));
+        let mut faces = vec![vec![6, 7, 8, 9, 10, 11], vec![0, 5, 4, 3, 2, 1]];
+        for a in 0..6 {
+            let b = (a + 1) % 6;
+            faces.push(vec![a, b, b + 6, a + 6]);
+        }
+        let body = MeshBody::new(&PolygonMesh::new(vertices, faces)).unwrap();
+        let placed = body.unposed();
+        let mut parity = Vec::new();
+        let (p0, p) = (DVec3::new(0.5, 1.0, 0.5), DVec3::new(0.7, 1.0, 0.5));
+        let at = placed
+            .windings_by_ray(&body.candidates_at(p0), p0, &mut parity)
+            .unwrap();
+        assert!(some_winds(&at));
+        let from = Known {
+            at: p0,
+            windings: at,
+        };
+        let all = body.solid_components.clone();
+        let region = Aabb {
+            lo: [0.0; 3],
+            hi: [3.0, 3.0, 1.0],
+        };
+        let list = placed.triangles_meeting(&region, usize::MAX).unwrap();
+        let along = placed.windings_along(&all, &from, p, Some(&list), &mut parity);
+        assert_eq!(along.map(normal), Some(normal(from.windings.clone())));
     }
 }
