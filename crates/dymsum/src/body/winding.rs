@@ -549,29 +549,14 @@ mod tests {
     }
 
     /// Appends the box `[lo, hi]` (per axis) to a mesh, outward or inward
-    /// (an inward shell winds −1 about its inside), every corner turned by
-    /// `turn` (a generic turn: few segments lie in a face's plane).
+    /// (an inward shell winds −1 about its inside; `inside_grid`'s
+    /// `push_box`), every corner then turned by `turn` (a generic turn: few
+    /// segments lie in a face's plane).
     fn push_box(m: &mut PolygonMesh, lo: [f64; 3], hi: [f64; 3], outward: bool, turn: glam::DMat3) {
-        const OUT: [[usize; 4]; 6] = [
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-        ];
-        let base = m.vertices.len();
-        for i in 0..8 {
-            let pick = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-            m.vertices
-                .push((turn * DVec3::new(pick(0), pick(1), pick(2))).to_array());
-        }
-        for f in OUT {
-            let mut f: Vec<usize> = f.iter().map(|v| v + base).collect();
-            if !outward {
-                f.reverse();
-            }
-            m.faces.push(f);
+        let from = m.vertices.len();
+        crate::body::inside_grid::tests::push_box(m, lo, hi, outward, 1);
+        for v in &mut m.vertices[from..] {
+            *v = (turn * DVec3::from(*v)).to_array();
         }
     }
 
