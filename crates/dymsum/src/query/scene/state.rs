@@ -698,12 +698,11 @@ impl SceneChecker {
         let size = self.body.reach + t.abs().max_element();
         let body_box = self.body.obbs().first();
         let mut candidates = Vec::new();
-        // The box of the corners listed, and the body's triangles whose
-        // boxes meet it, listed once at the first segment (module docs of
+        // The body's triangles whose boxes meet the box of the corners
+        // listed, listed once at the first segment (module docs of
         // `body::winding`, "Segments between points"): every segment runs
         // between two of those corners, inside that box.
         let corner = |k: usize| self.scene.vertices[self.scene.components[k].1 as usize];
-        let region = Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
         let mut listed: Option<Option<Vec<usize>>> = None;
         let mut out = Ok(false);
         for &k in &corners {
@@ -744,6 +743,7 @@ impl SceneChecker {
                         .filter(|&&c| (placed.component_box)(c as usize).meets(&segment)),
                 );
                 let list = listed.get_or_insert_with(|| {
+                    let region = Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
                     placed.triangles_meeting(&region, TRIANGLES_LISTED_MOST)
                 });
                 placed.windings_along(&candidates, k, p, list.as_deref(), parity)
