@@ -715,6 +715,25 @@ impl PyMotionChecker {
         self.inner.steps()
     }
 
+    /// How the containment tests of all queries so far decided their
+    /// points (triangles only; ``None`` on the convex path): a dict with
+    /// ``by_grid``, ``by_segment`` (from the point decided before),
+    /// ``by_ray`` and ``segment_fallbacks`` (segments that met an edge or a
+    /// plane and gave way to a ray; every method is exact).
+    #[getter]
+    fn containment_stats<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Validator::Mesh(c) = &self.inner else {
+            return Ok(None);
+        };
+        let s = c.containment_stats();
+        let d = PyDict::new(py);
+        d.set_item("by_grid", s.by_grid)?;
+        d.set_item("by_segment", s.by_segment)?;
+        d.set_item("by_ray", s.by_ray)?;
+        d.set_item("segment_fallbacks", s.segment_fallbacks)?;
+        Ok(Some(d))
+    }
+
     /// A cheap refutation before a certificate: the ``t`` of the first
     /// pose at ``k / segments`` (``0 < k < segments``) of the motion from
     /// ``pose0`` to ``pose1`` (the poses ``check`` checks), visited in

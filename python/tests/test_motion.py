@@ -229,3 +229,34 @@ def test_obstacle_forms():
         c = dymsum.check_motion(box, obstacles, None, end)
         assert not c.free and abs(c.t_contact - 0.4499) <= 1e-6, obstacles
     assert dymsum.check_motion(box, (BLOCK + [0, 5, 0], BLOCK - [0, 5, 0]), None, end).free
+
+
+def box_triangles(lo, hi, outward=True):
+    """The box ``[lo, hi]`` as 12 triangles, outward (or inward: a cavity's
+    wall), its corners numbered as ``cuboid``'s."""
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    tris = np.array([t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))])
+    return cuboid(lo, hi), tris if outward else tris[:, ::-1].copy()
+
+
+def joined(*meshes):
+    vs, fs, base = [], [], 0
+    for v, f in meshes:
+        vs.append(v)
+        fs.append(f + base)
+        base += len(v)
+    return np.vstack(vs), np.vstack(fs)
+
+
+def test_containment_stats_count_how_points_were_decided():
+    """Five specks in a box's cavity, close to one wall (one grid cell that
+    meets the wall): the first is decided by a ray, the next four by
+    segments from the point before; the convex path has no such tests."""
+    shell = joined(box_triangles([0] * 3, [10] * 3), box_triangles([1] * 3, [9] * 3, outward=False))
+    specks = joined(*(box_triangles(lo, lo + 1e-4) for lo in (np.array([1.001, 5 + 3e-4 * i, 5.0]) for i in range(5))))
+    checker = dymsum.MotionChecker(specks, [shell])
+    assert checker.info["path"] == "triangles"
+    assert checker.containment_stats == {"by_grid": 0, "by_segment": 0, "by_ray": 0, "segment_fallbacks": 0}
+    assert not checker.collides_at(np.eye(4))
+    assert checker.containment_stats == {"by_grid": 0, "by_segment": 4, "by_ray": 1, "segment_fallbacks": 0}
+    assert dymsum.MotionChecker(CUBE, [CUBE + 5]).containment_stats is None

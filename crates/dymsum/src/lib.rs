@@ -65,8 +65,8 @@ pub use kernel::rotation::{Pose, Rotation};
 pub use mesh::PolygonMesh;
 pub use polytope::{Polytope, PolytopeError};
 pub use query::{
-    CObstacle, Contact, ContactTracker, ConvexPair, ConvexUnion, Proximity, QueryError, QueryStats,
-    Separation,
+    CObstacle, Contact, ContactTracker, ContainmentStats, ConvexPair, ConvexUnion, Proximity,
+    QueryError, QueryStats, Separation,
 };
 pub use sanity::SanityError;
 pub use solid::{check_solid_mesh, SolidError};

@@ -22,6 +22,7 @@ pub(crate) use ladder::solid_shells;
 pub use ladder::{BodyOptions, BodyReport, Rung};
 pub use mesh::{MeshBody, MeshReport};
 pub use union::ConvexUnion;
+pub use winding::ContainmentStats;
 
 use crate::kernel::rotation::Pose;
 use crate::mesh::PolygonMesh;

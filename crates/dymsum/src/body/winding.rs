@@ -207,10 +207,15 @@ impl MeshBody {
         p: DVec3,
         known: &mut Option<Known>,
         parity: &mut Vec<u8>,
+        tally: &mut ContainmentStats,
     ) -> Option<bool> {
         match self.inside_grid().classify(p, 0.0) {
-            Some(true) => Some(true),
+            Some(true) => {
+                tally.by_grid += 1;
+                Some(true)
+            }
             Some(false) => {
+                tally.by_grid += 1;
                 *known = Some(Known::outside(p));
                 Some(false)
             }
@@ -227,7 +232,7 @@ impl MeshBody {
                         });
                     placed.windings_along(&candidates, k, p, None, parity)
                 });
-                let windings = match along {
+                let windings = match tally.count(from.is_some(), along) {
                     Some(w) => w,
                     None => placed.windings_by_ray(&self.candidates_at(p), p, parity)?,
                 };
@@ -289,6 +294,51 @@ pub(crate) type Windings = Vec<(u32, i64)>;
 /// Whether some source winds about the point: it lies inside a solid.
 pub(crate) fn some_winds(w: &Windings) -> bool {
     w.iter().any(|e| e.1 != 0)
+}
+
+/// How the containment tests of a [`SceneChecker`]'s queries decided their
+/// points ([`SceneChecker::containment_stats`]): every method is exact, so
+/// none of these is a fallback from a guess; they say where the time goes.
+///
+/// [`SceneChecker`]: crate::query::SceneChecker
+/// [`SceneChecker::containment_stats`]: crate::query::SceneChecker::containment_stats
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ContainmentStats {
+    /// Points the inside grid decided (a cell wholly inside or outside).
+    pub by_grid: u64,
+    /// Points decided by the segment from the point decided before them
+    /// (module docs, "Segments between points").
+    pub by_segment: u64,
+    /// Points decided by a ray of their own: those no segment was tried
+    /// for, and those of [`ContainmentStats::segment_fallbacks`].
+    pub by_ray: u64,
+    /// Segments that were degenerate (they met a triangle's edge or
+    /// vertex, or lay in its plane), their point then decided by a ray.
+    pub segment_fallbacks: u64,
+}
+
+impl ContainmentStats {
+    /// Counts a point past the grid: whether a segment was tried, and what
+    /// it gave (`None`: the point goes on to a ray), passed through.
+    pub(crate) fn count(&mut self, tried: bool, along: Option<Windings>) -> Option<Windings> {
+        match (&along, tried) {
+            (Some(_), _) => self.by_segment += 1,
+            (None, true) => {
+                self.segment_fallbacks += 1;
+                self.by_ray += 1;
+            }
+            (None, false) => self.by_ray += 1,
+        }
+        along
+    }
+
+    /// The two tallies added.
+    pub(crate) fn add(&mut self, other: &ContainmentStats) {
+        self.by_grid += other.by_grid;
+        self.by_segment += other.by_segment;
+        self.by_ray += other.by_ray;
+        self.segment_fallbacks += other.segment_fallbacks;
+    }
 }
 
 /// A point on none of the body's triangles and its [`Windings`]: where the
@@ -509,8 +559,13 @@ mod tests {
     }
 
     fn inside(body: &MeshBody, p: [f64; 3]) -> bool {
-        body.inside_solid(p.into(), &mut None, &mut Vec::new())
-            .unwrap()
+        body.inside_solid(
+            p.into(),
+            &mut None,
+            &mut Vec::new(),
+            &mut ContainmentStats::default(),
+        )
+        .unwrap()
     }
 
     #[test]
@@ -649,7 +704,12 @@ mod tests {
                     windings: known.windings.clone(),
                 });
                 assert_eq!(
-                    body.inside_solid(p, &mut carried, &mut parity),
+                    body.inside_solid(
+                        p,
+                        &mut carried,
+                        &mut parity,
+                        &mut ContainmentStats::default()
+                    ),
                     Some(some_winds(&expected))
                 );
                 assert!(parity.iter().all(|&x| x == 0));
@@ -720,5 +780,74 @@ mod tests {
         let list = placed.triangles_meeting(&region, usize::MAX).unwrap();
         let along = placed.windings_along(&all, &from, p, Some(&list), &mut parity);
         assert_eq!(along.map(normal), Some(normal(from.windings.clone())));
+    }
+
+    /// A box with a cubic cavity, and a body of tiny cubes (one solid each)
+    /// at `lows` (their lowest corners), as a scene checker sees them.
+    fn cavity_and_specks(lows: &[[f64; 3]]) -> crate::query::SceneChecker {
+        let id = glam::DMat3::IDENTITY;
+        let mut scene = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut scene, [0.0; 3], [10.0; 3], true, id);
+        push_box(&mut scene, [1.0; 3], [9.0; 3], false, id);
+        let mut specks = PolygonMesh::new(Vec::new(), Vec::new());
+        for lo in lows {
+            push_box(&mut specks, *lo, lo.map(|x| x + 1e-4), true, id);
+        }
+        let (body, scene) = (
+            MeshBody::new(&specks).unwrap(),
+            MeshBody::new(&scene).unwrap(),
+        );
+        crate::query::SceneChecker::new(&body, &[scene]).unwrap()
+    }
+
+    /// The containment counters: specks in the cavity close to one wall
+    /// (one grid cell, which meets the wall, so the grid cannot decide)
+    /// take a ray for the first and a segment for each next one.
+    #[test]
+    fn specks_by_a_cavity_wall_are_decided_by_one_ray_and_segments() {
+        let lows: Vec<[f64; 3]> = (0..5)
+            .map(|i| [1.001, 5.0 + 3e-4 * f64::from(i), 5.0])
+            .collect();
+        let checker = cavity_and_specks(&lows);
+        assert!(!checker
+            .collides_at(crate::kernel::rotation::Pose::new(
+                crate::kernel::rotation::Rotation::IDENTITY,
+                DVec3::ZERO
+            ))
+            .unwrap());
+        let stats = checker.containment_stats();
+        assert_eq!(
+            stats,
+            ContainmentStats {
+                by_grid: 0,
+                by_segment: 4,
+                by_ray: 1,
+                segment_fallbacks: 0
+            }
+        );
+    }
+
+    /// A segment through the centre of a cavity's face (on the diagonal
+    /// that splits it into triangles) is degenerate: its end is decided by
+    /// a ray, and the fallback is counted.
+    #[test]
+    fn a_segment_through_a_faces_diagonal_falls_back_to_a_ray_and_is_counted() {
+        let checker = cavity_and_specks(&[[1.001, 5.0, 5.0], [0.9995, 5.0, 5.0]]);
+        assert!(checker
+            .collides_at(crate::kernel::rotation::Pose::new(
+                crate::kernel::rotation::Rotation::IDENTITY,
+                DVec3::ZERO
+            ))
+            .unwrap());
+        let stats = checker.containment_stats();
+        assert_eq!(
+            stats,
+            ContainmentStats {
+                by_grid: 0,
+                by_segment: 0,
+                by_ray: 2,
+                segment_fallbacks: 1
+            }
+        );
     }
 }

@@ -156,7 +156,7 @@ mod union;
 
 pub use cobstacle::slabs;
 
-pub use crate::body::ConvexUnion;
+pub use crate::body::{ContainmentStats, ConvexUnion};
 pub use answer::{Contact, FeaturePair, Proximity, Separation};
 pub use checker::{Checker, MotionCheck};
 pub use cobstacle::halfspaces::HalfSpaces;

@@ -24,7 +24,7 @@ use std::sync::Mutex;
 
 use glam::DVec3;
 
-use crate::body::MeshBody;
+use crate::body::{ContainmentStats, MeshBody};
 use crate::kernel::rotation::Pose;
 use crate::query::checker::{Checker, MotionCheck};
 use crate::query::error::MotionError;
@@ -384,6 +384,9 @@ pub(super) struct Scratch {
     /// The scene triangles met in the body's frame over an interval
     /// (`super::sweep`, "In the body's frame").
     pub(super) relative: RelativeTriangles,
+    /// How this scratch's containment tests decided their points since it
+    /// was last given back.
+    pub(super) tally: ContainmentStats,
 }
 
 /// A body and a scene prepared for many state and motion checks (a
@@ -433,6 +436,8 @@ pub struct SceneChecker {
     /// a state check whose roots are apart). Hence the lint's exception.
     #[allow(clippy::vec_box)]
     pub(super) pool: Mutex<Vec<Box<Scratch>>>,
+    /// The scratches' containment tallies, added as each is given back.
+    pub(super) containment: Mutex<ContainmentStats>,
 }
 
 impl std::fmt::Debug for SceneChecker {
@@ -490,6 +495,7 @@ impl SceneChecker {
             budget: DEFAULT_BUDGET,
             steps: AtomicU64::new(0),
             pool: Mutex::new(Vec::new()),
+            containment: Mutex::new(ContainmentStats::default()),
         })
     }
 
@@ -530,7 +536,32 @@ impl SceneChecker {
             .unwrap_or_default()
     }
 
-    pub(super) fn give_back(&self, s: Box<Scratch>) {
+    /// How the containment tests of all queries so far decided their
+    /// points (those of queries still running are added when they end).
+    ///
+    /// ```
+    /// use dymsum::query::{MeshBody, SceneChecker};
+    /// use dymsum::robot::shapes::box_mesh;
+    /// use dymsum::{DVec3, Pose, Rotation};
+    /// let cube = |side: f64| MeshBody::new(&box_mesh(DVec3::splat(side)));
+    /// // A small cube well inside a large one: a containment question.
+    /// let checker = SceneChecker::new(&cube(0.1)?, &[cube(10.0)?])?;
+    /// assert!(checker.collides_at(Pose::new(Rotation::IDENTITY, DVec3::ZERO))?);
+    /// let stats = checker.containment_stats();
+    /// assert!(stats.by_grid + stats.by_segment + stats.by_ray >= 1);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn containment_stats(&self) -> ContainmentStats {
+        self.containment.lock().map(|t| *t).unwrap_or_default()
+    }
+
+    pub(super) fn give_back(&self, mut s: Box<Scratch>) {
+        if s.tally != ContainmentStats::default() {
+            if let Ok(mut t) = self.containment.lock() {
+                t.add(&s.tally);
+            }
+            s.tally = ContainmentStats::default();
+        }
         if let Ok(mut p) = self.pool.lock() {
             p.push(s);
         }

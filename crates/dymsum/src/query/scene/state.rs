@@ -601,7 +601,7 @@ impl SceneChecker {
                 if scene_box.is_some_and(|o| o.excludes(p, 0.0)) {
                     return None;
                 }
-                match self.scene.inside_solid(p, &mut known, parity) {
+                match self.scene.inside_solid(p, &mut known, parity, &mut s.tally) {
                     Some(true) => Some(Ok(true)),
                     Some(false) => None,
                     None => Some(Err(undecided(p))),
@@ -720,6 +720,7 @@ impl SceneChecker {
                 continue;
             }
             if let Some(inside) = grid.and_then(|g| g.classify(back, back_pad)) {
+                s.tally.by_grid += 1;
                 if inside {
                     out = Ok(true);
                     break;
@@ -748,7 +749,7 @@ impl SceneChecker {
                 });
                 placed.windings_along(&candidates, k, p, list.as_deref(), parity)
             });
-            let windings = match along {
+            let windings = match s.tally.count(from.is_some(), along) {
                 Some(w) => Some(w),
                 None => {
                     candidates.clear();
@@ -1090,7 +1091,7 @@ mod tests {
                 let p = s.at.get(&checker.body.vertices, &pose, v);
                 checker
                     .scene
-                    .inside_solid(p, &mut None, &mut parity)
+                    .inside_solid(p, &mut None, &mut parity, &mut Default::default())
                     .unwrap()
             });
             let corners = checker.body.components.len()..usize::MAX;
