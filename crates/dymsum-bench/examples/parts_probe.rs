@@ -8,7 +8,8 @@
 //! states' checks again, each alone in `replay`, for a profiler's toggle;
 //! `MIDDLE=k`: the k states nearest the median time, likewise; `SEED=s`:
 //! another sample of pairs; `KIND=random` or `KIND=near`: those states
-//! alone; `VERDICTS` set: the medians split by dymsum's answer).
+//! alone; `VERDICTS` set: the medians split by dymsum's answer; `STATS`
+//! set: the containment tests' counts).
 
 use std::time::Instant;
 
@@ -159,6 +160,11 @@ fn main() {
                         );
                     }
                 }
+            }
+            // `STATS` set: how the containment tests decided their points
+            // (counted since the checker was made).
+            if std::env::var("STATS").is_ok() {
+                println!("{what}: containment {:?}", checker.containment_stats());
             }
             let (m1, m2) = (quantile(&mut ours, 0.5), quantile(&mut theirs, 0.5));
             let (q1, q2) = (quantile(&mut ours, 0.99), quantile(&mut theirs, 0.99));

@@ -75,6 +75,9 @@ pub(crate) struct InsideGrid {
     /// The cells' planes along each axis, nondecreasing: cell `i` along
     /// axis `k` is `[planes[k][i], planes[k][i + 1]]`.
     planes: [Vec<f64>; 3],
+    /// Cells per unit length along each axis (`n / (planes[n] − planes[0])`:
+    /// [`InsideGrid::guess`]'s scale, computed once).
+    scale: [f64; 3],
     /// Each cell's class (`UNKNOWN`, `OUTSIDE`, `INSIDE`), `x` fastest.
     cells: Vec<u8>,
 }
@@ -122,8 +125,10 @@ impl InsideGrid {
             p[n] = hi[k];
             p
         });
+        let scale = [0, 1, 2].map(|k| counts[k] as f64 / (planes[k][counts[k]] - planes[k][0]));
         let mut grid = InsideGrid {
             planes,
+            scale,
             cells: vec![EMPTY; counts.iter().product()],
         };
         let mag = lo.abs().max(hi.abs());
@@ -156,8 +161,8 @@ impl InsideGrid {
     /// exactly evenly spaced (a start, settled by comparing with them).
     fn guess(&self, k: usize, x: f64) -> usize {
         let p = &self.planes[k];
-        let n = p.len() - 1;
-        ((x - p[0]) * (n as f64 / (p[n] - p[0]))).clamp(0.0, (n - 1) as f64) as usize
+        // `as` saturates (NaN to 0); a signed conversion is the cheaper.
+        (((x - p[0]) * self.scale[k]) as i64).clamp(0, p.len() as i64 - 2) as usize
     }
 
     /// The cells along axis `k` that meet `[lo, hi]` (`from > to` when

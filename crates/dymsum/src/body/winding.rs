@@ -81,6 +81,23 @@
 //! the bound's stop at 64 and 65; its remark, the skipping above, is
 //! applied.
 //!
+//! A listed triangle keeps its corners as posed for the list (the floats
+//! every segment's signs read, posed once) and the last point whose side
+//! of its plane was found, with that side: consecutive segments share an
+//! end, and the side is a function of the corners and the point's
+//! coordinates alone, so it is read back for a point equal to that one
+//! and found afresh for any other. Where many segments will read the list
+//! (`query::scene::state`: more than eight corners), the triangles whose
+//! planes have all eight corners of the list's box strictly on one side
+//! (exact signs) are dropped from it: every segment lies in that box, so
+//! it misses each of them, and a miss adds nothing. Test:
+//! `a_list_read_by_a_chain_of_segments_gives_the_rays_windings` (it fails
+//! when a side is read for another point, and when a cutting plane is
+//! dropped). On a Centauro head base (mm) against a Cassie hip pitch link
+//! (m, 47 solids, all in one head cell that meets its surface) this took
+//! the slowest random states from about 1.07 M instructions to about 0.5 M
+//! (docs/BENCHMARKS.md, "One list, posed once").
+//!
 //! A point is *known* when its windings were found by a ray or a segment,
 //! or when the grid says it is outside (every source winds zero times
 //! there: a classified cell's answer holds for its points,
@@ -164,6 +181,12 @@ enum Crossing {
 
 fn crossing(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Crossing {
     let (sp, sq) = (orient(t[0], t[1], t[2], p), orient(t[0], t[1], t[2], q));
+    crossing_on_sides(p, q, t, sp, sq)
+}
+
+/// [`crossing`] given the sides of `t`'s plane that `p` and `q` lie on
+/// (`orient(t, p)` and `orient(t, q)`).
+fn crossing_on_sides(p: DVec3, q: DVec3, t: [DVec3; 3], sp: Sign, sq: Sign) -> Crossing {
     if sp == Sign::Zero && sq == Sign::Zero {
         // A triangle that posing rounded to collinear corners has no
         // inside to cross (its edges are other triangles' too, and they
@@ -368,6 +391,61 @@ pub(crate) fn segment_is_shorter(a: DVec3, p: DVec3, solids: &Aabb) -> bool {
     (p - a).abs().max_element() < exit
 }
 
+/// A triangle listed once for many segments ([`Placed::triangles_meeting`]):
+/// its index, its corners where the body stands (posed once), their box,
+/// and the last point whose side of its plane was found, with that side
+/// (consecutive segments share an end: its side is found once; a pure
+/// function of the corners and the point's coordinates, so a point with
+/// the same coordinates has the same side).
+pub(crate) struct Listed {
+    t: usize,
+    corners: [DVec3; 3],
+    bounds: Aabb,
+    side: std::cell::Cell<(DVec3, Sign)>,
+}
+
+impl Listed {
+    /// [`crossing`] of the segment from `p` to `q`, the side of `p` read
+    /// from the last asking where it was that one's `q`.
+    fn crossing(&self, p: DVec3, q: DVec3) -> Crossing {
+        let t = self.corners;
+        let (last, side) = self.side.get();
+        let sp = if last == p {
+            side
+        } else {
+            orient(t[0], t[1], t[2], p)
+        };
+        let sq = orient(t[0], t[1], t[2], q);
+        self.side.set((q, sq));
+        crossing_on_sides(p, q, t, sp, sq)
+    }
+}
+
+/// Drops from `list` the triangles whose plane has every corner of
+/// `region` strictly on one side (exact signs): no segment inside `region`
+/// meets such a triangle, so each of its segments' crossings with it would
+/// be a miss (module docs, "Segments between points"). Eight signs a
+/// triangle, found once, where each segment would find one or two.
+pub(crate) fn keep_planes_cutting(list: &mut Vec<Listed>, region: &Aabb) {
+    let corners: [DVec3; 8] = std::array::from_fn(|k| {
+        DVec3::from([0, 1, 2].map(|a| {
+            if k >> a & 1 == 0 {
+                region.lo[a]
+            } else {
+                region.hi[a]
+            }
+        }))
+    });
+    list.retain(|l| {
+        let t = l.corners;
+        let first = orient(t[0], t[1], t[2], corners[0]);
+        first == Sign::Zero
+            || corners[1..]
+                .iter()
+                .any(|&c| orient(t[0], t[1], t[2], c) != first)
+    });
+}
+
 /// A body where it stands: its vertex `v` at `vertex(v)`, and boxes holding
 /// what its tree's node `n`, triangle `t` and component `c` hold there:
 /// `node_box(n)`, `item_box(t)`, `component_box(c)` (boxes larger than the
@@ -451,7 +529,7 @@ where
         candidates: &[u32],
         from: &Known,
         p: DVec3,
-        listed: Option<&[usize]>,
+        listed: Option<&[Listed]>,
         parity: &mut Vec<u8>,
     ) -> Option<Windings> {
         let mut windings = from.windings.clone();
@@ -459,15 +537,22 @@ where
             .then_some(windings)
     }
 
-    /// The triangles whose boxes meet `region`, or `None` where there are
-    /// more than `most`.
-    pub(crate) fn triangles_meeting(&self, region: &Aabb, most: usize) -> Option<Vec<usize>> {
+    /// The triangles whose boxes meet `region`, with their corners where
+    /// the body stands, or `None` where there are more than `most`.
+    pub(crate) fn triangles_meeting(&self, region: &Aabb, most: usize) -> Option<Vec<Listed>> {
         let mut listed = Vec::new();
         let mut within = true;
         self.body
             .tree()
             .meeting_while(&self.node_box, &self.item_box, region, |t| {
-                listed.push(t);
+                let corners = self.body.triangles[t].map(&self.vertex);
+                listed.push(Listed {
+                    t,
+                    corners,
+                    bounds: Aabb::of(corners.map(|c| c.to_array())),
+                    // No point yet (NaN equals nothing).
+                    side: std::cell::Cell::new((DVec3::NAN, Sign::Zero)),
+                });
                 within = listed.len() <= most;
                 within
             });
@@ -486,7 +571,7 @@ where
         p: DVec3,
         q: DVec3,
         sign: i64,
-        listed: Option<&[usize]>,
+        listed: Option<&[Listed]>,
         windings: &mut Windings,
         parity: &mut Vec<u8>,
     ) -> bool {
@@ -502,13 +587,12 @@ where
             lo: p.min(q).to_array(),
             hi: p.max(q).to_array(),
         };
-        let mut count = |t: usize| {
+        let mut count = |t: usize, cross: &dyn Fn() -> Crossing| {
             let c = body.component_of[t] as usize;
             if degenerate || parity[c] == 0 {
                 return;
             }
-            let tri = body.triangles[t].map(&self.vertex);
-            match crossing(p, q, tri) {
+            match cross() {
                 Crossing::Crosses(positive) => {
                     let w = i64::from(body.weights[t]) * if positive { sign } else { -sign };
                     let source = body.source_of[c];
@@ -527,11 +611,13 @@ where
             // the segment degenerate.
             Some(list) => list
                 .iter()
-                .filter(|&&t| (self.item_box)(t).meets(&segment))
-                .for_each(|&t| count(t)),
+                .filter(|l| l.bounds.meets(&segment))
+                .for_each(|l| count(l.t, &|| l.crossing(p, q))),
             None => {
                 body.tree()
-                    .for_each_meeting_with(&self.node_box, &self.item_box, &segment, count)
+                    .for_each_meeting_with(&self.node_box, &self.item_box, &segment, |t| {
+                        count(t, &|| crossing(p, q, body.triangles[t].map(&self.vertex)))
+                    })
             }
         }
         for &c in candidates {
@@ -622,6 +708,99 @@ mod tests {
         w
     }
 
+    /// A joined body of two sources, its boxes' corners turned by `turn`.
+    /// Source 0: a box with a cavity, an overlapping box (winding 2 where
+    /// they overlap), and an inward shell apart. Source 1: a box around the
+    /// inward shell and part of the rest.
+    fn two_sources(turn: glam::DMat3) -> MeshBody {
+        let mut a = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut a, [0.0; 3], [4.0; 3], true, turn);
+        push_box(&mut a, [1.0; 3], [2.0; 3], false, turn);
+        push_box(&mut a, [3.0, 3.0, 0.5], [6.0, 5.0, 2.0], true, turn);
+        push_box(&mut a, [7.0, 0.0, 0.0], [8.0, 1.0, 1.0], false, turn);
+        let mut b = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut b, [3.5, -0.5, -0.5], [8.5, 1.5, 1.5], true, turn);
+        MeshBody::join(&[MeshBody::new(&a).unwrap(), MeshBody::new(&b).unwrap()])
+    }
+
+    /// Module docs, "Segments between points": one list made for a small
+    /// box, read by a chain of segments between points in it (each
+    /// triangle's side of the last end carried to the next segment), and
+    /// the same list without the triangles whose planes clear the box
+    /// (`keep_planes_cutting`), give each point the ray's windings. Fails
+    /// when a carried side is read for another point, and when the planes
+    /// kept are the wrong ones.
+    #[test]
+    fn a_list_read_by_a_chain_of_segments_gives_the_rays_windings() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(36);
+        let (mut along, mut listed, mut kept) = (0, 0, 0);
+        for round in 0..60 {
+            let turn = glam::DMat3::from_quat(glam::DQuat::from_euler(
+                glam::EulerRot::XYZ,
+                rng.random_range(-3.0..3.0),
+                rng.random_range(-3.0..3.0),
+                rng.random_range(-3.0..3.0),
+            ));
+            let body = two_sources(if round % 3 == 0 {
+                glam::DMat3::IDENTITY
+            } else {
+                turn
+            });
+            let placed = body.unposed();
+            let mut parity = Vec::new();
+            let all: Vec<u32> = body.solid_components.clone();
+            // A box of side 0.2 to 2 about the cavity's, the overlap's and
+            // the inward shell's walls.
+            let centre = DVec3::new(
+                rng.random_range(0.5..8.5),
+                rng.random_range(-0.5..5.0),
+                rng.random_range(-0.5..2.5),
+            );
+            let half = DVec3::splat(rng.random_range(0.1..1.0));
+            let points: Vec<DVec3> = (0..30)
+                .map(|_| {
+                    centre
+                        + half
+                            * DVec3::new(
+                                rng.random_range(-1.0..1.0),
+                                rng.random_range(-1.0..1.0),
+                                rng.random_range(-1.0..1.0),
+                            )
+                })
+                .collect();
+            let region = Aabb::of(points.iter().map(|p| p.to_array()));
+            let whole = placed.triangles_meeting(&region, usize::MAX).unwrap();
+            let mut culled = placed.triangles_meeting(&region, usize::MAX).unwrap();
+            keep_planes_cutting(&mut culled, &region);
+            listed += whole.len();
+            kept += culled.len();
+            let ray = |p: DVec3, parity: &mut Vec<u8>| {
+                placed.windings_by_ray(&body.candidates_at(p), p, parity)
+            };
+            for list in [&whole, &culled] {
+                let mut known = Known {
+                    at: points[0],
+                    windings: ray(points[0], &mut parity).unwrap(),
+                };
+                for &p in &points[1..] {
+                    let expected = ray(p, &mut parity).expect("a generic point");
+                    if let Some(w) = placed.windings_along(&all, &known, p, Some(list), &mut parity)
+                    {
+                        along += 1;
+                        assert_eq!(normal(w), normal(expected.clone()), "round {round}");
+                    }
+                    known = Known {
+                        at: p,
+                        windings: expected,
+                    };
+                }
+            }
+        }
+        assert!(along > 3_000, "{along} segments decided");
+        assert!(kept < listed, "{kept} of {listed} triangles kept");
+    }
+
     /// Module docs, "Segments between points": the windings carried along
     /// a segment from a known point are the ray's at its end, for every
     /// source of a joined body (nested shells, a cavity, an inward shell,
@@ -645,17 +824,7 @@ mod tests {
                     rng.random_range(-3.0..3.0),
                 ))
             };
-            // Source 0: a box with a cavity, an overlapping box (winding 2
-            // where they overlap), and an inward shell apart.
-            let mut a = PolygonMesh::new(Vec::new(), Vec::new());
-            push_box(&mut a, [0.0; 3], [4.0; 3], true, turn);
-            push_box(&mut a, [1.0; 3], [2.0; 3], false, turn);
-            push_box(&mut a, [3.0, 3.0, 0.5], [6.0, 5.0, 2.0], true, turn);
-            push_box(&mut a, [7.0, 0.0, 0.0], [8.0, 1.0, 1.0], false, turn);
-            // Source 1: a box around the inward shell and part of the rest.
-            let mut b = PolygonMesh::new(Vec::new(), Vec::new());
-            push_box(&mut b, [3.5, -0.5, -0.5], [8.5, 1.5, 1.5], true, turn);
-            let body = MeshBody::join(&[MeshBody::new(&a).unwrap(), MeshBody::new(&b).unwrap()]);
+            let body = two_sources(turn);
             let placed = body.unposed();
             let mut parity = Vec::new();
             let all: Vec<u32> = body.solid_components.clone();

@@ -243,7 +243,9 @@ use glam::{DMat3, DVec3};
 
 use super::checker::{cached, cells, triangle_box, SceneChecker, Scratch};
 
-use crate::body::winding::{segment_is_shorter, some_winds, Known, Placed};
+use crate::body::winding::{
+    keep_planes_cutting, segment_is_shorter, some_winds, Known, Listed, Placed,
+};
 use crate::kernel::rotation::Pose;
 use crate::kernel::separation::triangles_apart;
 use crate::query::checker::Checker;
@@ -256,6 +258,11 @@ use crate::solid::obb::pose_skew;
 /// made once, instead of walking the tree each ("Segments between points"
 /// in `body::winding`): where the corners spread wider, each walks.
 const TRIANGLES_LISTED_MOST: usize = 64;
+
+/// Past how many scene corners in reach the list's triangles whose planes
+/// clear the corners' box are dropped (`body::winding::keep_planes_cutting`:
+/// eight signs a triangle once, against one or two a segment).
+const CORNERS_TO_CULL_PLANES: usize = 8;
 
 /// How many points a state check asks about containment before it walks
 /// the trees (module docs, "Containment first"): enough for the few
@@ -703,7 +710,7 @@ impl SceneChecker {
         // `body::winding`, "Segments between points"): every segment runs
         // between two of those corners, inside that box.
         let corner = |k: usize| self.scene.vertices[self.scene.components[k].1 as usize];
-        let mut listed: Option<Option<Vec<usize>>> = None;
+        let mut listed: Option<Option<Vec<Listed>>> = None;
         let mut out = Ok(false);
         for &k in &corners {
             number += 1;
@@ -745,7 +752,15 @@ impl SceneChecker {
                 );
                 let list = listed.get_or_insert_with(|| {
                     let region = Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
-                    placed.triangles_meeting(&region, TRIANGLES_LISTED_MOST)
+                    let mut list = placed.triangles_meeting(&region, TRIANGLES_LISTED_MOST);
+                    // Where many segments will read it, the triangles
+                    // whose planes clear the corners' box are dropped.
+                    if corners.len() > CORNERS_TO_CULL_PLANES {
+                        if let Some(list) = &mut list {
+                            keep_planes_cutting(list, &region);
+                        }
+                    }
+                    list
                 });
                 placed.windings_along(&candidates, k, p, list.as_deref(), parity)
             });
