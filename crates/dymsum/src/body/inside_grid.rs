@@ -308,18 +308,25 @@ impl InsideGrid {
     /// classified cell (module docs, "Asking"); `None` otherwise.
     #[inline]
     pub(crate) fn classify(&self, x: DVec3, e: f64) -> Option<bool> {
+        if e == 0.0 {
+            return self.classify_box(x, x);
+        }
+        let w = DVec3::splat(2.0 * e) + 4.0 * f64::EPSILON * x.abs();
+        self.classify_box(x - w, x + w)
+    }
+
+    /// Whether every point of the box `[lo, hi]` of the body's frame lies
+    /// inside a solid, or every one outside, when the box lies in one
+    /// classified cell; `None` otherwise.
+    #[inline]
+    pub(crate) fn classify_box(&self, lo: DVec3, hi: DVec3) -> Option<bool> {
         if self.cells.is_empty() {
             return None;
         }
         let mut index = 0;
         let mut stride = 1;
         for k in 0..3 {
-            let (lo, hi) = if e == 0.0 {
-                (x[k], x[k])
-            } else {
-                let w = 2.0 * e + 4.0 * f64::EPSILON * x[k].abs();
-                (x[k] - w, x[k] + w)
-            };
+            let (lo, hi) = (lo[k], hi[k]);
             let p = &self.planes[k];
             let n = p.len() - 1;
             // The cell with `p[i] <= lo < p[i + 1]`, from the planes' even
