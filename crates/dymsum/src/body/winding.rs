@@ -93,10 +93,20 @@
 //! it misses each of them, and a miss adds nothing. Test:
 //! `a_list_read_by_a_chain_of_segments_gives_the_rays_windings` (it fails
 //! when a side is read for another point, and when a cutting plane is
-//! dropped). On a Centauro head base (mm) against a Cassie hip pitch link
-//! (m, 47 solids, all in one head cell that meets its surface) this took
-//! the slowest random states from about 1.07 M instructions to about 0.5 M
-//! (docs/BENCHMARKS.md, "One list, posed once").
+//! dropped; and `query::scene::state`'s
+//! `many_corners_by_a_face_read_one_culled_list` when the list is culled
+//! for a smaller box than the corners'). On a Centauro head base (mm)
+//! against a Cassie hip pitch link (m, 47 solids, all in one head cell
+//! that meets its surface) this took the slowest random states from about
+//! 1.07 M instructions to about 0.45 M (docs/BENCHMARKS.md, "One list,
+//! posed once, and the corners together"). An independent review
+//! (2026-12-01, sixth stop) checked that every segment's ends are corners
+//! of the list's box (the `known` of the scene-corner loop is only ever
+//! set to one of them), that a dropped triangle can only be missed, never
+//! met degenerately, and that the side read back is a pure function of
+//! equal coordinates (−0.0 and 0.0 alike; the NaN start equals nothing);
+//! its mutations of the side and of the culled box fail the tests, and its
+//! remark on this function's list contract is applied.
 //!
 //! A point is *known* when its windings were found by a ray or a segment,
 //! or when the grid says it is outside (every source winds zero times
@@ -522,8 +532,9 @@ where
     ///
     /// With `listed`, the triangles are taken from that list instead of the
     /// tree (those whose boxes meet the segment's, as the walk would reach
-    /// them): it must hold every one of those ([`Placed::triangles_meeting`]
-    /// of a box holding both ends).
+    /// them): it must hold every one of those whose planes cut a box
+    /// holding both ends ([`Placed::triangles_meeting`] of that box, then
+    /// perhaps [`keep_planes_cutting`] for it).
     pub(crate) fn windings_along(
         &self,
         candidates: &[u32],

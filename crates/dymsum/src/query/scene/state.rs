@@ -180,8 +180,10 @@
 //! Its wording remarks are applied.
 //!
 //! # The corners together
-//! Where at least [`CORNERS_TOGETHER`] scene corners are in the posed
-//! body's reach, the box `R` holding them (exact: their own coordinates'
+//! Where the grid is read at the pose at all (below: the matrix near a
+//! rotation, `det M > 0.5`) and at least [`CORNERS_TOGETHER`] scene corners
+//! are in the posed body's reach (the list cut at as many as the asking
+//! may reach), the box `R` holding them (exact: their own coordinates'
 //! least and greatest) is asked of the body's grid first, as a whole. Its
 //! eight corners are carried back as a single corner is, and their box
 //! grown by twice `back_pad` at their largest coordinates
@@ -192,14 +194,24 @@
 //! grown by `e₁ + e₂ ≤ back_pad`, and the growth by twice that covers the
 //! sides' own rounding. When that grown box lies in one classified cell,
 //! so does the box about each `B(p)`, and "The grid at a pose" gives each
-//! corner the cell's answer, exactly as asking it alone would: every
-//! corner asked is outside (the test goes on as if none were asked), or
-//! every one inside (a collision, if the asking includes one of them).
-//! Otherwise each corner is asked as before. On a Cassie hip pitch link
+//! corner the cell's answer, the exact one (asking a corner alone gives
+//! the same wherever it decides; where its own box leaves the cell and
+//! every ray is degenerate, it would have been an error): every corner
+//! asked is outside (the test goes on as if none were asked), or every
+//! one inside (a collision, if the asking includes one of them: test
+//! `the_corners_together_answer_only_for_the_corners_asked`). Otherwise
+//! each corner is asked as before. On a Cassie hip pitch link
 //! (47 solids, 0.25 long) inside the box of a Centauro head base (268
 //! long, in mm) the 47 corners are one question of the grid. Test:
 //! `the_corners_together_read_no_cell_the_rounding_may_leave` (it fails
-//! when the box is not grown).
+//! when the box is not grown). An independent review (2026-12-01, sixth
+//! stop) checked the asked range's arithmetic against the corner loop's
+//! numbering, the scratch left whole by the early return, the rounding
+//! argument (`back_pad` grows with the coordinates, so its value at the
+//! largest covers every corner), and that `InsideGrid::classify` computes
+//! the same box as before, bit for bit; its two coverage remarks are
+//! applied (the asked-range test above, and
+//! `many_corners_by_a_face_read_one_culled_list`), and its wording ones.
 //!
 //! # The body's components near the scene
 //! The containment test asks one vertex of every body component whether
@@ -991,6 +1003,102 @@ mod tests {
         assert!(
             colliding > 50 && answers - colliding > 50,
             "{colliding} of {answers}"
+        );
+    }
+
+    /// The corners together answer only for the corners the asking
+    /// includes: five scene cubes deep in a body's solid (one classified
+    /// cell) are inside when asked, and not when the asking starts past
+    /// them (the checker's second asking, after the first asked them).
+    #[test]
+    fn the_corners_together_answer_only_for_the_corners_asked() {
+        use crate::body::inside_grid::tests::push_box;
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut m, [0.0; 3], [9.0; 3], true, 4);
+        let body = MeshBody::new(&m).unwrap();
+        let mut specks = PolygonMesh::new(Vec::new(), Vec::new());
+        for i in 0..5 {
+            let lo = [4.4 + 0.02 * f64::from(i), 4.4, 4.4];
+            push_box(&mut specks, lo, lo.map(|x| x + 1e-3), true, 1);
+        }
+        let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
+        let pose = Pose::new(Rotation::IDENTITY, DVec3::ZERO);
+        let ask = |asked: std::ops::Range<usize>| {
+            let mut s = checker.scratch();
+            s.at.start(checker.body.vertices.len());
+            checker.fit_node_cache(&mut s);
+            let out = checker.one_inside_the_other(pose, &mut s, asked).unwrap();
+            checker.give_back(s);
+            out
+        };
+        // The body's one component, then the five corners, numbered 1 to 6.
+        assert!(ask(0..usize::MAX));
+        assert!(ask(5..6));
+        assert!(!ask(6..usize::MAX));
+        assert!(!ask(0..1));
+        let stats = checker.containment_stats();
+        assert_eq!((stats.by_segment, stats.by_ray), (0, 0), "{stats:?}");
+    }
+
+    /// Many scene corners by a cavity's face, in cells that meet it: past
+    /// eight in reach, the segments between them read one list of the
+    /// body's triangles near them, without those whose planes clear the
+    /// corners' box (`body::winding`, "Segments between points"). Twelve
+    /// small cubes on either side of the face, 2 to 50 thousandths from
+    /// it, at random turns: every answer is the exact one (each corner's
+    /// own ray through the posed body). Fails when the list is culled for
+    /// the box of the first two corners only.
+    #[test]
+    fn many_corners_by_a_face_read_one_culled_list() {
+        use crate::body::inside_grid::tests::push_box;
+        use rand::{Rng, SeedableRng};
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut m, [0.0; 3], [9.0; 3], true, 4);
+        push_box(&mut m, [2.5, 2.0, 2.0], [6.0, 7.0, 7.0], false, 1);
+        let body = MeshBody::new(&m).unwrap();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (mut colliding, mut segments) = (0, 0);
+        for round in 0..200 {
+            let q = glam::DQuat::from_xyzw(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            )
+            .normalize();
+            let pose = Pose::new(Rotation::from_quat(q), DVec3::new(3.0, -1.0, 2.0));
+            // Mostly in the cavity, a few in the wall (each side in turn
+            // the first asked, whichever order the tree gives).
+            let wall = rng.random_range(0.0..0.3);
+            let mut specks = PolygonMesh::new(Vec::new(), Vec::new());
+            let mut corners = Vec::new();
+            for _ in 0..12 {
+                let side = if rng.random_bool(wall) { -1.0 } else { 1.0 };
+                let lo = [
+                    2.5 + side * rng.random_range(0.002..0.05),
+                    rng.random_range(3.0..5.0),
+                    rng.random_range(3.0..5.0),
+                ];
+                let from = specks.vertices.len();
+                push_box(&mut specks, lo, lo.map(|x| x + 1e-3), true, 1);
+                for v in &mut specks.vertices[from..] {
+                    *v = pose.apply(DVec3::from(*v)).to_array();
+                }
+                corners.extend(specks.vertices[from..].iter().map(|&v| DVec3::from(v)));
+            }
+            let scene = MeshBody::new(&specks).unwrap();
+            let checker = SceneChecker::new(&body, &[scene]).unwrap();
+            let posed = body.placed(pose).unwrap();
+            let exact = corners
+                .iter()
+                .any(|&c| posed.inside_by_ray(c, &mut Vec::new()).unwrap());
+            assert_eq!(checker.collides_at(pose).unwrap(), exact, "round {round}");
+            colliding += usize::from(exact);
+            segments += checker.containment_stats().by_segment;
+        }
+        assert!(
+            colliding > 40 && colliding < 160 && segments > 500,
+            "{colliding} colliding, {segments} segments"
         );
     }
 
