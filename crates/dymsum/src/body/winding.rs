@@ -980,6 +980,17 @@ mod tests {
         crate::query::SceneChecker::new(&body, &[scene]).unwrap()
     }
 
+    /// Whether [`cavity_and_specks`] collide where they stand, and how the
+    /// containment test decided its points.
+    fn at_rest(lows: &[[f64; 3]]) -> (bool, ContainmentStats) {
+        use crate::kernel::rotation::{Pose, Rotation};
+        let checker = cavity_and_specks(lows);
+        let collides = checker
+            .collides_at(Pose::new(Rotation::IDENTITY, DVec3::ZERO))
+            .unwrap();
+        (collides, checker.containment_stats())
+    }
+
     /// The containment counters: specks in the cavity close to one wall
     /// (one grid cell, which meets the wall, so the grid cannot decide)
     /// take a ray for the first and a segment for each next one.
@@ -988,14 +999,8 @@ mod tests {
         let lows: Vec<[f64; 3]> = (0..5)
             .map(|i| [1.001, 5.0 + 3e-4 * f64::from(i), 5.0])
             .collect();
-        let checker = cavity_and_specks(&lows);
-        assert!(!checker
-            .collides_at(crate::kernel::rotation::Pose::new(
-                crate::kernel::rotation::Rotation::IDENTITY,
-                DVec3::ZERO
-            ))
-            .unwrap());
-        let stats = checker.containment_stats();
+        let (collides, stats) = at_rest(&lows);
+        assert!(!collides);
         assert_eq!(
             stats,
             ContainmentStats {
@@ -1012,14 +1017,8 @@ mod tests {
     /// a ray, and the fallback is counted.
     #[test]
     fn a_segment_through_a_faces_diagonal_falls_back_to_a_ray_and_is_counted() {
-        let checker = cavity_and_specks(&[[1.001, 5.0, 5.0], [0.9995, 5.0, 5.0]]);
-        assert!(checker
-            .collides_at(crate::kernel::rotation::Pose::new(
-                crate::kernel::rotation::Rotation::IDENTITY,
-                DVec3::ZERO
-            ))
-            .unwrap());
-        let stats = checker.containment_stats();
+        let (collides, stats) = at_rest(&[[1.001, 5.0, 5.0], [0.9995, 5.0, 5.0]]);
+        assert!(collides);
         assert_eq!(
             stats,
             ContainmentStats {

@@ -936,6 +936,38 @@ mod tests {
         assert!(!checker.collides_at(at(0.0)).unwrap());
     }
 
+    /// A box 9 wide (each face cut into 4 × 4 quads) with a cavity whose
+    /// face nearest the origin lies at `x = face`.
+    fn shell(face: f64) -> MeshBody {
+        use crate::body::inside_grid::tests::push_box;
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut m, [0.0; 3], [9.0; 3], true, 4);
+        push_box(&mut m, [face, 2.0, 2.0], [6.0, 7.0, 7.0], false, 1);
+        MeshBody::new(&m).unwrap()
+    }
+
+    /// `body` posed at `pose` (its vertices as the checker poses them), and
+    /// whether a mesh of the scene's frame touches its surface (exact).
+    fn posed_and_touching(
+        body: &MeshBody,
+        pose: Pose,
+    ) -> (MeshBody, impl Fn(&PolygonMesh) -> bool) {
+        let posed = body.placed(pose).unwrap();
+        let posed_mesh = PolygonMesh::new(
+            posed.vertices().iter().map(|v| v.to_array()).collect(),
+            posed
+                .triangles()
+                .iter()
+                .map(|t| t.map(|v| v as usize).to_vec())
+                .collect(),
+        );
+        let still = Pose::new(Rotation::IDENTITY, DVec3::ZERO);
+        let touch = move |other: &PolygonMesh| {
+            crate::query::scene::surfaces_touch(&posed_mesh, still, other, still).unwrap()
+        };
+        (posed, touch)
+    }
+
     /// The body's grid read at a pose (module docs, "The grid at a pose")
     /// answers only where the corner's whole box of rounding lies in a
     /// classified cell. A body far from the origin (its corners carried
@@ -945,14 +977,7 @@ mod tests {
     /// one, the posed body's own ray and the surfaces' test.
     #[test]
     fn the_grid_at_a_pose_reads_no_cell_the_rounding_may_leave() {
-        use crate::body::inside_grid::tests::push_box;
         use rand::{Rng, SeedableRng};
-        let shell = |face: f64| {
-            let mut m = PolygonMesh::new(Vec::new(), Vec::new());
-            push_box(&mut m, [0.0; 3], [9.0; 3], true, 4);
-            push_box(&mut m, [face, 2.0, 2.0], [6.0, 7.0, 7.0], false, 1);
-            MeshBody::new(&m).unwrap()
-        };
         // The planes depend on the box and the triangle count alone.
         let plane = shell(2.5).inside_grid().planes()[0][2];
         assert!((2.0..3.0).contains(&plane));
@@ -980,18 +1005,8 @@ mod tests {
                 .map(|v| pose.apply(DVec3::from(v)).to_array());
             let triangle = PolygonMesh::new(corners.to_vec(), vec![vec![0, 1, 2]]);
             let checker = SceneChecker::new(&body, &[MeshBody::new(&triangle).unwrap()]).unwrap();
-            let posed = body.placed(pose).unwrap();
-            let posed_mesh = PolygonMesh::new(
-                posed.vertices().iter().map(|v| v.to_array()).collect(),
-                posed
-                    .triangles()
-                    .iter()
-                    .map(|t| t.map(|v| v as usize).to_vec())
-                    .collect(),
-            );
-            let still = Pose::new(Rotation::IDENTITY, DVec3::ZERO);
-            let exact = crate::query::scene::surfaces_touch(&posed_mesh, still, &triangle, still)
-                .unwrap()
+            let (posed, touch) = posed_and_touching(&body, pose);
+            let exact = touch(&triangle)
                 || posed
                     .inside_by_ray(DVec3::from(corners[0]), &mut Vec::new())
                     .unwrap();
@@ -1052,10 +1067,7 @@ mod tests {
     fn many_corners_by_a_face_read_one_culled_list() {
         use crate::body::inside_grid::tests::push_box;
         use rand::{Rng, SeedableRng};
-        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
-        push_box(&mut m, [0.0; 3], [9.0; 3], true, 4);
-        push_box(&mut m, [2.5, 2.0, 2.0], [6.0, 7.0, 7.0], false, 1);
-        let body = MeshBody::new(&m).unwrap();
+        let body = shell(2.5);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
         let (mut colliding, mut segments) = (0, 0);
         for round in 0..200 {
@@ -1113,14 +1125,7 @@ mod tests {
     /// corner's own ray through the posed body).
     #[test]
     fn the_corners_together_read_no_cell_the_rounding_may_leave() {
-        use crate::body::inside_grid::tests::push_box;
         use rand::{Rng, SeedableRng};
-        let shell = |face: f64| {
-            let mut m = PolygonMesh::new(Vec::new(), Vec::new());
-            push_box(&mut m, [0.0; 3], [9.0; 3], true, 4);
-            push_box(&mut m, [face, 2.0, 2.0], [6.0, 7.0, 7.0], false, 1);
-            MeshBody::new(&m).unwrap()
-        };
         let plane = shell(2.5).inside_grid().planes()[0][2];
         let face = plane + 1e-11;
         let body = shell(face);
@@ -1180,18 +1185,8 @@ mod tests {
             }
             let cluster = PolygonMesh::new(corners.clone(), faces);
             let checker = SceneChecker::new(&body, &[MeshBody::new(&cluster).unwrap()]).unwrap();
-            let posed = body.placed(pose).unwrap();
-            let posed_mesh = PolygonMesh::new(
-                posed.vertices().iter().map(|v| v.to_array()).collect(),
-                posed
-                    .triangles()
-                    .iter()
-                    .map(|t| t.map(|v| v as usize).to_vec())
-                    .collect(),
-            );
-            let still = Pose::new(Rotation::IDENTITY, DVec3::ZERO);
-            let exact = crate::query::scene::surfaces_touch(&posed_mesh, still, &cluster, still)
-                .unwrap()
+            let (posed, touch) = posed_and_touching(&body, pose);
+            let exact = touch(&cluster)
                 || (0..6).any(|i| {
                     posed
                         .inside_by_ray(DVec3::from(corners[3 * i]), &mut Vec::new())
