@@ -936,6 +936,20 @@ mod tests {
         assert!(!checker.collides_at(at(0.0)).unwrap());
     }
 
+    /// A rotation drawn as the tests here draw one: a normalised
+    /// quaternion of four uniform coordinates in `[-1, 1)`.
+    fn random_turn(rng: &mut impl rand::Rng) -> Rotation {
+        Rotation::from_quat(
+            glam::DQuat::from_xyzw(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            )
+            .normalize(),
+        )
+    }
+
     /// A box 9 wide (each face cut into 4 × 4 quads) with a cavity whose
     /// face nearest the origin lies at `x = face`.
     fn shell(face: f64) -> MeshBody {
@@ -991,15 +1005,9 @@ mod tests {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
         let (mut answers, mut colliding) = (0, 0);
         for _ in 0..400 {
-            let q = glam::DQuat::from_xyzw(
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-            )
-            .normalize();
+            let turn = random_turn(&mut rng);
             let t = DVec3::new(1.0e6, -2.0e6, 3.0e6) * rng.random_range(0.5..1.0);
-            let pose = Pose::new(Rotation::from_quat(q), t);
+            let pose = Pose::new(turn, t);
             let x = face + rng.random_range(-2e-10..2e-10);
             let corners = [[x, 3.0, 3.1], [x, 3.5, 3.0], [x, 3.2, 3.6]]
                 .map(|v| pose.apply(DVec3::from(v)).to_array());
@@ -1071,14 +1079,7 @@ mod tests {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
         let (mut colliding, mut segments) = (0, 0);
         for round in 0..200 {
-            let q = glam::DQuat::from_xyzw(
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-                rng.random_range(-1.0..1.0),
-            )
-            .normalize();
-            let pose = Pose::new(Rotation::from_quat(q), DVec3::new(3.0, -1.0, 2.0));
+            let pose = Pose::new(random_turn(&mut rng), DVec3::new(3.0, -1.0, 2.0));
             // Mostly in the cavity, a few in the wall (each side in turn
             // the first asked, whichever order the tree gives).
             let wall = rng.random_range(0.0..0.3);
@@ -1153,15 +1154,7 @@ mod tests {
                     .then(&quarter(DVec3::X, rng.random_range(0..4)))
                     .then(&nudge)
             } else {
-                Rotation::from_quat(
-                    glam::DQuat::from_xyzw(
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                    )
-                    .normalize(),
-                )
+                random_turn(&mut rng)
             };
             let t = DVec3::new(1.0e6, -2.0e6, 3.0e6) * rng.random_range(0.5..1.0);
             let pose = Pose::new(turn, t);
@@ -1320,15 +1313,7 @@ mod tests {
         let mut near = Vec::new();
         let mut listed_at_a_corner = 0;
         for k in 0..400 {
-            let rotation = Rotation::from_quat(
-                glam::DQuat::from_xyzw(
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                )
-                .normalize(),
-            );
+            let rotation = random_turn(&mut rng);
             let far = [1.0, 1e3, 1e6][k % 3];
             let t = DVec3::new(rng.random_range(-1.0..1.0), 0.3, -0.7) * far;
             let pose = Pose::new(rotation, t);
