@@ -431,3 +431,32 @@ proptest! {
         }
     }
 }
+
+/// Found by `zonotopes_with_parallel_edges` in CI (2026-12-01): at 45° the
+/// brute method's mesh went through the hull fallback and was not the exact
+/// hull of its own vertices (48 faces and 32 vertices against 44 and 30).
+#[test]
+fn regression_zonotopes_45_brute_hull_fallback() {
+    let mut gp = vec![[2, -3, 3], [3, 1, 2]];
+    gp.push([1, 0, 0]);
+    let mut gq = vec![[-1, 1, 3], [0, 1, -3]];
+    gq.push([1, 0, -1]);
+    let p = poly(&zonotope(&gp));
+    let q = poly(&zonotope(&gq));
+    for method in Method::ALL {
+        check_sum(&p, Pose::IDENTITY, &q, method, true)
+            .unwrap_or_else(|e| panic!("identity {}: {e}", method.name()));
+        let turned = minkowski_sum_posed(
+            &p,
+            Pose::new(turn45(), DVec3::ZERO),
+            &q,
+            Pose::IDENTITY,
+            method,
+        );
+        if hull_may_refuse(method, &turned) {
+            continue;
+        }
+        check_sum(&p, Pose::new(turn45(), DVec3::ZERO), &q, method, false)
+            .unwrap_or_else(|e| panic!("45° {}: {e}", method.name()));
+    }
+}

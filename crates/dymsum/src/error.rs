@@ -84,6 +84,12 @@ pub enum MeshDefect {
     /// Two faces meet at an edge that is flat, reflex or inward.
     #[error("edge ({0}, {1}) is not strictly convex and outward")]
     NonConvexEdge(usize, usize),
+    /// The faces around a vertex do not form a convex cone that winds once:
+    /// a neighbour of the vertex lies on or above the plane of one of its
+    /// faces that it does not bound (every edge can still be convex, the
+    /// faces folding twice around the vertex).
+    #[error("vertex {0} is not a convex corner (its faces fold around it more than once)")]
+    NonConvexVertex(usize),
 }
 
 /// Why the mesh of a sum could not be produced.

@@ -9,7 +9,7 @@
 use super::merge::{merged_mesh, Merged};
 use super::validate::{
     check_convex_faces, check_convex_geometry, check_sphere_faces, edge_is_convex, face_defect,
-    ExactPoints,
+    vertex_is_convex, ExactPoints,
 };
 use super::{Operands, Overlay};
 use crate::error::MeshError;
@@ -341,6 +341,12 @@ fn repair_defects(
             if directed.target[pos] > a && !edge_is_convex(faces, directed, pos, points) {
                 in_region[directed.face_corner(pos).0] = true;
                 in_region[across(a, pos)?] = true;
+            }
+        }
+        // A corner whose faces fold around it twice: all of them.
+        if !vertex_is_convex(faces, directed, a, points) {
+            for pos in directed.start[a]..directed.start[a + 1] {
+                in_region[directed.face_corner(pos).0] = true;
             }
         }
     }
