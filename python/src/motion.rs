@@ -718,8 +718,10 @@ impl PyMotionChecker {
     /// How the containment tests of all queries so far decided their
     /// points (triangles only; ``None`` on the convex path): a dict with
     /// ``by_grid``, ``by_segment`` (from the point decided before),
-    /// ``by_ray`` and ``segment_fallbacks`` (segments that met an edge or a
-    /// plane and gave way to a ray; every method is exact).
+    /// ``by_ray``, ``segment_fallbacks`` (segments that met an edge or a
+    /// plane and gave way to a ray) and ``plane_cull_fallbacks`` (listed
+    /// triangles a float bound could not place against the corners' box,
+    /// placed by exact signs; every method is exact).
     #[getter]
     fn containment_stats<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Validator::Mesh(c) = &self.inner else {
@@ -731,6 +733,7 @@ impl PyMotionChecker {
         d.set_item("by_segment", s.by_segment)?;
         d.set_item("by_ray", s.by_ray)?;
         d.set_item("segment_fallbacks", s.segment_fallbacks)?;
+        d.set_item("plane_cull_fallbacks", s.plane_cull_fallbacks)?;
         Ok(Some(d))
     }
 

@@ -522,7 +522,7 @@ class MotionChecker:
     def steps(self) -> int: ...
     @property
     def containment_stats(self) -> Optional[dict[str, int]]:
-        """How containment tests decided their points (``by_grid``, ``by_segment``, ``by_ray``, ``segment_fallbacks``); ``None`` on the convex path."""
+        """How containment tests decided their points (``by_grid``, ``by_segment``, ``by_ray``, ``segment_fallbacks``, ``plane_cull_fallbacks``); ``None`` on the convex path."""
     def check(self, pose0: _PoseLike, pose1: _PoseLike, tolerance: float = 1e-6) -> MotionCheck:
         """The straight motion from ``pose0`` to ``pose1`` (linear translation, slerp rotation)."""
     def check_many(self, poses0: _PosesLike, poses1: _PosesLike, tolerance: float = 1e-6) -> MotionChecks:

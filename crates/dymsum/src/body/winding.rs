@@ -348,6 +348,10 @@ pub struct ContainmentStats {
     /// Segments that were degenerate (they met a triangle's edge or
     /// vertex, or lay in its plane), their point then decided by a ray.
     pub segment_fallbacks: u64,
+    /// Triangles listed for many segments whose plane a float bound could
+    /// not place against the corners' box, placed by eight exact signs
+    /// instead (module docs, "Segments between points").
+    pub plane_cull_fallbacks: u64,
 }
 
 impl ContainmentStats {
@@ -371,6 +375,7 @@ impl ContainmentStats {
         self.by_segment += other.by_segment;
         self.by_ray += other.by_ray;
         self.segment_fallbacks += other.segment_fallbacks;
+        self.plane_cull_fallbacks += other.plane_cull_fallbacks;
     }
 }
 
@@ -434,9 +439,12 @@ impl Listed {
 /// Drops from `list` the triangles whose plane has every corner of
 /// `region` strictly on one side (exact signs): no segment inside `region`
 /// meets such a triangle, so each of its segments' crossings with it would
-/// be a miss (module docs, "Segments between points"). Eight signs a
-/// triangle, found once, where each segment would find one or two.
-pub(crate) fn keep_planes_cutting(list: &mut Vec<Listed>, region: &Aabb) {
+/// be a miss (module docs, "Segments between points"). Each triangle is
+/// placed first by [`plane_against_box`], a certified float bound; only
+/// where that cannot tell are its eight exact signs found. Returns how many
+/// triangles needed them (the filter's fallbacks, counted in
+/// [`ContainmentStats::plane_cull_fallbacks`]).
+pub(crate) fn keep_planes_cutting(list: &mut Vec<Listed>, region: &Aabb) -> u64 {
     let corners: [DVec3; 8] = std::array::from_fn(|k| {
         DVec3::from([0, 1, 2].map(|a| {
             if k >> a & 1 == 0 {
@@ -446,14 +454,71 @@ pub(crate) fn keep_planes_cutting(list: &mut Vec<Listed>, region: &Aabb) {
             }
         }))
     });
+    let mut fallbacks = 0;
     list.retain(|l| {
         let t = l.corners;
-        let first = orient(t[0], t[1], t[2], corners[0]);
-        first == Sign::Zero
-            || corners[1..]
-                .iter()
-                .any(|&c| orient(t[0], t[1], t[2], c) != first)
+        match plane_against_box(t, region) {
+            Some(cuts) => cuts,
+            None => {
+                fallbacks += 1;
+                let first = orient(t[0], t[1], t[2], corners[0]);
+                first == Sign::Zero
+                    || corners[1..]
+                        .iter()
+                        .any(|&c| orient(t[0], t[1], t[2], c) != first)
+            }
+        }
     });
+    fallbacks
+}
+
+/// Whether the plane of the triangle `t` meets the box `b` (`Some(false)`:
+/// every corner of `b` strictly on one side, as eight exact `orient3d`
+/// would say; `Some(true)`: corners strictly on both sides), when floats
+/// settle it; `None` otherwise.
+///
+/// With `u = b − a`, `v = c − a` (the triangle `abc`), `n = u × v` and
+/// `w = x − a` all in floats, `s(x) = n · w` has, against the exact
+/// `(U × V) · W`, an error of at most `γ₈ P(x)`: each of the determinant's
+/// six products goes through at most eight roundings (three differences,
+/// two products, the cross product's subtraction, two sums), and `P(x)` is
+/// the sum of their absolute values, here bounded by the float
+/// `Σᵢ (|u_j v_k| + |u_k v_j|) max(|lo_i − a_i|, |hi_i − a_i|)` times a
+/// margin (`2⁻⁴⁸ P`, over three times `γ₈`, covers that bound's own
+/// rounding), plus `(1 + max |w|) 10⁻³⁰⁰` for products that underflow
+/// (an underflow in `n`, at most a few `2⁻¹⁰⁷⁵`, is then multiplied by
+/// `w`; differences that underflow are exact). The least and the
+/// greatest of `s` over the corners are bounded by the sums of the least
+/// and the greatest terms (rounding is monotone), so a least above the
+/// error puts every corner strictly on the positive side, a greatest below
+/// minus it every corner strictly on the negative side. Overflow gives an
+/// infinite or NaN bound, which settles nothing.
+fn plane_against_box(t: [DVec3; 3], b: &Aabb) -> Option<bool> {
+    let (a, u, v) = (t[0], t[1] - t[0], t[2] - t[0]);
+    let n = u.cross(v);
+    let size = DVec3::new(
+        (u.y * v.z).abs() + (u.z * v.y).abs(),
+        (u.z * v.x).abs() + (u.x * v.z).abs(),
+        (u.x * v.y).abs() + (u.y * v.x).abs(),
+    );
+    let (mut least, mut most, mut bound, mut far) = (0.0, 0.0, 0.0, 0.0f64);
+    for i in 0..3 {
+        let (wlo, whi) = (b.lo[i] - a[i], b.hi[i] - a[i]);
+        let (lo, hi) = (n[i] * wlo, n[i] * whi);
+        least += lo.min(hi);
+        most += lo.max(hi);
+        let w = wlo.abs().max(whi.abs());
+        bound += size[i] * w;
+        far = far.max(w);
+    }
+    let error = bound * (1.0 / (1u64 << 48) as f64) + (1.0 + far) * 1e-300;
+    if least > error || most < -error {
+        Some(false)
+    } else if least < -error && most > error {
+        Some(true)
+    } else {
+        None
+    }
 }
 
 /// A body where it stands: its vertex `v` at `vertex(v)`, and boxes holding
@@ -710,6 +775,81 @@ mod tests {
         for v in &mut m.vertices[from..] {
             *v = (turn * DVec3::from(*v)).to_array();
         }
+    }
+
+    /// The float bound of `plane_against_box` against eight exact signs:
+    /// random triangles and boxes at scales from 10⁻³⁰⁰ to 10³⁰⁰, boxes
+    /// cut by the plane, clear of it, touching it at a corner or a face,
+    /// and within a few ulps of it. Every answer it gives is the exact one,
+    /// and it gives one for most boxes that are not within rounding of the
+    /// plane.
+    #[test]
+    fn the_plane_cull_bound_agrees_with_the_exact_signs() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(48);
+        let exact = |t: [DVec3; 3], b: &Aabb| {
+            let signs: Vec<Sign> = (0..8)
+                .map(|k| {
+                    let c =
+                        DVec3::from(
+                            [0, 1, 2].map(|a| if k >> a & 1 == 0 { b.lo[a] } else { b.hi[a] }),
+                        );
+                    orient(t[0], t[1], t[2], c)
+                })
+                .collect();
+            !(signs[0] != Sign::Zero && signs.iter().all(|&s| s == signs[0]))
+        };
+        // Generic boxes at scales whose cubes stay normal floats, and how
+        // many of those the bound told.
+        let (mut told, mut clear, mut generic) = (0, 0, 0);
+        for round in 0..20_000 {
+            let exponent = rng.random_range(-300..=300);
+            let scale = 10f64.powi(exponent);
+            let off = DVec3::from([0; 3].map(|_| rng.random_range(-4.0..4.0))) * scale;
+            let mut pt = || off + DVec3::from([0; 3].map(|_| rng.random_range(-1.0..1.0))) * scale;
+            let t = [pt(), pt(), pt()];
+            let (lo, mut hi) = (pt(), pt());
+            hi = lo.max(hi);
+            let lo = lo.min(hi);
+            let mut b = Aabb {
+                lo: lo.to_array(),
+                hi: hi.to_array(),
+            };
+            match round % 4 {
+                // A box with a corner on a triangle's corner, or a point
+                // of its plane nudged by an ulp.
+                1 => b.lo = t[rng.random_range(0..3)].to_array(),
+                2 => {
+                    let w: [f64; 3] = [0; 3].map(|_| rng.random_range(0.0..1.0));
+                    let p = (t[0] * w[0] + t[1] * w[1] + t[2] * (1.0 - w[0] - w[1] + w[2]))
+                        / (1.0 + w[2]);
+                    let ulp = |x: f64| f64::from_bits(x.abs().to_bits() + 1) - x.abs();
+                    b = Aabb {
+                        lo: p.to_array(),
+                        hi: p
+                            .to_array()
+                            .map(|x| x + ulp(x) * rng.random_range(0.0..4.0)),
+                    };
+                }
+                // A flat box (a point) anywhere.
+                3 => b.hi = b.lo,
+                _ => {}
+            }
+            let truth = exact(t, &b);
+            let answer = plane_against_box(t, &b);
+            if let Some(cuts) = answer {
+                assert_eq!(cuts, truth, "round {round}: {t:?} {b:?}");
+            }
+            if round % 4 == 0 && exponent.abs() <= 90 {
+                generic += 1;
+                told += usize::from(answer.is_some());
+                clear += usize::from(!truth);
+            }
+        }
+        assert!(
+            told * 100 > generic * 99 && clear * 5 > generic,
+            "{told} told, {clear} clear of {generic}"
+        );
     }
 
     /// The windings with their zero entries dropped, in order of source.
@@ -1007,7 +1147,8 @@ mod tests {
                 by_grid: 0,
                 by_segment: 4,
                 by_ray: 1,
-                segment_fallbacks: 0
+                segment_fallbacks: 0,
+                plane_cull_fallbacks: 0
             }
         );
     }
@@ -1025,7 +1166,8 @@ mod tests {
                 by_grid: 0,
                 by_segment: 0,
                 by_ray: 2,
-                segment_fallbacks: 1
+                segment_fallbacks: 1,
+                plane_cull_fallbacks: 0
             }
         );
     }

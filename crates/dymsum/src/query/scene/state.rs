@@ -740,6 +740,8 @@ impl SceneChecker {
         // `body::winding`, "Segments between points"): every segment runs
         // between two of those corners, inside that box.
         let mut listed: Option<Option<Vec<Listed>>> = None;
+        // The list's triangles its cull placed by exact signs.
+        let mut culled_exactly = 0;
         let mut out = Ok(false);
         for &k in &corners {
             number += 1;
@@ -786,7 +788,7 @@ impl SceneChecker {
                     // whose planes clear the corners' box are dropped.
                     if corners.len() > CORNERS_TO_CULL_PLANES {
                         if let Some(list) = &mut list {
-                            keep_planes_cutting(list, &region);
+                            culled_exactly = keep_planes_cutting(list, &region);
                         }
                     }
                     list
@@ -824,6 +826,7 @@ impl SceneChecker {
                 }
             }
         }
+        s.tally.plane_cull_fallbacks += culled_exactly;
         s.asked = corners;
         s.node_cache = cache;
         out
