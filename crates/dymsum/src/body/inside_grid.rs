@@ -351,6 +351,14 @@ impl InsideGrid {
         }
     }
 
+    /// The widest cell's width along any axis (zero for an empty grid).
+    pub(crate) fn cell_width(&self) -> f64 {
+        if self.cells.is_empty() {
+            return 0.0;
+        }
+        self.scale.iter().fold(0.0, |w, &s| w.max(1.0 / s))
+    }
+
     /// The cells' planes along each axis (for tests).
     #[cfg(test)]
     pub(crate) fn planes(&self) -> &[Vec<f64>; 3] {

@@ -213,6 +213,18 @@
 //! applied (the asked-range test above, and
 //! `many_corners_by_a_face_read_one_culled_list`), and its wording ones.
 //!
+//! Past the grid, each corner is decided by a segment from the corner
+//! decided before (`body::winding`, "Segments between points") or, for the
+//! first, from a point of an outside cell one or two cells away ("A start
+//! outside" there; test `a_first_corner_starts_from_an_outside_cell`).
+//! The solid components a segment between two corners counts are those
+//! whose posed boxes meet the segment's box; that box lies in the
+//! corners' box, so they are among the components whose posed boxes meet
+//! the corners' box, found and posed once per state, at the first such
+//! segment (the same set, so the same windings). Posing every component's
+//! box for every segment had been a quarter of the slowest head / hip
+//! states.
+//!
 //! # The body's components near the scene
 //! The containment test asks one vertex of every body component whether
 //! it lies in a scene solid (posing it, then the scene's oriented box or
@@ -278,7 +290,7 @@ use glam::{DMat3, DVec3};
 use super::checker::{cached, cells, triangle_box, SceneChecker, Scratch};
 
 use crate::body::winding::{
-    keep_planes_cutting, segment_is_shorter, some_winds, Known, Listed, Placed,
+    keep_planes_cutting, outside_start, segment_is_shorter, some_winds, Known, Listed, Placed,
 };
 use crate::kernel::rotation::Pose;
 use crate::kernel::separation::triangles_apart;
@@ -740,6 +752,10 @@ impl SceneChecker {
         // `body::winding`, "Segments between points"): every segment runs
         // between two of those corners, inside that box.
         let mut listed: Option<Option<Vec<Listed>>> = None;
+        // The solid components whose boxes meet the corners' box, with
+        // their boxes at the pose, found at the first segment between two
+        // corners.
+        let mut near_region: Option<Vec<(u32, Aabb)>> = None;
         // The list's triangles its cull placed by exact signs.
         let mut culled_exactly = 0;
         let mut out = Ok(false);
@@ -769,31 +785,64 @@ impl SceneChecker {
             // From the last corner decided where the segment is the
             // shorter way (the posed body's box bounds the ray's), else by
             // a ray.
-            let from = known
+            let posed_box = (placed.node_box)(0);
+            // Where no corner decided before is near, a start in an
+            // outside cell of the body's grid by this corner's (module
+            // docs of `body::winding`, "A start outside"), read outside at
+            // the pose as a corner is; its segment leaves the corners' box,
+            // so it walks the tree and does not read their list.
+            let seed = match &known {
+                Some(k) if segment_is_shorter(k.at, p, &posed_box) => None,
+                _ => grid.and_then(|g| {
+                    outside_start(p, g.cell_width(), |q| {
+                        g.classify(mi * (q - t), self::back_pad(size, pad, q, t))
+                    })
+                }),
+            };
+            let seeded = seed.is_some();
+            let from = seed
                 .as_ref()
-                .filter(|k| segment_is_shorter(k.at, p, &(placed.node_box)(0)));
+                .or(known.as_ref())
+                .filter(|k| segment_is_shorter(k.at, p, &posed_box));
             let along = from.and_then(|k| {
                 let segment = Aabb::of([k.at.to_array(), p.to_array()]);
                 candidates.clear();
-                candidates.extend(
-                    self.body
-                        .solid_components
-                        .iter()
-                        .filter(|&&c| (placed.component_box)(c as usize).meets(&segment)),
-                );
-                let list = listed.get_or_insert_with(|| {
-                    let region = Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
-                    let mut list = placed.triangles_meeting(&region, TRIANGLES_LISTED_MOST);
-                    // Where many segments will read it, the triangles
-                    // whose planes clear the corners' box are dropped.
-                    if corners.len() > CORNERS_TO_CULL_PLANES {
-                        if let Some(list) = &mut list {
-                            culled_exactly = keep_planes_cutting(list, &region);
+                let region = || Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
+                if seeded {
+                    candidates.extend(
+                        self.body
+                            .solid_components
+                            .iter()
+                            .filter(|&&c| (placed.component_box)(c as usize).meets(&segment)),
+                    );
+                } else {
+                    // Between two corners: the segment lies in the corners'
+                    // box, so a component whose box meets it meets that box;
+                    // those are found and posed once.
+                    let near = near_region.get_or_insert_with(|| {
+                        let region = region();
+                        let posed = |&c: &u32| (c, (placed.component_box)(c as usize));
+                        let solids = self.body.solid_components.iter().map(posed);
+                        solids.filter(|(_, b)| b.meets(&region)).collect()
+                    });
+                    candidates.extend(near.iter().filter(|(_, b)| b.meets(&segment)).map(|e| e.0));
+                }
+                let list = (!seeded).then(|| {
+                    listed.get_or_insert_with(|| {
+                        let region = region();
+                        let mut list = placed.triangles_meeting(&region, TRIANGLES_LISTED_MOST);
+                        // Where many segments will read it, the triangles
+                        // whose planes clear the corners' box are dropped.
+                        if corners.len() > CORNERS_TO_CULL_PLANES {
+                            if let Some(list) = &mut list {
+                                culled_exactly = keep_planes_cutting(list, &region);
+                            }
                         }
-                    }
-                    list
+                        list
+                    })
                 });
-                placed.windings_along(&candidates, k, p, list.as_deref(), parity)
+                let list = list.and_then(|list| list.as_deref());
+                placed.windings_along(&candidates, k, p, list, parity)
             });
             let windings = match s.tally.count(from.is_some(), along) {
                 Some(w) => Some(w),
@@ -902,6 +951,7 @@ fn undecided(p: DVec3) -> QueryError {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::body::winding::ContainmentStats;
     use crate::body::MeshBody;
     use crate::kernel::rotation::Rotation;
     use crate::mesh::PolygonMesh;
@@ -1030,6 +1080,63 @@ mod tests {
             colliding > 50 && answers - colliding > 50,
             "{colliding} of {answers}"
         );
+    }
+
+    /// A first corner starts from an outside cell (module docs of
+    /// `body::winding`, "A start outside"): specks by the cavity's face of a
+    /// shell (the face's cell meets it, so the grid cannot read them, and
+    /// the way out of the shell is longer than two cells), on either side
+    /// of it, at random turns and offsets. Every answer is the exact one
+    /// (each corner's own ray through the posed body), and no corner takes
+    /// a ray: the first is decided by the segment from a point of an
+    /// outside cell, the next ones by segments from the corner before.
+    #[test]
+    fn a_first_corner_starts_from_an_outside_cell() {
+        use crate::body::inside_grid::tests::push_box;
+        use rand::{Rng, SeedableRng};
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut m, [0.0; 3], [90.0; 3], true, 8);
+        push_box(&mut m, [25.0, 20.0, 20.0], [70.0, 70.0, 70.0], false, 8);
+        let body = MeshBody::new(&m).unwrap();
+        let width = body.inside_grid().cell_width();
+        assert!(width < 12.0, "cells {width} wide");
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let (mut colliding, mut rounds) = (0, 0);
+        let mut stats = ContainmentStats::default();
+        for _ in 0..150 {
+            let pose = Pose::new(random_turn(&mut rng), DVec3::new(-4.0, 30.0, 7.0));
+            let mut specks = PolygonMesh::new(Vec::new(), Vec::new());
+            let mut corners = Vec::new();
+            for _ in 0..rng.random_range(1..4) {
+                let side = if rng.random_bool(0.3) { -1.0 } else { 1.0 };
+                let lo = [
+                    25.0 + side * rng.random_range(0.01..0.5),
+                    rng.random_range(30.0..60.0),
+                    rng.random_range(30.0..60.0),
+                ];
+                let from = specks.vertices.len();
+                push_box(&mut specks, lo, lo.map(|x| x + 1e-2), true, 1);
+                for v in &mut specks.vertices[from..] {
+                    *v = pose.apply(DVec3::from(*v)).to_array();
+                }
+                corners.extend(specks.vertices[from..].iter().map(|&v| DVec3::from(v)));
+            }
+            let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
+            let posed = body.placed(pose).unwrap();
+            let exact = corners
+                .iter()
+                .any(|&c| posed.inside_by_ray(c, &mut Vec::new()).unwrap());
+            assert_eq!(checker.collides_at(pose).unwrap(), exact, "{pose:?}");
+            colliding += usize::from(exact);
+            rounds += 1;
+            stats.add(&checker.containment_stats());
+        }
+        assert!(
+            colliding > 20 && rounds - colliding > 20,
+            "{colliding} of {rounds}"
+        );
+        assert_eq!((stats.by_ray, stats.segment_fallbacks), (0, 0), "{stats:?}");
+        assert!(stats.by_segment >= rounds as u64, "{stats:?}");
     }
 
     /// The corners together answer only for the corners the asking
