@@ -1086,6 +1086,41 @@ mod tests {
         );
     }
 
+    /// `count` cubes `size` wide by the plane `x = face` of a body's frame,
+    /// posed at `pose`: each beyond the plane (`x` above it) but, with
+    /// chance `wall`, before it, `depth` from it, `y` and `z` drawn from
+    /// `across`; the mesh and its corners, posed.
+    #[allow(clippy::too_many_arguments)]
+    fn specks_by_a_face(
+        rng: &mut impl rand::Rng,
+        pose: Pose,
+        count: usize,
+        face: f64,
+        wall: f64,
+        depth: std::ops::Range<f64>,
+        across: std::ops::Range<f64>,
+        size: f64,
+    ) -> (PolygonMesh, Vec<DVec3>) {
+        use crate::body::inside_grid::tests::push_box;
+        let mut specks = PolygonMesh::new(Vec::new(), Vec::new());
+        let mut corners = Vec::new();
+        for _ in 0..count {
+            let side = if rng.random_bool(wall) { -1.0 } else { 1.0 };
+            let lo = [
+                face + side * rng.random_range(depth.clone()),
+                rng.random_range(across.clone()),
+                rng.random_range(across.clone()),
+            ];
+            let from = specks.vertices.len();
+            push_box(&mut specks, lo, lo.map(|x| x + size), true, 1);
+            for v in &mut specks.vertices[from..] {
+                *v = pose.apply(DVec3::from(*v)).to_array();
+            }
+            corners.extend(specks.vertices[from..].iter().map(|&v| DVec3::from(v)));
+        }
+        (specks, corners)
+    }
+
     /// A first corner starts from an outside cell (module docs of
     /// `body::winding`, "A start outside"): specks by the cavity's face of a
     /// shell (the face's cell meets it, so the grid cannot read them, and
@@ -1109,22 +1144,17 @@ mod tests {
         let mut stats = ContainmentStats::default();
         for _ in 0..150 {
             let pose = Pose::new(random_turn(&mut rng), DVec3::new(-4.0, 30.0, 7.0));
-            let mut specks = PolygonMesh::new(Vec::new(), Vec::new());
-            let mut corners = Vec::new();
-            for _ in 0..rng.random_range(1..4) {
-                let side = if rng.random_bool(0.3) { -1.0 } else { 1.0 };
-                let lo = [
-                    25.0 + side * rng.random_range(0.01..0.5),
-                    rng.random_range(30.0..60.0),
-                    rng.random_range(30.0..60.0),
-                ];
-                let from = specks.vertices.len();
-                push_box(&mut specks, lo, lo.map(|x| x + 1e-2), true, 1);
-                for v in &mut specks.vertices[from..] {
-                    *v = pose.apply(DVec3::from(*v)).to_array();
-                }
-                corners.extend(specks.vertices[from..].iter().map(|&v| DVec3::from(v)));
-            }
+            let count = rng.random_range(1..4);
+            let (specks, corners) = specks_by_a_face(
+                &mut rng,
+                pose,
+                count,
+                25.0,
+                0.3,
+                0.01..0.5,
+                30.0..60.0,
+                1e-2,
+            );
             let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
             let posed = body.placed(pose).unwrap();
             let exact = corners
@@ -1187,7 +1217,6 @@ mod tests {
     /// the box of the first two corners only.
     #[test]
     fn many_corners_by_a_face_read_one_culled_list() {
-        use crate::body::inside_grid::tests::push_box;
         use rand::{Rng, SeedableRng};
         let body = shell(2.5);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
@@ -1197,22 +1226,8 @@ mod tests {
             // Mostly in the cavity, a few in the wall (each side in turn
             // the first asked, whichever order the tree gives).
             let wall = rng.random_range(0.0..0.3);
-            let mut specks = PolygonMesh::new(Vec::new(), Vec::new());
-            let mut corners = Vec::new();
-            for _ in 0..12 {
-                let side = if rng.random_bool(wall) { -1.0 } else { 1.0 };
-                let lo = [
-                    2.5 + side * rng.random_range(0.002..0.05),
-                    rng.random_range(3.0..5.0),
-                    rng.random_range(3.0..5.0),
-                ];
-                let from = specks.vertices.len();
-                push_box(&mut specks, lo, lo.map(|x| x + 1e-3), true, 1);
-                for v in &mut specks.vertices[from..] {
-                    *v = pose.apply(DVec3::from(*v)).to_array();
-                }
-                corners.extend(specks.vertices[from..].iter().map(|&v| DVec3::from(v)));
-            }
+            let (specks, corners) =
+                specks_by_a_face(&mut rng, pose, 12, 2.5, wall, 0.002..0.05, 3.0..5.0, 1e-3);
             let scene = MeshBody::new(&specks).unwrap();
             let checker = SceneChecker::new(&body, &[scene]).unwrap();
             let posed = body.placed(pose).unwrap();
