@@ -166,7 +166,7 @@
 //! (each fails when a cell read inside is taken for outside, the second
 //! also when no start is tried). On the Centauro head base against the
 //! Cassie hip pitch link the rays of 2,000 random states went from 283 to
-//! 3 (the segments cost about as much: the first corner's way, through the
+//! 5 (the segments cost about as much: the first corner's way, through the
 //! head's surface by the corners, is what the walk pays for).
 //!
 //! An independent review (2026-12-01, seventh stop) found this sound: the
@@ -194,6 +194,8 @@
 //! (`tests/review_joined_winding.rs`); each obstacle is now summed by
 //! itself. A triangle that posing rounds to collinear corners no longer
 //! makes every ray through its box degenerate.
+
+use std::borrow::Cow;
 
 use glam::DVec3;
 
@@ -294,21 +296,17 @@ impl MeshBody {
             }
             None => {
                 let placed = self.unposed();
-                let root = self.solid_tree.root();
                 // Where no point decided before is near, a start in an
                 // outside cell by `p`'s (module docs, "A start outside").
-                let seed = match known {
-                    Some(k) if segment_is_shorter(k.at, p, &root) => None,
-                    _ => {
-                        let grid = self.inside_grid();
-                        outside_start(p, grid.cell_width(), |q| grid.classify(q, 0.0))
-                    }
-                };
-                let from = seed
-                    .as_ref()
-                    .or(known.as_ref())
-                    .filter(|k| segment_is_shorter(k.at, p, &root));
-                let along = from.and_then(|k| {
+                let grid = self.inside_grid();
+                let from = segment_start(
+                    known.as_ref(),
+                    p,
+                    &self.solid_tree.root(),
+                    grid.cell_width(),
+                    |q| grid.classify(q, 0.0),
+                );
+                let along = from.as_ref().and_then(|k| {
                     let mut candidates = Vec::new();
                     self.solid_tree
                         .for_each_meeting(&Aabb::of([k.at.to_array(), p.to_array()]), |c| {
@@ -432,6 +430,7 @@ impl ContainmentStats {
 
 /// A point on none of the body's triangles and its [`Windings`]: where the
 /// next segment starts (module docs, "Segments between points").
+#[derive(Clone)]
 pub(crate) struct Known {
     pub(crate) at: DVec3,
     pub(crate) windings: Windings,
@@ -452,11 +451,7 @@ impl Known {
 /// two, along the rays' first six directions (nearly along the axes, so the
 /// segment's box is thin), the first that `outside` (the grid's reading,
 /// `Some(false)` for a point in an outside cell) places outside.
-pub(crate) fn outside_start(
-    p: DVec3,
-    cell: f64,
-    outside: impl Fn(DVec3) -> Option<bool>,
-) -> Option<Known> {
+fn outside_start(p: DVec3, cell: f64, outside: impl Fn(DVec3) -> Option<bool>) -> Option<Known> {
     [cell, 2.0 * cell].into_iter().find_map(|step| {
         DIRECTIONS[..6].iter().find_map(|d| {
             let q = p + DVec3::from(*d) * step;
@@ -465,10 +460,31 @@ pub(crate) fn outside_start(
     })
 }
 
+/// Where the segment to `p` starts, if one is tried: `known` where the
+/// segment from it is shorter than the way out of `solids`
+/// ([`segment_is_shorter`]), else a point of an outside cell
+/// ([`outside_start`], `cell` and `outside` as there) where its segment is;
+/// `Cow::Owned` for the latter (module docs, "A start outside").
+pub(crate) fn segment_start<'a>(
+    known: Option<&'a Known>,
+    p: DVec3,
+    solids: &Aabb,
+    cell: f64,
+    outside: impl Fn(DVec3) -> Option<bool>,
+) -> Option<Cow<'a, Known>> {
+    let shorter = |k: &Known| segment_is_shorter(k.at, p, solids);
+    match known {
+        Some(k) if shorter(k) => Some(Cow::Borrowed(k)),
+        _ => outside_start(p, cell, outside)
+            .filter(|k| shorter(k))
+            .map(Cow::Owned),
+    }
+}
+
 /// Whether the segment from `a` to `p` is shorter (in its longest
 /// coordinate) than the way from `p` out of `solids` along an axis, the
 /// least a ray would walk: only which is tried first, never an answer.
-pub(crate) fn segment_is_shorter(a: DVec3, p: DVec3, solids: &Aabb) -> bool {
+fn segment_is_shorter(a: DVec3, p: DVec3, solids: &Aabb) -> bool {
     let exit = (0..3)
         .map(|k| (p[k] - solids.lo[k]).min(solids.hi[k] - p[k]))
         .fold(f64::INFINITY, f64::min);

@@ -288,13 +288,13 @@
 //!
 //! [`MeshBody::inside_solid`]: crate::body::MeshBody
 
+use std::borrow::Cow;
+
 use glam::{DMat3, DVec3};
 
 use super::checker::{cached, cells, triangle_box, SceneChecker, Scratch};
 
-use crate::body::winding::{
-    keep_planes_cutting, outside_start, segment_is_shorter, some_winds, Known, Listed, Placed,
-};
+use crate::body::winding::{keep_planes_cutting, segment_start, some_winds, Known, Listed, Placed};
 use crate::kernel::rotation::Pose;
 use crate::kernel::separation::triangles_apart;
 use crate::query::checker::Checker;
@@ -788,27 +788,21 @@ impl SceneChecker {
             // From the last corner decided where the segment is the
             // shorter way (the posed body's box bounds the ray's), else by
             // a ray.
-            let posed_box = (placed.node_box)(0);
             // Where no corner decided before is near, a start in an
             // outside cell of the body's grid by this corner's (module
             // docs of `body::winding`, "A start outside"), read outside at
             // the pose as a corner is; its segment may leave the corners'
             // box, which their list holds for segments between corners
             // only, so it walks the tree instead.
-            let seed = match &known {
-                Some(k) if segment_is_shorter(k.at, p, &posed_box) => None,
-                _ => grid.and_then(|g| {
-                    outside_start(p, g.cell_width(), |q| {
-                        g.classify(mi * (q - t), self::back_pad(size, pad, q, t))
-                    })
-                }),
-            };
-            let seeded = seed.is_some();
-            let from = seed
-                .as_ref()
-                .or(known.as_ref())
-                .filter(|k| segment_is_shorter(k.at, p, &posed_box));
-            let along = from.and_then(|k| {
+            let from = segment_start(
+                known.as_ref(),
+                p,
+                &(placed.node_box)(0),
+                grid.map_or(0.0, |g| g.cell_width()),
+                |q| grid.and_then(|g| g.classify(mi * (q - t), self::back_pad(size, pad, q, t))),
+            );
+            let seeded = matches!(from, Some(Cow::Owned(_)));
+            let along = from.as_ref().and_then(|k| {
                 let segment = Aabb::of([k.at.to_array(), p.to_array()]);
                 candidates.clear();
                 let region = || Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
@@ -1121,6 +1115,15 @@ mod tests {
         (specks, corners)
     }
 
+    /// Whether some of `corners` lies in `body`'s solids at `pose`: each
+    /// corner's own ray through the posed body (the oracle).
+    fn inside_by_rays(body: &MeshBody, pose: Pose, corners: &[DVec3]) -> bool {
+        let posed = body.placed(pose).unwrap();
+        corners
+            .iter()
+            .any(|&c| posed.inside_by_ray(c, &mut Vec::new()).unwrap())
+    }
+
     /// A first corner starts from an outside cell (module docs of
     /// `body::winding`, "A start outside"): specks by the cavity's face of a
     /// shell (the face's cell meets it, so the grid cannot read them, and
@@ -1156,10 +1159,7 @@ mod tests {
                 1e-2,
             );
             let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
-            let posed = body.placed(pose).unwrap();
-            let exact = corners
-                .iter()
-                .any(|&c| posed.inside_by_ray(c, &mut Vec::new()).unwrap());
+            let exact = inside_by_rays(&body, pose, &corners);
             assert_eq!(checker.collides_at(pose).unwrap(), exact, "{pose:?}");
             colliding += usize::from(exact);
             rounds += 1;
@@ -1230,10 +1230,7 @@ mod tests {
                 specks_by_a_face(&mut rng, pose, 12, 2.5, wall, 0.002..0.05, 3.0..5.0, 1e-3);
             let scene = MeshBody::new(&specks).unwrap();
             let checker = SceneChecker::new(&body, &[scene]).unwrap();
-            let posed = body.placed(pose).unwrap();
-            let exact = corners
-                .iter()
-                .any(|&c| posed.inside_by_ray(c, &mut Vec::new()).unwrap());
+            let exact = inside_by_rays(&body, pose, &corners);
             assert_eq!(checker.collides_at(pose).unwrap(), exact, "round {round}");
             colliding += usize::from(exact);
             segments += checker.containment_stats().by_segment;
