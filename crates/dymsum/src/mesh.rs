@@ -23,6 +23,17 @@ impl VertexIndex for u32 {
     }
 }
 
+/// A vertex cycle rotated to start at its smallest index (the same cycle
+/// from any start gives the same key).
+pub(crate) fn canonical_cycle(cycle: &[usize]) -> Vec<usize> {
+    let start = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
+    cycle[start..]
+        .iter()
+        .chain(&cycle[..start])
+        .copied()
+        .collect()
+}
+
 /// Six times the signed volume enclosed by polygons (positive for an
 /// outward-oriented closed mesh), by the divergence theorem over their fan
 /// triangulations, each corner read through `point`. A float construction;

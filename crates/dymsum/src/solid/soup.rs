@@ -88,7 +88,7 @@ type HashSet<K> = std::collections::HashSet<K, foldhash::fast::RandomState>;
 use super::aabb::{Aabb, AabbTree};
 use super::{collinear, shells_flat, volume_sign, SolidError};
 use crate::kernel::predicates::Sign;
-use crate::mesh::PolygonMesh;
+use crate::mesh::{canonical_cycle, PolygonMesh};
 
 /// What a component of a cleaned mesh is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -470,17 +470,6 @@ impl Dsu {
             self.0[a.max(b)] = a.min(b);
         }
     }
-}
-
-/// A vertex cycle rotated to start at its smallest index (the same cycle
-/// from any start gives the same key).
-fn canonical_cycle(cycle: &[usize]) -> Vec<usize> {
-    let start = (0..cycle.len()).min_by_key(|&i| cycle[i]).unwrap_or(0);
-    cycle[start..]
-        .iter()
-        .chain(&cycle[..start])
-        .copied()
-        .collect()
 }
 
 /// Whether two triangles with the same corners run the same way round.

@@ -57,7 +57,7 @@ use crate::hull::HullPoints;
 use crate::kernel::exact;
 use crate::kernel::predicates::coord3d;
 use crate::kernel::Sign;
-use crate::mesh::PolygonMesh;
+use crate::mesh::{canonical_cycle, PolygonMesh};
 use crate::polytope::topology::{DirectedEdges, TopologyDefect, Unused};
 use glam::DVec3;
 
@@ -327,19 +327,11 @@ fn same_faces_as_the_hull(
         let inner = (0..n).find(|v| hull.vertices.binary_search(v).is_err());
         return Err(MeshDefect::NonConvexVertex(inner.unwrap_or(busiest)));
     }
-    // Each face as its cycle from its least vertex, the list sorted.
-    let cycles = |faces: &[Vec<usize>]| {
-        let mut all: Vec<Vec<usize>> = faces
-            .iter()
-            .map(|f| {
-                let least = (0..f.len()).min_by_key(|&i| f[i]).unwrap_or(0);
-                f[least..].iter().chain(&f[..least]).copied().collect()
-            })
-            .collect();
-        all.sort_unstable();
-        all
-    };
-    if cycles(faces) == cycles(&hull.faces) {
+    // Each face as its cycle from its least vertex, the list sorted (the
+    // hull's faces come so).
+    let mut cycles: Vec<Vec<usize>> = faces.iter().map(|f| canonical_cycle(f)).collect();
+    cycles.sort_unstable();
+    if cycles == hull.faces {
         Ok(())
     } else {
         Err(MeshDefect::NonConvexVertex(busiest))
