@@ -703,11 +703,12 @@ impl SceneChecker {
         let grid = (filter && m.determinant() > 0.5).then(|| self.body.inside_grid());
         let size = self.body.reach + t.abs().max_element();
         let corner = |k: usize| self.scene.vertices[self.scene.components[k].1 as usize];
-        // All the corners at once, where the box holding them, carried
-        // back, lies in one classified cell (module docs, "The corners
-        // together").
+        // The box holding the corners: asked of the grid as a whole, and
+        // holding every segment between two of them.
+        let region = Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
+        // All the corners at once, where their box, carried back, lies in
+        // one classified cell (module docs, "The corners together").
         if let Some(g) = grid.filter(|_| corners.len() >= CORNERS_TOGETHER) {
-            let region = Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
             let back = carried_back(&region, &mi, t, size, pad);
             if let Some(inside) = g.classify_box(back.lo.into(), back.hi.into()) {
                 // The corners numbered `number + 1 ..= number + len`: those
@@ -805,7 +806,6 @@ impl SceneChecker {
             let along = from.as_ref().and_then(|k| {
                 let segment = Aabb::of([k.at.to_array(), p.to_array()]);
                 candidates.clear();
-                let region = || Aabb::of(corners.iter().map(|&k| corner(k).to_array()));
                 if seeded {
                     candidates.extend(
                         self.body
@@ -818,7 +818,6 @@ impl SceneChecker {
                     // box, so a component whose box meets it meets that box;
                     // those are found and posed once.
                     let near = near_region.get_or_insert_with(|| {
-                        let region = region();
                         let posed = |&c: &u32| (c, (placed.component_box)(c as usize));
                         let solids = self.body.solid_components.iter().map(posed);
                         solids.filter(|(_, b)| b.meets(&region)).collect()
@@ -827,7 +826,6 @@ impl SceneChecker {
                 }
                 let list = (!seeded).then(|| {
                     listed.get_or_insert_with(|| {
-                        let region = region();
                         let mut list = placed.triangles_meeting(&region, TRIANGLES_LISTED_MOST);
                         // Where many segments will read it, the triangles
                         // whose planes clear the corners' box are dropped.
