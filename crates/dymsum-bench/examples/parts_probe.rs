@@ -9,7 +9,9 @@
 //! `MIDDLE=k`: the k states nearest the median time, likewise; `SEED=s`:
 //! another sample of pairs; `KIND=random` or `KIND=near`: those states
 //! alone; `VERDICTS` set: the medians split by dymsum's answer; `STATS`
-//! set: the containment tests' counts).
+//! set: the containment tests' counts; `PER_STATE=path`: every state's
+//! two times and the answer; `REPLAY=i,j`: those states again, each in
+//! `replay`).
 
 use std::time::Instant;
 
@@ -140,6 +142,29 @@ fn main() {
                 }
                 let warm = t.elapsed().as_secs_f64() * 1e6 / (100 * calls.max(1)) as f64;
                 println!("{what}: {calls} middle states, {cold:.2} µs each once, {warm:.2} µs each repeated");
+            }
+            // `REPLAY=i,j,...`: those states (indices in `states`, as
+            // `PER_STATE` prints them) once more each, in `replay`.
+            if let Ok(list) = std::env::var("REPLAY") {
+                for i in list
+                    .split(',')
+                    .filter_map(|v| v.trim().parse::<usize>().ok())
+                {
+                    replay(&checker, states[i], distance);
+                }
+            }
+            // `PER_STATE=path`: each state's time, parry's and the answer,
+            // one line each (to see which states make a median).
+            if let Ok(path) = std::env::var("PER_STATE") {
+                let lines: String = which
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &i)| {
+                        let hit = checker.collides_at(states[i]).unwrap();
+                        format!("{what} {i} {:.3} {:.3} {hit}\n", ours[k], theirs[k])
+                    })
+                    .collect();
+                std::fs::write(&path, lines).expect("PER_STATE's file");
             }
             if std::env::var("VERDICTS").is_ok() {
                 for answer in [true, false] {
