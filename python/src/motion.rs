@@ -721,7 +721,9 @@ impl PyMotionChecker {
     /// ``by_ray``, ``segment_fallbacks`` (segments that met an edge or a
     /// plane and gave way to a ray) and ``plane_cull_fallbacks`` (listed
     /// triangles a float bound could not place against the corners' box,
-    /// placed by exact signs; every method is exact).
+    /// placed by exact signs; every method is exact) and ``bodies_by_grid``
+    /// (state checks one body's grid decided whole: the other body lay in
+    /// its cells, all classified alike).
     #[getter]
     fn containment_stats<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Validator::Mesh(c) = &self.inner else {
@@ -734,6 +736,7 @@ impl PyMotionChecker {
         d.set_item("by_ray", s.by_ray)?;
         d.set_item("segment_fallbacks", s.segment_fallbacks)?;
         d.set_item("plane_cull_fallbacks", s.plane_cull_fallbacks)?;
+        d.set_item("bodies_by_grid", s.bodies_by_grid)?;
         Ok(Some(d))
     }
 

@@ -256,7 +256,7 @@ def test_containment_stats_count_how_points_were_decided():
     specks = joined(*(box_triangles(lo, lo + 1e-4) for lo in (np.array([1.001, 5 + 3e-4 * i, 5.0]) for i in range(5))))
     checker = dymsum.MotionChecker(specks, [shell])
     assert checker.info["path"] == "triangles"
-    assert checker.containment_stats == {"by_grid": 0, "by_segment": 0, "by_ray": 0, "segment_fallbacks": 0, "plane_cull_fallbacks": 0}
+    assert checker.containment_stats == {"by_grid": 0, "by_segment": 0, "by_ray": 0, "segment_fallbacks": 0, "plane_cull_fallbacks": 0, "bodies_by_grid": 0}
     assert not checker.collides_at(np.eye(4))
-    assert checker.containment_stats == {"by_grid": 0, "by_segment": 4, "by_ray": 1, "segment_fallbacks": 0, "plane_cull_fallbacks": 0}
+    assert checker.containment_stats == {"by_grid": 0, "by_segment": 4, "by_ray": 1, "segment_fallbacks": 0, "plane_cull_fallbacks": 0, "bodies_by_grid": 0}
     assert dymsum.MotionChecker(CUBE, [CUBE + 5]).containment_stats is None

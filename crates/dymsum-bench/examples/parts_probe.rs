@@ -75,6 +75,11 @@ fn main() {
         let checker = part_checker(&pa.mesh, &pb.mesh);
         let build = t0.elapsed().as_secs_f64();
         let (ra, rb) = (parry_mesh(&pa.mesh), parry_mesh(&pb.mesh));
+        if std::env::var("STATS").is_ok() {
+            for m in [&pa.mesh, &pb.mesh] {
+                println!("{:?}", dymsum::query::MeshBody::new(m).map(|b| b.report()));
+            }
+        }
         let (random, near) = pair_states(&checker, &pa.mesh, &pb.mesh, n, 11);
         for (what, states) in [("random", &random), ("near", &near)] {
             // `KIND=random` or `KIND=near`: that kind of state alone.

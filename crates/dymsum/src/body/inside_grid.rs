@@ -359,6 +359,60 @@ impl InsideGrid {
         self.scale.iter().fold(0.0, |w, &s| w.max(1.0 / s))
     }
 
+    /// Whether a box `width` wide along
+    /// every axis is at most `cells` cells wide along each (computed
+    /// loosely: only whether [`InsideGrid::classify_cells`] is worth
+    /// asking, which decides exactly).
+    pub(crate) fn spans_at_most(&self, width: f64, cells: f64) -> bool {
+        !self.cells.is_empty() && self.scale.iter().all(|&s| width * s <= cells)
+    }
+
+    /// Whether every point of the box `[lo, hi]` of the body's frame lies
+    /// inside a solid, or every one outside, when the box lies in the
+    /// grid and the (closed) cells it meets, at most `most` of them, are
+    /// all classified alike; `None` otherwise. Each point of the box lies
+    /// in one of those cells and has its answer, the same for all. (A
+    /// block of classified cells is always classified alike: cells that
+    /// share a face and meet no triangle are one region. The comparison
+    /// costs little and does not rely on it.)
+    pub(crate) fn classify_cells(&self, lo: DVec3, hi: DVec3, most: usize) -> Option<bool> {
+        if self.cells.is_empty() {
+            return None;
+        }
+        let mut range = [(0, 0); 3];
+        let mut count = 1;
+        for k in 0..3 {
+            let p = &self.planes[k];
+            if !(p[0] <= lo[k] && lo[k] <= hi[k] && hi[k] <= p[p.len() - 1]) {
+                return None;
+            }
+            let (from, to) = self.cells_meeting(k, lo[k], hi[k]);
+            if from > to {
+                return None;
+            }
+            count *= to - from + 1;
+            if count > most {
+                return None;
+            }
+            range[k] = (from, to);
+        }
+        let (nx, ny) = (self.planes[0].len() - 1, self.planes[1].len() - 1);
+        let first = self.cells[range[0].0 + nx * (range[1].0 + ny * range[2].0)];
+        if first != INSIDE && first != OUTSIDE {
+            return None;
+        }
+        for z in range[2].0..=range[2].1 {
+            for y in range[1].0..=range[1].1 {
+                for x in range[0].0..=range[0].1 {
+                    if self.cells[x + nx * (y + ny * z)] != first {
+                        return None;
+                    }
+                }
+            }
+        }
+        Some(first == INSIDE)
+    }
+
     /// The cells' planes along each axis (for tests).
     #[cfg(test)]
     pub(crate) fn planes(&self) -> &[Vec<f64>; 3] {

@@ -401,6 +401,10 @@ pub struct ContainmentStats {
     /// not place against the corners' box, placed by eight exact signs
     /// instead (module docs, "Segments between points").
     pub plane_cull_fallbacks: u64,
+    /// State checks decided whole by one body's grid: the other body's
+    /// box lay in its cells, all classified alike, so no point was asked
+    /// (`query::scene::state`, "One cell holds a body").
+    pub bodies_by_grid: u64,
 }
 
 impl ContainmentStats {
@@ -425,6 +429,7 @@ impl ContainmentStats {
         self.by_ray += other.by_ray;
         self.segment_fallbacks += other.segment_fallbacks;
         self.plane_cull_fallbacks += other.plane_cull_fallbacks;
+        self.bodies_by_grid += other.bodies_by_grid;
     }
 }
 
@@ -1282,7 +1287,8 @@ mod tests {
                 by_segment: 4,
                 by_ray: 1,
                 segment_fallbacks: 0,
-                plane_cull_fallbacks: 0
+                plane_cull_fallbacks: 0,
+                bodies_by_grid: 0
             }
         );
     }
@@ -1301,7 +1307,8 @@ mod tests {
                 by_segment: 0,
                 by_ray: 2,
                 segment_fallbacks: 1,
-                plane_cull_fallbacks: 0
+                plane_cull_fallbacks: 0,
+                bodies_by_grid: 0
             }
         );
     }

@@ -544,9 +544,13 @@ impl SceneChecker {
     /// use dymsum::robot::shapes::box_mesh;
     /// use dymsum::{DVec3, Pose, Rotation};
     /// let cube = |side: f64| MeshBody::new(&box_mesh(DVec3::splat(side)));
-    /// // A small cube well inside a large one: a containment question.
+    /// // A small cube well inside a large one: the large one's grid holds
+    /// // it whole, and no point is asked.
     /// let checker = SceneChecker::new(&cube(0.1)?, &[cube(10.0)?])?;
     /// assert!(checker.collides_at(Pose::new(Rotation::IDENTITY, DVec3::ZERO))?);
+    /// assert_eq!(checker.containment_stats().bodies_by_grid, 1);
+    /// // Across the large one's face: its corners are asked.
+    /// assert!(checker.collides_at(Pose::new(Rotation::IDENTITY, DVec3::X * 4.98))?);
     /// let stats = checker.containment_stats();
     /// assert!(stats.by_grid + stats.by_segment + stats.by_ray >= 1);
     /// # Ok::<(), Box<dyn std::error::Error>>(())

@@ -116,6 +116,66 @@
 //! first test and once a query, the error sentence above, the components'
 //! section below, and the test's wording.
 //!
+//! # One cell holds a body
+//! Past the roots' test, and before anything is asked, each body's inside
+//! grid (`body::inside_grid`) may hold the other body whole: where the
+//! other's box meets at most [`CELLS_MOST`] cells of it (it is at most
+//! [`CELLS_ACROSS`] cells wide, else the grid is not asked), all
+//! classified alike, the state's answer is that class, inside a solid
+//! (collides) or outside every one (free). Two cases:
+//!
+//! 1. *The posed body's box in the scene's grid*, where every scene
+//!    triangle is a solid's (a grid knows only its solids' triangles).
+//!    The box is the walk's own first one (`carry_unless_parted`): the
+//!    body's root box carried to the pose and grown by `pad`, so it holds
+//!    every posed vertex, hence the posed triangles and the posed body's
+//!    hull. The cells it meets meet no scene triangle (a classified cell
+//!    meets no triangle of a solid, and the box lies in their union), so
+//!    no posed body triangle meets a scene triangle; every posed body
+//!    vertex lies in one of them and has its answer, the same for all;
+//!    and no scene corner lies in a posed body solid, which lies in the
+//!    posed body's hull, in the box, where no scene triangle is. Outside:
+//!    nothing meets and nothing is inside, free. Inside: every body
+//!    vertex is in a scene solid, which the containment test's first body
+//!    point asked would find (the scene's oriented box excludes no point
+//!    of a solid): collides. The body's own triangles may be of any kind.
+//! 2. *The scene's box carried back into the body's grid*, where every
+//!    body triangle is a solid's and the matrix is near a rotation with
+//!    `det M > 0.5` (the conditions of "The grid at a pose"). The box is
+//!    the scene's root box carried back as "The corners together" carries
+//!    the corners' box (`carried_back`), whose argument gives: for every
+//!    point `p` of the scene's box, the box of half-width `e₁` about
+//!    `B(p)` lies in it. Let `U` be the union of the closed cells it
+//!    meets, all classified alike: no body triangle of the body's frame
+//!    meets `U`, so each of its points lies more than `e₁` (per
+//!    coordinate) from every such `B(p)`. Moving each vertex straight from
+//!    `vᵢ` to `B(Pᵢ)` moves every triangle point by at most `e₁`, so none
+//!    passes through `B(p)`: the winding numbers about `B(p)` are the body
+//!    frame's, the class of the cell of `U` that holds it, and by the map
+//!    `B` the posed body's about `p`. For the same reason no posed body
+//!    triangle meets a scene point (its image under `B` is within `e₁` of
+//!    a body-frame point, which lies more than `e₁` from `B(p)`), and no
+//!    posed body vertex lies in the scene's box (`B(Pᵢ)` is within `e₁`
+//!    of `vᵢ`, which is not in `U`, while every point of `B` of the box
+//!    has its `e₁`-box in `U`), so none is inside a scene solid. Outside:
+//!    free; inside: every scene corner lies in a body solid, which the
+//!    containment test's first scene corner asked would find: collides.
+//!    The scene's triangles may be of any kind.
+//!
+//! Either answer is the proved one, and the old order's where that
+//! returned one (an error of an undecided point becomes the answer).
+//! Several cells rather than one: each point of the box lies in one of
+//! them and takes its answer, the same for all (`InsideGrid::classify_cells`);
+//! a box in one cell straddles a plane too often to pay. Counted as
+//! `ContainmentStats::bodies_by_grid`. Where a small closed part lies
+//! in the open, or deep inside the other, this replaces the walk and the
+//! containment test: the Centauro elbow against the Solo12 hip (random
+//! states, Rust) took a median 1.40 µs, now 0.43–0.58 µs (parry's BVH
+//! test 0.27–0.31 µs), the human abdomen against the TIAGo omni base 1.02
+//! → 0.50 µs (docs/BENCHMARKS.md, "One cell holds a body"). Real meshes
+//! with open parts on the relevant side skip it (the TALOS gripper base
+//! has two surface components: its 1.6–1.7× parry is the walk's).
+//!
 //! # No triangle against a leaf's box
 //! A body triangle the walk reaches meets a scene leaf's triangles only
 //! where its exact box (of its posed corners) meets the leaf's box and a
@@ -317,6 +377,12 @@ const CORNERS_TO_CULL_PLANES: usize = 8;
 /// body's grid as a whole (module docs, "The corners together").
 const CORNERS_TOGETHER: usize = 4;
 
+/// How many cells wide along each axis a body's box may be for
+/// "One cell holds a body" to ask a grid about it, and how many cells it
+/// may meet in all.
+const CELLS_ACROSS: f64 = 2.0;
+const CELLS_MOST: usize = 27;
+
 /// How many points a state check asks about containment before it walks
 /// the trees (module docs, "Containment first"): enough for the few
 /// components of a robot part; a soup's thousands wait for the walk.
@@ -354,6 +420,10 @@ impl SceneChecker {
         let Some(c) = self.carry_unless_parted(&pose, s) else {
             return Ok(false);
         };
+        // Module docs, "One cell holds a body".
+        if let Some(inside) = self.one_cell_holds_a_body(&c, s) {
+            return Ok(inside);
+        }
         // Module docs, "Containment first".
         let first = 0..POINTS_ASKED_FIRST;
         let (skip, found) = match self.one_inside_the_other(pose, s, first.clone()) {
@@ -363,6 +433,49 @@ impl SceneChecker {
         Ok(found
             || self.surfaces_meet_lazily(pose, &c, s, true)
             || self.one_inside_the_other(pose, s, skip..usize::MAX)?)
+    }
+
+    /// Whether one classified cell of a body's grid holds the other body
+    /// whole (module docs, "One cell holds a body"): the posed body's box
+    /// in a cell of the scene's grid, where every scene triangle is a
+    /// solid's; or the scene's box carried back in a cell of the body's,
+    /// where every body triangle is a solid's and the matrix is near a
+    /// rotation. `Some(answer)` where one does: the cell's (inside a solid
+    /// or outside every one) is the state's; `None` where neither does.
+    fn one_cell_holds_a_body(&self, c: &Carry, s: &mut Scratch) -> Option<bool> {
+        let (body, scene) = (&self.body, &self.scene);
+        if scene.solid_components.len() == scene.components.len() {
+            let grid = scene.inside_grid();
+            // The box `carry_unless_parted` left at index 0 for this query.
+            let world = cached(cells(&mut s.node_cache), s.at.epoch, 0, || {
+                body.tree().bounds()[0].transformed(&c.m, c.t, c.pad)
+            });
+            if grid.spans_at_most(world.size(), CELLS_ACROSS) {
+                let answer = grid.classify_cells(world.lo.into(), world.hi.into(), CELLS_MOST);
+                if answer.is_some() {
+                    s.tally.bodies_by_grid += 1;
+                    return answer;
+                }
+            }
+        }
+        if c.oriented
+            && c.m.determinant() > 0.5
+            && body.solid_components.len() == body.components.len()
+        {
+            let grid = body.inside_grid();
+            let root = scene.tree().root();
+            // Turned, the box is up to √3 times as wide along an axis.
+            if grid.spans_at_most(root.size() * 1.75, CELLS_ACROSS) {
+                let size = body.reach + c.t.abs().max_element();
+                let back = carried_back(&root, &c.mi, c.t, size, c.pad);
+                let answer = grid.classify_cells(back.lo.into(), back.hi.into(), CELLS_MOST);
+                if answer.is_some() {
+                    s.tally.bodies_by_grid += 1;
+                    return answer;
+                }
+            }
+        }
+        None
     }
 
     /// The pose's matrix and translation, the posing's rounding bound,
@@ -999,6 +1112,52 @@ mod tests {
         )
     }
 
+    /// A pose far from the origin (about 10⁶, where the rounding of posing
+    /// and of carrying back is about 10⁻¹⁰): on even rounds a quarter turn
+    /// nudged by up to 10⁻⁸ rad (the box of points carried back is then
+    /// about as thin as they are), on odd rounds a generic turn.
+    fn far_pose_where_rounding_decides(rng: &mut impl rand::Rng, round: usize) -> Pose {
+        let turn = if round % 2 == 0 {
+            let quarter = |axis: DVec3, k: u32| {
+                Rotation::from_axis_angle(axis, f64::from(k) * std::f64::consts::FRAC_PI_2).unwrap()
+            };
+            let nudge = Rotation::from_axis_angle(
+                DVec3::new(
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                ),
+                rng.random_range(0.0..1e-8),
+            )
+            .unwrap();
+            quarter(DVec3::Z, rng.random_range(0..4))
+                .then(&quarter(DVec3::X, rng.random_range(0..4)))
+                .then(&nudge)
+        } else {
+            random_turn(rng)
+        };
+        Pose::new(
+            turn,
+            DVec3::new(1.0e6, -2.0e6, 3.0e6) * rng.random_range(0.5..1.0),
+        )
+    }
+
+    /// The answer as the walk followed by the whole containment test gave
+    /// it, before "Containment first", "The roots first" and "One cell
+    /// holds a body": the oracle those orders are compared with.
+    fn walk_then_containment(checker: &SceneChecker, pose: Pose) -> bool {
+        let mut s = checker.scratch();
+        checker.check_range(&pose).unwrap();
+        s.at.start(checker.body.vertices.len());
+        checker.fit_node_cache(&mut s);
+        let out = checker.surfaces_meet_lazily(pose, &checker.carry(&pose), &mut s, false)
+            || checker
+                .one_inside_the_other(pose, &mut s, 0..usize::MAX)
+                .unwrap();
+        checker.give_back(s);
+        out
+    }
+
     /// A box 9 wide (each face cut into 4 × 4 quads) with a cavity whose
     /// face nearest the origin lies at `x = face`.
     fn shell(face: f64) -> MeshBody {
@@ -1247,7 +1406,9 @@ mod tests {
     /// in the wall, or in the cavity) or all on one side of the face within
     /// 2 · 10⁻¹⁰ of it:
     /// every answer is the exact one (the surfaces' test, then each
-    /// corner's own ray through the posed body).
+    /// corner's own ray through the posed body). The cluster alone is read
+    /// whole ("One cell holds a body", the same rounding); with a far
+    /// triangle added, its corners are read together.
     #[test]
     fn the_corners_together_read_no_cell_the_rounding_may_leave() {
         use rand::{Rng, SeedableRng};
@@ -1255,33 +1416,12 @@ mod tests {
         let face = plane + 1e-11;
         let body = shell(face);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(6);
-        let (mut answers, mut colliding, mut read) = (0, 0, 0);
+        let (mut answers, mut colliding, mut read, mut read_whole) = (0, 0, 0, 0);
         for round in 0..600 {
             // Quarter turns nudged by up to 10⁻⁸ rad (the box of the corners
             // carried back is then about as thin as they are: the rounding
             // decides) and generic turns.
-            let turn = if round % 2 == 0 {
-                let quarter = |axis: DVec3, k: u32| {
-                    Rotation::from_axis_angle(axis, f64::from(k) * std::f64::consts::FRAC_PI_2)
-                        .unwrap()
-                };
-                let nudge = Rotation::from_axis_angle(
-                    DVec3::new(
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                        rng.random_range(-1.0..1.0),
-                    ),
-                    rng.random_range(0.0..1e-8),
-                )
-                .unwrap();
-                quarter(DVec3::Z, rng.random_range(0..4))
-                    .then(&quarter(DVec3::X, rng.random_range(0..4)))
-                    .then(&nudge)
-            } else {
-                random_turn(&mut rng)
-            };
-            let t = DVec3::new(1.0e6, -2.0e6, 3.0e6) * rng.random_range(0.5..1.0);
-            let pose = Pose::new(turn, t);
+            let pose = far_pose_where_rounding_decides(&mut rng, round);
             // Deep in the wall's cell before the face, or in a cavity's
             // cell; else all on one side of the face, within 2 · 10⁻¹⁰.
             let deep = [1.9, 4.5][round / 2 % 2];
@@ -1300,8 +1440,7 @@ mod tests {
                 }
                 faces.push(vec![3 * i, 3 * i + 1, 3 * i + 2]);
             }
-            let cluster = PolygonMesh::new(corners.clone(), faces);
-            let checker = SceneChecker::new(&body, &[MeshBody::new(&cluster).unwrap()]).unwrap();
+            let cluster = PolygonMesh::new(corners.clone(), faces.clone());
             let (posed, touch) = posed_and_touching(&body, pose);
             let exact = touch(&cluster)
                 || (0..6).any(|i| {
@@ -1309,15 +1448,95 @@ mod tests {
                         .inside_by_ray(DVec3::from(corners[3 * i]), &mut Vec::new())
                         .unwrap()
                 });
+            // The cluster alone: its box, carried back, is read whole
+            // ("One cell holds a body") where it lies in classified cells.
+            let checker = SceneChecker::new(&body, &[MeshBody::new(&cluster).unwrap()]).unwrap();
             assert_eq!(checker.collides_at(pose).unwrap(), exact, "{pose:?}");
             let stats = checker.containment_stats();
+            read_whole += usize::from(stats.bodies_by_grid > 0);
+            // With a triangle far beyond the body's reach, the scene's box
+            // is too wide for that: the corners are read together.
+            let mut far = corners.clone();
+            for v in [[1e3, 0.0, 0.0], [1e3, 1.0, 0.0], [1e3, 0.0, 1.0]] {
+                far.push(pose.apply(DVec3::from(v)).to_array());
+            }
+            let mut far_faces = faces;
+            far_faces.push(vec![18, 19, 20]);
+            let scene = MeshBody::new(&PolygonMesh::new(far, far_faces)).unwrap();
+            let checker = SceneChecker::new(&body, &[scene]).unwrap();
+            assert_eq!(checker.collides_at(pose).unwrap(), exact, "{pose:?}");
+            let stats = checker.containment_stats();
+            assert_eq!(stats.bodies_by_grid, 0);
             read += usize::from(stats.by_ray + stats.by_segment == 0 && stats.by_grid > 0);
             answers += 1;
             colliding += usize::from(exact);
         }
         assert!(
-            colliding > 50 && answers - colliding > 50 && read > 50,
-            "{colliding} colliding, {read} read from the grid alone, of {answers}"
+            colliding > 50 && answers - colliding > 50 && read > 50 && read_whole > 50,
+            "{colliding} colliding, {read} read from the grid alone, {read_whole} whole, of {answers}"
+        );
+    }
+
+    /// "One cell holds a body" (module docs) where the rounding decides:
+    /// the shell far from the origin, its cavity's face 10⁻¹¹ before a
+    /// cell's plane (so the cavity's cell beyond that plane is classified
+    /// outside), against a cluster of six triangles 5 · 10⁻⁴ wide in the
+    /// cavity whose nearest corners lie within 2 · 10⁻¹⁰ of the face,
+    /// before it or beyond it (crossing the face, into the wall), or deep
+    /// in that cell. The scene's box carried back is off by about 10⁻¹⁰
+    /// there: every answer is the exact one (the surfaces' test, then each
+    /// corner's own ray), and the grid decided many.
+    #[test]
+    fn a_scene_read_whole_is_never_one_the_rounding_may_move_off_a_face() {
+        use rand::{Rng, SeedableRng};
+        let planes = shell(2.5).inside_grid().planes()[0].clone();
+        // The first plane in the cavity (from 2.5 to 6).
+        let plane = *planes.iter().find(|&&x| x > 3.0).unwrap();
+        let face = plane - 1e-11;
+        let body = shell(face);
+        assert_eq!(body.inside_grid().planes()[0], planes);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(13);
+        let (mut colliding, mut free, mut whole) = (0, 0, 0);
+        for round in 0..600 {
+            let pose = far_pose_where_rounding_decides(&mut rng, round);
+            let mut corners = Vec::new();
+            let mut faces = Vec::new();
+            // Crossing the face, or all before it within 2 · 10⁻¹⁰, or deep
+            // in the cavity's cell beyond the plane.
+            let (from, to) = [(-2e-10, 0.0), (1e-12, 2e-10), (1e-4, 1e-3)][round % 3];
+            for i in 0..6 {
+                let near = face + rng.random_range(from..to);
+                let (y, z) = (3.0 + 1e-5 * i as f64, 3.0 + 5e-6 * i as f64);
+                for v in [
+                    [near, y, z],
+                    [face + 3e-4, y + 5e-4, z],
+                    [face + 3e-4, y, z + 5e-4],
+                ] {
+                    corners.push(pose.apply(DVec3::from(v)).to_array());
+                }
+                faces.push(vec![3 * i, 3 * i + 1, 3 * i + 2]);
+            }
+            let cluster = PolygonMesh::new(corners.clone(), faces);
+            let (posed, touch) = posed_and_touching(&body, pose);
+            let exact = touch(&cluster)
+                || (0..18).any(|i| {
+                    posed
+                        .inside_by_ray(DVec3::from(corners[i]), &mut Vec::new())
+                        .unwrap_or(true)
+                });
+            let checker = SceneChecker::new(&body, &[MeshBody::new(&cluster).unwrap()]).unwrap();
+            assert_eq!(
+                checker.collides_at(pose).unwrap(),
+                exact,
+                "{round}: {pose:?}"
+            );
+            whole += usize::from(checker.containment_stats().bodies_by_grid > 0);
+            colliding += usize::from(exact);
+            free += usize::from(!exact);
+        }
+        assert!(
+            colliding > 50 && free > 50 && whole > 50,
+            "{colliding} colliding, {free} free, {whole} read whole"
         );
     }
 
@@ -1331,6 +1550,172 @@ mod tests {
         mesh
     }
 
+    /// The closed box `[lo, hi]` with each face split into `k × k` quads
+    /// (welded, outward): enough triangles for a fine inside grid.
+    fn split_cuboid(lo: [f64; 3], hi: [f64; 3], k: usize) -> PolygonMesh {
+        let mut index = std::collections::HashMap::new();
+        let mut vertices = Vec::new();
+        let mut at = |q: [usize; 3]| {
+            *index.entry(q).or_insert_with(|| {
+                vertices.push(std::array::from_fn(|d| {
+                    lo[d] + (hi[d] - lo[d]) * q[d] as f64 / k as f64
+                }));
+                vertices.len() - 1
+            })
+        };
+        let mut faces = Vec::new();
+        for a in 0..3 {
+            let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+            for side in [0, k] {
+                for u in 0..k {
+                    for v in 0..k {
+                        let mut quad: Vec<usize> = [(u, v), (u + 1, v), (u + 1, v + 1), (u, v + 1)]
+                            .iter()
+                            .map(|&(x, y)| {
+                                let mut q = [0; 3];
+                                (q[a], q[b], q[c]) = (side, x, y);
+                                at(q)
+                            })
+                            .collect();
+                        if side == 0 {
+                            quad.reverse();
+                        }
+                        faces.push(quad);
+                    }
+                }
+            }
+        }
+        PolygonMesh::new(vertices, faces)
+    }
+
+    /// Two split boxes with a gap of 4 between them (x from −8 to −2 and
+    /// from 2 to 8), and optionally an open square sheet in the gap's
+    /// middle plane `x = 0`.
+    fn two_blocks(sheet: bool) -> PolygonMesh {
+        let mut mesh = split_cuboid([-8.0; 3], [-2.0, 8.0, 8.0], 8);
+        for part in [split_cuboid([2.0, -8.0, -8.0], [8.0; 3], 8)]
+            .into_iter()
+            .chain(sheet.then(|| {
+                PolygonMesh::new(
+                    vec![
+                        [0.0, -3.0, -3.0],
+                        [0.0, 3.0, -3.0],
+                        [0.0, 3.0, 3.0],
+                        [0.0, -3.0, 3.0],
+                    ],
+                    vec![vec![0, 1, 2, 3]],
+                )
+            }))
+        {
+            let base = mesh.vertices.len();
+            mesh.vertices.extend(part.vertices);
+            mesh.faces.extend(
+                part.faces
+                    .into_iter()
+                    .map(|f| f.into_iter().map(|v| v + base).collect()),
+            );
+        }
+        mesh
+    }
+
+    /// "One cell holds a body" (module docs): a small cube (and an open
+    /// triangle) among two large blocks, and the blocks as the body about
+    /// a small cube, at random poses over the blocks, their gap and their
+    /// walls (generic turns and quarter turns): every answer is the walk
+    /// followed by the containment test's, and the grid decided states in
+    /// both cases, inside and outside. A sheet in the gap, open, is in no
+    /// grid: with it, neither case is tried, and a cube across it collides.
+    #[test]
+    fn one_cell_holding_a_body_answers_as_the_walk_then_containment() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(97);
+        let blocks = MeshBody::new(&two_blocks(false)).unwrap();
+        let speck = MeshBody::new(&cuboid([-0.1; 3], [0.1; 3])).unwrap();
+        let flake = MeshBody::new(&PolygonMesh::new(
+            vec![[0.0, 0.0, 0.0], [0.2, 0.0, 0.0], [0.0, 0.2, 0.05]],
+            vec![vec![0, 1, 2]],
+        ))
+        .unwrap();
+        let by_cells = |checker: &SceneChecker, pose: Pose| {
+            let mut s = checker.scratch();
+            checker.check_range(&pose).unwrap();
+            s.at.start(checker.body.vertices.len());
+            checker.fit_node_cache(&mut s);
+            let out = checker
+                .carry_unless_parted(&pose, &mut s)
+                .and_then(|c| checker.one_cell_holds_a_body(&c, &mut s));
+            checker.give_back(s);
+            out
+        };
+        let quarter = Rotation::from_quat(glam::DQuat::from_xyzw(
+            0.0,
+            0.0,
+            0.5f64.sqrt(),
+            0.5f64.sqrt(),
+        ));
+        for (case, checker) in [
+            (
+                1,
+                SceneChecker::new(&speck, std::slice::from_ref(&blocks)).unwrap(),
+            ),
+            (
+                1,
+                SceneChecker::new(&flake, std::slice::from_ref(&blocks)).unwrap(),
+            ),
+            (
+                2,
+                SceneChecker::new(&blocks, std::slice::from_ref(&speck)).unwrap(),
+            ),
+        ] {
+            let mut decided = [0usize; 2];
+            for k in 0..3_000 {
+                let rotation = if k % 3 == 0 {
+                    quarter
+                } else {
+                    random_turn(&mut rng)
+                };
+                let t = DVec3::new(
+                    rng.random_range(-9.0..9.0),
+                    rng.random_range(-9.0..9.0),
+                    rng.random_range(-9.0..9.0),
+                );
+                // Case 2 moves the blocks about the speck at the origin.
+                let pose = Pose::new(rotation, if case == 1 { t } else { rotation.apply(-t) });
+                let now = checker.collides_at(pose).unwrap();
+                assert_eq!(
+                    now,
+                    walk_then_containment(&checker, pose),
+                    "case {case}, {k}: {pose:?}"
+                );
+                if let Some(inside) = by_cells(&checker, pose) {
+                    assert_eq!(inside, now, "case {case}, {k}");
+                    decided[usize::from(inside)] += 1;
+                }
+            }
+            assert!(
+                decided[0] > 100 && decided[1] > 100,
+                "case {case}: {decided:?}"
+            );
+            // Counted once by `collides_at` and once by `by_cells`.
+            assert_eq!(
+                checker.containment_stats().bodies_by_grid as usize,
+                2 * (decided[0] + decided[1]),
+                "case {case}"
+            );
+        }
+        // The sheet across the gap: the speck on it collides, and no grid
+        // decides (the scene's, or the body's, has a surface component).
+        let sheeted = MeshBody::new(&two_blocks(true)).unwrap();
+        let on_sheet = Pose::new(Rotation::IDENTITY, DVec3::new(0.05, 0.5, 0.5));
+        let checker = SceneChecker::new(&speck, std::slice::from_ref(&sheeted)).unwrap();
+        assert!(checker.collides_at(on_sheet).unwrap());
+        assert_eq!(by_cells(&checker, on_sheet), None);
+        let checker = SceneChecker::new(&sheeted, std::slice::from_ref(&speck)).unwrap();
+        let back = Pose::new(Rotation::IDENTITY, -on_sheet.translation);
+        assert!(checker.collides_at(back).unwrap());
+        assert_eq!(by_cells(&checker, back), None);
+    }
+
     /// Containment asked first (module docs) answers as the walk followed
     /// by the containment did, on boxes touching face to face, edge to
     /// face and corner to face (a ray then starts on a triangle of the
@@ -1342,18 +1727,7 @@ mod tests {
         let room = MeshBody::new(&cuboid([-4.0, -4.0, -4.0], [4.0, 4.0, 4.0])).unwrap();
         let plate = MeshBody::new(&cuboid([6.0, -2.0, -2.0], [6.25, 2.0, 2.0])).unwrap();
         let checker = SceneChecker::new(&body, &[room, plate]).unwrap();
-        let before = |pose: Pose| {
-            let mut s = checker.scratch();
-            checker.check_range(&pose).unwrap();
-            s.at.start(checker.body.vertices.len());
-            checker.fit_node_cache(&mut s);
-            let out = checker.surfaces_meet_lazily(pose, &checker.carry(&pose), &mut s, false)
-                || checker
-                    .one_inside_the_other(pose, &mut s, 0..usize::MAX)
-                    .unwrap();
-            checker.give_back(s);
-            out
-        };
+        let before = |pose: Pose| walk_then_containment(&checker, pose);
         let turns = [
             Rotation::IDENTITY,
             Rotation::from_quat(glam::DQuat::from_xyzw(
