@@ -9,7 +9,7 @@
 //! `MIDDLE=k`: the k states nearest the median time, likewise; `SEED=s`:
 //! another sample of pairs; `KIND=random` or `KIND=near`: those states
 //! alone; `VERDICTS` set: the medians split by dymsum's answer; `STATS`
-//! set: the containment tests' counts; `PER_STATE=path`: every state's
+//! set: the containment tests' counts and both meshes' reports; `PER_STATE=path`: every state's
 //! two times and the answer; `REPLAY=i,j`: those states again, each in
 //! `replay`).
 

@@ -131,8 +131,9 @@
 //!    every posed vertex, hence the posed triangles and the posed body's
 //!    hull. The cells it meets meet no scene triangle (a classified cell
 //!    meets no triangle of a solid, and the box lies in their union), so
-//!    no posed body triangle meets a scene triangle; every posed body
-//!    vertex lies in one of them and has its answer, the same for all;
+//!    no posed body triangle meets a scene triangle; every point of the
+//!    box, each posed body point among them, lies in one of them and has
+//!    its answer, the same for all;
 //!    and no scene corner lies in a posed body solid, which lies in the
 //!    posed body's hull, in the box, where no scene triangle is. Outside:
 //!    nothing meets and nothing is inside, free. Inside: every body
@@ -147,20 +148,24 @@
 //!    point `p` of the scene's box, the box of half-width `e₁` about
 //!    `B(p)` lies in it. Let `U` be the union of the closed cells it
 //!    meets, all classified alike: no body triangle of the body's frame
-//!    meets `U`, so each of its points lies more than `e₁` (per
-//!    coordinate) from every such `B(p)`. Moving each vertex straight from
+//!    meets `U`, so each of its points lies more than `e₁` from every
+//!    such `B(p)` (in the largest coordinate difference). Moving each vertex straight from
 //!    `vᵢ` to `B(Pᵢ)` moves every triangle point by at most `e₁`, so none
 //!    passes through `B(p)`: the winding numbers about `B(p)` are the body
 //!    frame's, the class of the cell of `U` that holds it, and by the map
 //!    `B` the posed body's about `p`. For the same reason no posed body
 //!    triangle meets a scene point (its image under `B` is within `e₁` of
 //!    a body-frame point, which lies more than `e₁` from `B(p)`), and no
-//!    posed body vertex lies in the scene's box (`B(Pᵢ)` is within `e₁`
-//!    of `vᵢ`, which is not in `U`, while every point of `B` of the box
-//!    has its `e₁`-box in `U`), so none is inside a scene solid. Outside:
-//!    free; inside: every scene corner lies in a body solid, which the
-//!    containment test's first scene corner asked would find: collides.
-//!    The scene's triangles may be of any kind.
+//!    posed body point lies in the scene's box (its image is within `e₁`
+//!    of a body-frame point, which is not in `U`, while every point of
+//!    `B` of the box has its `e₁`-box in `U`), so none is inside a scene
+//!    solid. Outside: free; inside: every scene point lies in a body
+//!    solid, and the containment test's first scene corner asked would
+//!    find it: collides. The scene's triangles may be of any kind.
+//!
+//! Case 1's box is the roots' own (`pad` is 64 units of rounding against
+//! about 20 the posing makes; "The roots first", reviewed); no test fails
+//! without it, as it matters only where cells are about an ulp wide.
 //!
 //! Either answer is the proved one, and the old order's where that
 //! returned one (an error of an undecided point becomes the answer).
@@ -175,6 +180,25 @@
 //! → 0.50 µs (docs/BENCHMARKS.md, "One cell holds a body"). Real meshes
 //! with open parts on the relevant side skip it (the TALOS gripper base
 //! has two surface components: its 1.6–1.7× parry is the walk's).
+//!
+//! An independent review (2026-12-02) found the argument and the code
+//! sound: both cases' rounding (`e₁ ≤ 2 pad + 3 · 2⁻⁴⁰ reach`, `e₂` within
+//! the `16u(|p| + |t|)` term at the box's largest corner, the sides'
+//! rounding within the doubled growth), joined scenes (winding numbers
+//! constant per source on a region without triangles), empty and
+//! subnormal grids, NaN and infinite boxes, and `classify_cells` against
+//! brute force on 800,000 boxes (on planes, an ulp off, partly outside,
+//! `lo > hi`, NaN; 122,087 answered, all alike; every one of 11,121
+//! face-adjacent classified pairs of one class). Its randomized comparison
+//! with an oracle that reads no grid (`surfaces_touch`, then exact rays):
+//! 300,960 states (shells with cavities, nested and touching solids, thin
+//! slabs, four joined obstacles whose windings cancel, open sheets and
+//! boxes; scales 10⁻¹⁰⁰ to 10¹⁰⁰, offsets to 10⁸, quarter, nudged and
+//! generic turns, boxes on grid planes), 35,054 decided by a grid, no
+//! disagreement. It found that dropping the solids' condition, or reading
+//! only the first and last cells, gives wrong answers its harness and the
+//! tests catch, and that without case 2's growth the two rounding tests
+//! fail. Its wording remarks are applied.
 //!
 //! # No triangle against a leaf's box
 //! A body triangle the walk reaches meets a scene leaf's triangles only
@@ -378,9 +402,11 @@ const CORNERS_TO_CULL_PLANES: usize = 8;
 const CORNERS_TOGETHER: usize = 4;
 
 /// How many cells wide along each axis a body's box may be for
-/// "One cell holds a body" to ask a grid about it, and how many cells it
-/// may meet in all.
+/// "One cell holds a body" to ask a grid about it (module docs).
 const CELLS_ACROSS: f64 = 2.0;
+
+/// How many cells a body's box may meet in all for "One cell holds a
+/// body" to read them (module docs).
 const CELLS_MOST: usize = 27;
 
 /// How many points a state check asks about containment before it walks
