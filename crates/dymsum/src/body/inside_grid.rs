@@ -396,15 +396,14 @@ impl InsideGrid {
             }
             range[k] = (from, to);
         }
-        let (nx, ny) = (self.planes[0].len() - 1, self.planes[1].len() - 1);
-        let first = self.cells[range[0].0 + nx * (range[1].0 + ny * range[2].0)];
+        let first = self.cells[self.index([range[0].0, range[1].0, range[2].0])];
         if first != INSIDE && first != OUTSIDE {
             return None;
         }
         for z in range[2].0..=range[2].1 {
             for y in range[1].0..=range[1].1 {
                 for x in range[0].0..=range[0].1 {
-                    if self.cells[x + nx * (y + ny * z)] != first {
+                    if self.cells[self.index([x, y, z])] != first {
                         return None;
                     }
                 }
