@@ -89,8 +89,14 @@
 //! and found afresh for any other. Where many segments will read the list
 //! (`query::scene::state`: more than eight corners), the triangles whose
 //! planes have all eight corners of the list's box strictly on one side
-//! (exact signs) are dropped from it: every segment lies in that box, so
-//! it misses each of them, and a miss adds nothing. Test:
+//! (exact signs) are dropped from it, and so are those whose shadow on a
+//! coordinate plane has the box's shadow strictly beyond one of its
+//! edges (exact 2-D signs, `edge_clears_box`: on a face of a robot part
+//! split into many triangles, every plane cuts the box while one triangle
+//! of dozens meets it): every segment lies in that box, so it misses each
+//! of them, and a miss adds nothing (not even a degenerate one: a
+//! segment in the plane of a triangle it does not touch crosses nothing
+//! there). Test:
 //! `a_list_read_by_a_chain_of_segments_gives_the_rays_windings` (it fails
 //! when a side is read for another point, and when a cutting plane is
 //! dropped; and `query::scene::state`'s
@@ -200,7 +206,7 @@ use std::borrow::Cow;
 use glam::DVec3;
 
 use crate::body::MeshBody;
-use crate::kernel::predicates::{orient, Sign};
+use crate::kernel::predicates::{orient, orient2, Sign};
 use crate::solid::aabb::Aabb;
 use crate::solid::collinear;
 
@@ -526,15 +532,17 @@ impl Listed {
     }
 }
 
-/// Drops from `list` the triangles whose plane has every corner of
-/// `region` strictly on one side (exact signs): no segment inside `region`
-/// meets such a triangle, so each of its segments' crossings with it would
-/// be a miss (module docs, "Segments between points"). Each triangle is
-/// placed first by [`plane_against_box`], a certified float bound; only
-/// where that cannot tell are its eight exact signs found. Returns how many
-/// triangles needed them (the filter's fallbacks, counted in
-/// [`ContainmentStats::plane_cull_fallbacks`]).
-pub(crate) fn keep_planes_cutting(list: &mut Vec<Listed>, region: &Aabb) -> u64 {
+/// Drops from `list` the triangles proven to miss `region`: those whose
+/// plane has every corner of `region` strictly on one side (exact signs),
+/// and those an edge of whose shadow on a coordinate plane has the box's
+/// shadow strictly on its outer side ([`edge_clears_box`], exact signs).
+/// No segment inside `region` meets such a triangle, so each of its
+/// segments' crossings with it would be a miss (module docs, "Segments
+/// between points"). The plane is tried first by [`plane_against_box`], a
+/// certified float bound; only where that cannot tell are its eight exact
+/// signs found. Returns how many triangles needed them (the filter's
+/// fallbacks, counted in [`ContainmentStats::plane_cull_fallbacks`]).
+pub(crate) fn keep_triangles_meeting(list: &mut Vec<Listed>, region: &Aabb) -> u64 {
     let corners: [DVec3; 8] = std::array::from_fn(|k| {
         DVec3::from([0, 1, 2].map(|a| {
             if k >> a & 1 == 0 {
@@ -547,7 +555,7 @@ pub(crate) fn keep_planes_cutting(list: &mut Vec<Listed>, region: &Aabb) -> u64 
     let mut fallbacks = 0;
     list.retain(|l| {
         let t = l.corners;
-        match plane_against_box(t, region) {
+        let plane_cuts = match plane_against_box(t, region) {
             Some(cuts) => cuts,
             None => {
                 fallbacks += 1;
@@ -557,9 +565,51 @@ pub(crate) fn keep_planes_cutting(list: &mut Vec<Listed>, region: &Aabb) -> u64 
                         .iter()
                         .any(|&c| orient(t[0], t[1], t[2], c) != first)
             }
-        }
+        };
+        plane_cuts && !edge_clears_box(t, region)
     });
     fallbacks
+}
+
+/// Whether the triangle `t` and the box `b` are apart along one of the
+/// nine axes `eₖ × (tⱼ − tᵢ)` of the separating-axis test (a coordinate
+/// axis across an edge), decided by exact signs: their shadows on the
+/// coordinate plane across `eₖ`, the triangle's `ABC` and the box's
+/// rectangle, lie on the two sides of the line through an edge `PQ` of
+/// `ABC`, the rectangle strictly. `f(X) = orient2(P, Q, X)` is affine in
+/// `X` with gradient `(−(Q − P)_y, (Q − P)_x)`, whose signs are the exact
+/// comparisons of `P`'s and `Q`'s coordinates; so the rectangle's corner
+/// that takes `f` farthest toward the third corner `R`'s side `σ =
+/// orient2(P, Q, R)` is known exactly, and where `f` is `−σ` there, every
+/// point of the rectangle has `σ f < 0` while every point of `ABC` has
+/// `σ f ≥ 0`: the shadows are apart, so are `t` and `b`. A shadow that is
+/// a segment or a point (`σ = 0`) is not tried. `false` settles nothing.
+fn edge_clears_box(t: [DVec3; 3], b: &Aabb) -> bool {
+    (0..3).any(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let shadow = t.map(|p| [p[i], p[j]]);
+        let side = orient2(shadow[0], shadow[1], shadow[2]);
+        side != Sign::Zero
+            && (0..3).any(|e| {
+                let (p, q) = (shadow[e], shadow[(e + 1) % 3]);
+                // The gradient of `side · f`: the corner's coordinate on
+                // each axis is the box's end it points to.
+                let toward = |d: f64, end: usize| {
+                    let up = if side == Sign::Positive {
+                        d > 0.0
+                    } else {
+                        d < 0.0
+                    };
+                    if up {
+                        b.hi[end]
+                    } else {
+                        b.lo[end]
+                    }
+                };
+                let corner = [toward(p[1] - q[1], i), toward(q[0] - p[0], j)];
+                orient2(p, q, corner) == side.flip()
+            })
+    })
 }
 
 /// Whether the plane of the triangle `t` meets the box `b` (`Some(false)`:
@@ -689,7 +739,7 @@ where
     /// tree (those whose boxes meet the segment's, as the walk would reach
     /// them): it must hold every one of those whose planes cut a box
     /// holding both ends ([`Placed::triangles_meeting`] of that box, then
-    /// perhaps [`keep_planes_cutting`] for it).
+    /// perhaps [`keep_triangles_meeting`] for it).
     pub(crate) fn windings_along(
         &self,
         candidates: &[u32],
@@ -968,9 +1018,9 @@ mod tests {
     /// box, read by a chain of segments between points in it (each
     /// triangle's side of the last end carried to the next segment), and
     /// the same list without the triangles whose planes clear the box
-    /// (`keep_planes_cutting`), give each point the ray's windings. Fails
-    /// when a carried side is read for another point, and when the planes
-    /// kept are the wrong ones.
+    /// or shadows clear the box (`keep_triangles_meeting`), give each point
+    /// the ray's windings. Fails when a carried side is read for another
+    /// point, and when the planes or the edges kept are the wrong ones.
     #[test]
     fn a_list_read_by_a_chain_of_segments_gives_the_rays_windings() {
         use rand::{Rng, SeedableRng};
@@ -1013,7 +1063,7 @@ mod tests {
             let region = Aabb::of(points.iter().map(|p| p.to_array()));
             let whole = placed.triangles_meeting(&region, usize::MAX).unwrap();
             let mut culled = placed.triangles_meeting(&region, usize::MAX).unwrap();
-            keep_planes_cutting(&mut culled, &region);
+            keep_triangles_meeting(&mut culled, &region);
             listed += whole.len();
             kept += culled.len();
             let ray = |p: DVec3, parity: &mut Vec<u8>| {
@@ -1040,6 +1090,82 @@ mod tests {
         }
         assert!(along > 3_000, "{along} segments decided");
         assert!(kept < listed, "{kept} of {listed} triangles kept");
+    }
+
+    /// `edge_clears_box` against a plain separating-axis test on small
+    /// integer coordinates (every product and sum exact in floats): it
+    /// says apart exactly where, on a coordinate plane where the
+    /// triangle's shadow is a triangle, the box's shadow lies strictly
+    /// beyond an edge's line, away from the third corner; and the oracle
+    /// then finds an axis that parts the triangle and the box strictly.
+    /// Fails when a corner is taken toward the wrong end or on the wrong
+    /// side.
+    #[test]
+    fn an_edge_clearing_a_box_parts_them_as_the_separating_axes_say() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(35);
+        let centre_and_half = |b: &Aabb| {
+            let (lo, hi) = (DVec3::from(b.lo), DVec3::from(b.hi));
+            ((lo + hi) * 0.5, (hi - lo) * 0.5)
+        };
+        // Whether `axis` parts the two strictly.
+        let parts = |axis: DVec3, t: &[DVec3; 3], b: &Aabb| {
+            let on_t = t.map(|p| axis.dot(p));
+            let (c, h) = centre_and_half(b);
+            let (c, r) = (axis.dot(c), axis.abs().dot(h));
+            on_t.iter().all(|&v| v > c + r) || on_t.iter().all(|&v| v < c - r)
+        };
+        let (mut cleared, mut kept) = (0, 0);
+        for _ in 0..200_000 {
+            let mut point = || {
+                DVec3::from(std::array::from_fn::<f64, 3, _>(|_| {
+                    f64::from(rng.random_range(-6i32..=6))
+                }))
+            };
+            let t = [point(), point(), point()];
+            let (a, z) = (point(), point());
+            let b = Aabb {
+                lo: a.min(z).to_array(),
+                hi: a.max(z).to_array(),
+            };
+            let mut expected = false;
+            for k in 0..3 {
+                let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+                let shadow = t.map(|p| [p[i], p[j]]);
+                if orient2(shadow[0], shadow[1], shadow[2]) == Sign::Zero {
+                    continue;
+                }
+                for e in 0..3 {
+                    let n = DVec3::AXES[k].cross(t[(e + 1) % 3] - t[e]);
+                    let (line, third) = (n.dot(t[e]), n.dot(t[(e + 2) % 3]));
+                    let (c, h) = centre_and_half(&b);
+                    let (c, r) = (n.dot(c), n.abs().dot(h));
+                    expected |= if third > line {
+                        c + r < line
+                    } else {
+                        c - r > line
+                    };
+                }
+            }
+            let says = edge_clears_box(t, &b);
+            assert_eq!(says, expected, "{t:?} {b:?}");
+            if says {
+                cleared += 1;
+                let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+                let mut axes: Vec<DVec3> = (0..9)
+                    .map(|m| DVec3::AXES[m / 3].cross(t[(m % 3 + 1) % 3] - t[m % 3]))
+                    .collect();
+                axes.extend(DVec3::AXES);
+                axes.push(normal);
+                assert!(
+                    axes.iter().any(|&n| n != DVec3::ZERO && parts(n, &t, &b)),
+                    "{t:?} {b:?}"
+                );
+            } else {
+                kept += 1;
+            }
+        }
+        assert!(cleared > 10_000 && kept > 10_000, "{cleared} {kept}");
     }
 
     /// Module docs, "Segments between points": the windings carried along

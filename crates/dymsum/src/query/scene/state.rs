@@ -378,7 +378,9 @@ use glam::{DMat3, DVec3};
 
 use super::checker::{cached, cells, triangle_box, SceneChecker, Scratch};
 
-use crate::body::winding::{keep_planes_cutting, segment_start, some_winds, Known, Listed, Placed};
+use crate::body::winding::{
+    keep_triangles_meeting, segment_start, some_winds, Known, Listed, Placed,
+};
 use crate::kernel::rotation::Pose;
 use crate::kernel::separation::triangles_apart;
 use crate::query::checker::Checker;
@@ -392,9 +394,10 @@ use crate::solid::obb::pose_skew;
 /// in `body::winding`): where the corners spread wider, each walks.
 const TRIANGLES_LISTED_MOST: usize = 64;
 
-/// Past how many scene corners in reach the list's triangles whose planes
-/// clear the corners' box are dropped (`body::winding::keep_planes_cutting`:
-/// eight signs a triangle once, against one or two a segment).
+/// Past how many scene corners in reach the list's triangles proven to
+/// miss the corners' box are dropped (`body::winding::keep_triangles_meeting`:
+/// up to eight signs of its plane and twelve of its edges' shadows a
+/// triangle once, against one or two a segment).
 const CORNERS_TO_CULL_PLANES: usize = 8;
 
 /// From how many scene corners in reach their box is first asked of the
@@ -967,10 +970,10 @@ impl SceneChecker {
                     listed.get_or_insert_with(|| {
                         let mut list = placed.triangles_meeting(&region, TRIANGLES_LISTED_MOST);
                         // Where many segments will read it, the triangles
-                        // whose planes clear the corners' box are dropped.
+                        // proven to miss the corners' box are dropped.
                         if corners.len() > CORNERS_TO_CULL_PLANES {
                             if let Some(list) = &mut list {
-                                culled_exactly = keep_planes_cutting(list, &region);
+                                culled_exactly = keep_triangles_meeting(list, &region);
                             }
                         }
                         list
@@ -1421,6 +1424,41 @@ mod tests {
         assert!(
             colliding > 40 && colliding < 160 && segments > 500,
             "{colliding} colliding, {segments} segments"
+        );
+    }
+
+    /// One checker, its states one after another: twelve specks by a
+    /// shell's cavity face, the body moved to and fro along the face's
+    /// normal so that the face crosses them (a state's containment test
+    /// must read nothing decided at the state before); every answer is
+    /// the exact one (the surfaces' test, then each corner's own ray
+    /// through the posed body). Fails when a state starts its segments
+    /// from the point the state before decided last.
+    #[test]
+    fn specks_a_moving_face_crosses_are_answered_state_by_state() {
+        use rand::{Rng, SeedableRng};
+        let body = shell(2.5);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(8);
+        let (mut colliding, mut answers) = (0, 0);
+        for round in 0..30 {
+            let turn = random_turn(&mut rng);
+            let base = Pose::new(turn, DVec3::new(3.0, -1.0, 2.0));
+            let (specks, corners) =
+                specks_by_a_face(&mut rng, base, 12, 2.5, 0.0, 0.002..0.05, 3.0..5.0, 1e-3);
+            let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
+            for _ in 0..20 {
+                let shift = turn.apply(DVec3::X) * rng.random_range(-0.06..0.06);
+                let pose = Pose::new(turn, base.translation + shift);
+                let (_, touching) = posed_and_touching(&body, pose);
+                let exact = touching(&specks) || inside_by_rays(&body, pose, &corners);
+                assert_eq!(checker.collides_at(pose).unwrap(), exact, "round {round}");
+                colliding += usize::from(exact);
+                answers += 1;
+            }
+        }
+        assert!(
+            colliding > answers / 5 && colliding < answers * 4 / 5,
+            "{colliding} of {answers} colliding"
         );
     }
 
