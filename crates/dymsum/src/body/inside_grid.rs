@@ -28,6 +28,21 @@
 //! block). A test that cannot part them marks the cell as meeting the
 //! triangle: a false "meets" only sends that cell's points to the ray.
 //!
+//! # Windings kept
+//! The ray that classifies a region finds the winding number of each
+//! source about its cell's centre, and every point of the region has the
+//! same ones (above). An inside region's windings (sources with a number
+//! other than zero, sorted, the same list for every region that has it)
+//! are kept in a table of at most [`WINDINGS_KEPT`] distinct lists, and the
+//! region's cells say which: [`InsideGrid::windings_at`] reads them (none
+//! for an outside cell), so a containment segment may start from a point
+//! of an inside cell as from one of an outside cell (`body::winding`, "A
+//! start outside"). A region whose list finds no room (more distinct ones
+//! than the table holds; never seen) is inside with no windings kept, and
+//! is never a start. Test: `classified_cells_answer_as_the_ray` (the kept
+//! windings are each point's own ray's, source by source: nested shells,
+//! a cavity, touching and joined solids).
+//!
 //! # Asking
 //! [`InsideGrid::classify`] answers for a point known to within `e` per
 //! coordinate (`e = 0`: the point itself) when the box of half-width `e`
@@ -48,6 +63,7 @@
 
 use glam::DVec3;
 
+use super::winding::{some_winds, Windings};
 use super::MeshBody;
 use crate::kernel::separation::PlaneAxis;
 use crate::sanity::SanityError;
@@ -63,10 +79,23 @@ pub(crate) const MAX_RAYS: usize = 1024;
 /// A cell that meets a triangle of a solid, or a region left
 /// unclassified: its points are asked by a ray.
 const UNKNOWN: u8 = 0;
+/// Outside every solid: every source winds zero times.
 const OUTSIDE: u8 = 1;
+/// Inside a solid, its windings not kept (more distinct ones than
+/// [`WINDINGS_KEPT`]).
 const INSIDE: u8 = 2;
+/// Inside a solid with the windings `InsideGrid::windings[code − 3]`
+/// (module docs, "Windings kept").
+const INSIDE_KEPT: u8 = 3;
+/// The most distinct windings a grid keeps.
+const WINDINGS_KEPT: usize = (EMPTY - INSIDE_KEPT) as usize;
 /// While building: empty, its region not yet walked.
-const EMPTY: u8 = 3;
+const EMPTY: u8 = u8::MAX;
+
+/// Whether a cell's class is inside a solid (kept windings or not).
+fn is_inside(class: u8) -> bool {
+    (INSIDE..EMPTY).contains(&class)
+}
 
 /// A body's empty cells classified as inside a solid or outside every one
 /// (module docs).
@@ -78,8 +107,12 @@ pub(crate) struct InsideGrid {
     /// Cells per unit length along each axis (`n / (planes[n] − planes[0])`:
     /// [`InsideGrid::guess`]'s scale, computed once).
     scale: [f64; 3],
-    /// Each cell's class (`UNKNOWN`, `OUTSIDE`, `INSIDE`), `x` fastest.
+    /// Each cell's class (`UNKNOWN`, `OUTSIDE`, `INSIDE`, or
+    /// `INSIDE_KEPT + k` for the windings `windings[k]`), `x` fastest.
     cells: Vec<u8>,
+    /// The distinct windings of the inside regions, sorted by source,
+    /// without zeros (module docs, "Windings kept").
+    windings: Vec<Windings>,
 }
 
 impl InsideGrid {
@@ -130,6 +163,7 @@ impl InsideGrid {
             planes,
             scale,
             cells: vec![EMPTY; counts.iter().product()],
+            windings: Vec::new(),
         };
         let mag = lo.abs().max(hi.abs());
         for t in (0..body.triangles.len()).filter(|&t| is_solid(t)) {
@@ -273,9 +307,9 @@ impl InsideGrid {
                 rays += 1;
                 let (lo, hi) = self.block(at(start), at(start));
                 let centre = (0.5 * lo + 0.5 * hi).clamp(lo, hi);
-                match body.inside_by_ray(centre, &mut parity) {
-                    Some(true) => INSIDE,
-                    Some(false) => OUTSIDE,
+                match body.windings_by_ray(centre, &mut parity) {
+                    Some(w) if some_winds(&w) => self.keep(w),
+                    Some(_) => OUTSIDE,
                     None => UNKNOWN,
                 }
             } else {
@@ -303,6 +337,23 @@ impl InsideGrid {
         }
     }
 
+    /// The class of an inside region whose ray found the windings `w`
+    /// (module docs, "Windings kept"): `INSIDE_KEPT` plus their index
+    /// among those kept, kept if new and room is left, else `INSIDE`.
+    fn keep(&mut self, mut w: Windings) -> u8 {
+        w.retain(|e| e.1 != 0);
+        w.sort_unstable();
+        let k = match self.windings.iter().position(|kept| *kept == w) {
+            Some(k) => k,
+            None if self.windings.len() < WINDINGS_KEPT => {
+                self.windings.push(w);
+                self.windings.len() - 1
+            }
+            None => return INSIDE,
+        };
+        INSIDE_KEPT + k as u8
+    }
+
     /// Whether the point `x` of the body's frame lies inside a solid, when
     /// the grid knows: the box of half-width `e` about it lies in one
     /// classified cell (module docs, "Asking"); `None` otherwise.
@@ -320,6 +371,36 @@ impl InsideGrid {
     /// classified cell; `None` otherwise.
     #[inline]
     pub(crate) fn classify_box(&self, lo: DVec3, hi: DVec3) -> Option<bool> {
+        match self.class_of_box(lo, hi)? {
+            OUTSIDE => Some(false),
+            class if is_inside(class) => Some(true),
+            _ => None,
+        }
+    }
+
+    /// The windings about every point of the box of half-width `e` about
+    /// `x` (as [`InsideGrid::classify`] widens it), when that box lies in
+    /// one classified cell whose windings are known: outside (none wind)
+    /// or an inside region's kept ones (module docs, "Windings kept").
+    pub(crate) fn windings_at(&self, x: DVec3, e: f64) -> Option<Windings> {
+        let w = if e == 0.0 {
+            DVec3::ZERO
+        } else {
+            DVec3::splat(2.0 * e) + 4.0 * f64::EPSILON * x.abs()
+        };
+        match self.class_of_box(x - w, x + w)? {
+            OUTSIDE => Some(Windings::new()),
+            class if (INSIDE_KEPT..EMPTY).contains(&class) => {
+                Some(self.windings[usize::from(class - INSIDE_KEPT)].clone())
+            }
+            _ => None,
+        }
+    }
+
+    /// The class of the one cell holding the box `[lo, hi]`; `None` where
+    /// no cell holds it.
+    #[inline]
+    fn class_of_box(&self, lo: DVec3, hi: DVec3) -> Option<u8> {
         if self.cells.is_empty() {
             return None;
         }
@@ -344,11 +425,7 @@ impl InsideGrid {
             index += i * stride;
             stride *= n;
         }
-        match self.cells[index] {
-            INSIDE => Some(true),
-            OUTSIDE => Some(false),
-            _ => None,
-        }
+        Some(self.cells[index])
     }
 
     /// The widest cell's width along any axis (zero for an empty grid).
@@ -397,7 +474,7 @@ impl InsideGrid {
             range[k] = (from, to);
         }
         let first = self.cells[self.index([range[0].0, range[1].0, range[2].0])];
-        if first != INSIDE && first != OUTSIDE {
+        if first != OUTSIDE && !is_inside(first) {
             return None;
         }
         for z in range[2].0..=range[2].1 {
@@ -409,7 +486,7 @@ impl InsideGrid {
                 }
             }
         }
-        Some(first == INSIDE)
+        Some(is_inside(first))
     }
 
     /// The cells' planes along each axis (for tests).
@@ -448,8 +525,23 @@ impl InsideGrid {
         if self.cells.len() != self.counts().iter().product::<usize>() {
             return bad("not one cell per triple of intervals");
         }
-        if self.cells.iter().any(|&c| c > INSIDE) {
+        if self.cells.contains(&EMPTY) {
             return bad("a cell left mid-build");
+        }
+        let kept = self.windings.len();
+        if self
+            .cells
+            .iter()
+            .any(|&c| c >= INSIDE_KEPT && usize::from(c - INSIDE_KEPT) >= kept)
+        {
+            return bad("a cell's windings not kept");
+        }
+        if self
+            .windings
+            .iter()
+            .any(|w| !some_winds(w) || w.iter().any(|e| e.1 == 0) || !w.is_sorted())
+        {
+            return bad("kept windings not sorted, zero or with a zero entry");
         }
         Ok(())
     }
@@ -569,13 +661,16 @@ pub(crate) mod tests {
     }
 
     /// Every point the grid answers for is on no triangle of a solid, and
-    /// its ray answers the same: random points, the cells' corners and
-    /// centres, the triangles' centroids and points just off them on both
-    /// sides, and points of the boxes about random points the grid answers
-    /// for with a half-width.
+    /// its ray answers the same, and where the grid knows the windings
+    /// (module docs, "Windings kept") they are the ray's, source by
+    /// source: random points, the cells' corners and centres, the
+    /// triangles' centroids and points just off them on both sides, and
+    /// points of the boxes about random points the grid answers for with a
+    /// half-width. Fails when a region keeps another's windings.
     #[test]
     fn classified_cells_answer_as_the_ray() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (mut kept_inside, mut kept_twice) = (0, 0);
         for (b, body) in bodies().iter().enumerate() {
             let grid = body.inside_grid();
             grid.sanity_check().unwrap();
@@ -590,6 +685,15 @@ pub(crate) mod tests {
                         Some(v),
                         "body {b}: {p}"
                     );
+                }
+                if let Some(w) = grid.windings_at(p, 0.0) {
+                    let mut ray = body.windings_by_ray(p, &mut Vec::new()).unwrap();
+                    ray.retain(|e| e.1 != 0);
+                    ray.sort_unstable();
+                    assert_eq!(w, ray, "body {b}: {p}");
+                    assert_eq!(answer, Some(some_winds(&w)), "body {b}: {p}");
+                    kept_inside += usize::from(some_winds(&w));
+                    kept_twice += usize::from(w.iter().any(|e| e.1.abs() > 1) || w.len() > 1);
                 }
             };
             let planes = grid.planes.clone();
@@ -645,6 +749,11 @@ pub(crate) mod tests {
                 "body {b}: only {inside} points answered inside"
             );
         }
+        // Nested shells wind twice, the joined bodies' sources once each.
+        assert!(
+            kept_inside > 1_000 && kept_twice > 10,
+            "{kept_inside} inside points' windings kept, {kept_twice} of them not one source once"
+        );
     }
 
     /// A cube 8 least subnormals wide, each face cut 8 × 8: its grid has

@@ -942,7 +942,7 @@ impl SceneChecker {
                 p,
                 &(placed.node_box)(0),
                 grid.map_or(0.0, |g| g.cell_width()),
-                |q| grid.and_then(|g| g.classify(mi * (q - t), self::back_pad(size, pad, q, t))),
+                |q| grid.and_then(|g| g.windings_at(mi * (q - t), self::back_pad(size, pad, q, t))),
             );
             let seeded = matches!(from, Some(Cow::Owned(_)));
             let along = from.as_ref().and_then(|k| {
@@ -1344,6 +1344,46 @@ mod tests {
                 30.0..60.0,
                 1e-2,
             );
+            let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
+            let exact = inside_by_rays(&body, pose, &corners);
+            assert_eq!(checker.collides_at(pose).unwrap(), exact, "{pose:?}");
+            colliding += usize::from(exact);
+            rounds += 1;
+            stats.add(&checker.containment_stats());
+        }
+        assert!(
+            colliding > 20 && rounds - colliding > 20,
+            "{colliding} of {rounds}"
+        );
+        assert_eq!((stats.by_ray, stats.segment_fallbacks), (0, 0), "{stats:?}");
+        assert!(stats.by_segment >= rounds as u64, "{stats:?}");
+    }
+
+    /// A first corner with no outside cell near starts from an inside one
+    /// (module docs of `body::winding`, "A start outside"; of
+    /// `body::inside_grid`, "Windings kept"): specks by the face of a
+    /// cavity smaller than a cell deep in a solid box (every cell within
+    /// two of them meets the cavity or lies inside), in the cavity or in
+    /// the solid, at random turns. Every answer is the exact one (each
+    /// corner's own ray through the posed body), and no corner takes a
+    /// ray. Fails when the grid gives no windings for inside cells.
+    #[test]
+    fn a_first_corner_deep_in_a_solid_starts_from_an_inside_cell() {
+        use crate::body::inside_grid::tests::push_box;
+        use rand::SeedableRng;
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut m, [0.0; 3], [90.0; 3], true, 8);
+        push_box(&mut m, [40.0; 3], [46.0; 3], false, 1);
+        let body = MeshBody::new(&m).unwrap();
+        let width = body.inside_grid().cell_width();
+        assert!(width > 6.0 && width < 12.0, "cells {width} wide");
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let (mut colliding, mut rounds) = (0, 0);
+        let mut stats = ContainmentStats::default();
+        for _ in 0..150 {
+            let pose = Pose::new(random_turn(&mut rng), DVec3::new(-4.0, 30.0, 7.0));
+            let (specks, corners) =
+                specks_by_a_face(&mut rng, pose, 2, 40.0, 0.4, 0.01..0.5, 41.0..45.0, 1e-2);
             let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
             let exact = inside_by_rays(&body, pose, &corners);
             assert_eq!(checker.collides_at(pose).unwrap(), exact, "{pose:?}");
