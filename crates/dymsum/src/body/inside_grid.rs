@@ -97,6 +97,18 @@ fn is_inside(class: u8) -> bool {
     (INSIDE..EMPTY).contains(&class)
 }
 
+/// The box asked for a point `x` known to within `e` per coordinate
+/// (module docs, "Asking"): the point itself where `e = 0`, else widened
+/// by `2e` plus four ulps of the coordinate, so that rounding cannot
+/// narrow it.
+fn widened(x: DVec3, e: f64) -> (DVec3, DVec3) {
+    if e == 0.0 {
+        return (x, x);
+    }
+    let w = DVec3::splat(2.0 * e) + 4.0 * f64::EPSILON * x.abs();
+    (x - w, x + w)
+}
+
 /// A body's empty cells classified as inside a solid or outside every one
 /// (module docs).
 #[derive(Clone, Debug, Default)]
@@ -359,11 +371,8 @@ impl InsideGrid {
     /// classified cell (module docs, "Asking"); `None` otherwise.
     #[inline]
     pub(crate) fn classify(&self, x: DVec3, e: f64) -> Option<bool> {
-        if e == 0.0 {
-            return self.classify_box(x, x);
-        }
-        let w = DVec3::splat(2.0 * e) + 4.0 * f64::EPSILON * x.abs();
-        self.classify_box(x - w, x + w)
+        let (lo, hi) = widened(x, e);
+        self.classify_box(lo, hi)
     }
 
     /// Whether every point of the box `[lo, hi]` of the body's frame lies
@@ -383,12 +392,8 @@ impl InsideGrid {
     /// one classified cell whose windings are known: outside (none wind)
     /// or an inside region's kept ones (module docs, "Windings kept").
     pub(crate) fn windings_at(&self, x: DVec3, e: f64) -> Option<Windings> {
-        let w = if e == 0.0 {
-            DVec3::ZERO
-        } else {
-            DVec3::splat(2.0 * e) + 4.0 * f64::EPSILON * x.abs()
-        };
-        match self.class_of_box(x - w, x + w)? {
+        let (lo, hi) = widened(x, e);
+        match self.class_of_box(lo, hi)? {
             OUTSIDE => Some(Windings::new()),
             class if (INSIDE_KEPT..EMPTY).contains(&class) => {
                 Some(self.windings[usize::from(class - INSIDE_KEPT)].clone())
