@@ -32,7 +32,7 @@
 //! inward shell, winding `−1` and inside it, must not cancel another
 //! obstacle's solid around the same point). With every sign exact the answer is exact. A
 //! point for which all directions are degenerate gets no answer from the
-//! ray (`inside_by_ray` returns `None`; the queries then return
+//! ray (`windings_by_ray` returns `None`; the queries then return
 //! `QueryError::OutOfRange` naming it), never a guess; `inside_solid`
 //! answers from a classified cell of the grid whatever that point's own
 //! rays do.
@@ -116,7 +116,8 @@
 //!
 //! A point is *known* when its windings were found by a ray or a segment,
 //! or when the grid says it is outside (every source winds zero times
-//! there: a classified cell's answer holds for its points,
+//! there) or reads it in an inside cell whose windings it kept (a
+//! classified cell's answer holds for its points,
 //! [`super::inside_grid`], and at a pose, `query::scene::state`'s "The grid
 //! at a pose"). The segment is tried only where it is shorter than the
 //! way out of the solids' box along an axis (a ray walks at least that);
@@ -156,13 +157,14 @@
 //! of the solids' box. Where the body's grid has cells, a point `q` one
 //! cell width from `p` (else two) along one of the rays' first six
 //! directions (nearly along the axes: a thin box for the tree) is tried
-//! instead, the first that the grid reads as outside: then every source
-//! winds zero times about `q`, and `q` lies on no triangle of a solid (its
-//! cell meets none), so `q` is a known point and the segment `qp` decides
-//! `p` as above (`W(q) = 0`), where it is shorter than the way out. In the
+//! instead, the first that the grid reads as outside (or, below, in an
+//! inside cell whose windings it kept): then every source winds zero
+//! times about `q`, and `q` lies on no triangle of a solid (its cell meets
+//! none), so `q` is a known point and the segment `qp` decides `p` as
+//! above (`W(q) = 0`), where it is shorter than the way out. In the
 //! scene checker the body's grid is read at a pose as for a corner: `q` is
 //! carried back with the same rounding bound, and read only where its whole
-//! box of rounding lies in one outside cell (`query::scene::state`, "The
+//! box of rounding lies in one such cell (`query::scene::state`, "The
 //! grid at a pose"); that segment may leave the corners' box, which their
 //! list holds for segments between corners only, so it walks the tree
 //! instead of reading the list. A degenerate segment falls back to
@@ -173,7 +175,10 @@
 //! region has those windings, per source, and at a pose too (the map back
 //! to the body's frame keeps each winding number, "The grid at a pose"),
 //! so `q` is a known point with `W(q)` the kept windings, and the segment
-//! from it decides `p` by the same formula. The first corner of a part
+//! from it decides `p` by the same formula. Here the signs matter (for an
+//! outside cell every number is zero, whatever the orientation): the
+//! grid is read at a pose only where the matrix is near a rotation with
+//! `det M > 0.5`, which keeps each number, sign included. The first corner of a part
 //! deep in the other's solid, where no outside cell lies within two, took
 //! a ray before (test `a_first_corner_deep_in_a_solid_starts_from_an_inside_cell`
 //! in `query::scene::state`: 150 rays before, none now; on the Centauro
@@ -315,8 +320,9 @@ impl MeshBody {
             }
             None => {
                 let placed = self.unposed();
-                // Where no point decided before is near, a start in an
-                // outside cell by `p`'s (module docs, "A start outside").
+                // Where no point decided before is near, a start in a
+                // cell by `p`'s whose windings the grid knows (module
+                // docs, "A start outside").
                 let grid = self.inside_grid();
                 let from = segment_start(
                     known.as_ref(),
@@ -480,8 +486,8 @@ impl Known {
 /// can start (module docs, "A start outside"): `p` moved one cell width
 /// `cell`, else two, along the rays' first six directions (nearly along
 /// the axes, so the segment's box is thin), the first for which
-/// `windings_at` (the grid's reading: none for a point in an outside
-/// cell, the region's kept ones in an inside cell) knows them.
+/// `windings_at` (the grid's reading: an empty list for a point in an
+/// outside cell, the region's kept ones in an inside cell) knows them.
 fn classified_start(
     p: DVec3,
     cell: f64,

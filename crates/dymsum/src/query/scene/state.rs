@@ -299,8 +299,10 @@
 //!
 //! Past the grid, each corner is decided by a segment from the corner
 //! decided before (`body::winding`, "Segments between points") or, for the
-//! first, from a point of an outside cell one or two cells away ("A start
-//! outside" there; test `a_first_corner_starts_from_an_outside_cell`).
+//! first, from a point one or two cells away in an outside cell, or in an
+//! inside cell whose windings the grid kept ("A start outside" there;
+//! tests `a_first_corner_starts_from_an_outside_cell`,
+//! `a_first_corner_deep_in_a_solid_starts_from_an_inside_cell`).
 //! The solid components a segment between two corners counts are those
 //! whose posed boxes meet the segment's box; that box lies in the
 //! corners' box, so they are among the components whose posed boxes meet
@@ -931,10 +933,11 @@ impl SceneChecker {
             // From the last corner decided where the segment is the
             // shorter way (the posed body's box bounds the ray's), else by
             // a ray.
-            // Where no corner decided before is near, a start in an
-            // outside cell of the body's grid by this corner's (module
-            // docs of `body::winding`, "A start outside"), read outside at
-            // the pose as a corner is; its segment may leave the corners'
+            // Where no corner decided before is near, a start in a cell
+            // of the body's grid by this corner's whose windings it knows
+            // (outside, or inside and kept; module docs of
+            // `body::winding`, "A start outside"), read at the pose as a
+            // corner is; its segment may leave the corners'
             // box, which their list holds for segments between corners
             // only, so it walks the tree instead.
             let from = segment_start(
