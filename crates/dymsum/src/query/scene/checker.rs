@@ -549,8 +549,9 @@ impl SceneChecker {
     /// let checker = SceneChecker::new(&cube(0.1)?, &[cube(10.0)?])?;
     /// assert!(checker.collides_at(Pose::new(Rotation::IDENTITY, DVec3::ZERO))?);
     /// assert_eq!(checker.containment_stats().bodies_by_grid, 1);
-    /// // Across the large one's face: its corners are asked.
-    /// assert!(checker.collides_at(Pose::new(Rotation::IDENTITY, DVec3::X * 4.98))?);
+    /// // Inside by the large one's face, in a cell that the face meets: its
+    /// // corners are asked.
+    /// assert!(checker.collides_at(Pose::new(Rotation::IDENTITY, DVec3::X * 4.9))?);
     /// let stats = checker.containment_stats();
     /// assert!(stats.by_grid + stats.by_segment + stats.by_ray >= 1);
     /// # Ok::<(), Box<dyn std::error::Error>>(())

@@ -35,7 +35,13 @@
 //! sample of 16 pairs −0.75%; the cylinder pair's random 99th percentile
 //! in Rust 40.8 → 49–50 µs, from Python 39 µs against fcl's 94
 //! (docs/BENCHMARKS.md, "A new seeded sample"). Test
-//! `the_first_asking_reads_the_grids_only`.
+//! `the_first_asking_reads_the_grids_only`. An independent review
+//! (2026-12-02, ninth stop) read every path of the grids-only asking:
+//! each point is excluded by a box, read by a grid, or stops it with the
+//! error (so an "outside" covers every point asked, and the second asking
+//! resumes after them with the same numbering), the body's vertices are
+//! read as `MeshBody::inside_solid` reads them, and the error reaches no
+//! caller; its remark on a misplaced doc line is applied.
 //!
 //! Why the answer is the same. Before, the answer was `W ∨ C`: the walk
 //! `W`, then the containment test `C`, which asks its points in a fixed
@@ -1125,8 +1131,6 @@ fn back_pad(size: f64, pad: f64, p: DVec3, t: DVec3) -> f64 {
         + 1e-300
 }
 
-/// The error of a point whose containment is neither read from the grid nor
-/// decided by a ray (never seen).
 /// The first asking's stop at a point no grid reads (module docs,
 /// "Containment first"; never returned: the walk, then the whole asking,
 /// follow).
@@ -1134,6 +1138,8 @@ fn not_read() -> QueryError {
     QueryError::OutOfRange(String::new())
 }
 
+/// The error of a point whose containment is neither read from the grid nor
+/// decided by a ray (never seen).
 fn undecided(p: DVec3) -> QueryError {
     QueryError::OutOfRange(format!(
         "whether the point {:?} lies inside a solid could not be decided: every ray from it \
