@@ -1372,42 +1372,24 @@ mod tests {
             .any(|&c| posed.inside_by_ray(c, &mut Vec::new()).unwrap())
     }
 
-    /// A first corner starts from an outside cell (module docs of
-    /// `body::winding`, "A start outside"): specks by the cavity's face of a
-    /// shell (the face's cell meets it, so the grid cannot read them, and
-    /// the way out of the shell is longer than two cells), on either side
-    /// of it, at random turns and offsets. Every answer is the exact one
-    /// (each corner's own ray through the posed body), and no corner takes
-    /// a ray: the first is decided by the segment from a point of an
-    /// outside cell, the next ones by segments from the corner before.
-    #[test]
-    fn a_first_corner_starts_from_an_outside_cell() {
-        use crate::body::inside_grid::tests::push_box;
-        use rand::{Rng, SeedableRng};
-        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
-        push_box(&mut m, [0.0; 3], [90.0; 3], true, 8);
-        push_box(&mut m, [25.0, 20.0, 20.0], [70.0, 70.0, 70.0], false, 8);
-        let body = MeshBody::new(&m).unwrap();
-        let width = body.inside_grid().cell_width();
-        assert!(width < 12.0, "cells {width} wide");
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+    /// 150 rounds of `specks(rng, pose)` (the specks and their corners) by
+    /// `body` at random turns: every answer is the exact one
+    /// ([`inside_by_rays`]), more than 20 collide and more than 20 do not,
+    /// and no corner takes a ray (each is decided by a segment).
+    fn first_corners_take_no_ray(
+        body: &MeshBody,
+        seed: u64,
+        mut specks: impl FnMut(&mut rand_chacha::ChaCha8Rng, Pose) -> (PolygonMesh, Vec<DVec3>),
+    ) {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
         let (mut colliding, mut rounds) = (0, 0);
         let mut stats = ContainmentStats::default();
         for _ in 0..150 {
             let pose = Pose::new(random_turn(&mut rng), DVec3::new(-4.0, 30.0, 7.0));
-            let count = rng.random_range(1..4);
-            let (specks, corners) = specks_by_a_face(
-                &mut rng,
-                pose,
-                count,
-                25.0,
-                0.3,
-                0.01..0.5,
-                30.0..60.0,
-                1e-2,
-            );
-            let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
-            let exact = inside_by_rays(&body, pose, &corners);
+            let (specks, corners) = specks(&mut rng, pose);
+            let checker = SceneChecker::new(body, &[MeshBody::new(&specks).unwrap()]).unwrap();
+            let exact = inside_by_rays(body, pose, &corners);
             assert_eq!(checker.collides_at(pose).unwrap(), exact, "{pose:?}");
             colliding += usize::from(exact);
             rounds += 1;
@@ -1421,6 +1403,30 @@ mod tests {
         assert!(stats.by_segment >= rounds as u64, "{stats:?}");
     }
 
+    /// A first corner starts from an outside cell (module docs of
+    /// `body::winding`, "A start outside"): specks by the cavity's face of a
+    /// shell (the face's cell meets it, so the grid cannot read them, and
+    /// the way out of the shell is longer than two cells), on either side
+    /// of it, at random turns and offsets. Every answer is the exact one
+    /// (each corner's own ray through the posed body), and no corner takes
+    /// a ray: the first is decided by the segment from a point of an
+    /// outside cell, the next ones by segments from the corner before.
+    #[test]
+    fn a_first_corner_starts_from_an_outside_cell() {
+        use crate::body::inside_grid::tests::push_box;
+        use rand::Rng;
+        let mut m = PolygonMesh::new(Vec::new(), Vec::new());
+        push_box(&mut m, [0.0; 3], [90.0; 3], true, 8);
+        push_box(&mut m, [25.0, 20.0, 20.0], [70.0, 70.0, 70.0], false, 8);
+        let body = MeshBody::new(&m).unwrap();
+        let width = body.inside_grid().cell_width();
+        assert!(width < 12.0, "cells {width} wide");
+        first_corners_take_no_ray(&body, 11, |rng, pose| {
+            let count = rng.random_range(1..4);
+            specks_by_a_face(rng, pose, count, 25.0, 0.3, 0.01..0.5, 30.0..60.0, 1e-2)
+        });
+    }
+
     /// A first corner with no outside cell near starts from an inside one
     /// (module docs of `body::winding`, "A start outside"; of
     /// `body::inside_grid`, "Windings kept"): specks by the face of a
@@ -1432,33 +1438,15 @@ mod tests {
     #[test]
     fn a_first_corner_deep_in_a_solid_starts_from_an_inside_cell() {
         use crate::body::inside_grid::tests::push_box;
-        use rand::SeedableRng;
         let mut m = PolygonMesh::new(Vec::new(), Vec::new());
         push_box(&mut m, [0.0; 3], [90.0; 3], true, 8);
         push_box(&mut m, [40.0; 3], [46.0; 3], false, 1);
         let body = MeshBody::new(&m).unwrap();
         let width = body.inside_grid().cell_width();
         assert!(width > 6.0 && width < 12.0, "cells {width} wide");
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
-        let (mut colliding, mut rounds) = (0, 0);
-        let mut stats = ContainmentStats::default();
-        for _ in 0..150 {
-            let pose = Pose::new(random_turn(&mut rng), DVec3::new(-4.0, 30.0, 7.0));
-            let (specks, corners) =
-                specks_by_a_face(&mut rng, pose, 2, 40.0, 0.4, 0.01..0.5, 41.0..45.0, 1e-2);
-            let checker = SceneChecker::new(&body, &[MeshBody::new(&specks).unwrap()]).unwrap();
-            let exact = inside_by_rays(&body, pose, &corners);
-            assert_eq!(checker.collides_at(pose).unwrap(), exact, "{pose:?}");
-            colliding += usize::from(exact);
-            rounds += 1;
-            stats.add(&checker.containment_stats());
-        }
-        assert!(
-            colliding > 20 && rounds - colliding > 20,
-            "{colliding} of {rounds}"
-        );
-        assert_eq!((stats.by_ray, stats.segment_fallbacks), (0, 0), "{stats:?}");
-        assert!(stats.by_segment >= rounds as u64, "{stats:?}");
+        first_corners_take_no_ray(&body, 12, |rng, pose| {
+            specks_by_a_face(rng, pose, 2, 40.0, 0.4, 0.01..0.5, 41.0..45.0, 1e-2)
+        });
     }
 
     /// The corners together answer only for the corners the asking
