@@ -93,6 +93,24 @@
 //!   (the others by their margins) stays in its cell and has no event; its
 //!   certified margin is reused lazily while the steps stay about `e_k`.
 //!
+//! * *Certified normals.* After every update, each normal's lazy margin
+//!   less the rotation accumulated since it was computed bounds its float
+//!   margin in its current cell from below (the lazy skip above rests on
+//!   the same bound; a fallback or a fresh start recomputes every margin).
+//!   Where that bound exceeds the face's direction error `δ` and twice the
+//!   slack, the exact normal lies strictly inside its cell, on no arc of
+//!   the other map ([`DynamicSum::normal_strictly_inside`]). Readers of the
+//!   overlay use it to skip exact coplanarity tests
+//!   (`sum::merge::coplanar_groups_certified`): a normal on no arc of the
+//!   other map equals no normal of it (those are its cells' corners), and
+//!   an ee-facet of arcs `ab` (P's) and `cd` (Q's) is coplanar with face
+//!   `a` only when `a` lies on the great circle of `cd`; the arcs cross,
+//!   so then `a` is their crossing (the great circles are distinct, else
+//!   the arcs overlap and an end of one lies on the other; the other
+//!   common point `−a` is on neither arc, each shorter than a half turn),
+//!   on the arc `cd`. So an ee-facet whose four normals are certified is
+//!   neither coplanar with anything nor degenerate.
+//!
 //! A pair not on a re-walked arc therefore had events only at normals with a
 //! known event set, and toggling by parity gives its final status. Margins
 //! are computed in floats from accurate arc normals, and every comparison
@@ -470,6 +488,18 @@ impl DynamicSum {
     /// The posed operands (for readers of the current state).
     pub(crate) fn operands(&self) -> &crate::sum::Operands {
         &self.ops
+    }
+
+    /// Whether the normal of face `f` of P (`of_q` false) or of Q (`of_q`
+    /// true) is certified strictly inside its cell of the other map at the
+    /// current poses (module docs, "Certified normals"): its lazy margin,
+    /// less the rotation accumulated since it was computed, exceeds its
+    /// direction error and twice the margins' slack. `false` proves
+    /// nothing.
+    #[inline]
+    pub(crate) fn normal_strictly_inside(&self, of_q: bool, f: usize) -> bool {
+        let side = if of_q { &self.q } else { &self.p };
+        side.margin[f] - (self.theta_acc - side.margin_at[f]) > side.dir_err[f] + 2.0 * SLACK
     }
 
     /// The current overlay, with ee-pairs sorted.

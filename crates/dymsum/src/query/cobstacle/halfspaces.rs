@@ -5,7 +5,12 @@
 //! faces are the groups of coplanar facets of the sum (the exact
 //! coplanarity test of the mesh merge, `sum::merge`: parallel faces,
 //! normals on arcs; degenerate parallelograms are dropped), one plane per
-//! group. Its normal is the float unit normal of the group's first facet: a
+//! group. The exact tests are made only at normals the dynamic sum's lazy
+//! margins do not certify strictly inside their cells (`dynamic`, module
+//! docs, "Certified normals"; `sum::merge::coplanar_groups_certified`):
+//! such a normal is on no arc of the other map, so its facets are coplanar
+//! with none, and the groups are the same. On `cobst_map`'s 4,000 slices
+//! this cut the grouping from 26% of the read-out's instructions to 6%. Its normal is the float unit normal of the group's first facet: a
 //! face normal of P or Q turned by its pose when the group holds an
 //! fv- or vf-facet, else the normalised cross product of the posed edges of
 //! the ee-facet.
@@ -104,7 +109,7 @@ use crate::query::cobstacle::slices::{CObstacle, Reaches};
 use crate::query::error::QueryError;
 use crate::query::frame::up;
 use crate::query::proximity::support::{dot_error, near_max_upper, search_slack, Marks};
-use crate::sum::merge::coplanar_groups;
+use crate::sum::merge::coplanar_groups_certified;
 use crate::sum::{Operands, Overlay};
 use glam::DVec3;
 
@@ -245,7 +250,15 @@ fn sum_halfspaces(
     let ops: &Operands = sum.operands();
     sum.overlay_into(&mut scratch.overlay);
     let overlay = &scratch.overlay;
-    let (mut groups, degenerate, _) = coplanar_groups(ops, overlay);
+    // The exact coplanarity tests only where the sum's margins do not
+    // certify the normals strictly inside their cells (`dynamic`, module
+    // docs, "Certified normals"): the same groups.
+    let (mut groups, degenerate, _) = coplanar_groups_certified(
+        ops,
+        overlay,
+        |f| sum.normal_strictly_inside(false, f as usize),
+        |g| sum.normal_strictly_inside(true, g as usize),
+    );
     let bp = Posed::of(reach.p, ops.pose_p.translation);
     let bq = Posed::of(reach.q, ops.pose_q.translation);
     let (rp, rq) = (ops.pose_p.rotation, ops.pose_q.rotation);
@@ -508,6 +521,7 @@ mod tests {
     use super::*;
     use crate::polytope::Polytope;
     use crate::query::proximity::support::near_max;
+    use crate::sum::merge::coplanar_groups;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
