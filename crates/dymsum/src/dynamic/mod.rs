@@ -99,7 +99,7 @@
 //!   the same bound; a fallback or a fresh start recomputes every margin).
 //!   Where that bound exceeds the face's direction error `δ` and twice the
 //!   slack, the exact normal lies strictly inside its cell, on no arc of
-//!   the other map ([`DynamicSum::normal_strictly_inside`]). Readers of the
+//!   the other map (`DynamicSum::normal_strictly_inside`). Readers of the
 //!   overlay use it to skip exact coplanarity tests
 //!   (`sum::merge::coplanar_groups_certified`): a normal on no arc of the
 //!   other map equals no normal of it (those are its cells' corners), and
