@@ -149,6 +149,32 @@ pub(super) fn scan_side(
     state.due = due;
 }
 
+/// A step's angle `θ` as computed by `Rotation::angle_to`, padded to at
+/// least the exact angle between the two float rotations (module docs,
+/// "The accumulated rotation counts up"): `2 atan2(|v|, |w|)` of the
+/// quaternions' float product, whose four components each err by at most
+/// `5u` (sums of four products of unit quaternions' entries), so `|v|` by
+/// at most `9u` absolutely, and the angle by at most `18u` absolutely plus
+/// a few `u` relatively (the root, the quotient and `atan2`'s own
+/// rounding): `32u` and a relative `2⁻⁴⁸` cover both.
+#[inline]
+fn angle_up(theta: f64) -> f64 {
+    theta * (1.0 + 1.0 / (1u64 << 48) as f64) + 32.0 * crate::kernel::bounds::U
+}
+
+/// `a + b` rounded up (for `a, b ≥ 0`): the float sum, one ulp more where
+/// Knuth's TwoSum shows it rounded down (module docs, "The accumulated
+/// rotation counts up").
+#[inline]
+fn sum_up(a: f64, b: f64) -> f64 {
+    let (s, err) = crate::kernel::dd::two_sum(a, b);
+    if err > 0.0 {
+        f64::from_bits(s.to_bits() + 1)
+    } else {
+        s
+    }
+}
+
 /// Below `1/SCHEDULE_BELOW` of the normals checked in a pass, the side
 /// switches to the kinetic schedule; above `1/SCAN_ABOVE` due in a step, back
 /// to passes (hysteresis: `SCAN_ABOVE < SCHEDULE_BELOW`).
@@ -294,8 +320,13 @@ impl DynamicSum {
             self.p.rebase(shift);
             self.q.rebase(shift);
         }
+        // The rotation the lazy margins decay by must never count less
+        // than the exact one: the step's angle padded for `angle_to`'s
+        // rounding, and the sum rounded up (module docs, "The accumulated
+        // rotation counts up").
+        let theta = angle_up(theta);
         let before = self.theta_acc;
-        self.theta_acc += theta;
+        self.theta_acc = sum_up(before, theta);
         let axis = coordinate_axis(&rot_old, &rot);
         self.tick += 1;
         if axis != self.axis_run {
@@ -397,5 +428,140 @@ fn check_schedule_against_scan(state: &Side, step: &StepBounds, due: &[u32]) {
             step.after,
             step.theta
         );
+    }
+}
+
+#[cfg(test)]
+mod accumulated_rotation {
+    //! The accumulated rotation counts up (module docs of `dynamic`): the
+    //! two motions of the independent review of 2026-12-02 that made a
+    //! plain float sum count less than the bodies turned.
+    use super::*;
+    use crate::sum::{minkowski_sum_posed, Method};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn turn(axis: DVec3, angle: f64) -> Rotation {
+        Rotation::from_axis_angle(axis, angle).unwrap()
+    }
+
+    /// Turns P back and forth by 0.3 rad until the accumulated rotation is
+    /// past 700 (where an ulp of it is `1.1·10⁻¹³`).
+    fn accumulate(sum: &mut DynamicSum) {
+        let axis = DVec3::new(1.0, 2.0, 3.0).normalize();
+        let (mut t, mut dir) = (0.0f64, 1.0);
+        while sum.theta_acc < 700.0 {
+            t += 0.3 * dir;
+            if !(0.0..=3.0).contains(&t) {
+                dir = -dir;
+            }
+            sum.set_pose(Pose::new(turn(axis, t), DVec3::ZERO), Pose::IDENTITY);
+        }
+        assert!(sum.theta_acc < 1000.0);
+    }
+
+    /// 62,000 steps of `3·10⁻⁸` rad about z, each `0.45` ulp of the
+    /// accumulated rotation past a whole number of ulps, bring P's face
+    /// `x = 1` head-on onto an arc of an octahedron's map: a plain sum lost
+    /// `3.2·10⁻⁹` rad, the face was never revisited, and the overlay
+    /// differed from `walk`'s.
+    #[test]
+    fn a_rotation_of_many_small_steps_is_counted_in_full() {
+        let phi = 0.6f64;
+        let m = turn(DVec3::Z, phi).matrix();
+        let (c, s) = (m.col(0)[0], m.col(0)[1]);
+        // The arc between the faces (+, +, ±) crosses the equator at
+        // exactly (c, s, 0), where P's face normal ends.
+        let q = Polytope::from_points(&[
+            [s, 0.0, 0.0],
+            [-s, 0.0, 0.0],
+            [0.0, c, 0.0],
+            [0.0, -c, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ])
+        .unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut pts = vec![[1.0, 0.25, 0.5], [1.0, -0.5, 0.125], [1.0, 0.375, -0.625]];
+        for _ in 0..12 {
+            pts.push([
+                rng.random_range(-1.5..0.5),
+                rng.random_range(-1.5..1.5),
+                rng.random_range(-1.5..1.5),
+            ]);
+        }
+        let p = Polytope::from_points(&pts).unwrap();
+        let mut sum = DynamicSum::new(&p, Pose::IDENTITY, &q, Pose::IDENTITY).unwrap();
+        accumulate(&mut sum);
+        let ulp = 2f64.powi(-43);
+        let step = ((3e-8 / ulp).round() + 0.45) * ulp;
+        let n = 62_000usize;
+        sum.set_pose(
+            Pose::new(turn(DVec3::Z, phi - n as f64 * step), DVec3::ZERO),
+            Pose::IDENTITY,
+        );
+        let before = sum.theta_acc;
+        for k in 1..=n {
+            let at = if k == n {
+                phi
+            } else {
+                phi - (n - k) as f64 * step
+            };
+            sum.set_pose(Pose::new(turn(DVec3::Z, at), DVec3::ZERO), Pose::IDENTITY);
+        }
+        assert!(sum.theta_acc - before >= n as f64 * step * (1.0 - 1e-9));
+        let fresh = minkowski_sum_posed(&p, sum.pose_p(), &q, sum.pose_q(), Method::Walk).unwrap();
+        assert_eq!(sum.facets(), fresh.facets());
+    }
+
+    /// 60,000 steps of `5·10⁻¹⁴` rad (below half an ulp of the accumulated
+    /// rotation: a plain sum added nothing) end at an exact quarter turn
+    /// about z, where P's face `y + z = 1` has its normal exactly on an arc
+    /// of the box's map: its margin must not certify it strictly inside.
+    #[test]
+    fn steps_below_half_an_ulp_still_count() {
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let mut pts = vec![[0.25, 0.25, 0.75], [-0.5, 0.875, 0.125], [0.75, 0.5, 0.5]];
+        for _ in 0..12 {
+            pts.push([
+                rng.random_range(-1.0..1.5),
+                rng.random_range(-1.5..0.4),
+                rng.random_range(-1.5..0.4),
+            ]);
+        }
+        let p = Polytope::from_points(&pts).unwrap();
+        let corners: Vec<[f64; 3]> = (0..8)
+            .map(|i| {
+                let h = |b: usize, x: f64| if i >> b & 1 == 1 { x } else { -x };
+                [h(0, 1.0), h(1, 0.5), h(2, 0.75)]
+            })
+            .collect();
+        let q = Polytope::from_points(&corners).unwrap();
+        let f = (0..p.face_count())
+            .find(|&f| {
+                let n = p.unit_normal(f);
+                n.x == 0.0 && (n.y - n.z).abs() < 1e-15 && n.y > 0.0
+            })
+            .expect("the face y + z = 1");
+        let mut sum = DynamicSum::new(&p, Pose::IDENTITY, &q, Pose::IDENTITY).unwrap();
+        accumulate(&mut sum);
+        let (eps, step) = (3e-9, 5e-14);
+        let start = std::f64::consts::FRAC_PI_2 - eps;
+        sum.set_pose(
+            Pose::new(turn(DVec3::Z, start), DVec3::ZERO),
+            Pose::IDENTITY,
+        );
+        let before = sum.theta_acc;
+        let n = (eps / step) as usize;
+        for j in 1..=n {
+            let at = start + step * j as f64;
+            sum.set_pose(Pose::new(turn(DVec3::Z, at), DVec3::ZERO), Pose::IDENTITY);
+        }
+        let quarter = turn(DVec3::Z, std::f64::consts::FRAC_PI_2);
+        sum.set_pose(Pose::new(quarter, DVec3::ZERO), Pose::IDENTITY);
+        assert!(sum.theta_acc - before >= eps * (1.0 - 1e-6));
+        assert!(!sum.normal_strictly_inside(false, f));
+        let fresh = minkowski_sum_posed(&p, sum.pose_p(), &q, sum.pose_q(), Method::Walk).unwrap();
+        assert_eq!(sum.facets(), fresh.facets());
     }
 }

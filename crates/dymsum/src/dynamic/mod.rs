@@ -107,9 +107,32 @@
 //!   `a` only when `a` lies on the great circle of `cd`; the arcs cross,
 //!   so then `a` is their crossing (the great circles are distinct, else
 //!   the arcs overlap and an end of one lies on the other; the other
-//!   common point `−a` is on neither arc, each shorter than a half turn),
+//!   common point `−a` is not on the arc `ab`, shorter than a half turn),
 //!   on the arc `cd`. So an ee-facet whose four normals are certified is
-//!   neither coplanar with anything nor degenerate.
+//!   neither coplanar with anything nor degenerate. (With all four ends
+//!   strictly off the other map's arcs, two arcs either cross
+//!   transversally or are apart, so the symbolic rule for ties decides no
+//!   crossing there: the stored pairs are the exact ones.) The bound needs
+//!   the accumulated rotation to count at least the exact one (below).
+//!
+//! * *The accumulated rotation counts up.* The lazy margins decay by the
+//!   accumulated rotation, so it must never count less than the bodies
+//!   turned. A plain float sum did: at an accumulated `θ` in `[512, 1024)`
+//!   a step below half an ulp (`5.7·10⁻¹⁴`) added nothing, and a
+//!   constant step lost up to half an ulp at every step, in the same
+//!   direction; the one slack of `10⁻¹⁰` covers one rounding, not a
+//!   thousand. The independent review of 2026-12-02 built two motions that
+//!   ended with a normal exactly on an arc while its margin still
+//!   certified it inside (60,000 steps of `5·10⁻¹⁴` rad; 62,000 steps of
+//!   `3·10⁻⁸` rad each losing 0.45 ulp), which made the overlay differ
+//!   from `walk`. Each step's angle (`Rotation::angle_to`, from the float
+//!   product of the two quaternions, off by at most about `18u`
+//!   absolutely) is now padded by `32u` and a relative `2⁻⁴⁸`, and the
+//!   sum is rounded up (TwoSum, one ulp more where it rounded down):
+//!   pinned by `a_rotation_of_many_small_steps_is_counted_in_full` and
+//!   `steps_below_half_an_ulp_still_count` (`find_errors.rs`). Rebasing subtracts the same float from every `margin_at`:
+//!   exact for those within a factor two of it (Sterbenz), and a single
+//!   rounding of at most `1.2·10⁻¹³` otherwise, covered by the slack.
 //!
 //! A pair not on a re-walked arc therefore had events only at normals with a
 //! known event set, and toggling by parity gives its final status. Margins

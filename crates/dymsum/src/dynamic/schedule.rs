@@ -27,7 +27,10 @@
 //! facets found are the same (the oracle suites check every step against a
 //! fresh `walk`). Deadlines are compared in floats like the old test; the
 //! accumulated rotation is rebased to 0 now and then ([`REBASE_AFTER`]) so
-//! rounding stays far below the slack that covers it.
+//! that each comparison's rounding stays far below the slack that covers
+//! it, and it is summed rounded up (module docs of `dynamic`, "The
+//! accumulated rotation counts up"): roundings of a plain sum add up step
+//! after step, and the slack covers only one.
 //!
 //! # Complexity
 //! `O(k + 1)` per step for `k` popped normals (plus the visits themselves),
