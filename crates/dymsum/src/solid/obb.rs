@@ -333,6 +333,22 @@ impl Obb {
         }
     }
 
+    /// This (scene-frame) box seen from a frame posed at `x ↦ M x + t`,
+    /// given `m_t = Mᵀ`: the centre `fl(Mᵀ fl(c − t))` and the axes
+    /// `fl(Mᵀ eᵢ)` (the motion search's boxes in the body's frame,
+    /// `query::scene::gap`'s `box_apart_between_ends`).
+    #[inline]
+    pub fn seen_from(&self, m_t: &DMat3, t: DVec3) -> PosedObb {
+        PosedObb {
+            c: *m_t * (self.c - t),
+            f: [
+                *m_t * self.axes[0],
+                *m_t * self.axes[1],
+                *m_t * self.axes[2],
+            ],
+        }
+    }
+
     /// Whether `a` (a body node's box, posed; `fuzz_a` its fuzz, `ha` its
     /// half-widths) is proven apart from this (scene-frame) box; `pad`
     /// bounds the rounding of posing each point, per coordinate (module

@@ -56,6 +56,35 @@
 //! points of each end and the scene triangle, and their edges' common
 //! normal, each both ways.
 //!
+//! # A box between the ends
+//! [`box_apart_between_ends`] certifies at once every scene triangle of a
+//! tree node against one body triangle `t` over an interval, in the body's
+//! frame (`super::sweep`, "Boxes between the ends"), along the body
+//! triangle's normal `n` (a float cross product: any nonzero axis bounds
+//! the gap). The node's box `{c + Σ sᵢhᵢeᵢ} ⊕ B(fuzz)` holds its triangles
+//! (`solid::obb`, "Fitting"). At an end with float matrix `M` and
+//! translation `T`, the box carried exactly by them is the parallelepiped
+//! `Mᵀ(c − T) + Σ sᵢhᵢMᵀeᵢ` grown by `|M| fuzz`, on which `n·x` is at
+//! least `n·Mᵀ(c − T) − Σ hᵢ|n·Mᵀeᵢ| − |n| |M| fuzz` (exact: a linear
+//! function's least value over a parallelepiped; no orthonormality is
+//! used). The float carried centre `fl(Mᵀ fl(c − T))` is within `11u
+//! (|c|∞ + |T|∞)` of `Mᵀ(c − T)` per coordinate (the subtraction, then
+//! three products summed, rows of norm about 1), so `fl(n·c')` within
+//! `17u |n|₁ (|c|∞ + |T|∞)` of `n·Mᵀ(c − T)`; each `fl(n·fl(Mᵀeᵢ))` within
+//! `9u |n|₁` of `n·Mᵀeᵢ`, so the radius within `13u |n|₁ Σhᵢ`; the body
+//! triangle's `n·pₖ` within `4u |n|₁ |p|∞`; `|M| ≤ 1.01`. So `64u |n|₁
+//! (|c|∞ + |T_a|∞ + |T_b|∞ + Σhᵢ + fuzz + |p|∞) + 1.01 |n|₁ fuzz` covers
+//! every rounding and the fuzz, and each end's gap `A`, `B` (the box's
+//! least `n·x` less the triangle's largest, or the triangle's least less
+//! the box's largest) less that and `rounding·|n|` (the carried points'
+//! distance from the exact motion's) is a lower bound on every box
+//! point's gap at that end. Between the ends each point's gap strays below
+//! its chord by at most `λ(1 − λ) bow |n|` ("Between the ends" above), and
+//! the least over points of the chords is at least the chord of the
+//! least values, so `bowed_chord_stays_positive(A, B, bow |n|)` proves
+//! every point of the box on one side of `t`'s plane at every `λ`: no
+//! triangle of the node meets `t` anywhere in the interval.
+//!
 //! The gap is the same about any origin, so [`apart_by_more_than`] takes
 //! it about the triangle's first corner `c`: far from the origin the
 //! points' coordinates are large but their differences from `c` small, and
@@ -65,6 +94,7 @@
 //! by at most `1.01u S`: `2.02u S` more, covered by `11u S` in all.
 
 use crate::query::interval_search::bowed_chord_stays_positive;
+use crate::solid::obb::PosedObb;
 use glam::DVec3;
 
 /// `2⁻⁵³`, the unit roundoff of `f64`.
@@ -215,6 +245,60 @@ impl Pair {
             ahead > needed || behind > needed
         })
     }
+}
+
+/// Whether every point of a box that moves between two ends stays on one
+/// side of the plane of triangle `t`, hence apart from `t`, all the way
+/// (module docs, "A box between the ends"): the box `{c + Σ sᵢhᵢeᵢ : |sᵢ|
+/// ≤ 1}` grown by `fuzz` carried to the first end as `fl(Mᵀ fl(c − T))`
+/// and `fl(Mᵀ eᵢ)` (`start`, [`crate::solid::obb::Obb::seen_from`]);
+/// `rest()` gives the same at the second end, `sizes` at least `|c|∞ +
+/// |T_a|∞ + |T_b|∞`, `rounding` (each point within it of the given ends
+/// as carried exactly by the float matrices) and `bow` (each point within
+/// `λ(1 − λ) bow` of the chord between them at the fraction `λ` of the
+/// way), read only where the first end's gap before its slack is
+/// positive on some side. `false` means only "not proved".
+pub(crate) fn box_apart_between_ends(
+    t: &[DVec3; 3],
+    start: &PosedObb,
+    (h, fuzz): (DVec3, f64),
+    rest: impl FnOnce() -> (PosedObb, f64, f64, f64),
+) -> bool {
+    let n = normalised_scale((t[1] - t[0]).cross(t[2] - t[0]));
+    let l1 = n.abs().element_sum();
+    if !(l1 > 0.0 && l1.is_finite()) {
+        return false;
+    }
+    let tops = t.map(|p| n.dot(p));
+    let (low, high) = (
+        tops[0].min(tops[1]).min(tops[2]),
+        tops[0].max(tops[1]).max(tops[2]),
+    );
+    // Each end's gaps ahead of the plane and behind it, before the slack
+    // (which only lowers them).
+    let gaps = |e: &PosedObb| {
+        let centre = n.dot(e.c);
+        let radius =
+            h.x * n.dot(e.f[0]).abs() + h.y * n.dot(e.f[1]).abs() + h.z * n.dot(e.f[2]).abs();
+        (centre - radius - high, low - (centre + radius))
+    };
+    let (a_ahead, a_behind) = gaps(start);
+    if !(a_ahead > 0.0 || a_behind > 0.0) {
+        return false;
+    }
+    let (end, sizes, rounding, bow) = rest();
+    let (b_ahead, b_behind) = gaps(&end);
+    let length = n.length();
+    let corners = t[0].abs().max(t[1].abs()).max(t[2].abs()).max_element();
+    // Every dot product and carried centre above, rounded, the fuzz, and
+    // the points' distance from the exact motion's (module docs).
+    let slack = 64.0 * U * l1 * (sizes + h.element_sum() + fuzz + corners)
+        + 1.01 * l1 * fuzz
+        + times_norm(rounding, length)
+        + 1e-300;
+    let curve = times_norm(bow, length);
+    bowed_chord_stays_positive(a_ahead - slack, b_ahead - slack, curve)
+        || bowed_chord_stays_positive(a_behind - slack, b_behind - slack, curve)
 }
 
 /// A lower bound on the distance between triangles `t` and `u`, within
