@@ -172,7 +172,8 @@
 //! triangles' normals (`super::gap`, "A box between the ends"): the box's
 //! points run within `e'` of those carried ends and within the body
 //! frame's bow (`δ² ρ / 2 + δ |T(b) − T(a)|`, `ρ` bounding every point's
-//! `|y − T|` at both ends, "In the body's frame") of their chords, and a
+//! `|y − T|` at both ends, hence at every time between, as `y − T(t)` is
+//! a convex combination of the two; "In the body's frame") of their chords, and a
 //! box that stays on one side of every leaf triangle's plane meets none
 //! of them anywhere in the interval; the node pair is dropped, as a node
 //! box's other tests drop it (a statement about the whole interval, so
@@ -187,7 +188,8 @@
 //! `a_node_certified_between_the_ends_meets_no_body_triangle` (a corner's
 //! arc through a finely cut face between clear ends is never certified;
 //! without the bow it is; and random certified nodes are checked against
-//! their leaves at sampled times).
+//! their leaves at sampled times). Its independent review (2026-12-02)
+//! is recorded in `super::gap`, "A box between the ends".
 //!
 //! # The swept hull after the bow
 //! Where the bowed chord's test did not certify a pair, the swept hull's
@@ -475,10 +477,11 @@ impl SceneChecker {
         let rest_of_node = || {
             *rest.get_or_init(|| {
                 // Every point of the box lies within `|h|(1 + 3β) + fuzz` of
-                // its centre (`solid::obb`, "Fitting") and has coordinates
-                // at most `|c|∞ + |h|₁ + fuzz`: `ρ` and `Y` of "In the body's
-                // frame", then `e'` and the bow as a scene triangle's
-                // (`relative_triangle`).
+                // its centre (`solid::obb`, "Fitting"; `(1 + 10⁻¹¹)` covers
+                // `3β`) and has coordinates at most `|c|∞ + |h|₁(1 + 3β) +
+                // fuzz` (`1.01` covers `1 + 3β`, the last factor the sum's
+                // rounding): `ρ` and `Y` of "In the body's frame", then `e'`
+                // and the bow as a scene triangle's (`relative_triangle`).
                 let spread = (norm_up(node.h) + node.fuzz) * (1.0 + 1e-11);
                 let y_max = (node.c.abs().max_element() + node.h.element_sum() * 1.01 + node.fuzz)
                     * (1.0 + 1e-11);
@@ -1374,6 +1377,40 @@ mod tests {
             certified > 100_000 && checked > 1_000_000,
             "{certified} {checked}"
         );
+    }
+
+    /// Found by the independent review of boxes between the ends: scene
+    /// coordinates near `7·10³⁰⁷` made a node box's carried centre
+    /// overflow to `+∞`, read as an infinite gap, and a motion ending in
+    /// the scene was called free.
+    #[test]
+    fn regression_an_overflowing_box_centre_proves_nothing() {
+        let s = 0.36898513638629843;
+        let body = PolygonMesh::new(
+            vec![[s, -s, 0.0], [0.0, s, -s], [-s, 0.0, s]],
+            vec![vec![0, 1, 2]],
+        );
+        let (v, b) = (-1.702893502890368e292, 7.335425499690069e307);
+        let scene = PolygonMesh::new(
+            vec![[v, v, v], [b, b, b], [b, b, v], [v, b, b], [b, v, b]],
+            vec![vec![0, 1, 2], vec![0, 1, 3], vec![0, 1, 4]],
+        );
+        let checker = SceneChecker::new(
+            &MeshBody::new(&body).unwrap(),
+            &[MeshBody::new(&scene).unwrap()],
+        )
+        .unwrap();
+        let from = Pose::new(Rotation::IDENTITY, DVec3::splat(-2.3083342940609796e292));
+        let to = Pose::new(Rotation::IDENTITY, DVec3::splat(-1.5718013869302512e292));
+        assert!(checker.collides_at(to).unwrap());
+        match checker.check(from, to, 1e-6).unwrap() {
+            MotionCheck::Collides { t_contact, .. } => {
+                assert!(checker
+                    .collides_at(Motion::new(from, to).at(t_contact))
+                    .unwrap());
+            }
+            MotionCheck::Free => panic!("a motion into the scene called free"),
+        }
     }
 
     /// A random hull of `n` points of radius about `r` at `c`, as a mesh.
