@@ -445,6 +445,17 @@ mod accumulated_rotation {
         Rotation::from_axis_angle(axis, angle).unwrap()
     }
 
+    /// The hull of a face's three corners and twelve seeded points drawn
+    /// in `ranges` (one per coordinate) on the face's inner side.
+    fn face_and_points(face: [[f64; 3]; 3], seed: u64, ranges: [(f64, f64); 3]) -> Polytope {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut pts = face.to_vec();
+        for _ in 0..12 {
+            pts.push(ranges.map(|(lo, hi)| rng.random_range(lo..hi)));
+        }
+        Polytope::from_points(&pts).unwrap()
+    }
+
     /// Turns P back and forth by 0.3 rad until the accumulated rotation is
     /// past 700 (where an ulp of it is `1.1·10⁻¹³`).
     fn accumulate(sum: &mut DynamicSum) {
@@ -481,16 +492,8 @@ mod accumulated_rotation {
             [0.0, 0.0, -1.0],
         ])
         .unwrap();
-        let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let mut pts = vec![[1.0, 0.25, 0.5], [1.0, -0.5, 0.125], [1.0, 0.375, -0.625]];
-        for _ in 0..12 {
-            pts.push([
-                rng.random_range(-1.5..0.5),
-                rng.random_range(-1.5..1.5),
-                rng.random_range(-1.5..1.5),
-            ]);
-        }
-        let p = Polytope::from_points(&pts).unwrap();
+        let face = [[1.0, 0.25, 0.5], [1.0, -0.5, 0.125], [1.0, 0.375, -0.625]];
+        let p = face_and_points(face, 11, [(-1.5, 0.5), (-1.5, 1.5), (-1.5, 1.5)]);
         let mut sum = DynamicSum::new(&p, Pose::IDENTITY, &q, Pose::IDENTITY).unwrap();
         accumulate(&mut sum);
         let ulp = 2f64.powi(-43);
@@ -520,16 +523,8 @@ mod accumulated_rotation {
     /// of the box's map: its margin must not certify it strictly inside.
     #[test]
     fn steps_below_half_an_ulp_still_count() {
-        let mut rng = ChaCha8Rng::seed_from_u64(1);
-        let mut pts = vec![[0.25, 0.25, 0.75], [-0.5, 0.875, 0.125], [0.75, 0.5, 0.5]];
-        for _ in 0..12 {
-            pts.push([
-                rng.random_range(-1.0..1.5),
-                rng.random_range(-1.5..0.4),
-                rng.random_range(-1.5..0.4),
-            ]);
-        }
-        let p = Polytope::from_points(&pts).unwrap();
+        let face = [[0.25, 0.25, 0.75], [-0.5, 0.875, 0.125], [0.75, 0.5, 0.5]];
+        let p = face_and_points(face, 1, [(-1.0, 1.5), (-1.5, 0.4), (-1.5, 0.4)]);
         let corners: Vec<[f64; 3]> = (0..8)
             .map(|i| {
                 let h = |b: usize, x: f64| if i >> b & 1 == 1 { x } else { -x };

@@ -1253,10 +1253,7 @@ mod tests {
         use crate::solid::intersect::triangles_meet;
         use rand::{Rng, SeedableRng};
         let (r, poke, delta) = (10.0, 0.005, 0.2f64);
-        let spike = PolygonMesh::new(
-            vec![[r, 0.0, 0.0], [r / 2.0, 0.1, 0.0], [r / 2.0, -0.1, 0.0]],
-            vec![vec![0, 1, 2]],
-        );
+        let spike = spike(r);
         // The face `x = r − poke`, cut into 2·24² triangles.
         let cuts = 24;
         let mut vertices = Vec::new();
@@ -1411,6 +1408,15 @@ mod tests {
             }
             MotionCheck::Free => panic!("a motion into the scene called free"),
         }
+    }
+
+    /// A spike: one triangle from `(r, 0, 0)` back to `x = r/2`, 0.2 wide,
+    /// whose corner swings on an arc of radius `r` as the body yaws.
+    fn spike(r: f64) -> PolygonMesh {
+        PolygonMesh::new(
+            vec![[r, 0.0, 0.0], [r / 2.0, 0.1, 0.0], [r / 2.0, -0.1, 0.0]],
+            vec![vec![0, 1, 2]],
+        )
     }
 
     /// A random hull of `n` points of radius about `r` at `c`, as a mesh.
@@ -1659,10 +1665,7 @@ mod tests {
     #[test]
     fn an_arc_through_a_face_between_clear_ends_is_never_certified() {
         let (r, poke, delta) = (10.0, 0.01, 0.2f64);
-        let spike = PolygonMesh::new(
-            vec![[r, 0.0, 0.0], [r / 2.0, 0.1, 0.0], [r / 2.0, -0.1, 0.0]],
-            vec![vec![0, 1, 2]],
-        );
+        let spike = spike(r);
         let face = PolygonMesh::new(
             vec![
                 [r - poke, -5.0, -5.0],
