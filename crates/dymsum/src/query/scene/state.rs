@@ -750,10 +750,7 @@ impl SceneChecker {
         s: &mut Scratch,
         asked: std::ops::Range<usize>,
     ) -> Result<bool, QueryError> {
-        let mut parity = std::mem::take(&mut s.parity);
-        let out = self.inside_either(pose, s, &mut parity, asked, false);
-        s.parity = parity;
-        out
+        self.inside_either_with_parity(pose, s, asked, false)
     }
 
     /// [`SceneChecker::one_inside_the_other`] as far as the grids decide
@@ -765,8 +762,20 @@ impl SceneChecker {
         s: &mut Scratch,
         asked: std::ops::Range<usize>,
     ) -> Result<bool, QueryError> {
+        self.inside_either_with_parity(pose, s, asked, true)
+    }
+
+    /// [`SceneChecker::inside_either`] with the scratch's parity buffer
+    /// lent to it (the two askings above).
+    fn inside_either_with_parity(
+        &self,
+        pose: Pose,
+        s: &mut Scratch,
+        asked: std::ops::Range<usize>,
+        grids_only: bool,
+    ) -> Result<bool, QueryError> {
         let mut parity = std::mem::take(&mut s.parity);
-        let out = self.inside_either(pose, s, &mut parity, asked, true);
+        let out = self.inside_either(pose, s, &mut parity, asked, grids_only);
         s.parity = parity;
         out
     }

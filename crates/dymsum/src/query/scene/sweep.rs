@@ -1321,11 +1321,7 @@ mod tests {
         // nodes, whose boxes the face's leaves are tested against).
         let tip = blob(&mut rng, 200, 0.003, DVec3::new(r - poke, 0.0, 0.0));
         for (body, scene) in [(&spike, &face), (&face, &tip)] {
-            let checker = SceneChecker::new(
-                &MeshBody::new(body).unwrap(),
-                &[MeshBody::new(scene).unwrap()],
-            )
-            .unwrap();
+            let checker = checker_of(body, scene);
             assert!(!checker.collides_at(from).unwrap() && !checker.collides_at(to).unwrap());
             assert!(checker.collides_at(yaw(0.0)).unwrap());
             certified += verify(&checker, Motion::new(from, to), 200, 1);
@@ -1351,11 +1347,7 @@ mod tests {
             };
             let centre = DVec3::new(0.0, 0.0, rng.random_range(0.45..0.9));
             let scene = blob(&mut rng, 400, 0.4, centre);
-            let checker = SceneChecker::new(
-                &MeshBody::new(&body).unwrap(),
-                &[MeshBody::new(&scene).unwrap()],
-            )
-            .unwrap();
+            let checker = checker_of(&body, &scene);
             let mut axis = || {
                 DVec3::new(
                     rng.random_range(-1.0..1.0),
@@ -1392,11 +1384,7 @@ mod tests {
             vec![[v, v, v], [b, b, b], [b, b, v], [v, b, b], [b, v, b]],
             vec![vec![0, 1, 2], vec![0, 1, 3], vec![0, 1, 4]],
         );
-        let checker = SceneChecker::new(
-            &MeshBody::new(&body).unwrap(),
-            &[MeshBody::new(&scene).unwrap()],
-        )
-        .unwrap();
+        let checker = checker_of(&body, &scene);
         let from = Pose::new(Rotation::IDENTITY, DVec3::splat(-2.3083342940609796e292));
         let to = Pose::new(Rotation::IDENTITY, DVec3::splat(-1.5718013869302512e292));
         assert!(checker.collides_at(to).unwrap());
@@ -1408,6 +1396,15 @@ mod tests {
             }
             MotionCheck::Free => panic!("a motion into the scene called free"),
         }
+    }
+
+    /// The checker of one body mesh against one scene mesh.
+    fn checker_of(body: &PolygonMesh, scene: &PolygonMesh) -> SceneChecker {
+        SceneChecker::new(
+            &MeshBody::new(body).unwrap(),
+            &[MeshBody::new(scene).unwrap()],
+        )
+        .unwrap()
     }
 
     /// A spike: one triangle from `(r, 0, 0)` back to `x = r/2`, 0.2 wide,
@@ -1539,11 +1536,7 @@ mod tests {
             vec![[0.0, 0.0, 1e-6], [0.1, 0.0, 1.0], [0.0, 0.1, 1.0]],
             vec![vec![0, 1, 2]],
         );
-        let checker = SceneChecker::new(
-            &MeshBody::new(&face).unwrap(),
-            &[MeshBody::new(&spike).unwrap()],
-        )
-        .unwrap();
+        let checker = checker_of(&face, &spike);
         let tilt = |deg: f64| {
             Pose::new(
                 Rotation::from_axis_angle(DVec3::X, deg.to_radians()).unwrap(),
@@ -1677,11 +1670,7 @@ mod tests {
         let yaw = |a: f64| Pose::new(Rotation::from_axis_angle(DVec3::Z, a).unwrap(), DVec3::ZERO);
         let (from, to) = (yaw(-delta / 2.0), yaw(delta / 2.0));
         for (body, scene) in [(&spike, &face), (&face, &spike)] {
-            let checker = SceneChecker::new(
-                &MeshBody::new(body).unwrap(),
-                &[MeshBody::new(scene).unwrap()],
-            )
-            .unwrap();
+            let checker = checker_of(body, scene);
             assert!(!checker.collides_at(from).unwrap() && !checker.collides_at(to).unwrap());
             assert!(checker.collides_at(yaw(0.0)).unwrap());
             let mut s = checker.scratch();
@@ -1722,11 +1711,7 @@ mod tests {
             vec![[0.2, 0.2, -0.5], [0.2, 0.2, 0.5], [0.4, 0.1, 0.0]],
             vec![vec![0, 1, 2]],
         );
-        let checker = SceneChecker::new(
-            &MeshBody::new(&body).unwrap(),
-            &[MeshBody::new(&scene).unwrap()],
-        )
-        .unwrap();
+        let checker = checker_of(&body, &scene);
         let at = |x: f64| Pose::new(Rotation::IDENTITY, DVec3::new(x, 0.0, 0.0));
         let mut s = checker.scratch();
         assert!(!checker.collides_with(at(5.0), &mut s).unwrap());
