@@ -485,21 +485,12 @@ impl SceneChecker {
                 let spread = (norm_up(node.h) + node.fuzz) * (1.0 + 1e-11);
                 let y_max = (node.c.abs().max_element() + node.h.element_sum() * 1.01 + node.fuzz)
                     * (1.0 + 1e-11);
-                let extent = (frame.m_plus_d + y_max, 0.0);
-                let radius = norm_up(node.c - frame.ta).max(norm_up(node.c - frame.tb))
-                    + spread
-                    + pose_rounding_bound(0.0, extent);
-                let rounding = pose_rounding_bound(radius, extent);
-                let shift = norm_up(frame.tb - frame.ta) * (1.0 + 4.0 * U) + 2.0 * rounding;
+                let radius = norm_up(node.c - frame.ta).max(norm_up(node.c - frame.tb)) + spread;
+                let (_, rounding, bow) = frame.relative_bounds(radius, y_max);
                 let sizes = node.c.abs().max_element()
                     + frame.ta.abs().max_element()
                     + frame.tb.abs().max_element();
-                (
-                    node.seen_from(&frame.mb_t, frame.tb),
-                    sizes,
-                    rounding,
-                    body_frame_bow(frame.turn, radius, shift),
-                )
+                (node.seen_from(&frame.mb_t, frame.tb), sizes, rounding, bow)
             })
         };
         items.iter().all(|&i| {
@@ -525,23 +516,14 @@ impl SceneChecker {
             points[6 + k] = frame.mb_t * qa;
             points[9 + k] = frame.ma_t * qb;
         }
-        // Every relative point within `e'` of the exact motion's, and `ρ`
-        // at least every exact `|y − T|` (module docs): the world's bound
-        // with `M + D + Y` for `M + D`, its part without a reach for `ρ`'s
-        // slack, all of it for `e'`.
-        let extent = (frame.m_plus_d + y_max, 0.0);
-        let radius = radius + pose_rounding_bound(0.0, extent);
-        let rounding = pose_rounding_bound(radius, extent);
+        let (radius, rounding, bow) = frame.relative_bounds(radius, y_max);
         let margin = (radius * frame.sagitta_per_radius + rounding) * (1.0 + 8.0 * U) + 1e-300;
-        // Between the ends (module docs): the relative point's second
-        // derivative is at most `δ² ρ + 2 δ |T(b) − T(a)|`.
-        let shift = norm_up(frame.tb - frame.ta) * (1.0 + 4.0 * U) + 2.0 * rounding;
         RelativeTriangle {
             scene_triangle: j as u32,
             points,
             rounding,
             margin,
-            bow: body_frame_bow(frame.turn, radius, shift),
+            bow,
         }
     }
 
@@ -997,21 +979,9 @@ impl Sweep for BodySweep<'_> {
     ) -> Result<Option<Within>, QueryError> {
         let reach = self.margin.inflation(b - a);
         let (from, to) = (self.motion.at(a), self.motion.at(b));
-        let (m, d) = self.motion.translation_extent();
         let mut relative = std::mem::take(&mut self.s.relative);
         relative.start(self.checker.scene.triangles.len());
-        let frame = BodyFrame {
-            ma_t: from.rotation.matrix().transpose(),
-            mb_t: to.rotation.matrix().transpose(),
-            ta: from.translation,
-            tb: to.translation,
-            sagitta_per_radius: self.margin.sagitta_per_radius(b - a),
-            m_plus_d: m + d,
-            turn: self.margin.turn(b - a),
-            pose_error: self.margin.pose_error(),
-            body_frame_first: std::cell::Cell::new(false),
-            relative: std::cell::RefCell::new(relative),
-        };
+        let frame = BodyFrame::over(&self.margin, &self.motion, (a, b), relative);
         let left =
             self.checker
                 .certified_apart_within(from, to, (reach, Some(&frame)), within, self.s);
@@ -1053,6 +1023,50 @@ pub(super) struct BodyFrame {
     /// The scene triangles' relative points over the interval, each found
     /// once.
     relative: std::cell::RefCell<RelativeTriangles>,
+}
+
+impl BodyFrame {
+    /// The frame of the interval `[a, b]` of `motion` (module docs, "In
+    /// the body's frame"), its search's `margin`, with `relative` for the
+    /// scene triangles' points (started for the interval).
+    fn over(
+        margin: &SweepMargin,
+        motion: &Motion,
+        (a, b): (f64, f64),
+        relative: RelativeTriangles,
+    ) -> BodyFrame {
+        let (from, to) = (motion.at(a), motion.at(b));
+        let (m, d) = motion.translation_extent();
+        BodyFrame {
+            ma_t: from.rotation.matrix().transpose(),
+            mb_t: to.rotation.matrix().transpose(),
+            ta: from.translation,
+            tb: to.translation,
+            sagitta_per_radius: margin.sagitta_per_radius(b - a),
+            m_plus_d: m + d,
+            turn: margin.turn(b - a),
+            pose_error: margin.pose_error(),
+            body_frame_first: std::cell::Cell::new(false),
+            relative: std::cell::RefCell::new(relative),
+        }
+    }
+
+    /// For scene points whose float `|y − T̃|` at both ends is at most
+    /// `radius` and whose coordinates are at most `y_max`: `ρ` (at least
+    /// every exact `|y − T|`), `e'` (each relative point's distance from
+    /// the exact motion's) and the bow of their paths between the ends
+    /// (module docs, "In the body's frame" and "Between the ends"): the
+    /// world's rounding bound with `M + D + Y` for `M + D`, its part
+    /// without a reach for `ρ`'s slack, all of it for `e'`; the relative
+    /// point's second derivative at most `δ² ρ + 2 δ |T(b) − T(a)|`.
+    #[inline]
+    fn relative_bounds(&self, radius: f64, y_max: f64) -> (f64, f64, f64) {
+        let extent = (self.m_plus_d + y_max, 0.0);
+        let radius = radius + pose_rounding_bound(0.0, extent);
+        let rounding = pose_rounding_bound(radius, extent);
+        let shift = norm_up(self.tb - self.ta) * (1.0 + 4.0 * U) + 2.0 * rounding;
+        (radius, rounding, body_frame_bow(self.turn, radius, shift))
+    }
 }
 
 /// How a walk of the body's tree over an interval ended.
@@ -1222,20 +1236,7 @@ mod tests {
             motion.translation_extent(),
             checker.body.reach,
         );
-        let (from, to) = (motion.at(0.0), motion.at(1.0));
-        let (m, d) = motion.translation_extent();
-        BodyFrame {
-            ma_t: from.rotation.matrix().transpose(),
-            mb_t: to.rotation.matrix().transpose(),
-            ta: from.translation,
-            tb: to.translation,
-            sagitta_per_radius: margin.sagitta_per_radius(1.0),
-            m_plus_d: m + d,
-            turn: margin.turn(1.0),
-            pose_error: margin.pose_error(),
-            body_frame_first: std::cell::Cell::new(false),
-            relative: std::cell::RefCell::new(RelativeTriangles::default()),
-        }
+        BodyFrame::over(&margin, &motion, (0.0, 1.0), RelativeTriangles::default())
     }
 
     /// Boxes between the ends (module docs): a scene node certified
