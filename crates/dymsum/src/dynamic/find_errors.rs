@@ -525,13 +525,7 @@ mod accumulated_rotation {
     fn steps_below_half_an_ulp_still_count() {
         let face = [[0.25, 0.25, 0.75], [-0.5, 0.875, 0.125], [0.75, 0.5, 0.5]];
         let p = face_and_points(face, 1, [(-1.0, 1.5), (-1.5, 0.4), (-1.5, 0.4)]);
-        let corners: Vec<[f64; 3]> = (0..8)
-            .map(|i| {
-                let h = |b: usize, x: f64| if i >> b & 1 == 1 { x } else { -x };
-                [h(0, 1.0), h(1, 0.5), h(2, 0.75)]
-            })
-            .collect();
-        let q = Polytope::from_points(&corners).unwrap();
+        let q = crate::query::test_support::boxed(1.0, 0.5, 0.75);
         let f = (0..p.face_count())
             .find(|&f| {
                 let n = p.unit_normal(f);
