@@ -419,8 +419,9 @@ impl SceneChecker {
             let bow = bow(f.turn, reach_of_triangle);
             let hull_adds = swept_hull_may_add(reach, f.pose_error, bow);
             let mut pair = Pair::new(&ends, &u);
-            pair.apart_between_ends(f.pose_error, bow)
-                || (hull_adds && pair.hull_apart_by_more_than(hull, reach))
+            certified_deferring(&f.world_axes_failed, |deferred| {
+                pair.apart_between_ends_from(f.pose_error, bow, deferred)
+            }) || (hull_adds && pair.hull_apart_by_more_than(hull, reach))
         };
         let apart = if f.body_frame_first.get() {
             self.apart_in_body_frame(i, j, f) || {
@@ -452,9 +453,10 @@ impl SceneChecker {
             [scene.points[3], scene.points[4], scene.points[5]],
         ];
         let mut pair = Pair::new(&ends, &p);
-        pair.apart_between_ends(scene.rounding, scene.bow)
-            || (swept_hull_may_add(scene.margin, scene.rounding, scene.bow)
-                && pair.hull_apart_by_more_than(&scene.points, scene.margin))
+        certified_deferring(&frame.body_axes_failed, |deferred| {
+            pair.apart_between_ends_from(scene.rounding, scene.bow, deferred)
+        }) || (swept_hull_may_add(scene.margin, scene.rounding, scene.bow)
+            && pair.hull_apart_by_more_than(&scene.points, scene.margin))
     }
 
     /// Whether every body triangle of `items` stays apart from every
@@ -1000,6 +1002,27 @@ fn swept_hull_may_add(margin: f64, rounding: f64, bow: f64) -> bool {
     !(least > 1e-140 && 4.0 * least > bow * (1.0 + 1e-9))
 }
 
+/// Whether `certify`, given the axes to try last, certified: those of
+/// `deferred` (its low byte; its high byte counts pairs, and every eighth
+/// pair defers none), which is left holding the axes to defer next when
+/// one held (`gap`'s module docs, "The axes that failed last").
+fn certified_deferring(
+    deferred: &std::cell::Cell<u16>,
+    certify: impl FnOnce(u8) -> (Option<usize>, u8),
+) -> bool {
+    let d = deferred.get();
+    let count = ((d >> 8) + 1) % 8;
+    let mask = if count == 0 { 0 } else { d & 0xff };
+    let (held, next) = certify(mask as u8);
+    let kept = if held.is_some() {
+        u16::from(next)
+    } else {
+        d & 0xff
+    };
+    deferred.set(count << 8 | kept);
+    held.is_some()
+}
+
 /// An interval's end poses for the test in the body's frame (module docs,
 /// "In the body's frame").
 pub(super) struct BodyFrame {
@@ -1020,6 +1043,13 @@ pub(super) struct BodyFrame {
     /// Whether the body's frame certified the last pair that one frame
     /// alone certified: it is then tried first.
     body_frame_first: std::cell::Cell<bool>,
+    /// The axes (`gap::Pair`'s, bit `k` for axis `k`) to try last on the
+    /// next pair between the ends in the world's frame, and in the body's
+    /// (those that failed on the last pair certified), and a count of
+    /// pairs in the high byte (`certified_deferring`; `gap`'s module docs,
+    /// "The axes that failed last").
+    world_axes_failed: std::cell::Cell<u16>,
+    body_axes_failed: std::cell::Cell<u16>,
     /// The scene triangles' relative points over the interval, each found
     /// once.
     relative: std::cell::RefCell<RelativeTriangles>,
@@ -1047,6 +1077,8 @@ impl BodyFrame {
             turn: margin.turn(b - a),
             pose_error: margin.pose_error(),
             body_frame_first: std::cell::Cell::new(false),
+            world_axes_failed: std::cell::Cell::new(0),
+            body_axes_failed: std::cell::Cell::new(0),
             relative: std::cell::RefCell::new(relative),
         }
     }
