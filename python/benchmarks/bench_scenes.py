@@ -22,7 +22,7 @@ b. **states**, one call at a time from Python as OMPL asks them: dymsum's
    fresh request and result, on N random states (translation uniform in
    the bounds, rotation uniform) and on states near contact (for a random
    rotation, 30 bisection steps on the translation between a free and a
-   colliding pose; both ends kept). Medians in µs, and every state where
+   colliding pose; both ends kept). Medians and 99th percentiles in µs, and every state where
    the two disagree (expected only at contact: dymsum counts touching, and
    the two ends of a bisection are a few 1e-7 of the bounds apart);
 c. **motions**, those RRTConnect really asks: one RRTConnect run with fcl
@@ -249,6 +249,8 @@ def time_states(checker: dymsum.MotionChecker, f: Fcl, poses: np.ndarray) -> dic
         "colliding": int(d_hit_a.sum()),
         "dymsum_us": median(d_ns) / 1e3,
         "fcl_us": median(f_ns) / 1e3,
+        "dymsum_p99_us": float(np.percentile(d_ns, 99)) / 1e3,
+        "fcl_p99_us": float(np.percentile(f_ns, 99)) / 1e3,
         "dymsum_only": [int(i) for i in only_d],
         "fcl_only": [int(i) for i in only_f],
     }
@@ -601,7 +603,9 @@ def fmt(v, spec=".1f", none="—") -> str:
 
 
 def ratio(a, b) -> str:
-    return "—" if a is None or b is None or b == 0 else f"{a / b:.1f}×"
+    if a is None or b is None or b == 0 or not math.isfinite(a / b):
+        return "—"
+    return f"{a / b:.1f}×"
 
 
 def err(part: dict) -> Optional[str]:
@@ -637,22 +641,25 @@ def tables(rows: List[dict], header: str) -> str:
     out += ["", "### b. State checks, one call at a time from Python", ""]
     out.append(
         "| problem | states | colliding | dymsum `collides_at` (µs) | fcl `collide` (µs) | fcl/dymsum"
-        " | only dymsum collides | only fcl collides |"
+        " | dymsum p99 (µs) | fcl p99 (µs) | fcl/dymsum p99 | only dymsum collides | only fcl collides |"
     )
-    out.append("|---|---|---:|---:|---:|---:|---:|---:|")
+    out.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     notes = []
     for r in ok:
         s = r.get("states", {})
         if err(s):
-            out.append(f"| {r['name']} | failed: {err(s)} | | | | | | |")
+            out.append(f"| {r['name']} | failed: {err(s)} | | | | | | | | | |")
             continue
         for kind, label in (("random", "random"), ("near", "near contact")):
             t = s.get(kind)
             if not t:
                 continue
+            # 99th percentiles: absent from files saved before they were.
+            p99 = (t.get("dymsum_p99_us", math.nan), t.get("fcl_p99_us", math.nan))
             out.append(
                 f"| {r['name']} | {t['n']} {label} | {t['colliding']} | {fmt(t['dymsum_us'])} | {fmt(t['fcl_us'])}"
-                f" | {ratio(t['fcl_us'], t['dymsum_us'])} | {len(t['dymsum_only'])} | {len(t['fcl_only'])} |"
+                f" | {ratio(t['fcl_us'], t['dymsum_us'])} | {fmt(p99[0])} | {fmt(p99[1])} | {ratio(p99[1], p99[0])}"
+                f" | {len(t['dymsum_only'])} | {len(t['fcl_only'])} |"
             )
             if t["dymsum_only"] or t["fcl_only"]:
                 d = t.get("dymsum_only_fcl_distance") or []
