@@ -266,9 +266,10 @@ impl Pair {
     /// those in it, each part in order; `holds` is tried on each until it
     /// holds. The axis that held (or `None`) and the axes to defer for
     /// the next pair: those tried that did not hold, and, when one not
-    /// deferred held, the deferred ones (not reached). Whether some axis holds does not depend on
-    /// `deferred`: the same axes, each the same floats, are tried until
-    /// one holds (module docs, "The axes that failed last").
+    /// deferred held, the deferred ones (not reached). Whether some axis
+    /// holds does not depend on `deferred`: the same axes, each the same
+    /// floats, are tried until one holds (module docs, "The axes that
+    /// failed last").
     fn any_axis_from(
         &mut self,
         deferred: u8,
@@ -282,7 +283,8 @@ impl Pair {
                 }
                 if let Some(n) = self.axis(k) {
                     if holds(self, n) {
-                        // Deferred axes not tried stay deferred.
+                        // Held before the deferred ones were reached:
+                        // they stay deferred.
                         let untried = if late { 0 } else { deferred };
                         return (Some(k), failed | untried);
                     }
@@ -885,6 +887,13 @@ mod tests {
         ) * scale
     }
 
+    /// A triangle of corners within 0.6 per coordinate of a centre within
+    /// `centre` of the origin (the centre drawn first, then the corners).
+    fn triangle_about(rng: &mut impl rand::Rng, centre: f64) -> [DVec3; 3] {
+        let c = random_point(rng, centre, 1.0);
+        [0; 3].map(|_| random_point(rng, 0.6, 1.0) + c)
+    }
+
     #[test]
     fn the_least_so_far_is_the_same_as_with_the_full_bound() {
         // `distance_lower_bound_beyond` may stop early only with a bound
@@ -965,13 +974,8 @@ mod tests {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(38);
         let (mut certified, mut clear, mut clear_certified) = (0, 0, 0);
         for k in 0..3_000 {
+            let body = triangle_about(&mut rng, 2.0);
             let mut point = |r: f64| random_point(&mut rng, r, 1.0);
-            let centre = point(2.0);
-            let body = [
-                point(0.6) + centre,
-                point(0.6) + centre,
-                point(0.6) + centre,
-            ];
             let axis = point(1.0).normalize();
             let start = glam::DMat3::from_axis_angle(point(1.0).normalize(), 1.0);
             let (t0, t1) = (point(1.0), point(0.1));
@@ -1029,13 +1033,8 @@ mod tests {
         };
         let mut edges = 0;
         for k in 0..2_000usize {
+            let body = triangle_about(&mut rng, 1.0);
             let mut point = |r: f64| random_point(&mut rng, r, 1.0);
-            let centre = point(1.0);
-            let body = [
-                point(0.6) + centre,
-                point(0.6) + centre,
-                point(0.6) + centre,
-            ];
             let ends = [body, body.map(|p| p + point(0.3))];
             let u = if k % 2 == 0 {
                 [point(0.6), point(0.6), point(0.6)]
@@ -1089,13 +1088,8 @@ mod tests {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(41);
         let (mut certified, mut late) = (0, 0);
         for k in 0..600usize {
+            let body = triangle_about(&mut rng, 2.0);
             let mut point = |r: f64| random_point(&mut rng, r, 1.0);
-            let centre = point(2.0);
-            let body = [
-                point(0.6) + centre,
-                point(0.6) + centre,
-                point(0.6) + centre,
-            ];
             let shift = point(0.05);
             let ends = [body, body.map(|p| p + shift)];
             let off = 10f64.powi(-((k % 8) as i32)) * rng.random_range(0.5..1.0);

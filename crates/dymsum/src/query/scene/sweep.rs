@@ -1002,24 +1002,32 @@ fn swept_hull_may_add(margin: f64, rounding: f64, bow: f64) -> bool {
     !(least > 1e-140 && 4.0 * least > bow * (1.0 + 1e-9))
 }
 
+/// The axes (`gap::Pair`'s, bit `k` for axis `k`) to try last on the next
+/// pair certified between an interval's ends, and the pairs asked since
+/// all were last tried in order (`gap`'s module docs, "The axes that
+/// failed last").
+#[derive(Clone, Copy, Default)]
+struct DeferredAxes {
+    axes: u8,
+    pairs: u8,
+}
+
+/// Every how many pairs the axes are all tried in their own order.
+const PAIRS_BETWEEN_ORDERED: u8 = 8;
+
 /// Whether `certify`, given the axes to try last, certified: those of
-/// `deferred` (its low byte; its high byte counts pairs, and every eighth
-/// pair defers none), which is left holding the axes to defer next when
-/// one held (`gap`'s module docs, "The axes that failed last").
+/// `deferred` (none every [`PAIRS_BETWEEN_ORDERED`]th pair), which is left
+/// holding the axes to defer next when one held (`gap`'s module docs,
+/// "The axes that failed last").
 fn certified_deferring(
-    deferred: &std::cell::Cell<u16>,
+    deferred: &std::cell::Cell<DeferredAxes>,
     certify: impl FnOnce(u8) -> (Option<usize>, u8),
 ) -> bool {
-    let d = deferred.get();
-    let count = ((d >> 8) + 1) % 8;
-    let mask = if count == 0 { 0 } else { d & 0xff };
-    let (held, next) = certify(mask as u8);
-    let kept = if held.is_some() {
-        u16::from(next)
-    } else {
-        d & 0xff
-    };
-    deferred.set(count << 8 | kept);
+    let last = deferred.get();
+    let pairs = (last.pairs + 1) % PAIRS_BETWEEN_ORDERED;
+    let (held, next) = certify(if pairs == 0 { 0 } else { last.axes });
+    let axes = if held.is_some() { next } else { last.axes };
+    deferred.set(DeferredAxes { axes, pairs });
     held.is_some()
 }
 
@@ -1043,13 +1051,10 @@ pub(super) struct BodyFrame {
     /// Whether the body's frame certified the last pair that one frame
     /// alone certified: it is then tried first.
     body_frame_first: std::cell::Cell<bool>,
-    /// The axes (`gap::Pair`'s, bit `k` for axis `k`) to try last on the
-    /// next pair between the ends in the world's frame, and in the body's
-    /// (those that failed on the last pair certified), and a count of
-    /// pairs in the high byte (`certified_deferring`; `gap`'s module docs,
-    /// "The axes that failed last").
-    world_axes_failed: std::cell::Cell<u16>,
-    body_axes_failed: std::cell::Cell<u16>,
+    /// The axes to try last on the next pair between the ends in the
+    /// world's frame, and in the body's (`certified_deferring`).
+    world_axes_failed: std::cell::Cell<DeferredAxes>,
+    body_axes_failed: std::cell::Cell<DeferredAxes>,
     /// The scene triangles' relative points over the interval, each found
     /// once.
     relative: std::cell::RefCell<RelativeTriangles>,
@@ -1077,8 +1082,8 @@ impl BodyFrame {
             turn: margin.turn(b - a),
             pose_error: margin.pose_error(),
             body_frame_first: std::cell::Cell::new(false),
-            world_axes_failed: std::cell::Cell::new(0),
-            body_axes_failed: std::cell::Cell::new(0),
+            world_axes_failed: Default::default(),
+            body_axes_failed: Default::default(),
             relative: std::cell::RefCell::new(relative),
         }
     }
