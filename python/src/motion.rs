@@ -721,9 +721,11 @@ impl PyMotionChecker {
     /// ``by_ray``, ``segment_fallbacks`` (segments that met an edge or a
     /// plane and gave way to a ray) and ``plane_cull_fallbacks`` (listed
     /// triangles a float bound could not place against the corners' box,
-    /// placed by exact signs; every method is exact) and ``bodies_by_grid``
+    /// placed by exact signs; every method is exact), ``bodies_by_grid``
     /// (state checks one body's grid decided whole: the other body lay in
-    /// its cells, all classified alike).
+    /// its cells, all classified alike) and ``bodies_by_region`` (state
+    /// checks one point decided: no triangle of one body came near the
+    /// other's box).
     #[getter]
     fn containment_stats<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Validator::Mesh(c) = &self.inner else {
@@ -737,6 +739,7 @@ impl PyMotionChecker {
         d.set_item("segment_fallbacks", s.segment_fallbacks)?;
         d.set_item("plane_cull_fallbacks", s.plane_cull_fallbacks)?;
         d.set_item("bodies_by_grid", s.bodies_by_grid)?;
+        d.set_item("bodies_by_region", s.bodies_by_region)?;
         Ok(Some(d))
     }
 

@@ -250,13 +250,22 @@ def joined(*meshes):
 
 def test_containment_stats_count_how_points_were_decided():
     """Five specks in a box's cavity, close to one wall (one grid cell that
-    meets the wall): the first is decided by a ray, the next four by
-    segments from the point before; the convex path has no such tests."""
+    meets the wall): no wall comes near their box, so the first speck's
+    point, decided by a ray, decides the state (``bodies_by_region``). With
+    an open sheet between two of them (which meets their box, not them),
+    the first is decided by a ray, the next four by segments from the point
+    before. The convex path has no such tests."""
     shell = joined(box_triangles([0] * 3, [10] * 3), box_triangles([1] * 3, [9] * 3, outward=False))
     specks = joined(*(box_triangles(lo, lo + 1e-4) for lo in (np.array([1.001, 5 + 3e-4 * i, 5.0]) for i in range(5))))
+    zero = {"by_grid": 0, "by_segment": 0, "by_ray": 0, "segment_fallbacks": 0, "plane_cull_fallbacks": 0, "bodies_by_grid": 0, "bodies_by_region": 0}
     checker = dymsum.MotionChecker(specks, [shell])
     assert checker.info["path"] == "triangles"
-    assert checker.containment_stats == {"by_grid": 0, "by_segment": 0, "by_ray": 0, "segment_fallbacks": 0, "plane_cull_fallbacks": 0, "bodies_by_grid": 0}
+    assert checker.containment_stats == zero
     assert not checker.collides_at(np.eye(4))
-    assert checker.containment_stats == {"by_grid": 0, "by_segment": 4, "by_ray": 1, "segment_fallbacks": 0, "plane_cull_fallbacks": 0, "bodies_by_grid": 0}
+    assert checker.containment_stats == {**zero, "by_ray": 1, "bodies_by_region": 1}
+    y = 5 + 3e-4 * 2.5
+    sheet = (np.array([[1.0005, y, 4.5], [1.5, y, 4.5], [1.5, y, 5.5], [1.0005, y, 5.5]]), np.array([[0, 1, 2], [0, 2, 3]]))
+    checker = dymsum.MotionChecker(specks, [shell, sheet])
+    assert not checker.collides_at(np.eye(4))
+    assert checker.containment_stats == {**zero, "by_segment": 4, "by_ray": 1}
     assert dymsum.MotionChecker(CUBE, [CUBE + 5]).containment_stats is None

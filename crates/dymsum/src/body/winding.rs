@@ -436,6 +436,10 @@ pub struct ContainmentStats {
     /// box lay in its cells, all classified alike, so no point was asked
     /// (`query::scene::state`, "One cell holds a body").
     pub bodies_by_grid: u64,
+    /// State checks decided whole by one point: no triangle of one body
+    /// came near the other body's box, so every point of that box has the
+    /// same answer (`query::scene::state`, "No triangle by a body").
+    pub bodies_by_region: u64,
 }
 
 impl ContainmentStats {
@@ -461,6 +465,7 @@ impl ContainmentStats {
         self.segment_fallbacks += other.segment_fallbacks;
         self.plane_cull_fallbacks += other.plane_cull_fallbacks;
         self.bodies_by_grid += other.bodies_by_grid;
+        self.bodies_by_region += other.bodies_by_region;
     }
 }
 
@@ -1352,6 +1357,14 @@ mod tests {
     /// A box with a cubic cavity, and a body of tiny cubes (one solid each)
     /// at `lows` (their lowest corners), as a scene checker sees them.
     fn cavity_and_specks(lows: &[[f64; 3]]) -> crate::query::SceneChecker {
+        cavity_and_specks_beside(lows, &[])
+    }
+
+    /// [`cavity_and_specks`] with more obstacles.
+    fn cavity_and_specks_beside(
+        lows: &[[f64; 3]],
+        more: &[PolygonMesh],
+    ) -> crate::query::SceneChecker {
         let id = glam::DMat3::IDENTITY;
         let mut scene = PolygonMesh::new(Vec::new(), Vec::new());
         push_box(&mut scene, [0.0; 3], [10.0; 3], true, id);
@@ -1360,11 +1373,12 @@ mod tests {
         for lo in lows {
             push_box(&mut specks, *lo, lo.map(|x| x + 1e-4), true, id);
         }
-        let (body, scene) = (
-            MeshBody::new(&specks).unwrap(),
-            MeshBody::new(&scene).unwrap(),
-        );
-        crate::query::SceneChecker::new(&body, &[scene]).unwrap()
+        let body = MeshBody::new(&specks).unwrap();
+        let scene: Vec<MeshBody> = std::iter::once(&scene)
+            .chain(more)
+            .map(|m| MeshBody::new(m).unwrap())
+            .collect();
+        crate::query::SceneChecker::new(&body, &scene).unwrap()
     }
 
     /// Whether [`cavity_and_specks`] collide where they stand, and how the
@@ -1429,23 +1443,49 @@ mod tests {
 
     /// The containment counters: specks in the cavity close to one wall
     /// (one grid cell, which meets the wall, so the grid cannot decide)
-    /// take a ray for the first and a segment for each next one.
+    /// lie in a box no wall comes near, so the first one's ray decides
+    /// them all (`query::scene::state`, "No triangle by a body"); with an
+    /// open sheet between two of them (it meets their box, not them), the
+    /// first takes a ray and each next one a segment.
     #[test]
-    fn specks_by_a_cavity_wall_are_decided_by_one_ray_and_segments() {
+    fn specks_by_walls_are_decided_by_one_ray_and_segments() {
         let lows: Vec<[f64; 3]> = (0..5)
             .map(|i| [1.001, 5.0 + 3e-4 * f64::from(i), 5.0])
             .collect();
         let (collides, stats) = at_rest(&lows);
         assert!(!collides);
+        let none = ContainmentStats::default();
         assert_eq!(
             stats,
             ContainmentStats {
-                by_grid: 0,
+                by_ray: 1,
+                bodies_by_region: 1,
+                ..none
+            }
+        );
+        // An open sheet between the third and fourth specks meets their box.
+        let y = 5.0 + 3e-4 * 2.5;
+        let sheet = PolygonMesh::new(
+            vec![
+                [1.0005, y, 4.5],
+                [1.5, y, 4.5],
+                [1.5, y, 5.5],
+                [1.0005, y, 5.5],
+            ],
+            vec![vec![0, 1, 2, 3]],
+        );
+        let checker = cavity_and_specks_beside(&lows, &[sheet]);
+        let rest = crate::kernel::rotation::Pose::new(
+            crate::kernel::rotation::Rotation::IDENTITY,
+            DVec3::ZERO,
+        );
+        assert!(!checker.collides_at(rest).unwrap());
+        assert_eq!(
+            checker.containment_stats(),
+            ContainmentStats {
                 by_segment: 4,
                 by_ray: 1,
-                segment_fallbacks: 0,
-                plane_cull_fallbacks: 0,
-                bodies_by_grid: 0
+                ..none
             }
         );
     }
@@ -1465,7 +1505,8 @@ mod tests {
                 by_ray: 2,
                 segment_fallbacks: 1,
                 plane_cull_fallbacks: 0,
-                bodies_by_grid: 0
+                bodies_by_grid: 0,
+                bodies_by_region: 0
             }
         );
     }

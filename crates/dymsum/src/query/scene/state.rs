@@ -223,6 +223,56 @@
 //! tests catch, and that without case 2's growth the two rounding tests
 //! fail. Its wording remarks are applied.
 //!
+//! # No triangle by a body
+//! Where the other body's box is at most [`CELLS_ACROSS`] cells of a
+//! body's grid wide but its cells are not all classified alike (a cell
+//! there meets a triangle), or that body has triangles of surfaces (which
+//! no grid knows), the body's own tree is asked whether any of its
+//! triangles may meet that box (`some_triangle_may_meet`: a triangle
+//! whose box meets it and whose plane, a certified separating axis, does
+//! not part them; all triangles, of solids and of surfaces). Where none
+//! may, one point of the containment test decides the state:
+//!
+//! 1. *No scene triangle meets the posed body's box* (case 1's box, which
+//!    holds the posed body's hull): no posed body triangle meets a scene
+//!    triangle; no scene corner lies in a posed body solid (a corner of a
+//!    scene triangle is outside the box, and a body solid inside it); and
+//!    the box, convex, hence connected, meets no scene triangle, so every
+//!    source's winding number is the same about each of its points, each
+//!    posed body point among them. The containment test's first point
+//!    decides: where the scene has a solid, the first body component's
+//!    vertex (inside: it is in a scene solid, collides; outside: no body
+//!    point is, free); where it has none, its first scene corner, which it
+//!    lists only inside the box, so none is listed: free.
+//! 2. *No body triangle of the body's frame meets the scene's box carried
+//!    back* (case 2's box `b`, the matrix near a rotation with `det M >
+//!    0.5`): case 2's argument with `b` for `U`. Each body triangle point
+//!    lies more than `e₁` from every `B(p)` (else it would be in the
+//!    `e₁`-box about `B(p)`, which lies in `b`), so the winding numbers
+//!    about `B(p)` are the body frame's, and by the map `B` the posed
+//!    body's about `p`; they are the same for every `p` of the scene's box,
+//!    as `b`, convex, meets no body triangle; no posed body triangle meets
+//!    a scene point, and no posed body point lies in the scene's box.
+//!    The containment test's first scene corner (numbered after the body's
+//!    points where the scene has a solid, else first:
+//!    `first_scene_corner`) decides: inside, every scene point is in a
+//!    body solid (collides); outside, none is (free).
+//!
+//! The point is asked as the containment test asks it (grid, segment from
+//! a classified cell, or ray), on none of the other body's triangles, so
+//! its answer is exact; where it is not decided (never seen) the state
+//! is checked as any other. Counted as `ContainmentStats::bodies_by_region`.
+//! The box tests are culling tests that prove a miss; a false "may meet"
+//! only leaves the state to the walk. Where a small part lies in a mixed
+//! cell of a large one modelled in other units (the Centauro BallHand, in
+//! millimetres, about the TIAGo Pro suspension link, in metres; the
+//! Centauro wheel 23 collision mesh about the G1 ankle roll link), this
+//! replaces the walk and asks one corner where five were asked (docs/BENCHMARKS.md, "No
+//! triangle by a body"). Test: `a_body_no_triangle_comes_near_is_decided_by_one_point`
+//! (every answer against the walk and the whole containment test; both
+//! answers decided by one point in each case, with and without solids on
+//! the small side, where the numbering of the scene's corners differs).
+//!
 //! # No triangle against a leaf's box
 //! A body triangle the walk reaches meets a scene leaf's triangles only
 //! where its exact box (of its posed corners) meets the leaf's box and a
@@ -407,10 +457,10 @@ use crate::body::winding::{
     keep_triangles_meeting, segment_start, some_winds, Known, Listed, Placed,
 };
 use crate::kernel::rotation::Pose;
-use crate::kernel::separation::triangles_apart;
+use crate::kernel::separation::{triangles_apart, PlaneAxis};
 use crate::query::checker::Checker;
 use crate::query::error::QueryError;
-use crate::solid::aabb::Aabb;
+use crate::solid::aabb::{Aabb, AabbTree};
 use crate::solid::intersect::triangles_meet;
 use crate::solid::obb::pose_skew;
 
@@ -475,7 +525,7 @@ impl SceneChecker {
             return Ok(false);
         };
         // Module docs, "One cell holds a body".
-        if let Some(inside) = self.one_cell_holds_a_body(&c, s) {
+        if let Some(inside) = self.one_cell_holds_a_body(pose, &c, s) {
             return Ok(inside);
         }
         // Module docs, "Containment first".
@@ -495,41 +545,75 @@ impl SceneChecker {
     /// solid's; or the scene's box carried back in a cell of the body's,
     /// where every body triangle is a solid's and the matrix is near a
     /// rotation. `Some(answer)` where one does: the cell's (inside a solid
-    /// or outside every one) is the state's; `None` where neither does.
-    fn one_cell_holds_a_body(&self, c: &Carry, s: &mut Scratch) -> Option<bool> {
+    /// or outside every one) is the state's. Where the cells differ or a
+    /// grid cannot be read, and no triangle of that body may meet the
+    /// other's box, one point's answer (module docs, "No triangle by a
+    /// body"). `None` where none of these decides.
+    fn one_cell_holds_a_body(&self, pose: Pose, c: &Carry, s: &mut Scratch) -> Option<bool> {
         let (body, scene) = (&self.body, &self.scene);
-        if scene.solid_components.len() == scene.components.len() {
-            let grid = scene.inside_grid();
-            // The box `carry_unless_parted` left at index 0 for this query.
-            let world = cached(cells(&mut s.node_cache), s.at.epoch, 0, || {
-                body.tree().bounds()[0].transformed(&c.m, c.t, c.pad)
-            });
-            if grid.spans_at_most(world.size(), CELLS_ACROSS) {
+        let grid = scene.inside_grid();
+        // The box `carry_unless_parted` left at index 0 for this query.
+        let world = cached(cells(&mut s.node_cache), s.at.epoch, 0, || {
+            body.tree().bounds()[0].transformed(&c.m, c.t, c.pad)
+        });
+        if grid.spans_at_most(world.size(), CELLS_ACROSS) {
+            if scene.solid_components.len() == scene.components.len() {
                 let answer = grid.classify_cells(world.lo.into(), world.hi.into(), CELLS_MOST);
                 if answer.is_some() {
                     s.tally.bodies_by_grid += 1;
                     return answer;
                 }
             }
+            // Module docs, "No triangle by a body": the first body point.
+            if !some_triangle_may_meet(scene.tree(), |j| self.scene_triangle(j), &world) {
+                return self.one_point_decides(pose, s, 0);
+            }
         }
-        if c.oriented
-            && c.m.determinant() > 0.5
-            && body.solid_components.len() == body.components.len()
-        {
+        if c.oriented && c.m.determinant() > 0.5 {
             let grid = body.inside_grid();
             let root = scene.tree().root();
             // Turned, the box is up to √3 times as wide along an axis.
             if grid.spans_at_most(root.size() * 1.75, CELLS_ACROSS) {
                 let size = body.reach + c.t.abs().max_element();
                 let back = carried_back(&root, &c.mi, c.t, size, c.pad);
-                let answer = grid.classify_cells(back.lo.into(), back.hi.into(), CELLS_MOST);
-                if answer.is_some() {
-                    s.tally.bodies_by_grid += 1;
-                    return answer;
+                if body.solid_components.len() == body.components.len() {
+                    let answer = grid.classify_cells(back.lo.into(), back.hi.into(), CELLS_MOST);
+                    if answer.is_some() {
+                        s.tally.bodies_by_grid += 1;
+                        return answer;
+                    }
+                }
+                // Module docs, "No triangle by a body": the first scene
+                // corner.
+                let unposed = |i: usize| body.triangles[i].map(|v| body.vertices[v as usize]);
+                if !some_triangle_may_meet(body.tree(), unposed, &back) {
+                    return self.one_point_decides(pose, s, self.first_scene_corner());
                 }
             }
         }
         None
+    }
+
+    /// The number the containment test gives its first scene corner
+    /// (`inside_either`): after the body's points, which it asks only
+    /// where the scene has a solid.
+    fn first_scene_corner(&self) -> usize {
+        if self.scene.solid_components.is_empty() {
+            0
+        } else {
+            self.body.components.len()
+        }
+    }
+
+    /// The containment test's point numbered `k` alone (module docs, "No
+    /// triangle by a body"): `Some(inside)`, or `None` where it is not
+    /// decided (never seen; the state is then checked as any other).
+    fn one_point_decides(&self, pose: Pose, s: &mut Scratch, k: usize) -> Option<bool> {
+        let inside = self
+            .inside_either_with_parity(pose, s, k..k + 1, false)
+            .ok()?;
+        s.tally.bodies_by_region += 1;
+        Some(inside)
     }
 
     /// The pose's matrix and translation, the posing's rounding bound,
@@ -1094,6 +1178,30 @@ pub(super) struct Carry {
     ti: DVec3,
     back_pad: f64,
     oriented: bool,
+}
+
+/// Whether some triangle of `tree` (item `i` the triangle `corners(i)`)
+/// may meet the closed box `b`: its box meets `b` and its plane, a
+/// certified separating axis (`kernel::separation::PlaneAxis`), does not
+/// part them. `false` proves that every one misses `b`; a box that is not
+/// finite proves nothing.
+fn some_triangle_may_meet(
+    tree: &AabbTree,
+    corners: impl Fn(usize) -> [DVec3; 3],
+    b: &Aabb,
+) -> bool {
+    let (lo, hi) = (DVec3::from(b.lo), DVec3::from(b.hi));
+    if !(lo.is_finite() && hi.is_finite()) {
+        return true;
+    }
+    let mut met = false;
+    tree.for_each_meeting_while(b, |i| {
+        let t = corners(i);
+        let mag = t.iter().fold(lo.abs().max(hi.abs()), |m, p| m.max(p.abs()));
+        met = !PlaneAxis::new(&t, mag).parts(lo, hi);
+        !met
+    });
+    met
 }
 
 /// How far a point `p` of the scene carried back into the body's frame at
@@ -1843,7 +1951,7 @@ mod tests {
             checker.fit_node_cache(&mut s);
             let out = checker
                 .carry_unless_parted(&pose, &mut s)
-                .and_then(|c| checker.one_cell_holds_a_body(&c, &mut s));
+                .and_then(|c| checker.one_cell_holds_a_body(pose, &c, &mut s));
             checker.give_back(s);
             out
         };
@@ -1896,9 +2004,11 @@ mod tests {
                 decided[0] > 100 && decided[1] > 100,
                 "case {case}: {decided:?}"
             );
-            // Counted once by `collides_at` and once by `by_cells`.
+            // Counted once by `collides_at` and once by `by_cells` (by the
+            // grid, or where a cell is mixed by "No triangle by a body").
+            let stats = checker.containment_stats();
             assert_eq!(
-                checker.containment_stats().bodies_by_grid as usize,
+                (stats.bodies_by_grid + stats.bodies_by_region) as usize,
                 2 * (decided[0] + decided[1]),
                 "case {case}"
             );
@@ -1914,6 +2024,120 @@ mod tests {
         let back = Pose::new(Rotation::IDENTITY, -on_sheet.translation);
         assert!(checker.collides_at(back).unwrap());
         assert_eq!(by_cells(&checker, back), None);
+    }
+
+    /// Joined meshes, each moved by `offset` and scaled by `scale`.
+    fn joined(parts: &[(PolygonMesh, [f64; 3])], scale: f64) -> PolygonMesh {
+        let mut mesh = PolygonMesh::new(Vec::new(), Vec::new());
+        for (part, offset) in parts {
+            let base = mesh.vertices.len();
+            mesh.vertices.extend(
+                part.vertices
+                    .iter()
+                    .map(|v| std::array::from_fn(|k| (v[k] + offset[k]) * scale)),
+            );
+            mesh.faces.extend(
+                part.faces
+                    .iter()
+                    .map(|f| f.iter().map(|&v| v + base).collect()),
+            );
+        }
+        mesh
+    }
+
+    /// "No triangle by a body" (module docs): small bodies of several
+    /// components (closed cubes and an open triangle; open triangles alone)
+    /// by the walls of two
+    /// large blocks (with and without an open sheet between them, so with
+    /// the grid's reading tried first or not at all; the blocks also in
+    /// units a thousand times smaller), the blocks as the body and as the
+    /// scene, at generic and quarter turns: every answer is the walk
+    /// followed by the containment test's, and one point decided states
+    /// of both answers in every case.
+    #[test]
+    fn a_body_no_triangle_comes_near_is_decided_by_one_point() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(101);
+        let flake = PolygonMesh::new(
+            vec![[0.0, 0.0, 0.0], [0.2, 0.0, 0.0], [0.0, 0.2, 0.05]],
+            vec![vec![0, 1, 2]],
+        );
+        let cube = || cuboid([-0.1; 3], [0.1; 3]);
+        let specks = MeshBody::new(&joined(
+            &[
+                (cube(), [0.0; 3]),
+                (cube(), [0.35, 0.0, 0.0]),
+                (cube(), [0.0, 0.3, 0.2]),
+                (flake.clone(), [-0.3, -0.2, 0.1]),
+            ],
+            1.0,
+        ))
+        .unwrap();
+        // Surfaces alone: the containment test then numbers the scene's
+        // corners from the first (a body of them asks no point of its own).
+        let flakes = MeshBody::new(&joined(
+            &[
+                (flake.clone(), [0.0; 3]),
+                (flake.clone(), [0.3, 0.1, 0.0]),
+                (flake, [0.0, -0.3, 0.2]),
+            ],
+            1.0,
+        ))
+        .unwrap();
+        let quarter = Rotation::from_quat(glam::DQuat::from_xyzw(
+            0.0,
+            0.0,
+            0.5f64.sqrt(),
+            0.5f64.sqrt(),
+        ));
+        for scale in [1.0, 1e3] {
+            for sheet in [false, true] {
+                let blocks =
+                    MeshBody::new(&joined(&[(two_blocks(sheet), [0.0; 3])], scale)).unwrap();
+                for (case, small) in [(1, &specks), (1, &flakes), (2, &specks), (2, &flakes)] {
+                    let checker = if case == 1 {
+                        SceneChecker::new(small, std::slice::from_ref(&blocks)).unwrap()
+                    } else {
+                        SceneChecker::new(&blocks, std::slice::from_ref(small)).unwrap()
+                    };
+                    let solids = small.solid_components.len();
+                    let mut decided = [0usize; 2];
+                    for k in 0..2_000 {
+                        let rotation = if k % 3 == 0 {
+                            quarter
+                        } else {
+                            random_turn(&mut rng)
+                        };
+                        // By a wall of a block (x = ±2 or ±8), or anywhere.
+                        let wall = [-8.0, -2.0, 2.0, 8.0][k % 4] + rng.random_range(-0.8..0.8);
+                        let x = if k % 5 == 0 {
+                            rng.random_range(-9.0..9.0)
+                        } else {
+                            wall
+                        };
+                        let t =
+                            DVec3::new(x, rng.random_range(-9.0..9.0), rng.random_range(-9.0..9.0))
+                                * scale;
+                        // Case 2 moves the blocks about the specks.
+                        let pose =
+                            Pose::new(rotation, if case == 1 { t } else { rotation.apply(-t) });
+                        let before = checker.containment_stats().bodies_by_region;
+                        let now = checker.collides_at(pose).unwrap();
+                        let what = format!(
+                            "scale {scale}, sheet {sheet}, case {case}, {solids} solids, {k}: {pose:?}"
+                        );
+                        assert_eq!(now, walk_then_containment(&checker, pose), "{what}");
+                        if checker.containment_stats().bodies_by_region > before {
+                            decided[usize::from(now)] += 1;
+                        }
+                    }
+                    assert!(
+                        decided[0] > 50 && decided[1] > 50,
+                        "scale {scale}, sheet {sheet}, case {case}, {solids} solids: {decided:?}"
+                    );
+                }
+            }
+        }
     }
 
     /// Containment asked first (module docs) answers as the walk followed
