@@ -639,8 +639,8 @@ impl SceneChecker {
     }
 
     /// The number the containment test gives its first scene corner
-    /// (`inside_either`): after the body's points, which it asks only
-    /// where the scene has a solid.
+    /// (`inside_either` counts its scene corners from it): after the
+    /// body's points, which it asks only where the scene has a solid.
     fn first_scene_corner(&self) -> usize {
         if self.scene.solid_components.is_empty() {
             0
@@ -942,8 +942,9 @@ impl SceneChecker {
         // The points, counted in order before the box filters (so that an
         // asking of a few scans only a few, however many the filters
         // drop): the one counted `number` has index `number − 1`, asked
-        // when in `asked`.
-        let mut number = 0usize;
+        // when in `asked`. The body's points come first where the scene
+        // has a solid; `number` counts on from the last of them.
+        let mut number = self.first_scene_corner();
         if !self.scene.solid_components.is_empty() {
             let scene_box = self.scene.obbs().first();
             let components = &self.body.components;
@@ -994,7 +995,6 @@ impl SceneChecker {
             if asked.end <= components.len() {
                 return Ok(false);
             }
-            number = components.len();
         }
         if self.body.solid_components.is_empty() {
             return Ok(false);
@@ -1944,30 +1944,37 @@ mod tests {
     /// from 2 to 8), and optionally an open square sheet in the gap's
     /// middle plane `x = 0`.
     fn two_blocks(sheet: bool) -> PolygonMesh {
-        let mut mesh = split_cuboid([-8.0; 3], [-2.0, 8.0, 8.0], 8);
-        for part in [split_cuboid([2.0, -8.0, -8.0], [8.0; 3], 8)]
+        let blocks = [
+            split_cuboid([-8.0; 3], [-2.0, 8.0, 8.0], 8),
+            split_cuboid([2.0, -8.0, -8.0], [8.0; 3], 8),
+        ];
+        let sheet = sheet.then(|| {
+            PolygonMesh::new(
+                vec![
+                    [0.0, -3.0, -3.0],
+                    [0.0, 3.0, -3.0],
+                    [0.0, 3.0, 3.0],
+                    [0.0, -3.0, 3.0],
+                ],
+                vec![vec![0, 1, 2, 3]],
+            )
+        });
+        let parts: Vec<(PolygonMesh, [f64; 3])> = blocks
             .into_iter()
-            .chain(sheet.then(|| {
-                PolygonMesh::new(
-                    vec![
-                        [0.0, -3.0, -3.0],
-                        [0.0, 3.0, -3.0],
-                        [0.0, 3.0, 3.0],
-                        [0.0, -3.0, 3.0],
-                    ],
-                    vec![vec![0, 1, 2, 3]],
-                )
-            }))
-        {
-            let base = mesh.vertices.len();
-            mesh.vertices.extend(part.vertices);
-            mesh.faces.extend(
-                part.faces
-                    .into_iter()
-                    .map(|f| f.into_iter().map(|v| v + base).collect()),
-            );
-        }
-        mesh
+            .chain(sheet)
+            .map(|m| (m, [0.0; 3]))
+            .collect();
+        joined(&parts, 1.0)
+    }
+
+    /// The exact quarter turn about z.
+    fn quarter_about_z() -> Rotation {
+        Rotation::from_quat(glam::DQuat::from_xyzw(
+            0.0,
+            0.0,
+            0.5f64.sqrt(),
+            0.5f64.sqrt(),
+        ))
     }
 
     /// "One cell holds a body" (module docs): a small cube (and an open
@@ -1999,12 +2006,7 @@ mod tests {
             checker.give_back(s);
             out
         };
-        let quarter = Rotation::from_quat(glam::DQuat::from_xyzw(
-            0.0,
-            0.0,
-            0.5f64.sqrt(),
-            0.5f64.sqrt(),
-        ));
+        let quarter = quarter_about_z();
         for (case, checker) in [
             (
                 1,
@@ -2128,12 +2130,7 @@ mod tests {
             1.0,
         ))
         .unwrap();
-        let quarter = Rotation::from_quat(glam::DQuat::from_xyzw(
-            0.0,
-            0.0,
-            0.5f64.sqrt(),
-            0.5f64.sqrt(),
-        ));
+        let quarter = quarter_about_z();
         // Also far from the origin, where the posing rounds most.
         for (scale, offset) in [(1.0, 0.0), (1e3, 0.0), (1.0, 1e6)] {
             // Closed blocks, with the sheet, and open at the top (surfaces
@@ -2268,12 +2265,7 @@ mod tests {
         let before = |pose: Pose| walk_then_containment(&checker, pose);
         let turns = [
             Rotation::IDENTITY,
-            Rotation::from_quat(glam::DQuat::from_xyzw(
-                0.0,
-                0.0,
-                0.5f64.sqrt(),
-                0.5f64.sqrt(),
-            )),
+            quarter_about_z(),
             Rotation::from_quat(glam::DQuat::from_xyzw(0.1, -0.3, 0.2, 0.9).normalize()),
         ];
         let mut seen = [0usize; 2];
