@@ -15,9 +15,8 @@
 
 use std::time::Instant;
 
-use dymsum_bench::parts::{pair_states, part_checker, parts};
+use dymsum_bench::parts::{pair_states, part_checker, parts, picked_pairs};
 use dymsum_bench::scenes::{parry_collides, parry_mesh};
-use rand::{Rng, SeedableRng};
 
 /// One check, alone in a function so that a profiler can collect it.
 #[inline(never)]
@@ -54,20 +53,7 @@ fn main() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(3);
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let mut picks = Vec::new();
-    if let Some(p) = only {
-        let (a, b) = p.split_once(',').expect("PAIR=a,b");
-        let find = |s: &str| all.iter().position(|q| q.name.contains(s)).expect("a part");
-        picks.push((find(a), find(b)));
-    } else {
-        for _ in 0..pairs {
-            picks.push((
-                rng.random_range(0..all.len()),
-                rng.random_range(0..all.len()),
-            ));
-        }
-    }
+    let picks = picked_pairs(&all, only.as_deref(), seed, pairs);
     let (mut ratios_med, mut ratios_p99) = (Vec::new(), Vec::new());
     for (a, b) in picks {
         let (pa, pb) = (&all[a], &all[b]);

@@ -11,8 +11,7 @@
 
 use std::time::Instant;
 
-use dymsum_bench::parts::{pair_states, part_checker, parts};
-use rand::{Rng, SeedableRng};
+use dymsum_bench::parts::{pair_states, part_checker, parts, picked_pairs};
 
 /// One state: its best time (µs), index, answer, and its first call's
 /// grid readings, segments and rays.
@@ -24,22 +23,9 @@ fn main() {
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(200);
     let env = |k: &str| std::env::var(k).ok();
     let all = parts(dir);
-    let mut picks = Vec::new();
-    if let Some(p) = env("PAIR") {
-        let (a, b) = p.split_once(',').expect("PAIR=a,b");
-        let find = |s: &str| all.iter().position(|q| q.name.contains(s)).expect("a part");
-        picks.push((find(a), find(b)));
-    } else {
-        let seed: u64 = env("SEED").and_then(|v| v.parse().ok()).unwrap_or(3);
-        let k: usize = env("PAIRS").and_then(|v| v.parse().ok()).unwrap_or(12);
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-        for _ in 0..k {
-            picks.push((
-                rng.random_range(0..all.len()),
-                rng.random_range(0..all.len()),
-            ));
-        }
-    }
+    let seed: u64 = env("SEED").and_then(|v| v.parse().ok()).unwrap_or(3);
+    let count: usize = env("PAIRS").and_then(|v| v.parse().ok()).unwrap_or(12);
+    let picks = picked_pairs(&all, env("PAIR").as_deref(), seed, count);
     let top: usize = env("TOP").and_then(|v| v.parse().ok()).unwrap_or(0);
     let mut verdicts = String::new();
     for (a, b) in picks {

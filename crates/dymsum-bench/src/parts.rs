@@ -66,6 +66,35 @@ fn centre_and_diagonal(m: &PolygonMesh) -> (DVec3, f64) {
     ((lo + hi) * 0.5, (hi - lo).length())
 }
 
+/// The pairs of `all` to measure, as indices: the one named by `pair`
+/// (`"a,b"`: the first parts whose names contain `a` and `b`), else
+/// `count` pairs drawn with `seed` (the samples the benchmarks and
+/// docs/BENCHMARKS.md name by their seed).
+///
+/// # Panics
+/// Where `pair` has no comma, or names a part `all` does not hold.
+pub fn picked_pairs(
+    all: &[Part],
+    pair: Option<&str>,
+    seed: u64,
+    count: usize,
+) -> Vec<(usize, usize)> {
+    if let Some(p) = pair {
+        let (a, b) = p.split_once(',').expect("PAIR=a,b");
+        let find = |s: &str| all.iter().position(|q| q.name.contains(s)).expect("a part");
+        return vec![(find(a), find(b))];
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..count)
+        .map(|_| {
+            (
+                rng.random_range(0..all.len()),
+                rng.random_range(0..all.len()),
+            )
+        })
+        .collect()
+}
+
 /// The states of a pair (module docs): `(random, near)`.
 ///
 /// # Panics
