@@ -12,6 +12,16 @@
 //! set: the containment tests' counts and both meshes' reports; `PER_STATE=path`: every state's
 //! two times and the answer; `REPLAY=i,j`: those states again, each in
 //! `replay`).
+//!
+//! `TIMING` says how the two tools' calls are timed. `interleaved` (the
+//! default): one call of each per state, dymsum's then parry's, so each
+//! runs in the caches the other's call has just used; after one of
+//! parry's long calls (hundreds of µs where the surfaces cross) dymsum's
+//! short one finds little of its data, and the medians measure that.
+//! `passes`: each tool over every state in its own pass, twice in turn, a
+//! state's time the better of its two. `cold`: as `interleaved`, with a
+//! sweep of `EVICT` bytes (8 MiB unless told) before every timed call, so
+//! both tools start each call without their data in the core's caches.
 
 use std::time::Instant;
 
@@ -26,6 +36,31 @@ fn replay(checker: &dymsum::query::SceneChecker, p: dymsum::Pose, distance: bool
     } else {
         std::hint::black_box(checker.collides_at(p).unwrap());
     }
+}
+
+/// The bytes `TIMING=cold` sweeps before each timed call (`EVICT`, 8 MiB
+/// unless told): more than a core's private caches.
+fn evict_bytes() -> usize {
+    std::env::var("EVICT")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(8 << 20)
+}
+
+/// Writes every cache line of `sweep` (nothing where it is empty), so the
+/// next call finds none of its own data in the core's private caches.
+fn evict(sweep: &mut [u8]) {
+    for line in sweep.chunks_mut(64) {
+        line[0] = line[0].wrapping_add(1);
+    }
+    std::hint::black_box(&sweep);
+}
+
+/// One parry test, alone likewise (`MIDDLE` replays parry's on the same
+/// states once each, for `--toggle-collect='*replay_parry*'`).
+#[inline(never)]
+fn replay_parry(a: &parry3d_f64::shape::TriMesh, b: &parry3d_f64::shape::TriMesh, p: dymsum::Pose) {
+    std::hint::black_box(parry_collides(a, b, p));
 }
 
 fn quantile(v: &mut [f64], q: f64) -> f64 {
@@ -47,6 +82,9 @@ fn main() {
     let every_state = std::env::var("DISTANCE").is_ok_and(|v| v == "all");
     let colliding_only = std::env::var("DISTANCE").is_ok_and(|v| v == "colliding");
     let only: Option<String> = std::env::var("PAIR").ok();
+    // `TIMING=interleaved` (the default), `passes` or `cold` (module docs).
+    let timing = std::env::var("TIMING").unwrap_or_else(|_| "interleaved".into());
+    let mut sweep = vec![0u8; if timing == "cold" { evict_bytes() } else { 0 }];
     let all = parts(dir);
     // `SEED=s`: another seeded sample of pairs (3 unless told).
     let seed: u64 = std::env::var("SEED")
@@ -72,26 +110,59 @@ fn main() {
             if std::env::var("KIND").is_ok_and(|k| k != what) {
                 continue;
             }
-            let (mut ours, mut theirs, mut which) = (Vec::new(), Vec::new(), Vec::new());
-            for (index, &p) in states.iter().enumerate() {
-                if distance && !every_state && checker.collides_at(p).unwrap() != colliding_only {
-                    continue;
-                }
+            let which: Vec<usize> = (0..states.len())
+                .filter(|&i| {
+                    !distance
+                        || every_state
+                        || checker.collides_at(states[i]).unwrap() == colliding_only
+                })
+                .collect();
+            let ours_once = |p: dymsum::Pose| {
                 let t = Instant::now();
                 if distance {
                     std::hint::black_box(checker.distance_at(p).unwrap());
                 } else {
                     std::hint::black_box(checker.collides_at(p).unwrap());
                 }
-                ours.push(t.elapsed().as_secs_f64() * 1e6);
-                which.push(index);
+                t.elapsed().as_secs_f64() * 1e6
+            };
+            let theirs_once = |p: dymsum::Pose| {
                 if skip_parry {
-                    theirs.push(1.0);
-                    continue;
+                    return 1.0;
                 }
                 let t = Instant::now();
                 std::hint::black_box(parry_collides(&ra, &rb, p));
-                theirs.push(t.elapsed().as_secs_f64() * 1e6);
+                t.elapsed().as_secs_f64() * 1e6
+            };
+            let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+            match timing.as_str() {
+                // Each tool over every state in its own pass, twice in
+                // turn; a state's time is the better of its two: neither
+                // tool's call runs in the caches the other's has just
+                // filled (module docs).
+                "passes" => {
+                    ours = vec![f64::INFINITY; which.len()];
+                    theirs = vec![f64::INFINITY; which.len()];
+                    for _ in 0..2 {
+                        for (k, &i) in which.iter().enumerate() {
+                            ours[k] = ours[k].min(ours_once(states[i]));
+                        }
+                        for (k, &i) in which.iter().enumerate() {
+                            theirs[k] = theirs[k].min(theirs_once(states[i]));
+                        }
+                    }
+                }
+                // One call of each per state, in turn, each after a sweep
+                // of `EVICT` bytes (`cold`) or right after the other's
+                // (`interleaved`, the default).
+                _ => {
+                    for &i in &which {
+                        evict(&mut sweep);
+                        ours.push(ours_once(states[i]));
+                        evict(&mut sweep);
+                        theirs.push(theirs_once(states[i]));
+                    }
+                }
             }
             if ours.is_empty() {
                 continue;
@@ -121,17 +192,26 @@ fn main() {
                 let t = Instant::now();
                 let mut calls = 0;
                 for &i in order.iter().skip(from).take(k) {
+                    // `TIMING=cold`: each after a sweep, as timed.
+                    evict(&mut sweep);
                     replay(&checker, states[which[i]], distance);
                     calls += 1;
                 }
                 let cold = t.elapsed().as_secs_f64() * 1e6 / calls.max(1) as f64;
+                if !skip_parry {
+                    for &i in order.iter().skip(from).take(k) {
+                        evict(&mut sweep);
+                        replay_parry(&ra, &rb, states[which[i]]);
+                    }
+                }
                 let t = Instant::now();
+                let repeats = if sweep.is_empty() { 100 } else { 0 };
                 for &i in order.iter().skip(from).take(k) {
-                    for _ in 0..100 {
+                    for _ in 0..repeats {
                         replay(&checker, states[which[i]], distance);
                     }
                 }
-                let warm = t.elapsed().as_secs_f64() * 1e6 / (100 * calls.max(1)) as f64;
+                let warm = t.elapsed().as_secs_f64() * 1e6 / (repeats * calls).max(1) as f64;
                 println!("{what}: {calls} middle states, {cold:.2} µs each once, {warm:.2} µs each repeated");
             }
             // `REPLAY=i,j,...`: those states (indices in `states`, as
