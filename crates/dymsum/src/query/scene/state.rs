@@ -1248,12 +1248,6 @@ fn some_triangle_may_meet(
     met
 }
 
-/// How far a point `p` of the scene carried back into the body's frame at
-/// a pose `(M, t)` (`fl(Mᵀ (p − t))`, `M` within `2⁻⁴⁰` an entry of a
-/// rotation), and the body's float-posed vertices carried back alike, may
-/// lie from where the body's frame has them (`size` the body's reach plus
-/// `|t|`, `pad` the posing's rounding bound; the comment at its use in
-/// `inside_either`, and the module docs, "The grid at a pose").
 /// The box `b` of the scene's frame carried back into the body's at a pose
 /// (`mi` the rounded matrix's transpose, `t` its translation; `size` and
 /// `pad` as for [`back_pad`]): its eight corners carried back as the scene's
@@ -1262,29 +1256,51 @@ fn some_triangle_may_meet(
 /// posed points carried back exactly, and grown by twice that, for its
 /// sides' own rounding (module docs, "The body's components near the
 /// scene").
+///
+/// The corners' box is found without carrying the eight corners one by
+/// one, and is the same float box: a corner's carried coordinate `i` is
+/// `fl(fl(x + y) + z)` with `x = fl(mᵢ₀ fl(c₀ − t₀))` and likewise `y`,
+/// `z` (glam's product, column by column, no fused steps), each term taking
+/// one of two values as the corner takes `b`'s low or high side on that
+/// axis. Rounding is monotone, so the sum is nondecreasing in each term,
+/// and its least over the eight corners is the sum of the three least
+/// terms, its greatest that of the greatest: six differences and eighteen
+/// products instead of eight corners' (test
+/// `carried_back_is_the_eight_corners_box_bit_for_bit`).
 fn carried_back(b: &Aabb, mi: &DMat3, t: DVec3, size: f64, pad: f64) -> Aabb {
-    let mut region = Aabb::EMPTY;
+    let cols = [mi.x_axis, mi.y_axis, mi.z_axis];
+    let (mut lo, mut hi) = ([0.0; 3], [0.0; 3]);
     let mut largest = DVec3::ZERO;
-    for k in 0..8 {
-        let pick = |axis: usize| {
-            if k >> axis & 1 == 0 {
-                b.lo[axis]
+    for axis in 0..3 {
+        let (low, high) = (
+            cols[axis] * (b.lo[axis] - t[axis]),
+            cols[axis] * (b.hi[axis] - t[axis]),
+        );
+        let (least, most) = (low.min(high), low.max(high));
+        for i in 0..3 {
+            // The terms in glam's order: x, then + y, then + z.
+            lo[i] = if axis == 0 {
+                least[i]
             } else {
-                b.hi[axis]
-            }
-        };
-        let corner = DVec3::new(pick(0), pick(1), pick(2));
-        largest = largest.max(corner.abs());
-        let back = (*mi * (corner - t)).to_array();
-        region = region.join(&Aabb { lo: back, hi: back });
+                lo[i] + least[i]
+            };
+            hi[i] = if axis == 0 { most[i] } else { hi[i] + most[i] };
+        }
+        largest[axis] = b.lo[axis].abs().max(b.hi[axis].abs());
     }
     let grow = 2.0 * back_pad(size, pad, largest, t);
     Aabb {
-        lo: region.lo.map(|x| x - grow),
-        hi: region.hi.map(|x| x + grow),
+        lo: lo.map(|x| x - grow),
+        hi: hi.map(|x| x + grow),
     }
 }
 
+/// How far a point `p` of the scene carried back into the body's frame at
+/// a pose `(M, t)` (`fl(Mᵀ (p − t))`, `M` within `2⁻⁴⁰` an entry of a
+/// rotation), and the body's float-posed vertices carried back alike, may
+/// lie from where the body's frame has them (`size` the body's reach plus
+/// `|t|`, `pad` the posing's rounding bound; the comment at its use in
+/// `inside_either`, and the module docs, "The grid at a pose").
 fn back_pad(size: f64, pad: f64, p: DVec3, t: DVec3) -> f64 {
     size * (1.0 / (1u64 << 36) as f64)
         + 2.0 * pad
@@ -1316,6 +1332,92 @@ mod tests {
     use crate::body::MeshBody;
     use crate::kernel::rotation::Rotation;
     use crate::mesh::PolygonMesh;
+
+    /// The eight corners carried back one by one and joined, as
+    /// `carried_back` computed its box before it summed the least and
+    /// greatest terms instead: the reference it must equal bit for bit.
+    fn carried_back_by_corners(b: &Aabb, mi: &DMat3, t: DVec3, size: f64, pad: f64) -> Aabb {
+        let mut region = Aabb::EMPTY;
+        let mut largest = DVec3::ZERO;
+        for k in 0..8 {
+            let pick = |axis: usize| {
+                if k >> axis & 1 == 0 {
+                    b.lo[axis]
+                } else {
+                    b.hi[axis]
+                }
+            };
+            let corner = DVec3::new(pick(0), pick(1), pick(2));
+            largest = largest.max(corner.abs());
+            let back = (*mi * (corner - t)).to_array();
+            region = region.join(&Aabb { lo: back, hi: back });
+        }
+        let grow = 2.0 * back_pad(size, pad, largest, t);
+        Aabb {
+            lo: region.lo.map(|x| x - grow),
+            hi: region.hi.map(|x| x + grow),
+        }
+    }
+
+    /// `carried_back` sums the least and the greatest of each column's two
+    /// terms (its docs: rounding is monotone): the same float box as the
+    /// eight corners', on turns and on arbitrary matrices with negative,
+    /// zero and tiny entries, boxes flat on an axis, a point, boxes
+    /// straddling zero and far from the origin, translations up to 10⁹.
+    #[test]
+    fn carried_back_is_the_eight_corners_box_bit_for_bit() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        for k in 0..50_000 {
+            let scale = [1e-9, 1e-3, 1.0, 1e3, 1e9][k % 5];
+            let mi = if k % 3 == 0 {
+                DMat3::from_cols_array(&std::array::from_fn(|i| match (k / 3 + i) % 7 {
+                    0 => 0.0,
+                    1 => -0.0,
+                    2 => 1e-300,
+                    _ => rng.random_range(-2.0..2.0),
+                }))
+            } else {
+                random_turn(&mut rng).matrix().transpose()
+            };
+            let mut coordinate = || rng.random_range(-1.0..1.0) * scale;
+            let off = DVec3::new(coordinate(), coordinate(), coordinate()) * [0.0, 1.0, 1e3][k % 3];
+            let (p, q) = (
+                DVec3::new(coordinate(), coordinate(), coordinate()) + off,
+                DVec3::new(coordinate(), coordinate(), coordinate()) + off,
+            );
+            let (mut lo, mut hi) = (p.min(q).to_array(), p.max(q).to_array());
+            // Flat on the axes `k % 4` names (all three: a point).
+            for axis in 0..3 {
+                if k % 4 == 3 || k % 4 == axis + 1 && k % 8 < 4 {
+                    hi[axis] = lo[axis];
+                }
+            }
+            if k % 11 == 0 {
+                lo[0] = -0.0;
+                hi[0] = 0.0;
+            }
+            let b = Aabb { lo, hi };
+            let t = DVec3::new(coordinate(), coordinate(), coordinate()) * [1.0, 1e3, 1e-6][k % 3];
+            let (size, pad) = (scale * 3.0, scale * 1e-15);
+            let (got, want) = (
+                carried_back(&b, &mi, t, size, pad),
+                carried_back_by_corners(&b, &mi, t, size, pad),
+            );
+            for axis in 0..3 {
+                assert_eq!(
+                    got.lo[axis].to_bits(),
+                    want.lo[axis].to_bits(),
+                    "{k}: lo {axis}"
+                );
+                assert_eq!(
+                    got.hi[axis].to_bits(),
+                    want.hi[axis].to_bits(),
+                    "{k}: hi {axis}"
+                );
+            }
+        }
+    }
 
     /// The per-query caches (posed vertices, triangles, node boxes) are
     /// stamped with a query counter that wraps after 2³² queries; a
