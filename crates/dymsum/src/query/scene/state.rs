@@ -155,7 +155,8 @@
 //! timings"), 1,232 to 2,510 instructions a state became 835 to 1,736.
 //!
 //! # One cell holds a body
-//! Past the roots' test, and before anything is asked, each body's inside
+//! Past the roots' box tests (before their oriented boxes: "The order"
+//! above), and before anything is asked, each body's inside
 //! grid (`body::inside_grid`) may hold the other body whole: where the
 //! other's box meets at most [`CELLS_MOST`] cells of it (it is at most
 //! [`CELLS_ACROSS`] cells wide, else the grid is not asked), all
@@ -715,12 +716,13 @@ impl SceneChecker {
     }
 
     /// The pose's [`SceneChecker::carry`], or `None` where the walk's first
-    /// test parts the two roots at the pose: the body's root box carried to
-    /// the pose misses the scene's, or (the matrix near a rotation) the
-    /// scene's carried back misses the body's, or their oriented boxes are
-    /// apart. Then nothing meets and nothing lies inside the other (module
-    /// docs, "The roots first"). The boxes are left in the query's caches
-    /// for the walk; the carrying is computed only past the first test.
+    /// test parts the two roots at the pose by their boxes: the body's root
+    /// box carried to the pose misses the scene's, or (the matrix near a
+    /// rotation) the scene's carried back misses the body's. Then nothing
+    /// meets and nothing lies inside the other (module docs, "The roots
+    /// first"; their oriented boxes are `oriented_roots_apart`'s, asked
+    /// later). The boxes are left in the query's caches for the walk; the
+    /// carrying is computed only past the first test.
     fn carry_unless_parted(&self, pose: &Pose, s: &mut Scratch) -> Option<Carry> {
         let (bounds, scene) = (self.body.tree().bounds(), self.scene.tree());
         if bounds.is_empty() || scene.bounds().is_empty() {
