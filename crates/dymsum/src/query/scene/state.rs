@@ -1311,29 +1311,20 @@ fn some_triangle_may_meet(
 /// term's choice is changed.
 fn carried_back(b: &Aabb, mi: &DMat3, t: DVec3, size: f64, pad: f64) -> Aabb {
     let cols = [mi.x_axis, mi.y_axis, mi.z_axis];
-    let (mut lo, mut hi) = ([0.0; 3], [0.0; 3]);
-    let mut largest = DVec3::ZERO;
-    for axis in 0..3 {
-        let (low, high) = (
-            cols[axis] * (b.lo[axis] - t[axis]),
-            cols[axis] * (b.hi[axis] - t[axis]),
-        );
-        let (least, most) = (low.min(high), low.max(high));
-        for i in 0..3 {
-            // The terms in glam's order: x, then + y, then + z.
-            lo[i] = if axis == 0 {
-                least[i]
-            } else {
-                lo[i] + least[i]
-            };
-            hi[i] = if axis == 0 { most[i] } else { hi[i] + most[i] };
-        }
-        largest[axis] = b.lo[axis].abs().max(b.hi[axis].abs());
-    }
-    let grow = 2.0 * back_pad(size, pad, largest, t);
+    // Column `axis`'s least and greatest terms over the box's two sides.
+    let terms = |axis: usize| {
+        let low = cols[axis] * (b.lo[axis] - t[axis]);
+        let high = cols[axis] * (b.hi[axis] - t[axis]);
+        (low.min(high), low.max(high))
+    };
+    let ((l0, h0), (l1, h1), (l2, h2)) = (terms(0), terms(1), terms(2));
+    // Summed as glam's product sums them: x, then + y, then + z.
+    let (lo, hi) = ((l0 + l1) + l2, (h0 + h1) + h2);
+    let largest = DVec3::from(b.lo).abs().max(DVec3::from(b.hi).abs());
+    let grow = DVec3::splat(2.0 * back_pad(size, pad, largest, t));
     Aabb {
-        lo: lo.map(|x| x - grow),
-        hi: hi.map(|x| x + grow),
+        lo: (lo - grow).to_array(),
+        hi: (hi + grow).to_array(),
     }
 }
 
