@@ -86,6 +86,10 @@ fn main() {
     let only: Option<String> = std::env::var("PAIR").ok();
     // `TIMING=interleaved` (the default), `passes` or `cold` (module docs).
     let timing = std::env::var("TIMING").unwrap_or_else(|_| "interleaved".into());
+    assert!(
+        ["interleaved", "passes", "cold"].contains(&timing.as_str()),
+        "TIMING={timing}: interleaved, passes or cold"
+    );
     let mut sweep = vec![0u8; if timing == "cold" { evict_bytes() } else { 0 }];
     let all = parts(dir);
     // `SEED=s`: another seeded sample of pairs (3 unless told).

@@ -102,8 +102,9 @@
 //! against the body's (grown by `back_pad`, as in the walk) (both
 //! `carry_unless_parted`); and, after the grids (*The order* below),
 //! their oriented boxes (`oriented_roots_apart`; `solid::obb`,
-//! certified). Where one parts them, the state is free. Why that is exact: each test separates a
-//! convex set holding every point of the posed body's hull (the hull of
+//! certified). Where one parts them, the state is free. Why that is
+//! exact: each test separates a convex set holding every point of the
+//! posed body's hull (the hull of
 //! the posed vertices; the carrying back is affine, so its argument holds
 //! for every point of the hull, not only for triangles) from a convex set
 //! holding the scene's. So no triangles meet (the walk would part this
